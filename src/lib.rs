@@ -1,0 +1,34 @@
+//! mdsolids: molecular-dynamics studies of solids made of masses and springs.
+//!
+//! Data flows one way:
+//!
+//! ```text
+//! campaign YAML ──spec::load──▶ Campaign { runs: [RunSpec] }                 (spec)
+//! RunSpec ──scenes::build_scene──▶ Scene { particles, bonds, law, damping }   (scenes, model)
+//! Scene ──Scene::run──▶ Outcome { Trace, crossings, final state }             (sim: pure)
+//! Outcome ──measure::*──▶ Metrics, beside theory::* references                (measure, theory)
+//! runner: rayon over RunSpecs, content-hash cache, one stored RunRecord per run
+//! [RunRecord] ──table──▶ results.csv / results.parquet (Polars)
+//! [RunRecord] ──report──▶ plots/*.svg, report.md, index.html (plotters, tera)
+//! ```
+//!
+//! The physics core (`model`, `sim`, `theory`, `measure`, `scenes`) does no I/O.
+//!
+//! To add a force law: implement [`model::ForceLaw`] (force and energy, with a doctest), add a
+//! variant to [`sim::LawKind`] and one arm to `Scene::run`; the bond loop, integrators and
+//! measurements need no change. To add a measurement: a pure function in `measure`, a field in
+//! [`runner::Metrics`], a column in `table`.
+
+#![warn(missing_docs)]
+
+pub mod cli;
+pub mod measure;
+pub mod model;
+pub mod output;
+pub mod report;
+pub mod runner;
+pub mod scenes;
+pub mod sim;
+pub mod spec;
+pub mod table;
+pub mod theory;

@@ -1,0 +1,12 @@
+//! What a solid is made of: particles, which pairs are bonded, and the force law of a bond.
+//!
+//! Connectivity ([`Bonds`]) knows nothing of forces, the force law ([`Spring`]) knows nothing
+//! of which particles it joins, and neither knows how time is integrated (`crate::sim`).
+
+pub use self::bonds::{Bonds, Diagonals};
+pub use self::law::{BondDashpot, Dashpot, ForceLaw, Linear, NoDashpot, PowerLaw, Spring};
+pub use self::particles::{Axes, Particles};
+
+mod bonds;
+mod law;
+mod particles;

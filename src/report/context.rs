@@ -1,0 +1,233 @@
+//! The data the templates see: pre-formatted numbers, one section per scene.
+
+use serde::Serialize;
+
+use super::figures::{Figure, group_label, groups, representative};
+use crate::measure::convergence_order;
+use crate::runner::RunRecord;
+use crate::spec::{Campaign, LawName, SceneKind};
+use crate::table::relative_error;
+
+/// Everything the report templates show.
+#[derive(Serialize)]
+pub struct ReportContext {
+    name: String,
+    title: String,
+    description: String,
+    version: &'static str,
+    runs: usize,
+    ok: usize,
+    failed: usize,
+    wall_s: String,
+    has_pair: bool,
+    has_chain: bool,
+    scenes: Vec<SceneSection>,
+    failures: Vec<FailureRow>,
+}
+
+#[derive(Serialize)]
+struct FigureRef {
+    file: String,
+    caption: String,
+}
+
+#[derive(Serialize)]
+struct SceneSection {
+    name: String,
+    kind: &'static str,
+    is_pair: bool,
+    is_chain: bool,
+    physics: String,
+    t_c: String,
+    dt_50: String,
+    figures: Vec<FigureRef>,
+    pair_rows: Vec<PairRow>,
+    orders: Vec<OrderRow>,
+    chain_rows: Vec<ChainRow>,
+}
+
+#[derive(Serialize)]
+struct PairRow {
+    run_id: String,
+    label: String,
+    integrator: &'static str,
+    dt_per_tc: String,
+    duration: String,
+    duration_theory: String,
+    duration_error: String,
+    restitution: String,
+    restitution_theory: String,
+    restitution_error: String,
+    energy_error: String,
+    status: String,
+}
+
+#[derive(Serialize)]
+struct OrderRow {
+    group: String,
+    duration_order: String,
+    restitution_order: String,
+    duration_error_50: String,
+    restitution_error_50: String,
+}
+
+#[derive(Serialize)]
+struct ChainRow {
+    run_id: String,
+    label: String,
+    n: String,
+    node: String,
+    dt_per_tc: String,
+    energy_error: String,
+    mode_error: String,
+    wall_s: String,
+    status: String,
+}
+
+#[derive(Serialize)]
+struct FailureRow {
+    run_id: String,
+    status: String,
+    message: String,
+}
+
+/// A number with 6 significant digits, plain where that reads well, scientific otherwise.
+fn number(x: f64) -> String {
+    if x == 0.0 {
+        return "0".into();
+    }
+    let magnitude = x.abs().log10().floor();
+    if (-3.0..5.0).contains(&magnitude) {
+        let decimals = (5.0 - magnitude) as usize;
+        let text = format!("{x:.decimals$}");
+        if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.').to_string() } else { text }
+    } else {
+        format!("{x:.5e}")
+    }
+}
+
+fn optional(x: Option<f64>) -> String {
+    x.map(number).unwrap_or_else(|| "–".into())
+}
+
+fn error(x: Option<f64>) -> String {
+    x.map(|e| format!("{e:+.2e}")).unwrap_or_else(|| "–".into())
+}
+
+/// Builds the context from the campaign, its records and the drawn figures.
+pub fn build(campaign: &Campaign, records: &[RunRecord], figures: &[Figure]) -> ReportContext {
+    let ok = records.iter().filter(|r| r.status == "ok").count();
+    ReportContext {
+        name: campaign.name.clone(),
+        title: campaign.title.clone(),
+        description: campaign.description.clone(),
+        version: env!("CARGO_PKG_VERSION"),
+        runs: records.len(),
+        ok,
+        failed: records.len() - ok,
+        wall_s: number(records.iter().map(|r| r.wall_s).sum()),
+        has_pair: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Pair),
+        has_chain: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Chain),
+        scenes: campaign
+            .scenes
+            .iter()
+            .filter_map(|(scene, kind)| section(scene, *kind, records, figures))
+            .collect(),
+        failures: records
+            .iter()
+            .filter(|r| r.status != "ok")
+            .map(|r| FailureRow { run_id: r.run_id.clone(), status: r.status.clone(), message: r.message.clone() })
+            .collect(),
+    }
+}
+
+fn section(scene: &str, kind: SceneKind, records: &[RunRecord], figures: &[Figure]) -> Option<SceneSection> {
+    let mine: Vec<&RunRecord> = records.iter().filter(|r| r.spec.scene == scene).collect();
+    let first = mine.first()?;
+    let s = &first.spec;
+    let law = match s.law {
+        LawName::Linear => format!("linear springs k = {} N/m", number(s.k)),
+        LawName::Power => format!("power-law springs C = {} N/m^β, β = {}", number(s.k), number(s.beta)),
+    };
+    let physics = format!(
+        "{law}, {}, m = {} kg, x_e = {} m, v0 = {} m/s, {}",
+        if s.contact { "contact (compression only)" } else { "bonded (tension and compression)" },
+        number(s.mass),
+        number(s.spacing),
+        number(s.v0),
+        s.integrator.name()
+    );
+    Some(SceneSection {
+        name: scene.into(),
+        kind: kind.name(),
+        is_pair: kind == SceneKind::Pair,
+        is_chain: kind == SceneKind::Chain,
+        physics,
+        t_c: number(s.t_c),
+        dt_50: number(s.t_c / 50.0),
+        figures: figures
+            .iter()
+            .filter(|f| f.scene == scene)
+            .map(|f| FigureRef { file: f.file.clone(), caption: f.caption.clone() })
+            .collect(),
+        pair_rows: if kind == SceneKind::Pair { mine.iter().map(|r| pair_row(r)).collect() } else { Vec::new() },
+        orders: if kind == SceneKind::Pair { order_rows(records, scene) } else { Vec::new() },
+        chain_rows: if kind == SceneKind::Chain { mine.iter().map(|r| chain_row(r)).collect() } else { Vec::new() },
+    })
+}
+
+fn pair_row(r: &RunRecord) -> PairRow {
+    let m = &r.metrics;
+    PairRow {
+        run_id: r.run_id.clone(),
+        label: group_label(r),
+        integrator: r.spec.integrator.name(),
+        dt_per_tc: number(r.spec.dt_per_tc()),
+        duration: optional(m.contact_duration),
+        duration_theory: optional(m.contact_duration_theory),
+        duration_error: error(relative_error(m.contact_duration, m.contact_duration_theory)),
+        restitution: optional(m.restitution),
+        restitution_theory: optional(m.restitution_theory),
+        restitution_error: error(relative_error(m.restitution, m.restitution_theory)),
+        energy_error: error(m.energy_error),
+        status: r.status.clone(),
+    }
+}
+
+/// Measured order of convergence per group of runs that differ only in dt.
+fn order_rows(records: &[RunRecord], scene: &str) -> Vec<OrderRow> {
+    groups(records, scene)
+        .into_iter()
+        .filter(|(_, members)| members.len() > 1)
+        .map(|(group, members)| {
+            let order = |error: &dyn Fn(&RunRecord) -> Option<f64>| {
+                let points: Vec<(f64, f64)> = members.iter().filter_map(|r| error(r).map(|e| (r.spec.dt, e))).collect();
+                convergence_order(&points).map(|p| format!("{p:.2}")).unwrap_or_else(|| "–".into())
+            };
+            let duration = |r: &RunRecord| relative_error(r.metrics.contact_duration, r.metrics.contact_duration_theory);
+            let restitution = |r: &RunRecord| relative_error(r.metrics.restitution, r.metrics.restitution_theory);
+            let reference = representative(&members);
+            OrderRow {
+                duration_error_50: format!("{} at t_c/{:.0}", error(duration(reference)), reference.spec.dt_per_tc()),
+                restitution_error_50: error(restitution(reference)),
+                duration_order: order(&duration),
+                restitution_order: order(&restitution),
+                group,
+            }
+        })
+        .collect()
+}
+
+fn chain_row(r: &RunRecord) -> ChainRow {
+    ChainRow {
+        run_id: r.run_id.clone(),
+        label: group_label(r),
+        n: r.spec.n.map(|n| n.to_string()).unwrap_or_default(),
+        node: r.spec.node.map(|n| n.to_string()).unwrap_or_default(),
+        dt_per_tc: number(r.spec.dt_per_tc()),
+        energy_error: error(r.metrics.energy_error),
+        mode_error: error(r.metrics.chain_mode_error),
+        wall_s: number(r.wall_s),
+        status: r.status.clone(),
+    }
+}

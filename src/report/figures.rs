@@ -1,0 +1,153 @@
+//! Which figures a campaign gets: energies per scene, chain displacements, and the
+//! convergence of the pair measurements against their analytical values.
+
+use super::plots::{Chart, Series, line_chart};
+use crate::runner::RunRecord;
+use crate::spec::{Campaign, SceneKind};
+use crate::table::relative_error;
+
+/// A drawn figure.
+pub struct Figure {
+    /// Scene it belongs to.
+    pub scene: String,
+    /// Path relative to the campaign directory (`plots/…svg`).
+    pub file: String,
+    /// Caption.
+    pub caption: String,
+    /// The SVG document.
+    pub svg: String,
+}
+
+/// The label of a run's grid values other than the time step: runs with the same group label
+/// differ only in dt, so they form one convergence curve.
+pub fn group_label(record: &RunRecord) -> String {
+    let label = record.spec.varied_label(|path| !path.starts_with("time.dt"));
+    if label.is_empty() { "all".into() } else { label }
+}
+
+/// The runs of `scene` that are `ok`, grouped by [`group_label`] in campaign order.
+pub fn groups<'a>(records: &'a [RunRecord], scene: &str) -> Vec<(String, Vec<&'a RunRecord>)> {
+    let mut groups: Vec<(String, Vec<&RunRecord>)> = Vec::new();
+    for record in records.iter().filter(|r| r.spec.scene == scene && r.status == "ok") {
+        let label = group_label(record);
+        match groups.iter_mut().find(|(l, _)| *l == label) {
+            Some((_, members)) => members.push(record),
+            None => groups.push((label, vec![record])),
+        }
+    }
+    groups
+}
+
+/// The run of a group whose dt is closest to t_c/50 (the coursework's choice).
+pub fn representative<'a>(members: &[&'a RunRecord]) -> &'a RunRecord {
+    let distance = |r: &&RunRecord| (r.spec.dt_per_tc().ln() - 50f64.ln()).abs();
+    members.iter().copied().min_by(|a, b| distance(a).total_cmp(&distance(b))).expect("groups are never empty")
+}
+
+/// At most this many energy figures per scene (one per group).
+const MAX_ENERGY_FIGURES: usize = 4;
+
+/// Every figure of the report.
+pub fn draw_all(campaign: &Campaign, records: &[RunRecord]) -> anyhow::Result<Vec<Figure>> {
+    let mut figures = Vec::new();
+    for (scene, kind) in &campaign.scenes {
+        let groups = groups(records, scene);
+        for (index, (label, members)) in groups.iter().enumerate().take(MAX_ENERGY_FIGURES) {
+            figures.push(energy_figure(scene, index, label, representative(members))?);
+        }
+        match kind {
+            SceneKind::Pair if groups.iter().any(|(_, m)| m.len() > 1) => figures.push(convergence_figure(scene, &groups)?),
+            SceneKind::Chain => {
+                if let Some((label, members)) = groups.first() {
+                    figures.push(displacement_figure(scene, label, representative(members))?);
+                }
+            }
+            SceneKind::Pair => {}
+        }
+    }
+    Ok(figures)
+}
+
+fn energy_figure(scene: &str, index: usize, label: &str, record: &RunRecord) -> anyhow::Result<Figure> {
+    let t = &record.trace;
+    let series = |name: &str, values: Vec<f64>| Series {
+        label: name.into(),
+        points: t.time.iter().copied().zip(values).collect(),
+        markers: false,
+    };
+    let total: Vec<f64> = (0..t.time.len()).map(|s| t.kinetic[s] + t.potential[s] + t.dissipated[s]).collect();
+    let chart = Chart {
+        title: format!("{scene}: energies ({label}, dt = t_c/{:.0})", record.spec.dt_per_tc()),
+        x_label: "time t (s)".into(),
+        y_label: "energy (J)".into(),
+        log: false,
+    };
+    let svg = line_chart(
+        &chart,
+        &[
+            series("kinetic", t.kinetic.clone()),
+            series("potential", t.potential.clone()),
+            series("dissipated", t.dissipated.clone()),
+            series("total (incl. dissipated)", total),
+        ],
+    )?;
+    Ok(Figure {
+        scene: scene.into(),
+        file: format!("plots/{scene}-energy-{index}.svg"),
+        caption: format!("Kinetic, potential, dissipated and total energy against time, {scene} ({label})."),
+        svg,
+    })
+}
+
+fn displacement_figure(scene: &str, label: &str, record: &RunRecord) -> anyhow::Result<Figure> {
+    let t = &record.trace;
+    let particles = t.displacement_x.first().map_or(0, Vec::len);
+    let largest = t.displacement_x.iter().flatten().fold(0.0f64, |m, u| m.max(u.abs())).max(f64::MIN_POSITIVE);
+    // Waterfall: particle p drawn around height p, displacement scaled so the largest is 0.45.
+    let series: Vec<Series> = (1..particles.saturating_sub(1))
+        .map(|p| Series {
+            label: if p == 1 { "u_p(t) (scaled) + p".into() } else { String::new() },
+            points: t.time.iter().zip(&t.displacement_x).map(|(&time, u)| (time, p as f64 + 0.45 * u[p] / largest)).collect(),
+            markers: false,
+        })
+        .collect();
+    let chart = Chart {
+        title: format!("{scene}: displacements ({label}; largest |u| = {largest:.3e} m)"),
+        x_label: "time t (s)".into(),
+        y_label: "particle number p + u_p / (2.2 max|u|)".into(),
+        log: false,
+    };
+    Ok(Figure {
+        scene: scene.into(),
+        file: format!("plots/{scene}-displacements.svg"),
+        caption: format!("Displacement of every particle against time, {scene} ({label}): one line per particle, offset by its number."),
+        svg: line_chart(&chart, &series)?,
+    })
+}
+
+fn convergence_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyhow::Result<Figure> {
+    let mut series = Vec::new();
+    for (label, members) in groups {
+        let curve = |name: &str, error: &dyn Fn(&RunRecord) -> Option<f64>| Series {
+            label: format!("{name} ({label})"),
+            points: members.iter().filter_map(|r| error(r).map(|e| (1.0 / r.spec.dt_per_tc(), e.abs()))).collect(),
+            markers: true,
+        };
+        series.push(curve("t_c", &|r| relative_error(r.metrics.contact_duration, r.metrics.contact_duration_theory)));
+        series.push(curve("r", &|r| relative_error(r.metrics.restitution, r.metrics.restitution_theory)));
+    }
+    let chart = Chart {
+        title: format!("{scene}: measured against analytical"),
+        x_label: "dt / t_c".into(),
+        y_label: "|relative error|".into(),
+        log: true,
+    };
+    Ok(Figure {
+        scene: scene.into(),
+        file: format!("plots/{scene}-convergence.svg"),
+        caption: format!(
+            "Relative error of contact duration t_c and restitution r against dt/t_c, {scene}. A slope of 2 on these axes is second order."
+        ),
+        svg: line_chart(&chart, &series)?,
+    })
+}

@@ -1,0 +1,38 @@
+//! Reports: SVG figures, then `report.md` rendered by tera from `templates/report.md.tera`,
+//! and `index.html`: the same Markdown turned into HTML (pulldown-cmark) inside the page shell
+//! `templates/index.html.tera`, so the report's text exists once. The templates are compiled
+//! in, so the binary works from any directory. Only sections of the campaign's scenes show.
+
+mod context;
+mod figures;
+pub mod plots;
+
+use anyhow::Context as _;
+
+use crate::output::{Layout, write_atomically};
+use crate::runner::RunRecord;
+use crate::spec::Campaign;
+
+const MARKDOWN_TEMPLATE: &str = include_str!("../../templates/report.md.tera");
+const HTML_TEMPLATE: &str = include_str!("../../templates/index.html.tera");
+
+/// Draws the figures and writes `report.md` and `index.html` for `records`.
+pub fn render(campaign: &Campaign, layout: &Layout, records: &[RunRecord]) -> anyhow::Result<()> {
+    let figures = figures::draw_all(campaign, records)?;
+    for figure in &figures {
+        write_atomically(&layout.file(&figure.file), figure.svg.as_bytes())?;
+    }
+    let context = context::build(campaign, records, &figures);
+    let mut tera = tera::Tera::new();
+    tera.add_raw_template("report.md", MARKDOWN_TEMPLATE).context("templates/report.md.tera does not parse")?;
+    tera.add_raw_template("index.html", HTML_TEMPLATE).context("templates/index.html.tera does not parse")?;
+    let context = tera::Context::from_serialize(&context).context("cannot build the report context")?;
+    let markdown = tera.render("report.md", &context).context("cannot render templates/report.md.tera")?;
+    write_atomically(&layout.file("report.md"), markdown.as_bytes())?;
+    let mut body = String::new();
+    pulldown_cmark::html::push_html(&mut body, pulldown_cmark::Parser::new_ext(&markdown, pulldown_cmark::Options::ENABLE_TABLES));
+    let mut page = context;
+    page.insert("body", &body);
+    let html = tera.render("index.html", &page).context("cannot render templates/index.html.tera")?;
+    write_atomically(&layout.file("index.html"), html.as_bytes())
+}

@@ -1,0 +1,71 @@
+//! The job runner: the campaign's runs in parallel (rayon), each stored as soon as it ends,
+//! cached by content hash, with a progress bar; a failing run becomes a record, not a crash.
+
+pub use self::execute::execute;
+pub use self::record::{Metrics, RunRecord};
+
+mod execute;
+mod record;
+
+use anyhow::Context;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use rayon::prelude::*;
+use std::io::IsTerminal;
+
+use crate::output::{Layout, write_atomically};
+use crate::spec::{Campaign, RunSpec};
+
+/// What `run_campaign` did.
+#[derive(Debug)]
+pub struct CampaignRun {
+    /// One record per run of the campaign, in campaign order.
+    pub records: Vec<RunRecord>,
+    /// Runs simulated now.
+    pub simulated: usize,
+    /// Runs taken from the store.
+    pub cached: usize,
+}
+
+/// The stored record of `spec`, if there is one for exactly this spec.
+pub fn stored_record(layout: &Layout, spec: &RunSpec) -> Option<RunRecord> {
+    let text = std::fs::read_to_string(layout.run_file(&spec.run_id())).ok()?;
+    serde_json::from_str::<RunRecord>(&text).ok().filter(|record| record.spec == *spec)
+}
+
+/// Runs every run of `campaign` that has no stored record, on `jobs` threads (all cores when
+/// `None`), storing each record as soon as it is finished.
+pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -> anyhow::Result<CampaignRun> {
+    let stored: Vec<Option<RunRecord>> = campaign.runs.iter().map(|spec| stored_record(layout, spec)).collect();
+    let todo: Vec<&RunSpec> = campaign.runs.iter().zip(&stored).filter(|(_, r)| r.is_none()).map(|(s, _)| s).collect();
+    let progress = progress_bar(todo.len() as u64);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(jobs.unwrap_or(0)).build().context("cannot start the thread pool")?;
+    let fresh: Vec<RunRecord> = pool.install(|| {
+        todo.par_iter()
+            .map(|spec| {
+                let record = execute(spec);
+                let json = serde_json::to_vec(&record).context("cannot serialise a run record")?;
+                write_atomically(&layout.run_file(&record.run_id), &json)?;
+                progress.inc(1);
+                Ok(record)
+            })
+            .collect::<anyhow::Result<_>>()
+    })?;
+    progress.finish_and_clear();
+    let simulated = fresh.len();
+    let mut fresh = fresh.into_iter();
+    let records: Vec<RunRecord> =
+        stored.into_iter().map(|r| r.unwrap_or_else(|| fresh.next().expect("one fresh record per missing run"))).collect();
+    Ok(CampaignRun { cached: records.len() - simulated, records, simulated })
+}
+
+/// One bar for the whole campaign (count, elapsed, ETA); hidden when stderr is not a terminal.
+fn progress_bar(total: u64) -> ProgressBar {
+    let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::stderr());
+    if !std::io::stderr().is_terminal() {
+        bar.set_draw_target(ProgressDrawTarget::hidden());
+    }
+    if let Ok(style) = ProgressStyle::with_template("{bar:40} {pos}/{len} runs  {elapsed} elapsed, ETA {eta}") {
+        bar.set_style(style);
+    }
+    bar
+}

@@ -1,0 +1,45 @@
+//! The stored result of one run: its spec, outcome, measurements and sampled series.
+
+use serde::{Deserialize, Serialize};
+
+use crate::sim::Trace;
+use crate::spec::RunSpec;
+
+/// Measured quantities with their analytical twins; `None` where the scene has no such
+/// quantity or no exact answer exists.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Metrics {
+    /// Contact duration (s), crossings located inside the step.
+    pub contact_duration: Option<f64>,
+    /// Analytical contact duration (s).
+    pub contact_duration_theory: Option<f64>,
+    /// Restitution coefficient.
+    pub restitution: Option<f64>,
+    /// Analytical restitution.
+    pub restitution_theory: Option<f64>,
+    /// max |E(t) − E(0)| / E(0) with E = kinetic + potential + dissipated.
+    pub energy_error: Option<f64>,
+    /// Chain: max |u_MD − u_exact| / max |u_exact| against the normal-mode solution.
+    pub chain_mode_error: Option<f64>,
+}
+
+/// Everything one run produced.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RunRecord {
+    /// Stable id (scene name + content hash of the spec).
+    pub run_id: String,
+    /// The resolved run.
+    pub spec: RunSpec,
+    /// `ok` or a failure word (`unstable`, `panicked`).
+    pub status: String,
+    /// Explanation of a failure or a caveat; empty otherwise.
+    pub message: String,
+    /// Wall time of the simulation (s).
+    pub wall_s: f64,
+    /// Steps taken.
+    pub steps: u64,
+    /// Measurements.
+    pub metrics: Metrics,
+    /// Sampled series.
+    pub trace: Trace,
+}

@@ -1,0 +1,111 @@
+//! The time loop: start, step, probe every step, sample every few steps, stop on blow-up.
+
+use super::field::ForceField;
+use super::integrate::Integrator;
+use super::probe::StepProbe;
+use super::state::State;
+
+/// How a run ended.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RunStatus {
+    /// Ran to its end time.
+    #[default]
+    Ok,
+    /// Stopped because a sampled quantity became non-finite.
+    Unstable,
+}
+
+impl RunStatus {
+    /// The word written in the `status` column.
+    pub fn word(self) -> &'static str {
+        match self {
+            RunStatus::Ok => "ok",
+            RunStatus::Unstable => "unstable",
+        }
+    }
+}
+
+/// What to record, and how often.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sampling {
+    /// Time step (s).
+    pub dt: f64,
+    /// Steps to take.
+    pub steps: u64,
+    /// Record a sample every this many steps (and at the start and the end).
+    pub every: u64,
+    /// Record x displacements of every particle at each sample.
+    pub displacements: bool,
+}
+
+/// Sampled time series of a run and how it ended.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct Trace {
+    /// Sample times (s).
+    pub time: Vec<f64>,
+    /// Kinetic energy (J).
+    pub kinetic: Vec<f64>,
+    /// Potential energy (J).
+    pub potential: Vec<f64>,
+    /// Energy dissipated so far (J).
+    pub dissipated: Vec<f64>,
+    /// x displacement of every particle from its start position (m), one row per sample;
+    /// empty unless asked for.
+    pub displacement_x: Vec<Vec<f64>>,
+    /// Steps actually taken.
+    pub steps: u64,
+    /// Why the run ended.
+    pub status: RunStatus,
+    /// Explanation when the status is not `ok`.
+    pub message: String,
+}
+
+impl Trace {
+    /// Appends one sample of `state`; returns false, recording nothing, when the energy is
+    /// not finite (so nothing non-finite reaches a table).
+    fn sample<F: ForceField>(&mut self, state: &State, field: &F, start_x: &[f64], displacements: bool) -> bool {
+        let p = &state.particles;
+        let kinetic = p.kinetic_energy();
+        let potential = field.potential_energy(&p.x, &p.y);
+        if !(kinetic + potential + state.dissipated).is_finite() {
+            return false;
+        }
+        self.time.push(state.time);
+        self.kinetic.push(kinetic);
+        self.potential.push(potential);
+        self.dissipated.push(state.dissipated);
+        if displacements {
+            self.displacement_x.push(p.x.iter().zip(start_x).map(|(x, x0)| x - x0).collect());
+        }
+        true
+    }
+}
+
+/// Runs `sampling.steps` steps of `integrator` on `state` under `field`, showing every step to
+/// `probe`; stops early with [`RunStatus::Unstable`] when the energy stops being finite.
+pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
+    state: &mut State,
+    field: &F,
+    integrator: &mut I,
+    sampling: &Sampling,
+    probe: &mut P,
+) -> Trace {
+    let start_x = if sampling.displacements { state.particles.x.clone() } else { Vec::new() };
+    let mut trace = Trace::default();
+    integrator.start(state, field, sampling.dt);
+    probe.observe(state);
+    trace.sample(state, field, &start_x, sampling.displacements);
+    let every = sampling.every.max(1);
+    for n in 1..=sampling.steps {
+        integrator.step(state, field, sampling.dt);
+        probe.observe(state);
+        if (n % every == 0 || n == sampling.steps) && !trace.sample(state, field, &start_x, sampling.displacements) {
+            trace.status = RunStatus::Unstable;
+            trace.message = format!("energy became non-finite at t = {:.6e} s (step {n})", state.time);
+            break;
+        }
+    }
+    trace.steps = state.steps;
+    trace
+}

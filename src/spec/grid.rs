@@ -1,0 +1,78 @@
+//! Grid expansion: deep merge of defaults and scene, dotted paths, and the cartesian product.
+
+use serde_json::Value;
+
+use super::raw::Grid;
+
+/// Deep-merges `overlay` into `base`: maps merge key by key, a null in `overlay` keeps what
+/// `base` has, anything else replaces it.
+pub fn merge(base: &mut Value, overlay: &Value) {
+    match (base, overlay) {
+        (_, Value::Null) => {}
+        (Value::Object(base), Value::Object(overlay)) => {
+            for (key, value) in overlay {
+                merge(base.entry(key.clone()).or_insert(Value::Null), value);
+            }
+        }
+        (base, overlay) => *base = overlay.clone(),
+    }
+}
+
+/// The value at dotted `path` (`time.dt_per_tc`), if present and not null.
+pub fn get_path<'a>(value: &'a Value, path: &str) -> Option<&'a Value> {
+    path.split('.').try_fold(value, |v, key| v.get(key)).filter(|v| !v.is_null())
+}
+
+/// Sets dotted `path` to `new`, creating maps on the way.
+pub fn set_path(value: &mut Value, path: &str, new: Value) {
+    let mut slot = value;
+    for key in path.split('.') {
+        if !slot.is_object() {
+            *slot = Value::Object(Default::default());
+        }
+        slot = slot.as_object_mut().expect("just made an object").entry(key).or_insert(Value::Null);
+    }
+    *slot = new;
+}
+
+/// Cartesian product of `grid`: every combination of values, keys in sorted order with the
+/// last key varying fastest. An empty grid has one point (no changes).
+pub fn grid_points(grid: &Grid) -> Vec<Vec<(String, Value)>> {
+    grid.iter().fold(vec![Vec::new()], |points, (path, values)| {
+        points
+            .iter()
+            .flat_map(|point| {
+                values.iter().map(move |value| {
+                    let mut next = point.clone();
+                    next.push((path.clone(), value.clone()));
+                    next
+                })
+            })
+            .collect()
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    #[test]
+    fn product_order_is_fixed() {
+        let grid: Grid = [("b".to_string(), vec![json!(1), json!(2)]), ("a".to_string(), vec![json!("x"), json!("y")])]
+            .into_iter()
+            .collect();
+        let points = grid_points(&grid);
+        let labels: Vec<String> = points.iter().map(|p| format!("{}{}", p[0].1, p[1].1)).collect();
+        assert_eq!(labels, ["\"x\"1", "\"x\"2", "\"y\"1", "\"y\"2"]);
+    }
+
+    #[test]
+    fn merge_keeps_base_under_null_and_nests() {
+        let mut base = json!({"time": {"dt_per_tc": 50, "samples": 10}, "v0": 1.0});
+        merge(&mut base, &json!({"time": {"dt_per_tc": 20, "samples": null}, "v0": null}));
+        assert_eq!(base, json!({"time": {"dt_per_tc": 20, "samples": 10}, "v0": 1.0}));
+        set_path(&mut base, "damping.restitution", json!(0.5));
+        assert_eq!(get_path(&base, "damping.restitution"), Some(&json!(0.5)));
+    }
+}

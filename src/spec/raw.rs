@@ -1,0 +1,159 @@
+//! The campaign file as written: serde structs that mirror the YAML one to one. Every field is
+//! optional here, because a scene inherits what it does not say from `defaults`; the
+//! resolver (`resolve.rs`) decides what is required and what is allowed.
+
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+use std::collections::BTreeMap;
+
+use crate::sim::IntegratorKind;
+
+/// A parameter grid: dotted parameter path → the values it takes.
+pub type Grid = BTreeMap<String, Vec<Value>>;
+
+/// The whole campaign file.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCampaign {
+    /// Format version; must be 1.
+    pub version: u32,
+    /// Campaign name: output goes to `reports/<name>/`.
+    pub name: String,
+    /// One-line title for the report.
+    #[serde(default)]
+    pub title: Option<String>,
+    /// Free text shown at the top of the report.
+    #[serde(default)]
+    pub description: Option<String>,
+    /// Values every scene inherits unless it sets them itself.
+    #[serde(default)]
+    pub defaults: RawScene,
+    /// The scenes.
+    pub scenes: Vec<RawScene>,
+    /// Cartesian grid applied to every scene.
+    #[serde(default)]
+    pub grid: Grid,
+}
+
+/// Kind of scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SceneKind {
+    /// Two particles: a collision through a contact spring, or a bonded pair.
+    Pair,
+    /// N particles in a row between two fixed walls.
+    Chain,
+}
+
+impl SceneKind {
+    /// The name used in files and tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            SceneKind::Pair => "pair",
+            SceneKind::Chain => "chain",
+        }
+    }
+}
+
+/// Elastic law of the springs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LawName {
+    /// f = k δ.
+    Linear,
+    /// f = C |δ|^β (`hertz` is accepted and means β = 3/2 unless `beta` says otherwise).
+    #[serde(alias = "hertz")]
+    Power,
+}
+
+impl LawName {
+    /// The name used in tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            LawName::Linear => "linear",
+            LawName::Power => "power",
+        }
+    }
+}
+
+/// One scene as written (also the shape of `defaults`).
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawScene {
+    /// Scene name (unique in the campaign).
+    pub name: Option<String>,
+    /// `pair` or `chain`.
+    pub kind: Option<SceneKind>,
+    /// Masses and springs.
+    pub material: Option<RawMaterial>,
+    /// Bond and background damping.
+    pub damping: Option<RawDamping>,
+    /// Integrator, time step and duration.
+    pub time: Option<RawTime>,
+    /// Lengths.
+    pub geometry: Option<RawGeometry>,
+    /// Pair: relative approach speed; chain: speed given to the excited particle (m/s).
+    pub v0: Option<f64>,
+    /// Pair with a contact spring: initial gap between the surfaces (m).
+    pub gap: Option<f64>,
+    /// Chain: number of moving particles.
+    pub n: Option<usize>,
+    /// Chain: which particle gets v0: `centre`, `first`, `last` or a number 1..n.
+    pub node: Option<Value>,
+    /// Chain: distance between the two walls (m); default (n+1) · spacing.
+    pub wall_distance: Option<f64>,
+    /// Grid over this scene only (dotted paths), combined with the campaign's grid.
+    pub grid: Option<Grid>,
+}
+
+/// `material:` section.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawMaterial {
+    /// Particle mass m (kg).
+    pub mass: Option<f64>,
+    /// Stiffness constant: k (N/m) for linear, C (N/m^β) for power-law springs.
+    pub k: Option<f64>,
+    /// `linear`, `power` or `hertz`.
+    pub law: Option<LawName>,
+    /// Power-law exponent β (default 1.5).
+    pub beta: Option<f64>,
+    /// Springs act only in compression.
+    pub contact: Option<bool>,
+}
+
+/// `damping:` section.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDamping {
+    /// Target restitution r in (0, 1]; sets γ analytically.
+    pub restitution: Option<f64>,
+    /// Bond dashpot γ (N s/m), instead of `restitution`.
+    pub gamma: Option<f64>,
+    /// Background damping γ_g (N s/m).
+    pub background: Option<f64>,
+}
+
+/// `time:` section.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawTime {
+    /// `position-verlet` or `velocity-verlet`.
+    pub integrator: Option<IntegratorKind>,
+    /// dt = t_c / dt_per_tc (default 50).
+    pub dt_per_tc: Option<f64>,
+    /// Time step (s), instead of `dt_per_tc`.
+    pub dt: Option<f64>,
+    /// Run length in units of t_c.
+    pub duration_tc: Option<f64>,
+    /// Samples recorded over the run (default 400).
+    pub samples: Option<u64>,
+}
+
+/// `geometry:` section.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawGeometry {
+    /// Particle spacing = spring rest length x_e (m).
+    pub spacing: Option<f64>,
+}

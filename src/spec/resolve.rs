@@ -1,0 +1,233 @@
+//! From a merged raw scene to a [`RunSpec`]: defaults filled in, ranges checked, γ, t_c and dt
+//! derived. Every rejection names the field path, the value and what is allowed.
+
+use serde_json::Value;
+use std::collections::BTreeMap;
+use std::fmt::Display;
+
+use super::raw::{LawName, RawDamping, RawGeometry, RawMaterial, RawScene, RawTime, SceneKind};
+use super::run_spec::RunSpec;
+use crate::sim::IntegratorKind;
+use crate::theory;
+
+/// A value the campaign may not have, with the field path (relative to the scene).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Issue {
+    /// Dotted field path, e.g. `damping.restitution`.
+    pub path: String,
+    /// The offending value as written.
+    pub value: String,
+    /// What is allowed instead.
+    pub allowed: String,
+}
+
+fn require(ok: bool, path: &str, value: impl Display, allowed: &str) -> Result<(), Issue> {
+    if ok {
+        Ok(())
+    } else {
+        Err(Issue { path: path.to_string(), value: value.to_string(), allowed: allowed.to_string() })
+    }
+}
+
+fn positive(value: f64, path: &str) -> Result<f64, Issue> {
+    require(value.is_finite() && value > 0.0, path, value, "must be a finite number > 0")?;
+    Ok(value)
+}
+
+/// Scene defaults when neither the scene nor `defaults` says otherwise.
+const DEFAULT_MASS: f64 = 1.0;
+const DEFAULT_STIFFNESS: f64 = 1.0;
+const DEFAULT_SPACING: f64 = 1.0;
+const DEFAULT_BETA: f64 = 1.5;
+const DEFAULT_DT_PER_TC: f64 = 50.0;
+const DEFAULT_SAMPLES: u64 = 400;
+/// Default gap of a contact pair, in spacings: contact starts at a time not aligned with dt.
+const DEFAULT_GAP_PER_SPACING: f64 = 0.05;
+
+/// Resolves one scene of campaign `campaign` with grid values `varied` already applied.
+pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) -> Result<RunSpec, Issue> {
+    let name = raw.name.clone().unwrap_or_default();
+    require(
+        !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_'),
+        "name",
+        format!("{name:?}"),
+        "a non-empty name of letters, digits, '-' and '_'",
+    )?;
+    let kind = raw.kind.ok_or_else(|| Issue {
+        path: "kind".into(),
+        value: "(missing)".into(),
+        allowed: "one of pair, chain".into(),
+    })?;
+    let material = raw.material.clone().unwrap_or_default();
+    let damping = raw.damping.clone().unwrap_or_default();
+    let time = raw.time.clone().unwrap_or_default();
+    let geometry = raw.geometry.clone().unwrap_or_default();
+
+    let (mass, k, law, beta, contact) = resolve_material(&material)?;
+    let spacing = positive(geometry_spacing(&geometry), "geometry.spacing")?;
+    let v0 = positive(raw.v0.ok_or_else(|| missing("v0", "the initial speed (m/s), > 0"))?, "v0")?;
+    check_kind_fields(kind, raw)?;
+
+    // The reference deformation of a power law is the overlap of a two-body collision at v0:
+    // its tangent stiffness β C δ^(β−1) stands in for k where a linear formula is needed.
+    let stiffness_for_damping = match law {
+        LawName::Linear => k,
+        LawName::Power => beta * k * theory::power_law_max_overlap(k, beta, mass, v0).powf(beta - 1.0),
+    };
+    let (gamma, restitution_target, gamma_background) = resolve_damping(&damping, stiffness_for_damping, mass)?;
+    let t_c = match law {
+        LawName::Linear => theory::linear_contact_duration(k, mass, gamma),
+        LawName::Power => theory::pair_omega(stiffness_for_damping, mass, gamma)
+            .map(|_| theory::power_law_contact_duration(k, beta, mass, v0)),
+    }
+    .map_err(|e| Issue { path: "damping".into(), value: format!("γ = {gamma}"), allowed: e.to_string() })?;
+
+    let integrator = time.integrator.unwrap_or(IntegratorKind::PositionVerlet);
+    let dt = resolve_dt(&time, t_c)?;
+    let gap = (kind == SceneKind::Pair && contact).then(|| raw.gap.unwrap_or(DEFAULT_GAP_PER_SPACING * spacing));
+    if let Some(g) = gap {
+        require(g.is_finite() && g >= 0.0, "gap", g, "must be a finite number ≥ 0")?;
+    }
+    let default_duration_tc = match kind {
+        SceneKind::Pair if contact => gap.unwrap_or(0.0) / (v0 * t_c) + 1.5,
+        SceneKind::Pair => 3.0,
+        SceneKind::Chain => 20.0,
+    };
+    let duration = t_c * positive(time.duration_tc.unwrap_or(default_duration_tc), "time.duration_tc")?;
+    let steps = (duration / dt).ceil() as u64;
+    require(steps <= 2_000_000_000, "time.duration_tc", duration / t_c, "at most 2e9 steps")?;
+    let samples = time.samples.unwrap_or(DEFAULT_SAMPLES);
+    require(samples >= 2, "time.samples", samples, "must be ≥ 2")?;
+    let (n, node, wall_distance) = resolve_chain(kind, raw, spacing)?;
+
+    Ok(RunSpec {
+        campaign: campaign.to_string(),
+        scene: name,
+        kind,
+        varied,
+        mass,
+        spacing,
+        k,
+        law,
+        beta,
+        contact,
+        gamma,
+        restitution_target,
+        gamma_background,
+        integrator,
+        t_c,
+        dt,
+        duration,
+        steps,
+        samples,
+        v0,
+        gap,
+        n,
+        node,
+        wall_distance,
+    })
+}
+
+fn missing(path: &str, allowed: &str) -> Issue {
+    Issue { path: path.into(), value: "(missing)".into(), allowed: allowed.into() }
+}
+
+fn geometry_spacing(geometry: &RawGeometry) -> f64 {
+    geometry.spacing.unwrap_or(DEFAULT_SPACING)
+}
+
+fn resolve_material(material: &RawMaterial) -> Result<(f64, f64, LawName, f64, bool), Issue> {
+    let mass = positive(material.mass.unwrap_or(DEFAULT_MASS), "material.mass")?;
+    let k = positive(material.k.unwrap_or(DEFAULT_STIFFNESS), "material.k")?;
+    let law = material.law.unwrap_or(LawName::Linear);
+    let beta = match law {
+        LawName::Linear => 1.0,
+        LawName::Power => {
+            let beta = material.beta.unwrap_or(DEFAULT_BETA);
+            require(beta.is_finite() && beta >= 1.0, "material.beta", beta, "must be ≥ 1 (1.5 is Hertz)")?;
+            beta
+        }
+    };
+    Ok((mass, k, law, beta, material.contact.unwrap_or(false)))
+}
+
+/// (γ, the restitution it came from, γ_g).
+fn resolve_damping(damping: &RawDamping, k: f64, mass: f64) -> Result<(f64, Option<f64>, f64), Issue> {
+    let background = damping.background.unwrap_or(0.0);
+    require(background.is_finite() && background >= 0.0, "damping.background", background, "must be ≥ 0 (N s/m)")?;
+    let (gamma, target) = match (damping.restitution, damping.gamma) {
+        (Some(r), Some(g)) => {
+            return Err(Issue {
+                path: "damping".into(),
+                value: format!("restitution = {r}, gamma = {g}"),
+                allowed: "give either restitution or gamma, not both".into(),
+            });
+        }
+        (Some(r), None) => {
+            require(r > 0.0 && r <= 1.0, "damping.restitution", r, "must be in (0, 1]")?;
+            (theory::gamma_for_restitution(r, k, mass), Some(r))
+        }
+        (None, Some(g)) => {
+            require(g.is_finite() && g >= 0.0, "damping.gamma", g, "must be ≥ 0 (N s/m)")?;
+            (g, None)
+        }
+        (None, None) => (0.0, None),
+    };
+    Ok((gamma, target, background))
+}
+
+fn resolve_dt(time: &RawTime, t_c: f64) -> Result<f64, Issue> {
+    match (time.dt, time.dt_per_tc) {
+        (Some(dt), None) => positive(dt, "time.dt"),
+        (None, per_tc) => {
+            let per_tc = per_tc.unwrap_or(DEFAULT_DT_PER_TC);
+            require(per_tc.is_finite() && per_tc >= 1.0, "time.dt_per_tc", per_tc, "must be ≥ 1 (dt = t_c / dt_per_tc)")?;
+            Ok(t_c / per_tc)
+        }
+        (Some(dt), Some(per_tc)) => Err(Issue {
+            path: "time".into(),
+            value: format!("dt = {dt}, dt_per_tc = {per_tc}"),
+            allowed: "give either dt or dt_per_tc, not both".into(),
+        }),
+    }
+}
+
+/// Rejects fields that belong to another kind of scene.
+fn check_kind_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue> {
+    let only = |present: bool, path: &str, owner: &str| {
+        require(!present, path, "(set)", &format!("only for {owner}; remove it from this {} scene", kind.name()))
+    };
+    match kind {
+        SceneKind::Pair => {
+            only(raw.n.is_some(), "n", "chain scenes")?;
+            only(raw.node.is_some(), "node", "chain scenes")?;
+            only(raw.wall_distance.is_some(), "wall_distance", "chain scenes")?;
+            let contact = raw.material.as_ref().and_then(|m| m.contact).unwrap_or(false);
+            only(raw.gap.is_some() && !contact, "gap", "pairs with material.contact: true")
+        }
+        SceneKind::Chain => only(raw.gap.is_some(), "gap", "pair scenes"),
+    }
+}
+
+/// (n, excited node 1..n, wall distance) of a chain; all `None` for other kinds.
+fn resolve_chain(kind: SceneKind, raw: &RawScene, spacing: f64) -> Result<(Option<usize>, Option<usize>, Option<f64>), Issue> {
+    if kind != SceneKind::Chain {
+        return Ok((None, None, None));
+    }
+    let n = raw.n.ok_or_else(|| missing("n", "the number of moving particles, 1..=100000"))?;
+    require((1..=100_000).contains(&n), "n", n, "must be in 1..=100000")?;
+    let allowed = format!("centre, first, last or a particle number 1..={n}");
+    let node = match &raw.node {
+        None => n.div_ceil(2),
+        Some(Value::String(s)) if s == "centre" || s == "center" => n.div_ceil(2),
+        Some(Value::String(s)) if s == "first" => 1,
+        Some(Value::String(s)) if s == "last" => n,
+        Some(Value::Number(number)) => match number.as_u64() {
+            Some(i) if (1..=n as u64).contains(&i) => i as usize,
+            _ => return Err(Issue { path: "node".into(), value: number.to_string(), allowed }),
+        },
+        Some(other) => return Err(Issue { path: "node".into(), value: other.to_string(), allowed }),
+    };
+    let walls = positive(raw.wall_distance.unwrap_or((n + 1) as f64 * spacing), "wall_distance")?;
+    Ok((Some(n), Some(node), Some(walls)))
+}

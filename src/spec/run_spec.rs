@@ -1,0 +1,100 @@
+//! One fully resolved run: every parameter explicit, in SI units, hashable.
+
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+use std::collections::BTreeMap;
+
+use super::raw::{LawName, SceneKind};
+use crate::sim::IntegratorKind;
+
+/// Bumped whenever stored results of an unchanged spec would differ (new physics or columns),
+/// so the cache never serves results of older code.
+pub const RESULT_FORMAT: u32 = 1;
+
+/// A resolved run. Units SI; field names are the results table's column names.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RunSpec {
+    /// Campaign name.
+    pub campaign: String,
+    /// Scene name.
+    pub scene: String,
+    /// Scene kind.
+    pub kind: SceneKind,
+    /// Grid values of this run, by dotted path.
+    pub varied: BTreeMap<String, Value>,
+    /// Particle mass m (kg).
+    pub mass: f64,
+    /// Spacing = rest length x_e (m).
+    pub spacing: f64,
+    /// Stiffness constant: k (N/m) for linear springs, C (N/m^β) for power-law springs.
+    pub k: f64,
+    /// Elastic law.
+    pub law: LawName,
+    /// Exponent β (1 for linear springs).
+    pub beta: f64,
+    /// Springs act only in compression.
+    pub contact: bool,
+    /// Bond dashpot γ (N s/m).
+    pub gamma: f64,
+    /// Restitution the campaign asked for, when γ was derived from it.
+    pub restitution_target: Option<f64>,
+    /// Background damping γ_g (N s/m).
+    pub gamma_background: f64,
+    /// Integrator.
+    pub integrator: IntegratorKind,
+    /// Reference two-body contact duration t_c (s) that sets dt.
+    pub t_c: f64,
+    /// Time step (s).
+    pub dt: f64,
+    /// Run length (s).
+    pub duration: f64,
+    /// Steps to take.
+    pub steps: u64,
+    /// Samples recorded over the run.
+    pub samples: u64,
+    /// Pair: relative approach speed; chain: speed of the excited particle (m/s).
+    pub v0: f64,
+    /// Pair: initial gap between the surfaces (m).
+    pub gap: Option<f64>,
+    /// Chain: moving particles.
+    pub n: Option<usize>,
+    /// Chain: excited particle, 1..n.
+    pub node: Option<usize>,
+    /// Chain: distance between the walls (m).
+    pub wall_distance: Option<f64>,
+}
+
+impl RunSpec {
+    /// Stable identifier: the scene name and a content hash of the resolved run.
+    pub fn run_id(&self) -> String {
+        let json = serde_json::to_string(&(RESULT_FORMAT, self)).expect("a RunSpec always serialises");
+        let hash = blake3::hash(json.as_bytes()).to_hex();
+        format!("{}-{}", self.scene, &hash[..12])
+    }
+
+    /// dt / t_c.
+    pub fn dt_per_tc(&self) -> f64 {
+        self.t_c / self.dt
+    }
+
+    /// Number of particles the scene simulates (walls included).
+    pub fn particles(&self) -> usize {
+        match self.kind {
+            SceneKind::Pair => 2,
+            SceneKind::Chain => self.n.unwrap_or(0) + 2,
+        }
+    }
+
+    /// Label of the grid values whose dotted path passes `keep`, e.g.
+    /// `restitution=0.5, dt_per_tc=50`; empty when there are none.
+    pub fn varied_label(&self, keep: impl Fn(&str) -> bool) -> String {
+        let text = |value: &Value| value.as_str().map_or_else(|| value.to_string(), str::to_string);
+        let parts: Vec<String> = self
+            .varied
+            .iter()
+            .filter(|(path, _)| keep(path))
+            .map(|(path, value)| format!("{}={}", path.rsplit('.').next().unwrap_or(path), text(value)))
+            .collect();
+        parts.join(", ")
+    }
+}

@@ -1,0 +1,91 @@
+//! The results table: one row per run, as a Polars frame, written as CSV and Parquet.
+//! Column names are a contract other tools read (README, "Results table").
+
+use polars::prelude::*;
+use serde_json::Value;
+use std::collections::BTreeSet;
+
+use crate::output::{Layout, write_atomically};
+use crate::runner::RunRecord;
+
+/// Relative error (measured − reference)/reference, when both exist.
+pub fn relative_error(measured: Option<f64>, reference: Option<f64>) -> Option<f64> {
+    match (measured, reference) {
+        (Some(m), Some(r)) if r != 0.0 => Some((m - r) / r),
+        _ => None,
+    }
+}
+
+fn floats(records: &[RunRecord], name: &str, get: impl Fn(&RunRecord) -> f64) -> Column {
+    Column::new(name.into(), records.iter().map(get).collect::<Vec<f64>>())
+}
+
+fn optional_floats(records: &[RunRecord], name: &str, get: impl Fn(&RunRecord) -> Option<f64>) -> Column {
+    Column::new(name.into(), records.iter().map(get).collect::<Vec<Option<f64>>>())
+}
+
+fn strings(records: &[RunRecord], name: &str, get: impl Fn(&RunRecord) -> String) -> Column {
+    Column::new(name.into(), records.iter().map(get).collect::<Vec<String>>())
+}
+
+/// The results frame of `records`: identity, status and timing, the resolved physics, the
+/// measurements with their analytical twins and relative errors, and one column per grid
+/// path (numeric where every value is a number, text otherwise).
+pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
+    let mut columns = vec![
+        strings(records, "run_id", |r| r.run_id.clone()),
+        strings(records, "scene", |r| r.spec.scene.clone()),
+        strings(records, "kind", |r| r.spec.kind.name().into()),
+        strings(records, "status", |r| r.status.clone()),
+        strings(records, "message", |r| r.message.clone()),
+        floats(records, "wall_s", |r| r.wall_s),
+        Column::new("steps".into(), records.iter().map(|r| r.steps).collect::<Vec<u64>>()),
+        floats(records, "mass", |r| r.spec.mass),
+        floats(records, "spacing", |r| r.spec.spacing),
+        floats(records, "k", |r| r.spec.k),
+        strings(records, "law", |r| r.spec.law.name().into()),
+        floats(records, "beta", |r| r.spec.beta),
+        Column::new("contact".into(), records.iter().map(|r| r.spec.contact).collect::<Vec<bool>>()),
+        floats(records, "gamma", |r| r.spec.gamma),
+        floats(records, "gamma_background", |r| r.spec.gamma_background),
+        strings(records, "integrator", |r| r.spec.integrator.name().into()),
+        floats(records, "dt", |r| r.spec.dt),
+        floats(records, "dt_per_tc", |r| r.spec.dt_per_tc()),
+        floats(records, "t_c", |r| r.spec.t_c),
+        floats(records, "duration", |r| r.spec.duration),
+        Column::new("n".into(), records.iter().map(|r| r.spec.n.map(|n| n as u64)).collect::<Vec<Option<u64>>>()),
+        floats(records, "v0", |r| r.spec.v0),
+        optional_floats(records, "contact_duration", |r| r.metrics.contact_duration),
+        optional_floats(records, "contact_duration_theory", |r| r.metrics.contact_duration_theory),
+        optional_floats(records, "contact_duration_error", |r| {
+            relative_error(r.metrics.contact_duration, r.metrics.contact_duration_theory)
+        }),
+        optional_floats(records, "restitution", |r| r.metrics.restitution),
+        optional_floats(records, "restitution_theory", |r| r.metrics.restitution_theory),
+        optional_floats(records, "restitution_error", |r| relative_error(r.metrics.restitution, r.metrics.restitution_theory)),
+        optional_floats(records, "energy_error", |r| r.metrics.energy_error),
+        optional_floats(records, "chain_mode_error", |r| r.metrics.chain_mode_error),
+    ];
+    let paths: BTreeSet<&String> = records.iter().flat_map(|r| r.spec.varied.keys()).collect();
+    for path in paths {
+        let values: Vec<Option<&Value>> = records.iter().map(|r| r.spec.varied.get(path)).collect();
+        let column = if values.iter().flatten().all(|v| v.is_number()) {
+            Column::new(path.as_str().into(), values.iter().map(|v| v.and_then(Value::as_f64)).collect::<Vec<Option<f64>>>())
+        } else {
+            let text = |v: &Value| v.as_str().map(str::to_string).unwrap_or_else(|| v.to_string());
+            Column::new(path.as_str().into(), values.iter().map(|v| v.map(text)).collect::<Vec<Option<String>>>())
+        };
+        columns.push(column);
+    }
+    DataFrame::new_infer_height(columns)
+}
+
+/// Writes `results.csv` and `results.parquet` for `frame`, each atomically.
+pub fn write_tables(layout: &Layout, frame: &mut DataFrame) -> anyhow::Result<()> {
+    let mut csv = Vec::new();
+    CsvWriter::new(&mut csv).include_header(true).finish(frame)?;
+    write_atomically(&layout.file("results.csv"), &csv)?;
+    let mut parquet = Vec::new();
+    ParquetWriter::new(&mut parquet).finish(frame)?;
+    write_atomically(&layout.file("results.parquet"), &parquet)
+}

@@ -1,0 +1,106 @@
+//! Two equal particles of mass m joined by one spring (reduced mass μ = m/2).
+
+use super::special::beta;
+use std::f64::consts::PI;
+
+/// The damping is at or above critical: there is no oscillation and no contact duration.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+#[error("overdamped: γ = {gamma} N s/m is at or above the critical value √(2km) = {critical} N s/m")]
+pub struct Overdamped {
+    /// The γ asked for (N s/m).
+    pub gamma: f64,
+    /// Critical damping √(2 k m) (N s/m).
+    pub critical: f64,
+}
+
+/// Damped pair frequency ω = √(2k/m − (γ/m)²) (rad/s) for mass `m` (kg), stiffness `k`
+/// (N/m) and dashpot `gamma` (N s/m).
+///
+/// ```
+/// let w = mdsolids::theory::pair_omega(1.0, 1.0, 0.0).unwrap();
+/// assert!((w - 2f64.sqrt()).abs() < 1e-15);
+/// ```
+pub fn pair_omega(k: f64, m: f64, gamma: f64) -> Result<f64, Overdamped> {
+    let squared = 2.0 * k / m - (gamma / m).powi(2);
+    if squared > 0.0 {
+        Ok(squared.sqrt())
+    } else {
+        Err(Overdamped { gamma, critical: (2.0 * k * m).sqrt() })
+    }
+}
+
+/// Contact duration t_c = π/ω (s) of the linear pair.
+///
+/// ```
+/// // m = k = 1, γ = 0.304698 (r = 0.5): t_c = 2.274869 s (DESIGN.md).
+/// let tc = mdsolids::theory::linear_contact_duration(1.0, 1.0, 0.304698).unwrap();
+/// assert!((tc - 2.274869).abs() < 1e-6);
+/// ```
+pub fn linear_contact_duration(k: f64, m: f64, gamma: f64) -> Result<f64, Overdamped> {
+    Ok(PI / pair_omega(k, m, gamma)?)
+}
+
+/// Restitution r = exp(−(γ/m) t_c): the relative normal speed after a half period over the
+/// speed before. The decay rate is γ/m because the pair's equation is
+/// (m/2) δ̈ = −k δ − γ δ̇.
+pub fn linear_restitution(k: f64, m: f64, gamma: f64) -> Result<f64, Overdamped> {
+    Ok((-(gamma / m) * linear_contact_duration(k, m, gamma)?).exp())
+}
+
+/// Dashpot γ = −ln r · √(2km) / √(π² + ln² r) (N s/m) that gives restitution `r` in (0, 1].
+///
+/// ```
+/// let g = mdsolids::theory::gamma_for_restitution(0.5, 1.0, 1.0);
+/// assert!((g - 0.304698).abs() < 1e-6);
+/// ```
+pub fn gamma_for_restitution(r: f64, k: f64, m: f64) -> f64 {
+    let ln_r = r.ln();
+    -ln_r * (2.0 * k * m).sqrt() / (PI * PI + ln_r * ln_r).sqrt()
+}
+
+/// Largest overlap δ_max = ((β+1) μ v² / (2C))^(1/(β+1)) (m) of an undamped power-law
+/// collision of two masses `m` at relative speed `v` (energy balance μv²/2 = C δ^(β+1)/(β+1)).
+pub fn power_law_max_overlap(c: f64, beta_exp: f64, m: f64, v: f64) -> f64 {
+    let mu = 0.5 * m;
+    ((beta_exp + 1.0) * mu * v * v / (2.0 * c)).powf(1.0 / (beta_exp + 1.0))
+}
+
+/// Exact contact duration (s) of an undamped collision through s = C δ^β:
+/// t_c = 2 (δ_max / v) ∫₀¹ dx/√(1 − x^(β+1)) = 2 (δ_max / v) B(1/(β+1), ½)/(β+1).
+/// For β = 1 this is π√(m/2k); for Hertz (β = 3/2) the integral is 1.4716.
+///
+/// ```
+/// use mdsolids::theory::{linear_contact_duration, power_law_contact_duration};
+/// let linear = linear_contact_duration(3.0, 2.0, 0.0).unwrap();
+/// assert!((power_law_contact_duration(3.0, 1.0, 2.0, 0.7) - linear).abs() < 1e-12);
+/// ```
+pub fn power_law_contact_duration(c: f64, beta_exp: f64, m: f64, v: f64) -> f64 {
+    let p = beta_exp + 1.0;
+    2.0 * power_law_max_overlap(c, beta_exp, m, v) / v * beta(1.0 / p, 0.5) / p
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn restitution_round_trip() {
+        // γ from r and back: only round-off (1e-12) separates them.
+        for r in [0.1, 0.5, 0.9, 1.0] {
+            let g = gamma_for_restitution(r, 2.0, 3.0);
+            assert!((linear_restitution(2.0, 3.0, g).unwrap() - r).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn overdamped_is_an_error() {
+        assert!(pair_omega(1.0, 1.0, 2f64.sqrt()).is_err());
+    }
+
+    #[test]
+    fn hertz_integral() {
+        // ∫₀¹ (1 − x^{5/2})^{-1/2} dx = 1.47158 (the classic Hertz factor 2.9432 = 2 × 1.4716).
+        let p: f64 = 2.5;
+        assert!((beta(1.0 / p, 0.5) / p - 1.471_58).abs() < 1e-5);
+    }
+}
