@@ -79,7 +79,10 @@ fn run_command(reports: &Path, file: &Path, jobs: Option<usize>) -> anyhow::Resu
 
 fn plan_command(reports: &Path, file: &Path) -> anyhow::Result<()> {
     let (campaign, layout) = open(reports, file)?;
-    println!("{:<28} {:<8} {:>11} {:>11} {:>8} {:>10} {:>9}  varied", "run_id", "kind", "dt (s)", "t_c (s)", "t_c/dt", "steps", "cached");
+    println!(
+        "{:<28} {:<8} {:>11} {:>11} {:>8} {:>10} {:>9}  varied",
+        "run_id", "kind", "dt (s)", "t_c (s)", "t_c/dt", "steps", "cached"
+    );
     let mut particle_steps = 0u64;
     for spec in &campaign.runs {
         let cached = stored_record(&layout, spec).is_some();
@@ -100,7 +103,11 @@ fn plan_command(reports: &Path, file: &Path) -> anyhow::Result<()> {
     }
     // A nominal 1e7 particle-steps/s per core for these small scenes (measured rates are in
     // the README); the estimate is for orientation, not a promise.
-    println!("{} runs; {particle_steps} particle-steps to simulate, roughly {:.1} s on one core", campaign.runs.len(), particle_steps as f64 / 1e7);
+    println!(
+        "{} runs; {particle_steps} particle-steps to simulate, roughly {:.1} s on one core",
+        campaign.runs.len(),
+        particle_steps as f64 / 1e7
+    );
     Ok(())
 }
 
@@ -109,10 +116,20 @@ fn report_command(reports: &Path, file: &Path) -> anyhow::Result<()> {
     let records: Vec<_> = campaign.runs.iter().filter_map(|spec| stored_record(&layout, spec)).collect();
     let missing = campaign.runs.len() - records.len();
     if records.is_empty() {
-        anyhow::bail!("no stored results for campaign '{}' under {}: run `mdsolids run {}` first", campaign.name, layout.root.display(), file.display());
+        anyhow::bail!(
+            "no stored results for campaign '{}' under {}: run `mdsolids run {}` first",
+            campaign.name,
+            layout.root.display(),
+            file.display()
+        );
     }
     publish(&campaign, &layout, &records)?;
-    println!("{}: report re-rendered from {} stored runs ({missing} without results) -> {}", campaign.name, records.len(), layout.root.display());
+    println!(
+        "{}: report re-rendered from {} stored runs ({missing} without results) -> {}",
+        campaign.name,
+        records.len(),
+        layout.root.display()
+    );
     Ok(())
 }
 

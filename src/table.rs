@@ -62,7 +62,9 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         }),
         optional_floats(records, "restitution", |r| r.metrics.restitution),
         optional_floats(records, "restitution_theory", |r| r.metrics.restitution_theory),
-        optional_floats(records, "restitution_error", |r| relative_error(r.metrics.restitution, r.metrics.restitution_theory)),
+        optional_floats(records, "restitution_error", |r| {
+            relative_error(r.metrics.restitution, r.metrics.restitution_theory)
+        }),
         optional_floats(records, "energy_error", |r| r.metrics.energy_error),
         optional_floats(records, "chain_mode_error", |r| r.metrics.chain_mode_error),
     ];
@@ -70,7 +72,10 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
     for path in paths {
         let values: Vec<Option<&Value>> = records.iter().map(|r| r.spec.varied.get(path)).collect();
         let column = if values.iter().flatten().all(|v| v.is_number()) {
-            Column::new(path.as_str().into(), values.iter().map(|v| v.and_then(Value::as_f64)).collect::<Vec<Option<f64>>>())
+            Column::new(
+                path.as_str().into(),
+                values.iter().map(|v| v.and_then(Value::as_f64)).collect::<Vec<Option<f64>>>(),
+            )
         } else {
             let text = |v: &Value| v.as_str().map(str::to_string).unwrap_or_else(|| v.to_string());
             Column::new(path.as_str().into(), values.iter().map(|v| v.map(text)).collect::<Vec<Option<String>>>())

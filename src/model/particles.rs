@@ -68,15 +68,11 @@ impl Particles {
 
     /// Kinetic energy Σ ½ m v² (J).
     pub fn kinetic_energy(&self) -> f64 {
-        (0..self.len())
-            .map(|i| 0.5 * self.mass[i] * (self.vx[i] * self.vx[i] + self.vy[i] * self.vy[i]))
-            .sum()
+        (0..self.len()).map(|i| 0.5 * self.mass[i] * (self.vx[i] * self.vx[i] + self.vy[i] * self.vy[i])).sum()
     }
 
     /// Total momentum Σ m v (kg m/s) of the particles free on each axis.
     pub fn momentum(&self) -> (f64, f64) {
-        (0..self.len()).fold((0.0, 0.0), |(px, py), i| {
-            (px + self.mass[i] * self.vx[i], py + self.mass[i] * self.vy[i])
-        })
+        (0..self.len()).fold((0.0, 0.0), |(px, py), i| (px + self.mass[i] * self.vx[i], py + self.mass[i] * self.vy[i]))
     }
 }

@@ -128,11 +128,7 @@ pub fn build(campaign: &Campaign, records: &[RunRecord], figures: &[Figure]) -> 
         wall_s: number(records.iter().map(|r| r.wall_s).sum()),
         has_pair: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Pair),
         has_chain: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Chain),
-        scenes: campaign
-            .scenes
-            .iter()
-            .filter_map(|(scene, kind)| section(scene, *kind, records, figures))
-            .collect(),
+        scenes: campaign.scenes.iter().filter_map(|(scene, kind)| section(scene, *kind, records, figures)).collect(),
         failures: records
             .iter()
             .filter(|r| r.status != "ok")
@@ -204,7 +200,8 @@ fn order_rows(records: &[RunRecord], scene: &str) -> Vec<OrderRow> {
                 let points: Vec<(f64, f64)> = members.iter().filter_map(|r| error(r).map(|e| (r.spec.dt, e))).collect();
                 convergence_order(&points).map(|p| format!("{p:.2}")).unwrap_or_else(|| "–".into())
             };
-            let duration = |r: &RunRecord| relative_error(r.metrics.contact_duration, r.metrics.contact_duration_theory);
+            let duration =
+                |r: &RunRecord| relative_error(r.metrics.contact_duration, r.metrics.contact_duration_theory);
             let restitution = |r: &RunRecord| relative_error(r.metrics.restitution, r.metrics.restitution_theory);
             let reference = representative(&members);
             OrderRow {

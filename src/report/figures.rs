@@ -56,7 +56,9 @@ pub fn draw_all(campaign: &Campaign, records: &[RunRecord]) -> anyhow::Result<Ve
             figures.push(energy_figure(scene, index, label, representative(members))?);
         }
         match kind {
-            SceneKind::Pair if groups.iter().any(|(_, m)| m.len() > 1) => figures.push(convergence_figure(scene, &groups)?),
+            SceneKind::Pair if groups.iter().any(|(_, m)| m.len() > 1) => {
+                figures.push(convergence_figure(scene, &groups)?)
+            }
             SceneKind::Chain => {
                 if let Some((label, members)) = groups.first() {
                     figures.push(displacement_figure(scene, label, representative(members))?);
@@ -107,7 +109,12 @@ fn displacement_figure(scene: &str, label: &str, record: &RunRecord) -> anyhow::
     let series: Vec<Series> = (1..particles.saturating_sub(1))
         .map(|p| Series {
             label: if p == 1 { "u_p(t) (scaled) + p".into() } else { String::new() },
-            points: t.time.iter().zip(&t.displacement_x).map(|(&time, u)| (time, p as f64 + 0.45 * u[p] / largest)).collect(),
+            points: t
+                .time
+                .iter()
+                .zip(&t.displacement_x)
+                .map(|(&time, u)| (time, p as f64 + 0.45 * u[p] / largest))
+                .collect(),
             markers: false,
         })
         .collect();
@@ -120,7 +127,9 @@ fn displacement_figure(scene: &str, label: &str, record: &RunRecord) -> anyhow::
     Ok(Figure {
         scene: scene.into(),
         file: format!("plots/{scene}-displacements.svg"),
-        caption: format!("Displacement of every particle against time, {scene} ({label}): one line per particle, offset by its number."),
+        caption: format!(
+            "Displacement of every particle against time, {scene} ({label}): one line per particle, offset by its number."
+        ),
         svg: line_chart(&chart, &series)?,
     })
 }

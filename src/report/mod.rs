@@ -30,7 +30,10 @@ pub fn render(campaign: &Campaign, layout: &Layout, records: &[RunRecord]) -> an
     let markdown = tera.render("report.md", &context).context("cannot render templates/report.md.tera")?;
     write_atomically(&layout.file("report.md"), markdown.as_bytes())?;
     let mut body = String::new();
-    pulldown_cmark::html::push_html(&mut body, pulldown_cmark::Parser::new_ext(&markdown, pulldown_cmark::Options::ENABLE_TABLES));
+    pulldown_cmark::html::push_html(
+        &mut body,
+        pulldown_cmark::Parser::new_ext(&markdown, pulldown_cmark::Options::ENABLE_TABLES),
+    );
     let mut page = context;
     page.insert("body", &body);
     let html = tera.render("index.html", &page).context("cannot render templates/index.html.tera")?;

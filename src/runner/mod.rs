@@ -38,7 +38,10 @@ pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -
     let stored: Vec<Option<RunRecord>> = campaign.runs.iter().map(|spec| stored_record(layout, spec)).collect();
     let todo: Vec<&RunSpec> = campaign.runs.iter().zip(&stored).filter(|(_, r)| r.is_none()).map(|(s, _)| s).collect();
     let progress = progress_bar(todo.len() as u64);
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(jobs.unwrap_or(0)).build().context("cannot start the thread pool")?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs.unwrap_or(0))
+        .build()
+        .context("cannot start the thread pool")?;
     let fresh: Vec<RunRecord> = pool.install(|| {
         todo.par_iter()
             .map(|spec| {
@@ -53,8 +56,10 @@ pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -
     progress.finish_and_clear();
     let simulated = fresh.len();
     let mut fresh = fresh.into_iter();
-    let records: Vec<RunRecord> =
-        stored.into_iter().map(|r| r.unwrap_or_else(|| fresh.next().expect("one fresh record per missing run"))).collect();
+    let records: Vec<RunRecord> = stored
+        .into_iter()
+        .map(|r| r.unwrap_or_else(|| fresh.next().expect("one fresh record per missing run")))
+        .collect();
     Ok(CampaignRun { cached: records.len() - simulated, records, simulated })
 }
 

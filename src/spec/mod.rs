@@ -69,12 +69,19 @@ pub fn parse(file: &str, text: &str) -> Result<Campaign, SpecError> {
         return Err(invalid(format!("version = {}: only version 1 exists", raw.version)));
     }
     if raw.name.is_empty() || !raw.name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
-        return Err(invalid(format!("name = {:?}: use letters, digits, '-' and '_' (it names reports/<name>/)", raw.name)));
+        return Err(invalid(format!(
+            "name = {:?}: use letters, digits, '-' and '_' (it names reports/<name>/)",
+            raw.name
+        )));
     }
     if raw.scenes.is_empty() {
         return Err(invalid("scenes: the list is empty; give at least one scene".into()));
     }
-    for (field, present) in [("name", raw.defaults.name.is_some()), ("kind", raw.defaults.kind.is_some()), ("grid", raw.defaults.grid.is_some())] {
+    for (field, present) in [
+        ("name", raw.defaults.name.is_some()),
+        ("kind", raw.defaults.kind.is_some()),
+        ("grid", raw.defaults.grid.is_some()),
+    ] {
         if present {
             return Err(invalid(format!("defaults.{field}: not allowed in defaults; set it in each scene")));
         }
@@ -181,7 +188,10 @@ fn check_grid_paths(base: &Value, grid: &Grid, origins: &Origins) -> Result<(), 
             let mut probe = base.clone();
             set_path(&mut probe, path, value.clone());
             if let Err(e) = serde_json::from_value::<RawScene>(probe) {
-                return Err(format!("{} = {value}: {e} (grid keys are dotted field paths such as time.dt_per_tc)", origins.locate(path)));
+                return Err(format!(
+                    "{} = {value}: {e} (grid keys are dotted field paths such as time.dt_per_tc)",
+                    origins.locate(path)
+                ));
             }
         }
     }

@@ -98,7 +98,7 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     require(steps <= 2_000_000_000, "time.duration_tc", duration / t_c, "at most 2e9 steps")?;
     let samples = time.samples.unwrap_or(DEFAULT_SAMPLES);
     require(samples >= 2, "time.samples", samples, "must be ≥ 2")?;
-    let (n, node, wall_distance) = resolve_chain(kind, raw, spacing)?;
+    let ChainFields { n, node, wall_distance } = resolve_chain(kind, raw, spacing)?;
 
     Ok(RunSpec {
         campaign: campaign.to_string(),
@@ -181,7 +181,12 @@ fn resolve_dt(time: &RawTime, t_c: f64) -> Result<f64, Issue> {
         (Some(dt), None) => positive(dt, "time.dt"),
         (None, per_tc) => {
             let per_tc = per_tc.unwrap_or(DEFAULT_DT_PER_TC);
-            require(per_tc.is_finite() && per_tc >= 1.0, "time.dt_per_tc", per_tc, "must be ≥ 1 (dt = t_c / dt_per_tc)")?;
+            require(
+                per_tc.is_finite() && per_tc >= 1.0,
+                "time.dt_per_tc",
+                per_tc,
+                "must be ≥ 1 (dt = t_c / dt_per_tc)",
+            )?;
             Ok(t_c / per_tc)
         }
         (Some(dt), Some(per_tc)) => Err(Issue {
@@ -209,10 +214,18 @@ fn check_kind_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue> {
     }
 }
 
-/// (n, excited node 1..n, wall distance) of a chain; all `None` for other kinds.
-fn resolve_chain(kind: SceneKind, raw: &RawScene, spacing: f64) -> Result<(Option<usize>, Option<usize>, Option<f64>), Issue> {
+/// The chain-only fields of a run; all `None` for other kinds.
+#[derive(Default)]
+struct ChainFields {
+    n: Option<usize>,
+    node: Option<usize>,
+    wall_distance: Option<f64>,
+}
+
+/// Number of particles, excited node (1..n) and wall distance of a chain scene.
+fn resolve_chain(kind: SceneKind, raw: &RawScene, spacing: f64) -> Result<ChainFields, Issue> {
     if kind != SceneKind::Chain {
-        return Ok((None, None, None));
+        return Ok(ChainFields::default());
     }
     let n = raw.n.ok_or_else(|| missing("n", "the number of moving particles, 1..=100000"))?;
     require((1..=100_000).contains(&n), "n", n, "must be in 1..=100000")?;
@@ -229,5 +242,5 @@ fn resolve_chain(kind: SceneKind, raw: &RawScene, spacing: f64) -> Result<(Optio
         Some(other) => return Err(Issue { path: "node".into(), value: other.to_string(), allowed }),
     };
     let walls = positive(raw.wall_distance.unwrap_or((n + 1) as f64 * spacing), "wall_distance")?;
-    Ok((Some(n), Some(node), Some(walls)))
+    Ok(ChainFields { n: Some(n), node: Some(node), wall_distance: Some(walls) })
 }

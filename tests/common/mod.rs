@@ -1,0 +1,28 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)] // each test crate uses its own subset
+
+use mdsolids::runner::{RunRecord, execute};
+use mdsolids::spec::{RunSpec, parse};
+
+/// The runs of an inline campaign (YAML text); panics with the spec error if it is invalid.
+pub fn runs(yaml: &str) -> Vec<RunSpec> {
+    parse("inline.yaml", yaml).unwrap_or_else(|e| panic!("{e}")).runs
+}
+
+/// Executes every run of an inline campaign.
+pub fn execute_all(yaml: &str) -> Vec<RunRecord> {
+    runs(yaml).iter().map(execute).collect()
+}
+
+/// Relative error (measured − reference)/reference.
+pub fn relative(measured: Option<f64>, reference: Option<f64>) -> f64 {
+    let (m, r) = (measured.expect("measured value"), reference.expect("reference value"));
+    (m - r) / r
+}
+
+/// A pair campaign: `material` and `damping` are YAML flow maps, `sweep` the dt_per_tc values.
+pub fn pair_campaign(material: &str, damping: &str, integrator: &str, sweep: &[f64]) -> String {
+    format!(
+        "version: 1\nname: t\nscenes:\n  - name: p\n    kind: pair\n    v0: 1.0\n    material: {material}\n    damping: {damping}\n    time: {{integrator: {integrator}}}\n    grid:\n      time.dt_per_tc: {sweep:?}\n"
+    )
+}
