@@ -4,6 +4,7 @@ use anyhow::Context;
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 
+use crate::bench::{BenchConfig, run_once};
 use crate::output::Layout;
 use crate::runner::{run_campaign, stored_record};
 use crate::spec::{Campaign, load};
@@ -42,6 +43,31 @@ pub enum Command {
         /// Campaign file (YAML).
         campaign: PathBuf,
     },
+    /// Time the reference workload (README, "Performance"): an N × N lattice with diagonals,
+    /// velocity Verlet, dt = 0.01; prints particle-steps/s, bond-updates/s and energy drift.
+    Bench {
+        /// Lattice side N (N² particles).
+        #[arg(long, default_value_t = 316)]
+        n: usize,
+        /// Steps to time.
+        #[arg(long, default_value_t = 1000)]
+        steps: u64,
+        /// Threads (default: all cores).
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Remove this fraction of the bonds at random (runs the generic bond-list loop).
+        #[arg(long, default_value_t = 0.0)]
+        dilute: f64,
+        /// Run the full lattice through the generic bond-list loop instead of the stencil.
+        #[arg(long)]
+        bond_list: bool,
+        /// Timed repetitions; the median is reported.
+        #[arg(long, default_value_t = 3)]
+        repeat: usize,
+        /// Print one JSON line instead of text.
+        #[arg(long)]
+        json: bool,
+    },
 }
 
 /// Parses the command line and does what it says.
@@ -51,6 +77,10 @@ pub fn run() -> anyhow::Result<()> {
         Command::Run { campaign, jobs } => run_command(&cli.reports, campaign, *jobs),
         Command::Plan { campaign } => plan_command(&cli.reports, campaign),
         Command::Report { campaign } => report_command(&cli.reports, campaign),
+        Command::Bench { n, steps, threads, dilute, bond_list, repeat, json } => {
+            let config = BenchConfig { n: *n, steps: *steps, dilute: *dilute, bond_list: *bond_list };
+            bench_command(&config, *threads, *repeat, *json)
+        }
     }
 }
 
@@ -137,4 +167,33 @@ fn publish(campaign: &Campaign, layout: &Layout, records: &[crate::runner::RunRe
     let mut frame = table::results_frame(records).context("cannot build the results table")?;
     table::write_tables(layout, &mut frame)?;
     report::render(campaign, layout, records)
+}
+
+fn bench_command(config: &BenchConfig, threads: Option<usize>, repeat: usize, json: bool) -> anyhow::Result<()> {
+    anyhow::ensure!(config.n >= 2, "--n {}: the lattice needs N ≥ 2", config.n);
+    anyhow::ensure!(config.steps >= 1 && repeat >= 1, "--steps and --repeat must be ≥ 1");
+    anyhow::ensure!((0.0..1.0).contains(&config.dilute), "--dilute {}: must be in [0, 1)", config.dilute);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build()?;
+    let mut results: Vec<_> = (0..repeat).map(|_| pool.install(|| run_once(config))).collect();
+    results.sort_by(|a, b| a.particle_steps_per_s.total_cmp(&b.particle_steps_per_s));
+    let median = &results[results.len() / 2];
+    if json {
+        println!("{}", serde_json::to_string(median)?);
+    } else {
+        println!(
+            "N = {} ({} particles, {} bonds, {} path), {} steps on {} thread(s), median of {repeat}:\n  \
+             {:.1} million particle-steps/s, {:.1} million bond-updates/s, {:.3} s, energy drift {:+.2e}",
+            median.n,
+            median.particles,
+            median.bonds,
+            median.path,
+            median.steps,
+            median.threads,
+            median.particle_steps_per_s / 1e6,
+            median.bond_updates_per_s / 1e6,
+            median.wall_s,
+            median.energy_drift
+        );
+    }
+    Ok(())
 }

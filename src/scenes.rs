@@ -1,20 +1,20 @@
 //! From a [`RunSpec`] to the [`Scene`] it describes, and to the analytical answers it is
 //! compared with. Pure: no I/O.
 
-use crate::model::{Axes, Bonds, Diagonals, Particles};
-use crate::sim::{LawKind, Sampling, Scene};
+use crate::model::{Axes, Particles, SquareLattice};
+use crate::sim::{LawKind, Network, Sampling, Scene};
 use crate::spec::{LawName, RunSpec, SceneKind};
 use crate::theory;
 
 /// Builds the scene of `spec`.
 pub fn build_scene(spec: &RunSpec) -> Scene {
-    let (particles, bonds, contact_clock) = match spec.kind {
+    let (particles, lattice, contact_clock) = match spec.kind {
         SceneKind::Pair => pair(spec),
         SceneKind::Chain => chain(spec),
     };
     Scene {
         particles,
-        bonds,
+        network: Network::Lattice(lattice),
         law: match spec.law {
             LawName::Linear => LawKind::Linear,
             LawName::Power => LawKind::Power { beta: spec.beta },
@@ -33,7 +33,13 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
     }
 }
 
-type Parts = (Particles, Bonds, Option<(usize, usize, f64)>);
+type Parts = (Particles, SquareLattice, Option<(usize, usize, f64)>);
+
+/// The chain of `nodes` particles joined by springs `k` of rest length `spacing`: an
+/// `nodes × 1` lattice.
+fn row(nodes: usize, spacing: f64, k: f64) -> SquareLattice {
+    SquareLattice { nx: nodes, ny: 1, spacing, k_x: k, k_y: 0.0, k_rising: 0.0, k_falling: 0.0 }
+}
 
 /// Two particles on the x axis, approaching at relative speed v0 (each at v0/2): a contact
 /// pair starts `gap` apart (contact begins at t = gap/v0), a bonded pair at its rest length.
@@ -43,9 +49,7 @@ fn pair(spec: &RunSpec) -> Parts {
     let right = particles.push(spec.spacing + spec.gap.unwrap_or(0.0), 0.0, spec.mass, Axes::ONLY_X_MOVES);
     particles.vx[left] = 0.5 * spec.v0;
     particles.vx[right] = -0.5 * spec.v0;
-    let mut bonds = Bonds::default();
-    bonds.push(left, right, spec.spacing, spec.k);
-    (particles, bonds, Some((left, right, spec.spacing)))
+    (particles, row(2, spec.spacing, spec.k), Some((left, right, spec.spacing)))
 }
 
 /// n particles evenly between two fixed walls `wall_distance` apart, bonded as an (n+2) × 1
@@ -59,8 +63,7 @@ fn chain(spec: &RunSpec) -> Parts {
         particles.push(p as f64 * walls / (n + 1) as f64, 0.0, spec.mass, fixed);
     }
     particles.vx[spec.node.unwrap_or(1)] = spec.v0;
-    let bonds = Bonds::square_lattice(n + 2, 1, spec.spacing, spec.k, Diagonals::None, 0.0);
-    (particles, bonds, None)
+    (particles, row(n + 2, spec.spacing, spec.k), None)
 }
 
 /// Analytical contact duration and restitution of a pair, where an exact answer exists:

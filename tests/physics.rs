@@ -7,7 +7,7 @@ use common::{execute_all, pair_campaign, relative};
 use mdsolids::measure::convergence_order;
 use mdsolids::model::{Axes, BondDashpot, Bonds, ForceLaw, Linear, NoDashpot, Particles, PowerLaw, Spring};
 use mdsolids::runner::RunRecord;
-use mdsolids::sim::{BondNetwork, ForceField, IntegratorKind, LawKind, Sampling, Scene};
+use mdsolids::sim::{BondNetwork, ForceField, IntegratorKind, LawKind, Network, Sampling, Scene};
 
 /// Separations to test: stretched and compressed, oblique, in 2D.
 const SEPARATIONS: [(f64, f64); 4] = [(1.07, 0.02), (0.93, -0.05), (-0.6, 0.71), (0.3, -0.96)];
@@ -44,14 +44,9 @@ fn force_is_minus_energy_gradient_for_every_law() {
 fn newtons_third_law_in_the_force_loop() {
     let mut bonds = Bonds::default();
     bonds.push(0, 1, 1.0, 3.0);
-    let field = BondNetwork {
-        spring: Spring::<PowerLaw, BondDashpot, false> {
-            law: PowerLaw { beta: 1.5 },
-            dashpot: BondDashpot { gamma: 0.4 },
-        },
-        bonds,
-        background_gamma: 0.0,
-    };
+    let spring =
+        Spring::<PowerLaw, BondDashpot, false> { law: PowerLaw { beta: 1.5 }, dashpot: BondDashpot { gamma: 0.4 } };
+    let mut field = BondNetwork::new(spring, &bonds, 2, 0.0);
     let (x, y, vx, vy) = ([0.1, 1.0], [0.2, -0.3], [0.5, -0.1], [0.0, 0.3]);
     let (mut fx, mut fy) = ([0.0; 2], [0.0; 2]);
     field.add_forces(&x, &y, &vx, &vy, &mut fx, &mut fy);
@@ -170,7 +165,7 @@ fn free_pair_conserves_momentum_with_damping() {
         bonds.push(0, 1, 1.0, 1.0);
         let scene = Scene {
             particles,
-            bonds,
+            network: Network::Bonds(bonds),
             law: LawKind::Power { beta: 1.5 },
             contact: false,
             gamma: 0.3,

@@ -1,18 +1,7 @@
-//! Connectivity: which particle pairs are joined by a spring, with rest length and stiffness.
-//! Builders lay bonds out in particle order (row by row) so the force loop reads memory
-//! sequentially.
+//! Connectivity of an irregular network: which particle pairs are joined by a spring, with rest
+//! length and stiffness, as a structure of arrays in particle order.
 
-/// Which diagonal springs a square lattice has.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Diagonals {
-    /// Nearest neighbours only (no shear stiffness).
-    None,
-    /// Both diagonals of every cell.
-    Both,
-}
-
-/// Bond list in structure-of-arrays form: bond `b` joins particles `i[b]` and `j[b]`.
+/// Bond list: bond `b` joins particles `i[b]` and `j[b]`.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Bonds {
     /// First particle of each bond.
@@ -44,48 +33,41 @@ impl Bonds {
         self.stiffness.push(stiffness);
     }
 
-    /// Square lattice of `nx × ny` nodes, node `(ix, iy)` at index `iy·nx + ix`, spacing `a`:
-    /// springs `k` to the right and upper neighbours (rest `a`) and, with
-    /// [`Diagonals::Both`], springs `k_diag` across both diagonals of each cell (rest `a√2`).
-    /// An `n × 1` lattice is the linear chain (bonds `(p, p+1)`).
-    pub fn square_lattice(nx: usize, ny: usize, a: f64, k: f64, diagonals: Diagonals, k_diag: f64) -> Bonds {
-        let node = |ix: usize, iy: usize| iy * nx + ix;
-        let mut bonds = Bonds::default();
-        for iy in 0..ny {
-            for ix in 0..nx {
-                if ix + 1 < nx {
-                    bonds.push(node(ix, iy), node(ix + 1, iy), a, k);
-                }
-                if iy + 1 < ny {
-                    bonds.push(node(ix, iy), node(ix, iy + 1), a, k);
-                }
-                if diagonals == Diagonals::Both && ix + 1 < nx && iy + 1 < ny {
-                    bonds.push(node(ix, iy), node(ix + 1, iy + 1), a * std::f64::consts::SQRT_2, k_diag);
-                    bonds.push(node(ix + 1, iy), node(ix, iy + 1), a * std::f64::consts::SQRT_2, k_diag);
-                }
+    /// Largest particle index used, plus one (0 without bonds).
+    pub fn particles_needed(&self) -> usize {
+        self.i.iter().chain(&self.j).map(|&p| p + 1).max().unwrap_or(0)
+    }
+
+    /// The bonds left after removing each with probability `fraction`, chosen by a hash of
+    /// the bond's index and `seed` (reproducible on every machine).
+    pub fn diluted(&self, fraction: f64, seed: u64) -> Bonds {
+        let mut kept = Bonds::default();
+        for b in 0..self.len() {
+            if uniform(seed, b as u64) >= fraction {
+                kept.push(self.i[b], self.j[b], self.rest[b], self.stiffness[b]);
             }
         }
-        bonds
+        kept
+    }
+
+    /// Reorders the bonds by (smaller index, larger index), so the force loop reads and writes
+    /// particle memory in nearly increasing order.
+    pub fn sorted(&self) -> Bonds {
+        let mut order: Vec<usize> = (0..self.len()).collect();
+        order.sort_by_key(|&b| (self.i[b].min(self.j[b]), self.i[b].max(self.j[b])));
+        let mut sorted = Bonds::default();
+        for b in order {
+            sorted.push(self.i[b], self.j[b], self.rest[b], self.stiffness[b]);
+        }
+        sorted
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn n_by_one_lattice_is_the_chain() {
-        let lattice = Bonds::square_lattice(5, 1, 0.1, 3.0, Diagonals::Both, 1.0);
-        assert_eq!(lattice.i, vec![0, 1, 2, 3]);
-        assert_eq!(lattice.j, vec![1, 2, 3, 4]);
-        assert!(lattice.rest.iter().all(|&r| r == 0.1));
-    }
-
-    #[test]
-    fn lattice_bond_count() {
-        // nx(ny−1) + ny(nx−1) axial bonds and 2(nx−1)(ny−1) diagonals.
-        let (nx, ny) = (4, 3);
-        let bonds = Bonds::square_lattice(nx, ny, 1.0, 1.0, Diagonals::Both, 0.5);
-        assert_eq!(bonds.len(), nx * (ny - 1) + ny * (nx - 1) + 2 * (nx - 1) * (ny - 1));
-    }
+/// A uniform number in [0, 1) from `(seed, index)` by the splitmix64 finaliser.
+fn uniform(seed: u64, index: u64) -> f64 {
+    let mut z = seed.wrapping_add(index.wrapping_mul(0x9e37_79b9_7f4a_7c15));
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^= z >> 31;
+    (z >> 11) as f64 / (1u64 << 53) as f64
 }

@@ -133,7 +133,8 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> Spring<L, D, CONTACT> {
         if CONTACT && delta >= 0.0 {
             return BondForce::default();
         }
-        let (nx, ny) = (dx / r, dy / r);
+        let inverse_r = 1.0 / r; // one division per bond: the loop is bound by sqrt and division
+        let (nx, ny) = (dx * inverse_r, dy * inverse_r);
         let rate = if D::ACTIVE { nx * dvx + ny * dvy } else { 0.0 };
         let damping = self.dashpot.force(rate);
         let magnitude = self.law.elastic_force(k, delta) + damping;

@@ -3,10 +3,12 @@
 //! Connectivity ([`Bonds`]) knows nothing of forces, the force law ([`Spring`]) knows nothing
 //! of which particles it joins, and neither knows how time is integrated (`crate::sim`).
 
-pub use self::bonds::{Bonds, Diagonals};
+pub use self::bonds::Bonds;
+pub use self::lattice::SquareLattice;
 pub use self::law::{BondDashpot, Dashpot, ForceLaw, Linear, NoDashpot, PowerLaw, Spring};
 pub use self::particles::{Axes, Particles};
 
 mod bonds;
+mod lattice;
 mod law;
 mod particles;

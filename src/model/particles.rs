@@ -20,9 +20,10 @@ impl Axes {
 
 /// Positions (m), velocities (m/s) and masses (kg) of all particles, in 2D.
 ///
-/// A constrained axis is expressed by a zero inverse mass on that axis, so the integrators treat
-/// every particle alike: `a = f · inv_mass` is zero there and the particle keeps its velocity
-/// (zero for a support, a prescribed value for a driven boundary).
+/// A constrained axis is a particle listed in `held_x` or `held_y`: the integrators zero the
+/// force on that axis after every force evaluation, so the particle keeps its velocity there
+/// (zero for a support, a prescribed value for a driven boundary). Keeping constraints out of
+/// the per-particle arrays keeps the particle loops to the arrays every particle needs.
 #[derive(Clone, Debug, Default)]
 pub struct Particles {
     /// x positions (m).
@@ -33,12 +34,14 @@ pub struct Particles {
     pub vx: Vec<f64>,
     /// y velocities (m/s).
     pub vy: Vec<f64>,
-    /// Masses (kg), used for kinetic energy and momentum.
+    /// Masses (kg).
     pub mass: Vec<f64>,
-    /// 1/m on the x axis (1/kg), zero where x is constrained.
-    pub inv_mass_x: Vec<f64>,
-    /// 1/m on the y axis (1/kg), zero where y is constrained.
-    pub inv_mass_y: Vec<f64>,
+    /// 1/m (1/kg).
+    pub inv_mass: Vec<f64>,
+    /// Particles whose x is held (increasing order).
+    pub held_x: Vec<usize>,
+    /// Particles whose y is held (increasing order).
+    pub held_y: Vec<usize>,
 }
 
 impl Particles {
@@ -55,15 +58,26 @@ impl Particles {
     /// Appends a particle at rest at `(x, y)` with mass `mass` and the given constraints;
     /// returns its index.
     pub fn push(&mut self, x: f64, y: f64, mass: f64, fixed: Axes) -> usize {
-        let inverse = |held: bool| if held { 0.0 } else { 1.0 / mass };
+        let index = self.len();
         self.x.push(x);
         self.y.push(y);
         self.vx.push(0.0);
         self.vy.push(0.0);
         self.mass.push(mass);
-        self.inv_mass_x.push(inverse(fixed.x));
-        self.inv_mass_y.push(inverse(fixed.y));
-        self.len() - 1
+        self.inv_mass.push(1.0 / mass);
+        if fixed.x {
+            self.held_x.push(index);
+        }
+        if fixed.y {
+            self.held_y.push(index);
+        }
+        index
+    }
+
+    /// 1/m when every particle has the same mass, so the particle loops need not read an array.
+    pub fn uniform_inverse_mass(&self) -> Option<f64> {
+        let first = *self.inv_mass.first()?;
+        self.inv_mass.iter().all(|&m| m == first).then_some(first)
     }
 
     /// Kinetic energy Σ ½ m v² (J).

@@ -1,31 +1,104 @@
-//! The force loop: every bond once, f_i = `Spring::force_on_i`, f_j = −f_i, plus background
-//! damping f_i = −γ_g v_i.
+//! Force fields: the bond-list loop for irregular networks (every bond once,
+//! f_i = `Spring::force_on_i`, f_j = −f_i) and background damping f_i = −γ_g v_i.
 
+use rayon::prelude::*;
+
+use super::parallel::worth_splitting;
 use crate::model::{Bonds, Dashpot, ForceLaw, Spring};
 
 /// Something that adds forces to particles: the integrators know only this.
-pub trait ForceField: Sync {
+pub trait ForceField: Send + Sync {
     /// True when forces depend on velocities (a dashpot or background damping), so the
     /// integrators must supply predicted velocities.
     fn uses_velocity(&self) -> bool;
 
     /// Adds the forces at positions `(x, y)` and velocities `(vx, vy)` to `(fx, fy)` and
-    /// returns the power dissipated (W).
-    fn add_forces(&self, x: &[f64], y: &[f64], vx: &[f64], vy: &[f64], fx: &mut [f64], fy: &mut [f64]) -> f64;
+    /// returns the power dissipated (W). Takes `&mut self` for scratch space.
+    fn add_forces(&mut self, x: &[f64], y: &[f64], vx: &[f64], vy: &[f64], fx: &mut [f64], fy: &mut [f64]) -> f64;
 
-    /// Potential energy (J) stored at positions `(x, y)`.
+    /// Potential energy (J) stored at positions `(x, y)`; not on the hot path.
     fn potential_energy(&self, x: &[f64], y: &[f64]) -> f64;
 }
 
-/// A network of identical-law springs over a bond list, with optional background damping.
+/// Background damping f_i −= γ_g v_i on every particle; returns its power γ_g Σ v² (W).
+pub fn add_background_damping(gamma: f64, vx: &[f64], vy: &[f64], fx: &mut [f64], fy: &mut [f64]) -> f64 {
+    let n = fx.len();
+    let (vx, vy, fy) = (&vx[..n], &vy[..n], &mut fy[..n]);
+    let mut power = 0.0;
+    for i in 0..n {
+        fx[i] -= gamma * vx[i];
+        fy[i] -= gamma * vy[i];
+        power += gamma * (vx[i] * vx[i] + vy[i] * vy[i]);
+    }
+    power
+}
+
+/// Particles per block of a bond-list network: bonds with both ends in one block are
+/// summed by that block's thread; the few that cross blocks are summed afterwards.
+const BLOCK_PARTICLES: usize = 8192;
+
+/// An irregular network of identical-law springs over a sorted bond list, with optional
+/// background damping.
 #[derive(Clone, Debug)]
 pub struct BondNetwork<L, D, const CONTACT: bool> {
-    /// The law every bond obeys (stiffness per bond lives in `bonds`).
-    pub spring: Spring<L, D, CONTACT>,
-    /// Connectivity, rest lengths and stiffness constants.
-    pub bonds: Bonds,
-    /// Background damping γ_g (N s/m) against the particle velocity; 0 for none.
-    pub background_gamma: f64,
+    spring: Spring<L, D, CONTACT>,
+    /// Bonds inside each block of [`BLOCK_PARTICLES`] particles.
+    blocks: Vec<Bonds>,
+    /// Bonds between blocks.
+    crossing: Bonds,
+    background_gamma: f64,
+}
+
+impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> BondNetwork<L, D, CONTACT> {
+    /// A network of `particles` particles over `bonds` (any order: they are sorted here) with
+    /// background damping `background_gamma` (N s/m, 0 for none).
+    pub fn new(spring: Spring<L, D, CONTACT>, bonds: &Bonds, particles: usize, background_gamma: f64) -> Self {
+        assert!(bonds.particles_needed() <= particles, "a bond names a particle that does not exist");
+        let sorted = bonds.sorted();
+        let block_count = particles.div_ceil(BLOCK_PARTICLES).max(1);
+        let mut blocks = vec![Bonds::default(); block_count];
+        let mut crossing = Bonds::default();
+        for b in 0..sorted.len() {
+            let (i, j) = (sorted.i[b], sorted.j[b]);
+            let target = if i / BLOCK_PARTICLES == j / BLOCK_PARTICLES {
+                &mut blocks[i / BLOCK_PARTICLES]
+            } else {
+                &mut crossing
+            };
+            target.push(i, j, sorted.rest[b], sorted.stiffness[b]);
+        }
+        BondNetwork { spring, blocks, crossing, background_gamma }
+    }
+
+    /// Adds the forces of `bonds` to `(fx, fy)`, which hold particles `offset..`.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)] // the structure of arrays, one slice per component
+    fn accumulate(
+        &self,
+        bonds: &Bonds,
+        offset: usize,
+        x: &[f64],
+        y: &[f64],
+        vx: &[f64],
+        vy: &[f64],
+        fx: &mut [f64],
+        fy: &mut [f64],
+    ) -> f64 {
+        let mut power = 0.0;
+        let m = bonds.len();
+        let (bi, bj, rest, stiffness) = (&bonds.i[..m], &bonds.j[..m], &bonds.rest[..m], &bonds.stiffness[..m]);
+        for b in 0..m {
+            let (i, j) = (bi[b], bj[b]);
+            let (dvx, dvy) = if D::ACTIVE { (vx[i] - vx[j], vy[i] - vy[j]) } else { (0.0, 0.0) };
+            let f = self.spring.force_on_i(stiffness[b], rest[b], x[i] - x[j], y[i] - y[j], dvx, dvy);
+            fx[i - offset] += f.fx;
+            fy[i - offset] += f.fy;
+            fx[j - offset] -= f.fx;
+            fy[j - offset] -= f.fy;
+            power += f.dissipation;
+        }
+        power
+    }
 }
 
 impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for BondNetwork<L, D, CONTACT> {
@@ -33,36 +106,31 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for BondNetwork<L,
         D::ACTIVE || self.background_gamma > 0.0
     }
 
-    fn add_forces(&self, x: &[f64], y: &[f64], vx: &[f64], vy: &[f64], fx: &mut [f64], fy: &mut [f64]) -> f64 {
-        let b = &self.bonds;
-        let mut power = 0.0;
-        for n in 0..b.len() {
-            let (i, j) = (b.i[n], b.j[n]);
-            let (dvx, dvy) = if D::ACTIVE { (vx[i] - vx[j], vy[i] - vy[j]) } else { (0.0, 0.0) };
-            let f = self.spring.force_on_i(b.stiffness[n], b.rest[n], x[i] - x[j], y[i] - y[j], dvx, dvy);
-            fx[i] += f.fx;
-            fy[i] += f.fy;
-            fx[j] -= f.fx;
-            fy[j] -= f.fy;
-            power += f.dissipation;
-        }
-        let g = self.background_gamma;
-        if g > 0.0 {
-            for i in 0..fx.len() {
-                fx[i] -= g * vx[i];
-                fy[i] -= g * vy[i];
-                power += g * (vx[i] * vx[i] + vy[i] * vy[i]);
-            }
+    fn add_forces(&mut self, x: &[f64], y: &[f64], vx: &[f64], vy: &[f64], fx: &mut [f64], fy: &mut [f64]) -> f64 {
+        let this = &*self;
+        let block = |(index, (fx, fy)): (usize, (&mut [f64], &mut [f64]))| {
+            this.accumulate(&this.blocks[index], index * BLOCK_PARTICLES, x, y, vx, vy, fx, fy)
+        };
+        let mut power: f64 = if worth_splitting(x.len()) {
+            fx.par_chunks_mut(BLOCK_PARTICLES).zip(fy.par_chunks_mut(BLOCK_PARTICLES)).enumerate().map(block).sum()
+        } else {
+            fx.chunks_mut(BLOCK_PARTICLES).zip(fy.chunks_mut(BLOCK_PARTICLES)).enumerate().map(block).sum()
+        };
+        power += self.accumulate(&self.crossing, 0, x, y, vx, vy, fx, fy);
+        if self.background_gamma > 0.0 {
+            power += add_background_damping(self.background_gamma, vx, vy, fx, fy);
         }
         power
     }
 
     fn potential_energy(&self, x: &[f64], y: &[f64]) -> f64 {
-        let b = &self.bonds;
-        (0..b.len())
-            .map(|n| {
-                let (i, j) = (b.i[n], b.j[n]);
-                self.spring.energy(b.stiffness[n], b.rest[n], x[i] - x[j], y[i] - y[j])
+        self.blocks
+            .iter()
+            .chain(std::iter::once(&self.crossing))
+            .flat_map(|bonds| (0..bonds.len()).map(move |b| (bonds, b)))
+            .map(|(bonds, b)| {
+                let (i, j) = (bonds.i[b], bonds.j[b]);
+                self.spring.energy(bonds.stiffness[b], bonds.rest[b], x[i] - x[j], y[i] - y[j])
             })
             .sum()
     }

@@ -5,12 +5,15 @@ pub use self::field::{BondNetwork, ForceField};
 pub use self::integrate::{Integrator, IntegratorKind, PositionVerlet, VelocityVerlet};
 pub use self::probe::{ContactClock, Crossing, StepProbe};
 pub use self::run::{RunStatus, Sampling, Trace, simulate};
-pub use self::scene::{LawKind, Outcome, Scene};
+pub use self::scene::{LawKind, Network, Outcome, Scene};
 pub use self::state::State;
+pub use self::stencil::LatticeNetwork;
 
 mod field;
 mod integrate;
+pub(crate) mod parallel;
 mod probe;
 mod run;
 mod scene;
 mod state;
+mod stencil;

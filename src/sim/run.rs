@@ -55,6 +55,8 @@ pub struct Trace {
     pub displacement_x: Vec<Vec<f64>>,
     /// Steps actually taken.
     pub steps: u64,
+    /// Wall time of the time loop (s), set-up excluded.
+    pub loop_s: f64,
     /// Why the run ended.
     pub status: RunStatus,
     /// Explanation when the status is not `ok`.
@@ -86,7 +88,7 @@ impl Trace {
 /// `probe`; stops early with [`RunStatus::Unstable`] when the energy stops being finite.
 pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
     state: &mut State,
-    field: &F,
+    field: &mut F,
     integrator: &mut I,
     sampling: &Sampling,
     probe: &mut P,
@@ -95,17 +97,19 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
     let mut trace = Trace::default();
     integrator.start(state, field, sampling.dt);
     probe.observe(state);
-    trace.sample(state, field, &start_x, sampling.displacements);
+    trace.sample(state, &*field, &start_x, sampling.displacements);
     let every = sampling.every.max(1);
+    let started = std::time::Instant::now();
     for n in 1..=sampling.steps {
         integrator.step(state, field, sampling.dt);
         probe.observe(state);
-        if (n % every == 0 || n == sampling.steps) && !trace.sample(state, field, &start_x, sampling.displacements) {
+        if (n % every == 0 || n == sampling.steps) && !trace.sample(state, &*field, &start_x, sampling.displacements) {
             trace.status = RunStatus::Unstable;
             trace.message = format!("energy became non-finite at t = {:.6e} s (step {n})", state.time);
             break;
         }
     }
+    trace.loop_s = started.elapsed().as_secs_f64();
     trace.steps = state.steps;
     trace
 }

@@ -1,12 +1,15 @@
 //! A scene: everything one run integrates, as plain data, and the one place where the run's
 //! choices (law, dashpot, contact, integrator) are turned into monomorphised code.
 
-use super::field::BondNetwork;
+use super::field::{BondNetwork, ForceField};
 use super::integrate::{IntegratorKind, PositionVerlet, VelocityVerlet};
 use super::probe::{ContactClock, Crossing};
 use super::run::{Sampling, Trace, simulate};
 use super::state::State;
-use crate::model::{BondDashpot, Bonds, Dashpot, ForceLaw, Linear, NoDashpot, Particles, PowerLaw, Spring};
+use super::stencil::LatticeNetwork;
+use crate::model::{
+    BondDashpot, Bonds, Dashpot, ForceLaw, Linear, NoDashpot, Particles, PowerLaw, Spring, SquareLattice,
+};
 
 /// The elastic law of every bond in a scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -20,13 +23,23 @@ pub enum LawKind {
     },
 }
 
+/// How the particles are connected.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Network {
+    /// A regular square lattice over all particles (node (ix, iy) is particle iy·nx + ix): the
+    /// force loop walks rows, no bond list is stored.
+    Lattice(SquareLattice),
+    /// Any other network: an explicit bond list, sorted for sequential access.
+    Bonds(Bonds),
+}
+
 /// One run, fully built: particles, bonds, law, damping, integrator, sampling and probes.
 #[derive(Clone, Debug)]
 pub struct Scene {
     /// Particles at t = 0.
     pub particles: Particles,
-    /// Bonds (connectivity, rest lengths, stiffness constants).
-    pub bonds: Bonds,
+    /// Connectivity, rest lengths and stiffness constants.
+    pub network: Network,
     /// Elastic law of all bonds.
     pub law: LawKind,
     /// Bonds act only in compression.
@@ -76,15 +89,27 @@ impl Scene {
     }
 
     fn with_spring<L: ForceLaw, D: Dashpot, const CONTACT: bool>(self, spring: Spring<L, D, CONTACT>) -> Outcome {
-        let field = BondNetwork { spring, bonds: self.bonds, background_gamma: self.background_gamma };
+        match &self.network {
+            Network::Lattice(lattice) => {
+                let field = LatticeNetwork::new(spring, *lattice, self.background_gamma);
+                self.integrate(field)
+            }
+            Network::Bonds(bonds) => {
+                let field = BondNetwork::new(spring, bonds, self.particles.len(), self.background_gamma);
+                self.integrate(field)
+            }
+        }
+    }
+
+    fn integrate<F: ForceField>(self, mut field: F) -> Outcome {
         let mut state = State::new(self.particles);
         let mut clock = self.contact_clock.map(|(i, j, rest)| ContactClock::new(i, j, rest));
         let trace = match self.integrator {
             IntegratorKind::PositionVerlet => {
-                simulate(&mut state, &field, &mut PositionVerlet::default(), &self.sampling, &mut clock)
+                simulate(&mut state, &mut field, &mut PositionVerlet::default(), &self.sampling, &mut clock)
             }
             IntegratorKind::VelocityVerlet => {
-                simulate(&mut state, &field, &mut VelocityVerlet::default(), &self.sampling, &mut clock)
+                simulate(&mut state, &mut field, &mut VelocityVerlet::default(), &self.sampling, &mut clock)
             }
         };
         Outcome { trace, crossings: clock.map(|c| c.crossings).unwrap_or_default(), state }

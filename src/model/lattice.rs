@@ -1,0 +1,117 @@
+//! The square lattice as a stencil: node (ix, iy) at index iy·nx + ix, and four bond families
+//! with one stiffness each. Regular lattices keep this compact form (no bond list: the force
+//! loop walks rows), irregular networks use [`Bonds`].
+
+use super::bonds::Bonds;
+
+/// An nx × ny square lattice with spacing a and per-family stiffness (0 = family absent):
+/// `k_x` to the right neighbour and `k_y` to the upper one (rest a), `k_rising` across
+/// (ix, iy)–(ix+1, iy+1) and `k_falling` across (ix+1, iy)–(ix, iy+1) (rest a√2).
+/// An n × 1 lattice is the linear chain.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SquareLattice {
+    /// Nodes per row.
+    pub nx: usize,
+    /// Rows.
+    pub ny: usize,
+    /// Spacing a = rest length of the axial springs (m).
+    pub spacing: f64,
+    /// Stiffness constant of the horizontal springs.
+    pub k_x: f64,
+    /// Stiffness constant of the vertical springs.
+    pub k_y: f64,
+    /// Stiffness constant of the rising diagonals (ix, iy)–(ix+1, iy+1).
+    pub k_rising: f64,
+    /// Stiffness constant of the falling diagonals (ix+1, iy)–(ix, iy+1).
+    pub k_falling: f64,
+}
+
+impl SquareLattice {
+    /// Index of node (ix, iy).
+    pub fn node(&self, ix: usize, iy: usize) -> usize {
+        iy * self.nx + ix
+    }
+
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.nx * self.ny
+    }
+
+    /// True for a lattice without nodes.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Rest length of the diagonals, a√2 (m).
+    pub fn diagonal_rest(&self) -> f64 {
+        self.spacing * std::f64::consts::SQRT_2
+    }
+
+    /// Number of bonds.
+    pub fn bond_count(&self) -> usize {
+        let (nx, ny) = (self.nx, self.ny);
+        let present = |k: f64| usize::from(k != 0.0);
+        present(self.k_x) * ny * nx.saturating_sub(1)
+            + present(self.k_y) * nx * ny.saturating_sub(1)
+            + (present(self.k_rising) + present(self.k_falling)) * nx.saturating_sub(1) * ny.saturating_sub(1)
+    }
+
+    /// Calls `visit(i, j, rest, k)` for every bond, in node order.
+    pub fn for_each_bond(&self, mut visit: impl FnMut(usize, usize, f64, f64)) {
+        let (a, d) = (self.spacing, self.diagonal_rest());
+        for iy in 0..self.ny {
+            for ix in 0..self.nx {
+                let here = self.node(ix, iy);
+                let right = ix + 1 < self.nx;
+                let up = iy + 1 < self.ny;
+                if right && self.k_x != 0.0 {
+                    visit(here, self.node(ix + 1, iy), a, self.k_x);
+                }
+                if up && self.k_y != 0.0 {
+                    visit(here, self.node(ix, iy + 1), a, self.k_y);
+                }
+                if right && up && self.k_rising != 0.0 {
+                    visit(here, self.node(ix + 1, iy + 1), d, self.k_rising);
+                }
+                if right && up && self.k_falling != 0.0 {
+                    visit(self.node(ix + 1, iy), self.node(ix, iy + 1), d, self.k_falling);
+                }
+            }
+        }
+    }
+
+    /// The same springs as an explicit bond list, in node order (for irregular variants of a
+    /// lattice, and as the reference the stencil is tested against).
+    pub fn bonds(&self) -> Bonds {
+        let mut bonds = Bonds::default();
+        self.for_each_bond(|i, j, rest, k| bonds.push(i, j, rest, k));
+        bonds
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lattice(nx: usize, ny: usize, k_diag: f64) -> SquareLattice {
+        SquareLattice { nx, ny, spacing: 0.1, k_x: 3.0, k_y: 3.0, k_rising: k_diag, k_falling: k_diag }
+    }
+
+    #[test]
+    fn n_by_one_lattice_is_the_chain() {
+        let chain = lattice(5, 1, 1.0).bonds();
+        assert_eq!(chain.i, vec![0, 1, 2, 3]);
+        assert_eq!(chain.j, vec![1, 2, 3, 4]);
+        assert!(chain.rest.iter().all(|&r| r == 0.1));
+    }
+
+    #[test]
+    fn bond_count_matches_the_list() {
+        // nx(ny−1) + ny(nx−1) axial bonds and 2(nx−1)(ny−1) diagonals.
+        for (nx, ny, k_diag) in [(4, 3, 0.5), (4, 3, 0.0), (1, 5, 0.5), (7, 1, 0.5)] {
+            let l = lattice(nx, ny, k_diag);
+            assert_eq!(l.bond_count(), l.bonds().len());
+        }
+        assert_eq!(lattice(4, 3, 0.5).bond_count(), 4 * 2 + 3 * 3 + 2 * 3 * 2);
+    }
+}

@@ -1,0 +1,246 @@
+//! The force loop of a regular square lattice, row by row without a bond list.
+//!
+//! Bonds between two rows (vertical and both diagonals) join element t of one row slice to
+//! element t of another, so each loop writes distinct elements and vectorises (sqrt and
+//! division four at a time). Bonds within a row join t and t+1; their forces go to a scratch
+//! row first and are then added as h[t] − h[t−1]. Rows are grouped in fixed blocks: a block's
+//! thread handles its rows and the bonds between them, and the bonds between blocks follow.
+//! The blocking does not depend on the thread count, so neither do the results.
+
+use rayon::prelude::*;
+
+use super::field::{ForceField, add_background_damping};
+use super::parallel::worth_splitting;
+use crate::model::{Dashpot, ForceLaw, Spring, SquareLattice};
+
+/// Rows per block.
+const BLOCK_ROWS: usize = 16;
+
+/// A block's index with its forces (x, y) and scratch row (x, y), as the zipped chunk
+/// iterators deliver them.
+type BlockSlices<'a> = (usize, (((&'a mut [f64], &'a mut [f64]), &'a mut [f64]), &'a mut [f64]));
+
+/// Positions and (dashpot) velocities of a run of particles.
+#[derive(Clone, Copy)]
+struct Nodes<'a> {
+    x: &'a [f64],
+    y: &'a [f64],
+    vx: &'a [f64],
+    vy: &'a [f64],
+}
+
+impl<'a> Nodes<'a> {
+    fn range(&self, range: std::ops::Range<usize>) -> Nodes<'a> {
+        Nodes { x: &self.x[range.clone()], y: &self.y[range.clone()], vx: &self.vx[range.clone()], vy: &self.vy[range] }
+    }
+}
+
+/// A regular lattice of identical-law springs, with optional background damping.
+#[derive(Clone, Debug)]
+pub struct LatticeNetwork<L, D, const CONTACT: bool> {
+    spring: Spring<L, D, CONTACT>,
+    lattice: SquareLattice,
+    background_gamma: f64,
+    /// Forces of the bonds within a row: one row per block (x and y), reused row after row so
+    /// it stays in L1.
+    scratch_x: Vec<f64>,
+    scratch_y: Vec<f64>,
+}
+
+impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> LatticeNetwork<L, D, CONTACT> {
+    /// The network of `lattice` with background damping `background_gamma` (N s/m, 0 for none).
+    pub fn new(spring: Spring<L, D, CONTACT>, lattice: SquareLattice, background_gamma: f64) -> Self {
+        let scratch = lattice.ny.div_ceil(BLOCK_ROWS) * lattice.nx;
+        LatticeNetwork {
+            spring,
+            lattice,
+            background_gamma,
+            scratch_x: vec![0.0; scratch],
+            scratch_y: vec![0.0; scratch],
+        }
+    }
+
+    /// Bonds of stiffness `k` and rest length `rest` joining `p[t]` to `q[t]`, for all t.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)] // two sides, each positions, velocities and forces
+    fn between(
+        &self,
+        k: f64,
+        rest: f64,
+        p: Nodes,
+        q: Nodes,
+        fpx: &mut [f64],
+        fpy: &mut [f64],
+        fqx: &mut [f64],
+        fqy: &mut [f64],
+    ) -> f64 {
+        let m = p.x.len();
+        let (p, q) = (p.range(0..m), q.range(0..m));
+        let (fpx, fpy, fqx, fqy) = (&mut fpx[..m], &mut fpy[..m], &mut fqx[..m], &mut fqy[..m]);
+        let mut power = 0.0;
+        for t in 0..m {
+            let (dvx, dvy) = if D::ACTIVE { (p.vx[t] - q.vx[t], p.vy[t] - q.vy[t]) } else { (0.0, 0.0) };
+            let f = self.spring.force_on_i(k, rest, p.x[t] - q.x[t], p.y[t] - q.y[t], dvx, dvy);
+            fpx[t] += f.fx;
+            fpy[t] += f.fy;
+            fqx[t] -= f.fx;
+            fqy[t] -= f.fy;
+            power += f.dissipation;
+        }
+        power
+    }
+
+    /// Horizontal bonds of one row: forces into the scratch row `(hx, hy)`, then added as
+    /// f[t] += h[t] − h[t−1].
+    #[inline(always)]
+    fn within_row(&self, row: Nodes, hx: &mut [f64], hy: &mut [f64], fx: &mut [f64], fy: &mut [f64]) -> f64 {
+        let nx = row.x.len();
+        if self.lattice.k_x == 0.0 || nx < 2 {
+            return 0.0;
+        }
+        let (left, right) = (row.range(0..nx - 1), row.range(1..nx));
+        let (hx, hy) = (&mut hx[..nx - 1], &mut hy[..nx - 1]);
+        let (k, rest) = (self.lattice.k_x, self.lattice.spacing);
+        let mut power = 0.0;
+        for t in 0..nx - 1 {
+            let (dvx, dvy) = if D::ACTIVE { (left.vx[t] - right.vx[t], left.vy[t] - right.vy[t]) } else { (0.0, 0.0) };
+            let f = self.spring.force_on_i(k, rest, left.x[t] - right.x[t], left.y[t] - right.y[t], dvx, dvy);
+            hx[t] = f.fx;
+            hy[t] = f.fy;
+            power += f.dissipation;
+        }
+        let (fx, fy) = (&mut fx[..nx], &mut fy[..nx]);
+        fx[0] += hx[0];
+        fy[0] += hy[0];
+        for t in 1..nx - 1 {
+            fx[t] += hx[t] - hx[t - 1];
+            fy[t] += hy[t] - hy[t - 1];
+        }
+        fx[nx - 1] -= hx[nx - 2];
+        fy[nx - 1] -= hy[nx - 2];
+        power
+    }
+
+    /// Vertical and diagonal bonds between row `a` (below) and row `b` (above).
+    #[inline(always)]
+    fn between_rows(&self, a: Nodes, b: Nodes, fa: (&mut [f64], &mut [f64]), fb: (&mut [f64], &mut [f64])) -> f64 {
+        let l = &self.lattice;
+        let nx = l.nx;
+        let (fax, fay) = fa;
+        let (fbx, fby) = fb;
+        let mut power = 0.0;
+        if l.k_y != 0.0 {
+            power += self.between(l.k_y, l.spacing, a, b, fax, fay, fbx, fby);
+        }
+        if nx > 1 && l.k_rising != 0.0 {
+            let (p, q) = (a.range(0..nx - 1), b.range(1..nx));
+            power += self.between(
+                l.k_rising,
+                l.diagonal_rest(),
+                p,
+                q,
+                &mut fax[..nx - 1],
+                &mut fay[..nx - 1],
+                &mut fbx[1..],
+                &mut fby[1..],
+            );
+        }
+        if nx > 1 && l.k_falling != 0.0 {
+            let (p, q) = (a.range(1..nx), b.range(0..nx - 1));
+            power += self.between(
+                l.k_falling,
+                l.diagonal_rest(),
+                p,
+                q,
+                &mut fax[1..],
+                &mut fay[1..],
+                &mut fbx[..nx - 1],
+                &mut fby[..nx - 1],
+            );
+        }
+        power
+    }
+
+    /// All bonds of the rows starting at row `first` whose forces are `(fx, fy)` (these rows
+    /// only): within each row, and between each row and the one below it in the block, row
+    /// after row so both rows are still in cache.
+    fn block(&self, first: usize, nodes: Nodes, fx: &mut [f64], fy: &mut [f64], hx: &mut [f64], hy: &mut [f64]) -> f64 {
+        let nx = self.lattice.nx;
+        let rows = fx.len() / nx;
+        let row = |r: usize| nodes.range((first + r) * nx..(first + r + 1) * nx);
+        let mut power = 0.0;
+        for r in 0..rows {
+            let span = r * nx..(r + 1) * nx;
+            power += self.within_row(row(r), hx, hy, &mut fx[span.clone()], &mut fy[span]);
+            if r > 0 {
+                power += self.rows_pair(row(r - 1), row(r), r * nx, fx, fy);
+            }
+        }
+        power
+    }
+
+    /// Bonds between two consecutive rows whose forces are `fx[..split]` (last row of the
+    /// lower part) and `fx[split..]` (first row of the upper part).
+    fn rows_pair(&self, a: Nodes, b: Nodes, split: usize, fx: &mut [f64], fy: &mut [f64]) -> f64 {
+        let nx = self.lattice.nx;
+        let (below_x, above_x) = fx.split_at_mut(split);
+        let (below_y, above_y) = fy.split_at_mut(split);
+        let lower = split - nx..split;
+        self.between_rows(
+            a,
+            b,
+            (&mut below_x[lower.clone()], &mut below_y[lower]),
+            (&mut above_x[..nx], &mut above_y[..nx]),
+        )
+    }
+}
+
+impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for LatticeNetwork<L, D, CONTACT> {
+    fn uses_velocity(&self) -> bool {
+        D::ACTIVE || self.background_gamma > 0.0
+    }
+
+    fn add_forces(&mut self, x: &[f64], y: &[f64], vx: &[f64], vy: &[f64], fx: &mut [f64], fy: &mut [f64]) -> f64 {
+        let nx = self.lattice.nx;
+        let (hx, hy) = (std::mem::take(&mut self.scratch_x), std::mem::take(&mut self.scratch_y));
+        let (mut hx, mut hy) = (hx, hy);
+        let nodes = Nodes { x, y, vx, vy };
+        let block_len = BLOCK_ROWS * nx;
+        let this = &*self;
+        let block = |(index, (((fx, fy), hx), hy)): BlockSlices| this.block(index * BLOCK_ROWS, nodes, fx, fy, hx, hy);
+        let mut power: f64 = if worth_splitting(x.len()) {
+            fx.par_chunks_mut(block_len)
+                .zip(fy.par_chunks_mut(block_len))
+                .zip(hx.par_chunks_mut(nx))
+                .zip(hy.par_chunks_mut(nx))
+                .enumerate()
+                .map(block)
+                .sum()
+        } else {
+            fx.chunks_mut(block_len)
+                .zip(fy.chunks_mut(block_len))
+                .zip(hx.chunks_mut(nx))
+                .zip(hy.chunks_mut(nx))
+                .enumerate()
+                .map(block)
+                .sum()
+        };
+        // Bonds between the last row of one block and the first row of the next.
+        for upper in (BLOCK_ROWS..self.lattice.ny).step_by(BLOCK_ROWS) {
+            let (a, b) = (nodes.range((upper - 1) * nx..upper * nx), nodes.range(upper * nx..(upper + 1) * nx));
+            power += self.rows_pair(a, b, upper * nx, fx, fy);
+        }
+        if self.background_gamma > 0.0 {
+            power += add_background_damping(self.background_gamma, vx, vy, fx, fy);
+        }
+        self.scratch_x = hx;
+        self.scratch_y = hy;
+        power
+    }
+
+    fn potential_energy(&self, x: &[f64], y: &[f64]) -> f64 {
+        let mut energy = 0.0;
+        self.lattice.for_each_bond(|i, j, rest, k| energy += self.spring.energy(k, rest, x[i] - x[j], y[i] - y[j]));
+        energy
+    }
+}
