@@ -156,9 +156,9 @@ fn check<L: ForceLaw, D: Dashpot, const C: bool>(
     let slow = reference(spring, &particles, &bonds, background, integrator);
     // Only the order of the force sums differs, so the paths part by round-off: positions of
     // up to ~100 m carry ~1e-14 m each step, a random walk to ~1e-13 m over 1000 steps
-    // (measured ≤ 2e-15 for velocity Verlet, 7e-14 for position Verlet, relative to the positions). Against the displacements (~0.5 m) that is
-    // ~1e-12 (measured up to 5e-11 for position Verlet, whose Störmer form gathers round-off);
-    // any real difference in a force is of the order of the displacement itself.
+    // (measured ≤ 2e-15 of the positions for velocity Verlet, 7e-14 for position Verlet, whose
+    // Störmer form gathers round-off). Against the displacements (~0.5 m) that is up to 5e-11;
+    // any real difference in a force would be of the order of the displacement itself.
     let (to_position, to_displacement) = compare(&fast, &slow, &particles);
     assert!(to_position < 1e-12, "{name}: fast path differs from the reference by {to_position:e} of the positions");
     assert!(
