@@ -91,21 +91,33 @@ fn open(reports: &Path, file: &Path) -> anyhow::Result<(Campaign, Layout)> {
 }
 
 fn run_command(reports: &Path, file: &Path, jobs: Option<usize>) -> anyhow::Result<()> {
+    let started = std::time::Instant::now();
     let (campaign, layout) = open(reports, file)?;
     let done = run_campaign(&campaign, &layout, jobs)?;
     let failed = done.records.iter().filter(|r| r.status != "ok").count();
     publish(&campaign, &layout, &done.records)?;
     println!(
-        "{}: {} runs ({} simulated, {} cached, {} failed) -> {}",
+        "{}: {} runs ({} simulated, {} cached, {} failed) in {:.2} s -> {}",
         campaign.name,
         done.records.len(),
         done.simulated,
         done.cached,
         failed,
+        started.elapsed().as_secs_f64(),
         layout.root.display()
     );
     Ok(())
 }
+
+/// Cost model of a run in a release build, from `mdsolids bench` and the coursework campaign on
+/// the project machine: ~80 ns per step for the loop itself and the per-step probes, plus
+/// ~3 ns per particle-step (the reference lattice runs at ~330 million particle-steps/s).
+fn estimated_seconds(spec: &crate::spec::RunSpec) -> f64 {
+    spec.steps as f64 * (80e-9 + 3e-9 * spec.particles() as f64)
+}
+
+/// Writing tables, figures and the report of a campaign of a few dozen runs (measured ~0.07 s).
+const REPORT_SECONDS: f64 = 0.1;
 
 fn plan_command(reports: &Path, file: &Path) -> anyhow::Result<()> {
     let (campaign, layout) = open(reports, file)?;
@@ -113,11 +125,11 @@ fn plan_command(reports: &Path, file: &Path) -> anyhow::Result<()> {
         "{:<28} {:<8} {:>11} {:>11} {:>8} {:>10} {:>9}  varied",
         "run_id", "kind", "dt (s)", "t_c (s)", "t_c/dt", "steps", "cached"
     );
-    let mut particle_steps = 0u64;
+    let mut simulation_s = 0.0;
     for spec in &campaign.runs {
         let cached = stored_record(&layout, spec).is_some();
         if !cached {
-            particle_steps += spec.steps * spec.particles() as u64;
+            simulation_s += estimated_seconds(spec);
         }
         println!(
             "{:<28} {:<8} {:>11.4e} {:>11.4e} {:>8.1} {:>10} {:>9}  {}",
@@ -131,12 +143,13 @@ fn plan_command(reports: &Path, file: &Path) -> anyhow::Result<()> {
             spec.varied_label(|_| true)
         );
     }
-    // A nominal 1e7 particle-steps/s per core for these small scenes (measured rates are in
-    // the README); the estimate is for orientation, not a promise.
+    let threads = rayon::current_num_threads();
     println!(
-        "{} runs; {particle_steps} particle-steps to simulate, roughly {:.1} s on one core",
+        "{} runs; estimated {:.3} s of simulation on one core, about {:.3} s with tables and report on {threads} cores \
+         (release build)",
         campaign.runs.len(),
-        particle_steps as f64 / 1e7
+        simulation_s,
+        simulation_s / threads as f64 + REPORT_SECONDS
     );
     Ok(())
 }

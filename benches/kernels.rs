@@ -1,0 +1,82 @@
+//! Criterion benchmarks of the reference workload's kernels (README, "Performance"): the force
+//! loop and one velocity-Verlet step, at N = 100, 316 and 1000, on one thread. Throughput is
+//! in particles, so criterion's "elem/s" is particle-steps per second.
+
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+use mdsolids::bench::{BenchConfig, reference_lattice, reference_scene};
+use mdsolids::model::{Linear, NoDashpot, Spring};
+use mdsolids::sim::{ForceField, Integrator, LatticeNetwork, State, VelocityVerlet};
+
+const SIZES: [usize; 3] = [100, 316, 1000];
+const SPRING: Spring<Linear, NoDashpot, false> = Spring { law: Linear, dashpot: NoDashpot };
+
+fn one_thread() -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("a one-thread pool")
+}
+
+/// Wall time of `iterations` calls of `work`, all inside `pool` (entering a pool costs a
+/// thread hand-off, which would swamp the 0.1 ms kernels of N = 100).
+fn timed_on(pool: &rayon::ThreadPool, iterations: u64, mut work: impl FnMut() + Send) -> Duration {
+    pool.install(|| {
+        let started = Instant::now();
+        for _ in 0..iterations {
+            work();
+        }
+        started.elapsed()
+    })
+}
+
+/// The reference lattice, strained a little so every bond carries a force.
+fn strained_state(n: usize) -> State {
+    let config = BenchConfig { n, steps: 0, dilute: 0.0, bond_list: false };
+    let mut particles = reference_scene(&config).particles;
+    for (i, x) in particles.x.iter_mut().enumerate() {
+        *x *= 1.0 + 1e-3 * ((i % 7) as f64);
+    }
+    State::new(particles)
+}
+
+fn force_loop(c: &mut Criterion) {
+    let pool = one_thread();
+    let mut group = c.benchmark_group("force_loop");
+    group.sample_size(10);
+    for n in SIZES {
+        group.throughput(Throughput::Elements((n * n) as u64));
+        let mut state = strained_state(n);
+        let mut field = LatticeNetwork::new(SPRING, reference_lattice(n), 0.0);
+        group.bench_function(BenchmarkId::from_parameter(n), |b| {
+            b.iter_custom(|iterations| {
+                timed_on(&pool, iterations, || {
+                    state.fx.fill(0.0);
+                    state.fy.fill(0.0);
+                    let p = &state.particles;
+                    black_box(field.add_forces(&p.x, &p.y, &p.vx, &p.vy, &mut state.fx, &mut state.fy));
+                })
+            })
+        });
+    }
+    group.finish();
+}
+
+fn integrator_step(c: &mut Criterion) {
+    let pool = one_thread();
+    let mut group = c.benchmark_group("velocity_verlet_step");
+    group.sample_size(10);
+    for n in SIZES {
+        group.throughput(Throughput::Elements((n * n) as u64));
+        let mut state = strained_state(n);
+        let mut field = LatticeNetwork::new(SPRING, reference_lattice(n), 0.0);
+        let mut integrator = VelocityVerlet::default();
+        integrator.start(&mut state, &mut field, 0.01);
+        group.bench_function(BenchmarkId::from_parameter(n), |b| {
+            b.iter_custom(|iterations| timed_on(&pool, iterations, || integrator.step(&mut state, &mut field, 0.01)))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, force_loop, integrator_step);
+criterion_main!(benches);
