@@ -80,8 +80,15 @@ pub fn reference_scene(config: &BenchConfig) -> Scene {
         gamma: 0.0,
         background_gamma: 0.0,
         integrator: IntegratorKind::VelocityVerlet,
-        sampling: Sampling { dt: 0.01, steps: config.steps, every: config.steps.max(1), displacements: false },
+        sampling: Sampling {
+            dt: 0.01,
+            steps: config.steps,
+            every: config.steps.max(1),
+            displacements: false,
+            relaxation: None,
+        },
         contact_clock: None,
+        loads: Vec::new(),
     }
 }
 

@@ -23,6 +23,7 @@
 
 pub mod bench;
 pub mod cli;
+pub mod fem;
 pub mod measure;
 pub mod model;
 pub mod output;

@@ -2,16 +2,18 @@
 //! compared with. Pure: no I/O.
 
 use crate::model::{Axes, Particles, SquareLattice};
-use crate::sim::{LawKind, Network, Sampling, Scene};
-use crate::spec::{LawName, RunSpec, SceneKind};
+use crate::sim::{LawKind, Load, Network, Relaxation, Sampling, Scene};
+use crate::spec::{LatticeSpec, LawName, LoadCase, RunSpec, SceneKind, Supports};
 use crate::theory;
 
 /// Builds the scene of `spec`.
 pub fn build_scene(spec: &RunSpec) -> Scene {
-    let (particles, lattice, contact_clock) = match spec.kind {
-        SceneKind::Pair => pair(spec),
-        SceneKind::Chain => chain(spec),
+    let (particles, lattice, contact_clock) = match (spec.kind, &spec.lattice) {
+        (SceneKind::Lattice, Some(l)) => solid(spec, l),
+        (SceneKind::Chain, _) => chain(spec),
+        _ => pair(spec),
     };
+    let loads = spec.lattice.as_ref().map(top_row_loads).unwrap_or_default();
     Scene {
         particles,
         network: Network::Lattice(lattice),
@@ -28,8 +30,15 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
             steps: spec.steps,
             every: (spec.steps / spec.samples).max(1),
             displacements: spec.kind == SceneKind::Chain,
+            relaxation: spec.lattice.as_ref().map(|l| Relaxation {
+                kinetic_ratio: l.kinetic_ratio,
+                // Checked about once per t_c, three times in a row (see `Relaxation`).
+                check_every: (spec.t_c / spec.dt).round().max(1.0) as u64,
+                confirmations: 3,
+            }),
         },
         contact_clock,
+        loads,
     }
 }
 
@@ -64,6 +73,48 @@ fn chain(spec: &RunSpec) -> Parts {
     }
     particles.vx[spec.node.unwrap_or(1)] = spec.v0;
     (particles, row(n + 2, spec.spacing, spec.k), None)
+}
+
+/// The springs of a lattice scene: k along rows and columns, k_d across both diagonals.
+pub fn lattice_springs(spec: &RunSpec, l: &LatticeSpec) -> SquareLattice {
+    SquareLattice {
+        nx: l.nx,
+        ny: l.ny,
+        spacing: spec.spacing,
+        k_x: spec.k,
+        k_y: spec.k,
+        k_rising: l.k_diag,
+        k_falling: l.k_diag,
+    }
+}
+
+/// Which axes of node (ix, iy) the supports hold.
+pub fn support(supports: Supports, ix: usize, iy: usize) -> Axes {
+    match (supports, ix, iy) {
+        (_, _, 1..) => Axes::FREE,
+        (Supports::Coursework, 0, 0) | (Supports::ClampedBottom, _, 0) => Axes::FIXED,
+        (Supports::Coursework, _, 0) => Axes { x: false, y: true },
+    }
+}
+
+/// The load on every top-row node: up (tensile) or to the right (shear).
+pub fn top_row_loads(l: &LatticeSpec) -> Vec<Load> {
+    let (fx, fy) = match l.load_case {
+        LoadCase::Tensile => (0.0, l.load_per_node),
+        LoadCase::Shear => (l.load_per_node, 0.0),
+    };
+    (0..l.nx).map(|ix| Load { particle: (l.ny - 1) * l.nx + ix, fx, fy }).collect()
+}
+
+/// An nx × ny lattice at rest on its supports; node (ix, iy) at (ix a, iy a).
+fn solid(spec: &RunSpec, l: &LatticeSpec) -> Parts {
+    let mut particles = Particles::default();
+    for iy in 0..l.ny {
+        for ix in 0..l.nx {
+            particles.push(ix as f64 * spec.spacing, iy as f64 * spec.spacing, spec.mass, support(l.supports, ix, iy));
+        }
+    }
+    (particles, lattice_springs(spec, l), None)
 }
 
 /// Analytical contact duration and restitution of a pair, where an exact answer exists:

@@ -68,8 +68,13 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         optional_floats(records, "energy_error", |r| r.metrics.energy_error),
         optional_floats(records, "chain_mode_error", |r| r.metrics.chain_mode_error),
     ];
+    if records.iter().any(|r| r.spec.lattice.is_some()) {
+        columns.extend(lattice_columns(records));
+    }
     let paths: BTreeSet<&String> = records.iter().flat_map(|r| r.spec.varied.keys()).collect();
-    for path in paths {
+    // A grid path named like a resolved column (`supports`) is already there.
+    let resolved: BTreeSet<String> = columns.iter().map(|c| c.name().to_string()).collect();
+    for path in paths.into_iter().filter(|p| !resolved.contains(p.as_str())) {
         let values: Vec<Option<&Value>> = records.iter().map(|r| r.spec.varied.get(path)).collect();
         let column = if values.iter().flatten().all(|v| v.is_number()) {
             Column::new(
@@ -83,6 +88,50 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         columns.push(column);
     }
     DataFrame::new_infer_height(columns)
+}
+
+/// The columns of lattice scenes (absent from campaigns without lattices): the resolved
+/// lattice, then each modulus from MD, from the static solution and from the continuum.
+fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
+    let lattice = |get: fn(&crate::spec::LatticeSpec) -> f64| move |r: &RunRecord| r.spec.lattice.as_ref().map(get);
+    let sizes = |get: fn(&crate::spec::LatticeSpec) -> usize| {
+        records.iter().map(|r| r.spec.lattice.as_ref().map(|l| get(l) as u64)).collect::<Vec<Option<u64>>>()
+    };
+    let words = |get: fn(&crate::spec::LatticeSpec) -> &'static str| {
+        records.iter().map(|r| r.spec.lattice.as_ref().map(get)).collect::<Vec<Option<&str>>>()
+    };
+    let m = |name: &str, get: fn(&crate::runner::Metrics) -> Option<f64>| {
+        optional_floats(records, name, move |r| get(&r.metrics))
+    };
+    vec![
+        Column::new("nx".into(), sizes(|l| l.nx)),
+        Column::new("ny".into(), sizes(|l| l.ny)),
+        optional_floats(records, "k_diag", lattice(|l| l.k_diag)),
+        optional_floats(records, "depth", lattice(|l| l.depth)),
+        Column::new("supports".into(), words(|l| l.supports.name())),
+        Column::new("load_case".into(), words(|l| l.load_case.name())),
+        optional_floats(records, "load_per_node", lattice(|l| l.load_per_node)),
+        m("youngs_modulus", |m| m.youngs_modulus),
+        m("youngs_modulus_fem", |m| m.youngs_modulus_fem),
+        m("youngs_modulus_theory", |m| m.youngs_modulus_theory),
+        m("poisson_ratio", |m| m.poisson_ratio),
+        m("poisson_ratio_fem", |m| m.poisson_ratio_fem),
+        m("poisson_ratio_theory", |m| m.poisson_ratio_theory),
+        m("poisson_ratio_coursework", |m| m.poisson_ratio_coursework),
+        m("shear_modulus", |m| m.shear_modulus),
+        m("shear_modulus_fem", |m| m.shear_modulus_fem),
+        m("shear_modulus_theory", |m| m.shear_modulus_theory),
+        m("homogeneity", |m| m.homogeneity),
+        m("dissipation_time", |m| m.dissipation_time),
+        Column::new(
+            "dissipation_criterion".into(),
+            records.iter().map(|r| r.metrics.dissipation_criterion.clone()).collect::<Vec<Option<String>>>(),
+        ),
+        Column::new(
+            "relax_steps".into(),
+            records.iter().map(|r| r.spec.lattice.as_ref().map(|_| r.steps)).collect::<Vec<Option<u64>>>(),
+        ),
+    ]
 }
 
 /// Writes `results.csv` and `results.parquet` for `frame`, each atomically.

@@ -88,7 +88,7 @@ fn setup(nx: usize, ny: usize, supports: bool) -> (Particles, SquareLattice) {
 const STEPS: u64 = 1000;
 
 fn sampling() -> Sampling {
-    Sampling { dt: 0.02, steps: STEPS, every: STEPS, displacements: false }
+    Sampling { dt: 0.02, steps: STEPS, every: STEPS, displacements: false, relaxation: None }
 }
 
 fn reference<L: ForceLaw, D: Dashpot, const C: bool>(
@@ -149,6 +149,7 @@ fn check<L: ForceLaw, D: Dashpot, const C: bool>(
         integrator,
         sampling: sampling(),
         contact_clock: None,
+        loads: Vec::new(),
     };
     // Two threads, so that systems of 10⁴ particles and more take the threaded path.
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();

@@ -171,8 +171,9 @@ fn free_pair_conserves_momentum_with_damping() {
             gamma: 0.3,
             background_gamma: 0.0,
             integrator,
-            sampling: Sampling { dt: 0.01, steps: 5000, every: 100, displacements: false },
+            sampling: Sampling { dt: 0.01, steps: 5000, every: 100, displacements: false, relaxation: None },
             contact_clock: None,
+            loads: Vec::new(),
         };
         let (px, py) = scene.run().state.particles.momentum();
         // Pair forces cancel exactly; only round-off remains. Störmer's position form adds

@@ -64,7 +64,7 @@ pub fn draw_all(campaign: &Campaign, records: &[RunRecord]) -> anyhow::Result<Ve
                     figures.push(displacement_figure(scene, label, representative(members))?);
                 }
             }
-            SceneKind::Pair => {}
+            SceneKind::Pair | SceneKind::Lattice => {}
         }
     }
     Ok(figures)

@@ -1,52 +1,135 @@
-//! One run: build the scene, integrate it, measure it; a panic becomes a `panicked` record.
+//! One run: build the scene, solve the static problem of a lattice, integrate, measure; a
+//! panic becomes a `panicked` record, a load that drives a mechanism a `mechanism` record.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::Instant;
 
 use super::record::{Metrics, RunRecord};
-use crate::measure::{contact_timing, energy_error, normal_mode_error};
-use crate::scenes::{build_scene, chain_has_normal_modes, pair_references};
-use crate::sim::{Outcome, Trace};
-use crate::spec::{RunSpec, SceneKind};
+use crate::fem::{StaticSolution, Truss};
+use crate::measure::{
+    LatticeShape, contact_timing, continuum_moduli, energy_error, homogeneity, normal_mode_error, shear_modulus,
+    tensile_moduli,
+};
+use crate::scenes::{build_scene, chain_has_normal_modes, lattice_springs, pair_references};
+use crate::sim::{Outcome, Scene, Trace};
+use crate::spec::{LatticeSpec, LoadCase, RunSpec, SceneKind};
 
 /// Runs `spec` and returns its record; never panics.
 pub fn execute(spec: &RunSpec) -> RunRecord {
     let started = Instant::now();
-    let outcome = catch_unwind(AssertUnwindSafe(|| build_scene(spec).run()));
-    let wall_s = started.elapsed().as_secs_f64();
+    let result = catch_unwind(AssertUnwindSafe(|| run_and_measure(spec)));
     let mut record = RunRecord {
         run_id: spec.run_id(),
         spec: spec.clone(),
         status: "ok".into(),
         message: String::new(),
-        wall_s,
+        wall_s: 0.0,
         steps: 0,
         metrics: Metrics::default(),
         trace: Trace::default(),
     };
-    match outcome {
-        Ok(outcome) => {
-            record.metrics = measure(spec, &outcome);
+    match result {
+        Ok(Finished::Simulated(done)) => {
+            let (outcome, metrics) = *done;
             record.status = outcome.trace.status.word().into();
             record.message = outcome.trace.message.clone();
             record.steps = outcome.trace.steps;
-            if spec.kind == SceneKind::Pair && record.metrics.contact_duration.is_none() && record.message.is_empty() {
+            if spec.kind == SceneKind::Pair && metrics.contact_duration.is_none() && record.message.is_empty() {
                 record.message = "the contact did not close and open again within the run".into();
             }
+            record.metrics = metrics;
             record.trace = outcome.trace;
+        }
+        Ok(Finished::Mechanism { residual }) => {
+            record.status = "mechanism".into();
+            record.message = format!(
+                "the load drives a zero-stiffness motion: the static equations K u = f have no solution \
+                 (relative residual {residual:.1e}); nothing to relax towards"
+            );
         }
         Err(panic) => {
             record.status = "panicked".into();
             record.message = panic_message(panic.as_ref());
         }
     }
+    record.wall_s = started.elapsed().as_secs_f64();
     record
 }
 
-fn measure(spec: &RunSpec, outcome: &Outcome) -> Metrics {
+/// How a run ended when it did not panic.
+enum Finished {
+    /// Integrated and measured.
+    Simulated(Box<(Outcome, Metrics)>),
+    /// The static problem is singular for this load: no MD run.
+    Mechanism { residual: f64 },
+}
+
+fn run_and_measure(spec: &RunSpec) -> Finished {
+    let scene = build_scene(spec);
+    let mut metrics = Metrics::default();
+    if let Some(lattice) = &spec.lattice {
+        match static_solution(spec, lattice, &scene) {
+            StaticSolution::Mechanism { residual } => return Finished::Mechanism { residual },
+            StaticSolution::Displacements { ux, uy } => {
+                let fem = lattice_moduli(spec, lattice, &ux, &uy);
+                metrics.youngs_modulus_fem = fem.youngs_modulus;
+                metrics.poisson_ratio_fem = fem.poisson_ratio;
+                metrics.shear_modulus_fem = fem.shear_modulus;
+            }
+        }
+    }
+    let start = (scene.particles.x.clone(), scene.particles.y.clone());
+    let outcome = scene.run();
+    measure(spec, &outcome, &start, &mut metrics);
+    Finished::Simulated(Box::new((outcome, metrics)))
+}
+
+/// The static answer of the lattice scene's network, supports and loads.
+fn static_solution(spec: &RunSpec, lattice: &LatticeSpec, scene: &Scene) -> StaticSolution {
+    let bonds = lattice_springs(spec, lattice).bonds();
+    let p = &scene.particles;
+    Truss { x: &p.x, y: &p.y, bonds: &bonds, held_x: &p.held_x, held_y: &p.held_y, loads: &scene.loads }.solve_linear()
+}
+
+/// The moduli a lattice's load case measures; the others stay `None`.
+struct LatticeModuli {
+    youngs_modulus: Option<f64>,
+    poisson_ratio: Option<f64>,
+    poisson_ratio_coursework: Option<f64>,
+    shear_modulus: Option<f64>,
+}
+
+fn lattice_moduli(spec: &RunSpec, lattice: &LatticeSpec, ux: &[f64], uy: &[f64]) -> LatticeModuli {
+    let shape = LatticeShape { nx: lattice.nx, ny: lattice.ny, spacing: spec.spacing, depth: lattice.depth };
+    let force = lattice.load_per_node * lattice.nx as f64;
+    match lattice.load_case {
+        LoadCase::Tensile => {
+            let t = tensile_moduli(&shape, force, ux, uy);
+            LatticeModuli {
+                youngs_modulus: Some(t.youngs_modulus),
+                poisson_ratio: Some(t.poisson_ratio),
+                poisson_ratio_coursework: Some(t.poisson_ratio_coursework),
+                shear_modulus: None,
+            }
+        }
+        LoadCase::Shear => LatticeModuli {
+            youngs_modulus: None,
+            poisson_ratio: None,
+            poisson_ratio_coursework: None,
+            shear_modulus: Some(shear_modulus(&shape, force, ux)),
+        },
+    }
+}
+
+fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metrics: &mut Metrics) {
     let timing = contact_timing(&outcome.crossings);
     let (contact_duration_theory, restitution_theory) = pair_references(spec);
-    let chain_mode_error = chain_has_normal_modes(spec)
+    metrics.contact_duration = timing.map(|t| t.duration);
+    metrics.contact_duration_theory = contact_duration_theory;
+    metrics.restitution = timing.map(|t| t.restitution);
+    metrics.restitution_theory = restitution_theory;
+    metrics.energy_error = energy_error(&outcome.trace);
+    metrics.chain_mode_error = chain_has_normal_modes(spec)
         .then(|| {
             let n = spec.n.unwrap_or(0);
             let movable: Vec<usize> = (1..=n).collect();
@@ -54,13 +137,27 @@ fn measure(spec: &RunSpec, outcome: &Outcome) -> Metrics {
             normal_mode_error(&outcome.trace, &movable, &v0, spec.k, spec.mass)
         })
         .flatten();
-    Metrics {
-        contact_duration: timing.map(|t| t.duration),
-        contact_duration_theory,
-        restitution: timing.map(|t| t.restitution),
-        restitution_theory,
-        energy_error: energy_error(&outcome.trace),
-        chain_mode_error,
+    if let Some(lattice) = &spec.lattice {
+        let p = &outcome.state.particles;
+        let ux: Vec<f64> = p.x.iter().zip(&start.0).map(|(x, x0)| x - x0).collect();
+        let uy: Vec<f64> = p.y.iter().zip(&start.1).map(|(y, y0)| y - y0).collect();
+        let relaxed = outcome.trace.relaxed_at.is_some();
+        let md = lattice_moduli(spec, lattice, &ux, &uy);
+        // Moduli of a run that never came to rest would be snapshots of an oscillation.
+        let keep = |value: Option<f64>| value.filter(|_| relaxed);
+        metrics.youngs_modulus = keep(md.youngs_modulus);
+        metrics.poisson_ratio = keep(md.poisson_ratio);
+        metrics.poisson_ratio_coursework = keep(md.poisson_ratio_coursework);
+        metrics.shear_modulus = keep(md.shear_modulus);
+        let shape = LatticeShape { nx: lattice.nx, ny: lattice.ny, spacing: spec.spacing, depth: lattice.depth };
+        metrics.homogeneity = keep(homogeneity(&shape, &ux));
+        metrics.dissipation_time = outcome.trace.relaxed_at;
+        metrics.dissipation_criterion =
+            Some(format!("E_kin/E_pot < {:e} at 3 checks one t_c apart", lattice.kinetic_ratio));
+        let (e, nu, g) = continuum_moduli(spec.k, lattice.k_diag, lattice.depth);
+        metrics.youngs_modulus_theory = Some(e);
+        metrics.poisson_ratio_theory = Some(nu);
+        metrics.shear_modulus_theory = (lattice.k_diag > 0.0).then_some(g);
     }
 }
 

@@ -21,6 +21,33 @@ pub struct Metrics {
     pub energy_error: Option<f64>,
     /// Chain: max |u_MD − u_exact| / max |u_exact| against the normal-mode solution.
     pub chain_mode_error: Option<f64>,
+    /// Lattice, tensile: Young's modulus E (Pa) of the relaxed MD lattice.
+    pub youngs_modulus: Option<f64>,
+    /// Lattice, tensile: ν = −(ΔL_x/L_x)/(ΔL_y/L_y).
+    pub poisson_ratio: Option<f64>,
+    /// Lattice, tensile: the coursework's ΔL_x/ΔL_y.
+    pub poisson_ratio_coursework: Option<f64>,
+    /// Lattice, shear: shear modulus G (Pa).
+    pub shear_modulus: Option<f64>,
+    /// Lattice: largest deviation of the side columns from straight lines, relative to their
+    /// mean lateral displacement.
+    pub homogeneity: Option<f64>,
+    /// Lattice: time (s) from which the relaxation criterion held.
+    pub dissipation_time: Option<f64>,
+    /// Lattice: the relaxation criterion, in words.
+    pub dissipation_criterion: Option<String>,
+    /// Lattice: E of the static (linear truss) solution of the same network (Pa).
+    pub youngs_modulus_fem: Option<f64>,
+    /// Lattice: ν of the static solution.
+    pub poisson_ratio_fem: Option<f64>,
+    /// Lattice: G of the static solution (Pa).
+    pub shear_modulus_fem: Option<f64>,
+    /// Lattice: continuum E = (C11 − C12²/C11)/d (Pa).
+    pub youngs_modulus_theory: Option<f64>,
+    /// Lattice: continuum ν = C12/C11.
+    pub poisson_ratio_theory: Option<f64>,
+    /// Lattice: continuum G = C44/d (Pa).
+    pub shear_modulus_theory: Option<f64>,
 }
 
 /// Everything one run produced.

@@ -56,12 +56,16 @@ fn hold(state: &mut State) {
 }
 
 /// Evaluates the forces (which must be zero on entry) at the current positions with
-/// velocities `(vx, vy)`, holds the constrained axes, and adds the step's dissipated energy by
-/// the trapezoidal rule.
+/// velocities `(vx, vy)`, adds the loads, holds the constrained axes, and adds the step's
+/// dissipated energy by the trapezoidal rule.
 fn add_forces<F: ForceField>(state: &mut State, field: &mut F, velocities: Option<(&[f64], &[f64])>, dt: f64) {
     let p = &state.particles;
     let (vx, vy) = velocities.unwrap_or((&p.vx, &p.vy));
     let power = field.add_forces(&p.x, &p.y, vx, vy, &mut state.fx, &mut state.fy);
+    for load in &state.loads {
+        state.fx[load.particle] += load.fx;
+        state.fy[load.particle] += load.fy;
+    }
     hold(state);
     state.dissipated += 0.5 * dt * (state.dissipation_power + power);
     state.dissipation_power = power;

@@ -4,9 +4,9 @@
 pub use self::field::{BondNetwork, ForceField};
 pub use self::integrate::{Integrator, IntegratorKind, PositionVerlet, VelocityVerlet};
 pub use self::probe::{ContactClock, Crossing, StepProbe};
-pub use self::run::{RunStatus, Sampling, Trace, simulate};
+pub use self::run::{Relaxation, RunStatus, Sampling, Trace, simulate};
 pub use self::scene::{LawKind, Network, Outcome, Scene};
-pub use self::state::State;
+pub use self::state::{Load, State};
 pub use self::stencil::LatticeNetwork;
 
 mod field;

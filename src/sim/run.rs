@@ -14,6 +14,8 @@ pub enum RunStatus {
     Ok,
     /// Stopped because a sampled quantity became non-finite.
     Unstable,
+    /// A relaxation that did not reach its criterion within its time.
+    NoEquilibrium,
 }
 
 impl RunStatus {
@@ -22,6 +24,7 @@ impl RunStatus {
         match self {
             RunStatus::Ok => "ok",
             RunStatus::Unstable => "unstable",
+            RunStatus::NoEquilibrium => "no_equilibrium",
         }
     }
 }
@@ -37,6 +40,21 @@ pub struct Sampling {
     pub every: u64,
     /// Record x displacements of every particle at each sample.
     pub displacements: bool,
+    /// Stop early once relaxed.
+    pub relaxation: Option<Relaxation>,
+}
+
+/// When a relaxation counts as finished: E_kin/E_pot below `kinetic_ratio` at `confirmations`
+/// consecutive checks `check_every` steps apart. One low value is not enough: the kinetic
+/// energy of a ringing structure passes near zero at every turning point of its main mode.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Relaxation {
+    /// Tolerance on E_kin/E_pot.
+    pub kinetic_ratio: f64,
+    /// Steps between checks.
+    pub check_every: u64,
+    /// Consecutive checks that must pass.
+    pub confirmations: u32,
 }
 
 /// Sampled time series of a run and how it ended.
@@ -50,6 +68,8 @@ pub struct Trace {
     pub potential: Vec<f64>,
     /// Energy dissipated so far (J).
     pub dissipated: Vec<f64>,
+    /// Work done by the loads so far (J).
+    pub work: Vec<f64>,
     /// x displacement of every particle from its start position (m), one row per sample;
     /// empty unless asked for.
     pub displacement_x: Vec<Vec<f64>>,
@@ -61,6 +81,8 @@ pub struct Trace {
     pub status: RunStatus,
     /// Explanation when the status is not `ok`.
     pub message: String,
+    /// Relaxation: the time (s) from which E_kin/E_pot stayed below the tolerance.
+    pub relaxed_at: Option<f64>,
 }
 
 impl Trace {
@@ -70,13 +92,15 @@ impl Trace {
         let p = &state.particles;
         let kinetic = p.kinetic_energy();
         let potential = field.potential_energy(&p.x, &p.y);
-        if !(kinetic + potential + state.dissipated).is_finite() {
+        let work = state.load_work();
+        if !(kinetic + potential + state.dissipated + work).is_finite() {
             return false;
         }
         self.time.push(state.time);
         self.kinetic.push(kinetic);
         self.potential.push(potential);
         self.dissipated.push(state.dissipated);
+        self.work.push(work);
         if displacements {
             self.displacement_x.push(p.x.iter().zip(start_x).map(|(x, x0)| x - x0).collect());
         }
@@ -99,17 +123,67 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
     probe.observe(state);
     trace.sample(state, &*field, &start_x, sampling.displacements);
     let every = sampling.every.max(1);
+    let mut watch = sampling.relaxation.map(RelaxationWatch::new);
     let started = std::time::Instant::now();
     for n in 1..=sampling.steps {
         integrator.step(state, field, sampling.dt);
         probe.observe(state);
-        if (n % every == 0 || n == sampling.steps) && !trace.sample(state, &*field, &start_x, sampling.displacements) {
+        let relaxed = watch.as_mut().is_some_and(|w| w.relaxed(n, state, &*field));
+        if (n % every == 0 || n == sampling.steps || relaxed)
+            && !trace.sample(state, &*field, &start_x, sampling.displacements)
+        {
             trace.status = RunStatus::Unstable;
             trace.message = format!("energy became non-finite at t = {:.6e} s (step {n})", state.time);
             break;
         }
+        if relaxed {
+            break;
+        }
     }
     trace.loop_s = started.elapsed().as_secs_f64();
+    if let Some(w) = watch {
+        trace.relaxed_at = w.relaxed_at;
+        if trace.relaxed_at.is_none() && trace.status == RunStatus::Ok {
+            trace.status = RunStatus::NoEquilibrium;
+            trace.message =
+                format!("E_kin/E_pot did not stay below {:e} within {:.6e} s", w.rule.kinetic_ratio, state.time);
+        }
+    }
     trace.steps = state.steps;
     trace
+}
+
+/// Follows E_kin/E_pot during a relaxation.
+struct RelaxationWatch {
+    rule: Relaxation,
+    passed: u32,
+    first_pass: f64,
+    relaxed_at: Option<f64>,
+}
+
+impl RelaxationWatch {
+    fn new(rule: Relaxation) -> Self {
+        RelaxationWatch { rule, passed: 0, first_pass: 0.0, relaxed_at: None }
+    }
+
+    /// True once the rule holds; checks only every `check_every` steps.
+    fn relaxed<F: ForceField>(&mut self, step: u64, state: &State, field: &F) -> bool {
+        if !step.is_multiple_of(self.rule.check_every.max(1)) {
+            return false;
+        }
+        let p = &state.particles;
+        let potential = field.potential_energy(&p.x, &p.y);
+        if potential > 0.0 && p.kinetic_energy() < self.rule.kinetic_ratio * potential {
+            if self.passed == 0 {
+                self.first_pass = state.time;
+            }
+            self.passed += 1;
+        } else {
+            self.passed = 0;
+        }
+        if self.passed >= self.rule.confirmations {
+            self.relaxed_at = Some(self.first_pass);
+        }
+        self.relaxed_at.is_some()
+    }
 }

@@ -5,7 +5,7 @@ use super::field::{BondNetwork, ForceField};
 use super::integrate::{IntegratorKind, PositionVerlet, VelocityVerlet};
 use super::probe::{ContactClock, Crossing};
 use super::run::{Sampling, Trace, simulate};
-use super::state::State;
+use super::state::{Load, State};
 use super::stencil::LatticeNetwork;
 use crate::model::{
     BondDashpot, Bonds, Dashpot, ForceLaw, Linear, NoDashpot, Particles, PowerLaw, Spring, SquareLattice,
@@ -54,6 +54,8 @@ pub struct Scene {
     pub sampling: Sampling,
     /// Bond `(i, j, rest)` whose δ = 0 crossings are timed, if any.
     pub contact_clock: Option<(usize, usize, f64)>,
+    /// Constant external forces.
+    pub loads: Vec<Load>,
 }
 
 /// What a run produced.
@@ -102,7 +104,7 @@ impl Scene {
     }
 
     fn integrate<F: ForceField>(self, mut field: F) -> Outcome {
-        let mut state = State::new(self.particles);
+        let mut state = State::with_loads(self.particles, self.loads);
         let mut clock = self.contact_clock.map(|(i, j, rest)| ContactClock::new(i, j, rest));
         let trace = match self.integrator {
             IntegratorKind::PositionVerlet => {

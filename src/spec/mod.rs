@@ -2,8 +2,8 @@
 //! The only module that knows YAML. Everything is checked before any run starts, and every
 //! error names the file, the field path, the value and what is allowed.
 
-pub use self::raw::{LawName, SceneKind};
-pub use self::run_spec::{RESULT_FORMAT, RunSpec};
+pub use self::raw::{LawName, LoadCase, SceneKind, Supports};
+pub use self::run_spec::{LatticeSpec, RESULT_FORMAT, RunSpec};
 
 mod grid;
 mod raw;

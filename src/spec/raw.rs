@@ -43,6 +43,8 @@ pub enum SceneKind {
     Pair,
     /// N particles in a row between two fixed walls.
     Chain,
+    /// An nx × ny square lattice on supports, loaded on its top row and relaxed.
+    Lattice,
 }
 
 impl SceneKind {
@@ -51,6 +53,7 @@ impl SceneKind {
         match self {
             SceneKind::Pair => "pair",
             SceneKind::Chain => "chain",
+            SceneKind::Lattice => "lattice",
         }
     }
 }
@@ -102,8 +105,103 @@ pub struct RawScene {
     pub node: Option<Value>,
     /// Chain: distance between the two walls (m); default (n+1) · spacing.
     pub wall_distance: Option<f64>,
+    /// Lattice: size and diagonal springs.
+    pub lattice: Option<RawLattice>,
+    /// Lattice: how the bottom is supported.
+    pub supports: Option<Supports>,
+    /// Lattice: the load on the top row.
+    pub load: Option<RawLoad>,
+    /// Lattice: when the relaxation stops.
+    pub relax: Option<RawRelax>,
     /// Grid over this scene only (dotted paths), combined with the campaign's grid.
     pub grid: Option<Grid>,
+}
+
+/// `lattice:` section.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawLattice {
+    /// Nodes per row (≥ 2).
+    pub nx: Option<usize>,
+    /// Rows (≥ 2).
+    pub ny: Option<usize>,
+    /// `none` or `both`.
+    pub diagonals: Option<Diagonals>,
+    /// Diagonal stiffness k_d (N/m).
+    pub k_diag: Option<f64>,
+    /// k_d / k, instead of `k_diag` (default 0.5).
+    pub k_diag_ratio: Option<f64>,
+}
+
+/// Which diagonal springs a lattice has.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Diagonals {
+    /// Nearest neighbours only: no shear stiffness.
+    None,
+    /// Both diagonals of every cell.
+    Both,
+}
+
+/// How a lattice's bottom row is supported.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Supports {
+    /// As the coursework states: bottom row held vertically, free horizontally; the
+    /// bottom-left node held in both directions.
+    Coursework,
+    /// Bottom row held in both directions.
+    ClampedBottom,
+}
+
+impl Supports {
+    /// The name used in files and tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            Supports::Coursework => "coursework",
+            Supports::ClampedBottom => "clamped-bottom",
+        }
+    }
+}
+
+/// Which way the top row is pulled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LoadCase {
+    /// Up: Young's modulus and Poisson ratio.
+    Tensile,
+    /// To the right: shear modulus.
+    Shear,
+}
+
+impl LoadCase {
+    /// The name used in files and tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            LoadCase::Tensile => "tensile",
+            LoadCase::Shear => "shear",
+        }
+    }
+}
+
+/// `load:` section.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawLoad {
+    /// `tensile` or `shear`.
+    pub case: Option<LoadCase>,
+    /// Force on every top-row node (N), default 1000.
+    pub per_node: Option<f64>,
+}
+
+/// `relax:` section.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawRelax {
+    /// Stop when E_kin/E_pot stays below this (default 1e-8).
+    pub kinetic_ratio: Option<f64>,
+    /// Give up after this many t_c (default 5000): `status = no_equilibrium`.
+    pub max_tc: Option<f64>,
 }
 
 /// `material:` section.
@@ -156,4 +254,6 @@ pub struct RawTime {
 pub struct RawGeometry {
     /// Particle spacing = spring rest length x_e (m).
     pub spacing: Option<f64>,
+    /// Depth d of the solid (m), for stresses and moduli (default 1).
+    pub depth: Option<f64>,
 }

@@ -5,8 +5,10 @@ use serde_json::Value;
 use std::collections::BTreeMap;
 use std::fmt::Display;
 
-use super::raw::{LawName, RawDamping, RawGeometry, RawMaterial, RawScene, RawTime, SceneKind};
-use super::run_spec::RunSpec;
+use super::raw::{
+    Diagonals, LawName, LoadCase, RawDamping, RawGeometry, RawMaterial, RawScene, RawTime, SceneKind, Supports,
+};
+use super::run_spec::{LatticeSpec, RunSpec};
 use crate::sim::IntegratorKind;
 use crate::theory;
 
@@ -41,6 +43,11 @@ const DEFAULT_SPACING: f64 = 1.0;
 const DEFAULT_BETA: f64 = 1.5;
 const DEFAULT_DT_PER_TC: f64 = 50.0;
 const DEFAULT_SAMPLES: u64 = 400;
+/// Lattice defaults: k_d/k, load per top-row node (N), E_kin/E_pot tolerance, longest run (t_c).
+const DEFAULT_K_DIAG_RATIO: f64 = 0.5;
+const DEFAULT_LOAD_PER_NODE: f64 = 1000.0;
+const DEFAULT_KINETIC_RATIO: f64 = 1e-8;
+const DEFAULT_MAX_TC: f64 = 5000.0;
 /// Default gap of a contact pair, in spacings: contact starts at a time not aligned with dt.
 const DEFAULT_GAP_PER_SPACING: f64 = 0.05;
 
@@ -56,7 +63,7 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     let kind = raw.kind.ok_or_else(|| Issue {
         path: "kind".into(),
         value: "(missing)".into(),
-        allowed: "one of pair, chain".into(),
+        allowed: "one of pair, chain, lattice".into(),
     })?;
     let material = raw.material.clone().unwrap_or_default();
     let damping = raw.damping.clone().unwrap_or_default();
@@ -65,8 +72,15 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
 
     let (mass, k, law, beta, contact) = resolve_material(&material)?;
     let spacing = positive(geometry_spacing(&geometry), "geometry.spacing")?;
-    let v0 = positive(raw.v0.ok_or_else(|| missing("v0", "the initial speed (m/s), > 0"))?, "v0")?;
     check_kind_fields(kind, raw)?;
+    let v0 = match kind {
+        SceneKind::Lattice => 0.0,
+        _ => positive(raw.v0.ok_or_else(|| missing("v0", "the initial speed (m/s), > 0"))?, "v0")?,
+    };
+    if kind == SceneKind::Lattice {
+        require(law == LawName::Linear, "material.law", law.name(), "lattice scenes take linear springs for now")?;
+        require(!contact, "material.contact", contact, "lattice springs are bonded: false")?;
+    }
 
     // The reference deformation of a power law is the overlap of a two-body collision at v0:
     // its tangent stiffness β C δ^(β−1) stands in for k where a linear formula is needed.
@@ -88,12 +102,15 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     if let Some(g) = gap {
         require(g.is_finite() && g >= 0.0, "gap", g, "must be a finite number ≥ 0")?;
     }
+    let lattice = resolve_lattice(kind, raw, k, geometry.depth)?;
     let default_duration_tc = match kind {
         SceneKind::Pair if contact => gap.unwrap_or(0.0) / (v0 * t_c) + 1.5,
         SceneKind::Pair => 3.0,
         SceneKind::Chain => 20.0,
+        SceneKind::Lattice => raw.relax.as_ref().and_then(|r| r.max_tc).unwrap_or(DEFAULT_MAX_TC),
     };
-    let duration = t_c * positive(time.duration_tc.unwrap_or(default_duration_tc), "time.duration_tc")?;
+    let duration_path = if kind == SceneKind::Lattice { "relax.max_tc" } else { "time.duration_tc" };
+    let duration = t_c * positive(time.duration_tc.unwrap_or(default_duration_tc), duration_path)?;
     let steps = (duration / dt).ceil() as u64;
     require(steps <= 2_000_000_000, "time.duration_tc", duration / t_c, "at most 2e9 steps")?;
     let samples = time.samples.unwrap_or(DEFAULT_SAMPLES);
@@ -125,6 +142,7 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         n,
         node,
         wall_distance,
+        lattice,
     })
 }
 
@@ -202,16 +220,71 @@ fn check_kind_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue> {
     let only = |present: bool, path: &str, owner: &str| {
         require(!present, path, "(set)", &format!("only for {owner}; remove it from this {} scene", kind.name()))
     };
-    match kind {
-        SceneKind::Pair => {
-            only(raw.n.is_some(), "n", "chain scenes")?;
-            only(raw.node.is_some(), "node", "chain scenes")?;
-            only(raw.wall_distance.is_some(), "wall_distance", "chain scenes")?;
-            let contact = raw.material.as_ref().and_then(|m| m.contact).unwrap_or(false);
-            only(raw.gap.is_some() && !contact, "gap", "pairs with material.contact: true")
-        }
-        SceneKind::Chain => only(raw.gap.is_some(), "gap", "pair scenes"),
+    let contact = raw.material.as_ref().and_then(|m| m.contact).unwrap_or(false);
+    let is = |wanted: SceneKind| kind == wanted;
+    only(raw.gap.is_some() && !(is(SceneKind::Pair) && contact), "gap", "pairs with material.contact: true")?;
+    for (present, path) in
+        [(raw.n.is_some(), "n"), (raw.node.is_some(), "node"), (raw.wall_distance.is_some(), "wall_distance")]
+    {
+        only(present && !is(SceneKind::Chain), path, "chain scenes")?;
     }
+    for (present, path) in [
+        (raw.lattice.is_some(), "lattice"),
+        (raw.supports.is_some(), "supports"),
+        (raw.load.is_some(), "load"),
+        (raw.relax.is_some(), "relax"),
+    ] {
+        only(present && !is(SceneKind::Lattice), path, "lattice scenes")?;
+    }
+    only(raw.v0.is_some() && is(SceneKind::Lattice), "v0", "pair and chain scenes (lattices are loaded, not kicked)")
+}
+
+/// The lattice of a lattice scene; `None` for other kinds.
+fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) -> Result<Option<LatticeSpec>, Issue> {
+    if kind != SceneKind::Lattice {
+        return Ok(None);
+    }
+    let lattice = raw.lattice.clone().unwrap_or_default();
+    let size = |value: Option<usize>, path: &str| {
+        let n = value.ok_or_else(|| missing(path, "the number of nodes, 2..=2000"))?;
+        require((2..=2000).contains(&n), path, n, "must be in 2..=2000")?;
+        Ok::<usize, Issue>(n)
+    };
+    let (nx, ny) = (size(lattice.nx, "lattice.nx")?, size(lattice.ny, "lattice.ny")?);
+    let k_diag = match (lattice.diagonals.unwrap_or(Diagonals::Both), lattice.k_diag, lattice.k_diag_ratio) {
+        (Diagonals::None, None, None) => 0.0,
+        (Diagonals::None, _, _) => {
+            return Err(Issue {
+                path: "lattice.diagonals".into(),
+                value: "none".into(),
+                allowed: "k_diag and k_diag_ratio need diagonals: both".into(),
+            });
+        }
+        (Diagonals::Both, Some(_), Some(_)) => {
+            return Err(Issue {
+                path: "lattice".into(),
+                value: "k_diag and k_diag_ratio".into(),
+                allowed: "give either k_diag or k_diag_ratio, not both".into(),
+            });
+        }
+        (Diagonals::Both, Some(k_diag), None) => positive(k_diag, "lattice.k_diag")?,
+        (Diagonals::Both, None, ratio) => k * positive(ratio.unwrap_or(DEFAULT_K_DIAG_RATIO), "lattice.k_diag_ratio")?,
+    };
+    let load = raw.load.clone().unwrap_or_default();
+    let load_per_node = positive(load.per_node.unwrap_or(DEFAULT_LOAD_PER_NODE), "load.per_node")?;
+    let relax = raw.relax.clone().unwrap_or_default();
+    let kinetic_ratio = relax.kinetic_ratio.unwrap_or(DEFAULT_KINETIC_RATIO);
+    require(kinetic_ratio > 0.0 && kinetic_ratio < 1.0, "relax.kinetic_ratio", kinetic_ratio, "must be in (0, 1)")?;
+    Ok(Some(LatticeSpec {
+        nx,
+        ny,
+        k_diag,
+        depth: positive(depth.unwrap_or(1.0), "geometry.depth")?,
+        supports: raw.supports.unwrap_or(Supports::Coursework),
+        load_case: load.case.unwrap_or(LoadCase::Tensile),
+        load_per_node,
+        kinetic_ratio,
+    }))
 }
 
 /// The chain-only fields of a run; all `None` for other kinds.

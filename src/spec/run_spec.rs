@@ -4,12 +4,12 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::collections::BTreeMap;
 
-use super::raw::{LawName, SceneKind};
+use super::raw::{LawName, LoadCase, SceneKind, Supports};
 use crate::sim::IntegratorKind;
 
 /// Bumped whenever stored results of an unchanged spec would differ (new physics or columns),
 /// so the cache never serves results of older code.
-pub const RESULT_FORMAT: u32 = 1;
+pub const RESULT_FORMAT: u32 = 2;
 
 /// A resolved run. Units SI; field names are the results table's column names.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -62,6 +62,29 @@ pub struct RunSpec {
     pub node: Option<usize>,
     /// Chain: distance between the walls (m).
     pub wall_distance: Option<f64>,
+    /// Lattice: what is specific to lattice scenes.
+    pub lattice: Option<LatticeSpec>,
+}
+
+/// The resolved lattice of a lattice scene.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct LatticeSpec {
+    /// Nodes per row.
+    pub nx: usize,
+    /// Rows.
+    pub ny: usize,
+    /// Diagonal stiffness k_d (N/m); 0 without diagonals.
+    pub k_diag: f64,
+    /// Depth d (m).
+    pub depth: f64,
+    /// Supports.
+    pub supports: Supports,
+    /// Load case.
+    pub load_case: LoadCase,
+    /// Force on each top-row node (N).
+    pub load_per_node: f64,
+    /// Relaxation stops when E_kin/E_pot stays below this.
+    pub kinetic_ratio: f64,
 }
 
 impl RunSpec {
@@ -82,6 +105,7 @@ impl RunSpec {
         match self.kind {
             SceneKind::Pair => 2,
             SceneKind::Chain => self.n.unwrap_or(0) + 2,
+            SceneKind::Lattice => self.lattice.as_ref().map_or(0, |l| l.nx * l.ny),
         }
     }
 

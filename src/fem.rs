@@ -1,0 +1,225 @@
+//! The static truss answer: the linear stiffness matrix of the same spring network with the
+//! same supports and loads, solved directly (sparse Cholesky, faer). Pure: no I/O.
+//!
+//! Each spring of stiffness k along the unit vector n̂ between its nodes contributes
+//! k n̂ n̂ᵀ to the 2 × 2 blocks (i, i) and (j, j) and −k n̂ n̂ᵀ to (i, j) and (j, i).
+//! Held degrees of freedom are removed. A network with zero-energy motions (a square lattice
+//! without diagonals under shear, a diluted network that lost rigidity) has a singular K; a
+//! factorisation may then return garbage instead of failing, so the answer is accepted only if
+//! it satisfies the unregularised equations: ‖K u − f‖ ≤ 1e-6 ‖f‖. Otherwise the load drives a
+//! mechanism.
+
+use faer::prelude::Solve;
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Mat, Side};
+
+use crate::model::Bonds;
+use crate::sim::Load;
+
+/// What the static solver found.
+#[derive(Clone, Debug, PartialEq)]
+pub enum StaticSolution {
+    /// Node displacements (m).
+    Displacements {
+        /// x displacement of every node.
+        ux: Vec<f64>,
+        /// y displacement of every node.
+        uy: Vec<f64>,
+    },
+    /// The load drives a zero-stiffness motion; the relative residual ‖K u − f‖/‖f‖ of the best
+    /// attempt says by how much the equations fail.
+    Mechanism {
+        /// ‖K u − f‖ / ‖f‖.
+        residual: f64,
+    },
+}
+
+/// A spring network at rest: node positions, springs (linear, stiffness per bond), held axes
+/// and loads.
+pub struct Truss<'a> {
+    /// Node x positions (m).
+    pub x: &'a [f64],
+    /// Node y positions (m).
+    pub y: &'a [f64],
+    /// Springs.
+    pub bonds: &'a Bonds,
+    /// Nodes held in x.
+    pub held_x: &'a [usize],
+    /// Nodes held in y.
+    pub held_y: &'a [usize],
+    /// External forces.
+    pub loads: &'a [Load],
+}
+
+/// Residuals above this fraction of the load mean the equations have no solution.
+const MECHANISM_RESIDUAL: f64 = 1e-6;
+/// Diagonal shift, relative to the largest diagonal entry, that lets Cholesky factor a
+/// semi-definite K (zero-energy motions the load does not drive).
+const REGULARISATION: f64 = 1e-12;
+
+impl Truss<'_> {
+    /// Solves K u = f by sparse Cholesky and checks the answer against the equations.
+    pub fn solve_linear(&self) -> StaticSolution {
+        let n = self.x.len();
+        // Free degrees of freedom: dof 2i is x of node i, 2i + 1 its y.
+        let mut index = vec![usize::MAX; 2 * n];
+        let mut free = 0;
+        for (dof, slot) in index.iter_mut().enumerate() {
+            let held = if dof % 2 == 0 { self.held_x } else { self.held_y };
+            if held.binary_search(&(dof / 2)).is_err() {
+                *slot = free;
+                free += 1;
+            }
+        }
+        let entries = self.stiffness(&index);
+        let mut force = vec![0.0; free];
+        for load in self.loads {
+            for (dof, value) in [(2 * load.particle, load.fx), (2 * load.particle + 1, load.fy)] {
+                if index[dof] != usize::MAX {
+                    force[index[dof]] += value;
+                }
+            }
+        }
+        let solution = factor_and_solve(free, &entries, &force);
+        let residual = solution.as_ref().map_or(f64::INFINITY, |u| relative_residual(&entries, u, &force));
+        match solution {
+            Some(u) if residual <= MECHANISM_RESIDUAL => {
+                let at = |dof: usize| if index[dof] == usize::MAX { 0.0 } else { u[index[dof]] };
+                StaticSolution::Displacements {
+                    ux: (0..n).map(|i| at(2 * i)).collect(),
+                    uy: (0..n).map(|i| at(2 * i + 1)).collect(),
+                }
+            }
+            _ => StaticSolution::Mechanism { residual },
+        }
+    }
+
+    /// The entries (row, column, value) of K over the free degrees of freedom.
+    fn stiffness(&self, index: &[usize]) -> Vec<(usize, usize, f64)> {
+        let mut entries = Vec::with_capacity(16 * self.bonds.len());
+        for b in 0..self.bonds.len() {
+            let (i, j, k) = (self.bonds.i[b], self.bonds.j[b], self.bonds.stiffness[b]);
+            let (dx, dy) = (self.x[i] - self.x[j], self.y[i] - self.y[j]);
+            let r = (dx * dx + dy * dy).sqrt();
+            let n = [dx / r, dy / r];
+            for (a, sign_a) in [(i, 1.0), (j, -1.0)] {
+                for (c, sign_c) in [(i, 1.0), (j, -1.0)] {
+                    for p in 0..2 {
+                        for q in 0..2 {
+                            let (row, column) = (index[2 * a + p], index[2 * c + q]);
+                            if row != usize::MAX && column != usize::MAX {
+                                entries.push((row, column, sign_a * sign_c * k * n[p] * n[q]));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        entries
+    }
+}
+
+/// Factors K + εI (ε = 1e-12 of the largest diagonal entry) and solves for `force`; `None`
+/// when the factorisation fails.
+fn factor_and_solve(size: usize, entries: &[(usize, usize, f64)], force: &[f64]) -> Option<Vec<f64>> {
+    if size == 0 {
+        return Some(Vec::new());
+    }
+    let mut diagonal = vec![0.0f64; size];
+    for &(row, column, value) in entries {
+        if row == column {
+            diagonal[row] += value;
+        }
+    }
+    let shift = REGULARISATION * diagonal.iter().fold(0.0f64, |m, d| m.max(*d));
+    let triplets: Vec<Triplet<usize, usize, f64>> = entries
+        .iter()
+        .map(|&(row, col, val)| Triplet { row, col, val })
+        .chain((0..size).map(|d| Triplet { row: d, col: d, val: shift }))
+        .collect();
+    let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(size, size, &triplets).ok()?;
+    let cholesky = matrix.sp_cholesky(Side::Lower).ok()?;
+    let solution = cholesky.solve(Mat::from_fn(size, 1, |i, _| force[i]));
+    let u: Vec<f64> = (0..size).map(|i| solution[(i, 0)]).collect();
+    u.iter().all(|v| v.is_finite()).then_some(u)
+}
+
+/// ‖K u − f‖ / ‖f‖ with K given by its entries.
+fn relative_residual(entries: &[(usize, usize, f64)], u: &[f64], force: &[f64]) -> f64 {
+    let mut r: Vec<f64> = force.iter().map(|f| -f).collect();
+    for &(row, column, value) in entries {
+        r[row] += value * u[column];
+    }
+    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    norm(&r) / norm(force).max(f64::MIN_POSITIVE)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A chain of springs k between a held node and a pulled one: the pulled end moves F/k per
+    /// spring, u_end = n F / k (series springs).
+    #[test]
+    fn chain_in_series() {
+        let mut bonds = Bonds::default();
+        let k = 3.0;
+        for i in 0..4 {
+            bonds.push(i, i + 1, 1.0, k);
+        }
+        let x: Vec<f64> = (0..5).map(|i| i as f64).collect();
+        let y = vec![0.0; 5];
+        let held_y: Vec<usize> = (0..5).collect();
+        let loads = [Load { particle: 4, fx: 2.0, fy: 0.0 }];
+        let truss = Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0], held_y: &held_y, loads: &loads };
+        match truss.solve_linear() {
+            // Exact up to the 1e-12 regularisation and round-off.
+            StaticSolution::Displacements { ux, .. } => assert!((ux[4] - 4.0 * 2.0 / k).abs() < 1e-9, "{ux:?}"),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    /// One square with both diagonals, bottom edge pinned, top nodes pulled up by F each. By
+    /// symmetry the top nodes rise by u and move inwards by a (left node +a, right node −a).
+    /// The diagonal from the opposite bottom corner stretches by (u − a)/√2 and pulls with
+    /// k_d (u − a)/2 along each axis; the top spring shortens by 2a. Equilibrium of the top-left
+    /// node: x: k_d (u − a)/2 = 2 k a, so a = k_d u/(4k + k_d); y: F = k u + k_d (u − a)/2, so
+    /// F = u (k + 2 k k_d/(4k + k_d)).
+    #[test]
+    fn single_square_with_diagonals() {
+        let (k, kd, force) = (2.0, 0.8, 0.5);
+        let mut bonds = Bonds::default();
+        bonds.push(0, 1, 1.0, k); // bottom
+        bonds.push(2, 3, 1.0, k); // top
+        bonds.push(0, 2, 1.0, k); // left
+        bonds.push(1, 3, 1.0, k); // right
+        bonds.push(0, 3, 2f64.sqrt(), kd);
+        bonds.push(1, 2, 2f64.sqrt(), kd);
+        let (x, y) = ([0.0, 1.0, 0.0, 1.0], [0.0, 0.0, 1.0, 1.0]);
+        let loads = [Load { particle: 2, fx: 0.0, fy: force }, Load { particle: 3, fx: 0.0, fy: force }];
+        let truss = Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0, 1], held_y: &[0, 1], loads: &loads };
+        match truss.solve_linear() {
+            StaticSolution::Displacements { ux, uy } => {
+                let u = force / (k + 2.0 * k * kd / (4.0 * k + kd));
+                let a = kd * u / (4.0 * k + kd);
+                // 1e-11: the 1e-12 regularisation shifts the answer by ~1e-12 relative.
+                assert!((uy[2] - u).abs() < 1e-11 && (uy[3] - u).abs() < 1e-11, "{uy:?} against {u}");
+                assert!((ux[2] - a).abs() < 1e-11 && (ux[3] + a).abs() < 1e-11, "{ux:?} against ±{a}");
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    /// The same square without diagonals, pushed sideways at the top: it folds (a mechanism).
+    #[test]
+    fn square_without_diagonals_shears_freely() {
+        let mut bonds = Bonds::default();
+        for (i, j) in [(0, 1), (2, 3), (0, 2), (1, 3)] {
+            bonds.push(i, j, 1.0, 1.0);
+        }
+        let (x, y) = ([0.0, 1.0, 0.0, 1.0], [0.0, 0.0, 1.0, 1.0]);
+        let loads = [Load { particle: 2, fx: 1.0, fy: 0.0 }];
+        let truss = Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0, 1], held_y: &[0, 1], loads: &loads };
+        assert!(matches!(truss.solve_linear(), StaticSolution::Mechanism { .. }));
+    }
+}
