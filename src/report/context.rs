@@ -21,6 +21,7 @@ pub struct ReportContext {
     wall_s: String,
     has_pair: bool,
     has_chain: bool,
+    has_lattice: bool,
     scenes: Vec<SceneSection>,
     failures: Vec<FailureRow>,
 }
@@ -37,6 +38,7 @@ struct SceneSection {
     kind: &'static str,
     is_pair: bool,
     is_chain: bool,
+    is_lattice: bool,
     physics: String,
     t_c: String,
     dt_50: String,
@@ -44,6 +46,31 @@ struct SceneSection {
     pair_rows: Vec<PairRow>,
     orders: Vec<OrderRow>,
     chain_rows: Vec<ChainRow>,
+    lattice_rows: Vec<LatticeRow>,
+}
+
+#[derive(Serialize)]
+struct LatticeRow {
+    run_id: String,
+    label: String,
+    size: String,
+    k_ratio: String,
+    supports: &'static str,
+    load_case: &'static str,
+    modulus: &'static str,
+    md: String,
+    fem: String,
+    theory: String,
+    md_fem: String,
+    fem_theory: String,
+    poisson_md: String,
+    poisson_fem: String,
+    poisson_theory: String,
+    poisson_coursework: String,
+    dissipation_time: String,
+    relax_steps: String,
+    homogeneity: String,
+    status: String,
 }
 
 #[derive(Serialize)]
@@ -128,6 +155,7 @@ pub fn build(campaign: &Campaign, records: &[RunRecord], figures: &[Figure]) -> 
         wall_s: number(records.iter().map(|r| r.wall_s).sum()),
         has_pair: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Pair),
         has_chain: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Chain),
+        has_lattice: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Lattice),
         scenes: campaign.scenes.iter().filter_map(|(scene, kind)| section(scene, *kind, records, figures)).collect(),
         failures: records
             .iter()
@@ -145,19 +173,34 @@ fn section(scene: &str, kind: SceneKind, records: &[RunRecord], figures: &[Figur
         LawName::Linear => format!("linear springs k = {} N/m", number(s.k)),
         LawName::Power => format!("power-law springs C = {} N/m^β, β = {}", number(s.k), number(s.beta)),
     };
-    let physics = format!(
-        "{law}, {}, m = {} kg, x_e = {} m, v0 = {} m/s, {}",
-        if s.contact { "contact (compression only)" } else { "bonded (tension and compression)" },
-        number(s.mass),
-        number(s.spacing),
-        number(s.v0),
-        s.integrator.name()
-    );
+    let physics = match &s.lattice {
+        Some(l) => format!(
+            "{law} along rows and columns, diagonals k_d = {} N/m (k_d/k = {}), m = {} kg, a = {} m, depth d = {} m, {} supports, {} load of {} N per top-row node, {}",
+            number(l.k_diag),
+            number(l.k_diag / s.k),
+            number(s.mass),
+            number(s.spacing),
+            number(l.depth),
+            l.supports.name(),
+            l.load_case.name(),
+            number(l.load_per_node),
+            s.integrator.name()
+        ),
+        None => format!(
+            "{law}, {}, m = {} kg, x_e = {} m, v0 = {} m/s, {}",
+            if s.contact { "contact (compression only)" } else { "bonded (tension and compression)" },
+            number(s.mass),
+            number(s.spacing),
+            number(s.v0),
+            s.integrator.name()
+        ),
+    };
     Some(SceneSection {
         name: scene.into(),
         kind: kind.name(),
         is_pair: kind == SceneKind::Pair,
         is_chain: kind == SceneKind::Chain,
+        is_lattice: kind == SceneKind::Lattice,
         physics,
         t_c: number(s.t_c),
         dt_50: number(s.t_c / 50.0),
@@ -169,6 +212,7 @@ fn section(scene: &str, kind: SceneKind, records: &[RunRecord], figures: &[Figur
         pair_rows: if kind == SceneKind::Pair { mine.iter().map(|r| pair_row(r)).collect() } else { Vec::new() },
         orders: if kind == SceneKind::Pair { order_rows(records, scene) } else { Vec::new() },
         chain_rows: if kind == SceneKind::Chain { mine.iter().map(|r| chain_row(r)).collect() } else { Vec::new() },
+        lattice_rows: mine.iter().filter_map(|r| lattice_row(r)).collect(),
     })
 }
 
@@ -227,4 +271,42 @@ fn chain_row(r: &RunRecord) -> ChainRow {
         wall_s: number(r.wall_s),
         status: r.status.clone(),
     }
+}
+
+/// Relative difference (a − b)/b as a signed percentage.
+fn percent(a: Option<f64>, b: Option<f64>) -> String {
+    relative_error(a, b).map(|e| format!("{:+.3} %", 100.0 * e)).unwrap_or_else(|| "–".into())
+}
+
+fn lattice_row(r: &RunRecord) -> Option<LatticeRow> {
+    let l = r.spec.lattice.as_ref()?;
+    let m = &r.metrics;
+    let tensile = l.load_case == crate::spec::LoadCase::Tensile;
+    let (modulus, md, fem, theory) = if tensile {
+        ("E (Pa)", m.youngs_modulus, m.youngs_modulus_fem, m.youngs_modulus_theory)
+    } else {
+        ("G (Pa)", m.shear_modulus, m.shear_modulus_fem, m.shear_modulus_theory)
+    };
+    Some(LatticeRow {
+        run_id: r.run_id.clone(),
+        label: r.spec.varied_label(|_| true),
+        size: format!("{} × {}", l.nx, l.ny),
+        k_ratio: number(l.k_diag / r.spec.k),
+        supports: l.supports.name(),
+        load_case: l.load_case.name(),
+        modulus,
+        md: optional(md),
+        fem: optional(fem),
+        theory: optional(theory),
+        md_fem: percent(md, fem),
+        fem_theory: percent(fem, theory),
+        poisson_md: optional(m.poisson_ratio),
+        poisson_fem: optional(m.poisson_ratio_fem),
+        poisson_theory: if tensile { optional(m.poisson_ratio_theory) } else { "–".into() },
+        poisson_coursework: optional(m.poisson_ratio_coursework),
+        dissipation_time: optional(m.dissipation_time),
+        relax_steps: r.steps.to_string(),
+        homogeneity: optional(m.homogeneity),
+        status: r.status.clone(),
+    })
 }

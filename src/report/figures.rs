@@ -1,7 +1,7 @@
 //! Which figures a campaign gets: energies per scene, chain displacements, and the
 //! convergence of the pair measurements against their analytical values.
 
-use super::plots::{Chart, Series, line_chart};
+use super::plots::{Chart, Scale, Series, line_chart};
 use crate::runner::RunRecord;
 use crate::spec::{Campaign, SceneKind};
 use crate::table::relative_error;
@@ -64,7 +64,13 @@ pub fn draw_all(campaign: &Campaign, records: &[RunRecord]) -> anyhow::Result<Ve
                     figures.push(displacement_figure(scene, label, representative(members))?);
                 }
             }
-            SceneKind::Pair | SceneKind::Lattice => {}
+            SceneKind::Lattice => {
+                figures.push(relaxation_figure(scene, &groups)?);
+                if let Some(figure) = size_figure(scene, records)? {
+                    figures.push(figure);
+                }
+            }
+            SceneKind::Pair => {}
         }
     }
     Ok(figures)
@@ -82,7 +88,7 @@ fn energy_figure(scene: &str, index: usize, label: &str, record: &RunRecord) -> 
         title: format!("{scene}: energies ({label}, dt = t_c/{:.0})", record.spec.dt_per_tc()),
         x_label: "time t (s)".into(),
         y_label: "energy (J)".into(),
-        log: false,
+        scale: Scale::Linear,
     };
     let svg = line_chart(
         &chart,
@@ -122,7 +128,7 @@ fn displacement_figure(scene: &str, label: &str, record: &RunRecord) -> anyhow::
         title: format!("{scene}: displacements ({label}; largest |u| = {largest:.3e} m)"),
         x_label: "time t (s)".into(),
         y_label: "particle number p + u_p / (2.2 max|u|)".into(),
-        log: false,
+        scale: Scale::Linear,
     };
     Ok(Figure {
         scene: scene.into(),
@@ -149,7 +155,7 @@ fn convergence_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyh
         title: format!("{scene}: measured against analytical"),
         x_label: "dt / t_c".into(),
         y_label: "|relative error|".into(),
-        log: true,
+        scale: Scale::LogLog,
     };
     Ok(Figure {
         scene: scene.into(),
@@ -159,4 +165,93 @@ fn convergence_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyh
         ),
         svg: line_chart(&chart, &series)?,
     })
+}
+
+/// At most this many relaxation curves in one figure.
+const MAX_RELAXATION_CURVES: usize = 8;
+
+fn relaxation_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyhow::Result<Figure> {
+    let series: Vec<Series> = groups
+        .iter()
+        .take(MAX_RELAXATION_CURVES)
+        .map(|(label, members)| {
+            let t = &representative(members).trace;
+            Series {
+                label: label.clone(),
+                points: (0..t.time.len()).map(|s| (t.time[s], t.kinetic[s] / t.potential[s])).collect(),
+                markers: false,
+            }
+        })
+        .collect();
+    let chart = Chart {
+        title: format!("{scene}: relaxation"),
+        x_label: "time t (s)".into(),
+        y_label: "E_kin / E_pot".into(),
+        scale: Scale::LogY,
+    };
+    Ok(Figure {
+        scene: scene.into(),
+        file: format!("plots/{scene}-relaxation.svg"),
+        caption: format!("Kinetic over potential energy against time while the loaded lattice relaxes, {scene}."),
+        svg: line_chart(&chart, &series)?,
+    })
+}
+
+/// The modulus a lattice run measures, from MD and from the static answer, over its continuum value.
+fn modulus_ratios(r: &RunRecord) -> Option<(f64, Option<f64>)> {
+    let m = &r.metrics;
+    let (md, fem, theory) = match (m.youngs_modulus_fem, m.shear_modulus_fem) {
+        (Some(fem), _) => (m.youngs_modulus, fem, m.youngs_modulus_theory?),
+        (None, Some(fem)) => (m.shear_modulus, fem, m.shear_modulus_theory?),
+        (None, None) => return None,
+    };
+    Some((fem / theory, md.map(|v| v / theory)))
+}
+
+/// Static (lines) and MD (markers) moduli over their continuum value against the lattice
+/// size, one curve per combination of the other grid values; `None` with a single size.
+fn size_figure(scene: &str, records: &[RunRecord]) -> anyhow::Result<Option<Figure>> {
+    let mine: Vec<&RunRecord> = records.iter().filter(|r| r.spec.scene == scene).collect();
+    let size = |r: &RunRecord| r.spec.lattice.as_ref().map_or(0, |l| l.nx.max(l.ny));
+    let sizes: std::collections::BTreeSet<usize> = mine.iter().map(|r| size(r)).collect();
+    if sizes.len() < 2 {
+        return Ok(None);
+    }
+    let mut curves: Vec<(String, Vec<(f64, f64)>, Vec<(f64, f64)>)> = Vec::new();
+    for r in &mine {
+        let Some((fem, md)) = modulus_ratios(r) else { continue };
+        let label = r.spec.varied_label(|p| !p.starts_with("lattice.size") && !p.starts_with("lattice.n"));
+        let index = match curves.iter().position(|c| c.0 == label) {
+            Some(index) => index,
+            None => {
+                curves.push((label, Vec::new(), Vec::new()));
+                curves.len() - 1
+            }
+        };
+        curves[index].1.push((size(r) as f64, fem));
+        if let Some(md) = md {
+            curves[index].2.push((size(r) as f64, md));
+        }
+    }
+    let mut series = Vec::new();
+    for (label, mut fem, mut md) in curves {
+        fem.sort_by(|a, b| a.0.total_cmp(&b.0));
+        md.sort_by(|a, b| a.0.total_cmp(&b.0));
+        series.push(Series { label: format!("static, {label}"), points: fem, markers: false });
+        series.push(Series { label: format!("MD, {label}"), points: md, markers: true });
+    }
+    let chart = Chart {
+        title: format!("{scene}: finite-size convergence"),
+        x_label: "lattice size N (nodes per side)".into(),
+        y_label: "modulus / continuum value".into(),
+        scale: Scale::Linear,
+    };
+    Ok(Some(Figure {
+        scene: scene.into(),
+        file: format!("plots/{scene}-size.svg"),
+        caption: format!(
+            "E (tensile) or G (shear) of the {scene} lattices over the continuum value, against size: lines the static answer, markers the relaxed MD."
+        ),
+        svg: line_chart(&chart, &series)?,
+    }))
 }

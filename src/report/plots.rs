@@ -39,29 +39,56 @@ pub struct Chart {
     pub x_label: String,
     /// y-axis description with unit.
     pub y_label: String,
-    /// Logarithmic axes (both), for errors against step size.
-    pub log: bool,
+    /// Axis scales.
+    pub scale: Scale,
+}
+
+/// Linear or logarithmic axes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scale {
+    /// Both linear.
+    Linear,
+    /// Both logarithmic (errors against step size).
+    LogLog,
+    /// Linear x, logarithmic y (energy ratios against time).
+    LogY,
+}
+
+impl Scale {
+    fn log_x(self) -> bool {
+        self == Scale::LogLog
+    }
+    fn log_y(self) -> bool {
+        self != Scale::Linear
+    }
+    /// True when the point can be drawn on these axes (positive where logarithmic).
+    fn shows(self, (x, y): (f64, f64)) -> bool {
+        x.is_finite() && y.is_finite() && (!self.log_x() || x > 0.0) && (!self.log_y() || y > 0.0)
+    }
 }
 
 /// Draws `series` as an SVG document.
 pub fn line_chart(chart: &Chart, series: &[Series]) -> anyhow::Result<String> {
     ensure_font()?;
-    let points = || series.iter().flat_map(|s| s.points.iter()).filter(|(x, y)| x.is_finite() && y.is_finite());
-    let points_used: Vec<(f64, f64)> =
-        points().filter(|(x, y)| !chart.log || (*x > 0.0 && *y > 0.0)).copied().collect();
-    let (x_range, y_range) = bounds(&points_used, chart.log);
+    let scale = chart.scale;
+    let shown: Vec<(f64, f64)> = series.iter().flat_map(|s| s.points.iter().copied()).filter(|&p| scale.shows(p)).collect();
+    let x_range = bounds(shown.iter().map(|p| p.0), scale.log_x());
+    let y_range = bounds(shown.iter().map(|p| p.1), scale.log_y());
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(draw_error)?;
-        if chart.log {
-            let mut ctx = frame(&root, chart)?
-                .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())
-                .map_err(draw_error)?;
-            draw(&mut ctx, chart, series, true)?;
-        } else {
-            let mut ctx = frame(&root, chart)?.build_cartesian_2d(x_range, y_range).map_err(draw_error)?;
-            draw(&mut ctx, chart, series, false)?;
+        let builder = || frame(&root, chart);
+        match scale {
+            Scale::Linear => draw(&mut builder()?.build_cartesian_2d(x_range, y_range).map_err(draw_error)?, chart, series)?,
+            Scale::LogLog => draw(
+                &mut builder()?.build_cartesian_2d(x_range.log_scale(), y_range.log_scale()).map_err(draw_error)?,
+                chart,
+                series,
+            )?,
+            Scale::LogY => {
+                draw(&mut builder()?.build_cartesian_2d(x_range, y_range.log_scale()).map_err(draw_error)?, chart, series)?
+            }
         }
         root.present().map_err(draw_error)?;
     }
@@ -81,28 +108,24 @@ fn frame<'a, 'b>(
     Ok(builder)
 }
 
-/// Data bounds with a 5 % margin (a factor on log axes); a flat range is widened.
-fn bounds(points: &[(f64, f64)], log: bool) -> (std::ops::Range<f64>, std::ops::Range<f64>) {
-    let range = |values: Vec<f64>| {
-        let (lo, hi) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
-        if !lo.is_finite() {
-            return if log { 0.1..10.0 } else { 0.0..1.0 };
-        }
-        if log {
-            (lo / 1.5)..(hi * 1.5)
-        } else {
-            let pad = if hi > lo { 0.05 * (hi - lo) } else { 0.5 * lo.abs().max(1e-12) };
-            (lo - pad)..(hi + pad)
-        }
-    };
-    (range(points.iter().map(|p| p.0).collect()), range(points.iter().map(|p| p.1).collect()))
+/// Bounds of `values` with a 5 % margin (a factor 1.5 on a log axis); a flat range is widened.
+fn bounds(values: impl Iterator<Item = f64>, log: bool) -> std::ops::Range<f64> {
+    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    if !lo.is_finite() {
+        return if log { 0.1..10.0 } else { 0.0..1.0 };
+    }
+    if log {
+        (lo / 1.5)..(hi * 1.5)
+    } else {
+        let pad = if hi > lo { 0.05 * (hi - lo) } else { 0.5 * lo.abs().max(1e-12) };
+        (lo - pad)..(hi + pad)
+    }
 }
 
 fn draw<'a, 'b: 'a, X, Y>(
     ctx: &mut ChartContext<'a, SVGBackend<'b>, Cartesian2d<X, Y>>,
     chart: &Chart,
     series: &[Series],
-    log: bool,
 ) -> anyhow::Result<()>
 where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
@@ -115,18 +138,16 @@ where
         .y_desc(&chart.y_label)
         .label_style(("sans-serif", 13))
         .axis_desc_style(("sans-serif", 15));
-    if log {
-        mesh.x_label_formatter(&scientific).y_label_formatter(&scientific);
+    if chart.scale.log_x() {
+        mesh.x_label_formatter(&scientific);
+    }
+    if chart.scale.log_y() {
+        mesh.y_label_formatter(&scientific);
     }
     mesh.draw().map_err(draw_error)?;
     for (index, s) in series.iter().enumerate() {
         let color = Palette99::pick(index).to_rgba();
-        let points: Vec<(f64, f64)> = s
-            .points
-            .iter()
-            .copied()
-            .filter(|(x, y)| x.is_finite() && y.is_finite() && (!log || (*x > 0.0 && *y > 0.0)))
-            .collect();
+        let points: Vec<(f64, f64)> = s.points.iter().copied().filter(|&p| chart.scale.shows(p)).collect();
         let legend = if s.markers {
             ctx.draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled()))).map_err(draw_error)?
         } else {
@@ -143,7 +164,7 @@ where
         .border_style(BLACK)
         .label_font(("sans-serif", 13))
         // Errors fall towards small dt, leaving the upper left of a log–log chart empty.
-        .position(if log { SeriesLabelPosition::UpperLeft } else { SeriesLabelPosition::UpperRight })
+        .position(if chart.scale.log_x() { SeriesLabelPosition::UpperLeft } else { SeriesLabelPosition::UpperRight })
         .draw()
         .map_err(draw_error)
 }

@@ -121,6 +121,8 @@ pub struct RawScene {
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawLattice {
+    /// Nodes per row and rows of a square N × N lattice, instead of `nx` and `ny`.
+    pub size: Option<usize>,
     /// Nodes per row (≥ 2).
     pub nx: Option<usize>,
     /// Rows (≥ 2).

@@ -250,16 +250,18 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
         require((2..=2000).contains(&n), path, n, "must be in 2..=2000")?;
         Ok::<usize, Issue>(n)
     };
-    let (nx, ny) = (size(lattice.nx, "lattice.nx")?, size(lattice.ny, "lattice.ny")?);
+    if lattice.size.is_some() && (lattice.nx.is_some() || lattice.ny.is_some()) {
+        return Err(Issue {
+            path: "lattice.size".into(),
+            value: format!("{:?}", lattice.size.unwrap_or_default()),
+            allowed: "give either size (an N × N lattice) or nx and ny, not both".into(),
+        });
+    }
+    let (nx, ny) = (size(lattice.nx.or(lattice.size), "lattice.nx")?, size(lattice.ny.or(lattice.size), "lattice.ny")?);
+    // `diagonals: none` wins over a k_diag or k_diag_ratio set elsewhere, so a grid can switch
+    // the diagonals off without touching their stiffness.
     let k_diag = match (lattice.diagonals.unwrap_or(Diagonals::Both), lattice.k_diag, lattice.k_diag_ratio) {
-        (Diagonals::None, None, None) => 0.0,
-        (Diagonals::None, _, _) => {
-            return Err(Issue {
-                path: "lattice.diagonals".into(),
-                value: "none".into(),
-                allowed: "k_diag and k_diag_ratio need diagonals: both".into(),
-            });
-        }
+        (Diagonals::None, _, _) => 0.0,
         (Diagonals::Both, Some(_), Some(_)) => {
             return Err(Issue {
                 path: "lattice".into(),
