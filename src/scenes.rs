@@ -32,9 +32,8 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
             displacements: spec.kind == SceneKind::Chain,
             relaxation: spec.lattice.as_ref().map(|l| Relaxation {
                 kinetic_ratio: l.kinetic_ratio,
-                // Checked about once per t_c, three times in a row (see `Relaxation`).
                 check_every: (spec.t_c / spec.dt).round().max(1.0) as u64,
-                confirmations: 3,
+                confirmations: relaxation_checks(l),
             }),
         },
         contact_clock,
@@ -73,6 +72,14 @@ fn chain(spec: &RunSpec) -> Parts {
     }
     particles.vx[spec.node.unwrap_or(1)] = spec.v0;
     (particles, row(n + 2, spec.spacing, spec.k), None)
+}
+
+/// Checks (one t_c apart) that E_kin/E_pot must pass in a row to count as relaxed: 2N + 1 for
+/// the larger side N, a window of 2N t_c, longer than the slowest mode's period
+/// (≈ 4N/√(k/m) = 1.8 N t_c for a column of N springs), so no turning point of a ringing
+/// lattice passes for rest.
+pub fn relaxation_checks(l: &LatticeSpec) -> u32 {
+    (2 * l.nx.max(l.ny) + 1) as u32
 }
 
 /// The springs of a lattice scene: k along rows and columns, k_d across both diagonals.

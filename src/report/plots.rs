@@ -71,7 +71,8 @@ impl Scale {
 pub fn line_chart(chart: &Chart, series: &[Series]) -> anyhow::Result<String> {
     ensure_font()?;
     let scale = chart.scale;
-    let shown: Vec<(f64, f64)> = series.iter().flat_map(|s| s.points.iter().copied()).filter(|&p| scale.shows(p)).collect();
+    let shown: Vec<(f64, f64)> =
+        series.iter().flat_map(|s| s.points.iter().copied()).filter(|&p| scale.shows(p)).collect();
     let x_range = bounds(shown.iter().map(|p| p.0), scale.log_x());
     let y_range = bounds(shown.iter().map(|p| p.1), scale.log_y());
     let mut svg = String::new();
@@ -80,15 +81,19 @@ pub fn line_chart(chart: &Chart, series: &[Series]) -> anyhow::Result<String> {
         root.fill(&WHITE).map_err(draw_error)?;
         let builder = || frame(&root, chart);
         match scale {
-            Scale::Linear => draw(&mut builder()?.build_cartesian_2d(x_range, y_range).map_err(draw_error)?, chart, series)?,
+            Scale::Linear => {
+                draw(&mut builder()?.build_cartesian_2d(x_range, y_range).map_err(draw_error)?, chart, series)?
+            }
             Scale::LogLog => draw(
                 &mut builder()?.build_cartesian_2d(x_range.log_scale(), y_range.log_scale()).map_err(draw_error)?,
                 chart,
                 series,
             )?,
-            Scale::LogY => {
-                draw(&mut builder()?.build_cartesian_2d(x_range, y_range.log_scale()).map_err(draw_error)?, chart, series)?
-            }
+            Scale::LogY => draw(
+                &mut builder()?.build_cartesian_2d(x_range, y_range.log_scale()).map_err(draw_error)?,
+                chart,
+                series,
+            )?,
         }
         root.present().map_err(draw_error)?;
     }

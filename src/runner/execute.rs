@@ -10,7 +10,7 @@ use crate::measure::{
     LatticeShape, contact_timing, continuum_moduli, energy_error, homogeneity, normal_mode_error, shear_modulus,
     tensile_moduli,
 };
-use crate::scenes::{build_scene, chain_has_normal_modes, lattice_springs, pair_references};
+use crate::scenes::{build_scene, chain_has_normal_modes, lattice_springs, pair_references, relaxation_checks};
 use crate::sim::{Outcome, Scene, Trace};
 use crate::spec::{LatticeSpec, LoadCase, RunSpec, SceneKind};
 
@@ -152,8 +152,11 @@ fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metr
         let shape = LatticeShape { nx: lattice.nx, ny: lattice.ny, spacing: spec.spacing, depth: lattice.depth };
         metrics.homogeneity = keep(homogeneity(&shape, &ux));
         metrics.dissipation_time = outcome.trace.relaxed_at;
-        metrics.dissipation_criterion =
-            Some(format!("E_kin/E_pot < {:e} at 3 checks one t_c apart", lattice.kinetic_ratio));
+        metrics.dissipation_criterion = Some(format!(
+            "E_kin/E_pot < {:e} at {} checks one t_c apart",
+            lattice.kinetic_ratio,
+            relaxation_checks(lattice)
+        ));
         let (e, nu, g) = continuum_moduli(spec.k, lattice.k_diag, lattice.depth);
         metrics.youngs_modulus_theory = Some(e);
         metrics.poisson_ratio_theory = Some(nu);

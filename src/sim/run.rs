@@ -46,7 +46,8 @@ pub struct Sampling {
 
 /// When a relaxation counts as finished: E_kin/E_pot below `kinetic_ratio` at `confirmations`
 /// consecutive checks `check_every` steps apart. One low value is not enough: the kinetic
-/// energy of a ringing structure passes near zero at every turning point of its main mode.
+/// energy of a ringing structure passes near zero at every turning point of its main mode, so
+/// the checks must span more than that mode's period.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Relaxation {
     /// Tolerance on E_kin/E_pot.
