@@ -197,6 +197,13 @@ fn relaxation_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyho
     })
 }
 
+/// One curve of the finite-size figure: (N, modulus/continuum) from the static answer and MD.
+struct SizeCurve {
+    label: String,
+    fem: Vec<(f64, f64)>,
+    md: Vec<(f64, f64)>,
+}
+
 /// The modulus a lattice run measures, from MD and from the static answer, over its continuum value.
 fn modulus_ratios(r: &RunRecord) -> Option<(f64, Option<f64>)> {
     let m = &r.metrics;
@@ -217,24 +224,24 @@ fn size_figure(scene: &str, records: &[RunRecord]) -> anyhow::Result<Option<Figu
     if sizes.len() < 2 {
         return Ok(None);
     }
-    let mut curves: Vec<(String, Vec<(f64, f64)>, Vec<(f64, f64)>)> = Vec::new();
+    let mut curves: Vec<SizeCurve> = Vec::new();
     for r in &mine {
         let Some((fem, md)) = modulus_ratios(r) else { continue };
         let label = r.spec.varied_label(|p| !p.starts_with("lattice.size") && !p.starts_with("lattice.n"));
-        let index = match curves.iter().position(|c| c.0 == label) {
+        let index = match curves.iter().position(|c| c.label == label) {
             Some(index) => index,
             None => {
-                curves.push((label, Vec::new(), Vec::new()));
+                curves.push(SizeCurve { label, fem: Vec::new(), md: Vec::new() });
                 curves.len() - 1
             }
         };
-        curves[index].1.push((size(r) as f64, fem));
+        curves[index].fem.push((size(r) as f64, fem));
         if let Some(md) = md {
-            curves[index].2.push((size(r) as f64, md));
+            curves[index].md.push((size(r) as f64, md));
         }
     }
     let mut series = Vec::new();
-    for (label, mut fem, mut md) in curves {
+    for SizeCurve { label, mut fem, mut md } in curves {
         fem.sort_by(|a, b| a.0.total_cmp(&b.0));
         md.sort_by(|a, b| a.0.total_cmp(&b.0));
         series.push(Series { label: format!("static, {label}"), points: fem, markers: false });
