@@ -202,8 +202,8 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for LatticeNetwork
 
     fn add_forces(&mut self, x: &[f64], y: &[f64], vx: &[f64], vy: &[f64], fx: &mut [f64], fy: &mut [f64]) -> f64 {
         let nx = self.lattice.nx;
-        let (hx, hy) = (std::mem::take(&mut self.scratch_x), std::mem::take(&mut self.scratch_y));
-        let (mut hx, mut hy) = (hx, hy);
+        // The scratch rows are moved out while `self` is shared with the block closures.
+        let (mut hx, mut hy) = (std::mem::take(&mut self.scratch_x), std::mem::take(&mut self.scratch_y));
         let nodes = Nodes { x, y, vx, vy };
         let block_len = BLOCK_ROWS * nx;
         let this = &*self;
