@@ -50,7 +50,7 @@ pub struct BenchResult {
 
 /// The reference lattice's springs.
 pub fn reference_lattice(n: usize) -> SquareLattice {
-    SquareLattice { nx: n, ny: n, spacing: 1.0, k_x: 1.0, k_y: 1.0, k_rising: 0.5, k_falling: 0.5 }
+    SquareLattice { nx: n, ny: n, spacing: 1.0, k_x: 1.0, k_y: 1.0, k_rising: 0.5, k_falling: 0.5, periodic_x: false }
 }
 
 /// The reference scene for `config`, sampled only at its start and end.

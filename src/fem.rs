@@ -99,7 +99,7 @@ impl Truss<'_> {
         let mut entries = Vec::with_capacity(16 * self.bonds.len());
         for b in 0..self.bonds.len() {
             let (i, j, k) = (self.bonds.i[b], self.bonds.j[b], self.bonds.stiffness[b]);
-            let (dx, dy) = (self.x[i] - self.x[j], self.y[i] - self.y[j]);
+            let (dx, dy) = (self.x[i] - self.x[j] + self.bonds.shift_x[b], self.y[i] - self.y[j]);
             let r = (dx * dx + dy * dy).sqrt();
             let n = [dx / r, dy / r];
             for (a, sign_a) in [(i, 1.0), (j, -1.0)] {

@@ -32,6 +32,7 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
             displacements: spec.kind == SceneKind::Chain,
             relaxation: spec.lattice.as_ref().map(|l| Relaxation {
                 kinetic_ratio: l.kinetic_ratio,
+                residual_force: l.residual_force.map(|fraction| fraction * l.load_per_node),
                 check_every: (spec.t_c / spec.dt).round().max(1.0) as u64,
                 confirmations: relaxation_checks(l),
             }),
@@ -46,7 +47,7 @@ type Parts = (Particles, SquareLattice, Option<(usize, usize, f64)>);
 /// The chain of `nodes` particles joined by springs `k` of rest length `spacing`: an
 /// `nodes × 1` lattice.
 fn row(nodes: usize, spacing: f64, k: f64) -> SquareLattice {
-    SquareLattice { nx: nodes, ny: 1, spacing, k_x: k, k_y: 0.0, k_rising: 0.0, k_falling: 0.0 }
+    SquareLattice { nx: nodes, ny: 1, spacing, k_x: k, k_y: 0.0, k_rising: 0.0, k_falling: 0.0, periodic_x: false }
 }
 
 /// Two particles on the x axis, approaching at relative speed v0 (each at v0/2): a contact
@@ -92,6 +93,7 @@ pub fn lattice_springs(spec: &RunSpec, l: &LatticeSpec) -> SquareLattice {
         k_y: spec.k,
         k_rising: l.k_diag,
         k_falling: l.k_diag,
+        periodic_x: l.supports == Supports::PeriodicX,
     }
 }
 
@@ -99,7 +101,7 @@ pub fn lattice_springs(spec: &RunSpec, l: &LatticeSpec) -> SquareLattice {
 pub fn support(supports: Supports, ix: usize, iy: usize) -> Axes {
     match (supports, ix, iy) {
         (_, _, 1..) => Axes::FREE,
-        (Supports::Coursework, 0, 0) | (Supports::ClampedBottom, _, 0) => Axes::FIXED,
+        (Supports::Coursework, 0, 0) | (Supports::ClampedBottom | Supports::PeriodicX, _, 0) => Axes::FIXED,
         (Supports::Coursework, _, 0) => Axes { x: false, y: true },
     }
 }

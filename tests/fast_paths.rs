@@ -29,7 +29,7 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for ReferenceLoop<
             let f = self.spring.force_on_i(
                 b.stiffness[n],
                 b.rest[n],
-                x[i] - x[j],
+                x[i] - x[j] + b.shift_x[n],
                 y[i] - y[j],
                 vx[i] - vx[j],
                 vy[i] - vy[j],
@@ -62,8 +62,8 @@ fn jitter(seed: u64) -> f64 {
 /// An nx × ny lattice with diagonals, every node displaced by up to 5 % of a spacing and
 /// moving, so that every bond is stretched or compressed; `supports` holds the bottom row
 /// vertically and the bottom-left node in both directions (the coursework's supports).
-fn setup(nx: usize, ny: usize, supports: bool) -> (Particles, SquareLattice) {
-    let lattice = SquareLattice { nx, ny, spacing: 1.0, k_x: 1.0, k_y: 1.3, k_rising: 0.5, k_falling: 0.4 };
+fn setup(nx: usize, ny: usize, supports: bool, periodic_x: bool) -> (Particles, SquareLattice) {
+    let lattice = SquareLattice { nx, ny, spacing: 1.0, k_x: 1.0, k_y: 1.3, k_rising: 0.5, k_falling: 0.4, periodic_x };
     let mut particles = Particles::default();
     for iy in 0..ny {
         for ix in 0..nx {
@@ -133,10 +133,10 @@ fn check<L: ForceLaw, D: Dashpot, const C: bool>(
     gamma: f64,
     background: f64,
     integrator: IntegratorKind,
-    (nx, ny, supports): (usize, usize, bool),
+    (nx, ny, supports, periodic_x): (usize, usize, bool, bool),
     dilute: f64,
 ) {
-    let (particles, lattice) = setup(nx, ny, supports);
+    let (particles, lattice) = setup(nx, ny, supports, periodic_x);
     let bonds = if dilute > 0.0 { lattice.bonds().diluted(dilute, 7) } else { lattice.bonds() };
     let network = if dilute > 0.0 { Network::Bonds(bonds.clone()) } else { Network::Lattice(lattice) };
     let scene = Scene {
@@ -168,9 +168,12 @@ fn check<L: ForceLaw, D: Dashpot, const C: bool>(
     );
 }
 
-const SMALL: (usize, usize, bool) = (9, 7, false);
-const LARGE: (usize, usize, bool) = (120, 90, false);
-const SUPPORTED: (usize, usize, bool) = (40, 30, true);
+/// (nx, ny, coursework supports, periodic across the sides)
+const SMALL: (usize, usize, bool, bool) = (9, 7, false, false);
+const LARGE: (usize, usize, bool, bool) = (120, 90, false, false);
+const SUPPORTED: (usize, usize, bool, bool) = (40, 30, true, false);
+const PERIODIC_SMALL: (usize, usize, bool, bool) = (9, 7, true, true);
+const PERIODIC_LARGE: (usize, usize, bool, bool) = (120, 90, true, true);
 
 #[test]
 fn linear_lattice() {
@@ -213,6 +216,16 @@ fn constrained_lattice() {
         SUPPORTED,
         0.0,
     );
+}
+
+#[test]
+fn periodic_lattice() {
+    let spring = Spring::<Linear, BondDashpot, false> { law: Linear, dashpot: BondDashpot { gamma: 0.05 } };
+    for size in [PERIODIC_SMALL, PERIODIC_LARGE] {
+        check("periodic", spring, LawKind::Linear, 0.05, 0.0, IntegratorKind::VelocityVerlet, size, 0.0);
+    }
+    // The bond-list path keeps the wrapped bonds (with their shift) in a list of their own.
+    check("periodic, diluted", spring, LawKind::Linear, 0.05, 0.0, IntegratorKind::VelocityVerlet, PERIODIC_LARGE, 0.1);
 }
 
 #[test]

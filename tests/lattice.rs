@@ -126,3 +126,40 @@ fn relaxation_stops_by_its_criterion_or_reports_no_equilibrium() {
         }
     }
 }
+
+#[test]
+fn periodic_strip_measures_the_shear_modulus_at_every_size() {
+    // Bonds wrapping across the sides and a clamped bottom make the shear homogeneous: each
+    // row shifts by γ y, so G_struc = k_d/d exactly, whatever N (the bound: 0.5 %).
+    let yaml = campaign(
+        "{diagonals: both, k_diag_ratio: 0.5}",
+        "    supports: periodic-x\n    load: {case: shear, per_node: 1.0}\n",
+        "      lattice.size: [4, 8, 16]\n",
+    );
+    let k_diag_over_depth = 0.5e6 / 0.01;
+    for r in execute_all(&yaml) {
+        assert_eq!(r.status, "ok", "{}: {}", label(&r), r.message);
+        let exact = Some(k_diag_over_depth);
+        assert!(relative(r.metrics.shear_modulus_fem, exact) < 1e-9, "static G {}", label(&r));
+        assert!(relative(r.metrics.shear_modulus, exact) < 5e-3, "MD G {}", label(&r));
+        assert!(relative(r.metrics.shear_modulus_theory, exact) < 1e-15);
+    }
+}
+
+#[test]
+fn residual_force_criterion_waits_for_an_overdamped_creep() {
+    // Heavy background damping: the lattice creeps towards equilibrium with little kinetic
+    // energy. The residual-force criterion (static force < 1e-6 of the load per node) waits
+    // until it arrives: ν within 0.01 % of the static answer (the coursework campaign measures
+    // 0.001 % at 48000 N s/m, where the kinetic criterion stops 0.13 % short), and it is the
+    // recorded criterion.
+    let yaml = campaign(
+        "{size: 8, k_diag_ratio: 0.5}",
+        "    load: {per_node: 1.0}\n    relax: {residual_force: 1.0e-6}\n",
+        "      damping.background: [2000.0]\n      damping.restitution: [1.0]\n",
+    );
+    let r = &execute_all(&yaml)[0];
+    assert_eq!(r.status, "ok", "{}", r.message);
+    assert!(relative(r.metrics.poisson_ratio, r.metrics.poisson_ratio_fem) < 1e-4, "{:?}", r.metrics);
+    assert!(r.metrics.dissipation_criterion.as_deref().is_some_and(|c| c.starts_with("largest static force")));
+}

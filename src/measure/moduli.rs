@@ -15,11 +15,15 @@ pub struct LatticeShape {
     pub spacing: f64,
     /// Depth d (m).
     pub depth: f64,
+    /// Bonds wrap across the sides: the width carrying the load is the period nx · a.
+    pub periodic_x: bool,
 }
 
 impl LatticeShape {
+    /// L_x: (N_x − 1) a, or the period N_x a of a periodic lattice.
     fn width(&self) -> f64 {
-        (self.nx - 1) as f64 * self.spacing
+        let columns = if self.periodic_x { self.nx } else { self.nx - 1 };
+        columns as f64 * self.spacing
     }
     fn height(&self) -> f64 {
         (self.ny - 1) as f64 * self.spacing

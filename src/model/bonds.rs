@@ -12,6 +12,9 @@ pub struct Bonds {
     pub rest: Vec<f64>,
     /// Stiffness constant of each bond: k (N/m) for linear, C (N/m^β) for power-law springs.
     pub stiffness: Vec<f64>,
+    /// x offset (m) added to x_i − x_j: the period for a bond that wraps around a periodic
+    /// side, 0 otherwise.
+    pub shift_x: Vec<f64>,
 }
 
 impl Bonds {
@@ -27,10 +30,21 @@ impl Bonds {
 
     /// Appends a bond between `i` and `j`.
     pub fn push(&mut self, i: usize, j: usize, rest: f64, stiffness: f64) {
+        self.push_shifted(i, j, rest, stiffness, 0.0);
+    }
+
+    /// Appends a bond between `i` and the image of `j` shifted by `shift_x` (m) along x.
+    pub fn push_shifted(&mut self, i: usize, j: usize, rest: f64, stiffness: f64, shift_x: f64) {
         self.i.push(i);
         self.j.push(j);
         self.rest.push(rest);
         self.stiffness.push(stiffness);
+        self.shift_x.push(shift_x);
+    }
+
+    /// Copies bond `b` of `self` onto the end of `to`.
+    pub fn copy_to(&self, b: usize, to: &mut Bonds) {
+        to.push_shifted(self.i[b], self.j[b], self.rest[b], self.stiffness[b], self.shift_x[b]);
     }
 
     /// Largest particle index used, plus one (0 without bonds).
@@ -44,7 +58,7 @@ impl Bonds {
         let mut kept = Bonds::default();
         for b in 0..self.len() {
             if uniform(seed, b as u64) >= fraction {
-                kept.push(self.i[b], self.j[b], self.rest[b], self.stiffness[b]);
+                self.copy_to(b, &mut kept);
             }
         }
         kept
@@ -57,7 +71,7 @@ impl Bonds {
         order.sort_by_key(|&b| (self.i[b].min(self.j[b]), self.i[b].max(self.j[b])));
         let mut sorted = Bonds::default();
         for b in order {
-            sorted.push(self.i[b], self.j[b], self.rest[b], self.stiffness[b]);
+            self.copy_to(b, &mut sorted);
         }
         sorted
     }

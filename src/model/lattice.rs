@@ -24,6 +24,9 @@ pub struct SquareLattice {
     pub k_rising: f64,
     /// Stiffness constant of the falling diagonals (ix+1, iy)–(ix, iy+1).
     pub k_falling: f64,
+    /// Bonds wrap across the left and right sides (period nx · a), as if the lattice were a
+    /// strip of an infinite one; needs nx ≥ 3.
+    pub periodic_x: bool,
 }
 
 impl SquareLattice {
@@ -47,34 +50,48 @@ impl SquareLattice {
         self.spacing * std::f64::consts::SQRT_2
     }
 
+    /// Period along x, nx · a (m), of a periodic lattice.
+    pub fn period(&self) -> f64 {
+        self.nx as f64 * self.spacing
+    }
+
     /// Number of bonds.
     pub fn bond_count(&self) -> usize {
         let (nx, ny) = (self.nx, self.ny);
         let present = |k: f64| usize::from(k != 0.0);
-        present(self.k_x) * ny * nx.saturating_sub(1)
+        let columns = if self.periodic_x { nx } else { nx.saturating_sub(1) };
+        present(self.k_x) * ny * columns
             + present(self.k_y) * nx * ny.saturating_sub(1)
-            + (present(self.k_rising) + present(self.k_falling)) * nx.saturating_sub(1) * ny.saturating_sub(1)
+            + (present(self.k_rising) + present(self.k_falling)) * columns * ny.saturating_sub(1)
     }
 
-    /// Calls `visit(i, j, rest, k)` for every bond, in node order.
-    pub fn for_each_bond(&self, mut visit: impl FnMut(usize, usize, f64, f64)) {
+    /// Calls `visit(i, j, rest, k, shift_x)` for every bond, in node order; the bond's
+    /// separation is x_i − x_j + shift_x (shift_x = ∓ period for bonds that wrap, else 0).
+    pub fn for_each_bond(&self, mut visit: impl FnMut(usize, usize, f64, f64, f64)) {
         let (a, d) = (self.spacing, self.diagonal_rest());
+        let columns = if self.periodic_x { self.nx } else { self.nx - 1 };
         for iy in 0..self.ny {
             for ix in 0..self.nx {
                 let here = self.node(ix, iy);
-                let right = ix + 1 < self.nx;
                 let up = iy + 1 < self.ny;
-                if right && self.k_x != 0.0 {
-                    visit(here, self.node(ix + 1, iy), a, self.k_x);
+                if ix >= columns {
+                    continue;
                 }
-                if up && self.k_y != 0.0 {
-                    visit(here, self.node(ix, iy + 1), a, self.k_y);
+                // The right neighbour; across the right side it is node 0 one period on.
+                let (right, shift) = if ix + 1 < self.nx { (ix + 1, 0.0) } else { (0, -self.period()) };
+                if self.k_x != 0.0 {
+                    visit(here, self.node(right, iy), a, self.k_x, shift);
                 }
-                if right && up && self.k_rising != 0.0 {
-                    visit(here, self.node(ix + 1, iy + 1), d, self.k_rising);
+                if up && self.k_rising != 0.0 {
+                    visit(here, self.node(right, iy + 1), d, self.k_rising, shift);
                 }
-                if right && up && self.k_falling != 0.0 {
-                    visit(self.node(ix + 1, iy), self.node(ix, iy + 1), d, self.k_falling);
+                if up && self.k_falling != 0.0 {
+                    visit(self.node(right, iy), self.node(ix, iy + 1), d, self.k_falling, -shift);
+                }
+            }
+            if iy + 1 < self.ny && self.k_y != 0.0 {
+                for ix in 0..self.nx {
+                    visit(self.node(ix, iy), self.node(ix, iy + 1), a, self.k_y, 0.0);
                 }
             }
         }
@@ -84,7 +101,7 @@ impl SquareLattice {
     /// lattice, and as the reference the stencil is tested against).
     pub fn bonds(&self) -> Bonds {
         let mut bonds = Bonds::default();
-        self.for_each_bond(|i, j, rest, k| bonds.push(i, j, rest, k));
+        self.for_each_bond(|i, j, rest, k, shift| bonds.push_shifted(i, j, rest, k, shift));
         bonds
     }
 }
@@ -94,7 +111,16 @@ mod tests {
     use super::*;
 
     fn lattice(nx: usize, ny: usize, k_diag: f64) -> SquareLattice {
-        SquareLattice { nx, ny, spacing: 0.1, k_x: 3.0, k_y: 3.0, k_rising: k_diag, k_falling: k_diag }
+        SquareLattice {
+            nx,
+            ny,
+            spacing: 0.1,
+            k_x: 3.0,
+            k_y: 3.0,
+            k_rising: k_diag,
+            k_falling: k_diag,
+            periodic_x: false,
+        }
     }
 
     #[test]
@@ -113,5 +139,21 @@ mod tests {
             assert_eq!(l.bond_count(), l.bonds().len());
         }
         assert_eq!(lattice(4, 3, 0.5).bond_count(), 4 * 2 + 3 * 3 + 2 * 3 * 2);
+        let periodic = SquareLattice { periodic_x: true, ..lattice(4, 3, 0.5) };
+        assert_eq!(periodic.bond_count(), periodic.bonds().len());
+        // Periodic: nx(ny − 1) vertical, nx ny horizontal and 2 nx (ny − 1) diagonal bonds.
+        assert_eq!(periodic.bond_count(), 4 * 2 + 4 * 3 + 2 * 4 * 2);
+    }
+
+    #[test]
+    fn wrapped_bonds_have_their_rest_length() {
+        // Every bond of the periodic lattice at rest has |x_i − x_j + shift| = its rest length.
+        let l = SquareLattice { periodic_x: true, ..lattice(5, 3, 0.5) };
+        l.for_each_bond(|i, j, rest, _, shift| {
+            let (xi, yi) = ((i % 5) as f64 * 0.1, (i / 5) as f64 * 0.1);
+            let (xj, yj) = ((j % 5) as f64 * 0.1, (j / 5) as f64 * 0.1);
+            let r = ((xi - xj + shift).powi(2) + (yi - yj).powi(2)).sqrt();
+            assert!((r - rest).abs() < 1e-12, "bond {i}–{j}: {r} against rest {rest}");
+        });
     }
 }

@@ -100,7 +100,7 @@ struct LatticeModuli {
 }
 
 fn lattice_moduli(spec: &RunSpec, lattice: &LatticeSpec, ux: &[f64], uy: &[f64]) -> LatticeModuli {
-    let shape = LatticeShape { nx: lattice.nx, ny: lattice.ny, spacing: spec.spacing, depth: lattice.depth };
+    let shape = lattice_shape(spec, lattice);
     let force = lattice.load_per_node * lattice.nx as f64;
     match lattice.load_case {
         LoadCase::Tensile => {
@@ -149,18 +149,31 @@ fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metr
         metrics.poisson_ratio = keep(md.poisson_ratio);
         metrics.poisson_ratio_coursework = keep(md.poisson_ratio_coursework);
         metrics.shear_modulus = keep(md.shear_modulus);
-        let shape = LatticeShape { nx: lattice.nx, ny: lattice.ny, spacing: spec.spacing, depth: lattice.depth };
+        let shape = lattice_shape(spec, lattice);
         metrics.homogeneity = keep(homogeneity(&shape, &ux));
         metrics.dissipation_time = outcome.trace.relaxed_at;
-        metrics.dissipation_criterion = Some(format!(
-            "E_kin/E_pot < {:e} at {} checks one t_c apart",
-            lattice.kinetic_ratio,
-            relaxation_checks(lattice)
-        ));
+        let checks = relaxation_checks(lattice);
+        metrics.dissipation_criterion =
+            outcome.trace.relaxed_by.as_deref().map(|by| match (by, lattice.residual_force) {
+                ("residual_force", Some(fraction)) => {
+                    format!("largest static force < {fraction:e} of the load per node at {checks} checks one t_c apart")
+                }
+                _ => format!("E_kin/E_pot < {:e} at {checks} checks one t_c apart", lattice.kinetic_ratio),
+            });
         let (e, nu, g) = continuum_moduli(spec.k, lattice.k_diag, lattice.depth);
         metrics.youngs_modulus_theory = Some(e);
         metrics.poisson_ratio_theory = Some(nu);
         metrics.shear_modulus_theory = (lattice.k_diag > 0.0).then_some(g);
+    }
+}
+
+fn lattice_shape(spec: &RunSpec, lattice: &LatticeSpec) -> LatticeShape {
+    LatticeShape {
+        nx: lattice.nx,
+        ny: lattice.ny,
+        spacing: spec.spacing,
+        depth: lattice.depth,
+        periodic_x: lattice.supports == crate::spec::Supports::PeriodicX,
     }
 }
 

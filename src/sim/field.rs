@@ -46,6 +46,8 @@ pub struct BondNetwork<L, D, const CONTACT: bool> {
     blocks: Vec<Bonds>,
     /// Bonds between blocks.
     crossing: Bonds,
+    /// Bonds that wrap across a periodic side (their separation carries a shift).
+    wrapped: Bonds,
     background_gamma: f64,
 }
 
@@ -57,23 +59,26 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> BondNetwork<L, D, CONTACT> {
         let sorted = bonds.sorted();
         let block_count = particles.div_ceil(BLOCK_PARTICLES).max(1);
         let mut blocks = vec![Bonds::default(); block_count];
-        let mut crossing = Bonds::default();
+        let (mut crossing, mut wrapped) = (Bonds::default(), Bonds::default());
         for b in 0..sorted.len() {
             let (i, j) = (sorted.i[b], sorted.j[b]);
-            let target = if i / BLOCK_PARTICLES == j / BLOCK_PARTICLES {
+            let target = if sorted.shift_x[b] != 0.0 {
+                &mut wrapped
+            } else if i / BLOCK_PARTICLES == j / BLOCK_PARTICLES {
                 &mut blocks[i / BLOCK_PARTICLES]
             } else {
                 &mut crossing
             };
-            target.push(i, j, sorted.rest[b], sorted.stiffness[b]);
+            sorted.copy_to(b, target);
         }
-        BondNetwork { spring, blocks, crossing, background_gamma }
+        BondNetwork { spring, blocks, crossing, wrapped, background_gamma }
     }
 
-    /// Adds the forces of `bonds` to `(fx, fy)`, which hold particles `offset..`.
+    /// Adds the forces of `bonds` to `(fx, fy)`, which hold particles `offset..`; `SHIFTED`
+    /// bonds add their periodic shift to the x separation.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)] // the structure of arrays, one slice per component
-    fn accumulate(
+    fn accumulate<const SHIFTED: bool>(
         &self,
         bonds: &Bonds,
         offset: usize,
@@ -90,7 +95,8 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> BondNetwork<L, D, CONTACT> {
         for b in 0..m {
             let (i, j) = (bi[b], bj[b]);
             let (dvx, dvy) = if D::ACTIVE { (vx[i] - vx[j], vy[i] - vy[j]) } else { (0.0, 0.0) };
-            let f = self.spring.force_on_i(stiffness[b], rest[b], x[i] - x[j], y[i] - y[j], dvx, dvy);
+            let dx = if SHIFTED { x[i] - x[j] + bonds.shift_x[b] } else { x[i] - x[j] };
+            let f = self.spring.force_on_i(stiffness[b], rest[b], dx, y[i] - y[j], dvx, dvy);
             fx[i - offset] += f.fx;
             fy[i - offset] += f.fy;
             fx[j - offset] -= f.fx;
@@ -109,14 +115,15 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for BondNetwork<L,
     fn add_forces(&mut self, x: &[f64], y: &[f64], vx: &[f64], vy: &[f64], fx: &mut [f64], fy: &mut [f64]) -> f64 {
         let this = &*self;
         let block = |(index, (fx, fy)): (usize, (&mut [f64], &mut [f64]))| {
-            this.accumulate(&this.blocks[index], index * BLOCK_PARTICLES, x, y, vx, vy, fx, fy)
+            this.accumulate::<false>(&this.blocks[index], index * BLOCK_PARTICLES, x, y, vx, vy, fx, fy)
         };
         let mut power: f64 = if worth_splitting(x.len()) {
             fx.par_chunks_mut(BLOCK_PARTICLES).zip(fy.par_chunks_mut(BLOCK_PARTICLES)).enumerate().map(block).sum()
         } else {
             fx.chunks_mut(BLOCK_PARTICLES).zip(fy.chunks_mut(BLOCK_PARTICLES)).enumerate().map(block).sum()
         };
-        power += self.accumulate(&self.crossing, 0, x, y, vx, vy, fx, fy);
+        power += self.accumulate::<false>(&self.crossing, 0, x, y, vx, vy, fx, fy);
+        power += self.accumulate::<true>(&self.wrapped, 0, x, y, vx, vy, fx, fy);
         if self.background_gamma > 0.0 {
             power += add_background_damping(self.background_gamma, vx, vy, fx, fy);
         }
@@ -126,11 +133,11 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for BondNetwork<L,
     fn potential_energy(&self, x: &[f64], y: &[f64]) -> f64 {
         self.blocks
             .iter()
-            .chain(std::iter::once(&self.crossing))
+            .chain([&self.crossing, &self.wrapped])
             .flat_map(|bonds| (0..bonds.len()).map(move |b| (bonds, b)))
             .map(|(bonds, b)| {
                 let (i, j) = (bonds.i[b], bonds.j[b]);
-                self.spring.energy(bonds.stiffness[b], bonds.rest[b], x[i] - x[j], y[i] - y[j])
+                self.spring.energy(bonds.stiffness[b], bonds.rest[b], x[i] - x[j] + bonds.shift_x[b], y[i] - y[j])
             })
             .sum()
     }

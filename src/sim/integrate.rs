@@ -44,15 +44,38 @@ pub trait Integrator {
     fn step<F: ForceField>(&mut self, state: &mut State, field: &mut F, dt: f64);
 }
 
-/// Zeroes the force on every held axis, so held particles keep their velocity there.
-fn hold(state: &mut State) {
+/// Adds the loads to `(fx, fy)` and zeroes every held axis, so held particles keep their
+/// velocity there.
+fn load_and_hold(state: &State, fx: &mut [f64], fy: &mut [f64]) {
+    for load in &state.loads {
+        fx[load.particle] += load.fx;
+        fy[load.particle] += load.fy;
+    }
+    for &i in &state.particles.held_x {
+        fx[i] = 0.0;
+    }
+    for &i in &state.particles.held_y {
+        fy[i] = 0.0;
+    }
+}
+
+/// The static force on every free axis, springs and loads without any damping, into
+/// `(fx, fy)` (resized to the particles): what is left of it measures how far a relaxing
+/// structure is from equilibrium. `zeros` is scratch for the zero velocities.
+pub fn static_forces<F: ForceField>(
+    state: &State,
+    field: &mut F,
+    fx: &mut Vec<f64>,
+    fy: &mut Vec<f64>,
+    zeros: &mut Vec<f64>,
+) {
     let p = &state.particles;
-    for &i in &p.held_x {
-        state.fx[i] = 0.0;
+    for buffer in [&mut *fx, &mut *fy, &mut *zeros] {
+        buffer.clear();
+        buffer.resize(p.len(), 0.0);
     }
-    for &i in &p.held_y {
-        state.fy[i] = 0.0;
-    }
+    field.add_forces(&p.x, &p.y, zeros, zeros, fx, fy);
+    load_and_hold(state, fx, fy);
 }
 
 /// Evaluates the forces (which must be zero on entry) at the current positions with
@@ -61,12 +84,10 @@ fn hold(state: &mut State) {
 fn add_forces<F: ForceField>(state: &mut State, field: &mut F, velocities: Option<(&[f64], &[f64])>, dt: f64) {
     let p = &state.particles;
     let (vx, vy) = velocities.unwrap_or((&p.vx, &p.vy));
-    let power = field.add_forces(&p.x, &p.y, vx, vy, &mut state.fx, &mut state.fy);
-    for load in &state.loads {
-        state.fx[load.particle] += load.fx;
-        state.fy[load.particle] += load.fy;
-    }
-    hold(state);
+    let (mut fx, mut fy) = (std::mem::take(&mut state.fx), std::mem::take(&mut state.fy));
+    let power = field.add_forces(&p.x, &p.y, vx, vy, &mut fx, &mut fy);
+    load_and_hold(state, &mut fx, &mut fy);
+    (state.fx, state.fy) = (fx, fy);
     state.dissipated += 0.5 * dt * (state.dissipation_power + power);
     state.dissipation_power = power;
 }

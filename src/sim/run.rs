@@ -1,7 +1,7 @@
 //! The time loop: start, step, probe every step, sample every few steps, stop on blow-up.
 
 use super::field::ForceField;
-use super::integrate::Integrator;
+use super::integrate::{Integrator, static_forces};
 use super::probe::StepProbe;
 use super::state::State;
 
@@ -52,6 +52,9 @@ pub struct Sampling {
 pub struct Relaxation {
     /// Tolerance on E_kin/E_pot.
     pub kinetic_ratio: f64,
+    /// Tolerance (N) on the largest static force (springs and loads) on any free axis; when
+    /// given, this criterion replaces the kinetic-energy ratio.
+    pub residual_force: Option<f64>,
     /// Steps between checks.
     pub check_every: u64,
     /// Consecutive checks that must pass.
@@ -82,8 +85,10 @@ pub struct Trace {
     pub status: RunStatus,
     /// Explanation when the status is not `ok`.
     pub message: String,
-    /// Relaxation: the time (s) from which E_kin/E_pot stayed below the tolerance.
+    /// Relaxation: the time (s) from which the stopping criterion held.
     pub relaxed_at: Option<f64>,
+    /// Relaxation: the criterion that stopped the run, `kinetic_ratio` or `residual_force`.
+    pub relaxed_by: Option<String>,
 }
 
 impl Trace {
@@ -129,7 +134,7 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
     for n in 1..=sampling.steps {
         integrator.step(state, field, sampling.dt);
         probe.observe(state);
-        let relaxed = watch.as_mut().is_some_and(|w| w.relaxed(n, state, &*field));
+        let relaxed = watch.as_mut().is_some_and(|w| w.relaxed(n, state, field));
         if (n % every == 0 || n == sampling.steps || relaxed)
             && !trace.sample(state, &*field, &start_x, sampling.displacements)
         {
@@ -143,48 +148,87 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
     }
     trace.loop_s = started.elapsed().as_secs_f64();
     if let Some(w) = watch {
-        trace.relaxed_at = w.relaxed_at;
+        trace.relaxed_at = w.relaxed.map(|(at, _)| at);
+        trace.relaxed_by = w.relaxed.map(|(_, by)| by.to_string());
         if trace.relaxed_at.is_none() && trace.status == RunStatus::Ok {
             trace.status = RunStatus::NoEquilibrium;
-            trace.message =
-                format!("E_kin/E_pot did not stay below {:e} within {:.6e} s", w.rule.kinetic_ratio, state.time);
+            let criterion = match w.rule.residual_force {
+                Some(force) => format!("the largest static force did not stay below {force:e} N"),
+                None => format!("E_kin/E_pot did not stay below {:e}", w.rule.kinetic_ratio),
+            };
+            trace.message = format!("{criterion} within {:.6e} s", state.time);
         }
     }
     trace.steps = state.steps;
     trace
 }
 
-/// Follows E_kin/E_pot during a relaxation.
+/// Follows the relaxation criteria: each must hold at `confirmations` consecutive checks.
 struct RelaxationWatch {
     rule: Relaxation,
+    kinetic: Streak,
+    force: Streak,
+    relaxed: Option<(f64, &'static str)>,
+    /// Scratch for the static forces (x, y) and zero velocities.
+    scratch: (Vec<f64>, Vec<f64>, Vec<f64>),
+}
+
+/// A run of consecutive passed checks and the time of its first.
+#[derive(Default)]
+struct Streak {
     passed: u32,
-    first_pass: f64,
-    relaxed_at: Option<f64>,
+    since: f64,
+}
+
+impl Streak {
+    /// Counts one check at `time`; true once `needed` checks in a row have passed.
+    fn update(&mut self, pass: bool, time: f64, needed: u32) -> bool {
+        if !pass {
+            self.passed = 0;
+            return false;
+        }
+        if self.passed == 0 {
+            self.since = time;
+        }
+        self.passed += 1;
+        self.passed >= needed
+    }
 }
 
 impl RelaxationWatch {
     fn new(rule: Relaxation) -> Self {
-        RelaxationWatch { rule, passed: 0, first_pass: 0.0, relaxed_at: None }
+        RelaxationWatch {
+            rule,
+            kinetic: Streak::default(),
+            force: Streak::default(),
+            relaxed: None,
+            scratch: Default::default(),
+        }
     }
 
-    /// True once the rule holds; checks only every `check_every` steps.
-    fn relaxed<F: ForceField>(&mut self, step: u64, state: &State, field: &F) -> bool {
+    /// True once a criterion holds; checks only every `check_every` steps.
+    fn relaxed<F: ForceField>(&mut self, step: u64, state: &State, field: &mut F) -> bool {
         if !step.is_multiple_of(self.rule.check_every.max(1)) {
             return false;
         }
         let p = &state.particles;
-        let potential = field.potential_energy(&p.x, &p.y);
-        if potential > 0.0 && p.kinetic_energy() < self.rule.kinetic_ratio * potential {
-            if self.passed == 0 {
-                self.first_pass = state.time;
+        let (time, needed) = (state.time, self.rule.confirmations);
+        if let Some(tolerance) = self.rule.residual_force {
+            // The static imbalance, not the net force: a creeping, overdamped structure has a
+            // small net force (drag balances springs) long before it is in equilibrium.
+            let (fx, fy, zeros) = &mut self.scratch;
+            static_forces(state, field, fx, fy, zeros);
+            let largest = fx.iter().chain(fy.iter()).fold(0.0f64, |m, f| m.max(f.abs()));
+            if self.force.update(largest < tolerance, time, needed) {
+                self.relaxed = Some((self.force.since, "residual_force"));
             }
-            self.passed += 1;
         } else {
-            self.passed = 0;
+            let potential = field.potential_energy(&p.x, &p.y);
+            let calm = potential > 0.0 && p.kinetic_energy() < self.rule.kinetic_ratio * potential;
+            if self.kinetic.update(calm, time, needed) {
+                self.relaxed = Some((self.kinetic.since, "kinetic_ratio"));
+            }
         }
-        if self.passed >= self.rule.confirmations {
-            self.relaxed_at = Some(self.first_pass);
-        }
-        self.relaxed_at.is_some()
+        self.relaxed.is_some()
     }
 }

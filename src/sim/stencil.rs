@@ -179,6 +179,38 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> LatticeNetwork<L, D, CONTACT>
         power
     }
 
+    /// The bonds that wrap across the sides of a periodic lattice: from the last node of each
+    /// row to the first node of the same row and of the row above, one period on, and from the
+    /// first node (one period on) to the last node of the row above. A few per row, so plain
+    /// scalar code after the vectorised rows.
+    fn wrapped(&self, nodes: Nodes, fx: &mut [f64], fy: &mut [f64]) -> f64 {
+        let l = &self.lattice;
+        let (last, period, diagonal) = (l.nx - 1, l.period(), l.diagonal_rest());
+        let mut power = 0.0;
+        let mut bond = |i: usize, j: usize, k: f64, rest: f64, shift: f64| {
+            let (dvx, dvy) =
+                if D::ACTIVE { (nodes.vx[i] - nodes.vx[j], nodes.vy[i] - nodes.vy[j]) } else { (0.0, 0.0) };
+            let f = self.spring.force_on_i(k, rest, nodes.x[i] - nodes.x[j] + shift, nodes.y[i] - nodes.y[j], dvx, dvy);
+            fx[i] += f.fx;
+            fy[i] += f.fy;
+            fx[j] -= f.fx;
+            fy[j] -= f.fy;
+            power += f.dissipation;
+        };
+        for iy in 0..l.ny {
+            if l.k_x != 0.0 {
+                bond(l.node(last, iy), l.node(0, iy), l.k_x, l.spacing, -period);
+            }
+            if iy + 1 < l.ny && l.k_rising != 0.0 {
+                bond(l.node(last, iy), l.node(0, iy + 1), l.k_rising, diagonal, -period);
+            }
+            if iy + 1 < l.ny && l.k_falling != 0.0 {
+                bond(l.node(0, iy), l.node(last, iy + 1), l.k_falling, diagonal, period);
+            }
+        }
+        power
+    }
+
     /// Bonds between two consecutive rows whose forces are `fx[..split]` (last row of the
     /// lower part) and `fx[split..]` (first row of the upper part).
     fn rows_pair(&self, a: Nodes, b: Nodes, split: usize, fx: &mut [f64], fy: &mut [f64]) -> f64 {
@@ -230,6 +262,9 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for LatticeNetwork
             let (a, b) = (nodes.range((upper - 1) * nx..upper * nx), nodes.range(upper * nx..(upper + 1) * nx));
             power += self.rows_pair(a, b, upper * nx, fx, fy);
         }
+        if self.lattice.periodic_x {
+            power += self.wrapped(nodes, fx, fy);
+        }
         if self.background_gamma > 0.0 {
             power += add_background_damping(self.background_gamma, vx, vy, fx, fy);
         }
@@ -240,7 +275,9 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for LatticeNetwork
 
     fn potential_energy(&self, x: &[f64], y: &[f64]) -> f64 {
         let mut energy = 0.0;
-        self.lattice.for_each_bond(|i, j, rest, k| energy += self.spring.energy(k, rest, x[i] - x[j], y[i] - y[j]));
+        self.lattice.for_each_bond(|i, j, rest, k, shift| {
+            energy += self.spring.energy(k, rest, x[i] - x[j] + shift, y[i] - y[j]);
+        });
         energy
     }
 }

@@ -154,6 +154,9 @@ pub enum Supports {
     Coursework,
     /// Bottom row held in both directions.
     ClampedBottom,
+    /// Bonds wrap across the left and right sides (a strip of an infinite lattice); bottom row
+    /// held in both directions.
+    PeriodicX,
 }
 
 impl Supports {
@@ -162,6 +165,7 @@ impl Supports {
         match self {
             Supports::Coursework => "coursework",
             Supports::ClampedBottom => "clamped-bottom",
+            Supports::PeriodicX => "periodic-x",
         }
     }
 }
@@ -202,6 +206,9 @@ pub struct RawLoad {
 pub struct RawRelax {
     /// Stop when E_kin/E_pot stays below this (default 1e-8).
     pub kinetic_ratio: Option<f64>,
+    /// Stop instead when the largest static force (springs and loads, no damping) on any free
+    /// axis stays below this fraction of the load per node.
+    pub residual_force: Option<f64>,
     /// Give up after this many t_c (default 5000): `status = no_equilibrium`.
     pub max_tc: Option<f64>,
 }

@@ -272,20 +272,36 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
         (Diagonals::Both, Some(k_diag), None) => positive(k_diag, "lattice.k_diag")?,
         (Diagonals::Both, None, ratio) => k * positive(ratio.unwrap_or(DEFAULT_K_DIAG_RATIO), "lattice.k_diag_ratio")?,
     };
+    let supports = raw.supports.unwrap_or(Supports::Coursework);
+    require(
+        supports != Supports::PeriodicX || nx >= 3,
+        "lattice.nx",
+        nx,
+        "must be ≥ 3 with supports: periodic-x (two nodes would be bonded twice)",
+    )?;
     let load = raw.load.clone().unwrap_or_default();
     let load_per_node = positive(load.per_node.unwrap_or(DEFAULT_LOAD_PER_NODE), "load.per_node")?;
     let relax = raw.relax.clone().unwrap_or_default();
     let kinetic_ratio = relax.kinetic_ratio.unwrap_or(DEFAULT_KINETIC_RATIO);
     require(kinetic_ratio > 0.0 && kinetic_ratio < 1.0, "relax.kinetic_ratio", kinetic_ratio, "must be in (0, 1)")?;
+    if let Some(fraction) = relax.residual_force {
+        require(
+            fraction > 0.0 && fraction < 1.0,
+            "relax.residual_force",
+            fraction,
+            "must be in (0, 1) (a fraction of the load per node)",
+        )?;
+    }
     Ok(Some(LatticeSpec {
         nx,
         ny,
         k_diag,
         depth: positive(depth.unwrap_or(1.0), "geometry.depth")?,
-        supports: raw.supports.unwrap_or(Supports::Coursework),
+        supports,
         load_case: load.case.unwrap_or(LoadCase::Tensile),
         load_per_node,
         kinetic_ratio,
+        residual_force: relax.residual_force,
     }))
 }
 

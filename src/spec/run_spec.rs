@@ -85,6 +85,8 @@ pub struct LatticeSpec {
     pub load_per_node: f64,
     /// Relaxation stops when E_kin/E_pot stays below this.
     pub kinetic_ratio: f64,
+    /// ... or when the largest net force stays below this fraction of the load per node.
+    pub residual_force: Option<f64>,
 }
 
 impl RunSpec {
