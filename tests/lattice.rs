@@ -163,3 +163,19 @@ fn residual_force_criterion_waits_for_an_overdamped_creep() {
     assert!(relative(r.metrics.poisson_ratio, r.metrics.poisson_ratio_fem) < 1e-4, "{:?}", r.metrics);
     assert!(r.metrics.dissipation_criterion.as_deref().is_some_and(|c| c.starts_with("largest static force")));
 }
+
+#[test]
+fn mass_and_stiffness_derived_from_the_solid() {
+    // ρ = 7850 kg/m³, E = 200 GPa, a = 0.1 m, d = 0.01 m, 6 × 4 nodes, k_d/k = 0.5: the nodes
+    // share the block's mass ρ (5 a)(3 a) d, and the continuum E of the lattice is the solid's.
+    let yaml = "version: 1\nname: t\nscenes:\n  - name: s\n    kind: lattice\n    material: {density: 7850.0, youngs_modulus: 200.0e9}\n    geometry: {spacing: 0.1, depth: 0.01}\n    lattice: {nx: 6, ny: 4, k_diag_ratio: 0.5}\n";
+    let spec = &runs(yaml)[0];
+    let block = 7850.0 * 0.5 * 0.3 * 0.01;
+    assert!((spec.mass * 24.0 - block).abs() < 1e-12 * block, "node mass {}", spec.mass);
+    let (e, _, _) = mdsolids::measure::continuum_moduli(spec.k, spec.lattice.as_ref().unwrap().k_diag, 0.01);
+    assert!((e - 200.0e9).abs() < 1e-9 * 200.0e9, "continuum E {e} (round-off only)");
+    // Giving both mass and density is refused.
+    let both = yaml.replace("{density: 7850.0,", "{mass: 1.0, density: 7850.0,");
+    let error = mdsolids::spec::parse("both.yaml", &both).unwrap_err().to_string();
+    assert!(error.contains("material.mass") && error.contains("either mass or density"), "{error}");
+}

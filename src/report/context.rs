@@ -174,18 +174,20 @@ fn section(scene: &str, kind: SceneKind, records: &[RunRecord], figures: &[Figur
         LawName::Power => format!("power-law springs C = {} N/m^β, β = {}", number(s.k), number(s.beta)),
     };
     let physics = match &s.lattice {
-        Some(l) => format!(
-            "{law} along rows and columns, diagonals k_d = {} N/m (k_d/k = {}), m = {} kg, a = {} m, depth d = {} m, {} supports, {} load of {} N per top-row node, {}",
-            number(l.k_diag),
-            number(l.k_diag / s.k),
-            number(s.mass),
-            number(s.spacing),
-            number(l.depth),
-            l.supports.name(),
-            l.load_case.name(),
-            number(l.load_per_node),
-            s.integrator.name()
-        ),
+        Some(l) => {
+            format!(
+                "{law} along rows and columns, diagonals k_d = {} N/m (k_d/k = {}), m = {} kg, a = {} m, depth d = {} m, {} supports, {} load of {} N per top-row node, {}",
+                number(l.k_diag),
+                number(l.k_diag / s.k),
+                number(s.mass),
+                number(s.spacing),
+                number(l.depth),
+                l.supports.name(),
+                l.load_case.name(),
+                number(l.load_per_node),
+                s.integrator.name()
+            ) + &l.derived_from.as_ref().map(|note| format!(". Derived from the solid: {note}")).unwrap_or_default()
+        }
         None => format!(
             "{law}, {}, m = {} kg, x_e = {} m, v0 = {} m/s, {}",
             if s.contact { "contact (compression only)" } else { "bonded (tension and compression)" },

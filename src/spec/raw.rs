@@ -227,6 +227,12 @@ pub struct RawMaterial {
     pub beta: Option<f64>,
     /// Springs act only in compression.
     pub contact: Option<bool>,
+    /// Lattice: density ρ of the solid (kg/m³), instead of `mass`: every node gets an equal
+    /// share of the block's mass.
+    pub density: Option<f64>,
+    /// Lattice: Young's modulus of the solid (Pa), instead of `k`: k is chosen so that the
+    /// lattice's continuum E equals it.
+    pub youngs_modulus: Option<f64>,
 }
 
 /// `damping:` section.

@@ -70,8 +70,10 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     let time = raw.time.clone().unwrap_or_default();
     let geometry = raw.geometry.clone().unwrap_or_default();
 
-    let (mass, k, law, beta, contact) = resolve_material(&material)?;
     let spacing = positive(geometry_spacing(&geometry), "geometry.spacing")?;
+    let solid = derive_from_solid(kind, raw, &material, spacing, geometry.depth)?;
+    let material = RawMaterial { mass: solid.mass.or(material.mass), k: solid.k.or(material.k), ..material };
+    let (mass, k, law, beta, contact) = resolve_material(&material)?;
     check_kind_fields(kind, raw)?;
     let v0 = match kind {
         SceneKind::Lattice => 0.0,
@@ -102,7 +104,7 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     if let Some(g) = gap {
         require(g.is_finite() && g >= 0.0, "gap", g, "must be a finite number ≥ 0")?;
     }
-    let lattice = resolve_lattice(kind, raw, k, geometry.depth)?;
+    let lattice = resolve_lattice(kind, raw, k, geometry.depth)?.map(|l| LatticeSpec { derived_from: solid.note, ..l });
     let default_duration_tc = match kind {
         SceneKind::Pair if contact => gap.unwrap_or(0.0) / (v0 * t_c) + 1.5,
         SceneKind::Pair => 3.0,
@@ -144,6 +146,59 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         wall_distance,
         lattice,
     })
+}
+
+/// Mass and stiffness of a lattice derived from the solid it stands for, and how.
+#[derive(Default)]
+struct Solid {
+    mass: Option<f64>,
+    k: Option<f64>,
+    note: Option<String>,
+}
+
+/// For a lattice scene with `material.density` and/or `material.youngs_modulus`: the node mass
+/// m = ρ L_x L_y d / (N_x N_y), so the lattice weighs what the block of size L_x × L_y × d
+/// weighs, and the spring stiffness k = E d / (1 + r − r²/(1 + r)) with r = k_d/k, so the
+/// lattice's continuum Young's modulus (C11 − C12²/C11)/d equals E.
+fn derive_from_solid(
+    kind: SceneKind,
+    raw: &RawScene,
+    material: &RawMaterial,
+    spacing: f64,
+    depth: Option<f64>,
+) -> Result<Solid, Issue> {
+    if material.density.is_none() && material.youngs_modulus.is_none() {
+        return Ok(Solid::default());
+    }
+    let only_lattices = "only for lattice scenes (give mass and k directly)";
+    require(kind == SceneKind::Lattice, "material.density", "(set)", only_lattices)?;
+    let lattice = raw.lattice.clone().unwrap_or_default();
+    let (nx, ny) = (lattice.nx.or(lattice.size).unwrap_or(2), lattice.ny.or(lattice.size).unwrap_or(2));
+    let depth = depth.unwrap_or(1.0);
+    let mut solid = Solid::default();
+    let mut notes = Vec::new();
+    if let Some(density) = material.density {
+        require(material.mass.is_none(), "material.mass", "(set)", "give either mass or density, not both")?;
+        let density = positive(density, "material.density")?;
+        let block = density * (nx - 1) as f64 * (ny - 1) as f64 * spacing * spacing * depth;
+        solid.mass = Some(block / (nx * ny) as f64);
+        notes.push(format!(
+            "m = ρ L_x L_y d / (N_x N_y) with ρ = {density} kg/m³ (the lattice weighs what the block weighs)"
+        ));
+    }
+    if let Some(modulus) = material.youngs_modulus {
+        require(material.k.is_none(), "material.k", "(set)", "give either k or youngs_modulus, not both")?;
+        require(lattice.k_diag.is_none(), "lattice.k_diag", "(set)", "with youngs_modulus give k_diag_ratio instead")?;
+        let modulus = positive(modulus, "material.youngs_modulus")?;
+        let r = match lattice.diagonals {
+            Some(Diagonals::None) => 0.0,
+            _ => lattice.k_diag_ratio.unwrap_or(DEFAULT_K_DIAG_RATIO),
+        };
+        solid.k = Some(modulus * depth / (1.0 + r - r * r / (1.0 + r)));
+        notes.push(format!("k = E d / (1 + r − r²/(1 + r)) with E = {modulus} Pa, r = k_d/k = {r} (the lattice's continuum E is the solid's)"));
+    }
+    solid.note = Some(notes.join("; "));
+    Ok(solid)
 }
 
 fn missing(path: &str, allowed: &str) -> Issue {
@@ -302,6 +357,7 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
         load_per_node,
         kinetic_ratio,
         residual_force: relax.residual_force,
+        derived_from: None,
     }))
 }
 

@@ -87,6 +87,8 @@ pub struct LatticeSpec {
     pub kinetic_ratio: f64,
     /// ... or when the largest net force stays below this fraction of the load per node.
     pub residual_force: Option<f64>,
+    /// How mass and stiffness were derived from a solid, when they were.
+    pub derived_from: Option<String>,
 }
 
 impl RunSpec {
