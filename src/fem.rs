@@ -13,7 +13,7 @@ use faer::prelude::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, Side};
 
-use crate::model::Bonds;
+use crate::model::{Bonds, ForceLaw, Linear};
 use crate::sim::Load;
 
 /// What the static solver found.
@@ -57,12 +57,72 @@ const MECHANISM_RESIDUAL: f64 = 1e-6;
 /// semi-definite K (zero-energy motions the load does not drive).
 const REGULARISATION: f64 = 1e-12;
 
+/// Out-of-balance force below this fraction of the load ends the Newton–Raphson iteration ...
+const NEWTON_TOLERANCE: f64 = 1e-10;
+/// ... and so does a correction below this fraction of the displacement: the residual has then
+/// reached round-off (k · ε · r per spring), which for stiff springs and small loads can sit
+/// above the force tolerance.
+const NEWTON_STEP_TOLERANCE: f64 = 1e-9;
+/// Newton–Raphson gives up after this many iterations (it converges quadratically: a handful).
+const NEWTON_ITERATIONS: usize = 50;
+
+/// Numbering of the free degrees of freedom: dof 2i is x of node i, 2i + 1 its y;
+/// `index[dof]` is its row in the reduced system, `usize::MAX` when held.
+struct Dofs {
+    index: Vec<usize>,
+    free: usize,
+}
+
 impl Truss<'_> {
-    /// Solves K u = f by sparse Cholesky and checks the answer against the equations.
+    /// Solves the linear problem K u = f (springs at their rest geometry) by sparse Cholesky
+    /// and checks the answer against the equations.
     pub fn solve_linear(&self) -> StaticSolution {
-        let n = self.x.len();
-        // Free degrees of freedom: dof 2i is x of node i, 2i + 1 its y.
-        let mut index = vec![usize::MAX; 2 * n];
+        let dofs = self.dofs();
+        let zero = vec![0.0; self.x.len()];
+        let (entries, force) = self.tangent_and_residual(&Linear, &zero, &zero, &dofs);
+        let solution = factor_and_solve(dofs.free, &entries, &force);
+        let residual = solution.as_ref().map_or(f64::INFINITY, |u| relative_residual(&entries, u, &force));
+        match solution {
+            Some(u) if residual <= MECHANISM_RESIDUAL => {
+                let (ux, uy) = self.expand(&dofs, &u);
+                StaticSolution::Displacements { ux, uy }
+            }
+            _ => StaticSolution::Mechanism { residual },
+        }
+    }
+
+    /// Solves the full non-linear problem (large rotations, any force law) by Newton–Raphson
+    /// from the linear answer: R(u) = f + Σ spring forces at x + u, K_t Δu = R, until
+    /// ‖R‖ ≤ 1e-10 ‖f‖ or ‖Δu‖ ≤ 1e-9 ‖u‖. The tangent of a spring with tension s along n̂ at length r is
+    /// s′(δ) n̂ n̂ᵀ + (s/r)(I − n̂ n̂ᵀ). A mechanism of the linear problem is reported as one;
+    /// an iteration that does not converge returns `None`.
+    pub fn solve_nonlinear<L: ForceLaw>(&self, law: &L) -> Option<StaticSolution> {
+        let dofs = self.dofs();
+        let (mut ux, mut uy) = match self.solve_linear() {
+            StaticSolution::Displacements { ux, uy } => (ux, uy),
+            mechanism => return Some(mechanism),
+        };
+        let load_norm = norm(&self.load_vector(&dofs));
+        for _ in 0..NEWTON_ITERATIONS {
+            let (entries, residual) = self.tangent_and_residual(law, &ux, &uy, &dofs);
+            if norm(&residual) <= NEWTON_TOLERANCE * load_norm {
+                return Some(StaticSolution::Displacements { ux, uy });
+            }
+            let step = factor_and_solve(dofs.free, &entries, &residual)?;
+            let (dx, dy) = self.expand(&dofs, &step);
+            for i in 0..ux.len() {
+                ux[i] += dx[i];
+                uy[i] += dy[i];
+            }
+            if norm(&step) <= NEWTON_STEP_TOLERANCE * (norm(&ux) + norm(&uy)) {
+                return Some(StaticSolution::Displacements { ux, uy });
+            }
+        }
+        None
+    }
+
+    fn dofs(&self) -> Dofs {
+        let mut index = vec![usize::MAX; 2 * self.x.len()];
         let mut free = 0;
         for (dof, slot) in index.iter_mut().enumerate() {
             let held = if dof % 2 == 0 { self.held_x } else { self.held_y };
@@ -71,52 +131,75 @@ impl Truss<'_> {
                 free += 1;
             }
         }
-        let entries = self.stiffness(&index);
-        let mut force = vec![0.0; free];
-        for load in self.loads {
-            for (dof, value) in [(2 * load.particle, load.fx), (2 * load.particle + 1, load.fy)] {
-                if index[dof] != usize::MAX {
-                    force[index[dof]] += value;
-                }
-            }
-        }
-        let solution = factor_and_solve(free, &entries, &force);
-        let residual = solution.as_ref().map_or(f64::INFINITY, |u| relative_residual(&entries, u, &force));
-        match solution {
-            Some(u) if residual <= MECHANISM_RESIDUAL => {
-                let at = |dof: usize| if index[dof] == usize::MAX { 0.0 } else { u[index[dof]] };
-                StaticSolution::Displacements {
-                    ux: (0..n).map(|i| at(2 * i)).collect(),
-                    uy: (0..n).map(|i| at(2 * i + 1)).collect(),
-                }
-            }
-            _ => StaticSolution::Mechanism { residual },
-        }
+        Dofs { index, free }
     }
 
-    /// The entries (row, column, value) of K over the free degrees of freedom.
-    fn stiffness(&self, index: &[usize]) -> Vec<(usize, usize, f64)> {
+    /// The loads on the free degrees of freedom.
+    fn load_vector(&self, dofs: &Dofs) -> Vec<f64> {
+        let mut force = vec![0.0; dofs.free];
+        for load in self.loads {
+            for (dof, value) in [(2 * load.particle, load.fx), (2 * load.particle + 1, load.fy)] {
+                if dofs.index[dof] != usize::MAX {
+                    force[dofs.index[dof]] += value;
+                }
+            }
+        }
+        force
+    }
+
+    /// Node displacements from the free ones (held ones are zero).
+    fn expand(&self, dofs: &Dofs, u: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let at = |dof: usize| if dofs.index[dof] == usize::MAX { 0.0 } else { u[dofs.index[dof]] };
+        ((0..self.x.len()).map(|i| at(2 * i)).collect(), (0..self.x.len()).map(|i| at(2 * i + 1)).collect())
+    }
+
+    /// The tangent stiffness entries (row, column, value) over the free degrees of freedom and
+    /// the out-of-balance force R = loads + spring forces, at displacements `(ux, uy)`.
+    fn tangent_and_residual<L: ForceLaw>(
+        &self,
+        law: &L,
+        ux: &[f64],
+        uy: &[f64],
+        dofs: &Dofs,
+    ) -> (Vec<(usize, usize, f64)>, Vec<f64>) {
         let mut entries = Vec::with_capacity(16 * self.bonds.len());
+        let mut residual = self.load_vector(dofs);
         for b in 0..self.bonds.len() {
-            let (i, j, k) = (self.bonds.i[b], self.bonds.j[b], self.bonds.stiffness[b]);
-            let (dx, dy) = (self.x[i] - self.x[j] + self.bonds.shift_x[b], self.y[i] - self.y[j]);
+            let (i, j, k, rest) = (self.bonds.i[b], self.bonds.j[b], self.bonds.stiffness[b], self.bonds.rest[b]);
+            let dx = self.x[i] + ux[i] - self.x[j] - ux[j] + self.bonds.shift_x[b];
+            let dy = self.y[i] + uy[i] - self.y[j] - uy[j];
             let r = (dx * dx + dy * dy).sqrt();
             let n = [dx / r, dy / r];
+            let (tension, tangent) = (law.elastic_force(k, r - rest), law.tangent_stiffness(k, r - rest));
+            // Block A = s′ n̂ n̂ᵀ + (s/r)(I − n̂ n̂ᵀ); the force on i is −s n̂, on j +s n̂.
+            let block = |p: usize, q: usize| {
+                let identity = if p == q { 1.0 } else { 0.0 };
+                tangent * n[p] * n[q] + tension / r * (identity - n[p] * n[q])
+            };
             for (a, sign_a) in [(i, 1.0), (j, -1.0)] {
-                for (c, sign_c) in [(i, 1.0), (j, -1.0)] {
-                    for p in 0..2 {
+                for (p, n_p) in n.iter().enumerate() {
+                    let row = dofs.index[2 * a + p];
+                    if row == usize::MAX {
+                        continue;
+                    }
+                    residual[row] -= sign_a * tension * n_p;
+                    for (c, sign_c) in [(i, 1.0), (j, -1.0)] {
                         for q in 0..2 {
-                            let (row, column) = (index[2 * a + p], index[2 * c + q]);
-                            if row != usize::MAX && column != usize::MAX {
-                                entries.push((row, column, sign_a * sign_c * k * n[p] * n[q]));
+                            let column = dofs.index[2 * c + q];
+                            if column != usize::MAX {
+                                entries.push((row, column, sign_a * sign_c * block(p, q)));
                             }
                         }
                     }
                 }
             }
         }
-        entries
+        (entries, residual)
     }
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
 /// Factors K + εI (ε = 1e-12 of the largest diagonal entry) and solves for `force`; `None`
@@ -150,7 +233,6 @@ fn relative_residual(entries: &[(usize, usize, f64)], u: &[f64], force: &[f64]) 
     for &(row, column, value) in entries {
         r[row] += value * u[column];
     }
-    let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
     norm(&r) / norm(force).max(f64::MIN_POSITIVE)
 }
 
@@ -205,6 +287,43 @@ mod tests {
                 // 1e-11: the 1e-12 regularisation shifts the answer by ~1e-12 relative.
                 assert!((uy[2] - u).abs() < 1e-11 && (uy[3] - u).abs() < 1e-11, "{uy:?} against {u}");
                 assert!((ux[2] - a).abs() < 1e-11 && (ux[3] + a).abs() < 1e-11, "{ux:?} against ±{a}");
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    /// A pre-stretched string of two springs (rest 0.9, length 1 each) between held ends,
+    /// pushed sideways at the middle by F: it stiffens as it deflects. Exact: 2 s(r) v/r = F
+    /// with r = √(1 + v²), s = k (r − 0.9). The linear answer (transverse stiffness 2 s₀/1 =
+    /// 0.2) overshoots by ~20 %; Newton–Raphson must find the exact v.
+    #[test]
+    fn newton_raphson_follows_geometric_stiffening() {
+        let (k, force) = (1.0, 0.05);
+        let mut bonds = Bonds::default();
+        bonds.push(0, 1, 0.9, k);
+        bonds.push(1, 2, 0.9, k);
+        let (x, y) = ([0.0, 1.0, 2.0], [0.0, 0.0, 0.0]);
+        let loads = [Load { particle: 1, fx: 0.0, fy: force }];
+        let truss = Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0, 1, 2], held_y: &[0, 2], loads: &loads };
+        let out_of_balance = |v: f64| {
+            let r = (1.0 + v * v).sqrt();
+            2.0 * k * (r - 0.9) * v / r - force
+        };
+        let (mut lo, mut hi) = (0.0, 1.0);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if out_of_balance(mid) > 0.0 { hi = mid } else { lo = mid }
+        }
+        let exact = 0.5 * (lo + hi);
+        let linear = match truss.solve_linear() {
+            StaticSolution::Displacements { uy, .. } => uy[1],
+            other => panic!("{other:?}"),
+        };
+        assert!((linear - force / 0.2).abs() < 1e-9 && (linear - exact).abs() > 0.01, "linear {linear}, exact {exact}");
+        match truss.solve_nonlinear(&Linear) {
+            // Converged to ‖R‖ ≤ 1e-10 ‖f‖; the tangent ≈ 0.4 turns that into ~1e-11 in v.
+            Some(StaticSolution::Displacements { uy, .. }) => {
+                assert!((uy[1] - exact).abs() < 1e-9, "{} against {exact}", uy[1])
             }
             other => panic!("{other:?}"),
         }

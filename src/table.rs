@@ -121,6 +121,7 @@ fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
         m("shear_modulus", |m| m.shear_modulus),
         m("shear_modulus_fem", |m| m.shear_modulus_fem),
         m("shear_modulus_theory", |m| m.shear_modulus_theory),
+        m("static_nonlinearity", |m| m.static_nonlinearity),
         m("homogeneity", |m| m.homogeneity),
         m("dissipation_time", |m| m.dissipation_time),
         Column::new(

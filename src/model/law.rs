@@ -15,6 +15,8 @@ pub trait ForceLaw: Copy + Send + Sync + 'static {
     fn elastic_force(&self, k: f64, delta: f64) -> f64;
     /// Stored energy e(δ) (J), zero at δ = 0.
     fn energy(&self, k: f64, delta: f64) -> f64;
+    /// Tangent stiffness ds/dδ (N/m), for static solvers and stability estimates.
+    fn tangent_stiffness(&self, k: f64, delta: f64) -> f64;
 }
 
 /// Linear spring s = k δ, e = k δ²/2.
@@ -23,6 +25,7 @@ pub trait ForceLaw: Copy + Send + Sync + 'static {
 /// use mdsolids::model::{ForceLaw, Linear};
 /// assert_eq!(Linear.elastic_force(2.0, 0.5), 1.0);
 /// assert_eq!(Linear.energy(2.0, 0.5), 0.25);
+/// assert_eq!(Linear.tangent_stiffness(2.0, 0.5), 2.0);
 /// ```
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Linear;
@@ -36,6 +39,9 @@ impl ForceLaw for Linear {
     fn energy(&self, k: f64, delta: f64) -> f64 {
         0.5 * k * delta * delta
     }
+    fn tangent_stiffness(&self, k: f64, _delta: f64) -> f64 {
+        k
+    }
 }
 
 /// Power-law spring s = C |δ|^β sign δ, e = C |δ|^(β+1)/(β+1); Hertz is β = 3/2.
@@ -45,6 +51,7 @@ impl ForceLaw for Linear {
 /// let hertz = PowerLaw { beta: 1.5 };
 /// assert!((hertz.elastic_force(1.0, -0.04) + 0.008).abs() < 1e-15); // −0.04^1.5
 /// assert!((hertz.energy(1.0, 0.04) - 0.04f64.powf(2.5) / 2.5).abs() < 1e-15);
+/// assert!((hertz.tangent_stiffness(1.0, -0.04) - 1.5 * 0.2).abs() < 1e-15); // 1.5 · 0.04^0.5
 /// ```
 #[derive(Clone, Copy, Debug)]
 pub struct PowerLaw {
@@ -60,6 +67,10 @@ impl ForceLaw for PowerLaw {
     #[inline(always)]
     fn energy(&self, k: f64, delta: f64) -> f64 {
         k * delta.abs().powf(self.beta + 1.0) / (self.beta + 1.0)
+    }
+    /// β C |δ|^(β−1): zero at δ = 0 for β > 1 (an unloaded Hertz contact has no stiffness).
+    fn tangent_stiffness(&self, k: f64, delta: f64) -> f64 {
+        self.beta * k * delta.abs().powf(self.beta - 1.0)
     }
 }
 

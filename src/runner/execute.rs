@@ -68,14 +68,28 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
     let scene = build_scene(spec);
     let mut metrics = Metrics::default();
     if let Some(lattice) = &spec.lattice {
-        match static_solution(spec, lattice, &scene) {
+        let (linear, nonlinear) = static_solutions(spec, lattice, &scene);
+        let (ux, uy) = match linear {
             StaticSolution::Mechanism { residual } => return Finished::Mechanism { residual },
-            StaticSolution::Displacements { ux, uy } => {
-                let fem = lattice_moduli(spec, lattice, &ux, &uy);
-                metrics.youngs_modulus_fem = fem.youngs_modulus;
-                metrics.poisson_ratio_fem = fem.poisson_ratio;
-                metrics.shear_modulus_fem = fem.shear_modulus;
-            }
+            StaticSolution::Displacements { ux, uy } => (ux, uy),
+        };
+        let linear = lattice_moduli(spec, lattice, &ux, &uy);
+        if let Some(StaticSolution::Displacements { ux, uy }) = nonlinear {
+            let fem = lattice_moduli(spec, lattice, &ux, &uy);
+            // Relative for E and G; absolute for ν, which can be 0 (no diagonals).
+            let relative = |a: Option<f64>, b: Option<f64>| crate::table::relative_error(a, b).map(f64::abs);
+            let absolute = fem.poisson_ratio.zip(linear.poisson_ratio).map(|(a, b)| (a - b).abs());
+            metrics.static_nonlinearity = [
+                relative(fem.youngs_modulus, linear.youngs_modulus),
+                relative(fem.shear_modulus, linear.shear_modulus),
+                absolute,
+            ]
+            .into_iter()
+            .flatten()
+            .reduce(f64::max);
+            metrics.youngs_modulus_fem = fem.youngs_modulus;
+            metrics.poisson_ratio_fem = fem.poisson_ratio;
+            metrics.shear_modulus_fem = fem.shear_modulus;
         }
     }
     let start = (scene.particles.x.clone(), scene.particles.y.clone());
@@ -84,11 +98,14 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
     Finished::Simulated(Box::new((outcome, metrics)))
 }
 
-/// The static answer of the lattice scene's network, supports and loads.
-fn static_solution(spec: &RunSpec, lattice: &LatticeSpec, scene: &Scene) -> StaticSolution {
+/// The static answers of the lattice scene's network, supports and loads: linear (which also
+/// detects mechanisms) and non-linear (the same physics as MD: the springs' law and large
+/// rotations; `None` if Newton–Raphson did not converge).
+fn static_solutions(spec: &RunSpec, lattice: &LatticeSpec, scene: &Scene) -> (StaticSolution, Option<StaticSolution>) {
     let bonds = lattice_springs(spec, lattice).bonds();
     let p = &scene.particles;
-    Truss { x: &p.x, y: &p.y, bonds: &bonds, held_x: &p.held_x, held_y: &p.held_y, loads: &scene.loads }.solve_linear()
+    let truss = Truss { x: &p.x, y: &p.y, bonds: &bonds, held_x: &p.held_x, held_y: &p.held_y, loads: &scene.loads };
+    (truss.solve_linear(), truss.solve_nonlinear(&crate::model::Linear))
 }
 
 /// The moduli a lattice's load case measures; the others stay `None`.

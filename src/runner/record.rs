@@ -36,7 +36,10 @@ pub struct Metrics {
     pub dissipation_time: Option<f64>,
     /// Lattice: the relaxation criterion, in words.
     pub dissipation_criterion: Option<String>,
-    /// Lattice: E of the static (linear truss) solution of the same network (Pa).
+    /// Lattice: largest difference between the non-linear and the linear static answers,
+    /// relative for E and G, absolute for ν (how far the load is from the linear regime).
+    pub static_nonlinearity: Option<f64>,
+    /// Lattice: E of the static solution of the same network, solved non-linearly like MD (Pa).
     pub youngs_modulus_fem: Option<f64>,
     /// Lattice: ν of the static solution.
     pub poisson_ratio_fem: Option<f64>,
