@@ -39,6 +39,7 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
         },
         contact_clock,
         loads,
+        load_ramp: spec.lattice.as_ref().map_or(0.0, |l| l.load_ramp_tc * spec.t_c),
     }
 }
 

@@ -150,6 +150,7 @@ fn check<L: ForceLaw, D: Dashpot, const C: bool>(
         sampling: sampling(),
         contact_clock: None,
         loads: Vec::new(),
+        load_ramp: 0.0,
     };
     // Two threads, so that systems of 10⁴ particles and more take the threaded path.
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();

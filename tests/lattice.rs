@@ -179,3 +179,17 @@ fn mass_and_stiffness_derived_from_the_solid() {
     let error = mdsolids::spec::parse("both.yaml", &both).unwrap_err().to_string();
     assert!(error.contains("material.mass") && error.contains("either mass or density"), "{error}");
 }
+
+#[test]
+fn ramped_load_relaxes_after_the_ramp_with_its_work_accounted() {
+    // The load rises linearly over 200 t_c: relaxation may only be declared after that, the
+    // moduli are those of the full load, and the energy balance E_kin + E_pot + E_dissipated =
+    // W_loads holds with the work summed over the ramp (measured 1e-8: the slow ramp hardly
+    // excites the lattice; a wrong work would be off by up to the whole stored energy).
+    let yaml = campaign("{size: 6}", "    load: {per_node: 1.0, ramp_tc: 200}\n", "      damping.restitution: [0.5]\n");
+    let r = &execute_all(&yaml)[0];
+    assert_eq!(r.status, "ok", "{}", r.message);
+    assert!(r.metrics.dissipation_time.unwrap() >= 200.0 * r.spec.t_c, "relaxed during the ramp");
+    assert!(relative(r.metrics.youngs_modulus, r.metrics.youngs_modulus_fem) < 5e-3);
+    assert!(r.metrics.energy_error.unwrap() < 2e-3, "energy balance off by {:?}", r.metrics.energy_error);
+}

@@ -44,12 +44,12 @@ pub trait Integrator {
     fn step<F: ForceField>(&mut self, state: &mut State, field: &mut F, dt: f64);
 }
 
-/// Adds the loads to `(fx, fy)` and zeroes every held axis, so held particles keep their
-/// velocity there.
-fn load_and_hold(state: &State, fx: &mut [f64], fy: &mut [f64]) {
+/// Adds the loads times `factor` to `(fx, fy)` and zeroes every held axis, so held particles
+/// keep their velocity there.
+fn load_and_hold(state: &State, factor: f64, fx: &mut [f64], fy: &mut [f64]) {
     for load in &state.loads {
-        fx[load.particle] += load.fx;
-        fy[load.particle] += load.fy;
+        fx[load.particle] += factor * load.fx;
+        fy[load.particle] += factor * load.fy;
     }
     for &i in &state.particles.held_x {
         fx[i] = 0.0;
@@ -75,18 +75,26 @@ pub fn static_forces<F: ForceField>(
         buffer.resize(p.len(), 0.0);
     }
     field.add_forces(&p.x, &p.y, zeros, zeros, fx, fy);
-    load_and_hold(state, fx, fy);
+    load_and_hold(state, state.load_factor(state.time), fx, fy);
 }
 
-/// Evaluates the forces (which must be zero on entry) at the current positions with
-/// velocities `(vx, vy)`, adds the loads, holds the constrained axes, and adds the step's
-/// dissipated energy by the trapezoidal rule.
-fn add_forces<F: ForceField>(state: &mut State, field: &mut F, velocities: Option<(&[f64], &[f64])>, dt: f64) {
+/// Evaluates the forces (which must be zero on entry) at the current positions, which belong to
+/// `time`, with velocities `(vx, vy)`; adds the loads, holds the constrained axes, and adds the
+/// step's dissipated energy and the loads' work by the trapezoidal rule.
+fn add_forces<F: ForceField>(
+    state: &mut State,
+    field: &mut F,
+    velocities: Option<(&[f64], &[f64])>,
+    dt: f64,
+    time: f64,
+) {
+    let factor = state.load_factor(time);
+    state.account_load_work(factor);
     let p = &state.particles;
     let (vx, vy) = velocities.unwrap_or((&p.vx, &p.vy));
     let (mut fx, mut fy) = (std::mem::take(&mut state.fx), std::mem::take(&mut state.fy));
     let power = field.add_forces(&p.x, &p.y, vx, vy, &mut fx, &mut fy);
-    load_and_hold(state, &mut fx, &mut fy);
+    load_and_hold(state, factor, &mut fx, &mut fy);
     (state.fx, state.fy) = (fx, fy);
     state.dissipated += 0.5 * dt * (state.dissipation_power + power);
     state.dissipation_power = power;
@@ -206,7 +214,7 @@ impl Integrator for VelocityVerlet {
         self.uniform_inverse_mass = state.particles.uniform_inverse_mass();
         state.fx.fill(0.0);
         state.fy.fill(0.0);
-        add_forces(state, field, None, dt);
+        add_forces(state, field, None, dt, 0.0);
         state.dissipated = 0.0;
     }
 
@@ -214,7 +222,7 @@ impl Integrator for VelocityVerlet {
         with_inverse_mass!(state, self.uniform_inverse_mass, |im| {
             let velocities = self.prediction.update(state, field, im, dt);
             kick_drift_clear(state, im, dt);
-            add_forces(state, field, velocities, dt);
+            add_forces(state, field, velocities, dt, (state.steps + 1) as f64 * dt);
             kick(state, im, dt);
         });
         state.steps += 1;
@@ -274,7 +282,7 @@ impl Integrator for PositionVerlet {
         self.uniform_inverse_mass = state.particles.uniform_inverse_mass();
         state.fx.fill(0.0);
         state.fy.fill(0.0);
-        add_forces(state, field, None, dt);
+        add_forces(state, field, None, dt, 0.0);
         state.dissipated = 0.0;
         let p = &state.particles;
         // Taylor start: x_1 = x_0 + v_0 dt + a_0 dt²/2.
@@ -298,7 +306,7 @@ impl Integrator for PositionVerlet {
             std::mem::swap(&mut p.y, &mut self.y_next);
             state.fx.fill(0.0);
             state.fy.fill(0.0);
-            add_forces(state, field, velocities, dt);
+            add_forces(state, field, velocities, dt, (state.steps + 1) as f64 * dt);
             self.advance(state, im, dt);
         });
         state.steps += 1;

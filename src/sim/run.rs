@@ -208,7 +208,8 @@ impl RelaxationWatch {
 
     /// True once a criterion holds; checks only every `check_every` steps.
     fn relaxed<F: ForceField>(&mut self, step: u64, state: &State, field: &mut F) -> bool {
-        if !step.is_multiple_of(self.rule.check_every.max(1)) {
+        // Nothing is at rest before the loads are fully on.
+        if !step.is_multiple_of(self.rule.check_every.max(1)) || state.time < state.load_ramp {
             return false;
         }
         let p = &state.particles;

@@ -54,8 +54,10 @@ pub struct Scene {
     pub sampling: Sampling,
     /// Bond `(i, j, rest)` whose δ = 0 crossings are timed, if any.
     pub contact_clock: Option<(usize, usize, f64)>,
-    /// Constant external forces.
+    /// External forces.
     pub loads: Vec<Load>,
+    /// Time (s) over which the loads rise linearly to their full value; 0 for at once.
+    pub load_ramp: f64,
 }
 
 /// What a run produced.
@@ -104,7 +106,7 @@ impl Scene {
     }
 
     fn integrate<F: ForceField>(self, mut field: F) -> Outcome {
-        let mut state = State::with_loads(self.particles, self.loads);
+        let mut state = State::with_loads(self.particles, self.loads, self.load_ramp);
         let mut clock = self.contact_clock.map(|(i, j, rest)| ContactClock::new(i, j, rest));
         let trace = match self.integrator {
             IntegratorKind::PositionVerlet => {

@@ -31,27 +31,48 @@ pub struct State {
     pub dissipated: f64,
     /// Dissipated power (W) at the current time, for the trapezoidal sum of `dissipated`.
     pub dissipation_power: f64,
-    /// Constant external forces, added after every force evaluation.
+    /// External forces, added after every force evaluation (times the load factor).
     pub loads: Vec<Load>,
-    /// Start positions (x, y) of the loaded particles, for the work of the loads.
-    load_origins: Vec<(f64, f64)>,
+    /// Time (s) over which the loads rise linearly from zero to their full value; 0 applies
+    /// them at once.
+    pub load_ramp: f64,
+    /// Work done by the loads so far (J), summed at every force evaluation.
+    work_done: f64,
+    /// Positions of the loaded particles and the load factor at the last force evaluation.
+    load_last: Vec<(f64, f64)>,
+    load_factor_last: f64,
 }
 
 impl State {
-    /// A state at t = 0 with zero forces and the given loads.
-    pub fn with_loads(particles: Particles, loads: Vec<Load>) -> State {
-        let load_origins = loads.iter().map(|l| (particles.x[l.particle], particles.y[l.particle])).collect();
-        State { loads, load_origins, ..State::new(particles) }
+    /// A state at t = 0 with zero forces and the given loads, ramped up over `load_ramp` (s).
+    pub fn with_loads(particles: Particles, loads: Vec<Load>, load_ramp: f64) -> State {
+        let load_last = loads.iter().map(|l| (particles.x[l.particle], particles.y[l.particle])).collect();
+        let load_factor_last = if load_ramp > 0.0 { 0.0 } else { 1.0 };
+        State { loads, load_ramp, load_last, load_factor_last, ..State::new(particles) }
     }
 
-    /// Work done by the loads since t = 0, Σ F · (x − x₀) (J).
+    /// The fraction of the loads applied at `time`: t / ramp during the ramp, then 1.
+    pub fn load_factor(&self, time: f64) -> f64 {
+        if self.load_ramp > 0.0 { (time / self.load_ramp).min(1.0) } else { 1.0 }
+    }
+
+    /// Work done by the loads since t = 0 (J).
     pub fn load_work(&self) -> f64 {
+        self.work_done
+    }
+
+    /// Adds the loads' work since the last force evaluation, by the trapezoidal rule in the
+    /// load factor: ½ (λ_prev + λ) Σ F · (x − x_prev) (exact for constant loads).
+    pub fn account_load_work(&mut self, factor: f64) {
         let p = &self.particles;
-        self.loads
-            .iter()
-            .zip(&self.load_origins)
-            .map(|(l, (x0, y0))| l.fx * (p.x[l.particle] - x0) + l.fy * (p.y[l.particle] - y0))
-            .sum()
+        let mut work = 0.0;
+        for (l, last) in self.loads.iter().zip(self.load_last.iter_mut()) {
+            let now = (p.x[l.particle], p.y[l.particle]);
+            work += l.fx * (now.0 - last.0) + l.fy * (now.1 - last.1);
+            *last = now;
+        }
+        self.work_done += 0.5 * (self.load_factor_last + factor) * work;
+        self.load_factor_last = factor;
     }
 
     /// A state at t = 0 with zero forces.
@@ -66,7 +87,10 @@ impl State {
             dissipated: 0.0,
             dissipation_power: 0.0,
             loads: Vec::new(),
-            load_origins: Vec::new(),
+            load_ramp: 0.0,
+            work_done: 0.0,
+            load_last: Vec::new(),
+            load_factor_last: 1.0,
         }
     }
 }

@@ -198,6 +198,8 @@ pub struct RawLoad {
     pub case: Option<LoadCase>,
     /// Force on every top-row node (N), default 1000.
     pub per_node: Option<f64>,
+    /// Time over which the load rises linearly to its full value, in t_c (default 0: at once).
+    pub ramp_tc: Option<f64>,
 }
 
 /// `relax:` section.

@@ -336,6 +336,8 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
     )?;
     let load = raw.load.clone().unwrap_or_default();
     let load_per_node = positive(load.per_node.unwrap_or(DEFAULT_LOAD_PER_NODE), "load.per_node")?;
+    let load_ramp_tc = load.ramp_tc.unwrap_or(0.0);
+    require(load_ramp_tc.is_finite() && load_ramp_tc >= 0.0, "load.ramp_tc", load_ramp_tc, "must be ≥ 0 (t_c)")?;
     let relax = raw.relax.clone().unwrap_or_default();
     let kinetic_ratio = relax.kinetic_ratio.unwrap_or(DEFAULT_KINETIC_RATIO);
     require(kinetic_ratio > 0.0 && kinetic_ratio < 1.0, "relax.kinetic_ratio", kinetic_ratio, "must be in (0, 1)")?;
@@ -355,6 +357,7 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
         supports,
         load_case: load.case.unwrap_or(LoadCase::Tensile),
         load_per_node,
+        load_ramp_tc,
         kinetic_ratio,
         residual_force: relax.residual_force,
         derived_from: None,

@@ -83,6 +83,8 @@ pub struct LatticeSpec {
     pub load_case: LoadCase,
     /// Force on each top-row node (N).
     pub load_per_node: f64,
+    /// Time over which the load rises linearly to its full value, in t_c (0: at once).
+    pub load_ramp_tc: f64,
     /// Relaxation stops when E_kin/E_pot stays below this.
     pub kinetic_ratio: f64,
     /// ... or when the largest net force stays below this fraction of the load per node.
