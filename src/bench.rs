@@ -90,6 +90,7 @@ pub fn reference_scene(config: &BenchConfig) -> Scene {
         contact_clock: None,
         loads: Vec::new(),
         load_ramp: 0.0,
+        drive: None,
     }
 }
 

@@ -49,6 +49,8 @@ pub struct Truss<'a> {
     pub held_y: &'a [usize],
     /// External forces.
     pub loads: &'a [Load],
+    /// Displacements (m) imposed on held axes, as (node, ux, uy); other held axes stay at 0.
+    pub prescribed: &'a [(usize, f64, f64)],
 }
 
 /// Residuals above this fraction of the load mean the equations have no solution.
@@ -78,17 +80,58 @@ impl Truss<'_> {
     /// and checks the answer against the equations.
     pub fn solve_linear(&self) -> StaticSolution {
         let dofs = self.dofs();
-        let zero = vec![0.0; self.x.len()];
-        let (entries, force) = self.tangent_and_residual(&Linear, &zero, &zero, &dofs);
+        let (mut ux, mut uy) = self.imposed();
+        let (entries, force) = self.tangent_and_residual(&Linear, &ux, &uy, &dofs);
         let solution = factor_and_solve(dofs.free, &entries, &force);
         let residual = solution.as_ref().map_or(f64::INFINITY, |u| relative_residual(&entries, u, &force));
         match solution {
             Some(u) if residual <= MECHANISM_RESIDUAL => {
-                let (ux, uy) = self.expand(&dofs, &u);
+                let (dx, dy) = self.expand(&dofs, &u);
+                for i in 0..ux.len() {
+                    ux[i] += dx[i];
+                    uy[i] += dy[i];
+                }
                 StaticSolution::Displacements { ux, uy }
             }
             _ => StaticSolution::Mechanism { residual },
         }
+    }
+
+    /// The imposed displacements: zero everywhere but on the prescribed held axes.
+    fn imposed(&self) -> (Vec<f64>, Vec<f64>) {
+        let (mut ux, mut uy) = (vec![0.0; self.x.len()], vec![0.0; self.x.len()]);
+        for &(node, dx, dy) in self.prescribed {
+            ux[node] = dx;
+            uy[node] = dy;
+        }
+        (ux, uy)
+    }
+
+    /// The force (N, x and y) the supports apply to `nodes` to hold them at displacements
+    /// `(ux, uy)`: minus the sum of the spring forces on them.
+    pub fn reaction<L: ForceLaw>(&self, law: &L, ux: &[f64], uy: &[f64], nodes: &[usize]) -> (f64, f64) {
+        let mut total = (0.0, 0.0);
+        for b in 0..self.bonds.len() {
+            let (i, j) = (self.bonds.i[b], self.bonds.j[b]);
+            let (n, _, tension, _) = self.bond_state(law, b, ux, uy);
+            // Spring force on i is −s n̂, on j +s n̂; the support supplies the opposite.
+            for (node, sign) in [(i, -1.0), (j, 1.0)] {
+                if nodes.contains(&node) {
+                    total.0 -= sign * tension * n[0];
+                    total.1 -= sign * tension * n[1];
+                }
+            }
+        }
+        total
+    }
+
+    /// Unit vector n̂ from j to i, length r, tension s and tangent s′ of bond `b` at `(ux, uy)`.
+    fn bond_state<L: ForceLaw>(&self, law: &L, b: usize, ux: &[f64], uy: &[f64]) -> ([f64; 2], f64, f64, f64) {
+        let (i, j, k, rest) = (self.bonds.i[b], self.bonds.j[b], self.bonds.stiffness[b], self.bonds.rest[b]);
+        let dx = self.x[i] + ux[i] - self.x[j] - ux[j] + self.bonds.shift_x[b];
+        let dy = self.y[i] + uy[i] - self.y[j] - uy[j];
+        let r = (dx * dx + dy * dy).sqrt();
+        ([dx / r, dy / r], r, law.elastic_force(k, r - rest), law.tangent_stiffness(k, r - rest))
     }
 
     /// Solves the full non-linear problem (large rotations, any force law) by Newton–Raphson
@@ -165,12 +208,8 @@ impl Truss<'_> {
         let mut entries = Vec::with_capacity(16 * self.bonds.len());
         let mut residual = self.load_vector(dofs);
         for b in 0..self.bonds.len() {
-            let (i, j, k, rest) = (self.bonds.i[b], self.bonds.j[b], self.bonds.stiffness[b], self.bonds.rest[b]);
-            let dx = self.x[i] + ux[i] - self.x[j] - ux[j] + self.bonds.shift_x[b];
-            let dy = self.y[i] + uy[i] - self.y[j] - uy[j];
-            let r = (dx * dx + dy * dy).sqrt();
-            let n = [dx / r, dy / r];
-            let (tension, tangent) = (law.elastic_force(k, r - rest), law.tangent_stiffness(k, r - rest));
+            let (i, j) = (self.bonds.i[b], self.bonds.j[b]);
+            let (n, r, tension, tangent) = self.bond_state(law, b, ux, uy);
             // Block A = s′ n̂ n̂ᵀ + (s/r)(I − n̂ n̂ᵀ); the force on i is −s n̂, on j +s n̂.
             let block = |p: usize, q: usize| {
                 let identity = if p == q { 1.0 } else { 0.0 };
@@ -253,7 +292,8 @@ mod tests {
         let y = vec![0.0; 5];
         let held_y: Vec<usize> = (0..5).collect();
         let loads = [Load { particle: 4, fx: 2.0, fy: 0.0 }];
-        let truss = Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0], held_y: &held_y, loads: &loads };
+        let truss =
+            Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0], held_y: &held_y, loads: &loads, prescribed: &[] };
         match truss.solve_linear() {
             // Exact up to the 1e-12 regularisation and round-off.
             StaticSolution::Displacements { ux, .. } => assert!((ux[4] - 4.0 * 2.0 / k).abs() < 1e-9, "{ux:?}"),
@@ -279,7 +319,8 @@ mod tests {
         bonds.push(1, 2, 2f64.sqrt(), kd);
         let (x, y) = ([0.0, 1.0, 0.0, 1.0], [0.0, 0.0, 1.0, 1.0]);
         let loads = [Load { particle: 2, fx: 0.0, fy: force }, Load { particle: 3, fx: 0.0, fy: force }];
-        let truss = Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0, 1], held_y: &[0, 1], loads: &loads };
+        let truss =
+            Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0, 1], held_y: &[0, 1], loads: &loads, prescribed: &[] };
         match truss.solve_linear() {
             StaticSolution::Displacements { ux, uy } => {
                 let u = force / (k + 2.0 * k * kd / (4.0 * k + kd));
@@ -304,7 +345,8 @@ mod tests {
         bonds.push(1, 2, 0.9, k);
         let (x, y) = ([0.0, 1.0, 2.0], [0.0, 0.0, 0.0]);
         let loads = [Load { particle: 1, fx: 0.0, fy: force }];
-        let truss = Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0, 1, 2], held_y: &[0, 2], loads: &loads };
+        let truss =
+            Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0, 1, 2], held_y: &[0, 2], loads: &loads, prescribed: &[] };
         let out_of_balance = |v: f64| {
             let r = (1.0 + v * v).sqrt();
             2.0 * k * (r - 0.9) * v / r - force
@@ -338,7 +380,8 @@ mod tests {
         }
         let (x, y) = ([0.0, 1.0, 0.0, 1.0], [0.0, 0.0, 1.0, 1.0]);
         let loads = [Load { particle: 2, fx: 1.0, fy: 0.0 }];
-        let truss = Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0, 1], held_y: &[0, 1], loads: &loads };
+        let truss =
+            Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0, 1], held_y: &[0, 1], loads: &loads, prescribed: &[] };
         assert!(matches!(truss.solve_linear(), StaticSolution::Mechanism { .. }));
     }
 }

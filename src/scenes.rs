@@ -2,8 +2,8 @@
 //! compared with. Pure: no I/O.
 
 use crate::model::{Axes, Particles, SquareLattice};
-use crate::sim::{LawKind, Load, Network, Relaxation, Sampling, Scene};
-use crate::spec::{LatticeSpec, LawName, LoadCase, RunSpec, SceneKind, Supports};
+use crate::sim::{Drive, LawKind, Load, Network, Relaxation, Sampling, Scene};
+use crate::spec::{Control, LatticeSpec, LawName, LoadCase, RunSpec, SceneKind, Supports};
 use crate::theory;
 
 /// Builds the scene of `spec`.
@@ -13,7 +13,8 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
         (SceneKind::Chain, _) => chain(spec),
         _ => pair(spec),
     };
-    let loads = spec.lattice.as_ref().map(top_row_loads).unwrap_or_default();
+    let loads = spec.lattice.as_ref().filter(|l| l.control == Control::Force).map(top_row_loads).unwrap_or_default();
+    let drive = spec.lattice.as_ref().filter(|l| l.control == Control::Velocity).map(|l| top_row_drive(spec, l));
     Scene {
         particles,
         network: Network::Lattice(lattice),
@@ -40,6 +41,7 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
         contact_clock,
         loads,
         load_ramp: spec.lattice.as_ref().map_or(0.0, |l| l.load_ramp_tc * spec.t_c),
+        drive,
     }
 }
 
@@ -113,7 +115,29 @@ pub fn top_row_loads(l: &LatticeSpec) -> Vec<Load> {
         LoadCase::Tensile => (0.0, l.load_per_node),
         LoadCase::Shear => (l.load_per_node, 0.0),
     };
-    (0..l.nx).map(|ix| Load { particle: (l.ny - 1) * l.nx + ix, fx, fy }).collect()
+    top_row(l).into_iter().map(|particle| Load { particle, fx, fy }).collect()
+}
+
+/// The top-row nodes of a lattice.
+pub fn top_row(l: &LatticeSpec) -> Vec<usize> {
+    ((l.ny - 1) * l.nx..l.ny * l.nx).collect()
+}
+
+/// How far the top row travels under velocity control: strain · L_y (m), up (tensile) or to
+/// the right (shear).
+pub fn drive_travel(spec: &RunSpec, l: &LatticeSpec) -> f64 {
+    l.drive_strain * (l.ny - 1) as f64 * spec.spacing
+}
+
+/// The velocity boundary condition: the top row driven to `drive_travel` in `drive_tc` t_c.
+fn top_row_drive(spec: &RunSpec, l: &LatticeSpec) -> Drive {
+    let stop_time = l.drive_tc * spec.t_c;
+    Drive {
+        particles: top_row(l),
+        along_y: l.load_case == LoadCase::Tensile,
+        velocity: drive_travel(spec, l) / stop_time,
+        stop_time,
+    }
 }
 
 /// An nx × ny lattice at rest on its supports; node (ix, iy) at (ix a, iy a).

@@ -110,6 +110,10 @@ fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
         optional_floats(records, "depth", lattice(|l| l.depth)),
         Column::new("supports".into(), words(|l| l.supports.name())),
         Column::new("load_case".into(), words(|l| l.load_case.name())),
+        Column::new("load_control".into(), words(|l| l.control.name())),
+        optional_floats(records, "drive_strain", |r| {
+            r.spec.lattice.as_ref().filter(|l| l.control == crate::spec::Control::Velocity).map(|l| l.drive_strain)
+        }),
         optional_floats(records, "load_per_node", lattice(|l| l.load_per_node)),
         m("youngs_modulus", |m| m.youngs_modulus),
         m("youngs_modulus_fem", |m| m.youngs_modulus_fem),

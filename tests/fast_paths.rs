@@ -151,6 +151,7 @@ fn check<L: ForceLaw, D: Dashpot, const C: bool>(
         contact_clock: None,
         loads: Vec::new(),
         load_ramp: 0.0,
+        drive: None,
     };
     // Two threads, so that systems of 10⁴ particles and more take the threaded path.
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();

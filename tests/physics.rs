@@ -175,6 +175,7 @@ fn free_pair_conserves_momentum_with_damping() {
             contact_clock: None,
             loads: Vec::new(),
             load_ramp: 0.0,
+            drive: None,
         };
         let (px, py) = scene.run().state.particles.momentum();
         // Pair forces cancel exactly; only round-off remains. Störmer's position form adds

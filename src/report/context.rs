@@ -56,7 +56,7 @@ struct LatticeRow {
     size: String,
     k_ratio: String,
     supports: &'static str,
-    load_case: &'static str,
+    load_case: String,
     modulus: &'static str,
     md: String,
     fem: String,
@@ -176,7 +176,7 @@ fn section(scene: &str, kind: SceneKind, records: &[RunRecord], figures: &[Figur
     let physics = match &s.lattice {
         Some(l) => {
             format!(
-                "{law} along rows and columns, diagonals k_d = {} N/m (k_d/k = {}), m = {} kg, a = {} m, depth d = {} m, {} supports, {} load of {} N per top-row node, {}",
+                "{law} along rows and columns, diagonals k_d = {} N/m (k_d/k = {}), m = {} kg, a = {} m, depth d = {} m, {} supports, {} load {}, {}",
                 number(l.k_diag),
                 number(l.k_diag / s.k),
                 number(s.mass),
@@ -295,7 +295,12 @@ fn lattice_row(r: &RunRecord) -> Option<LatticeRow> {
         size: format!("{} × {}", l.nx, l.ny),
         k_ratio: number(l.k_diag / r.spec.k),
         supports: l.supports.name(),
-        load_case: l.load_case.name(),
+        load_case: match l.control {
+            crate::spec::Control::Force => l.load_case.name().to_string(),
+            crate::spec::Control::Velocity => {
+                format!("{} (driven to strain {})", l.load_case.name(), number(l.drive_strain))
+            }
+        },
         modulus,
         md: optional(md),
         fem: optional(fem),

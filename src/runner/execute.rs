@@ -10,9 +10,11 @@ use crate::measure::{
     LatticeShape, contact_timing, continuum_moduli, energy_error, homogeneity, normal_mode_error, shear_modulus,
     tensile_moduli,
 };
-use crate::scenes::{build_scene, chain_has_normal_modes, lattice_springs, pair_references, relaxation_checks};
+use crate::scenes::{
+    build_scene, chain_has_normal_modes, drive_travel, lattice_springs, pair_references, relaxation_checks, top_row,
+};
 use crate::sim::{Outcome, Scene, Trace};
-use crate::spec::{LatticeSpec, LoadCase, RunSpec, SceneKind};
+use crate::spec::{Control, LatticeSpec, LoadCase, RunSpec, SceneKind};
 
 /// Runs `spec` and returns its record; never panics.
 pub fn execute(spec: &RunSpec) -> RunRecord {
@@ -68,14 +70,34 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
     let scene = build_scene(spec);
     let mut metrics = Metrics::default();
     if let Some(lattice) = &spec.lattice {
-        let (linear, nonlinear) = static_solutions(spec, lattice, &scene);
-        let (ux, uy) = match linear {
+        let bonds = lattice_springs(spec, lattice).bonds();
+        let (held_x, held_y, prescribed) = static_supports(spec, lattice, &scene);
+        let p = &scene.particles;
+        let truss = Truss {
+            x: &p.x,
+            y: &p.y,
+            bonds: &bonds,
+            held_x: &held_x,
+            held_y: &held_y,
+            loads: &scene.loads,
+            prescribed: &prescribed,
+        };
+        // The force on the top row: the load, or what the supports must apply to hold the
+        // driven row where it is.
+        let force = |ux: &[f64], uy: &[f64]| match lattice.control {
+            Control::Force => lattice.load_per_node * lattice.nx as f64,
+            Control::Velocity => {
+                let (fx, fy) = truss.reaction(&crate::model::Linear, ux, uy, &top_row(lattice));
+                if lattice.load_case == LoadCase::Tensile { fy } else { fx }
+            }
+        };
+        let (ux, uy) = match truss.solve_linear() {
             StaticSolution::Mechanism { residual } => return Finished::Mechanism { residual },
             StaticSolution::Displacements { ux, uy } => (ux, uy),
         };
-        let linear = lattice_moduli(spec, lattice, &ux, &uy);
-        if let Some(StaticSolution::Displacements { ux, uy }) = nonlinear {
-            let fem = lattice_moduli(spec, lattice, &ux, &uy);
+        let linear = lattice_moduli(spec, lattice, force(&ux, &uy), &ux, &uy);
+        if let Some(StaticSolution::Displacements { ux, uy }) = truss.solve_nonlinear(&crate::model::Linear) {
+            let fem = lattice_moduli(spec, lattice, force(&ux, &uy), &ux, &uy);
             // Relative for E and G; absolute for ν, which can be 0 (no diagonals).
             let relative = |a: Option<f64>, b: Option<f64>| crate::table::relative_error(a, b).map(f64::abs);
             let absolute = fem.poisson_ratio.zip(linear.poisson_ratio).map(|(a, b)| (a - b).abs());
@@ -98,14 +120,25 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
     Finished::Simulated(Box::new((outcome, metrics)))
 }
 
-/// The static answers of the lattice scene's network, supports and loads: linear (which also
-/// detects mechanisms) and non-linear (the same physics as MD: the springs' law and large
-/// rotations; `None` if Newton–Raphson did not converge).
-fn static_solutions(spec: &RunSpec, lattice: &LatticeSpec, scene: &Scene) -> (StaticSolution, Option<StaticSolution>) {
-    let bonds = lattice_springs(spec, lattice).bonds();
-    let p = &scene.particles;
-    let truss = Truss { x: &p.x, y: &p.y, bonds: &bonds, held_x: &p.held_x, held_y: &p.held_y, loads: &scene.loads };
-    (truss.solve_linear(), truss.solve_nonlinear(&crate::model::Linear))
+/// Held axes of the static problem and the displacements imposed on them: the scene's
+/// supports, plus, under velocity control, the top row held where the drive leaves it.
+type StaticSupports = (Vec<usize>, Vec<usize>, Vec<(usize, f64, f64)>);
+
+fn static_supports(spec: &RunSpec, lattice: &LatticeSpec, scene: &Scene) -> StaticSupports {
+    let (mut held_x, mut held_y) = (scene.particles.held_x.clone(), scene.particles.held_y.clone());
+    let mut prescribed = Vec::new();
+    if lattice.control == Control::Velocity {
+        let travel = drive_travel(spec, lattice);
+        let tensile = lattice.load_case == LoadCase::Tensile;
+        for node in top_row(lattice) {
+            let held = if tensile { &mut held_y } else { &mut held_x };
+            if let Err(slot) = held.binary_search(&node) {
+                held.insert(slot, node);
+            }
+            prescribed.push(if tensile { (node, 0.0, travel) } else { (node, travel, 0.0) });
+        }
+    }
+    (held_x, held_y, prescribed)
 }
 
 /// The moduli a lattice's load case measures; the others stay `None`.
@@ -116,9 +149,9 @@ struct LatticeModuli {
     shear_modulus: Option<f64>,
 }
 
-fn lattice_moduli(spec: &RunSpec, lattice: &LatticeSpec, ux: &[f64], uy: &[f64]) -> LatticeModuli {
+/// The moduli from the total top-row force `force` (N) and the node displacements.
+fn lattice_moduli(spec: &RunSpec, lattice: &LatticeSpec, force: f64, ux: &[f64], uy: &[f64]) -> LatticeModuli {
     let shape = lattice_shape(spec, lattice);
-    let force = lattice.load_per_node * lattice.nx as f64;
     match lattice.load_case {
         LoadCase::Tensile => {
             let t = tensile_moduli(&shape, force, ux, uy);
@@ -159,7 +192,11 @@ fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metr
         let ux: Vec<f64> = p.x.iter().zip(&start.0).map(|(x, x0)| x - x0).collect();
         let uy: Vec<f64> = p.y.iter().zip(&start.1).map(|(y, y0)| y - y0).collect();
         let relaxed = outcome.trace.relaxed_at.is_some();
-        let md = lattice_moduli(spec, lattice, &ux, &uy);
+        let force = match lattice.control {
+            Control::Force => lattice.load_per_node * lattice.nx as f64,
+            Control::Velocity => outcome.state.drive_force,
+        };
+        let md = lattice_moduli(spec, lattice, force, &ux, &uy);
         // Moduli of a run that never came to rest would be snapshots of an oscillation.
         let keep = |value: Option<f64>| value.filter(|_| relaxed);
         metrics.youngs_modulus = keep(md.youngs_modulus);

@@ -45,18 +45,24 @@ pub trait Integrator {
 }
 
 /// Adds the loads times `factor` to `(fx, fy)` and zeroes every held axis, so held particles
-/// keep their velocity there.
-fn load_and_hold(state: &State, factor: f64, fx: &mut [f64], fy: &mut [f64]) {
+/// keep their velocity there. Returns the force a drive applies to its particles along its
+/// axis: minus what the springs exert on them there.
+fn load_and_hold(state: &State, factor: f64, fx: &mut [f64], fy: &mut [f64]) -> f64 {
     for load in &state.loads {
         fx[load.particle] += factor * load.fx;
         fy[load.particle] += factor * load.fy;
     }
+    let drive_force = state.drive.as_ref().map_or(0.0, |d| {
+        let axis: &[f64] = if d.along_y { fy } else { fx };
+        -d.particles.iter().map(|&i| axis[i]).sum::<f64>()
+    });
     for &i in &state.particles.held_x {
         fx[i] = 0.0;
     }
     for &i in &state.particles.held_y {
         fy[i] = 0.0;
     }
+    drive_force
 }
 
 /// The static force on every free axis, springs and loads without any damping, into
@@ -94,8 +100,9 @@ fn add_forces<F: ForceField>(
     let (vx, vy) = velocities.unwrap_or((&p.vx, &p.vy));
     let (mut fx, mut fy) = (std::mem::take(&mut state.fx), std::mem::take(&mut state.fy));
     let power = field.add_forces(&p.x, &p.y, vx, vy, &mut fx, &mut fy);
-    load_and_hold(state, factor, &mut fx, &mut fy);
+    let drive_force = load_and_hold(state, factor, &mut fx, &mut fy);
     (state.fx, state.fy) = (fx, fy);
+    state.account_drive(drive_force, dt);
     state.dissipated += 0.5 * dt * (state.dissipation_power + power);
     state.dissipation_power = power;
 }

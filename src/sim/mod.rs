@@ -6,7 +6,7 @@ pub use self::integrate::{Integrator, IntegratorKind, PositionVerlet, VelocityVe
 pub use self::probe::{ContactClock, Crossing, StepProbe};
 pub use self::run::{Relaxation, RunStatus, Sampling, Trace, simulate};
 pub use self::scene::{LawKind, Network, Outcome, Scene};
-pub use self::state::{Load, State};
+pub use self::state::{Drive, Load, State};
 pub use self::stencil::LatticeNetwork;
 
 mod field;

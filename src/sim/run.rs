@@ -133,6 +133,7 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
     let started = std::time::Instant::now();
     for n in 1..=sampling.steps {
         integrator.step(state, field, sampling.dt);
+        state.advance_drive();
         probe.observe(state);
         let relaxed = watch.as_mut().is_some_and(|w| w.relaxed(n, state, field));
         if (n % every == 0 || n == sampling.steps || relaxed)
@@ -209,7 +210,7 @@ impl RelaxationWatch {
     /// True once a criterion holds; checks only every `check_every` steps.
     fn relaxed<F: ForceField>(&mut self, step: u64, state: &State, field: &mut F) -> bool {
         // Nothing is at rest before the loads are fully on.
-        if !step.is_multiple_of(self.rule.check_every.max(1)) || state.time < state.load_ramp {
+        if !step.is_multiple_of(self.rule.check_every.max(1)) || state.time < state.settling_from() {
             return false;
         }
         let p = &state.particles;

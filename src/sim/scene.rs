@@ -5,7 +5,7 @@ use super::field::{BondNetwork, ForceField};
 use super::integrate::{IntegratorKind, PositionVerlet, VelocityVerlet};
 use super::probe::{ContactClock, Crossing};
 use super::run::{Sampling, Trace, simulate};
-use super::state::{Load, State};
+use super::state::{Drive, Load, State};
 use super::stencil::LatticeNetwork;
 use crate::model::{
     BondDashpot, Bonds, Dashpot, ForceLaw, Linear, NoDashpot, Particles, PowerLaw, Spring, SquareLattice,
@@ -58,6 +58,8 @@ pub struct Scene {
     pub loads: Vec<Load>,
     /// Time (s) over which the loads rise linearly to their full value; 0 for at once.
     pub load_ramp: f64,
+    /// A velocity boundary condition, if any.
+    pub drive: Option<Drive>,
 }
 
 /// What a run produced.
@@ -107,6 +109,9 @@ impl Scene {
 
     fn integrate<F: ForceField>(self, mut field: F) -> Outcome {
         let mut state = State::with_loads(self.particles, self.loads, self.load_ramp);
+        if let Some(drive) = self.drive {
+            state = state.with_drive(drive);
+        }
         let mut clock = self.contact_clock.map(|(i, j, rest)| ContactClock::new(i, j, rest));
         let trace = match self.integrator {
             IntegratorKind::PositionVerlet => {

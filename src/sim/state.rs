@@ -14,6 +14,20 @@ pub struct Load {
     pub fy: f64,
 }
 
+/// Particles driven along one axis at constant velocity until `stop_time`, then held still
+/// (a velocity boundary condition). Their axis is held: the forces there are the supports'.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Drive {
+    /// Driven particles.
+    pub particles: Vec<usize>,
+    /// Driven along y (else along x).
+    pub along_y: bool,
+    /// Drive velocity (m/s).
+    pub velocity: f64,
+    /// When the drive stops (s).
+    pub stop_time: f64,
+}
+
 /// Particles plus the forces acting on them at the current time.
 #[derive(Clone, Debug)]
 pub struct State {
@@ -41,6 +55,12 @@ pub struct State {
     /// Positions of the loaded particles and the load factor at the last force evaluation.
     load_last: Vec<(f64, f64)>,
     load_factor_last: f64,
+    /// The velocity boundary condition, if any.
+    pub drive: Option<Drive>,
+    /// Force (N) the drive applies to its particles along its axis, at the current time.
+    pub drive_force: f64,
+    drive_start: Vec<f64>,
+    drive_stopped: bool,
 }
 
 impl State {
@@ -49,6 +69,57 @@ impl State {
         let load_last = loads.iter().map(|l| (particles.x[l.particle], particles.y[l.particle])).collect();
         let load_factor_last = if load_ramp > 0.0 { 0.0 } else { 1.0 };
         State { loads, load_ramp, load_last, load_factor_last, ..State::new(particles) }
+    }
+
+    /// Drives `drive.particles` along its axis: holds that axis and gives them its velocity.
+    pub fn with_drive(mut self, drive: Drive) -> State {
+        let p = &mut self.particles;
+        for &i in &drive.particles {
+            let (held, position, velocity) = if drive.along_y {
+                (&mut p.held_y, p.y[i], &mut p.vy[i])
+            } else {
+                (&mut p.held_x, p.x[i], &mut p.vx[i])
+            };
+            if let Err(slot) = held.binary_search(&i) {
+                held.insert(slot, i);
+            }
+            *velocity = drive.velocity;
+            self.drive_start.push(position);
+        }
+        self.drive = Some(drive);
+        self
+    }
+
+    /// Time from which the structure may be judged at rest: after the load ramp and the drive.
+    pub fn settling_from(&self) -> f64 {
+        self.drive.as_ref().map_or(0.0, |d| d.stop_time).max(self.load_ramp)
+    }
+
+    /// Stops the drive once its time is up: the driven particles are put exactly where the drive
+    /// takes them (x₀ + v t_stop) and held still.
+    pub fn advance_drive(&mut self) {
+        let Some(drive) = self.drive.as_ref().filter(|d| !self.drive_stopped && self.time >= d.stop_time) else {
+            return;
+        };
+        let p = &mut self.particles;
+        for (&i, start) in drive.particles.iter().zip(&self.drive_start) {
+            let (position, velocity) =
+                if drive.along_y { (&mut p.y[i], &mut p.vy[i]) } else { (&mut p.x[i], &mut p.vx[i]) };
+            *position = start + drive.velocity * drive.stop_time;
+            *velocity = 0.0;
+        }
+        self.drive_stopped = true;
+    }
+
+    /// Records the drive's force at this force evaluation and adds its work over the step,
+    /// ½ (F_prev + F) v dt while it moves.
+    pub fn account_drive(&mut self, force: f64, dt: f64) {
+        if let Some(drive) = &self.drive
+            && !self.drive_stopped
+        {
+            self.work_done += 0.5 * (self.drive_force + force) * drive.velocity * dt;
+        }
+        self.drive_force = force;
     }
 
     /// The fraction of the loads applied at `time`: t / ramp during the ramp, then 1.
@@ -91,6 +162,10 @@ impl State {
             work_done: 0.0,
             load_last: Vec::new(),
             load_factor_last: 1.0,
+            drive: None,
+            drive_force: 0.0,
+            drive_start: Vec::new(),
+            drive_stopped: false,
         }
     }
 }

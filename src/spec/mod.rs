@@ -2,7 +2,7 @@
 //! The only module that knows YAML. Everything is checked before any run starts, and every
 //! error names the file, the field path, the value and what is allowed.
 
-pub use self::raw::{LawName, LoadCase, SceneKind, Supports};
+pub use self::raw::{Control, LawName, LoadCase, SceneKind, Supports};
 pub use self::run_spec::{LatticeSpec, RESULT_FORMAT, RunSpec};
 
 mod grid;

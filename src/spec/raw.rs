@@ -200,6 +200,32 @@ pub struct RawLoad {
     pub per_node: Option<f64>,
     /// Time over which the load rises linearly to its full value, in t_c (default 0: at once).
     pub ramp_tc: Option<f64>,
+    /// `force` (a force on every top-row node) or `velocity` (the top row driven to a strain).
+    pub control: Option<Control>,
+    /// Velocity control: the strain the top row is driven to (default 1e-4).
+    pub strain: Option<f64>,
+    /// Velocity control: how long the drive takes, in t_c (default 100).
+    pub drive_tc: Option<f64>,
+}
+
+/// How a lattice is loaded.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Control {
+    /// A force on every top-row node (the coursework's left figure).
+    Force,
+    /// The top row driven at constant velocity to a strain, then held (the right figure).
+    Velocity,
+}
+
+impl Control {
+    /// The name used in tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            Control::Force => "force",
+            Control::Velocity => "velocity",
+        }
+    }
 }
 
 /// `relax:` section.

@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use std::fmt::Display;
 
 use super::raw::{
-    Diagonals, LawName, LoadCase, RawDamping, RawGeometry, RawMaterial, RawScene, RawTime, SceneKind, Supports,
+    Control, Diagonals, LawName, LoadCase, RawDamping, RawGeometry, RawMaterial, RawScene, RawTime, SceneKind, Supports,
 };
 use super::run_spec::{LatticeSpec, RunSpec};
 use crate::sim::IntegratorKind;
@@ -338,6 +338,39 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
     let load_per_node = positive(load.per_node.unwrap_or(DEFAULT_LOAD_PER_NODE), "load.per_node")?;
     let load_ramp_tc = load.ramp_tc.unwrap_or(0.0);
     require(load_ramp_tc.is_finite() && load_ramp_tc >= 0.0, "load.ramp_tc", load_ramp_tc, "must be ≥ 0 (t_c)")?;
+    let control = load.control.unwrap_or(Control::Force);
+    let drive_strain = load.strain.unwrap_or(1e-4);
+    let drive_tc = load.drive_tc.unwrap_or(100.0);
+    if control == Control::Velocity {
+        let velocity_verlet =
+            raw.time.as_ref().and_then(|t| t.integrator) == Some(crate::sim::IntegratorKind::VelocityVerlet);
+        require(
+            velocity_verlet,
+            "time.integrator",
+            "position-verlet",
+            "velocity control needs integrator: velocity-verlet",
+        )?;
+        require(
+            load.per_node.is_none() && load.ramp_tc.is_none(),
+            "load",
+            "per_node/ramp_tc",
+            "are for control: force",
+        )?;
+        require(
+            drive_strain.is_finite() && drive_strain != 0.0 && drive_strain.abs() < 0.5,
+            "load.strain",
+            drive_strain,
+            "must be non-zero, |strain| < 0.5",
+        )?;
+        positive(drive_tc, "load.drive_tc")?;
+    } else {
+        require(
+            load.strain.is_none() && load.drive_tc.is_none(),
+            "load",
+            "strain/drive_tc",
+            "are for control: velocity",
+        )?;
+    }
     let relax = raw.relax.clone().unwrap_or_default();
     let kinetic_ratio = relax.kinetic_ratio.unwrap_or(DEFAULT_KINETIC_RATIO);
     require(kinetic_ratio > 0.0 && kinetic_ratio < 1.0, "relax.kinetic_ratio", kinetic_ratio, "must be in (0, 1)")?;
@@ -358,6 +391,9 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
         load_case: load.case.unwrap_or(LoadCase::Tensile),
         load_per_node,
         load_ramp_tc,
+        control,
+        drive_strain,
+        drive_tc,
         kinetic_ratio,
         residual_force: relax.residual_force,
         derived_from: None,

@@ -4,7 +4,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::collections::BTreeMap;
 
-use super::raw::{LawName, LoadCase, SceneKind, Supports};
+use super::raw::{Control, LawName, LoadCase, SceneKind, Supports};
 use crate::sim::IntegratorKind;
 
 /// Bumped whenever stored results of an unchanged spec would differ (new physics or columns),
@@ -85,6 +85,12 @@ pub struct LatticeSpec {
     pub load_per_node: f64,
     /// Time over which the load rises linearly to its full value, in t_c (0: at once).
     pub load_ramp_tc: f64,
+    /// Force or velocity control.
+    pub control: Control,
+    /// Velocity control: strain the top row is driven to.
+    pub drive_strain: f64,
+    /// Velocity control: duration of the drive, in t_c.
+    pub drive_tc: f64,
     /// Relaxation stops when E_kin/E_pot stays below this.
     pub kinetic_ratio: f64,
     /// ... or when the largest net force stays below this fraction of the load per node.
