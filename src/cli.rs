@@ -97,7 +97,7 @@ fn run_command(reports: &Path, file: &Path, jobs: Option<usize>) -> anyhow::Resu
     let failed = done.records.iter().filter(|r| r.status != "ok").count();
     publish(&campaign, &layout, &done.records)?;
     println!(
-        "{}: {} runs ({} simulated, {} cached, {} failed) in {:.2} s -> {}",
+        "{}: {} runs ({} simulated, {} cached, {} not ok) in {:.2} s -> {}",
         campaign.name,
         done.records.len(),
         done.simulated,

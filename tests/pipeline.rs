@@ -33,7 +33,7 @@ fn small_campaign_end_to_end() {
     let reports = tempfile::tempdir().unwrap();
     let out = mdsolids(reports.path(), &["run", "campaigns/smoke.yaml"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
-    assert!(text(&out.stdout).contains("5 runs (5 simulated, 0 cached, 0 failed)"), "{}", text(&out.stdout));
+    assert!(text(&out.stdout).contains("5 runs (5 simulated, 0 cached, 0 not ok)"), "{}", text(&out.stdout));
 
     let dir = reports.path().join("smoke");
     for file in [
@@ -87,7 +87,7 @@ fn small_campaign_end_to_end() {
     // A rerun of the unchanged campaign simulates nothing and leaves the stored runs alone.
     let stored: Vec<_> = run_files(&dir).iter().map(|f| modified(f)).collect();
     let again = mdsolids(reports.path(), &["run", "campaigns/smoke.yaml"]);
-    assert!(text(&again.stdout).contains("(0 simulated, 5 cached, 0 failed)"), "{}", text(&again.stdout));
+    assert!(text(&again.stdout).contains("(0 simulated, 5 cached, 0 not ok)"), "{}", text(&again.stdout));
     assert_eq!(stored, run_files(&dir).iter().map(|f| modified(f)).collect::<Vec<_>>());
 
     // `report` re-renders from the store without simulating.
