@@ -74,6 +74,14 @@ impl Particles {
         index
     }
 
+    /// Holds `particle` along y (`along_y`) or x, keeping the held list sorted.
+    pub fn hold(&mut self, particle: usize, along_y: bool) {
+        let held = if along_y { &mut self.held_y } else { &mut self.held_x };
+        if let Err(slot) = held.binary_search(&particle) {
+            held.insert(slot, particle);
+        }
+    }
+
     /// 1/m when every particle has the same mass, so the particle loops need not read an array.
     pub fn uniform_inverse_mass(&self) -> Option<f64> {
         let first = *self.inv_mass.first()?;

@@ -85,7 +85,7 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
         // The force on the top row: the load, or what the supports must apply to hold the
         // driven row where it is.
         let force = |ux: &[f64], uy: &[f64]| match lattice.control {
-            Control::Force => lattice.load_per_node * lattice.nx as f64,
+            Control::Force => lattice.total_load(),
             Control::Velocity => {
                 let (fx, fy) = truss.reaction(&crate::model::Linear, ux, uy, &top_row(lattice));
                 if lattice.load_case == LoadCase::Tensile { fy } else { fx }
@@ -125,20 +125,17 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
 type StaticSupports = (Vec<usize>, Vec<usize>, Vec<(usize, f64, f64)>);
 
 fn static_supports(spec: &RunSpec, lattice: &LatticeSpec, scene: &Scene) -> StaticSupports {
-    let (mut held_x, mut held_y) = (scene.particles.held_x.clone(), scene.particles.held_y.clone());
+    let mut supported = scene.particles.clone();
     let mut prescribed = Vec::new();
     if lattice.control == Control::Velocity {
         let travel = drive_travel(spec, lattice);
         let tensile = lattice.load_case == LoadCase::Tensile;
         for node in top_row(lattice) {
-            let held = if tensile { &mut held_y } else { &mut held_x };
-            if let Err(slot) = held.binary_search(&node) {
-                held.insert(slot, node);
-            }
+            supported.hold(node, tensile);
             prescribed.push(if tensile { (node, 0.0, travel) } else { (node, travel, 0.0) });
         }
     }
-    (held_x, held_y, prescribed)
+    (supported.held_x, supported.held_y, prescribed)
 }
 
 /// The moduli a lattice's load case measures; the others stay `None`.
@@ -193,7 +190,7 @@ fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metr
         let uy: Vec<f64> = p.y.iter().zip(&start.1).map(|(y, y0)| y - y0).collect();
         let relaxed = outcome.trace.relaxed_at.is_some();
         let force = match lattice.control {
-            Control::Force => lattice.load_per_node * lattice.nx as f64,
+            Control::Force => lattice.total_load(),
             Control::Velocity => outcome.state.drive_force,
         };
         let md = lattice_moduli(spec, lattice, force, &ux, &uy);

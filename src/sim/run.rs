@@ -164,11 +164,10 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
     trace
 }
 
-/// Follows the relaxation criteria: each must hold at `confirmations` consecutive checks.
+/// Follows the relaxation criterion in force: it must hold at `confirmations` consecutive checks.
 struct RelaxationWatch {
     rule: Relaxation,
-    kinetic: Streak,
-    force: Streak,
+    streak: Streak,
     relaxed: Option<(f64, &'static str)>,
     /// Scratch for the static forces (x, y) and zero velocities.
     scratch: (Vec<f64>, Vec<f64>, Vec<f64>),
@@ -198,13 +197,7 @@ impl Streak {
 
 impl RelaxationWatch {
     fn new(rule: Relaxation) -> Self {
-        RelaxationWatch {
-            rule,
-            kinetic: Streak::default(),
-            force: Streak::default(),
-            relaxed: None,
-            scratch: Default::default(),
-        }
+        RelaxationWatch { rule, streak: Streak::default(), relaxed: None, scratch: Default::default() }
     }
 
     /// True once a criterion holds; checks only every `check_every` steps.
@@ -214,22 +207,20 @@ impl RelaxationWatch {
             return false;
         }
         let p = &state.particles;
-        let (time, needed) = (state.time, self.rule.confirmations);
-        if let Some(tolerance) = self.rule.residual_force {
+        // One criterion is in force: the residual static force when asked for, else E_kin/E_pot.
+        let (calm, criterion) = if let Some(tolerance) = self.rule.residual_force {
             // The static imbalance, not the net force: a creeping, overdamped structure has a
             // small net force (drag balances springs) long before it is in equilibrium.
             let (fx, fy, zeros) = &mut self.scratch;
             static_forces(state, field, fx, fy, zeros);
             let largest = fx.iter().chain(fy.iter()).fold(0.0f64, |m, f| m.max(f.abs()));
-            if self.force.update(largest < tolerance, time, needed) {
-                self.relaxed = Some((self.force.since, "residual_force"));
-            }
+            (largest < tolerance, "residual_force")
         } else {
             let potential = field.potential_energy(&p.x, &p.y);
-            let calm = potential > 0.0 && p.kinetic_energy() < self.rule.kinetic_ratio * potential;
-            if self.kinetic.update(calm, time, needed) {
-                self.relaxed = Some((self.kinetic.since, "kinetic_ratio"));
-            }
+            (potential > 0.0 && p.kinetic_energy() < self.rule.kinetic_ratio * potential, "kinetic_ratio")
+        };
+        if self.streak.update(calm, state.time, self.rule.confirmations) {
+            self.relaxed = Some((self.streak.since, criterion));
         }
         self.relaxed.is_some()
     }

@@ -75,14 +75,8 @@ impl State {
     pub fn with_drive(mut self, drive: Drive) -> State {
         let p = &mut self.particles;
         for &i in &drive.particles {
-            let (held, position, velocity) = if drive.along_y {
-                (&mut p.held_y, p.y[i], &mut p.vy[i])
-            } else {
-                (&mut p.held_x, p.x[i], &mut p.vx[i])
-            };
-            if let Err(slot) = held.binary_search(&i) {
-                held.insert(slot, i);
-            }
+            p.hold(i, drive.along_y);
+            let (position, velocity) = if drive.along_y { (p.y[i], &mut p.vy[i]) } else { (p.x[i], &mut p.vx[i]) };
             *velocity = drive.velocity;
             self.drive_start.push(position);
         }

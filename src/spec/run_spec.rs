@@ -99,6 +99,13 @@ pub struct LatticeSpec {
     pub derived_from: Option<String>,
 }
 
+impl LatticeSpec {
+    /// Total force on the top row under force control, load_per_node · nx (N).
+    pub fn total_load(&self) -> f64 {
+        self.load_per_node * self.nx as f64
+    }
+}
+
 impl RunSpec {
     /// Stable identifier: the scene name and a content hash of the resolved run.
     pub fn run_id(&self) -> String {
