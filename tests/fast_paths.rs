@@ -5,9 +5,7 @@
 use mdsolids::model::{
     Axes, BondDashpot, Bonds, Dashpot, ForceLaw, Linear, NoDashpot, Particles, PowerLaw, Spring, SquareLattice,
 };
-use mdsolids::sim::{
-    ForceField, IntegratorKind, LawKind, Network, PositionVerlet, Sampling, Scene, State, VelocityVerlet, simulate,
-};
+use mdsolids::sim::{ForceField, IntegratorKind, LawKind, Network, Sampling, Scene, State, simulate_with};
 
 /// The reference: every bond in list order, safe indexing, no blocks, no threads.
 struct ReferenceLoop<L, D, const CONTACT: bool> {
@@ -100,14 +98,7 @@ fn reference<L: ForceLaw, D: Dashpot, const C: bool>(
 ) -> State {
     let mut field = ReferenceLoop { spring, bonds: bonds.clone(), background_gamma: background };
     let mut state = State::new(particles.clone());
-    match integrator {
-        IntegratorKind::VelocityVerlet => {
-            simulate(&mut state, &mut field, &mut VelocityVerlet::default(), &sampling(), &mut ())
-        }
-        IntegratorKind::PositionVerlet => {
-            simulate(&mut state, &mut field, &mut PositionVerlet::default(), &sampling(), &mut ())
-        }
-    };
+    simulate_with(integrator, &mut state, &mut field, &sampling(), &mut ());
     state
 }
 

@@ -219,5 +219,5 @@ fn velocity_control_matches_the_displacement_controlled_static_answer() {
     // Position Verlet has no explicit velocity to drive: refused with a clear error.
     let refused = campaign("{size: 6}", "    load: {control: velocity}\n", "      load.case: [tensile]\n");
     let error = mdsolids::spec::parse("velocity.yaml", &refused).unwrap_err().to_string();
-    assert!(error.contains("time.integrator") && error.contains("velocity-verlet"), "{error}");
+    assert!(error.contains("time.integrator") && error.contains("position-verlet"), "{error}");
 }

@@ -2,7 +2,10 @@
 //! the sampled [`Trace`]. Pure computation: no files, no terminal, no threads.
 
 pub use self::field::{BondNetwork, ForceField};
-pub use self::integrate::{Integrator, IntegratorKind, PositionVerlet, VelocityVerlet};
+pub use self::integrate::{
+    ForestRuth, Gear, Integrator, IntegratorKind, PositionVerlet, RungeKutta4, SymplecticEuler, VelocityVerlet,
+    simulate_with,
+};
 pub use self::probe::{ContactClock, Crossing, StepProbe};
 pub use self::run::{Relaxation, RunStatus, Sampling, Trace, simulate};
 pub use self::scene::{LawKind, Network, Outcome, Scene};

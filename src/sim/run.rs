@@ -38,7 +38,7 @@ pub struct Sampling {
     pub steps: u64,
     /// Record a sample every this many steps (and at the start and the end).
     pub every: u64,
-    /// Record x displacements of every particle at each sample.
+    /// Record x displacements and velocities of every particle at each sample.
     pub displacements: bool,
     /// Stop early once relaxed.
     pub relaxation: Option<Relaxation>,
@@ -77,6 +77,9 @@ pub struct Trace {
     /// x displacement of every particle from its start position (m), one row per sample;
     /// empty unless asked for.
     pub displacement_x: Vec<Vec<f64>>,
+    /// x velocity of every particle (m/s) at each sample, recorded with the displacements.
+    #[serde(default)]
+    pub velocity_x: Vec<Vec<f64>>,
     /// Steps actually taken.
     pub steps: u64,
     /// Wall time of the time loop (s), set-up excluded.
@@ -109,6 +112,7 @@ impl Trace {
         self.work.push(work);
         if displacements {
             self.displacement_x.push(p.x.iter().zip(start_x).map(|(x, x0)| x - x0).collect());
+            self.velocity_x.push(p.vx.clone());
         }
         true
     }

@@ -2,9 +2,9 @@
 //! choices (law, dashpot, contact, integrator) are turned into monomorphised code.
 
 use super::field::{BondNetwork, ForceField};
-use super::integrate::{IntegratorKind, PositionVerlet, VelocityVerlet};
+use super::integrate::{IntegratorKind, simulate_with};
 use super::probe::{ContactClock, Crossing};
-use super::run::{Sampling, Trace, simulate};
+use super::run::{Sampling, Trace};
 use super::state::{Drive, Load, State};
 use super::stencil::LatticeNetwork;
 use crate::model::{
@@ -113,14 +113,7 @@ impl Scene {
             state = state.with_drive(drive);
         }
         let mut clock = self.contact_clock.map(|(i, j, rest)| ContactClock::new(i, j, rest));
-        let trace = match self.integrator {
-            IntegratorKind::PositionVerlet => {
-                simulate(&mut state, &mut field, &mut PositionVerlet::default(), &self.sampling, &mut clock)
-            }
-            IntegratorKind::VelocityVerlet => {
-                simulate(&mut state, &mut field, &mut VelocityVerlet::default(), &self.sampling, &mut clock)
-            }
-        };
+        let trace = simulate_with(self.integrator, &mut state, &mut field, &self.sampling, &mut clock);
         Outcome { trace, crossings: clock.map(|c| c.crossings).unwrap_or_default(), state }
     }
 }

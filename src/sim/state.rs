@@ -105,15 +105,15 @@ impl State {
         self.drive_stopped = true;
     }
 
-    /// Records the drive's force at this force evaluation and adds its work over the step,
-    /// ½ (F_prev + F) v dt while it moves.
-    pub fn account_drive(&mut self, force: f64, dt: f64) {
+    /// Adds the drive's work over a step of length `dt` whose mean drive force is `mean` (N),
+    /// F̄ v dt while it moves, and records `end`, the force at the new time.
+    pub fn account_drive(&mut self, mean: f64, end: f64, dt: f64) {
         if let Some(drive) = &self.drive
             && !self.drive_stopped
         {
-            self.work_done += 0.5 * (self.drive_force + force) * drive.velocity * dt;
+            self.work_done += mean * drive.velocity * dt;
         }
-        self.drive_force = force;
+        self.drive_force = end;
     }
 
     /// The fraction of the loads applied at `time`: t / ramp during the ramp, then 1.

@@ -279,7 +279,7 @@ pub struct RawDamping {
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawTime {
-    /// `position-verlet` or `velocity-verlet`.
+    /// `position-verlet` (default), `velocity-verlet`, `symplectic-euler`, `rk4`, `forest-ruth` or `gear`.
     pub integrator: Option<IntegratorKind>,
     /// dt = t_c / dt_per_tc (default 50).
     pub dt_per_tc: Option<f64>,

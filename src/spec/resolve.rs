@@ -99,6 +99,13 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     .map_err(|e| Issue { path: "damping".into(), value: format!("γ = {gamma}"), allowed: e.to_string() })?;
 
     let integrator = time.integrator.unwrap_or(IntegratorKind::PositionVerlet);
+    require(
+        integrator.allows_damping() || (gamma == 0.0 && gamma_background == 0.0),
+        "time.integrator",
+        integrator.name(),
+        "an integrator that allows damping (all but forest-ruth, whose backward sub-step would run the dashpots \
+         backwards), or no damping",
+    )?;
     let dt = resolve_dt(&time, t_c)?;
     let gap = (kind == SceneKind::Pair && contact).then(|| raw.gap.unwrap_or(DEFAULT_GAP_PER_SPACING * spacing));
     if let Some(g) = gap {
@@ -342,13 +349,13 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
     let drive_strain = load.strain.unwrap_or(1e-4);
     let drive_tc = load.drive_tc.unwrap_or(100.0);
     if control == Control::Velocity {
-        let velocity_verlet =
-            raw.time.as_ref().and_then(|t| t.integrator) == Some(crate::sim::IntegratorKind::VelocityVerlet);
+        let position_verlet = raw.time.as_ref().and_then(|t| t.integrator).unwrap_or(IntegratorKind::PositionVerlet)
+            == IntegratorKind::PositionVerlet;
         require(
-            velocity_verlet,
+            !position_verlet,
             "time.integrator",
             "position-verlet",
-            "velocity control needs integrator: velocity-verlet",
+            "any integrator but position-verlet under velocity control (its position history cannot stop the drive)",
         )?;
         require(
             load.per_node.is_none() && load.ramp_tc.is_none(),

@@ -1,0 +1,120 @@
+//! Gear's predictor–corrector, the classic integrator of DEM codes.
+
+use super::{Integrator, RungeKutta4, account, clear_forces, evaluate, finish_step, start_forces, trapezoid};
+use crate::sim::field::ForceField;
+use crate::sim::state::State;
+
+/// Gear's six-value predictor–corrector for second-order equations (Allen & Tildesley,
+/// appendix E). The state is the vector of scaled derivatives r_k = (dt^k / k!) d^k x/dt^k,
+/// k = 0…5: r₀ and r₁ are the particles' positions and dt × velocities (kept in the state, so
+/// supports and the drive act on them directly), r₂…r₅ live here. A step predicts all six by
+/// their Taylor series (Pascal's triangle), evaluates the force once at the prediction, and
+/// corrects each r_k by c_k Δ with Δ = (dt²/2) f/m − r₂ᵖ. Corrector weights
+/// c = (3/20, 251/360, 1, 11/18, 1/6, 1/60), with c₀ = 3/16 when forces depend on velocity.
+/// The forces the state holds after a step are those of the prediction. The start is scouted
+/// with RK4 (see `start`).
+#[derive(Clone, Debug, Default)]
+pub struct Gear {
+    /// r₂…r₅ for x and for y.
+    higher_x: [Vec<f64>; 4],
+    higher_y: [Vec<f64>; 4],
+    /// c₀, the corrector weight of positions.
+    c0: f64,
+}
+
+impl Gear {
+    const C: [f64; 5] = [251.0 / 360.0, 1.0, 11.0 / 18.0, 1.0 / 6.0, 1.0 / 60.0];
+}
+
+/// Predicts `(r₀, r₁, r₂…r₅)` in place by the Taylor series over one step.
+#[inline(always)]
+fn predict(r0: &mut f64, r1: &mut f64, r: [&mut f64; 4]) {
+    let [r2, r3, r4, r5] = r;
+    *r0 += *r1 + *r2 + *r3 + *r4 + *r5;
+    *r1 += 2.0 * *r2 + 3.0 * *r3 + 4.0 * *r4 + 5.0 * *r5;
+    *r2 += 3.0 * *r3 + 6.0 * *r4 + 10.0 * *r5;
+    *r3 += 4.0 * *r4 + 10.0 * *r5;
+    *r4 += 5.0 * *r5;
+}
+
+/// Classical RK4 sub-steps per Gear step when the start is scouted.
+const SCOUT_SUBSTEPS: u64 = 4;
+
+impl Integrator for Gear {
+    /// Starts from accurate derivatives: r₂…r₅ from a cubic through the accelerations at t = 0,
+    /// dt, 2 dt, 3 dt, found by RK4 (dt/4 sub-steps) on a copy of the state. Zero higher
+    /// derivatives, the usual start, cost the scheme its order: an O(dt³) error in r₃ alone
+    /// makes the run second order (measured on the chain).
+    fn start<F: ForceField>(&mut self, state: &mut State, field: &mut F, dt: f64) {
+        start_forces(state, field);
+        self.c0 = if field.uses_velocity() { 3.0 / 16.0 } else { 3.0 / 20.0 };
+        let n = state.particles.len();
+        let acceleration = |s: &State| -> (Vec<f64>, Vec<f64>) {
+            let p = &s.particles;
+            ((0..n).map(|i| s.fx[i] * p.inv_mass[i]).collect(), (0..n).map(|i| s.fy[i] * p.inv_mass[i]).collect())
+        };
+        let mut samples = vec![acceleration(state)];
+        let mut scout = state.clone();
+        let mut runge_kutta = RungeKutta4::default();
+        let h = dt / SCOUT_SUBSTEPS as f64;
+        runge_kutta.start(&mut scout, field, h);
+        for _ in 0..3 {
+            for _ in 0..SCOUT_SUBSTEPS {
+                runge_kutta.step(&mut scout, field, h);
+            }
+            samples.push(acceleration(&scout));
+        }
+        // Newton forward differences Δᵏ of a at 0, dt, 2dt, 3dt give dt a' = Δ − Δ²/2 + Δ³/3,
+        // dt² a'' = Δ² − Δ³ and dt³ a''' = Δ³; then r_k = dt^k/k! x^(k) with x'' = a.
+        let derivatives = |a: [f64; 4]| -> [f64; 4] {
+            let d1 = a[1] - a[0];
+            let d2 = a[2] - 2.0 * a[1] + a[0];
+            let d3 = a[3] - 3.0 * a[2] + 3.0 * a[1] - a[0];
+            let h2 = dt * dt;
+            [h2 / 2.0 * a[0], h2 / 6.0 * (d1 - d2 / 2.0 + d3 / 3.0), h2 / 24.0 * (d2 - d3), h2 / 120.0 * d3]
+        };
+        self.higher_x = std::array::from_fn(|_| vec![0.0; n]);
+        self.higher_y = std::array::from_fn(|_| vec![0.0; n]);
+        for i in 0..n {
+            let rx = derivatives(std::array::from_fn(|s| samples[s].0[i]));
+            let ry = derivatives(std::array::from_fn(|s| samples[s].1[i]));
+            for k in 0..4 {
+                self.higher_x[k][i] = rx[k];
+                self.higher_y[k][i] = ry[k];
+            }
+        }
+    }
+
+    fn step<F: ForceField>(&mut self, state: &mut State, field: &mut F, dt: f64) {
+        let p = &mut state.particles;
+        let [a2, a3, a4, a5] = &mut self.higher_x;
+        let [b2, b3, b4, b5] = &mut self.higher_y;
+        for i in 0..p.len() {
+            let mut r1 = dt * p.vx[i];
+            predict(&mut p.x[i], &mut r1, [&mut a2[i], &mut a3[i], &mut a4[i], &mut a5[i]]);
+            p.vx[i] = r1 / dt;
+            let mut r1 = dt * p.vy[i];
+            predict(&mut p.y[i], &mut r1, [&mut b2[i], &mut b3[i], &mut b4[i], &mut b5[i]]);
+            p.vy[i] = r1 / dt;
+        }
+        clear_forces(state);
+        let time = (state.steps + 1) as f64 * dt;
+        let end = evaluate(state, field, None, time);
+        let p = &mut state.particles;
+        let c = Self::C;
+        for (position, velocity, force, higher) in
+            [(&mut p.x, &mut p.vx, &state.fx, &mut self.higher_x), (&mut p.y, &mut p.vy, &state.fy, &mut self.higher_y)]
+        {
+            for i in 0..position.len() {
+                let delta = 0.5 * dt * dt * force[i] * p.inv_mass[i] - higher[0][i];
+                position[i] += self.c0 * delta;
+                velocity[i] += c[0] * delta / dt;
+                for k in 0..4 {
+                    higher[k][i] += c[k + 1] * delta;
+                }
+            }
+        }
+        account(state, dt, time, trapezoid(state, end), end);
+        finish_step(state, dt);
+    }
+}
