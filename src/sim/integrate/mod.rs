@@ -107,7 +107,7 @@ pub fn simulate_with<F: ForceField, P: StepProbe>(
     match kind {
         IntegratorKind::PositionVerlet => simulate(state, field, &mut PositionVerlet::default(), sampling, probe),
         IntegratorKind::VelocityVerlet => simulate(state, field, &mut VelocityVerlet::default(), sampling, probe),
-        IntegratorKind::SymplecticEuler => simulate(state, field, &mut SymplecticEuler::default(), sampling, probe),
+        IntegratorKind::SymplecticEuler => simulate(state, field, &mut SymplecticEuler, sampling, probe),
         IntegratorKind::Rk4 => simulate(state, field, &mut RungeKutta4::default(), sampling, probe),
         IntegratorKind::ForestRuth => simulate(state, field, &mut ForestRuth::default(), sampling, probe),
         IntegratorKind::Gear => simulate(state, field, &mut Gear::default(), sampling, probe),
