@@ -7,7 +7,8 @@ use std::path::{Path, PathBuf};
 use crate::bench::{BenchConfig, run_once};
 use crate::output::Layout;
 use crate::runner::{run_campaign, stored_record};
-use crate::spec::{Campaign, load};
+use crate::spec::Campaign;
+use crate::stability::{estimate, load_campaign};
 use crate::{report, table};
 
 /// Molecular-dynamics studies of mass-spring solids: campaign YAML in, tables and reports out.
@@ -85,7 +86,7 @@ pub fn run() -> anyhow::Result<()> {
 }
 
 fn open(reports: &Path, file: &Path) -> anyhow::Result<(Campaign, Layout)> {
-    let campaign = load(file)?;
+    let campaign = load_campaign(file)?;
     let layout = Layout::new(reports, &campaign.name);
     Ok((campaign, layout))
 }
@@ -111,9 +112,11 @@ fn run_command(reports: &Path, file: &Path, jobs: Option<usize>) -> anyhow::Resu
 
 /// Cost model of a run in a release build, from `mdsolids bench` and the coursework campaign on
 /// the project machine: ~80 ns per step for the loop itself and the per-step probes, plus
-/// ~3 ns per particle-step (the reference lattice runs at ~330 million particle-steps/s).
+/// ~3 ns per particle-step (the reference lattice runs at ~330 million particle-steps/s) and
+/// force evaluation.
 fn estimated_seconds(spec: &crate::spec::RunSpec) -> f64 {
-    spec.steps as f64 * (80e-9 + 3e-9 * spec.particles() as f64)
+    let evaluations = spec.integrator.evaluations_per_step() as f64;
+    spec.steps as f64 * (80e-9 + 3e-9 * evaluations * spec.particles() as f64)
 }
 
 /// Writing tables, figures and the report of a campaign of a few dozen runs (measured ~0.07 s).
@@ -122,8 +125,8 @@ const REPORT_SECONDS: f64 = 0.1;
 fn plan_command(reports: &Path, file: &Path) -> anyhow::Result<()> {
     let (campaign, layout) = open(reports, file)?;
     println!(
-        "{:<28} {:<8} {:>11} {:>11} {:>8} {:>10} {:>9}  varied",
-        "run_id", "kind", "dt (s)", "t_c (s)", "t_c/dt", "steps", "cached"
+        "{:<28} {:<8} {:<16} {:>11} {:>11} {:>8} {:>10} {:>8} {:>7} {:>7}  varied",
+        "run_id", "kind", "integrator", "dt (s)", "t_c (s)", "t_c/dt", "steps", "dt·ω_max", "limit", "cached"
     );
     let mut simulation_s = 0.0;
     for spec in &campaign.runs {
@@ -131,14 +134,18 @@ fn plan_command(reports: &Path, file: &Path) -> anyhow::Result<()> {
         if !cached {
             simulation_s += estimated_seconds(spec);
         }
+        let stability = estimate(spec);
         println!(
-            "{:<28} {:<8} {:>11.4e} {:>11.4e} {:>8.1} {:>10} {:>9}  {}",
+            "{:<28} {:<8} {:<16} {:>11.4e} {:>11.4e} {:>8.1} {:>10} {:>8.4} {:>7.4} {:>7}  {}",
             spec.run_id(),
             spec.kind.name(),
+            spec.integrator.name(),
             spec.dt,
             spec.t_c,
             spec.dt_per_tc(),
             spec.steps,
+            stability.dt_omega_max,
+            stability.limit,
             if cached { "yes" } else { "no" },
             spec.varied_label(|_| true)
         );

@@ -32,5 +32,6 @@ pub mod runner;
 pub mod scenes;
 pub mod sim;
 pub mod spec;
+pub mod stability;
 pub mod table;
 pub mod theory;

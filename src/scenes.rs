@@ -30,7 +30,7 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
             dt: spec.dt,
             steps: spec.steps,
             every: (spec.steps / spec.samples).max(1),
-            displacements: spec.kind == SceneKind::Chain,
+            displacements: spec.kind == SceneKind::Chain || spec.reference_refinement.is_some(),
             relaxation: spec.lattice.as_ref().map(|l| Relaxation {
                 kinetic_ratio: l.kinetic_ratio,
                 residual_force: l.residual_force.map(|fraction| fraction * l.load_per_node),

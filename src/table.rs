@@ -16,12 +16,14 @@ pub fn relative_error(measured: Option<f64>, reference: Option<f64>) -> Option<f
     }
 }
 
+/// A column of numbers; a non-finite value (a blown-up run's measurement) becomes null, so no
+/// NaN or infinity ever reaches a table.
 fn floats(records: &[RunRecord], name: &str, get: impl Fn(&RunRecord) -> f64) -> Column {
-    Column::new(name.into(), records.iter().map(get).collect::<Vec<f64>>())
+    optional_floats(records, name, |r| Some(get(r)))
 }
 
 fn optional_floats(records: &[RunRecord], name: &str, get: impl Fn(&RunRecord) -> Option<f64>) -> Column {
-    Column::new(name.into(), records.iter().map(get).collect::<Vec<Option<f64>>>())
+    Column::new(name.into(), records.iter().map(|r| get(r).filter(|v| v.is_finite())).collect::<Vec<Option<f64>>>())
 }
 
 fn strings(records: &[RunRecord], name: &str, get: impl Fn(&RunRecord) -> String) -> Column {
@@ -67,6 +69,15 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         }),
         optional_floats(records, "energy_error", |r| r.metrics.energy_error),
         optional_floats(records, "chain_mode_error", |r| r.metrics.chain_mode_error),
+        optional_floats(records, "error", |r| r.metrics.error),
+        Column::new(
+            "error_measure".into(),
+            records.iter().map(|r| r.metrics.error_measure.clone()).collect::<Vec<Option<String>>>(),
+        ),
+        optional_floats(records, "omega_max", |r| r.metrics.omega_max),
+        optional_floats(records, "dt_omega_max", |r| r.metrics.dt_omega_max),
+        optional_floats(records, "mode_damping_ratio", |r| r.metrics.mode_damping_ratio),
+        optional_floats(records, "stability_limit", |r| r.metrics.stability_limit),
     ];
     if records.iter().any(|r| r.spec.lattice.is_some()) {
         columns.extend(lattice_columns(records));

@@ -46,8 +46,12 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for ReferenceLoop<
         power
     }
 
-    fn potential_energy(&self, _x: &[f64], _y: &[f64]) -> f64 {
-        0.0
+    fn bond_energy(&self, k: f64, rest: f64, dx: f64, dy: f64) -> f64 {
+        self.spring.energy(k, rest, dx, dy)
+    }
+
+    fn for_each_bond(&self, visit: &mut dyn FnMut(usize, usize, f64, f64, f64)) {
+        self.bonds.for_each(visit);
     }
 }
 

@@ -47,6 +47,13 @@ impl Bonds {
         to.push_shifted(self.i[b], self.j[b], self.rest[b], self.stiffness[b], self.shift_x[b]);
     }
 
+    /// Calls `visit(i, j, rest, k, shift_x)` for every bond, in list order.
+    pub fn for_each(&self, mut visit: impl FnMut(usize, usize, f64, f64, f64)) {
+        for b in 0..self.len() {
+            visit(self.i[b], self.j[b], self.rest[b], self.stiffness[b], self.shift_x[b]);
+        }
+    }
+
     /// Largest particle index used, plus one (0 without bonds).
     pub fn particles_needed(&self) -> usize {
         self.i.iter().chain(&self.j).map(|&p| p + 1).max().unwrap_or(0)

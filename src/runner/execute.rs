@@ -13,8 +13,9 @@ use crate::measure::{
 use crate::scenes::{
     build_scene, chain_has_normal_modes, drive_travel, lattice_springs, pair_references, relaxation_checks, top_row,
 };
-use crate::sim::{Outcome, Scene, Trace};
+use crate::sim::{Outcome, RunStatus, Scene, Trace};
 use crate::spec::{Control, LatticeSpec, LoadCase, RunSpec, SceneKind};
+use crate::stability::estimate;
 
 /// Runs `spec` and returns its record; never panics.
 pub fn execute(spec: &RunSpec) -> RunRecord {
@@ -30,9 +31,16 @@ pub fn execute(spec: &RunSpec) -> RunRecord {
         metrics: Metrics::default(),
         trace: Trace::default(),
     };
+    let mut reference_s = 0.0;
     match result {
         Ok(Finished::Simulated(done)) => {
-            let (outcome, metrics) = *done;
+            let (mut outcome, metrics, reference_wall_s) = *done;
+            reference_s = reference_wall_s;
+            if spec.kind == SceneKind::Lattice {
+                // Recorded only to compare with the reference run: too bulky to store.
+                let t = &mut outcome.trace;
+                (t.displacement_x, t.displacement_y, t.velocity_x) = Default::default();
+            }
             record.status = outcome.trace.status.word().into();
             record.message = outcome.trace.message.clone();
             record.steps = outcome.trace.steps;
@@ -54,21 +62,29 @@ pub fn execute(spec: &RunSpec) -> RunRecord {
             record.message = panic_message(panic.as_ref());
         }
     }
-    record.wall_s = started.elapsed().as_secs_f64();
+    // The run's own cost: a reference run at a finer dt is not part of it.
+    record.wall_s = started.elapsed().as_secs_f64() - reference_s;
     record
 }
 
 /// How a run ended when it did not panic.
 enum Finished {
-    /// Integrated and measured.
-    Simulated(Box<(Outcome, Metrics)>),
+    /// Integrated and measured, with the wall time (s) of the reference run, if any.
+    Simulated(Box<(Outcome, Metrics, f64)>),
     /// The static problem is singular for this load: no MD run.
     Mechanism { residual: f64 },
 }
 
 fn run_and_measure(spec: &RunSpec) -> Finished {
     let scene = build_scene(spec);
-    let mut metrics = Metrics::default();
+    let stability = estimate(spec);
+    let mut metrics = Metrics {
+        omega_max: Some(stability.omega_max),
+        dt_omega_max: Some(stability.dt_omega_max),
+        mode_damping_ratio: Some(stability.damping_ratio),
+        stability_limit: Some(stability.limit),
+        ..Metrics::default()
+    };
     if let Some(lattice) = &spec.lattice {
         let bonds = lattice_springs(spec, lattice).bonds();
         let (held_x, held_y, prescribed) = static_supports(spec, lattice, &scene);
@@ -117,7 +133,67 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
     let start = (scene.particles.x.clone(), scene.particles.y.clone());
     let outcome = scene.run();
     measure(spec, &outcome, &start, &mut metrics);
-    Finished::Simulated(Box::new((outcome, metrics)))
+    let started = Instant::now();
+    let reference = spec
+        .reference_refinement
+        .filter(|_| outcome.trace.status == RunStatus::Ok || outcome.trace.status == RunStatus::NoEquilibrium)
+        .and_then(|refinement| reference_error(spec, &outcome.trace, refinement).map(|e| (refinement, e)));
+    let reference_s = if spec.reference_refinement.is_some() { started.elapsed().as_secs_f64() } else { 0.0 };
+    (metrics.error, metrics.error_measure) = match reference {
+        Some((refinement, error)) => (Some(error), Some(format!("reference_dt/{refinement}"))),
+        None => exact_error(spec, &metrics),
+    };
+    Finished::Simulated(Box::new((outcome, metrics, reference_s)))
+}
+
+/// The error of a run against its exact answer: the contact duration (undamped pairs) or the
+/// restitution (damped pairs), the normal-mode solution (chains), else the energy balance of
+/// an undamped run; `(None, None)` when none applies.
+fn exact_error(spec: &RunSpec, m: &Metrics) -> (Option<f64>, Option<String>) {
+    let relative = |a, b| crate::table::relative_error(a, b).map(f64::abs);
+    let undamped = spec.gamma == 0.0 && spec.gamma_background == 0.0;
+    let (error, measure) = match spec.kind {
+        SceneKind::Pair if undamped => (relative(m.contact_duration, m.contact_duration_theory), "contact_duration"),
+        SceneKind::Pair => (relative(m.restitution, m.restitution_theory), "restitution"),
+        SceneKind::Chain if m.chain_mode_error.is_some() => (m.chain_mode_error, "normal_modes"),
+        _ if undamped => (m.energy_error, "energy"),
+        _ => (None, ""),
+    };
+    (error, error.map(|_| measure.to_string()))
+}
+
+/// Largest displacement difference between the run and the same scene at dt / `refinement`,
+/// over the samples both have (the reference is sampled at the run's sample times and runs as
+/// long, without stopping early), relative to the reference's largest displacement.
+fn reference_error(spec: &RunSpec, run: &Trace, refinement: u32) -> Option<f64> {
+    let mut fine = spec.clone();
+    fine.set_dt(spec.dt / f64::from(refinement));
+    let mut scene = build_scene(&fine);
+    let r = u64::from(refinement);
+    scene.sampling.every = build_scene(spec).sampling.every * r;
+    scene.sampling.steps = run.steps * r;
+    scene.sampling.relaxation = None;
+    let reference = scene.run().trace;
+    let (mut largest_difference, mut largest) = (0.0f64, 0.0f64);
+    let mut k = 0;
+    for (s, t) in run.time.iter().enumerate() {
+        while k < reference.time.len() && reference.time[k] < t - 1e-9 * t.abs() {
+            k += 1;
+        }
+        if k == reference.time.len() || (reference.time[k] - t).abs() > 1e-9 * t.abs() {
+            continue;
+        }
+        for (mine, theirs) in [
+            (&run.displacement_x[s], &reference.displacement_x[k]),
+            (&run.displacement_y[s], &reference.displacement_y[k]),
+        ] {
+            for (a, b) in mine.iter().zip(theirs) {
+                largest_difference = largest_difference.max((a - b).abs());
+                largest = largest.max(b.abs());
+            }
+        }
+    }
+    (largest > 0.0).then(|| largest_difference / largest)
 }
 
 /// Held axes of the static problem and the displacements imposed on them: the scene's

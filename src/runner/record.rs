@@ -19,8 +19,22 @@ pub struct Metrics {
     pub restitution_theory: Option<f64>,
     /// max |E(t) − E(0)| / E(0) with E = kinetic + potential + dissipated.
     pub energy_error: Option<f64>,
-    /// Chain: max |u_MD − u_exact| / max |u_exact| against the normal-mode solution.
+    /// Chain: largest phase-space deviation from the normal-mode solution, relative (see
+    /// `measure::normal_mode_error`).
     pub chain_mode_error: Option<f64>,
+    /// The run's error against the most exact reference it has (see `error_measure`), ≥ 0.
+    pub error: Option<f64>,
+    /// What `error` measures: `contact_duration`, `restitution`, `normal_modes`,
+    /// `reference_dt/R` (a run at dt/R) or `energy`.
+    pub error_measure: Option<String>,
+    /// Angular frequency of the fastest mode (rad/s), estimated before the run.
+    pub omega_max: Option<f64>,
+    /// dt · ω_max.
+    pub dt_omega_max: Option<f64>,
+    /// Damping ratio of the fastest mode.
+    pub mode_damping_ratio: Option<f64>,
+    /// Largest dt · ω_max the integrator survives at that damping ratio.
+    pub stability_limit: Option<f64>,
     /// Lattice, tensile: Young's modulus E (Pa) of the relaxed MD lattice.
     pub youngs_modulus: Option<f64>,
     /// Lattice, tensile: ν = −(ΔL_x/L_x)/(ΔL_y/L_y).

@@ -17,7 +17,20 @@ pub trait ForceField: Send + Sync {
     fn add_forces(&mut self, x: &[f64], y: &[f64], vx: &[f64], vy: &[f64], fx: &mut [f64], fy: &mut [f64]) -> f64;
 
     /// Potential energy (J) stored at positions `(x, y)`; not on the hot path.
-    fn potential_energy(&self, x: &[f64], y: &[f64]) -> f64;
+    fn potential_energy(&self, x: &[f64], y: &[f64]) -> f64 {
+        let mut energy = 0.0;
+        self.for_each_bond(&mut |i, j, rest, k, shift| {
+            energy += self.bond_energy(k, rest, x[i] - x[j] + shift, y[i] - y[j])
+        });
+        energy
+    }
+
+    /// Energy (J) of one bond of stiffness `k` and rest length `rest` at separation `(dx, dy)`.
+    fn bond_energy(&self, k: f64, rest: f64, dx: f64, dy: f64) -> f64;
+
+    /// Calls `visit(i, j, rest, k, shift_x)` for every bond, whose separation is
+    /// x_i − x_j + shift_x; for checks, not on the hot path.
+    fn for_each_bond(&self, visit: &mut dyn FnMut(usize, usize, f64, f64, f64));
 }
 
 /// Background damping f_i −= γ_g v_i on every particle; returns its power γ_g Σ v² (W).
@@ -130,15 +143,13 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for BondNetwork<L,
         power
     }
 
-    fn potential_energy(&self, x: &[f64], y: &[f64]) -> f64 {
-        self.blocks
-            .iter()
-            .chain([&self.crossing, &self.wrapped])
-            .flat_map(|bonds| (0..bonds.len()).map(move |b| (bonds, b)))
-            .map(|(bonds, b)| {
-                let (i, j) = (bonds.i[b], bonds.j[b]);
-                self.spring.energy(bonds.stiffness[b], bonds.rest[b], x[i] - x[j] + bonds.shift_x[b], y[i] - y[j])
-            })
-            .sum()
+    fn bond_energy(&self, k: f64, rest: f64, dx: f64, dy: f64) -> f64 {
+        self.spring.energy(k, rest, dx, dy)
+    }
+
+    fn for_each_bond(&self, visit: &mut dyn FnMut(usize, usize, f64, f64, f64)) {
+        for bonds in self.blocks.iter().chain([&self.crossing, &self.wrapped]) {
+            bonds.for_each(&mut *visit);
+        }
     }
 }

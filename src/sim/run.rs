@@ -12,7 +12,7 @@ pub enum RunStatus {
     /// Ran to its end time.
     #[default]
     Ok,
-    /// Stopped because a sampled quantity became non-finite.
+    /// Stopped because it blew up: non-finite or runaway energy, or a collapsed bond.
     Unstable,
     /// A relaxation that did not reach its criterion within its time.
     NoEquilibrium,
@@ -38,7 +38,7 @@ pub struct Sampling {
     pub steps: u64,
     /// Record a sample every this many steps (and at the start and the end).
     pub every: u64,
-    /// Record x displacements and velocities of every particle at each sample.
+    /// Record x and y displacements and x velocities of every particle at each sample.
     pub displacements: bool,
     /// Stop early once relaxed.
     pub relaxation: Option<Relaxation>,
@@ -77,6 +77,9 @@ pub struct Trace {
     /// x displacement of every particle from its start position (m), one row per sample;
     /// empty unless asked for.
     pub displacement_x: Vec<Vec<f64>>,
+    /// y displacement of every particle (m), recorded with the x displacements.
+    #[serde(default)]
+    pub displacement_y: Vec<Vec<f64>>,
     /// x velocity of every particle (m/s) at each sample, recorded with the displacements.
     #[serde(default)]
     pub velocity_x: Vec<Vec<f64>>,
@@ -94,16 +97,54 @@ pub struct Trace {
     pub relaxed_by: Option<String>,
 }
 
+/// Stored energy may exceed what the start and the loads' work allow by this factor before a
+/// run counts as blown up. Generous on purpose: a symplectic scheme just inside its stability
+/// limit stores up to 1/(1 − (ω dt/2)²) times the energy in its fastest mode (velocity Verlet
+/// at ω dt = 1.9: 10×), while a run beyond the limit grows exponentially and passes any factor.
+pub const ENERGY_GROWTH_LIMIT: f64 = 1e3;
+
+/// A bond whose length along its start direction falls below this fraction of its start
+/// length has collapsed (or, below zero, inverted): the particles passed through each other.
+pub const COLLAPSE_RATIO: f64 = 0.05;
+
+/// Positions at t = 0, for displacements and for the collapse check.
+struct Start {
+    x: Vec<f64>,
+    y: Vec<f64>,
+}
+
 impl Trace {
-    /// Appends one sample of `state`; returns false, recording nothing, when the energy is
-    /// not finite (so nothing non-finite reaches a table).
-    fn sample<F: ForceField>(&mut self, state: &State, field: &F, start_x: &[f64], displacements: bool) -> bool {
+    /// Appends one sample of `state`; refuses, recording nothing, when the state has blown up
+    /// (so nothing non-finite reaches a table) and says why.
+    fn sample<F: ForceField>(
+        &mut self,
+        state: &State,
+        field: &F,
+        start: &Start,
+        displacements: bool,
+    ) -> Result<(), String> {
         let p = &state.particles;
         let kinetic = p.kinetic_energy();
         let potential = field.potential_energy(&p.x, &p.y);
         let work = state.load_work();
         if !(kinetic + potential + state.dissipated + work).is_finite() {
-            return false;
+            return Err("the energy became non-finite".into());
+        }
+        if let (Some(k0), Some(p0)) = (self.kinetic.first(), self.potential.first()) {
+            let allowed = k0 + p0 + work.abs();
+            if allowed > 0.0 && kinetic + potential > ENERGY_GROWTH_LIMIT * allowed {
+                return Err(format!(
+                    "the stored energy grew to {:.3e} J, more than {ENERGY_GROWTH_LIMIT:e} × the {allowed:.3e} J that \
+                     the start and the loads' work allow",
+                    kinetic + potential
+                ));
+            }
+        }
+        if let Some((i, j, ratio)) = collapsed_bond(field, &p.x, &p.y, start) {
+            return Err(format!(
+                "the bond {i}–{j} collapsed: its length along its start direction is {ratio:.3} of its start length \
+                 (below {COLLAPSE_RATIO}; negative means the particles passed through each other)"
+            ));
         }
         self.time.push(state.time);
         self.kinetic.push(kinetic);
@@ -111,15 +152,32 @@ impl Trace {
         self.dissipated.push(state.dissipated);
         self.work.push(work);
         if displacements {
-            self.displacement_x.push(p.x.iter().zip(start_x).map(|(x, x0)| x - x0).collect());
+            self.displacement_x.push(p.x.iter().zip(&start.x).map(|(x, x0)| x - x0).collect());
+            self.displacement_y.push(p.y.iter().zip(&start.y).map(|(y, y0)| y - y0).collect());
             self.velocity_x.push(p.vx.clone());
         }
-        true
+        Ok(())
     }
 }
 
+/// The bond most compressed along its start direction, when that is below [`COLLAPSE_RATIO`]:
+/// `(i, j, ratio)` with ratio = (d · d₀)/|d₀|² for separations d now and d₀ at t = 0.
+fn collapsed_bond<F: ForceField>(field: &F, x: &[f64], y: &[f64], start: &Start) -> Option<(usize, usize, f64)> {
+    let mut worst: Option<(usize, usize, f64)> = None;
+    field.for_each_bond(&mut |i, j, _rest, _k, shift| {
+        let (dx, dy) = (x[i] - x[j] + shift, y[i] - y[j]);
+        let (dx0, dy0) = (start.x[i] - start.x[j] + shift, start.y[i] - start.y[j]);
+        let ratio = (dx * dx0 + dy * dy0) / (dx0 * dx0 + dy0 * dy0);
+        if ratio < COLLAPSE_RATIO && worst.is_none_or(|(_, _, r)| ratio < r) {
+            worst = Some((i, j, ratio));
+        }
+    });
+    worst
+}
+
 /// Runs `sampling.steps` steps of `integrator` on `state` under `field`, showing every step to
-/// `probe`; stops early with [`RunStatus::Unstable`] when the energy stops being finite.
+/// `probe`; stops early with [`RunStatus::Unstable`] when a sample finds the run blown up
+/// (non-finite energy, energy grown beyond what loads allow, a collapsed bond).
 pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
     state: &mut State,
     field: &mut F,
@@ -127,11 +185,15 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
     sampling: &Sampling,
     probe: &mut P,
 ) -> Trace {
-    let start_x = if sampling.displacements { state.particles.x.clone() } else { Vec::new() };
+    let start = Start { x: state.particles.x.clone(), y: state.particles.y.clone() };
     let mut trace = Trace::default();
     integrator.start(state, field, sampling.dt);
     probe.observe(state);
-    trace.sample(state, &*field, &start_x, sampling.displacements);
+    if let Err(reason) = trace.sample(state, &*field, &start, sampling.displacements) {
+        trace.status = RunStatus::Unstable;
+        trace.message = format!("{reason} at the start");
+        return trace;
+    }
     let every = sampling.every.max(1);
     let mut watch = sampling.relaxation.map(RelaxationWatch::new);
     let started = std::time::Instant::now();
@@ -140,12 +202,12 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
         state.advance_drive();
         probe.observe(state);
         let relaxed = watch.as_mut().is_some_and(|w| w.relaxed(n, state, field));
-        if (n % every == 0 || n == sampling.steps || relaxed)
-            && !trace.sample(state, &*field, &start_x, sampling.displacements)
-        {
-            trace.status = RunStatus::Unstable;
-            trace.message = format!("energy became non-finite at t = {:.6e} s (step {n})", state.time);
-            break;
+        if n % every == 0 || n == sampling.steps || relaxed {
+            if let Err(reason) = trace.sample(state, &*field, &start, sampling.displacements) {
+                trace.status = RunStatus::Unstable;
+                trace.message = format!("{reason} at t = {:.6e} s (step {n})", state.time);
+                break;
+            }
         }
         if relaxed {
             break;

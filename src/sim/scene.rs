@@ -23,6 +23,16 @@ pub enum LawKind {
     },
 }
 
+impl LawKind {
+    /// Tangent stiffness ds/dδ (N/m) of a bond with constant `k` at extension `delta` (m).
+    pub fn tangent_stiffness(self, k: f64, delta: f64) -> f64 {
+        match self {
+            LawKind::Linear => Linear.tangent_stiffness(k, delta),
+            LawKind::Power { beta } => PowerLaw { beta }.tangent_stiffness(k, delta),
+        }
+    }
+}
+
 /// How the particles are connected.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Network {
@@ -31,6 +41,16 @@ pub enum Network {
     Lattice(SquareLattice),
     /// Any other network: an explicit bond list, sorted for sequential access.
     Bonds(Bonds),
+}
+
+impl Network {
+    /// Calls `visit(i, j, rest, k, shift_x)` for every bond (separation x_i − x_j + shift_x).
+    pub fn for_each_bond(&self, visit: impl FnMut(usize, usize, f64, f64, f64)) {
+        match self {
+            Network::Lattice(lattice) => lattice.for_each_bond(visit),
+            Network::Bonds(bonds) => bonds.for_each(visit),
+        }
+    }
 }
 
 /// One run, fully built: particles, bonds, law, damping, integrator, sampling and probes.

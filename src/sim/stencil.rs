@@ -273,11 +273,11 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for LatticeNetwork
         power
     }
 
-    fn potential_energy(&self, x: &[f64], y: &[f64]) -> f64 {
-        let mut energy = 0.0;
-        self.lattice.for_each_bond(|i, j, rest, k, shift| {
-            energy += self.spring.energy(k, rest, x[i] - x[j] + shift, y[i] - y[j]);
-        });
-        energy
+    fn bond_energy(&self, k: f64, rest: f64, dx: f64, dy: f64) -> f64 {
+        self.spring.energy(k, rest, dx, dy)
+    }
+
+    fn for_each_bond(&self, visit: &mut dyn FnMut(usize, usize, f64, f64, f64)) {
+        self.lattice.for_each_bond(visit);
     }
 }

@@ -285,6 +285,15 @@ pub struct RawTime {
     pub dt_per_tc: Option<f64>,
     /// Time step (s), instead of `dt_per_tc`.
     pub dt: Option<f64>,
+    /// dt = dt_omega_max / ω_max, the scene's fastest mode (instead of `dt` or `dt_per_tc`):
+    /// to sweep a step across an integrator's stability limit.
+    pub dt_omega_max: Option<f64>,
+    /// Also run the scene at dt / reference_refinement and measure the error of this run
+    /// against it (lattices, where no exact solution exists); ≥ 2.
+    pub reference_refinement: Option<u32>,
+    /// Run even when dt · ω_max exceeds the integrator's stability limit (to show the
+    /// instability); refused otherwise.
+    pub allow_unstable: Option<bool>,
     /// Run length in units of t_c.
     pub duration_tc: Option<f64>,
     /// Samples recorded over the run (default 400).

@@ -125,6 +125,16 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     let samples = time.samples.unwrap_or(DEFAULT_SAMPLES);
     require(samples >= 2, "time.samples", samples, "must be ≥ 2")?;
     let ChainFields { n, node, wall_distance } = resolve_chain(kind, raw, spacing)?;
+    let reference_refinement = time.reference_refinement;
+    if let Some(r) = reference_refinement {
+        require((2..=1000).contains(&r), "time.reference_refinement", r, "an integer from 2 to 1000")?;
+        require(
+            steps.saturating_mul(u64::from(r)) <= 2_000_000_000,
+            "time.reference_refinement",
+            r,
+            "a reference run of at most 2e9 steps",
+        )?;
+    }
 
     Ok(RunSpec {
         campaign: campaign.to_string(),
@@ -143,6 +153,9 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         integrator,
         t_c,
         dt,
+        dt_omega_max: time.dt_omega_max,
+        reference_refinement,
+        allow_unstable: time.allow_unstable.unwrap_or(false),
         duration,
         steps,
         samples,
@@ -257,6 +270,17 @@ fn resolve_damping(damping: &RawDamping, k: f64, mass: f64) -> Result<(f64, Opti
 }
 
 fn resolve_dt(time: &RawTime, t_c: f64) -> Result<f64, Issue> {
+    if let Some(target) = time.dt_omega_max {
+        require(
+            time.dt.is_none() && time.dt_per_tc.is_none(),
+            "time.dt_omega_max",
+            target,
+            "give one of dt, dt_per_tc and dt_omega_max",
+        )?;
+        require(target.is_finite() && target > 0.0, "time.dt_omega_max", target, "must be > 0 (dt = value / ω_max)")?;
+        // Provisional: the stability check sets dt = dt_omega_max / ω_max once the scene is built.
+        return Ok(t_c / DEFAULT_DT_PER_TC);
+    }
     match (time.dt, time.dt_per_tc) {
         (Some(dt), None) => positive(dt, "time.dt"),
         (None, per_tc) => {

@@ -46,6 +46,12 @@ pub struct RunSpec {
     pub t_c: f64,
     /// Time step (s).
     pub dt: f64,
+    /// The campaign's dt · ω_max, when it set dt that way (applied by the stability check).
+    pub dt_omega_max: Option<f64>,
+    /// Also run at dt / this and measure the error against that reference.
+    pub reference_refinement: Option<u32>,
+    /// Run even beyond the integrator's stability limit.
+    pub allow_unstable: bool,
     /// Run length (s).
     pub duration: f64,
     /// Steps to take.
@@ -112,6 +118,12 @@ impl RunSpec {
         let json = serde_json::to_string(&(RESULT_FORMAT, self)).expect("a RunSpec always serialises");
         let hash = blake3::hash(json.as_bytes()).to_hex();
         format!("{}-{}", self.scene, &hash[..12])
+    }
+
+    /// Sets the time step to `dt` (s) and the step count to cover the same duration.
+    pub fn set_dt(&mut self, dt: f64) {
+        self.dt = dt;
+        self.steps = (self.duration / dt).ceil() as u64;
     }
 
     /// dt / t_c.

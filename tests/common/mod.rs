@@ -2,11 +2,12 @@
 #![allow(dead_code)] // each test crate uses its own subset
 
 use mdsolids::runner::{RunRecord, execute};
-use mdsolids::spec::{RunSpec, parse};
+use mdsolids::spec::RunSpec;
+use mdsolids::stability::parse_campaign;
 
 /// The runs of an inline campaign (YAML text); panics with the spec error if it is invalid.
 pub fn runs(yaml: &str) -> Vec<RunSpec> {
-    parse("inline.yaml", yaml).unwrap_or_else(|e| panic!("{e}")).runs
+    parse_campaign("inline.yaml", yaml).unwrap_or_else(|e| panic!("{e}")).runs
 }
 
 /// Executes every run of an inline campaign.
