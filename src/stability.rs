@@ -203,7 +203,7 @@ impl StepProbe for Amplitudes {
         let amplitude = (p.x[1] - 1.0).hypot(p.vx[1]);
         // Beyond the escape amplitude the trial has grown 1e4-fold (and would soon leave the
         // linear range: past u = −1 the particles pass through each other).
-        self.escaped |= !(amplitude < ESCAPE_AMPLITUDE);
+        self.escaped |= amplitude.is_nan() || amplitude >= ESCAPE_AMPLITUDE;
         self.steps += 1;
         if self.steps > TRIAL_STEPS / 2 && self.steps <= TRIAL_STEPS {
             self.early = self.early.max(amplitude);

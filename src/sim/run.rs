@@ -202,12 +202,12 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
         state.advance_drive();
         probe.observe(state);
         let relaxed = watch.as_mut().is_some_and(|w| w.relaxed(n, state, field));
-        if n % every == 0 || n == sampling.steps || relaxed {
-            if let Err(reason) = trace.sample(state, &*field, &start, sampling.displacements) {
-                trace.status = RunStatus::Unstable;
-                trace.message = format!("{reason} at t = {:.6e} s (step {n})", state.time);
-                break;
-            }
+        if (n % every == 0 || n == sampling.steps || relaxed)
+            && let Err(reason) = trace.sample(state, &*field, &start, sampling.displacements)
+        {
+            trace.status = RunStatus::Unstable;
+            trace.message = format!("{reason} at t = {:.6e} s (step {n})", state.time);
+            break;
         }
         if relaxed {
             break;
