@@ -41,6 +41,7 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         strings(records, "status", |r| r.status.clone()),
         strings(records, "message", |r| r.message.clone()),
         floats(records, "wall_s", |r| r.wall_s),
+        floats(records, "loop_s", |r| r.trace.loop_s),
         Column::new("steps".into(), records.iter().map(|r| r.steps).collect::<Vec<u64>>()),
         floats(records, "mass", |r| r.spec.mass),
         floats(records, "spacing", |r| r.spec.spacing),

@@ -11,11 +11,12 @@ mod energy;
 mod moduli;
 
 /// Order of convergence p in |error| ∝ dt^p: least-squares slope of ln|error| against ln dt
-/// over `points` = (dt, error); `None` with fewer than two usable (non-zero, finite) points.
+/// over `points` = (dt, error); `None` with fewer than two usable points (finite, above the
+/// round-off floor).
 pub fn convergence_order(points: &[(f64, f64)]) -> Option<f64> {
     let logs: Vec<(f64, f64)> = points
         .iter()
-        .filter(|(dt, e)| *dt > 0.0 && e.abs() > 0.0 && e.is_finite())
+        .filter(|(dt, e)| *dt > 0.0 && e.abs() > ROUND_OFF_FLOOR && e.is_finite())
         .map(|(dt, e)| (dt.ln(), e.abs().ln()))
         .collect();
     if logs.len() < 2 {
@@ -25,4 +26,65 @@ pub fn convergence_order(points: &[(f64, f64)]) -> Option<f64> {
     let (mx, my) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
     let (sxy, sxx) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + (x - mx) * (y - my), b + (x - mx) * (x - mx)));
     (sxx > 0.0).then(|| sxy / sxx)
+}
+
+/// Errors at or below this are round-off, not truncation: left out of orders and
+/// recommendations.
+pub const ROUND_OFF_FLOOR: f64 = 1e-12;
+
+/// The largest time step whose error meets `target`, from a sweep of `points` = (dt, |error|):
+/// interpolated on log–log axes between the last step that meets it and the next larger one
+/// that does not, so dt* = dt_a (target/e_a)^(ln(dt_b/dt_a)/ln(e_b/e_a)). Returns the step and
+/// how it was found: `Interpolated`, `AtLargest` (every step meets it: the largest does), or
+/// `Extrapolated` with the measured `order` below the smallest step. `None` when no point is
+/// usable or nothing can be said.
+pub fn recommended_dt(points: &[(f64, f64)], target: f64, order: Option<f64>) -> Option<(f64, Recommendation)> {
+    let mut sweep: Vec<(f64, f64)> =
+        points.iter().copied().filter(|(dt, e)| *dt > 0.0 && e.is_finite() && *e > ROUND_OFF_FLOOR).collect();
+    sweep.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let first_ok = sweep.iter().position(|&(_, e)| e <= target);
+    match first_ok {
+        Some(0) => Some((sweep[0].0, Recommendation::AtLargest)),
+        Some(index) => {
+            let ((dt_b, e_b), (dt_a, e_a)) = (sweep[index - 1], sweep[index]);
+            let slope = (dt_b / dt_a).ln() / (e_b / e_a).ln();
+            Some((dt_a * (target / e_a).powf(slope), Recommendation::Interpolated))
+        }
+        None => {
+            let &(dt, e) = sweep.last()?;
+            let order = order.filter(|p| *p > 0.0)?;
+            Some((dt * (target / e).powf(1.0 / order), Recommendation::Extrapolated))
+        }
+    }
+}
+
+/// How [`recommended_dt`] found its answer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Recommendation {
+    /// Between two steps of the sweep.
+    Interpolated,
+    /// Every step meets the target; the largest is given (a larger one may do).
+    AtLargest,
+    /// No step meets it; extrapolated with the measured order.
+    Extrapolated,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn recommendation_of_an_exact_power_law() {
+        // e = 3 dt²: the target 3e-4 is met exactly at dt = 0.01, wherever the sweep is.
+        let points: Vec<(f64, f64)> = [0.1, 0.05, 0.02, 0.005].iter().map(|&dt| (dt, 3.0 * dt * dt)).collect();
+        let order = convergence_order(&points);
+        assert!((order.unwrap() - 2.0).abs() < 1e-12);
+        let (dt, how) = recommended_dt(&points, 3e-4, order).unwrap();
+        assert_eq!(how, Recommendation::Interpolated);
+        assert!((dt - 0.01).abs() < 1e-12, "{dt}");
+        let (dt, how) = recommended_dt(&points[..2], 3e-4, order).unwrap();
+        assert_eq!(how, Recommendation::Extrapolated);
+        assert!((dt - 0.01).abs() < 1e-12, "{dt}");
+        assert_eq!(recommended_dt(&points, 1.0, order).unwrap(), (0.1, Recommendation::AtLargest));
+    }
 }

@@ -3,6 +3,8 @@
 use serde::Serialize;
 
 use super::figures::{Figure, group_label, groups, representative};
+use super::studies::{LimitRow, PrecisionRow, StabilityRow, is_stability_scene, precision_rows, stability_rows};
+use super::{error, number, optional};
 use crate::measure::convergence_order;
 use crate::runner::RunRecord;
 use crate::spec::{Campaign, LawName, SceneKind};
@@ -22,6 +24,7 @@ pub struct ReportContext {
     has_pair: bool,
     has_chain: bool,
     has_lattice: bool,
+    target_error: String,
     scenes: Vec<SceneSection>,
     failures: Vec<FailureRow>,
 }
@@ -47,6 +50,9 @@ struct SceneSection {
     orders: Vec<OrderRow>,
     chain_rows: Vec<ChainRow>,
     lattice_rows: Vec<LatticeRow>,
+    precision_rows: Vec<PrecisionRow>,
+    stability_rows: Vec<StabilityRow>,
+    limit_rows: Vec<LimitRow>,
 }
 
 #[derive(Serialize)]
@@ -118,29 +124,6 @@ struct FailureRow {
     message: String,
 }
 
-/// A number with 6 significant digits, plain where that reads well, scientific otherwise.
-fn number(x: f64) -> String {
-    if x == 0.0 {
-        return "0".into();
-    }
-    let magnitude = x.abs().log10().floor();
-    if (-3.0..5.0).contains(&magnitude) {
-        let decimals = (5.0 - magnitude) as usize;
-        let text = format!("{x:.decimals$}");
-        if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.').to_string() } else { text }
-    } else {
-        format!("{x:.5e}")
-    }
-}
-
-fn optional(x: Option<f64>) -> String {
-    x.map(number).unwrap_or_else(|| "–".into())
-}
-
-fn error(x: Option<f64>) -> String {
-    x.map(|e| format!("{e:+.2e}")).unwrap_or_else(|| "–".into())
-}
-
 /// Builds the context from the campaign, its records and the drawn figures.
 pub fn build(campaign: &Campaign, records: &[RunRecord], figures: &[Figure]) -> ReportContext {
     let ok = records.iter().filter(|r| r.status == "ok").count();
@@ -156,7 +139,12 @@ pub fn build(campaign: &Campaign, records: &[RunRecord], figures: &[Figure]) -> 
         has_pair: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Pair),
         has_chain: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Chain),
         has_lattice: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Lattice),
-        scenes: campaign.scenes.iter().filter_map(|(scene, kind)| section(scene, *kind, records, figures)).collect(),
+        target_error: format!("{:e}", campaign.target_error),
+        scenes: campaign
+            .scenes
+            .iter()
+            .filter_map(|(scene, kind)| section(scene, *kind, records, figures, campaign.target_error))
+            .collect(),
         failures: records
             .iter()
             .filter(|r| r.status != "ok")
@@ -165,7 +153,13 @@ pub fn build(campaign: &Campaign, records: &[RunRecord], figures: &[Figure]) -> 
     }
 }
 
-fn section(scene: &str, kind: SceneKind, records: &[RunRecord], figures: &[Figure]) -> Option<SceneSection> {
+fn section(
+    scene: &str,
+    kind: SceneKind,
+    records: &[RunRecord],
+    figures: &[Figure],
+    target_error: f64,
+) -> Option<SceneSection> {
     let mine: Vec<&RunRecord> = records.iter().filter(|r| r.spec.scene == scene).collect();
     let first = mine.first()?;
     let s = &first.spec;
@@ -197,6 +191,8 @@ fn section(scene: &str, kind: SceneKind, records: &[RunRecord], figures: &[Figur
             s.integrator.name()
         ),
     };
+    let (stability_rows, limit_rows) =
+        if is_stability_scene(records, scene) { stability_rows(records, scene) } else { Default::default() };
     Some(SceneSection {
         name: scene.into(),
         kind: kind.name(),
@@ -215,6 +211,9 @@ fn section(scene: &str, kind: SceneKind, records: &[RunRecord], figures: &[Figur
         orders: if kind == SceneKind::Pair { order_rows(records, scene) } else { Vec::new() },
         chain_rows: if kind == SceneKind::Chain { mine.iter().map(|r| chain_row(r)).collect() } else { Vec::new() },
         lattice_rows: mine.iter().filter_map(|r| lattice_row(r)).collect(),
+        precision_rows: precision_rows(records, scene, target_error),
+        stability_rows,
+        limit_rows,
     })
 }
 

@@ -2,6 +2,7 @@
 //! convergence of the pair measurements against their analytical values.
 
 use super::plots::{Chart, Scale, Series, line_chart};
+use super::studies;
 use crate::runner::RunRecord;
 use crate::spec::{Campaign, SceneKind};
 use crate::table::relative_error;
@@ -71,6 +72,10 @@ pub fn draw_all(campaign: &Campaign, records: &[RunRecord]) -> anyhow::Result<Ve
                 }
             }
             SceneKind::Pair => {}
+        }
+        figures.extend(studies::precision_figures(records, scene)?);
+        if studies::is_stability_scene(records, scene) {
+            figures.extend(studies::stability_figures(records, scene)?);
         }
     }
     Ok(figures)

@@ -6,6 +6,7 @@
 mod context;
 mod figures;
 pub mod plots;
+mod studies;
 
 use anyhow::Context as _;
 
@@ -38,4 +39,27 @@ pub fn render(campaign: &Campaign, layout: &Layout, records: &[RunRecord]) -> an
     page.insert("body", &body);
     let html = tera.render("index.html", &page).context("cannot render templates/index.html.tera")?;
     write_atomically(&layout.file("index.html"), html.as_bytes())
+}
+
+/// A number with 6 significant digits, plain where that reads well, scientific otherwise.
+fn number(x: f64) -> String {
+    if x == 0.0 {
+        return "0".into();
+    }
+    let magnitude = x.abs().log10().floor();
+    if (-3.0..5.0).contains(&magnitude) {
+        let decimals = (5.0 - magnitude) as usize;
+        let text = format!("{x:.decimals$}");
+        if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.').to_string() } else { text }
+    } else {
+        format!("{x:.5e}")
+    }
+}
+
+fn optional(x: Option<f64>) -> String {
+    x.map(number).unwrap_or_else(|| "–".into())
+}
+
+fn error(x: Option<f64>) -> String {
+    x.map(|e| format!("{e:+.2e}")).unwrap_or_else(|| "–".into())
 }

@@ -52,7 +52,12 @@ pub struct Campaign {
     pub scenes: Vec<(String, SceneKind)>,
     /// All runs: scene by scene, then grid points in order.
     pub runs: Vec<RunSpec>,
+    /// Relative error the report recommends a time step for.
+    pub target_error: f64,
 }
+
+/// The accuracy the work–precision report aims at unless the campaign says `target_error`.
+pub const DEFAULT_TARGET_ERROR: f64 = 1e-3;
 
 /// Reads, validates and expands the campaign file at `path`.
 pub fn load(path: &Path) -> Result<Campaign, SpecError> {
@@ -98,7 +103,12 @@ pub fn parse(file: &str, text: &str) -> Result<Campaign, SpecError> {
         scenes.push((first.scene.clone(), first.kind));
         runs.extend(expanded);
     }
+    let target_error = raw.target_error.unwrap_or(DEFAULT_TARGET_ERROR);
+    if !(target_error > 0.0 && target_error < 1.0) {
+        return Err(invalid(format!("target_error = {target_error}: must be in (0, 1) (a relative error)")));
+    }
     Ok(Campaign {
+        target_error,
         name: raw.name.clone(),
         title: raw.title.clone().unwrap_or_else(|| raw.name.clone()),
         description: raw.description.clone().unwrap_or_default(),

@@ -33,6 +33,10 @@ pub struct RawCampaign {
     /// Cartesian grid applied to every scene.
     #[serde(default)]
     pub grid: Grid,
+    /// Accuracy the work–precision report recommends a time step for (relative error;
+    /// default 1e-3).
+    #[serde(default)]
+    pub target_error: Option<f64>,
 }
 
 /// Kind of scene.
