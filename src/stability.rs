@@ -27,15 +27,24 @@ pub struct Stability {
     pub limit: f64,
 }
 
-/// Estimates the stability of `spec` as it stands.
+/// Estimates the stability of `spec` as it stands. The limit, in units of dt · ω_max, is the
+/// smaller of the fastest mode's (the test oscillator at its ζ) and the one damping alone
+/// sets: a heavily damped slow mode decays at rate up to ν_max, and an explicit scheme
+/// needs dt · ν_max below its limit on ẋ' = −ν ẋ (RK4 2.79, symplectic Euler 2, ...).
 pub fn estimate(spec: &RunSpec) -> Stability {
     let scene = build_scene(spec);
-    let (omega_max, damping_ratio) = fastest_mode(&scene, reference_extension(spec));
+    let modes = modes(&scene, reference_extension(spec));
+    let oscillation = stability_limit(spec.integrator, modes.damping_ratio);
+    let damping = if modes.damping_rate > 0.0 && modes.omega_max > 0.0 {
+        damping_limit(spec.integrator) * modes.omega_max / modes.damping_rate
+    } else {
+        f64::INFINITY
+    };
     Stability {
-        omega_max,
-        damping_ratio,
-        dt_omega_max: omega_max * spec.dt,
-        limit: stability_limit(spec.integrator, damping_ratio),
+        omega_max: modes.omega_max,
+        damping_ratio: modes.damping_ratio,
+        dt_omega_max: modes.omega_max * spec.dt,
+        limit: oscillation.min(damping),
     }
 }
 
@@ -54,85 +63,123 @@ fn reference_extension(spec: &RunSpec) -> f64 {
 /// the quotient is within a few 1e-3 of λ_max even where the top of the spectrum is dense.
 const POWER_ITERATIONS: usize = 4000;
 
-/// ω_max (rad/s) and the damping ratio of that mode: power iteration on the mass-weighted
-/// dynamical matrix M^(−½) K M^(−½) over the free axes, K from each bond's tangent stiffness
-/// k_t = ds/dδ at `extension` along its direction n̂ (K_bond = k_t n̂ n̂ᵀ; the geometric
-/// stiffness of pre-stress is left out), then ζ = uᵀCu / (2 ω uᵀMu) for that mode u, C from
-/// the bond dashpots γ n̂ n̂ᵀ and background damping γ_g I.
-fn fastest_mode(scene: &Scene, extension: f64) -> (f64, f64) {
-    let p = &scene.particles;
-    let n = p.len();
-    let mut bonds = Vec::new();
-    scene.network.for_each_bond(|i, j, _rest, k, shift| {
-        let (dx, dy) = (p.x[i] - p.x[j] + shift, p.y[i] - p.y[j]);
-        let r = dx.hypot(dy);
-        bonds.push((i, j, scene.law.tangent_stiffness(k, extension), dx / r, dy / r));
-    });
-    let mut free_x = vec![1.0; n];
-    let mut free_y = vec![1.0; n];
-    for &i in &p.held_x {
-        free_x[i] = 0.0;
+/// Springs of a scene for the eigenvalue estimates: (i, j, weight, n̂x, n̂y), the weight a
+/// stiffness (N/m) or a dashpot constant (N s/m).
+type Springs = Vec<(usize, usize, f64, f64, f64)>;
+
+/// The free axes of a scene and its mass scaling M^(−½).
+struct FreeAxes {
+    free_x: Vec<f64>,
+    free_y: Vec<f64>,
+    scale: Vec<f64>,
+}
+
+impl FreeAxes {
+    fn of(p: &Particles) -> FreeAxes {
+        let n = p.len();
+        let (mut free_x, mut free_y) = (vec![1.0; n], vec![1.0; n]);
+        for &i in &p.held_x {
+            free_x[i] = 0.0;
+        }
+        for &i in &p.held_y {
+            free_y[i] = 0.0;
+        }
+        FreeAxes { free_x, free_y, scale: p.inv_mass.iter().map(|im| im.sqrt()).collect() }
     }
-    for &i in &p.held_y {
-        free_y[i] = 0.0;
+
+    /// The displacement u = M^(−½) w of a mass-weighted vector w, on the free axes.
+    fn displacement(&self, wx: &[f64], wy: &[f64], i: usize) -> (f64, f64) {
+        (wx[i] * self.scale[i] * self.free_x[i], wy[i] * self.scale[i] * self.free_y[i])
     }
-    let scale: Vec<f64> = p.inv_mass.iter().map(|im| im.sqrt()).collect();
-    // y = M^(−½) K M^(−½) w on the free axes.
+}
+
+/// The largest eigenvalue of M^(−½) A M^(−½) over the free axes, A = Σ w_b n̂ n̂ᵀ over
+/// `springs`, by power iteration, with its (unit, mass-weighted) eigenvector.
+fn largest_eigenvalue(springs: &Springs, axes: &FreeAxes) -> (f64, Vec<f64>, Vec<f64>) {
+    let n = axes.scale.len();
     let apply = |wx: &[f64], wy: &[f64], yx: &mut [f64], yy: &mut [f64]| {
         yx.fill(0.0);
         yy.fill(0.0);
-        for &(i, j, k, nx, ny) in &bonds {
-            let (uxi, uyi) = (wx[i] * scale[i] * free_x[i], wy[i] * scale[i] * free_y[i]);
-            let (uxj, uyj) = (wx[j] * scale[j] * free_x[j], wy[j] * scale[j] * free_y[j]);
-            let s = k * (nx * (uxi - uxj) + ny * (uyi - uyj));
+        for &(i, j, weight, nx, ny) in springs {
+            let ((uxi, uyi), (uxj, uyj)) = (axes.displacement(wx, wy, i), axes.displacement(wx, wy, j));
+            let s = weight * (nx * (uxi - uxj) + ny * (uyi - uyj));
             yx[i] += s * nx;
             yy[i] += s * ny;
             yx[j] -= s * nx;
             yy[j] -= s * ny;
         }
         for i in 0..n {
-            yx[i] *= scale[i] * free_x[i];
-            yy[i] *= scale[i] * free_y[i];
+            yx[i] *= axes.scale[i] * axes.free_x[i];
+            yy[i] *= axes.scale[i] * axes.free_y[i];
         }
     };
     // A fixed, irregular start vector (reproducible, not orthogonal to the top mode).
-    let start = |i: usize, axis: f64| ((i as f64 + 1.0) * (0.754_877_666 + axis)).fract() - 0.5;
-    let mut wx: Vec<f64> = (0..n).map(|i| start(i, 0.0) * free_x[i]).collect();
-    let mut wy: Vec<f64> = (0..n).map(|i| start(i, 0.31) * free_y[i]).collect();
+    let start = |i: usize, shift: f64| ((i as f64 + 1.0) * (0.754_877_666 + shift)).fract() - 0.5;
+    let mut wx: Vec<f64> = (0..n).map(|i| start(i, 0.0) * axes.free_x[i]).collect();
+    let mut wy: Vec<f64> = (0..n).map(|i| start(i, 0.31) * axes.free_y[i]).collect();
     let (mut yx, mut yy) = (vec![0.0; n], vec![0.0; n]);
-    let norm = |a: &[f64], b: &[f64]| a.iter().chain(b).map(|v| v * v).sum::<f64>().sqrt();
     let mut lambda = 0.0;
     for iteration in 0..POWER_ITERATIONS {
-        let length = norm(&wx, &wy);
+        let length = wx.iter().chain(&wy).map(|v| v * v).sum::<f64>().sqrt();
         if length == 0.0 {
-            return (0.0, 0.0);
+            return (0.0, wx, wy);
         }
         wx.iter_mut().chain(wy.iter_mut()).for_each(|v| *v /= length);
         apply(&wx, &wy, &mut yx, &mut yy);
         let quotient: f64 = wx.iter().zip(&yx).chain(wy.iter().zip(&yy)).map(|(w, y)| w * y).sum();
         let settled = iteration > 50 && (quotient - lambda).abs() <= 1e-10 * quotient.abs();
         lambda = quotient;
-        std::mem::swap(&mut wx, &mut yx);
-        std::mem::swap(&mut wy, &mut yy);
         if settled {
             break;
         }
+        std::mem::swap(&mut wx, &mut yx);
+        std::mem::swap(&mut wy, &mut yy);
     }
-    let omega = lambda.max(0.0).sqrt();
-    if omega == 0.0 {
-        return (0.0, 0.0);
-    }
-    // The mode u = M^(−½) w with |w| = 1, so uᵀMu = 1.
-    let length = norm(&wx, &wy);
-    let u = |w: &[f64], free: &[f64], i: usize| w[i] / length * scale[i] * free[i];
+    (lambda.max(0.0), wx, wy)
+}
+
+/// What the eigenvalue estimates of a scene give.
+struct Modes {
+    /// ω_max (rad/s).
+    omega_max: f64,
+    /// ζ of the fastest mode.
+    damping_ratio: f64,
+    /// ν_max (1/s): the largest decay rate damping alone imposes, λ_max(M⁻¹C).
+    damping_rate: f64,
+}
+
+/// ω_max from K, each bond's tangent stiffness k_t = ds/dδ at `extension` along its direction
+/// (K_bond = k_t n̂ n̂ᵀ; the geometric stiffness of pre-stress is left out); the damping ratio
+/// of that mode u, ζ = uᵀCu / (2 ω uᵀMu), C from the bond dashpots γ n̂ n̂ᵀ and background
+/// damping γ_g I; and ν_max = λ_max(M^(−½) C_bonds M^(−½)) + max γ_g/m (an upper bound).
+fn modes(scene: &Scene, extension: f64) -> Modes {
+    let p = &scene.particles;
+    let axes = FreeAxes::of(p);
+    let mut springs = Springs::new();
+    let mut dashpots = Springs::new();
+    scene.network.for_each_bond(|i, j, _rest, k, shift| {
+        let (dx, dy) = (p.x[i] - p.x[j] + shift, p.y[i] - p.y[j]);
+        let r = dx.hypot(dy);
+        springs.push((i, j, scene.law.tangent_stiffness(k, extension), dx / r, dy / r));
+        dashpots.push((i, j, scene.gamma, dx / r, dy / r));
+    });
+    let (lambda, wx, wy) = largest_eigenvalue(&springs, &axes);
+    let omega_max = lambda.sqrt();
     let mut damping = 0.0;
-    for &(i, j, _, nx, ny) in &bonds {
-        let rate = nx * (u(&wx, &free_x, i) - u(&wx, &free_x, j)) + ny * (u(&wy, &free_y, i) - u(&wy, &free_y, j));
-        damping += scene.gamma * rate * rate;
+    for &(i, j, gamma, nx, ny) in &dashpots {
+        let ((uxi, uyi), (uxj, uyj)) = (axes.displacement(&wx, &wy, i), axes.displacement(&wx, &wy, j));
+        damping += gamma * (nx * (uxi - uxj) + ny * (uyi - uyj)).powi(2);
     }
-    damping +=
-        scene.background_gamma * (0..n).map(|i| u(&wx, &free_x, i).powi(2) + u(&wy, &free_y, i).powi(2)).sum::<f64>();
-    (omega, damping / (2.0 * omega))
+    damping += scene.background_gamma
+        * (0..p.len()).map(|i| axes.displacement(&wx, &wy, i)).map(|(ux, uy)| ux * ux + uy * uy).sum::<f64>();
+    let bond_rate = if scene.gamma > 0.0 { largest_eigenvalue(&dashpots, &axes).0 } else { 0.0 };
+    let lightest =
+        (0..p.len()).filter(|&i| axes.free_x[i] + axes.free_y[i] > 0.0).map(|i| p.inv_mass[i]).fold(0.0, f64::max);
+    Modes {
+        omega_max,
+        damping_ratio: if omega_max > 0.0 { damping / (2.0 * omega_max) } else { 0.0 },
+        damping_rate: bond_rate + scene.background_gamma * lightest,
+    }
 }
 
 /// The largest ω dt for which `kind` stays bounded on the test oscillator ẍ = −ω²x − 2ζωẋ
@@ -140,14 +187,33 @@ fn fastest_mode(scene: &Scene, extension: f64) -> (f64, f64) {
 /// digits). Undamped values to compare with: 2 for the Verlet schemes and symplectic Euler,
 /// 2√2 for RK4, 1.5734 for Forest–Ruth.
 pub fn stability_limit(kind: IntegratorKind, damping_ratio: f64) -> f64 {
-    static LIMITS: OnceLock<Mutex<HashMap<(IntegratorKind, u64), f64>>> = OnceLock::new();
     let zeta: f64 = format!("{damping_ratio:.2e}").parse().unwrap_or(0.0);
-    let key = (kind, zeta.to_bits());
+    cached_limit(kind, TestEquation::Oscillator { zeta })
+}
+
+/// The largest ν dt for which `kind` stays bounded on pure damping, ẋ' = −ν ẋ (a slow mode
+/// under heavy damping), measured and cached like [`stability_limit`].
+pub fn damping_limit(kind: IntegratorKind) -> f64 {
+    cached_limit(kind, TestEquation::Damping)
+}
+
+/// The scalar problems whose stability limits are measured.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum TestEquation {
+    /// ẍ = −ω²x − 2ζωẋ with ω = 1.
+    Oscillator { zeta: f64 },
+    /// ẍ = −ν ẋ with ν = 1.
+    Damping,
+}
+
+fn cached_limit(kind: IntegratorKind, test: TestEquation) -> f64 {
+    static LIMITS: OnceLock<Mutex<HashMap<(IntegratorKind, u64), f64>>> = OnceLock::new();
+    let key = (kind, if let TestEquation::Oscillator { zeta } = test { zeta.to_bits() } else { u64::MAX });
     let cache = LIMITS.get_or_init(Default::default);
     if let Some(&limit) = cache.lock().expect("the cache is never poisoned").get(&key) {
         return limit;
     }
-    let limit = measure_limit(kind, zeta);
+    let limit = measure_limit(kind, test);
     cache.lock().expect("the cache is never poisoned").insert(key, limit);
     limit
 }
@@ -155,9 +221,9 @@ pub fn stability_limit(kind: IntegratorKind, damping_ratio: f64) -> f64 {
 /// Largest ω dt searched: beyond it every scheme here is unstable (RK4's limit is 2.83).
 const LARGEST_LIMIT: f64 = 64.0;
 
-fn measure_limit(kind: IntegratorKind, zeta: f64) -> f64 {
+fn measure_limit(kind: IntegratorKind, test: TestEquation) -> f64 {
     let (mut low, mut high) = (0.0, 0.5);
-    while stays_bounded(kind, zeta, high) {
+    while stays_bounded(kind, test, high) {
         low = high;
         high *= 2.0;
         if high > LARGEST_LIMIT {
@@ -166,7 +232,7 @@ fn measure_limit(kind: IntegratorKind, zeta: f64) -> f64 {
     }
     while high - low > 1e-6 * high {
         let middle = 0.5 * (low + high);
-        if stays_bounded(kind, zeta, middle) {
+        if stays_bounded(kind, test, middle) {
             low = middle;
         } else {
             high = middle;
@@ -213,12 +279,16 @@ impl StepProbe for Amplitudes {
     }
 }
 
-/// Runs the integrator at ω dt = `h` on the test oscillator (unit mass on a unit spring to a
-/// fixed particle, dashpot 2ζ: ω = 1) for 2 × [`TRIAL_STEPS`] steps; bounded when it never
+/// Runs the integrator at ω dt (or ν dt) = `h` on the test equation (unit mass on a unit spring
+/// to a fixed particle with a dashpot 2ζ, ω = 1; or on background damping 1 alone, ν = 1) for 2 × [`TRIAL_STEPS`] steps; bounded when it never
 /// escapes and the late amplitude is within 1.5 × the early one. A scheme beyond its limit grows by a factor
 /// ρ > 1 per step (ρ − 1 ~ √(h − h_c)), so 1000 steps show growth down to (h − h_c)/h_c ≈ 1e-6;
 /// within the limit the amplitude is bounded (or decays).
-fn stays_bounded(kind: IntegratorKind, zeta: f64, h: f64) -> bool {
+fn stays_bounded(kind: IntegratorKind, test: TestEquation, h: f64) -> bool {
+    let (k, gamma, background) = match test {
+        TestEquation::Oscillator { zeta } => (1.0, 2.0 * zeta, 0.0),
+        TestEquation::Damping => (0.0, 0.0, 1.0),
+    };
     let mut particles = Particles::default();
     particles.push(0.0, 0.0, 1.0, Axes::FIXED);
     let moving = particles.push(1.0, 0.0, 1.0, Axes::ONLY_X_MOVES);
@@ -227,7 +297,7 @@ fn stays_bounded(kind: IntegratorKind, zeta: f64, h: f64) -> bool {
         nx: 2,
         ny: 1,
         spacing: 1.0,
-        k_x: 1.0,
+        k_x: k,
         k_y: 0.0,
         k_rising: 0.0,
         k_falling: 0.0,
@@ -237,13 +307,13 @@ fn stays_bounded(kind: IntegratorKind, zeta: f64, h: f64) -> bool {
         Sampling { dt: h, steps: 2 * TRIAL_STEPS, every: 2 * TRIAL_STEPS, displacements: false, relaxation: None };
     let mut state = State::new(particles);
     let mut amplitudes = Amplitudes::default();
-    if zeta > 0.0 {
-        let spring = Spring::<Linear, BondDashpot, false> { law: Linear, dashpot: BondDashpot { gamma: 2.0 * zeta } };
-        let mut field = LatticeNetwork::new(spring, lattice, 0.0);
+    if gamma > 0.0 {
+        let spring = Spring::<Linear, BondDashpot, false> { law: Linear, dashpot: BondDashpot { gamma } };
+        let mut field = LatticeNetwork::new(spring, lattice, background);
         simulate_with(kind, &mut state, &mut field, &sampling, &mut amplitudes);
     } else {
         let spring = Spring::<Linear, NoDashpot, false> { law: Linear, dashpot: NoDashpot };
-        let mut field = LatticeNetwork::new(spring, lattice, 0.0);
+        let mut field = LatticeNetwork::new(spring, lattice, background);
         simulate_with(kind, &mut state, &mut field, &sampling, &mut amplitudes);
     }
     !amplitudes.escaped && amplitudes.late <= 1.5 * amplitudes.early

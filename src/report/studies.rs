@@ -141,6 +141,11 @@ pub fn is_stability_scene(records: &[RunRecord], scene: &str) -> bool {
     records.iter().any(|r| r.spec.scene == scene && (r.spec.allow_unstable || r.spec.dt_omega_max.is_some()))
 }
 
+/// True when `scene` sweeps dt·ω_max, so its runs map the stability limit.
+fn sweeps_the_limit(records: &[RunRecord], scene: &str) -> bool {
+    records.iter().any(|r| r.spec.scene == scene && r.spec.dt_omega_max.is_some())
+}
+
 /// The y coordinate of a run on the stability map: k_d/k for lattices, else the damping
 /// ratio of the fastest mode; zero is drawn at [`MAP_FLOOR`] on the logarithmic axis.
 fn map_y(r: &RunRecord) -> f64 {
@@ -208,6 +213,9 @@ pub fn stability_rows(records: &[RunRecord], scene: &str) -> (Vec<StabilityRow>,
             }
         })
         .collect();
+    if !sweeps_the_limit(records, scene) {
+        return (rows, Vec::new());
+    }
     let mut keys: Vec<(&'static str, String)> = Vec::new();
     for r in &mine {
         let key = (r.spec.integrator.name(), number(map_y(r)));
@@ -232,7 +240,7 @@ pub fn stability_rows(records: &[RunRecord], scene: &str) -> (Vec<StabilityRow>,
                 "inside the observed bracket".to_string()
             } else {
                 let nearest = if predicted < last_bounded { last_bounded } else { first_blown };
-                format!("outside by {:+.1} %", 100.0 * (predicted - nearest) / nearest)
+                format!("outside by {:+.2} %", 100.0 * (predicted - nearest) / nearest)
             };
             Some(LimitRow {
                 integrator,
@@ -250,6 +258,9 @@ pub fn stability_rows(records: &[RunRecord], scene: &str) -> (Vec<StabilityRow>,
 /// One stability map per integrator of a stability scene: runs that stayed bounded and runs
 /// that blew up at their dt·ω_max and map y, with the predicted limit drawn through them.
 pub fn stability_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Figure>> {
+    if !sweeps_the_limit(records, scene) {
+        return Ok(Vec::new());
+    }
     let mine: Vec<&RunRecord> =
         records.iter().filter(|r| r.spec.scene == scene && r.metrics.dt_omega_max.is_some()).collect();
     let Some(first) = mine.first() else { return Ok(Vec::new()) };
@@ -277,9 +288,10 @@ pub fn stability_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<V
             // One row only: draw the limit as a short vertical line through it.
             limit = vec![(x, y / 2.0), (x, y * 2.0)];
         }
+        // Palette order: red for the runs that blew up, green for those that did not.
         let series = vec![
-            Series { label: "bounded".into(), points: points(false), markers: true },
             Series { label: "blew up (status unstable)".into(), points: points(true), markers: true },
+            Series { label: "bounded".into(), points: points(false), markers: true },
             Series { label: format!("predicted limit of {}", integrator.name()), points: limit, markers: false },
         ];
         let y_label =

@@ -31,6 +31,11 @@ fn require(ok: bool, path: &str, value: impl Display, allowed: &str) -> Result<(
     }
 }
 
+fn non_negative(value: f64, path: &str) -> Result<f64, Issue> {
+    require(value.is_finite() && value >= 0.0, path, value, "must be a finite number ≥ 0 (0: no diagonal springs)")?;
+    Ok(value)
+}
+
 fn positive(value: f64, path: &str) -> Result<f64, Issue> {
     require(value.is_finite() && value > 0.0, path, value, "must be a finite number > 0")?;
     Ok(value)
@@ -355,8 +360,11 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
                 allowed: "give either k_diag or k_diag_ratio, not both".into(),
             });
         }
-        (Diagonals::Both, Some(k_diag), None) => positive(k_diag, "lattice.k_diag")?,
-        (Diagonals::Both, None, ratio) => k * positive(ratio.unwrap_or(DEFAULT_K_DIAG_RATIO), "lattice.k_diag_ratio")?,
+        // Zero is allowed: the same lattice as `diagonals: none`, so a grid can start a sweep there.
+        (Diagonals::Both, Some(k_diag), None) => non_negative(k_diag, "lattice.k_diag")?,
+        (Diagonals::Both, None, ratio) => {
+            k * non_negative(ratio.unwrap_or(DEFAULT_K_DIAG_RATIO), "lattice.k_diag_ratio")?
+        }
     };
     let supports = raw.supports.unwrap_or(Supports::Coursework);
     require(
