@@ -32,6 +32,19 @@ pub struct Stability {
 /// sets: a heavily damped slow mode decays at rate up to ν_max, and an explicit scheme
 /// needs dt · ν_max below its limit on ẋ' = −ν ẋ (RK4 2.79, symplectic Euler 2, ...).
 pub fn estimate(spec: &RunSpec) -> Stability {
+    // The campaign check and the run itself both ask: compute once per run and process.
+    static ESTIMATES: OnceLock<Mutex<HashMap<String, Stability>>> = OnceLock::new();
+    let key = spec.run_id();
+    let cache = ESTIMATES.get_or_init(Default::default);
+    if let Some(&known) = cache.lock().expect("the cache is never poisoned").get(&key) {
+        return known;
+    }
+    let estimate = estimate_uncached(spec);
+    cache.lock().expect("the cache is never poisoned").insert(key, estimate);
+    estimate
+}
+
+fn estimate_uncached(spec: &RunSpec) -> Stability {
     let scene = build_scene(spec);
     let modes = modes(&scene, reference_extension(spec));
     let oscillation = stability_limit(spec.integrator, modes.damping_ratio);
@@ -59,9 +72,10 @@ fn reference_extension(spec: &RunSpec) -> f64 {
 }
 
 /// Iterations of the power method at most; it stops earlier once the Rayleigh quotient has
-/// settled to 1e-10. Eigenvalues within a fraction ε of the top are damped as (1 − ε)^(2n), so
-/// the quotient is within a few 1e-3 of λ_max even where the top of the spectrum is dense.
-const POWER_ITERATIONS: usize = 4000;
+/// settled to 1e-10. Eigenvalues below (1 − ε) λ_max are damped as (1 − ε)^(2n): after 1000
+/// iterations those 0.3 % below by e^(−6), so even where the top of the spectrum is dense the
+/// quotient is within ~0.3 % of λ_max and ω_max within ~0.15 % (a lower bound).
+const POWER_ITERATIONS: usize = 1000;
 
 /// Springs of a scene for the eigenvalue estimates: (i, j, weight, n̂x, n̂y), the weight a
 /// stiffness (N/m) or a dashpot constant (N s/m).
@@ -134,6 +148,11 @@ fn largest_eigenvalue(springs: &Springs, axes: &FreeAxes) -> (f64, Vec<f64>, Vec
         }
         std::mem::swap(&mut wx, &mut yx);
         std::mem::swap(&mut wy, &mut yy);
+    }
+    // The last iterate, normalised (it is A w, not w, when the loop ran out).
+    let length = wx.iter().chain(&wy).map(|v| v * v).sum::<f64>().sqrt();
+    if length > 0.0 {
+        wx.iter_mut().chain(wy.iter_mut()).for_each(|v| *v /= length);
     }
     (lambda.max(0.0), wx, wy)
 }

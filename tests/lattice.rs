@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{execute_all, runs};
+use common::{assert_table_finite, execute_all, runs};
 use mdsolids::runner::RunRecord;
 
 /// A lattice campaign: physical-looking values (k = 1e6 N/m, 1 N per node: strains ~1e-6, so
@@ -74,12 +74,7 @@ fn lattice_without_diagonals_stretches_but_shears_as_a_mechanism() {
         }
     }
     // No NaN reaches the table: every number present is finite.
-    let frame = mdsolids::table::results_frame(&records).unwrap();
-    for column in frame.columns() {
-        if let Ok(values) = column.f64() {
-            assert!(values.iter().flatten().all(f64::is_finite), "non-finite value in {}", column.name());
-        }
-    }
+    assert_table_finite(&records);
 }
 
 #[test]

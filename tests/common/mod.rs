@@ -27,3 +27,13 @@ pub fn pair_campaign(material: &str, damping: &str, integrator: &str, sweep: &[f
         "version: 1\nname: t\nscenes:\n  - name: p\n    kind: pair\n    v0: 1.0\n    material: {material}\n    damping: {damping}\n    time: {{integrator: {integrator}}}\n    grid:\n      time.dt_per_tc: {sweep:?}\n"
     )
 }
+
+/// Asserts that every number in the results table of `records` is finite (nulls allowed).
+pub fn assert_table_finite(records: &[RunRecord]) {
+    let frame = mdsolids::table::results_frame(records).unwrap();
+    for column in frame.columns() {
+        if let Ok(values) = column.f64() {
+            assert!(values.iter().flatten().all(f64::is_finite), "non-finite value in {}", column.name());
+        }
+    }
+}
