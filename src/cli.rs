@@ -110,17 +110,6 @@ fn run_command(reports: &Path, file: &Path, jobs: Option<usize>) -> anyhow::Resu
     Ok(())
 }
 
-/// Cost model of a run in a release build, from `mdsolids bench` and the coursework campaign on
-/// the project machine: ~80 ns per step for the loop itself and the per-step probes, plus
-/// ~3 ns per particle-step (the reference lattice runs at ~330 million particle-steps/s) and
-/// force evaluation, for the run and its reference run, if any.
-fn estimated_seconds(spec: &crate::spec::RunSpec) -> f64 {
-    let evaluations = spec.integrator.evaluations_per_step() as f64;
-    // A reference run at dt/R takes R times as many steps.
-    let runs = 1.0 + spec.reference_refinement.map_or(0.0, f64::from);
-    runs * spec.steps as f64 * (80e-9 + 3e-9 * evaluations * spec.particles() as f64)
-}
-
 /// Writing tables, figures and the report of a campaign of a few dozen runs (measured ~0.07 s).
 const REPORT_SECONDS: f64 = 0.1;
 
@@ -134,7 +123,7 @@ fn plan_command(reports: &Path, file: &Path) -> anyhow::Result<()> {
     for spec in &campaign.runs {
         let cached = stored_record(&layout, spec).is_some();
         if !cached {
-            simulation_s += estimated_seconds(spec);
+            simulation_s += spec.estimated_seconds();
         }
         let stability = estimate(spec);
         println!(

@@ -9,7 +9,6 @@ mod record;
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use rayon::prelude::*;
 use std::io::IsTerminal;
 
 use crate::output::{Layout, write_atomically};
@@ -42,18 +41,32 @@ pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -
         .num_threads(jobs.unwrap_or(0))
         .build()
         .context("cannot start the thread pool")?;
-    let fresh: Vec<RunRecord> = pool.install(|| {
-        todo.par_iter()
-            .map(|spec| {
-                let record = execute(spec);
-                let json = serde_json::to_vec(&record).context("cannot serialise a run record")?;
-                write_atomically(&layout.run_file(&record.run_id), &json)?;
+    // Longest first, in a first-in-first-out queue: the long lattice runs start at once and the
+    // short ones fill the gaps, instead of a late long run keeping one core busy alone.
+    let mut order: Vec<usize> = (0..todo.len()).collect();
+    order.sort_by(|&a, &b| todo[b].estimated_seconds().total_cmp(&todo[a].estimated_seconds()));
+    let finished: Vec<std::sync::Mutex<Option<anyhow::Result<RunRecord>>>> =
+        todo.iter().map(|_| std::sync::Mutex::new(None)).collect();
+    pool.scope_fifo(|scope| {
+        for &index in &order {
+            let (spec, slot, progress) = (todo[index], &finished[index], &progress);
+            scope.spawn_fifo(move |_| {
+                let stored = (|| {
+                    let record = execute(spec);
+                    let json = serde_json::to_vec(&record).context("cannot serialise a run record")?;
+                    write_atomically(&layout.run_file(&record.run_id), &json)?;
+                    Ok(record)
+                })();
                 progress.inc(1);
-                Ok(record)
-            })
-            .collect::<anyhow::Result<_>>()
-    })?;
+                *slot.lock().expect("a slot is written once") = Some(stored);
+            });
+        }
+    });
     progress.finish_and_clear();
+    let fresh: Vec<RunRecord> = finished
+        .into_iter()
+        .map(|slot| slot.into_inner().expect("a slot is written once").expect("every queued run ends"))
+        .collect::<anyhow::Result<_>>()?;
     let simulated = fresh.len();
     let mut fresh = fresh.into_iter();
     let records: Vec<RunRecord> = stored

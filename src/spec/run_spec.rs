@@ -120,6 +120,17 @@ impl RunSpec {
         format!("{}-{}", self.scene, &hash[..12])
     }
 
+    /// Cost model of the run in a release build (s), from `mdsolids bench` and the coursework
+    /// campaign on the project machine: ~80 ns per step for the loop itself and the per-step
+    /// probes, plus ~3 ns per particle-step (the reference lattice runs at ~330 million
+    /// particle-steps/s) and force evaluation, for the run and its reference run, if any.
+    pub fn estimated_seconds(&self) -> f64 {
+        let evaluations = self.integrator.evaluations_per_step() as f64;
+        // A reference run at dt/R takes R times as many steps.
+        let runs = 1.0 + self.reference_refinement.map_or(0.0, f64::from);
+        runs * self.steps as f64 * (80e-9 + 3e-9 * evaluations * self.particles() as f64)
+    }
+
     /// Sets the time step to `dt` (s) and the step count to cover the same duration.
     pub fn set_dt(&mut self, dt: f64) {
         self.dt = dt;
