@@ -88,6 +88,7 @@ pub fn reference_scene(config: &BenchConfig) -> Scene {
             relaxation: None,
         },
         contact_clock: None,
+        wave: None,
         loads: Vec::new(),
         load_ramp: 0.0,
         drive: None,

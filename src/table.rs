@@ -76,12 +76,29 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
             records.iter().map(|r| r.metrics.error_measure.clone()).collect::<Vec<Option<String>>>(),
         ),
         optional_floats(records, "omega_max", |r| r.metrics.omega_max),
+        optional_floats(records, "arrival_time", |r| r.metrics.arrival_time()),
+        optional_floats(records, "sound_speed", |r| {
+            r.metrics.arrival_criterion.as_deref().and_then(|c| r.metrics.sound_speed(c))
+        }),
+        Column::new(
+            "arrival_criterion".into(),
+            records.iter().map(|r| r.metrics.arrival_criterion.clone()).collect::<Vec<Option<String>>>(),
+        ),
+        optional_floats(records, "arrival_time_tc_estimate", |r| r.metrics.arrival_time_tc_estimate),
+        optional_floats(records, "sound_speed_theory", |r| r.metrics.sound_speed_theory),
         optional_floats(records, "dt_omega_max", |r| r.metrics.dt_omega_max),
         optional_floats(records, "mode_damping_ratio", |r| r.metrics.mode_damping_ratio),
         optional_floats(records, "stability_limit", |r| r.metrics.stability_limit),
     ];
     if records.iter().any(|r| r.spec.lattice.is_some()) {
         columns.extend(lattice_columns(records));
+    }
+    if records.iter().any(|r| r.spec.wave.is_some()) {
+        for criterion in crate::measure::ARRIVAL_CRITERIA {
+            columns.push(optional_floats(records, &format!("sound_speed_{criterion}"), |r| {
+                r.metrics.sound_speed(criterion)
+            }));
+        }
     }
     let paths: BTreeSet<&String> = records.iter().flat_map(|r| r.spec.varied.keys()).collect();
     // A grid path named like a resolved column (`supports`) is already there.

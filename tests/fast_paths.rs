@@ -144,6 +144,7 @@ fn check<L: ForceLaw, D: Dashpot, const C: bool>(
         integrator,
         sampling: sampling(),
         contact_clock: None,
+        wave: None,
         loads: Vec::new(),
         load_ramp: 0.0,
         drive: None,

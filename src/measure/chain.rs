@@ -1,7 +1,7 @@
 //! Comparison of a simulated chain with its exact normal-mode solution.
 
 use crate::sim::Trace;
-use crate::theory::chain_normal_modes;
+use crate::theory::ChainModes;
 
 /// Largest deviation of the movable particles from the exact normal-mode solution over all
 /// samples, in phase space: the larger of max |u_MD − u_exact| / max |u_exact| and
@@ -10,9 +10,10 @@ use crate::theory::chain_normal_modes;
 /// from equilibrium; its velocities are first order). `movable` are the particle indices of
 /// the chain (walls excluded), `v0` their initial velocities (m/s). `None` without samples.
 pub fn normal_mode_error(trace: &Trace, movable: &[usize], v0: &[f64], k: f64, m: f64) -> Option<f64> {
+    let modes = ChainModes::new(k, m, v0);
     let (mut error_u, mut error_v, mut largest_u, mut largest_v) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     for ((t, displacement), velocity) in trace.time.iter().zip(&trace.displacement_x).zip(&trace.velocity_x) {
-        let (exact_u, exact_v) = chain_normal_modes(k, m, v0, *t);
+        let (exact_u, exact_v) = modes.at(*t);
         for ((&p, u), v) in movable.iter().zip(exact_u).zip(exact_v) {
             error_u = error_u.max((displacement[p] - u).abs());
             error_v = error_v.max((velocity[p] - v).abs());

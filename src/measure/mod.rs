@@ -3,12 +3,14 @@
 pub use self::chain::normal_mode_error;
 pub use self::contact::{ContactTiming, contact_timing};
 pub use self::energy::energy_error;
+pub use self::wave::{ARRIVAL_CRITERIA, arrival_time};
 pub use self::moduli::{LatticeShape, TensileModuli, continuum_moduli, homogeneity, shear_modulus, tensile_moduli};
 
 mod chain;
 mod contact;
 mod energy;
 mod moduli;
+mod wave;
 
 /// Order of convergence p in |error| ∝ dt^p: least-squares slope of ln|error| against ln dt
 /// over `points` = (dt, error); `None` with fewer than two usable points (finite, above the

@@ -7,7 +7,7 @@ use std::time::Instant;
 use super::record::{Metrics, RunRecord};
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
-    LatticeShape, contact_timing, continuum_moduli, energy_error, homogeneity, normal_mode_error, shear_modulus,
+    ARRIVAL_CRITERIA, LatticeShape, arrival_time, contact_timing, continuum_moduli, energy_error, homogeneity, normal_mode_error, shear_modulus,
     tensile_moduli,
 };
 use crate::scenes::{
@@ -260,6 +260,19 @@ fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metr
             normal_mode_error(&outcome.trace, &movable, &v0, spec.k, spec.mass)
         })
         .flatten();
+    if let (Some(wave), Some(record), Some(node)) = (&spec.wave, &outcome.wave, spec.node) {
+        for criterion in ARRIVAL_CRITERIA {
+            if let Some(time) = arrival_time(record, criterion, wave.threshold) {
+                metrics.arrival_times.insert(criterion.to_string(), time);
+            }
+        }
+        let springs = wave.receiver.abs_diff(node);
+        metrics.arrival_criterion = Some(ARRIVAL_CRITERIA[0].to_string());
+        metrics.wave_distance = Some(springs as f64 * spec.spacing);
+        metrics.arrival_time_tc_estimate = Some(springs as f64 * spec.t_c);
+        metrics.sound_speed_theory =
+            (spec.law == crate::spec::LawName::Linear).then(|| spec.spacing * (spec.k / spec.mass).sqrt());
+    }
     if let Some(lattice) = &spec.lattice {
         let p = &outcome.state.particles;
         let ux: Vec<f64> = p.x.iter().zip(&start.0).map(|(x, x0)| x - x0).collect();

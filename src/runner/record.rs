@@ -27,6 +27,17 @@ pub struct Metrics {
     /// What `error` measures: `contact_duration`, `restitution`, `normal_modes`,
     /// `reference_dt/R` (a run at dt/R) or `energy`.
     pub error_measure: Option<String>,
+    /// Chain wave: arrival time (s) at the receiver by each criterion.
+    #[serde(default)]
+    pub arrival_times: std::collections::BTreeMap<String, f64>,
+    /// Chain wave: the recommended criterion.
+    pub arrival_criterion: Option<String>,
+    /// Chain wave: distance from the excited particle to the receiver (m).
+    pub wave_distance: Option<f64>,
+    /// Chain wave: the coursework's estimate t_s = N_s t_c (N_s springs between them) (s).
+    pub arrival_time_tc_estimate: Option<f64>,
+    /// Chain wave: the long-wavelength (and front) speed a√(k/m) of a linear chain (m/s).
+    pub sound_speed_theory: Option<f64>,
     /// Angular frequency of the fastest mode (rad/s), estimated before the run.
     pub omega_max: Option<f64>,
     /// dt · ω_max.
@@ -86,4 +97,16 @@ pub struct RunRecord {
     pub metrics: Metrics,
     /// Sampled series.
     pub trace: Trace,
+}
+
+impl Metrics {
+    /// Arrival time (s) by the recommended criterion.
+    pub fn arrival_time(&self) -> Option<f64> {
+        self.arrival_criterion.as_ref().and_then(|c| self.arrival_times.get(c).copied())
+    }
+
+    /// Sound speed L / t_s (m/s) from the arrival time by `criterion`.
+    pub fn sound_speed(&self, criterion: &str) -> Option<f64> {
+        self.wave_distance.zip(self.arrival_times.get(criterion)).map(|(l, t)| l / t)
+    }
 }

@@ -78,3 +78,76 @@ impl StepProbe for ContactClock {
         self.last = Some(now);
     }
 }
+
+/// Watches a wave travel from a source particle to a set of receivers, every step: the
+/// source's displacement and speed, and over the receivers the largest displacement, the
+/// largest speed and their kinetic energy. Displacements are from the start positions.
+#[derive(Clone, Debug, Default)]
+pub struct WaveProbe {
+    source: usize,
+    receivers: Vec<usize>,
+    /// Record every this many observations (1: every step).
+    every: u64,
+    seen: u64,
+    start: Vec<(f64, f64)>,
+    /// The recorded series, one entry per observed step.
+    pub record: WaveRecord,
+}
+
+/// What a [`WaveProbe`] recorded, one entry per step.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct WaveRecord {
+    /// Time (s).
+    pub time: Vec<f64>,
+    /// |u| of the source (m).
+    pub source_displacement: Vec<f64>,
+    /// |v| of the source (m/s).
+    pub source_speed: Vec<f64>,
+    /// ½ m v² of the source (J).
+    pub source_kinetic: Vec<f64>,
+    /// max |u| over the receivers (m).
+    pub receiver_displacement: Vec<f64>,
+    /// max |v| over the receivers (m/s).
+    pub receiver_speed: Vec<f64>,
+    /// Σ ½ m v² over the receivers (J).
+    pub receiver_kinetic: Vec<f64>,
+}
+
+impl WaveProbe {
+    /// A probe from particle `source` to the particles `receivers`, recording every `every`-th
+    /// step (arrival times are then known to `every` steps).
+    pub fn new(source: usize, receivers: Vec<usize>, every: u64) -> WaveProbe {
+        WaveProbe { source, receivers, every: every.max(1), ..WaveProbe::default() }
+    }
+}
+
+impl StepProbe for WaveProbe {
+    fn observe(&mut self, state: &State) {
+        self.seen += 1;
+        if (self.seen - 1) % self.every != 0 {
+            return;
+        }
+        let p = &state.particles;
+        if self.start.is_empty() {
+            self.start = p.x.iter().zip(&p.y).map(|(&x, &y)| (x, y)).collect();
+        }
+        let displacement = |i: usize| (p.x[i] - self.start[i].0).hypot(p.y[i] - self.start[i].1);
+        let speed = |i: usize| p.vx[i].hypot(p.vy[i]);
+        let r = &mut self.record;
+        r.time.push(state.time);
+        r.source_displacement.push(displacement(self.source));
+        r.source_speed.push(speed(self.source));
+        r.source_kinetic.push(0.5 * speed(self.source).powi(2) / p.inv_mass[self.source]);
+        r.receiver_displacement.push(self.receivers.iter().map(|&i| displacement(i)).fold(0.0, f64::max));
+        r.receiver_speed.push(self.receivers.iter().map(|&i| speed(i)).fold(0.0, f64::max));
+        r.receiver_kinetic.push(self.receivers.iter().map(|&i| 0.5 * speed(i).powi(2) / p.inv_mass[i]).sum());
+    }
+}
+
+impl<A: StepProbe, B: StepProbe> StepProbe for (A, B) {
+    #[inline(always)]
+    fn observe(&mut self, state: &State) {
+        self.0.observe(state);
+        self.1.observe(state);
+    }
+}

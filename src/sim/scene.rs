@@ -3,7 +3,7 @@
 
 use super::field::{BondNetwork, ForceField};
 use super::integrate::{IntegratorKind, simulate_with};
-use super::probe::{ContactClock, Crossing};
+use super::probe::{ContactClock, Crossing, WaveProbe, WaveRecord};
 use super::run::{Sampling, Trace};
 use super::state::{Drive, Load, State};
 use super::stencil::LatticeNetwork;
@@ -74,6 +74,9 @@ pub struct Scene {
     pub sampling: Sampling,
     /// Bond `(i, j, rest)` whose δ = 0 crossings are timed, if any.
     pub contact_clock: Option<(usize, usize, f64)>,
+    /// A wave watched from a source particle to receivers, if any: `(source, receivers,
+    /// record every this many steps)`.
+    pub wave: Option<(usize, Vec<usize>, u64)>,
     /// External forces.
     pub loads: Vec<Load>,
     /// Time (s) over which the loads rise linearly to their full value; 0 for at once.
@@ -89,6 +92,8 @@ pub struct Outcome {
     pub trace: Trace,
     /// Timed crossings of the watched bond.
     pub crossings: Vec<Crossing>,
+    /// The watched wave, every step.
+    pub wave: Option<WaveRecord>,
     /// State at the end.
     pub state: State,
 }
@@ -132,8 +137,16 @@ impl Scene {
         if let Some(drive) = self.drive {
             state = state.with_drive(drive);
         }
-        let mut clock = self.contact_clock.map(|(i, j, rest)| ContactClock::new(i, j, rest));
-        let trace = simulate_with(self.integrator, &mut state, &mut field, &self.sampling, &mut clock);
-        Outcome { trace, crossings: clock.map(|c| c.crossings).unwrap_or_default(), state }
+        let clock = self.contact_clock.map(|(i, j, rest)| ContactClock::new(i, j, rest));
+        let wave = self.wave.map(|(source, receivers, every)| WaveProbe::new(source, receivers, every));
+        let mut probes = (clock, wave);
+        let trace = simulate_with(self.integrator, &mut state, &mut field, &self.sampling, &mut probes);
+        let (clock, wave) = probes;
+        Outcome {
+            trace,
+            crossings: clock.map(|c| c.crossings).unwrap_or_default(),
+            wave: wave.map(|w| w.record),
+            state,
+        }
     }
 }

@@ -117,6 +117,8 @@ pub struct RawScene {
     pub load: Option<RawLoad>,
     /// Lattice: when the relaxation stops.
     pub relax: Option<RawRelax>,
+    /// Chain: time the wave from the excited particle to a receiver (sound speed).
+    pub wave: Option<RawWave>,
     /// Grid over this scene only (dotted paths), combined with the campaign's grid.
     pub grid: Option<Grid>,
 }
@@ -230,6 +232,17 @@ impl Control {
             Control::Velocity => "velocity",
         }
     }
+}
+
+/// `wave:` section of a chain.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawWave {
+    /// Particle whose motion marks the arrival: `first`, `last` or 1..n (default: the end
+    /// farther from the excited particle).
+    pub receiver: Option<Value>,
+    /// Threshold of the threshold criteria, relative to the source's peak (default 0.01).
+    pub threshold: Option<f64>,
 }
 
 /// `relax:` section.

@@ -8,7 +8,7 @@ use std::fmt::Display;
 use super::raw::{
     Control, Diagonals, LawName, LoadCase, RawDamping, RawGeometry, RawMaterial, RawScene, RawTime, SceneKind, Supports,
 };
-use super::run_spec::{LatticeSpec, RunSpec};
+use super::run_spec::{LatticeSpec, RunSpec, WaveSpec};
 use crate::sim::IntegratorKind;
 use crate::theory;
 
@@ -55,6 +55,9 @@ const DEFAULT_KINETIC_RATIO: f64 = 1e-8;
 const DEFAULT_MAX_TC: f64 = 5000.0;
 /// Default gap of a contact pair, in spacings: contact starts at a time not aligned with dt.
 const DEFAULT_GAP_PER_SPACING: f64 = 0.05;
+
+/// Threshold of the wave-arrival criteria, relative to the source's peak.
+const DEFAULT_WAVE_THRESHOLD: f64 = 0.01;
 
 /// Resolves one scene of campaign `campaign` with grid values `varied` already applied.
 pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) -> Result<RunSpec, Issue> {
@@ -129,7 +132,7 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     require(steps <= 2_000_000_000, "time.duration_tc", duration / t_c, "at most 2e9 steps")?;
     let samples = time.samples.unwrap_or(DEFAULT_SAMPLES);
     require(samples >= 2, "time.samples", samples, "must be ≥ 2")?;
-    let ChainFields { n, node, wall_distance } = resolve_chain(kind, raw, spacing)?;
+    let ChainFields { n, node, wall_distance, wave } = resolve_chain(kind, raw, spacing)?;
     let reference_refinement = time.reference_refinement;
     if let Some(r) = reference_refinement {
         require((2..=1000).contains(&r), "time.reference_refinement", r, "an integer from 2 to 1000")?;
@@ -170,6 +173,7 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         node,
         wall_distance,
         lattice,
+        wave,
     })
 }
 
@@ -315,7 +319,7 @@ fn check_kind_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue> {
     let is = |wanted: SceneKind| kind == wanted;
     only(raw.gap.is_some() && !(is(SceneKind::Pair) && contact), "gap", "pairs with material.contact: true")?;
     for (present, path) in
-        [(raw.n.is_some(), "n"), (raw.node.is_some(), "node"), (raw.wall_distance.is_some(), "wall_distance")]
+        [(raw.n.is_some(), "n"), (raw.node.is_some(), "node"), (raw.wall_distance.is_some(), "wall_distance"), (raw.wave.is_some(), "wave")]
     {
         only(present && !is(SceneKind::Chain), path, "chain scenes")?;
     }
@@ -445,27 +449,44 @@ struct ChainFields {
     n: Option<usize>,
     node: Option<usize>,
     wall_distance: Option<f64>,
+    wave: Option<WaveSpec>,
 }
 
-/// Number of particles, excited node (1..n) and wall distance of a chain scene.
+/// Number of particles, excited node (1..n), wall distance and timed wave of a chain scene.
 fn resolve_chain(kind: SceneKind, raw: &RawScene, spacing: f64) -> Result<ChainFields, Issue> {
     if kind != SceneKind::Chain {
         return Ok(ChainFields::default());
     }
     let n = raw.n.ok_or_else(|| missing("n", "the number of moving particles, 1..=100000"))?;
     require((1..=100_000).contains(&n), "n", n, "must be in 1..=100000")?;
-    let allowed = format!("centre, first, last or a particle number 1..={n}");
-    let node = match &raw.node {
-        None => n.div_ceil(2),
-        Some(Value::String(s)) if s == "centre" || s == "center" => n.div_ceil(2),
-        Some(Value::String(s)) if s == "first" => 1,
-        Some(Value::String(s)) if s == "last" => n,
-        Some(Value::Number(number)) => match number.as_u64() {
-            Some(i) if (1..=n as u64).contains(&i) => i as usize,
-            _ => return Err(Issue { path: "node".into(), value: number.to_string(), allowed }),
-        },
-        Some(other) => return Err(Issue { path: "node".into(), value: other.to_string(), allowed }),
-    };
+    let node = particle(raw.node.as_ref(), n, n.div_ceil(2), "node")?;
     let walls = positive(raw.wall_distance.unwrap_or((n + 1) as f64 * spacing), "wall_distance")?;
-    Ok(ChainFields { n: Some(n), node: Some(node), wall_distance: Some(walls) })
+    let wave = match &raw.wave {
+        None => None,
+        Some(w) => {
+            let far_end = if node <= n / 2 { n } else { 1 };
+            let receiver = particle(w.receiver.as_ref(), n, far_end, "wave.receiver")?;
+            require(receiver != node, "wave.receiver", receiver, "a particle other than the excited one")?;
+            let threshold = w.threshold.unwrap_or(DEFAULT_WAVE_THRESHOLD);
+            require(threshold > 0.0 && threshold < 1.0, "wave.threshold", threshold, "must be in (0, 1)")?;
+            Some(WaveSpec { receiver, threshold })
+        }
+    };
+    Ok(ChainFields { n: Some(n), node: Some(node), wall_distance: Some(walls), wave })
+}
+
+/// A chain particle named `first`, `last`, `centre` or by its number 1..=n; `default` when absent.
+fn particle(value: Option<&Value>, n: usize, default: usize, path: &str) -> Result<usize, Issue> {
+    let allowed = || format!("centre, first, last or a particle number 1..={n}");
+    match value {
+        None => Ok(default),
+        Some(Value::String(s)) if s == "centre" || s == "center" => Ok(n.div_ceil(2)),
+        Some(Value::String(s)) if s == "first" => Ok(1),
+        Some(Value::String(s)) if s == "last" => Ok(n),
+        Some(Value::Number(number)) => match number.as_u64() {
+            Some(i) if (1..=n as u64).contains(&i) => Ok(i as usize),
+            _ => Err(Issue { path: path.into(), value: number.to_string(), allowed: allowed() }),
+        },
+        Some(other) => Err(Issue { path: path.into(), value: other.to_string(), allowed: allowed() }),
+    }
 }

@@ -9,7 +9,7 @@ use crate::sim::IntegratorKind;
 
 /// Bumped whenever stored results of an unchanged spec would differ (new physics or columns),
 /// so the cache never serves results of older code.
-pub const RESULT_FORMAT: u32 = 5;
+pub const RESULT_FORMAT: u32 = 6;
 
 /// A resolved run. Units SI; field names are the results table's column names.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -70,6 +70,18 @@ pub struct RunSpec {
     pub wall_distance: Option<f64>,
     /// Lattice: what is specific to lattice scenes.
     pub lattice: Option<LatticeSpec>,
+    /// Chain: the wave timed from the excited particle to a receiver, if asked for.
+    #[serde(default)]
+    pub wave: Option<WaveSpec>,
+}
+
+/// A timed wave: from the chain's excited particle to `receiver`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct WaveSpec {
+    /// Receiving particle, 1..n.
+    pub receiver: usize,
+    /// Threshold of the threshold criteria, relative to the source's peak.
+    pub threshold: f64,
 }
 
 /// The resolved lattice of a lattice scene.
