@@ -40,7 +40,11 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
         },
         contact_clock,
         // A wave is timed every step, but never more than 10⁵ entries are kept.
-        wave: spec.wave.as_ref().zip(spec.node).map(|(w, node)| (node, vec![w.receiver], (spec.steps / 100_000).max(1))),
+        wave: spec
+            .wave
+            .as_ref()
+            .zip(spec.node)
+            .map(|(w, node)| (node, vec![w.receiver], (spec.steps / 100_000).max(1))),
         loads,
         load_ramp: spec.lattice.as_ref().map_or(0.0, |l| l.load_ramp_tc * spec.t_c),
         drive,

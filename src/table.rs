@@ -168,6 +168,60 @@ fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
     ]
 }
 
+/// How the sound speed of one group of chain-wave runs (a scene's runs that differ only in
+/// v0) scales with v0: V_s ∝ v0^p.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SpeedFit {
+    /// Scene.
+    pub scene: String,
+    /// The group's other grid values.
+    pub group: String,
+    /// Elastic law of the group.
+    pub law: &'static str,
+    /// (v0, V_s) of its ok runs, by the recommended criterion.
+    pub points: Vec<(f64, f64)>,
+    /// The fit.
+    pub fit: crate::measure::PowerLawFit,
+}
+
+/// The V_s-against-v0 fits of every chain-wave scene with at least two values of v0.
+pub fn speed_fits(records: &[RunRecord]) -> Vec<SpeedFit> {
+    let mut groups: Vec<(&RunRecord, String, Vec<(f64, f64)>)> = Vec::new();
+    for r in records.iter().filter(|r| r.status == "ok") {
+        let Some(speed) = r.metrics.arrival_criterion.as_deref().and_then(|c| r.metrics.sound_speed(c)) else {
+            continue;
+        };
+        let group = r.spec.varied_label(|path| path != "v0");
+        match groups.iter_mut().find(|(first, label, _)| first.spec.scene == r.spec.scene && *label == group) {
+            Some((_, _, points)) => points.push((r.spec.v0, speed)),
+            None => groups.push((r, group, vec![(r.spec.v0, speed)])),
+        }
+    }
+    groups
+        .into_iter()
+        .filter_map(|(first, group, mut points)| {
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let fit = crate::measure::power_law_fit(&points)?;
+            Some(SpeedFit { scene: first.spec.scene.clone(), group, law: first.spec.law.name(), points, fit })
+        })
+        .collect()
+}
+
+/// The campaign summary: one row per fitted scaling law (`summary.csv`).
+pub fn summary_frame(fits: &[SpeedFit]) -> PolarsResult<DataFrame> {
+    DataFrame::new_infer_height(vec![
+        Column::new("scene".into(), fits.iter().map(|f| f.scene.clone()).collect::<Vec<String>>()),
+        Column::new("group".into(), fits.iter().map(|f| f.group.clone()).collect::<Vec<String>>()),
+        Column::new("law".into(), fits.iter().map(|f| f.law).collect::<Vec<&str>>()),
+        Column::new("quantity".into(), fits.iter().map(|_| "sound_speed against v0").collect::<Vec<&str>>()),
+        Column::new("exponent".into(), fits.iter().map(|f| f.fit.exponent).collect::<Vec<f64>>()),
+        Column::new("r_squared".into(), fits.iter().map(|f| f.fit.r_squared).collect::<Vec<f64>>()),
+        Column::new("points".into(), fits.iter().map(|f| f.points.len() as u64).collect::<Vec<u64>>()),
+        Column::new("v0_min".into(), fits.iter().map(|f| f.points[0].0).collect::<Vec<f64>>()),
+        Column::new("v0_max".into(), fits.iter().map(|f| f.points[f.points.len() - 1].0).collect::<Vec<f64>>()),
+    ])
+}
+
 /// Writes `results.csv` and `results.parquet` for `frame`, each atomically.
 pub fn write_tables(layout: &Layout, frame: &mut DataFrame) -> anyhow::Result<()> {
     let mut csv = Vec::new();
@@ -176,4 +230,14 @@ pub fn write_tables(layout: &Layout, frame: &mut DataFrame) -> anyhow::Result<()
     let mut parquet = Vec::new();
     ParquetWriter::new(&mut parquet).finish(frame)?;
     write_atomically(&layout.file("results.parquet"), &parquet)
+}
+
+/// Writes `summary.csv` (the fitted scaling laws), atomically; nothing when there are none.
+pub fn write_summary(layout: &Layout, fits: &[SpeedFit]) -> anyhow::Result<()> {
+    if fits.is_empty() {
+        return Ok(());
+    }
+    let mut csv = Vec::new();
+    CsvWriter::new(&mut csv).include_header(true).finish(&mut summary_frame(fits)?)?;
+    write_atomically(&layout.file("summary.csv"), &csv)
 }

@@ -3,8 +3,8 @@
 pub use self::chain::normal_mode_error;
 pub use self::contact::{ContactTiming, contact_timing};
 pub use self::energy::energy_error;
-pub use self::wave::{ARRIVAL_CRITERIA, arrival_time};
 pub use self::moduli::{LatticeShape, TensileModuli, continuum_moduli, homogeneity, shear_modulus, tensile_moduli};
+pub use self::wave::{ARRIVAL_CRITERIA, arrival_time};
 
 mod chain;
 mod contact;
@@ -16,18 +16,38 @@ mod wave;
 /// over `points` = (dt, error); `None` with fewer than two usable points (finite, above the
 /// round-off floor).
 pub fn convergence_order(points: &[(f64, f64)]) -> Option<f64> {
+    let usable: Vec<(f64, f64)> =
+        points.iter().map(|&(dt, e)| (dt, e.abs())).filter(|(_, e)| *e > ROUND_OFF_FLOOR).collect();
+    power_law_fit(&usable).map(|fit| fit.exponent)
+}
+
+/// A least-squares fit of y = c x^p on log–log axes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PowerLawFit {
+    /// The exponent p (slope of ln y against ln x).
+    pub exponent: f64,
+    /// R² of the straight line on log–log axes (1: every point on it).
+    pub r_squared: f64,
+}
+
+/// Fits y = c x^p to the positive, finite `points` (x, y); `None` with fewer than two of them
+/// or a single x.
+pub fn power_law_fit(points: &[(f64, f64)]) -> Option<PowerLawFit> {
     let logs: Vec<(f64, f64)> = points
         .iter()
-        .filter(|(dt, e)| *dt > 0.0 && e.abs() > ROUND_OFF_FLOOR && e.is_finite())
-        .map(|(dt, e)| (dt.ln(), e.abs().ln()))
+        .filter(|(x, y)| *x > 0.0 && *y > 0.0 && x.is_finite() && y.is_finite())
+        .map(|(x, y)| (x.ln(), y.ln()))
         .collect();
     if logs.len() < 2 {
         return None;
     }
     let n = logs.len() as f64;
     let (mx, my) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
-    let (sxy, sxx) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + (x - mx) * (y - my), b + (x - mx) * (x - mx)));
-    (sxx > 0.0).then(|| sxy / sxx)
+    let (sxy, sxx, syy) = logs.iter().fold((0.0, 0.0, 0.0), |(a, b, c), (x, y)| {
+        (a + (x - mx) * (y - my), b + (x - mx) * (x - mx), c + (y - my) * (y - my))
+    });
+    (sxx > 0.0)
+        .then(|| PowerLawFit { exponent: sxy / sxx, r_squared: if syy > 0.0 { sxy * sxy / (sxx * syy) } else { 1.0 } })
 }
 
 /// Errors at or below this are round-off, not truncation: left out of orders and

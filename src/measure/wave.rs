@@ -3,7 +3,8 @@
 use crate::sim::WaveRecord;
 
 /// The arrival criteria, in the order the report lists them; the first is the recommended one.
-pub const ARRIVAL_CRITERIA: [&str; 4] = ["speed_threshold", "displacement_threshold", "kinetic_energy", "first_maximum"];
+pub const ARRIVAL_CRITERIA: [&str; 4] =
+    ["speed_threshold", "displacement_threshold", "kinetic_energy", "first_maximum"];
 
 /// Arrival time (s) of the wave at the receiver by `criterion` (one of [`ARRIVAL_CRITERIA`]),
 /// with threshold θ:
@@ -52,7 +53,8 @@ mod tests {
     fn criteria_on_a_ramp_and_a_bump() {
         // Receiver speed rises linearly from t = 1 (0 → 1 at t = 2), peaks at t = 2.225 and falls.
         let time: Vec<f64> = (0..=40).map(|i| i as f64 * 0.1).collect();
-        let speed: Vec<f64> = time.iter().map(|&t| if t < 1.0 { 0.0 } else { (t - 1.0).min(3.45 - t).max(0.0) }).collect();
+        let speed: Vec<f64> =
+            time.iter().map(|&t| if t < 1.0 { 0.0 } else { (t - 1.0).min(3.45 - t).max(0.0) }).collect();
         let record = WaveRecord {
             source_speed: vec![10.0; time.len()],
             source_displacement: vec![1.0; time.len()],

@@ -3,7 +3,10 @@
 use serde::Serialize;
 
 use super::figures::{Figure, group_label, groups, representative};
-use super::studies::{LimitRow, PrecisionRow, StabilityRow, is_stability_scene, precision_rows, stability_rows};
+use super::studies::{
+    ExponentRow, LimitRow, PrecisionRow, StabilityRow, WaveRow, exponent_rows, is_stability_scene, precision_rows,
+    stability_rows, wave_rows,
+};
 use super::{error, number, optional};
 use crate::measure::convergence_order;
 use crate::runner::RunRecord;
@@ -24,6 +27,7 @@ pub struct ReportContext {
     has_pair: bool,
     has_chain: bool,
     has_lattice: bool,
+    has_wave: bool,
     target_error: String,
     scenes: Vec<SceneSection>,
     failures: Vec<FailureRow>,
@@ -53,6 +57,8 @@ struct SceneSection {
     precision_rows: Vec<PrecisionRow>,
     stability_rows: Vec<StabilityRow>,
     limit_rows: Vec<LimitRow>,
+    wave_rows: Vec<WaveRow>,
+    exponent_rows: Vec<ExponentRow>,
 }
 
 #[derive(Serialize)]
@@ -140,6 +146,7 @@ pub fn build(campaign: &Campaign, records: &[RunRecord], figures: &[Figure]) -> 
         has_chain: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Chain),
         has_lattice: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Lattice),
         target_error: format!("{:e}", campaign.target_error),
+        has_wave: records.iter().any(|r| r.spec.wave.is_some()),
         scenes: campaign
             .scenes
             .iter()
@@ -214,6 +221,8 @@ fn section(
         precision_rows: precision_rows(records, scene, target_error),
         stability_rows,
         limit_rows,
+        wave_rows: wave_rows(records, scene),
+        exponent_rows: exponent_rows(records, scene),
     })
 }
 

@@ -74,6 +74,7 @@ pub fn draw_all(campaign: &Campaign, records: &[RunRecord]) -> anyhow::Result<Ve
             SceneKind::Pair => {}
         }
         figures.extend(studies::precision_figures(records, scene)?);
+        figures.extend(studies::wave_figures(records, scene)?);
         if studies::is_stability_scene(records, scene) {
             figures.extend(studies::stability_figures(records, scene)?);
         }

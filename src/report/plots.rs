@@ -173,3 +173,52 @@ where
         .draw()
         .map_err(draw_error)
 }
+
+/// Colour of a value in [−1, 1] on a diverging scale: blue (−1), white (0), red (+1).
+fn diverging(value: f64) -> RGBColor {
+    let v = value.clamp(-1.0, 1.0);
+    let fade = |c: f64| (255.0 * (1.0 - v.abs()) + c * v.abs()) as u8;
+    if v >= 0.0 { RGBColor(fade(200.0), fade(30.0), fade(30.0)) } else { RGBColor(fade(30.0), fade(60.0), fade(200.0)) }
+}
+
+/// At most this many cells along each axis of a heat map (an SVG of rectangles stays small).
+const HEATMAP_CELLS: (usize, usize) = (150, 100);
+
+/// A space–time heat map as an SVG document: `values[s][j]` at time `times[s]` and row `j`
+/// (a particle), coloured by value / max |value| on a blue–white–red scale; long series are
+/// thinned to at most [`HEATMAP_CELLS`] samples and rows.
+pub fn heatmap(chart: &Chart, times: &[f64], values: &[Vec<f64>]) -> anyhow::Result<String> {
+    ensure_font()?;
+    let rows = values.first().map_or(0, Vec::len);
+    anyhow::ensure!(times.len() >= 2 && rows > 0, "a heat map needs two samples and one row");
+    let largest = values.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+    let time_stride = times.len().div_ceil(HEATMAP_CELLS.0);
+    let row_stride = rows.div_ceil(HEATMAP_CELLS.1);
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_error)?;
+        let mut ctx = frame(&root, chart)?
+            .build_cartesian_2d(times[0]..times[times.len() - 1], 0.0..rows as f64)
+            .map_err(draw_error)?;
+        ctx.configure_mesh()
+            .disable_mesh()
+            .x_desc(&chart.x_label)
+            .y_desc(&chart.y_label)
+            .label_style(("sans-serif", 13))
+            .axis_desc_style(("sans-serif", 15))
+            .draw()
+            .map_err(draw_error)?;
+        let mut cells = Vec::new();
+        for s in (0..times.len() - 1).step_by(time_stride) {
+            let t1 = times[(s + time_stride).min(times.len() - 1)];
+            for j in (0..rows).step_by(row_stride) {
+                let color = diverging(values[s][j] / largest);
+                cells.push(Rectangle::new([(times[s], j as f64), (t1, (j + row_stride) as f64)], color.filled()));
+            }
+        }
+        ctx.draw_series(cells).map_err(draw_error)?;
+        root.present().map_err(draw_error)?;
+    }
+    Ok(svg)
+}

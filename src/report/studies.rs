@@ -4,11 +4,12 @@
 use serde::Serialize;
 
 use super::figures::{Figure, groups, representative};
-use super::plots::{Chart, Scale, Series, line_chart};
+use super::plots::{Chart, Scale, Series, heatmap, line_chart};
 use super::{number, optional};
-use crate::measure::{Recommendation, convergence_order, recommended_dt};
+use crate::measure::{ARRIVAL_CRITERIA, Recommendation, convergence_order, recommended_dt};
 use crate::runner::RunRecord;
 use crate::spec::SceneKind;
+use crate::table::speed_fits;
 
 /// One dt sweep of one integrator (a group of runs differing only in dt).
 #[derive(Serialize)]
@@ -313,6 +314,131 @@ pub fn stability_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<V
             ),
             svg: line_chart(&chart, &series)?,
         });
+    }
+    Ok(figures)
+}
+
+/// One chain-wave run: the sound speed by each criterion beside the estimates.
+#[derive(Serialize)]
+pub struct WaveRow {
+    run_id: String,
+    label: String,
+    v0: String,
+    distance: String,
+    arrival_time: String,
+    speeds: Vec<String>,
+    estimate: String,
+    theory: String,
+    status: String,
+}
+
+/// The chain-wave rows of `scene` (empty when it times no wave).
+pub fn wave_rows(records: &[RunRecord], scene: &str) -> Vec<WaveRow> {
+    records
+        .iter()
+        .filter(|r| r.spec.scene == scene && r.spec.wave.is_some())
+        .map(|r| {
+            let m = &r.metrics;
+            WaveRow {
+                run_id: r.run_id.clone(),
+                label: r.spec.varied_label(|_| true),
+                v0: number(r.spec.v0),
+                distance: optional(m.wave_distance),
+                arrival_time: optional(m.arrival_time()),
+                speeds: ARRIVAL_CRITERIA.iter().map(|c| optional(m.sound_speed(c))).collect(),
+                estimate: optional(m.wave_distance.zip(m.arrival_time_tc_estimate).map(|(l, t)| l / t)),
+                theory: optional(m.sound_speed_theory),
+                status: r.status.clone(),
+            }
+        })
+        .collect()
+}
+
+/// A fitted V_s ∝ v0^p of one group.
+#[derive(Serialize)]
+pub struct ExponentRow {
+    group: String,
+    law: &'static str,
+    exponent: String,
+    r_squared: String,
+    points: usize,
+    v0_range: String,
+}
+
+/// The exponent rows of `scene`.
+pub fn exponent_rows(records: &[RunRecord], scene: &str) -> Vec<ExponentRow> {
+    speed_fits(records)
+        .into_iter()
+        .filter(|f| f.scene == scene)
+        .map(|f| ExponentRow {
+            group: if f.group.is_empty() { "all".into() } else { f.group },
+            law: f.law,
+            exponent: format!("{:.4}", f.fit.exponent),
+            r_squared: format!("{:.6}", f.fit.r_squared),
+            points: f.points.len(),
+            v0_range: format!("{} … {}", number(f.points[0].0), number(f.points[f.points.len() - 1].0)),
+        })
+        .collect()
+}
+
+/// The wave figures of `scene`: V_s against v0 (with the fitted power law) and the space–time
+/// picture of one run.
+pub fn wave_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Figure>> {
+    let mut figures = Vec::new();
+    let fits: Vec<_> = speed_fits(records).into_iter().filter(|f| f.scene == scene).collect();
+    if !fits.is_empty() {
+        let mut series = Vec::new();
+        for f in &fits {
+            let label = if f.group.is_empty() { f.law.to_string() } else { format!("{}, {}", f.law, f.group) };
+            let (x0, y0) = f.points[0];
+            let line = f.points.iter().map(|&(x, _)| (x, y0 * (x / x0).powf(f.fit.exponent))).collect();
+            series.push(Series { label: format!("{label}: measured"), points: f.points.clone(), markers: true });
+            series.push(Series {
+                label: format!("{label}: fit v0^{:.3} (R² = {:.5})", f.fit.exponent, f.fit.r_squared),
+                points: line,
+                markers: false,
+            });
+        }
+        let chart = Chart {
+            title: format!("{scene}: sound speed against impact speed"),
+            x_label: "v0 (m/s)".into(),
+            y_label: "V_s = L / t_s (m/s)".into(),
+            scale: Scale::LogLog,
+        };
+        figures.push(Figure {
+            scene: scene.into(),
+            file: format!("plots/{scene}-speed-v0.svg"),
+            caption: format!(
+                "Sound speed by the recommended criterion against the impact speed v0, {scene}, with the fitted power \
+                 law: linear springs give the same speed at every v0 (exponent 0); a Hertz chain without pre-load \
+                 carries a solitary wave whose speed grows as v0^(1/5)."
+            ),
+            svg: line_chart(&chart, &series)?,
+        });
+    }
+    if let Some(r) = records.iter().find(|r| r.spec.scene == scene && r.spec.wave.is_some() && r.status == "ok") {
+        let t = &r.trace;
+        // The moving particles only (the walls never move).
+        let values: Vec<Vec<f64>> =
+            t.displacement_x.iter().map(|row| row[1..row.len().saturating_sub(1)].to_vec()).collect();
+        if t.time.len() >= 2 && values.first().is_some_and(|row| !row.is_empty()) {
+            let chart = Chart {
+                title: format!("{scene}: displacement in space and time ({})", r.spec.varied_label(|_| true)),
+                x_label: "time t (s)".into(),
+                y_label: "particle".into(),
+                scale: Scale::Linear,
+            };
+            figures.push(Figure {
+                scene: scene.into(),
+                file: format!("plots/{scene}-space-time.svg"),
+                caption: format!(
+                    "Displacement of every particle (rows) against time, {scene}: red along +x, blue along −x, white at \
+                     rest, scaled to the largest |u|. The wave front is the edge of the coloured region; its slope is \
+                     the sound speed, and it reflects at the far wall."
+                ),
+                svg: heatmap(&chart, &t.time, &values)?,
+            });
+        }
     }
     Ok(figures)
 }

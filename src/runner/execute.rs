@@ -7,8 +7,8 @@ use std::time::Instant;
 use super::record::{Metrics, RunRecord};
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
-    ARRIVAL_CRITERIA, LatticeShape, arrival_time, contact_timing, continuum_moduli, energy_error, homogeneity, normal_mode_error, shear_modulus,
-    tensile_moduli,
+    ARRIVAL_CRITERIA, LatticeShape, arrival_time, contact_timing, continuum_moduli, energy_error, homogeneity,
+    normal_mode_error, shear_modulus, tensile_moduli,
 };
 use crate::scenes::{
     build_scene, chain_has_normal_modes, drive_travel, lattice_springs, pair_references, relaxation_checks, top_row,

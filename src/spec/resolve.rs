@@ -318,9 +318,12 @@ fn check_kind_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue> {
     let contact = raw.material.as_ref().and_then(|m| m.contact).unwrap_or(false);
     let is = |wanted: SceneKind| kind == wanted;
     only(raw.gap.is_some() && !(is(SceneKind::Pair) && contact), "gap", "pairs with material.contact: true")?;
-    for (present, path) in
-        [(raw.n.is_some(), "n"), (raw.node.is_some(), "node"), (raw.wall_distance.is_some(), "wall_distance"), (raw.wave.is_some(), "wave")]
-    {
+    for (present, path) in [
+        (raw.n.is_some(), "n"),
+        (raw.node.is_some(), "node"),
+        (raw.wall_distance.is_some(), "wall_distance"),
+        (raw.wave.is_some(), "wave"),
+    ] {
         only(present && !is(SceneKind::Chain), path, "chain scenes")?;
     }
     for (present, path) in [
