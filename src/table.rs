@@ -186,7 +186,9 @@ pub struct SpeedFit {
 
 /// The V_s-against-v0 fits of every chain-wave scene with at least two values of v0.
 pub fn speed_fits(records: &[RunRecord]) -> Vec<SpeedFit> {
-    let mut groups: Vec<(&RunRecord, String, Vec<(f64, f64)>)> = Vec::new();
+    /// A group's first run, its label and its (v0, V_s) points.
+    type Group<'a> = (&'a RunRecord, String, Vec<(f64, f64)>);
+    let mut groups: Vec<Group> = Vec::new();
     for r in records.iter().filter(|r| r.status == "ok") {
         let Some(speed) = r.metrics.arrival_criterion.as_deref().and_then(|c| r.metrics.sound_speed(c)) else {
             continue;

@@ -124,7 +124,7 @@ impl WaveProbe {
 impl StepProbe for WaveProbe {
     fn observe(&mut self, state: &State) {
         self.seen += 1;
-        if (self.seen - 1) % self.every != 0 {
+        if !(self.seen - 1).is_multiple_of(self.every) {
             return;
         }
         let p = &state.particles;
