@@ -89,6 +89,7 @@ pub fn reference_scene(config: &BenchConfig) -> Scene {
         },
         contact_clock: None,
         wave: None,
+        movie_frames: None,
         loads: Vec::new(),
         load_ramp: 0.0,
         drive: None,

@@ -19,6 +19,10 @@ impl Layout {
     pub fn run_file(&self, run_id: &str) -> PathBuf {
         self.root.join("runs").join(format!("{run_id}.json"))
     }
+    /// The movie of run `run_id`, beside its record.
+    pub fn movie_file(&self, run_id: &str) -> PathBuf {
+        self.root.join("runs").join(format!("{run_id}.gif"))
+    }
     /// A figure.
     pub fn plot_file(&self, name: &str) -> PathBuf {
         self.root.join("plots").join(name)

@@ -45,6 +45,7 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
             .as_ref()
             .zip(spec.node)
             .map(|(w, node)| (node, vec![w.receiver], (spec.steps / 100_000).max(1))),
+        movie_frames: spec.movie.map(|m| u64::from(m.frames)),
         loads,
         load_ramp: spec.lattice.as_ref().map_or(0.0, |l| l.load_ramp_tc * spec.t_c),
         drive,

@@ -145,6 +145,7 @@ fn check<L: ForceLaw, D: Dashpot, const C: bool>(
         sampling: sampling(),
         contact_clock: None,
         wave: None,
+        movie_frames: None,
         loads: Vec::new(),
         load_ramp: 0.0,
         drive: None,

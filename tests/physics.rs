@@ -174,6 +174,7 @@ fn free_pair_conserves_momentum_with_damping() {
             sampling: Sampling { dt: 0.01, steps: 5000, every: 100, displacements: false, relaxation: None },
             contact_clock: None,
             wave: None,
+            movie_frames: None,
             loads: Vec::new(),
             load_ramp: 0.0,
             drive: None,

@@ -59,6 +59,7 @@ struct SceneSection {
     limit_rows: Vec<LimitRow>,
     wave_rows: Vec<WaveRow>,
     exponent_rows: Vec<ExponentRow>,
+    movies: Vec<FigureRef>,
 }
 
 #[derive(Serialize)]
@@ -223,6 +224,17 @@ fn section(
         limit_rows,
         wave_rows: wave_rows(records, scene),
         exponent_rows: exponent_rows(records, scene),
+        movies: mine
+            .iter()
+            .filter(|r| r.spec.movie.is_some() && r.status != "panicked")
+            .map(|r| FigureRef {
+                file: format!("runs/{}.gif", r.run_id),
+                caption: format!(
+                    "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), bonds in grey.",
+                    r.spec.varied_label(|_| true)
+                ),
+            })
+            .collect(),
     })
 }
 

@@ -5,8 +5,11 @@
 
 mod context;
 mod figures;
+mod movie;
 pub mod plots;
 mod studies;
+
+pub use self::movie::{speed_color, write_movie};
 
 use anyhow::Context as _;
 

@@ -11,7 +11,7 @@ static DEJAVU_SANS: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 const SIZE: (u32, u32) = (820, 500);
 
 /// Registers the bundled font once; plotters' `ab_glyph` backend draws no text without it.
-fn ensure_font() -> anyhow::Result<()> {
+pub(super) fn ensure_font() -> anyhow::Result<()> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
     let ok = *REGISTERED
         .get_or_init(|| plotters::style::register_font("sans-serif", FontStyle::Normal, DEJAVU_SANS).is_ok());
@@ -100,7 +100,7 @@ pub fn line_chart(chart: &Chart, series: &[Series]) -> anyhow::Result<String> {
     Ok(svg)
 }
 
-fn draw_error<E: std::fmt::Debug>(error: E) -> anyhow::Error {
+pub(super) fn draw_error<E: std::fmt::Debug>(error: E) -> anyhow::Error {
     anyhow::anyhow!("cannot draw a figure: {error:?}")
 }
 

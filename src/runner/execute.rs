@@ -4,7 +4,7 @@
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::Instant;
 
-use super::record::{Metrics, RunRecord};
+use super::record::{Metrics, Movie, RunRecord};
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
     ARRIVAL_CRITERIA, LatticeShape, arrival_time, contact_timing, continuum_moduli, energy_error, homogeneity,
@@ -30,12 +30,14 @@ pub fn execute(spec: &RunSpec) -> RunRecord {
         steps: 0,
         metrics: Metrics::default(),
         trace: Trace::default(),
+        movie: None,
     };
     let mut reference_s = 0.0;
     match result {
         Ok(Finished::Simulated(done)) => {
-            let (mut outcome, metrics, reference_wall_s) = *done;
+            let (mut outcome, metrics, reference_wall_s, movie) = *done;
             reference_s = reference_wall_s;
+            record.movie = movie;
             if spec.kind == SceneKind::Lattice {
                 // Recorded only to compare with the reference run: too bulky to store.
                 let t = &mut outcome.trace;
@@ -69,8 +71,9 @@ pub fn execute(spec: &RunSpec) -> RunRecord {
 
 /// How a run ended when it did not panic.
 enum Finished {
-    /// Integrated and measured, with the wall time (s) of the reference run, if any.
-    Simulated(Box<(Outcome, Metrics, f64)>),
+    /// Integrated and measured, with the wall time (s) of the reference run, if any, and the
+    /// movie, if asked for.
+    Simulated(Box<(Outcome, Metrics, f64, Option<Movie>)>),
     /// The static problem is singular for this load: no MD run.
     Mechanism { residual: f64 },
 }
@@ -131,7 +134,21 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
         }
     }
     let start = (scene.particles.x.clone(), scene.particles.y.clone());
-    let outcome = scene.run();
+    let mut bonds = Vec::new();
+    if spec.movie.is_some() {
+        scene.network.for_each_bond(|i, j, _, _, shift| {
+            if shift == 0.0 {
+                bonds.push((i, j));
+            }
+        });
+    }
+    let mut outcome = scene.run();
+    let movie = spec.movie.map(|movie| Movie {
+        frames: std::mem::take(&mut outcome.frames),
+        bonds,
+        spec: movie,
+        title: format!("{} {}", spec.scene, spec.varied_label(|_| true)),
+    });
     measure(spec, &outcome, &start, &mut metrics);
     let started = Instant::now();
     let reference = spec
@@ -143,7 +160,7 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
         Some((refinement, error)) => (Some(error), Some(format!("reference_dt/{refinement}"))),
         None => exact_error(spec, &metrics),
     };
-    Finished::Simulated(Box::new((outcome, metrics, reference_s)))
+    Finished::Simulated(Box::new((outcome, metrics, reference_s, movie)))
 }
 
 /// The error of a run against its exact answer: the contact duration (undamped pairs) or the

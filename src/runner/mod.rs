@@ -2,7 +2,7 @@
 //! cached by content hash, with a progress bar; a failing run becomes a record, not a crash.
 
 pub use self::execute::execute;
-pub use self::record::{Metrics, RunRecord};
+pub use self::record::{Metrics, Movie, RunRecord};
 
 mod execute;
 mod record;
@@ -52,7 +52,10 @@ pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -
             let (spec, slot, progress) = (todo[index], &finished[index], &progress);
             scope.spawn_fifo(move |_| {
                 let stored = (|| {
-                    let record = execute(spec);
+                    let mut record = execute(spec);
+                    if let Some(movie) = record.movie.take() {
+                        crate::report::write_movie(&layout.movie_file(&record.run_id), &movie)?;
+                    }
                     let json = serde_json::to_vec(&record).context("cannot serialise a run record")?;
                     write_atomically(&layout.run_file(&record.run_id), &json)?;
                     Ok(record)

@@ -97,6 +97,23 @@ pub struct RunRecord {
     pub metrics: Metrics,
     /// Sampled series.
     pub trace: Trace,
+    /// The movie's frames, when the run asked for one: written by the runner as
+    /// `runs/<run_id>.gif`, never stored in the record.
+    #[serde(skip)]
+    pub movie: Option<Movie>,
+}
+
+/// What a movie shows: the frames, the bonds between the particles, the size.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Movie {
+    /// Frames in time order.
+    pub frames: Vec<crate::sim::Frame>,
+    /// Bonds drawn as lines (i, j); bonds across a periodic side are left out.
+    pub bonds: Vec<(usize, usize)>,
+    /// Frame count and size.
+    pub spec: crate::spec::MovieSpec,
+    /// Title drawn on every frame.
+    pub title: String,
 }
 
 impl Metrics {

@@ -6,7 +6,7 @@ pub use self::integrate::{
     ForestRuth, Gear, Integrator, IntegratorKind, PositionVerlet, RungeKutta4, SymplecticEuler, VelocityVerlet,
     simulate_with,
 };
-pub use self::probe::{ContactClock, Crossing, StepProbe, WaveProbe, WaveRecord};
+pub use self::probe::{ContactClock, Crossing, Frame, FrameProbe, StepProbe, WaveProbe, WaveRecord};
 pub use self::run::{Relaxation, RunStatus, Sampling, Trace, simulate};
 pub use self::scene::{LawKind, Network, Outcome, Scene};
 pub use self::state::{Drive, Load, State};

@@ -151,3 +151,57 @@ impl<A: StepProbe, B: StepProbe> StepProbe for (A, B) {
         self.1.observe(state);
     }
 }
+
+/// One frame of a movie: every particle's position and speed at one time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    /// Time (s).
+    pub time: f64,
+    /// Positions (m).
+    pub x: Vec<f64>,
+    /// Positions (m).
+    pub y: Vec<f64>,
+    /// Speeds |v| (m/s).
+    pub speed: Vec<f64>,
+}
+
+/// Records `frames` [`Frame`]s evenly spread over a run of `steps` steps (the first at the
+/// start, the last at the end), for a movie; fewer when the run stops early.
+#[derive(Clone, Debug, Default)]
+pub struct FrameProbe {
+    steps: u64,
+    wanted: u64,
+    seen: u64,
+    /// The frames so far.
+    pub frames: Vec<Frame>,
+}
+
+impl FrameProbe {
+    /// A probe that keeps `frames` (≥ 2) states of a run of `steps` steps.
+    pub fn new(steps: u64, frames: u64) -> FrameProbe {
+        FrameProbe { steps, wanted: frames.max(2), ..FrameProbe::default() }
+    }
+
+    /// The step of frame `k`: round(k · steps / (frames − 1)).
+    fn step_of(&self, k: u64) -> u64 {
+        (k * self.steps + (self.wanted - 1) / 2) / (self.wanted - 1)
+    }
+}
+
+impl StepProbe for FrameProbe {
+    fn observe(&mut self, state: &State) {
+        let step = self.seen;
+        self.seen += 1;
+        let k = self.frames.len() as u64;
+        if k >= self.wanted || step != self.step_of(k) {
+            return;
+        }
+        let p = &state.particles;
+        self.frames.push(Frame {
+            time: state.time,
+            x: p.x.clone(),
+            y: p.y.clone(),
+            speed: p.vx.iter().zip(&p.vy).map(|(vx, vy)| vx.hypot(*vy)).collect(),
+        });
+    }
+}

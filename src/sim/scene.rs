@@ -3,7 +3,7 @@
 
 use super::field::{BondNetwork, ForceField};
 use super::integrate::{IntegratorKind, simulate_with};
-use super::probe::{ContactClock, Crossing, WaveProbe, WaveRecord};
+use super::probe::{ContactClock, Crossing, Frame, FrameProbe, WaveProbe, WaveRecord};
 use super::run::{Sampling, Trace};
 use super::state::{Drive, Load, State};
 use super::stencil::LatticeNetwork;
@@ -77,6 +77,8 @@ pub struct Scene {
     /// A wave watched from a source particle to receivers, if any: `(source, receivers,
     /// record every this many steps)`.
     pub wave: Option<(usize, Vec<usize>, u64)>,
+    /// Movie frames to keep over the run, if any.
+    pub movie_frames: Option<u64>,
     /// External forces.
     pub loads: Vec<Load>,
     /// Time (s) over which the loads rise linearly to their full value; 0 for at once.
@@ -94,6 +96,8 @@ pub struct Outcome {
     pub crossings: Vec<Crossing>,
     /// The watched wave, every step.
     pub wave: Option<WaveRecord>,
+    /// Movie frames (empty unless asked for).
+    pub frames: Vec<Frame>,
     /// State at the end.
     pub state: State,
 }
@@ -139,13 +143,15 @@ impl Scene {
         }
         let clock = self.contact_clock.map(|(i, j, rest)| ContactClock::new(i, j, rest));
         let wave = self.wave.map(|(source, receivers, every)| WaveProbe::new(source, receivers, every));
-        let mut probes = (clock, wave);
+        let movie = self.movie_frames.map(|frames| FrameProbe::new(self.sampling.steps, frames));
+        let mut probes = ((clock, wave), movie);
         let trace = simulate_with(self.integrator, &mut state, &mut field, &self.sampling, &mut probes);
-        let (clock, wave) = probes;
+        let ((clock, wave), movie) = probes;
         Outcome {
             trace,
             crossings: clock.map(|c| c.crossings).unwrap_or_default(),
             wave: wave.map(|w| w.record),
+            frames: movie.map(|m| m.frames).unwrap_or_default(),
             state,
         }
     }

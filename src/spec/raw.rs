@@ -119,6 +119,8 @@ pub struct RawScene {
     pub relax: Option<RawRelax>,
     /// Chain: time the wave from the excited particle to a receiver (sound speed).
     pub wave: Option<RawWave>,
+    /// Record a movie (animated GIF) of the run.
+    pub movie: Option<RawMovie>,
     /// Grid over this scene only (dotted paths), combined with the campaign's grid.
     pub grid: Option<Grid>,
 }
@@ -243,6 +245,18 @@ pub struct RawWave {
     pub receiver: Option<Value>,
     /// Threshold of the threshold criteria, relative to the source's peak (default 0.01).
     pub threshold: Option<f64>,
+}
+
+/// `movie:` section: an animated GIF of the particles coloured by speed.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawMovie {
+    /// Frames over the run (default 60).
+    pub frames: Option<u32>,
+    /// Width in pixels (default 720).
+    pub width: Option<u32>,
+    /// Height in pixels (default 240).
+    pub height: Option<u32>,
 }
 
 /// `relax:` section.

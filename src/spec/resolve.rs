@@ -8,7 +8,7 @@ use std::fmt::Display;
 use super::raw::{
     Control, Diagonals, LawName, LoadCase, RawDamping, RawGeometry, RawMaterial, RawScene, RawTime, SceneKind, Supports,
 };
-use super::run_spec::{LatticeSpec, RunSpec, WaveSpec};
+use super::run_spec::{LatticeSpec, MovieSpec, RunSpec, WaveSpec};
 use crate::sim::IntegratorKind;
 use crate::theory;
 
@@ -133,6 +133,17 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     let samples = time.samples.unwrap_or(DEFAULT_SAMPLES);
     require(samples >= 2, "time.samples", samples, "must be ≥ 2")?;
     let ChainFields { n, node, wall_distance, wave } = resolve_chain(kind, raw, spacing)?;
+    let movie = match &raw.movie {
+        None => None,
+        Some(m) => {
+            let frames = m.frames.unwrap_or(60);
+            require((2..=600).contains(&frames), "movie.frames", frames, "from 2 to 600")?;
+            let (width, height) = (m.width.unwrap_or(720), m.height.unwrap_or(240));
+            require((120..=1920).contains(&width), "movie.width", width, "from 120 to 1920 pixels")?;
+            require((80..=1080).contains(&height), "movie.height", height, "from 80 to 1080 pixels")?;
+            Some(MovieSpec { frames, width, height })
+        }
+    };
     let reference_refinement = time.reference_refinement;
     if let Some(r) = reference_refinement {
         require((2..=1000).contains(&r), "time.reference_refinement", r, "an integer from 2 to 1000")?;
@@ -174,6 +185,7 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         wall_distance,
         lattice,
         wave,
+        movie,
     })
 }
 

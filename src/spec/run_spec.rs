@@ -73,6 +73,20 @@ pub struct RunSpec {
     /// Chain: the wave timed from the excited particle to a receiver, if asked for.
     #[serde(default)]
     pub wave: Option<WaveSpec>,
+    /// The movie to record, if asked for.
+    #[serde(default)]
+    pub movie: Option<MovieSpec>,
+}
+
+/// An animated GIF of a run: `frames` frames of `width` × `height` pixels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct MovieSpec {
+    /// Frames over the run.
+    pub frames: u32,
+    /// Width (pixels).
+    pub width: u32,
+    /// Height (pixels).
+    pub height: u32,
 }
 
 /// A timed wave: from the chain's excited particle to `receiver`.

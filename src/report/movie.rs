@@ -1,0 +1,115 @@
+//! Movies: an animated GIF of a run, particles as discs coloured by speed (with a colour bar),
+//! bonds as grey lines, the time on every frame.
+
+use plotters::prelude::*;
+use std::path::Path;
+
+use super::plots::{draw_error, ensure_font};
+use crate::runner::Movie;
+
+/// Delay between frames (ms): 12.5 frames per second.
+const FRAME_DELAY_MS: u32 = 80;
+
+/// Width (pixels) kept on the right for the colour bar.
+const BAR_WIDTH: u32 = 90;
+
+/// Colour of a speed fraction in [0, 1] on a viridis-like scale: dark violet at rest, through
+/// blue and green, to yellow at the fastest.
+pub fn speed_color(fraction: f64) -> RGBColor {
+    const ANCHORS: [(f64, f64, f64); 5] =
+        [(68.0, 1.0, 84.0), (59.0, 82.0, 139.0), (33.0, 145.0, 140.0), (94.0, 201.0, 98.0), (253.0, 231.0, 37.0)];
+    let f = fraction.clamp(0.0, 1.0) * (ANCHORS.len() - 1) as f64;
+    let i = (f.floor() as usize).min(ANCHORS.len() - 2);
+    let t = f - i as f64;
+    let (a, b) = (ANCHORS[i], ANCHORS[i + 1]);
+    let mix = |p: f64, q: f64| (p + t * (q - p)).round() as u8;
+    RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+}
+
+/// Writes `movie` as an animated GIF at `path`, atomically (a temporary file beside it, then
+/// renamed). The view is fixed over all frames with equal scales on both axes; colours are
+/// scaled to the fastest speed of the whole movie.
+pub fn write_movie(path: &Path, movie: &Movie) -> anyhow::Result<()> {
+    ensure_font()?;
+    anyhow::ensure!(!movie.frames.is_empty(), "a movie needs at least one frame");
+    let (width, height) = (movie.spec.width, movie.spec.height);
+    let (plot_w, plot_h) = (f64::from(width - BAR_WIDTH), f64::from(height - 30));
+    let all_x = movie.frames.iter().flat_map(|f| f.x.iter().copied());
+    let all_y = movie.frames.iter().flat_map(|f| f.y.iter().copied());
+    let (x0, x1) = all_x.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    let (y0, y1) = all_y.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    anyhow::ensure!(x0.is_finite() && y0.is_finite(), "a movie's positions must be finite");
+    // The shortest bond at the start sets the disc size and the margin.
+    let first = &movie.frames[0];
+    let spacing = movie
+        .bonds
+        .iter()
+        .map(|&(i, j)| (first.x[i] - first.x[j]).hypot(first.y[i] - first.y[j]))
+        .filter(|d| *d > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    let spacing = if spacing.is_finite() { spacing } else { (x1 - x0).max(y1 - y0).max(1.0) / 10.0 };
+    let pad = 0.6 * spacing;
+    let scale = ((x1 - x0) / 2.0 + pad) / plot_w * 2.0;
+    let scale = scale.max(((y1 - y0) / 2.0 + pad) / plot_h * 2.0);
+    let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+    let x_range = (cx - scale * plot_w / 2.0)..(cx + scale * plot_w / 2.0);
+    let y_range = (cy - scale * plot_h / 2.0)..(cy + scale * plot_h / 2.0);
+    let radius = (0.35 * spacing / scale).clamp(2.0, 14.0) as i32;
+    let fastest = movie.frames.iter().flat_map(|f| f.speed.iter().copied()).fold(0.0f64, f64::max);
+    let fastest = if fastest > 0.0 { fastest } else { 1.0 };
+    let temporary = path.with_extension("gif.tmp");
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir)?;
+    }
+    {
+        let root =
+            BitMapBackend::gif(&temporary, (width, height), FRAME_DELAY_MS).map_err(draw_error)?.into_drawing_area();
+        for frame in &movie.frames {
+            root.fill(&WHITE).map_err(draw_error)?;
+            let (plot, bar) = root.split_horizontally(width - BAR_WIDTH);
+            let (header, body) = plot.split_vertically(30);
+            header
+                .draw(&Text::new(
+                    format!("{}   t = {:.4e} s", movie.title, frame.time),
+                    (8, 8),
+                    ("sans-serif", 15).into_font().color(&BLACK),
+                ))
+                .map_err(draw_error)?;
+            let mut ctx =
+                ChartBuilder::on(&body).build_cartesian_2d(x_range.clone(), y_range.clone()).map_err(draw_error)?;
+            ctx.draw_series(movie.bonds.iter().map(|&(i, j)| {
+                PathElement::new(vec![(frame.x[i], frame.y[i]), (frame.x[j], frame.y[j])], RGBColor(170, 170, 170))
+            }))
+            .map_err(draw_error)?;
+            ctx.draw_series((0..frame.x.len()).map(|i| {
+                Circle::new((frame.x[i], frame.y[i]), radius, speed_color(frame.speed[i] / fastest).filled())
+            }))
+            .map_err(draw_error)?;
+            draw_colour_bar(&bar, fastest, height)?;
+            root.present().map_err(draw_error)?;
+        }
+    }
+    std::fs::rename(&temporary, path)?;
+    Ok(())
+}
+
+/// The colour bar: 0 at the bottom, the fastest speed at the top.
+fn draw_colour_bar(
+    bar: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
+    fastest: f64,
+    height: u32,
+) -> anyhow::Result<()> {
+    let (top, bottom) = (30i32, height as i32 - 20);
+    let steps = 40;
+    for s in 0..steps {
+        let fraction = s as f64 / (steps - 1) as f64;
+        let y = bottom - ((bottom - top) as f64 * (s + 1) as f64 / steps as f64) as i32;
+        let h = ((bottom - top) as f64 / steps as f64).ceil() as i32 + 1;
+        bar.draw(&Rectangle::new([(10, y), (30, y + h)], speed_color(fraction).filled())).map_err(draw_error)?;
+    }
+    let style = ("sans-serif", 12).into_font().color(&BLACK);
+    bar.draw(&Text::new(format!("{fastest:.2e}"), (34, top), style.clone())).map_err(draw_error)?;
+    bar.draw(&Text::new("0".to_string(), (34, bottom - 12), style.clone())).map_err(draw_error)?;
+    bar.draw(&Text::new("|v| (m/s)".to_string(), (4, 8), style)).map_err(draw_error)?;
+    Ok(())
+}

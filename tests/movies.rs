@@ -1,0 +1,64 @@
+//! Movies: a run that asks for one leaves a valid animated GIF with the requested number of
+//! frames beside its record, whose colours follow the particles' speed, and the report shows it.
+
+use mdsolids::output::Layout;
+use mdsolids::runner::run_campaign;
+use mdsolids::stability::parse_campaign;
+
+const CAMPAIGN: &str = "version: 1\nname: film\nscenes:\n  - name: chain\n    kind: chain\n    n: 10\n    \
+    node: first\n    v0: 0.1\n    movie: {frames: 12, width: 400, height: 160}\n    time: {duration_tc: 10}\n";
+
+/// Decodes every frame of the GIF at `path` as RGBA rows of `width` pixels.
+fn frames(path: &std::path::Path) -> (u16, Vec<Vec<u8>>) {
+    let mut options = gif::DecodeOptions::new();
+    options.set_color_output(gif::ColorOutput::RGBA);
+    let mut decoder = options.read_info(std::fs::File::open(path).unwrap()).unwrap();
+    let width = decoder.width();
+    let mut frames = Vec::new();
+    while let Some(frame) = decoder.read_next_frame().unwrap() {
+        assert_eq!((frame.width, frame.left, frame.top), (width, 0, 0), "every frame is whole");
+        frames.push(frame.buffer.to_vec());
+    }
+    (width, frames)
+}
+
+#[test]
+fn movie_has_its_frames_and_colours_follow_the_speed() {
+    let reports = tempfile::tempdir().unwrap();
+    let campaign = parse_campaign("film.yaml", CAMPAIGN).unwrap();
+    let layout = Layout::new(reports.path(), &campaign.name);
+    let done = run_campaign(&campaign, &layout, Some(1)).unwrap();
+    let record = &done.records[0];
+    let path = layout.movie_file(&record.run_id);
+    let (width, frames) = frames(&path);
+    assert_eq!(frames.len(), 12, "the requested number of frames");
+    // At t = 0 only the first particle moves, at v0, the fastest speed of the run (energy is
+    // conserved, so no particle ever moves faster): its disc is the top colour of the scale,
+    // yellow, every other disc the bottom one. Yellow pixels outside the colour bar (the right
+    // 90 pixels) must therefore all lie at the left end of the chain.
+    let top = mdsolids::report::speed_color(1.0);
+    let is_top = |p: &[u8]| {
+        (i32::from(p[0]) - i32::from(top.0)).abs() < 40
+            && (i32::from(p[1]) - i32::from(top.1)).abs() < 40
+            && (i32::from(p[2]) - i32::from(top.2)).abs() < 60
+    };
+    let hot_columns = |frame: &[u8]| -> Vec<usize> {
+        frame
+            .chunks(4)
+            .enumerate()
+            .filter(|(_, p)| is_top(p))
+            .map(|(i, _)| i % width as usize)
+            .filter(|&x| x + 90 < width as usize)
+            .collect()
+    };
+    let first = hot_columns(&frames[0]);
+    assert!(!first.is_empty(), "the moving particle is drawn in the top colour");
+    assert!(first.iter().all(|&x| x < 60), "only the first particle is fast at t = 0: {:?}", first);
+    // Later the energy has spread: no disc is at the top colour at the left end any more.
+    assert!(hot_columns(&frames[6]).iter().all(|&x| x >= 60) || hot_columns(&frames[6]).is_empty());
+    // The report shows the movie (the HTML page as an image, the Markdown as a link).
+    mdsolids::report::render(&campaign, &layout, &done.records).unwrap();
+    let link = format!("runs/{}.gif", record.run_id);
+    assert!(std::fs::read_to_string(layout.file("report.md")).unwrap().contains(&format!("]({link})")));
+    assert!(std::fs::read_to_string(layout.file("index.html")).unwrap().contains(&format!("<img src=\"{link}\"")));
+}
