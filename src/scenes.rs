@@ -13,8 +13,10 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
         (SceneKind::Chain, _) => chain(spec),
         _ => pair(spec),
     };
-    let loads = spec.lattice.as_ref().filter(|l| l.control == Control::Force).map(top_row_loads).unwrap_or_default();
-    let drive = spec.lattice.as_ref().filter(|l| l.control == Control::Velocity).map(|l| top_row_drive(spec, l));
+    // An impulse lattice is kicked, not loaded: no loads, no drive, no relaxation.
+    let loaded = spec.lattice.as_ref().filter(|l| l.impulse.is_none());
+    let loads = loaded.filter(|l| l.control == Control::Force).map(top_row_loads).unwrap_or_default();
+    let drive = loaded.filter(|l| l.control == Control::Velocity).map(|l| top_row_drive(spec, l));
     Scene {
         particles,
         network: Network::Lattice(lattice),
@@ -30,8 +32,8 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
             dt: spec.dt,
             steps: spec.steps,
             every: (spec.steps / spec.samples).max(1),
-            displacements: spec.kind == SceneKind::Chain || spec.reference_refinement.is_some(),
-            relaxation: spec.lattice.as_ref().map(|l| Relaxation {
+            displacements: spec.kind == SceneKind::Chain || spec.reference_refinement.is_some() || spec.wave.is_some(),
+            relaxation: loaded.map(|l| Relaxation {
                 kinetic_ratio: l.kinetic_ratio,
                 residual_force: l.residual_force.map(|fraction| fraction * l.load_per_node),
                 check_every: (spec.t_c / spec.dt).round().max(1.0) as u64,
@@ -40,11 +42,7 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
         },
         contact_clock,
         // A wave is timed every step, but never more than 10⁵ entries are kept.
-        wave: spec
-            .wave
-            .as_ref()
-            .zip(spec.node)
-            .map(|(w, node)| (node, vec![w.receiver], (spec.steps / 100_000).max(1))),
+        wave: spec.wave.as_ref().map(|w| (w.source, w.receivers.clone(), (spec.steps / 100_000).max(1))),
         movie_frames: spec.movie.map(|m| u64::from(m.frames)),
         loads,
         load_ramp: spec.lattice.as_ref().map_or(0.0, |l| l.load_ramp_tc * spec.t_c),
@@ -110,7 +108,7 @@ pub fn lattice_springs(spec: &RunSpec, l: &LatticeSpec) -> SquareLattice {
 /// Which axes of node (ix, iy) the supports hold.
 pub fn support(supports: Supports, ix: usize, iy: usize) -> Axes {
     match (supports, ix, iy) {
-        (_, _, 1..) => Axes::FREE,
+        (_, _, 1..) | (Supports::Free, _, _) => Axes::FREE,
         (Supports::Coursework, 0, 0) | (Supports::ClampedBottom | Supports::PeriodicX, _, 0) => Axes::FIXED,
         (Supports::Coursework, _, 0) => Axes { x: false, y: true },
     }
@@ -154,6 +152,10 @@ fn solid(spec: &RunSpec, l: &LatticeSpec) -> Parts {
         for ix in 0..l.nx {
             particles.push(ix as f64 * spec.spacing, iy as f64 * spec.spacing, spec.mass, support(l.supports, ix, iy));
         }
+    }
+    if let Some(impulse) = l.impulse {
+        particles.vx[impulse.node] = impulse.vx;
+        particles.vy[impulse.node] = impulse.vy;
     }
     (particles, lattice_springs(spec, l), None)
 }

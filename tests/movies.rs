@@ -33,8 +33,8 @@ fn movie_has_its_frames_and_colours_follow_the_speed() {
     let (width, frames) = frames(&path);
     assert_eq!(frames.len(), 12, "the requested number of frames");
     // At t = 0 only the first particle moves, at v0, the fastest speed of the run (energy is
-    // conserved, so no particle ever moves faster): its disc is the top colour of the scale,
-    // yellow, every other disc the bottom one. Yellow pixels outside the colour bar (the right
+    // conserved, so no particle ever moves faster): its disc is the top colour of the scale
+    // (which spans the speeds after the first frame), yellow, every other disc the bottom one. Yellow pixels outside the colour bar (the right
     // 90 pixels) must therefore all lie at the left end of the chain.
     let top = mdsolids::report::speed_color(1.0);
     let is_top = |p: &[u8]| {

@@ -301,7 +301,7 @@ fn percent(a: Option<f64>, b: Option<f64>) -> String {
 }
 
 fn lattice_row(r: &RunRecord) -> Option<LatticeRow> {
-    let l = r.spec.lattice.as_ref()?;
+    let l = r.spec.lattice.as_ref().filter(|l| l.impulse.is_none())?;
     let m = &r.metrics;
     let tensile = l.load_case == crate::spec::LoadCase::Tensile;
     let (modulus, md, fem, theory) = if tensile {

@@ -198,7 +198,9 @@ fn relaxation_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyho
     Ok(Figure {
         scene: scene.into(),
         file: format!("plots/{scene}-relaxation.svg"),
-        caption: format!("Kinetic over potential energy against time while the loaded lattice relaxes, {scene}."),
+        caption: format!(
+            "Kinetic over potential energy against time, {scene}: a loaded lattice relaxing, or an impulse spreading."
+        ),
         svg: line_chart(&chart, &series)?,
     })
 }

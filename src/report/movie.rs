@@ -28,7 +28,7 @@ pub fn speed_color(fraction: f64) -> RGBColor {
 
 /// Writes `movie` as an animated GIF at `path`, atomically (a temporary file beside it, then
 /// renamed). The view is fixed over all frames with equal scales on both axes; colours are
-/// scaled to the fastest speed of the whole movie.
+/// scaled to the fastest speed after the first frame.
 pub fn write_movie(path: &Path, movie: &Movie) -> anyhow::Result<()> {
     ensure_font()?;
     anyhow::ensure!(!movie.frames.is_empty(), "a movie needs at least one frame");
@@ -55,7 +55,10 @@ pub fn write_movie(path: &Path, movie: &Movie) -> anyhow::Result<()> {
     let x_range = (cx - scale * plot_w / 2.0)..(cx + scale * plot_w / 2.0);
     let y_range = (cy - scale * plot_h / 2.0)..(cy + scale * plot_h / 2.0);
     let radius = (0.35 * spacing / scale).clamp(2.0, 14.0) as i32;
-    let fastest = movie.frames.iter().flat_map(|f| f.speed.iter().copied()).fold(0.0f64, f64::max);
+    // Colours span the speeds after the first frame: a kicked node's start speed would leave a
+    // spreading 2D wave too dark to see; it is drawn at the top colour (clamped) instead.
+    let later = if movie.frames.len() > 1 { &movie.frames[1..] } else { &movie.frames[..] };
+    let fastest = later.iter().flat_map(|f| f.speed.iter().copied()).fold(0.0f64, f64::max);
     let fastest = if fastest > 0.0 { fastest } else { 1.0 };
     let temporary = path.with_extension("gif.tmp");
     if let Some(dir) = path.parent() {

@@ -416,7 +416,9 @@ pub fn wave_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Fi
             svg: line_chart(&chart, &series)?,
         });
     }
-    if let Some(r) = records.iter().find(|r| r.spec.scene == scene && r.spec.wave.is_some() && r.status == "ok") {
+    // Chains only: a lattice's displacements are not kept in its record.
+    let chain_wave = |r: &&RunRecord| r.spec.scene == scene && r.spec.wave.is_some() && r.spec.kind == SceneKind::Chain;
+    if let Some(r) = records.iter().filter(chain_wave).find(|r| r.status == "ok") {
         let t = &r.trace;
         // The moving particles only (the walls never move).
         let values: Vec<Vec<f64>> =

@@ -3,7 +3,7 @@
 //! error names the file, the field path, the value and what is allowed.
 
 pub use self::raw::{Control, LawName, LoadCase, SceneKind, Supports};
-pub use self::run_spec::{LatticeSpec, MovieSpec, RESULT_FORMAT, RunSpec, WaveSpec};
+pub use self::run_spec::{ImpulseSpec, LatticeSpec, MovieSpec, RESULT_FORMAT, RunSpec, WaveSpec};
 
 mod grid;
 mod raw;

@@ -121,6 +121,8 @@ pub struct RawScene {
     pub wave: Option<RawWave>,
     /// Record a movie (animated GIF) of the run.
     pub movie: Option<RawMovie>,
+    /// Lattice: kick one node instead of loading the top row (a wave scene).
+    pub impulse: Option<RawImpulse>,
     /// Grid over this scene only (dotted paths), combined with the campaign's grid.
     pub grid: Option<Grid>,
 }
@@ -165,6 +167,8 @@ pub enum Supports {
     /// Bonds wrap across the left and right sides (a strip of an infinite lattice); bottom row
     /// held in both directions.
     PeriodicX,
+    /// Nothing held (impulse scenes: a wave reaches the bottom row unhindered).
+    Free,
 }
 
 impl Supports {
@@ -174,6 +178,7 @@ impl Supports {
             Supports::Coursework => "coursework",
             Supports::ClampedBottom => "clamped-bottom",
             Supports::PeriodicX => "periodic-x",
+            Supports::Free => "free",
         }
     }
 }
@@ -245,6 +250,16 @@ pub struct RawWave {
     pub receiver: Option<Value>,
     /// Threshold of the threshold criteria, relative to the source's peak (default 0.01).
     pub threshold: Option<f64>,
+}
+
+/// `impulse:` section of a lattice.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawImpulse {
+    /// `top-right` (default), `top-left` or `top-centre`.
+    pub node: Option<String>,
+    /// Initial velocity (vx, vy) of the node (m/s).
+    pub velocity: Option<[f64; 2]>,
 }
 
 /// `movie:` section: an animated GIF of the particles coloured by speed.

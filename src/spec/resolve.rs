@@ -6,9 +6,10 @@ use std::collections::BTreeMap;
 use std::fmt::Display;
 
 use super::raw::{
-    Control, Diagonals, LawName, LoadCase, RawDamping, RawGeometry, RawMaterial, RawScene, RawTime, SceneKind, Supports,
+    Control, Diagonals, LawName, LoadCase, RawDamping, RawGeometry, RawMaterial, RawScene, RawTime, RawWave, SceneKind,
+    Supports,
 };
-use super::run_spec::{LatticeSpec, MovieSpec, RunSpec, WaveSpec};
+use super::run_spec::{ImpulseSpec, LatticeSpec, MovieSpec, RunSpec, WaveSpec};
 use crate::sim::IntegratorKind;
 use crate::theory;
 
@@ -124,15 +125,22 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         SceneKind::Pair if contact => gap.unwrap_or(0.0) / (v0 * t_c) + 1.5,
         SceneKind::Pair => 3.0,
         SceneKind::Chain => 20.0,
+        // An impulse lattice runs until the wave has crossed it about three times.
+        SceneKind::Lattice if raw.impulse.is_some() => 3.0 * lattice.as_ref().map_or(1, |l| l.nx.max(l.ny)) as f64,
         SceneKind::Lattice => raw.relax.as_ref().and_then(|r| r.max_tc).unwrap_or(DEFAULT_MAX_TC),
     };
-    let duration_path = if kind == SceneKind::Lattice { "relax.max_tc" } else { "time.duration_tc" };
+    let duration_path =
+        if kind == SceneKind::Lattice && raw.impulse.is_none() { "relax.max_tc" } else { "time.duration_tc" };
     let duration = t_c * positive(time.duration_tc.unwrap_or(default_duration_tc), duration_path)?;
     let steps = (duration / dt).ceil() as u64;
     require(steps <= 2_000_000_000, "time.duration_tc", duration / t_c, "at most 2e9 steps")?;
     let samples = time.samples.unwrap_or(DEFAULT_SAMPLES);
     require(samples >= 2, "time.samples", samples, "must be ≥ 2")?;
     let ChainFields { n, node, wall_distance, wave } = resolve_chain(kind, raw, spacing)?;
+    let wave = match (&lattice, &raw.wave) {
+        (Some(l), Some(w)) => lattice_wave(l, w, spacing)?,
+        _ => wave,
+    };
     let movie = match &raw.movie {
         None => None,
         Some(m) => {
@@ -330,14 +338,23 @@ fn check_kind_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue> {
     let contact = raw.material.as_ref().and_then(|m| m.contact).unwrap_or(false);
     let is = |wanted: SceneKind| kind == wanted;
     only(raw.gap.is_some() && !(is(SceneKind::Pair) && contact), "gap", "pairs with material.contact: true")?;
-    for (present, path) in [
-        (raw.n.is_some(), "n"),
-        (raw.node.is_some(), "node"),
-        (raw.wall_distance.is_some(), "wall_distance"),
-        (raw.wave.is_some(), "wave"),
-    ] {
+    for (present, path) in
+        [(raw.n.is_some(), "n"), (raw.node.is_some(), "node"), (raw.wall_distance.is_some(), "wall_distance")]
+    {
         only(present && !is(SceneKind::Chain), path, "chain scenes")?;
     }
+    only(raw.wave.is_some() && is(SceneKind::Pair), "wave", "chain and lattice scenes")?;
+    only(raw.impulse.is_some() && !is(SceneKind::Lattice), "impulse", "lattice scenes")?;
+    if raw.impulse.is_some() {
+        only(raw.load.is_some(), "load", "loaded lattices (an impulse lattice is kicked, not loaded)")?;
+        only(raw.relax.is_some(), "relax", "loaded lattices (an impulse lattice runs for time.duration_tc)")?;
+    }
+    only(
+        raw.wave.as_ref().is_some_and(|w| w.receiver.is_some()) && is(SceneKind::Lattice),
+        "wave.receiver",
+        "chains (a lattice's receiver is its bottom row)",
+    )?;
+    only(raw.wave.is_some() && is(SceneKind::Lattice) && raw.impulse.is_none(), "wave", "chains and impulse lattices")?;
     for (present, path) in [
         (raw.lattice.is_some(), "lattice"),
         (raw.supports.is_some(), "supports"),
@@ -429,6 +446,31 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
             "are for control: velocity",
         )?;
     }
+    let impulse = match &raw.impulse {
+        None => None,
+        Some(i) => {
+            let node = match i.node.as_deref().unwrap_or("top-right") {
+                "top-right" => ny * nx - 1,
+                "top-left" => (ny - 1) * nx,
+                "top-centre" | "top-center" => (ny - 1) * nx + nx / 2,
+                other => {
+                    return Err(Issue {
+                        path: "impulse.node".into(),
+                        value: other.into(),
+                        allowed: "top-right, top-left or top-centre".into(),
+                    });
+                }
+            };
+            let [vx, vy] = i.velocity.unwrap_or([0.0, -1.0]);
+            require(
+                vx.is_finite() && vy.is_finite() && (vx != 0.0 || vy != 0.0),
+                "impulse.velocity",
+                format!("[{vx}, {vy}]"),
+                "[vx, vy] in m/s, finite and not both zero",
+            )?;
+            Some(ImpulseSpec { node, vx, vy })
+        }
+    };
     let relax = raw.relax.clone().unwrap_or_default();
     let kinetic_ratio = relax.kinetic_ratio.unwrap_or(DEFAULT_KINETIC_RATIO);
     require(kinetic_ratio > 0.0 && kinetic_ratio < 1.0, "relax.kinetic_ratio", kinetic_ratio, "must be in (0, 1)")?;
@@ -455,6 +497,7 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
         kinetic_ratio,
         residual_force: relax.residual_force,
         derived_from: None,
+        impulse,
     }))
 }
 
@@ -482,12 +525,36 @@ fn resolve_chain(kind: SceneKind, raw: &RawScene, spacing: f64) -> Result<ChainF
             let far_end = if node <= n / 2 { n } else { 1 };
             let receiver = particle(w.receiver.as_ref(), n, far_end, "wave.receiver")?;
             require(receiver != node, "wave.receiver", receiver, "a particle other than the excited one")?;
-            let threshold = w.threshold.unwrap_or(DEFAULT_WAVE_THRESHOLD);
-            require(threshold > 0.0 && threshold < 1.0, "wave.threshold", threshold, "must be in (0, 1)")?;
-            Some(WaveSpec { receiver, threshold })
+            let springs = receiver.abs_diff(node);
+            Some(WaveSpec {
+                source: node,
+                receivers: vec![receiver],
+                distance: springs as f64 * spacing,
+                springs,
+                threshold: wave_threshold(w)?,
+            })
         }
     };
     Ok(ChainFields { n: Some(n), node: Some(node), wall_distance: Some(walls), wave })
+}
+
+fn wave_threshold(w: &RawWave) -> Result<f64, Issue> {
+    let threshold = w.threshold.unwrap_or(DEFAULT_WAVE_THRESHOLD);
+    require(threshold > 0.0 && threshold < 1.0, "wave.threshold", threshold, "must be in (0, 1)")?;
+    Ok(threshold)
+}
+
+/// The wave of an impulse lattice: from the kicked node down to the bottom row.
+fn lattice_wave(l: &LatticeSpec, w: &RawWave, spacing: f64) -> Result<Option<WaveSpec>, Issue> {
+    let Some(impulse) = l.impulse else { return Ok(None) };
+    let row = impulse.node / l.nx;
+    Ok(Some(WaveSpec {
+        source: impulse.node,
+        receivers: (0..l.nx).collect(),
+        distance: row as f64 * spacing,
+        springs: row,
+        threshold: wave_threshold(w)?,
+    }))
 }
 
 /// A chain particle named `first`, `last`, `centre` or by its number 1..=n; `default` when absent.

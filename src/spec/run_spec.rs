@@ -89,13 +89,31 @@ pub struct MovieSpec {
     pub height: u32,
 }
 
-/// A timed wave: from the chain's excited particle to `receiver`.
+/// A timed wave: from the excited particle to the receivers (a chain's particle, a lattice's
+/// bottom row).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct WaveSpec {
-    /// Receiving particle, 1..n.
-    pub receiver: usize,
+    /// Excited particle.
+    pub source: usize,
+    /// Receiving particles: the wave arrives when the first of them moves.
+    pub receivers: Vec<usize>,
+    /// Distance from the source to the receivers along the wave (m).
+    pub distance: f64,
+    /// Springs along that distance, N_s (for the coursework's estimate t_s = N_s t_c).
+    pub springs: usize,
     /// Threshold of the threshold criteria, relative to the source's peak.
     pub threshold: f64,
+}
+
+/// A lattice node kicked at t = 0.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ImpulseSpec {
+    /// The node.
+    pub node: usize,
+    /// Its initial velocity (m/s).
+    pub vx: f64,
+    /// Its initial velocity (m/s).
+    pub vy: f64,
 }
 
 /// The resolved lattice of a lattice scene.
@@ -129,6 +147,9 @@ pub struct LatticeSpec {
     pub residual_force: Option<f64>,
     /// How mass and stiffness were derived from a solid, when they were.
     pub derived_from: Option<String>,
+    /// The kicked node of an impulse scene (no load, no relaxation).
+    #[serde(default)]
+    pub impulse: Option<ImpulseSpec>,
 }
 
 impl LatticeSpec {
