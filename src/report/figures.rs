@@ -64,6 +64,9 @@ pub fn draw_all(campaign: &Campaign, records: &[RunRecord]) -> anyhow::Result<Ve
                 if let Some((label, members)) = groups.first() {
                     figures.push(displacement_figure(scene, label, representative(members))?);
                 }
+                if records.iter().any(|r| r.spec.scene == *scene && r.spec.wave.is_some()) {
+                    figures.push(relaxation_figure(scene, &groups)?);
+                }
             }
             SceneKind::Lattice => {
                 figures.push(relaxation_figure(scene, &groups)?);

@@ -416,27 +416,32 @@ pub fn wave_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Fi
             svg: line_chart(&chart, &series)?,
         });
     }
-    // Chains only: a lattice's displacements are not kept in its record.
-    let chain_wave = |r: &&RunRecord| r.spec.scene == scene && r.spec.wave.is_some() && r.spec.kind == SceneKind::Chain;
-    if let Some(r) = records.iter().filter(chain_wave).find(|r| r.status == "ok") {
+    // A chain's particles (walls left out), or the kicked column of an impulse lattice, in time.
+    let first_ok = records.iter().find(|r| r.spec.scene == scene && r.spec.wave.is_some() && r.status == "ok");
+    if let Some(r) = first_ok {
         let t = &r.trace;
-        // The moving particles only (the walls never move).
-        let values: Vec<Vec<f64>> =
-            t.displacement_x.iter().map(|row| row[1..row.len().saturating_sub(1)].to_vec()).collect();
+        let (values, rows, what): (Vec<Vec<f64>>, &str, &str) = match r.spec.kind {
+            SceneKind::Lattice => (t.column_displacement.clone(), "node of the kicked column (0: bottom)", "y"),
+            _ => (
+                t.displacement_x.iter().map(|row| row[1..row.len().saturating_sub(1)].to_vec()).collect(),
+                "particle",
+                "x",
+            ),
+        };
         if t.time.len() >= 2 && values.first().is_some_and(|row| !row.is_empty()) {
             let chart = Chart {
                 title: format!("{scene}: displacement in space and time ({})", r.spec.varied_label(|_| true)),
                 x_label: "time t (s)".into(),
-                y_label: "particle".into(),
+                y_label: rows.into(),
                 scale: Scale::Linear,
             };
             figures.push(Figure {
                 scene: scene.into(),
                 file: format!("plots/{scene}-space-time.svg"),
                 caption: format!(
-                    "Displacement of every particle (rows) against time, {scene}: red along +x, blue along −x, white at \
-                     rest, scaled to the largest |u|. The wave front is the edge of the coloured region; its slope is \
-                     the sound speed, and it reflects at the far wall."
+                    "Displacement along {what} of every {rows} against time, {scene}: red positive, blue negative, \
+                     white at rest, scaled to the largest |u|. The wave front is the edge of the coloured region; its \
+                     slope is the sound speed."
                 ),
                 svg: heatmap(&chart, &t.time, &values)?,
             });

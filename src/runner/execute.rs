@@ -38,9 +38,17 @@ pub fn execute(spec: &RunSpec) -> RunRecord {
             let (mut outcome, metrics, reference_wall_s, movie) = *done;
             reference_s = reference_wall_s;
             record.movie = movie;
-            if spec.kind == SceneKind::Lattice {
-                // Recorded only to compare with the reference run: too bulky to store.
+            if let Some(lattice) = &spec.lattice {
+                // Recorded to compare with a reference run or to follow a wave: too bulky to
+                // store whole. An impulse lattice keeps the y displacements of the kicked node's
+                // column, the wave's straight path down, for the space–time picture.
                 let t = &mut outcome.trace;
+                if let Some(impulse) = lattice.impulse {
+                    let ix = impulse.node % lattice.nx;
+                    let column: Vec<usize> = (0..lattice.ny).map(|iy| iy * lattice.nx + ix).collect();
+                    t.column_displacement =
+                        t.displacement_y.iter().map(|row| column.iter().map(|&i| row[i]).collect()).collect();
+                }
                 (t.displacement_x, t.displacement_y, t.velocity_x) = Default::default();
             }
             record.status = outcome.trace.status.word().into();

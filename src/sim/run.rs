@@ -80,6 +80,10 @@ pub struct Trace {
     /// y displacement of every particle (m), recorded with the x displacements.
     #[serde(default)]
     pub displacement_y: Vec<Vec<f64>>,
+    /// Impulse lattice: y displacement (m) of the nodes of the kicked node's column, bottom to
+    /// top, at each sample (kept from the displacements for the space–time picture).
+    #[serde(default)]
+    pub column_displacement: Vec<Vec<f64>>,
     /// x velocity of every particle (m/s) at each sample, recorded with the displacements.
     #[serde(default)]
     pub velocity_x: Vec<Vec<f64>>,

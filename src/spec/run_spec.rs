@@ -9,7 +9,7 @@ use crate::sim::IntegratorKind;
 
 /// Bumped whenever stored results of an unchanged spec would differ (new physics or columns),
 /// so the cache never serves results of older code.
-pub const RESULT_FORMAT: u32 = 7;
+pub const RESULT_FORMAT: u32 = 8;
 
 /// A resolved run. Units SI; field names are the results table's column names.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
