@@ -23,6 +23,10 @@ impl Layout {
     pub fn movie_file(&self, run_id: &str) -> PathBuf {
         self.root.join("runs").join(format!("{run_id}.gif"))
     }
+    /// The movie of all runs of `scene` side by side.
+    pub fn side_by_side_movie(&self, scene: &str) -> PathBuf {
+        self.plot_file(&format!("{scene}-side-by-side.gif"))
+    }
     /// A figure.
     pub fn plot_file(&self, name: &str) -> PathBuf {
         self.root.join("plots").join(name)

@@ -62,3 +62,18 @@ fn movie_has_its_frames_and_colours_follow_the_speed() {
     assert!(std::fs::read_to_string(layout.file("report.md")).unwrap().contains(&format!("]({link})")));
     assert!(std::fs::read_to_string(layout.file("index.html")).unwrap().contains(&format!("<img src=\"{link}\"")));
 }
+
+#[test]
+fn a_scene_can_show_its_runs_side_by_side() {
+    let reports = tempfile::tempdir().unwrap();
+    let yaml = "version: 1\nname: pair\nscenes:\n  - name: kick\n    kind: lattice\n    lattice: {size: 5}\n    \
+                supports: free\n    impulse: {velocity: [0.0, -0.01]}\n    movie: {frames: 5, width: 300, height: 200, side_by_side: true}\n    \
+                time: {integrator: velocity-verlet}\n    grid:\n      lattice.diagonals: [none, both]\n";
+    let campaign = parse_campaign("pair.yaml", yaml).unwrap();
+    let layout = Layout::new(reports.path(), &campaign.name);
+    run_campaign(&campaign, &layout, Some(2)).unwrap();
+    let (width, frames) = frames(&layout.side_by_side_movie("kick"));
+    assert_eq!(frames.len(), 5);
+    // Two panels of 300 − 90 pixels and one colour bar of 90.
+    assert_eq!(width, 2 * (300 - 90) + 90);
+}

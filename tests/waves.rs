@@ -94,7 +94,7 @@ fn lattice_impulse_reaches_the_bottom_row_at_the_longitudinal_speed() {
 #[test]
 fn an_impulse_lattice_is_not_loaded() {
     let yaml = "version: 1\nname: t\nscenes:\n  - name: l\n    kind: lattice\n    lattice: {size: 5}\n    \
-                impulse: {}\n    load: {case: tensile}\n";
+                impulse: {velocity: [0.0, -0.01]}\n    load: {case: tensile}\n";
     let error = mdsolids::stability::parse_campaign("kick.yaml", yaml).unwrap_err().to_string();
     assert!(error.contains("kick.yaml") && error.contains("scenes[0].load") && error.contains("impulse"), "{error}");
 }

@@ -132,7 +132,7 @@ struct FailureRow {
 }
 
 /// Builds the context from the campaign, its records and the drawn figures.
-pub fn build(campaign: &Campaign, records: &[RunRecord], figures: &[Figure]) -> ReportContext {
+pub fn build(campaign: &Campaign, records: &[RunRecord], figures: &[Figure], side_by_side: &[String]) -> ReportContext {
     let ok = records.iter().filter(|r| r.status == "ok").count();
     ReportContext {
         name: campaign.name.clone(),
@@ -151,7 +151,7 @@ pub fn build(campaign: &Campaign, records: &[RunRecord], figures: &[Figure]) -> 
         scenes: campaign
             .scenes
             .iter()
-            .filter_map(|(scene, kind)| section(scene, *kind, records, figures, campaign.target_error))
+            .filter_map(|(scene, kind)| section(scene, *kind, records, figures, campaign.target_error, side_by_side))
             .collect(),
         failures: records
             .iter()
@@ -167,6 +167,7 @@ fn section(
     records: &[RunRecord],
     figures: &[Figure],
     target_error: f64,
+    side_by_side: &[String],
 ) -> Option<SceneSection> {
     let mine: Vec<&RunRecord> = records.iter().filter(|r| r.spec.scene == scene).collect();
     let first = mine.first()?;
@@ -224,16 +225,20 @@ fn section(
         limit_rows,
         wave_rows: wave_rows(records, scene),
         exponent_rows: exponent_rows(records, scene),
-        movies: mine
+        movies: side_by_side
             .iter()
-            .filter(|r| r.spec.movie.is_some() && r.status != "panicked")
-            .map(|r| FigureRef {
+            .filter(|s| *s == scene)
+            .map(|_| FigureRef {
+                file: format!("plots/{scene}-side-by-side.gif"),
+                caption: format!("All runs of {scene} side by side, on one colour scale (m/s)."),
+            })
+            .chain(mine.iter().filter(|r| r.spec.movie.is_some() && r.status != "panicked").map(|r| FigureRef {
                 file: format!("runs/{}.gif", r.run_id),
                 caption: format!(
                     "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), bonds in grey.",
                     r.spec.varied_label(|_| true)
                 ),
-            })
+            }))
             .collect(),
     })
 }

@@ -9,7 +9,7 @@ mod movie;
 pub mod plots;
 mod studies;
 
-pub use self::movie::{speed_color, write_movie};
+pub use self::movie::{speed_color, write_movie, write_movie_panels};
 
 use anyhow::Context as _;
 
@@ -26,7 +26,14 @@ pub fn render(campaign: &Campaign, layout: &Layout, records: &[RunRecord]) -> an
     for figure in &figures {
         write_atomically(&layout.file(&figure.file), figure.svg.as_bytes())?;
     }
-    let context = context::build(campaign, records, &figures);
+    // Side-by-side movies exist only when their runs were simulated together (see the runner).
+    let side_by_side: Vec<String> = campaign
+        .scenes
+        .iter()
+        .map(|(scene, _)| scene.clone())
+        .filter(|scene| layout.side_by_side_movie(scene).is_file())
+        .collect();
+    let context = context::build(campaign, records, &figures, &side_by_side);
     let mut tera = tera::Tera::new();
     tera.add_raw_template("report.md", MARKDOWN_TEMPLATE).context("templates/report.md.tera does not parse")?;
     tera.add_raw_template("index.html", HTML_TEMPLATE).context("templates/index.html.tera does not parse")?;

@@ -30,21 +30,34 @@ pub fn speed_color(fraction: f64) -> RGBColor {
 /// renamed). The view is fixed over all frames with equal scales on both axes; colours are
 /// scaled to the fastest speed after the first frame.
 pub fn write_movie(path: &Path, movie: &Movie) -> anyhow::Result<()> {
+    write_movie_panels(path, &[movie])
+}
+
+/// Writes `panels` side by side in one animated GIF at `path` (each `width` of the first
+/// panel's size, one colour bar), atomically: the same view and the same colour scale for all,
+/// so the runs compare frame by frame (e.g. a lattice with and without diagonals). As many
+/// frames as the shortest panel has.
+pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> {
     ensure_font()?;
-    anyhow::ensure!(!movie.frames.is_empty(), "a movie needs at least one frame");
-    let (width, height) = (movie.spec.width, movie.spec.height);
-    let (plot_w, plot_h) = (f64::from(width - BAR_WIDTH), f64::from(height - 30));
-    let all_x = movie.frames.iter().flat_map(|f| f.x.iter().copied());
-    let all_y = movie.frames.iter().flat_map(|f| f.y.iter().copied());
-    let (x0, x1) = all_x.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
-    let (y0, y1) = all_y.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    let frames = panels.iter().map(|m| m.frames.len()).min().unwrap_or(0);
+    anyhow::ensure!(frames > 0, "a movie needs at least one frame");
+    let spec = panels[0].spec;
+    let panel_width = spec.width - BAR_WIDTH;
+    let (width, height) = (panel_width * panels.len() as u32 + BAR_WIDTH, spec.height);
+    let (plot_w, plot_h) = (f64::from(panel_width), f64::from(height - 30));
+    let all = || panels.iter().flat_map(|m| m.frames.iter());
+    let (x0, x1) = all()
+        .flat_map(|f| f.x.iter().copied())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    let (y0, y1) = all()
+        .flat_map(|f| f.y.iter().copied())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
     anyhow::ensure!(x0.is_finite() && y0.is_finite(), "a movie's positions must be finite");
     // The shortest bond at the start sets the disc size and the margin.
-    let first = &movie.frames[0];
-    let spacing = movie
-        .bonds
+    let spacing = panels
         .iter()
-        .map(|&(i, j)| (first.x[i] - first.x[j]).hypot(first.y[i] - first.y[j]))
+        .flat_map(|m| m.bonds.iter().map(move |&(i, j)| (&m.frames[0], i, j)))
+        .map(|(first, i, j)| (first.x[i] - first.x[j]).hypot(first.y[i] - first.y[j]))
         .filter(|d| *d > 0.0)
         .fold(f64::INFINITY, f64::min);
     let spacing = if spacing.is_finite() { spacing } else { (x1 - x0).max(y1 - y0).max(1.0) / 10.0 };
@@ -57,8 +70,12 @@ pub fn write_movie(path: &Path, movie: &Movie) -> anyhow::Result<()> {
     let radius = (0.35 * spacing / scale).clamp(2.0, 14.0) as i32;
     // Colours span the speeds after the first frame: a kicked node's start speed would leave a
     // spreading 2D wave too dark to see; it is drawn at the top colour (clamped) instead.
-    let later = if movie.frames.len() > 1 { &movie.frames[1..] } else { &movie.frames[..] };
-    let fastest = later.iter().flat_map(|f| f.speed.iter().copied()).fold(0.0f64, f64::max);
+    let skip = usize::from(frames > 1);
+    let fastest = panels
+        .iter()
+        .flat_map(|m| m.frames[skip..].iter())
+        .flat_map(|f| f.speed.iter().copied())
+        .fold(0.0f64, f64::max);
     let fastest = if fastest > 0.0 { fastest } else { 1.0 };
     let temporary = path.with_extension("gif.tmp");
     if let Some(dir) = path.parent() {
@@ -67,27 +84,31 @@ pub fn write_movie(path: &Path, movie: &Movie) -> anyhow::Result<()> {
     {
         let root =
             BitMapBackend::gif(&temporary, (width, height), FRAME_DELAY_MS).map_err(draw_error)?.into_drawing_area();
-        for frame in &movie.frames {
+        for k in 0..frames {
             root.fill(&WHITE).map_err(draw_error)?;
-            let (plot, bar) = root.split_horizontally(width - BAR_WIDTH);
-            let (header, body) = plot.split_vertically(30);
-            header
-                .draw(&Text::new(
-                    format!("{}   t = {:.4e} s", movie.title, frame.time),
-                    (8, 8),
-                    ("sans-serif", 15).into_font().color(&BLACK),
-                ))
+            let (plots, bar) = root.split_horizontally(width - BAR_WIDTH);
+            let areas = plots.split_evenly((1, panels.len()));
+            for (movie, area) in panels.iter().zip(&areas) {
+                let frame = &movie.frames[k];
+                let (header, body) = area.split_vertically(30);
+                header
+                    .draw(&Text::new(
+                        format!("{}   t = {:.4e} s", movie.title, frame.time),
+                        (8, 8),
+                        ("sans-serif", 15).into_font().color(&BLACK),
+                    ))
+                    .map_err(draw_error)?;
+                let mut ctx =
+                    ChartBuilder::on(&body).build_cartesian_2d(x_range.clone(), y_range.clone()).map_err(draw_error)?;
+                ctx.draw_series(movie.bonds.iter().map(|&(i, j)| {
+                    PathElement::new(vec![(frame.x[i], frame.y[i]), (frame.x[j], frame.y[j])], RGBColor(170, 170, 170))
+                }))
                 .map_err(draw_error)?;
-            let mut ctx =
-                ChartBuilder::on(&body).build_cartesian_2d(x_range.clone(), y_range.clone()).map_err(draw_error)?;
-            ctx.draw_series(movie.bonds.iter().map(|&(i, j)| {
-                PathElement::new(vec![(frame.x[i], frame.y[i]), (frame.x[j], frame.y[j])], RGBColor(170, 170, 170))
-            }))
-            .map_err(draw_error)?;
-            ctx.draw_series((0..frame.x.len()).map(|i| {
-                Circle::new((frame.x[i], frame.y[i]), radius, speed_color(frame.speed[i] / fastest).filled())
-            }))
-            .map_err(draw_error)?;
+                ctx.draw_series((0..frame.x.len()).map(|i| {
+                    Circle::new((frame.x[i], frame.y[i]), radius, speed_color(frame.speed[i] / fastest).filled())
+                }))
+                .map_err(draw_error)?;
+            }
             draw_colour_bar(&bar, fastest, height)?;
             root.present().map_err(draw_error)?;
         }

@@ -47,14 +47,19 @@ pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -
     order.sort_by(|&a, &b| todo[b].estimated_seconds().total_cmp(&todo[a].estimated_seconds()));
     let finished: Vec<std::sync::Mutex<Option<anyhow::Result<RunRecord>>>> =
         todo.iter().map(|_| std::sync::Mutex::new(None)).collect();
+    // Movies of scenes that show their runs side by side, kept until all runs have ended.
+    let panels: Vec<std::sync::Mutex<Option<Movie>>> = todo.iter().map(|_| std::sync::Mutex::new(None)).collect();
     pool.scope_fifo(|scope| {
         for &index in &order {
-            let (spec, slot, progress) = (todo[index], &finished[index], &progress);
+            let (spec, slot, panel, progress) = (todo[index], &finished[index], &panels[index], &progress);
             scope.spawn_fifo(move |_| {
                 let stored = (|| {
                     let mut record = execute(spec);
                     if let Some(movie) = record.movie.take() {
                         crate::report::write_movie(&layout.movie_file(&record.run_id), &movie)?;
+                        if movie.spec.side_by_side {
+                            *panel.lock().expect("a panel is written once") = Some(movie);
+                        }
                     }
                     let json = serde_json::to_vec(&record).context("cannot serialise a run record")?;
                     write_atomically(&layout.run_file(&record.run_id), &json)?;
@@ -66,6 +71,7 @@ pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -
         }
     });
     progress.finish_and_clear();
+    write_side_by_side(campaign, layout, &todo, panels)?;
     let fresh: Vec<RunRecord> = finished
         .into_iter()
         .map(|slot| slot.into_inner().expect("a slot is written once").expect("every queued run ends"))
@@ -77,6 +83,32 @@ pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -
         .map(|r| r.unwrap_or_else(|| fresh.next().expect("one fresh record per missing run")))
         .collect();
     Ok(CampaignRun { cached: records.len() - simulated, records, simulated })
+}
+
+/// Writes one movie per scene that asks for its runs side by side, from the movies of the runs
+/// simulated now (in campaign order); a scene with a stored run has no frames for it and is
+/// left as it is.
+fn write_side_by_side(
+    campaign: &Campaign,
+    layout: &Layout,
+    todo: &[&RunSpec],
+    panels: Vec<std::sync::Mutex<Option<Movie>>>,
+) -> anyhow::Result<()> {
+    let movies: Vec<Option<Movie>> =
+        panels.into_iter().map(|m| m.into_inner().expect("a panel is written once")).collect();
+    for (scene, _) in &campaign.scenes {
+        let wanted = campaign.runs.iter().filter(|r| r.scene == *scene && r.movie.is_some_and(|m| m.side_by_side));
+        let fresh: Vec<&Movie> = todo
+            .iter()
+            .zip(&movies)
+            .filter(|(spec, _)| spec.scene == *scene)
+            .filter_map(|(_, movie)| movie.as_ref())
+            .collect();
+        if fresh.len() >= 2 && fresh.len() == wanted.count() {
+            crate::report::write_movie_panels(&layout.side_by_side_movie(scene), &fresh)?;
+        }
+    }
+    Ok(())
 }
 
 /// One bar for the whole campaign (count, elapsed, ETA); hidden when stderr is not a terminal.

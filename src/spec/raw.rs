@@ -258,7 +258,7 @@ pub struct RawWave {
 pub struct RawImpulse {
     /// `top-right` (default), `top-left` or `top-centre`.
     pub node: Option<String>,
-    /// Initial velocity (vx, vy) of the node (m/s).
+    /// Initial velocity (vx, vy) of the node (m/s); required.
     pub velocity: Option<[f64; 2]>,
 }
 
@@ -272,6 +272,8 @@ pub struct RawMovie {
     pub width: Option<u32>,
     /// Height in pixels (default 240).
     pub height: Option<u32>,
+    /// Also show all runs of the scene side by side in one movie (`plots/<scene>-side-by-side.gif`).
+    pub side_by_side: Option<bool>,
 }
 
 /// `relax:` section.

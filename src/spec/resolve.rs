@@ -149,7 +149,7 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
             let (width, height) = (m.width.unwrap_or(720), m.height.unwrap_or(240));
             require((120..=1920).contains(&width), "movie.width", width, "from 120 to 1920 pixels")?;
             require((80..=1080).contains(&height), "movie.height", height, "from 80 to 1080 pixels")?;
-            Some(MovieSpec { frames, width, height })
+            Some(MovieSpec { frames, width, height, side_by_side: m.side_by_side.unwrap_or(false) })
         }
     };
     let reference_refinement = time.reference_refinement;
@@ -461,7 +461,7 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
                     });
                 }
             };
-            let [vx, vy] = i.velocity.unwrap_or([0.0, -1.0]);
+            let [vx, vy] = i.velocity.ok_or_else(|| missing("impulse.velocity", "[vx, vy] in m/s"))?;
             require(
                 vx.is_finite() && vy.is_finite() && (vx != 0.0 || vy != 0.0),
                 "impulse.velocity",

@@ -87,6 +87,9 @@ pub struct MovieSpec {
     pub width: u32,
     /// Height (pixels).
     pub height: u32,
+    /// Also put the scene's runs side by side in one movie.
+    #[serde(default)]
+    pub side_by_side: bool,
 }
 
 /// A timed wave: from the excited particle to the receivers (a chain's particle, a lattice's
