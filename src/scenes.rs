@@ -13,9 +13,13 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
         (SceneKind::Chain, _) => chain(spec),
         _ => pair(spec),
     };
-    // An impulse lattice is kicked, not loaded: no loads, no drive, no relaxation.
+    // An impulse lattice is kicked (or its top row stepped): no load case, drive or relaxation.
     let loaded = spec.lattice.as_ref().filter(|l| l.impulse.is_none());
-    let loads = loaded.filter(|l| l.control == Control::Force).map(top_row_loads).unwrap_or_default();
+    let step = spec.lattice.as_ref().and_then(|l| l.impulse.and_then(|i| i.top_row_force).map(|f| (l, f)));
+    let loads = match step {
+        Some((l, [fx, fy])) => top_row(l).into_iter().map(|particle| Load { particle, fx, fy }).collect(),
+        None => loaded.filter(|l| l.control == Control::Force).map(top_row_loads).unwrap_or_default(),
+    };
     let drive = loaded.filter(|l| l.control == Control::Velocity).map(|l| top_row_drive(spec, l));
     Scene {
         particles,

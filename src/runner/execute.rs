@@ -172,7 +172,7 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
 }
 
 /// The linear sound speed along the wave's path (m/s): a√(k/m) along a chain; in a lattice
-/// kicked mostly along y (the bottom row is below) the longitudinal c_L = a√((k + k_d)/m),
+/// kicked or stepped mostly along y (the bottom row is below) the longitudinal c_L = a√((k + k_d)/m),
 /// kicked mostly along x the transverse c_T = a√(k_d/m). `None` for power-law springs, which
 /// have no linear sound speed without pre-load.
 fn sound_speed_theory(spec: &RunSpec) -> Option<f64> {
@@ -182,7 +182,9 @@ fn sound_speed_theory(spec: &RunSpec) -> Option<f64> {
     let a = spec.spacing;
     match spec.lattice.as_ref().and_then(|l| l.impulse.map(|i| (l, i))) {
         None => Some(a * (spec.k / spec.mass).sqrt()),
-        Some((l, i)) if i.vy.abs() >= i.vx.abs() => Some(a * ((spec.k + l.k_diag) / spec.mass).sqrt()),
+        Some((l, i)) if i.direction()[1].abs() >= i.direction()[0].abs() => {
+            Some(a * ((spec.k + l.k_diag) / spec.mass).sqrt())
+        }
         Some((l, _)) => (l.k_diag > 0.0).then(|| a * (l.k_diag / spec.mass).sqrt()),
     }
 }

@@ -258,8 +258,11 @@ pub struct RawWave {
 pub struct RawImpulse {
     /// `top-right` (default), `top-left` or `top-centre`.
     pub node: Option<String>,
-    /// Initial velocity (vx, vy) of the node (m/s); required.
+    /// Initial velocity (vx, vy) of the node (m/s).
     pub velocity: Option<[f64; 2]>,
+    /// Instead of a kick: a step force (fx, fy) (N) on every top-row node from t = 0; the node
+    /// is then where the wave is timed from.
+    pub force: Option<[f64; 2]>,
 }
 
 /// `movie:` section: an animated GIF of the particles coloured by speed.

@@ -461,14 +461,29 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
                     });
                 }
             };
-            let [vx, vy] = i.velocity.ok_or_else(|| missing("impulse.velocity", "[vx, vy] in m/s"))?;
+            let (path, [a, b]) = match (i.velocity, i.force) {
+                (Some(v), None) => ("impulse.velocity", v),
+                (None, Some(f)) => ("impulse.force", f),
+                _ => {
+                    return Err(Issue {
+                        path: "impulse".into(),
+                        value: "velocity and force".into(),
+                        allowed:
+                            "one of velocity: [vx, vy] (m/s, a kick) or force: [fx, fy] (N, a step on the top row)"
+                                .into(),
+                    });
+                }
+            };
             require(
-                vx.is_finite() && vy.is_finite() && (vx != 0.0 || vy != 0.0),
-                "impulse.velocity",
-                format!("[{vx}, {vy}]"),
-                "[vx, vy] in m/s, finite and not both zero",
+                a.is_finite() && b.is_finite() && (a != 0.0 || b != 0.0),
+                path,
+                format!("[{a}, {b}]"),
+                "two finite numbers, not both zero",
             )?;
-            Some(ImpulseSpec { node, vx, vy })
+            Some(match i.force {
+                Some(force) => ImpulseSpec { node, vx: 0.0, vy: 0.0, top_row_force: Some(force) },
+                None => ImpulseSpec { node, vx: a, vy: b, top_row_force: None },
+            })
         }
     };
     let relax = raw.relax.clone().unwrap_or_default();

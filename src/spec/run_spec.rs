@@ -108,15 +108,25 @@ pub struct WaveSpec {
     pub threshold: f64,
 }
 
-/// A lattice node kicked at t = 0.
+/// The impulse of a wave lattice: one node kicked at t = 0, or a force step on the top row.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ImpulseSpec {
-    /// The node.
+    /// The kicked node, or the top-row node the wave is timed from.
     pub node: usize,
-    /// Its initial velocity (m/s).
+    /// Its initial velocity (m/s); zero under a force step.
     pub vx: f64,
     /// Its initial velocity (m/s).
     pub vy: f64,
+    /// Step force (fx, fy) (N) on every top-row node, if this is a force step.
+    #[serde(default)]
+    pub top_row_force: Option<[f64; 2]>,
+}
+
+impl ImpulseSpec {
+    /// The direction of the impulse: the kick's velocity or the step's force.
+    pub fn direction(&self) -> [f64; 2] {
+        self.top_row_force.unwrap_or([self.vx, self.vy])
+    }
 }
 
 /// The resolved lattice of a lattice scene.
