@@ -159,3 +159,22 @@ fn overdamped_and_misplaced_fields_are_refused() {
     let error = refusal("misplaced.yaml", &format!("{SCENE}    n: 11\n"));
     assert!(error.contains("scenes[0].n") && error.contains("only for chain scenes"), "{error}");
 }
+
+#[test]
+fn stored_runs_with_awkward_numbers_are_found_again() {
+    // A steel-like lattice and a Hertz pair: t_c, dt and γ come out as numbers whose shortest
+    // decimal form needs all 17 digits. Every stored spec must read back bit for bit, or the
+    // cache misses and a rerun simulates again (it did, for 54 of 134 coursework runs, before
+    // serde_json's exact float parsing was switched on).
+    let yaml = "version: 1\nname: awkward\nscenes:\n  - name: l\n    kind: lattice\n    \
+                material: {mass: 0.785, k: 2.0e9}\n    geometry: {spacing: 0.1, depth: 0.01}\n    lattice: {size: 3}\n    \
+                damping: {restitution: 0.3}\n  - name: h\n    kind: pair\n    v0: 0.37\n    \
+                material: {contact: true, law: hertz, mass: 0.785, k: 3.3e7}\n";
+    let campaign = mdsolids::stability::parse_campaign("awkward.yaml", yaml).unwrap();
+    let reports = tempfile::tempdir().unwrap();
+    let layout = mdsolids::output::Layout::new(reports.path(), &campaign.name);
+    let first = mdsolids::runner::run_campaign(&campaign, &layout, Some(1)).unwrap();
+    assert_eq!(first.simulated, 2);
+    let again = mdsolids::runner::run_campaign(&campaign, &layout, Some(1)).unwrap();
+    assert_eq!((again.simulated, again.cached), (0, 2));
+}

@@ -179,15 +179,17 @@ fn section(
     let physics = match &s.lattice {
         Some(l) => {
             format!(
-                "{law} along rows and columns, diagonals k_d = {} N/m (k_d/k = {}), m = {} kg, a = {} m, depth d = {} m, {} supports, {} load {}, {}",
+                "{law} along rows and columns, diagonals k_d = {} N/m (k_d/k = {}), m = {} kg, a = {} m, depth d = {} m, {} supports, {}, {}",
                 number(l.k_diag),
                 number(l.k_diag / s.k),
                 number(s.mass),
                 number(s.spacing),
                 number(l.depth),
                 l.supports.name(),
-                l.load_case.name(),
-                number(l.load_per_node),
+                match l.impulse {
+                    Some(i) => impulse_words(&i),
+                    None => format!("{} load {} N per top node", l.load_case.name(), number(l.load_per_node)),
+                },
                 s.integrator.name()
             ) + &l.derived_from.as_ref().map(|note| format!(". Derived from the solid: {note}")).unwrap_or_default()
         }
@@ -241,6 +243,14 @@ fn section(
             }))
             .collect(),
     })
+}
+
+/// An impulse in words: the kick's velocity or the top row's step force.
+pub(super) fn impulse_words(i: &crate::spec::ImpulseSpec) -> String {
+    match i.top_row_force {
+        Some([fx, fy]) => format!("a step force ({}, {}) N on every top-row node", number(fx), number(fy)),
+        None => format!("node {} kicked at ({}, {}) m/s", i.node, number(i.vx), number(i.vy)),
+    }
 }
 
 fn pair_row(r: &RunRecord) -> PairRow {

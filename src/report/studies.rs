@@ -342,7 +342,10 @@ pub fn wave_rows(records: &[RunRecord], scene: &str) -> Vec<WaveRow> {
             WaveRow {
                 run_id: r.run_id.clone(),
                 label: r.spec.varied_label(|_| true),
-                v0: number(r.spec.v0),
+                v0: match r.spec.lattice.as_ref().and_then(|l| l.impulse) {
+                    Some(i) => super::context::impulse_words(&i),
+                    None => format!("v0 = {} m/s", number(r.spec.v0)),
+                },
                 distance: optional(m.wave_distance),
                 arrival_time: optional(m.arrival_time()),
                 speeds: ARRIVAL_CRITERIA.iter().map(|c| optional(m.sound_speed(c))).collect(),
