@@ -150,6 +150,7 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
             }
         });
     }
+    let sample_every = scene.sampling.every;
     let mut outcome = scene.run();
     let movie = spec.movie.map(|movie| Movie {
         frames: std::mem::take(&mut outcome.frames),
@@ -162,7 +163,9 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
     let reference = spec
         .reference_refinement
         .filter(|_| outcome.trace.status == RunStatus::Ok || outcome.trace.status == RunStatus::NoEquilibrium)
-        .and_then(|refinement| reference_error(spec, &outcome.trace, refinement).map(|e| (refinement, e)));
+        .and_then(|refinement| {
+            reference_error(spec, &outcome.trace, sample_every, refinement).map(|e| (refinement, e))
+        });
     let reference_s = if spec.reference_refinement.is_some() { started.elapsed().as_secs_f64() } else { 0.0 };
     (metrics.error, metrics.error_measure) = match reference {
         Some((refinement, error)) => (Some(error), Some(format!("reference_dt/{refinement}"))),
@@ -207,13 +210,14 @@ fn exact_error(spec: &RunSpec, m: &Metrics) -> (Option<f64>, Option<String>) {
 
 /// Largest displacement difference between the run and the same scene at dt / `refinement`,
 /// over the samples both have (the reference is sampled at the run's sample times and runs as
-/// long, without stopping early), relative to the reference's largest displacement.
-fn reference_error(spec: &RunSpec, run: &Trace, refinement: u32) -> Option<f64> {
+/// long, without stopping early), relative to the reference's largest displacement. The run
+/// was sampled every `sample_every` steps.
+fn reference_error(spec: &RunSpec, run: &Trace, sample_every: u64, refinement: u32) -> Option<f64> {
     let mut fine = spec.clone();
     fine.set_dt(spec.dt / f64::from(refinement));
     let mut scene = build_scene(&fine);
     let r = u64::from(refinement);
-    scene.sampling.every = build_scene(spec).sampling.every * r;
+    scene.sampling.every = sample_every * r;
     scene.sampling.steps = run.steps * r;
     scene.sampling.relaxation = None;
     let reference = scene.run().trace;

@@ -49,16 +49,6 @@ pub enum IntegratorKind {
 }
 
 impl IntegratorKind {
-    /// Every integrator, in the order reports list them.
-    pub const ALL: [IntegratorKind; 6] = [
-        IntegratorKind::PositionVerlet,
-        IntegratorKind::VelocityVerlet,
-        IntegratorKind::SymplecticEuler,
-        IntegratorKind::Rk4,
-        IntegratorKind::ForestRuth,
-        IntegratorKind::Gear,
-    ];
-
     /// The name used in campaign files and tables.
     pub fn name(self) -> &'static str {
         match self {
@@ -226,8 +216,7 @@ fn evaluate_and_account<F: ForceField>(
 
 /// The start of every scheme: forces at t = 0 (zeroed first), nothing dissipated yet.
 fn start_forces<F: ForceField>(state: &mut State, field: &mut F) {
-    state.fx.fill(0.0);
-    state.fy.fill(0.0);
+    clear_forces(state);
     let first = evaluate(state, field, None, 0.0);
     state.dissipation_power = first.power;
     state.drive_force = first.drive_force;
