@@ -66,7 +66,7 @@ pub fn reference_scene(config: &BenchConfig) -> Scene {
     particles.vx[last] = 0.1;
     particles.vy[last] = 0.1;
     let network = if config.dilute > 0.0 {
-        Network::Bonds(lattice.bonds().diluted(config.dilute, 0x5eed))
+        Network::Bonds(lattice.bonds().randomised(config.dilute, 0.0, 0x5eed, |_, _| false))
     } else if config.bond_list {
         Network::Bonds(lattice.bonds())
     } else {

@@ -177,7 +177,7 @@ fn report_command(reports: &Path, file: &Path) -> anyhow::Result<()> {
 fn publish(campaign: &Campaign, layout: &Layout, records: &[crate::runner::RunRecord]) -> anyhow::Result<()> {
     let mut frame = table::results_frame(records).context("cannot build the results table")?;
     table::write_tables(layout, &mut frame)?;
-    table::write_summary(layout, &table::speed_fits(records))?;
+    table::write_summary(layout, &table::scaling_fits(records))?;
     report::render(campaign, layout, records)
 }
 

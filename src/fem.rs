@@ -135,13 +135,20 @@ impl Truss<'_> {
     }
 
     /// Solves the full non-linear problem (large rotations, any force law) by Newton–Raphson
-    /// from the linear answer: R(u) = f + Σ spring forces at x + u, K_t Δu = R, until
-    /// ‖R‖ ≤ 1e-10 ‖f‖ or ‖Δu‖ ≤ 1e-9 ‖u‖. The tangent of a spring with tension s along n̂ at length r is
+    /// from the linear answer of the same network with every spring at its tangent stiffness
+    /// at extension `linearised_at` (m; 0 for linear springs; a power law, which has no
+    /// stiffness at δ = 0, is linearised at the deformation the load is expected to cause):
+    /// R(u) = f + Σ spring forces at x + u, K_t Δu = R, until ‖R‖ ≤ 1e-10 ‖f‖ or
+    /// ‖Δu‖ ≤ 1e-9 ‖u‖. The tangent of a spring with tension s along n̂ at length r is
     /// s′(δ) n̂ n̂ᵀ + (s/r)(I − n̂ n̂ᵀ). A mechanism of the linear problem is reported as one;
     /// an iteration that does not converge returns `None`.
-    pub fn solve_nonlinear<L: ForceLaw>(&self, law: &L) -> Option<StaticSolution> {
+    pub fn solve_nonlinear<L: ForceLaw>(&self, law: &L, linearised_at: f64) -> Option<StaticSolution> {
         let dofs = self.dofs();
-        let (mut ux, mut uy) = match self.solve_linear() {
+        let mut linearised = self.bonds.clone();
+        for k in &mut linearised.stiffness {
+            *k = law.tangent_stiffness(*k, linearised_at);
+        }
+        let (mut ux, mut uy) = match (Truss { bonds: &linearised, ..*self }).solve_linear() {
             StaticSolution::Displacements { ux, uy } => (ux, uy),
             mechanism => return Some(mechanism),
         };
@@ -162,6 +169,17 @@ impl Truss<'_> {
             }
         }
         None
+    }
+
+    /// The displacement increment (m) per unit increase of the load factor at the equilibrium
+    /// `(ux, uy)`: K_t Δu = f with the tangent stiffness there (the tangent moduli of a
+    /// non-linear network); `None` when K_t cannot be factored.
+    pub fn tangent_response<L: ForceLaw>(&self, law: &L, ux: &[f64], uy: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
+        let dofs = self.dofs();
+        let (entries, _) = self.tangent_and_residual(law, ux, uy, &dofs);
+        let load = self.load_vector(&dofs);
+        let step = factor_and_solve(dofs.free, &entries, &load)?;
+        (relative_residual(&entries, &step, &load) <= MECHANISM_RESIDUAL).then(|| self.expand(&dofs, &step))
     }
 
     fn dofs(&self) -> Dofs {
@@ -362,13 +380,40 @@ mod tests {
             other => panic!("{other:?}"),
         };
         assert!((linear - force / 0.2).abs() < 1e-9 && (linear - exact).abs() > 0.01, "linear {linear}, exact {exact}");
-        match truss.solve_nonlinear(&Linear) {
+        match truss.solve_nonlinear(&Linear, 0.0) {
             // Converged to ‖R‖ ≤ 1e-10 ‖f‖; the tangent ≈ 0.4 turns that into ~1e-11 in v.
             Some(StaticSolution::Displacements { uy, .. }) => {
                 assert!((uy[1] - exact).abs() < 1e-9, "{} against {exact}", uy[1])
             }
             other => panic!("{other:?}"),
         }
+    }
+
+    /// Four Hertz springs (s = C δ^{3/2}) in series pulled by F: each stretches by
+    /// δ = (F/C)^{2/3}, and the tangent compliance is 4/s′(δ) with s′ = 1.5 C δ^{1/2}.
+    #[test]
+    fn hertz_chain_in_series_and_its_tangent() {
+        let (c, force) = (3.0, 0.02);
+        let hertz = crate::model::PowerLaw { beta: 1.5 };
+        let mut bonds = Bonds::default();
+        for i in 0..4 {
+            bonds.push(i, i + 1, 1.0, c);
+        }
+        let x: Vec<f64> = (0..5).map(|i| i as f64).collect();
+        let (y, held_y) = (vec![0.0; 5], (0..5).collect::<Vec<usize>>());
+        let loads = [Load { particle: 4, fx: force, fy: 0.0 }];
+        let truss =
+            Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0], held_y: &held_y, loads: &loads, prescribed: &[] };
+        let delta = (force / c).powf(1.0 / 1.5);
+        // Start deliberately off (at 3 δ): Newton must still converge.
+        let Some(StaticSolution::Displacements { ux, uy }) = truss.solve_nonlinear(&hertz, 3.0 * delta) else {
+            panic!("no static answer")
+        };
+        // Newton stops at ‖R‖ ≤ 1e-10 ‖f‖: relative 1e-9 on δ is ample.
+        assert!((ux[4] - 4.0 * delta).abs() < 1e-9 * delta, "{} against {}", ux[4], 4.0 * delta);
+        let (dx, _) = truss.tangent_response(&hertz, &ux, &uy).expect("a stretched chain has stiffness");
+        let compliance = 4.0 / (1.5 * c * delta.sqrt());
+        assert!((dx[4] / force - compliance).abs() < 1e-9 * compliance, "{} against {compliance}", dx[4] / force);
     }
 
     /// The same square without diagonals, pushed sideways at the top: it folds (a mechanism).

@@ -1,7 +1,7 @@
 //! From a [`RunSpec`] to the [`Scene`] it describes, and to the analytical answers it is
 //! compared with. Pure: no I/O.
 
-use crate::model::{Axes, Particles, SquareLattice};
+use crate::model::{Axes, Bonds, Particles, SquareLattice};
 use crate::sim::{Drive, LawKind, Load, Network, Relaxation, Sampling, Scene};
 use crate::spec::{Control, LatticeSpec, LawName, LoadCase, RunSpec, SceneKind, Supports};
 use crate::theory;
@@ -13,6 +13,11 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
         (SceneKind::Chain, _) => chain(spec),
         _ => pair(spec),
     };
+    // A random lattice is an irregular network: the stencil only knows whole bond families.
+    let network = match &spec.lattice {
+        Some(l) if l.is_random() => Network::Bonds(lattice_bonds(spec, l)),
+        _ => Network::Lattice(lattice),
+    };
     // An impulse lattice is kicked (or its top row stepped): no load case, drive or relaxation.
     let loaded = spec.lattice.as_ref().filter(|l| l.impulse.is_none());
     let step = spec.lattice.as_ref().and_then(|l| l.impulse.and_then(|i| i.top_row_force).map(|f| (l, f)));
@@ -23,11 +28,8 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
     let drive = loaded.filter(|l| l.control == Control::Velocity).map(|l| top_row_drive(spec, l));
     Scene {
         particles,
-        network: Network::Lattice(lattice),
-        law: match spec.law {
-            LawName::Linear => LawKind::Linear,
-            LawName::Power => LawKind::Power { beta: spec.beta },
-        },
+        network,
+        law: law_kind(spec),
         contact: spec.contact,
         gamma: spec.gamma,
         background_gamma: spec.gamma_background,
@@ -37,11 +39,11 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
             steps: spec.steps,
             every: (spec.steps / spec.samples).max(1),
             displacements: spec.kind == SceneKind::Chain || spec.reference_refinement.is_some() || spec.wave.is_some(),
-            relaxation: loaded.map(|l| Relaxation {
-                kinetic_ratio: l.kinetic_ratio,
-                residual_force: l.residual_force.map(|fraction| fraction * l.load_per_node),
+            relaxation: spec.relax.map(|relax| Relaxation {
+                kinetic_ratio: relax.kinetic_ratio,
+                residual_force: relax.residual_force.map(|fraction| fraction * load_scale(spec)),
                 check_every: (spec.t_c / spec.dt).round().max(1.0) as u64,
-                confirmations: relaxation_checks(l),
+                confirmations: relaxation_checks(spec),
             }),
         },
         contact_clock,
@@ -51,6 +53,14 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
         loads,
         load_ramp: spec.lattice.as_ref().map_or(0.0, |l| l.load_ramp_tc * spec.t_c),
         drive,
+    }
+}
+
+/// The elastic law of the run's springs.
+pub fn law_kind(spec: &RunSpec) -> LawKind {
+    match spec.law {
+        LawName::Linear => LawKind::Linear,
+        LawName::Power => LawKind::Power { beta: spec.beta },
     }
 }
 
@@ -73,40 +83,77 @@ fn pair(spec: &RunSpec) -> Parts {
     (particles, row(2, spec.spacing, spec.k), Some((left, right, spec.spacing)))
 }
 
-/// n particles evenly between two fixed walls `wall_distance` apart, bonded as an (n+2) × 1
-/// lattice (the walls are particles 0 and n+1); particle `node` starts at v0.
+/// n particles between two fixed walls `wall_distance` apart, bonded as an (n+2) × 1
+/// lattice (the walls are particles 0 and n+1); particle `node` starts at v0. They start
+/// evenly spaced (at equilibrium), or, in a relaxing chain, at rest spacing from the left
+/// wall, so the last spring takes the whole wall displacement and the chain must relax.
 fn chain(spec: &RunSpec) -> Parts {
     let n = spec.n.unwrap_or(1);
     let walls = spec.wall_distance.unwrap_or((n + 1) as f64 * spec.spacing);
+    let gap = if spec.relax.is_some() { spec.spacing } else { walls / (n + 1) as f64 };
     let mut particles = Particles::default();
     for p in 0..n + 2 {
         let fixed = if p == 0 || p == n + 1 { Axes::FIXED } else { Axes::ONLY_X_MOVES };
-        particles.push(p as f64 * walls / (n + 1) as f64, 0.0, spec.mass, fixed);
+        let x = if p == n + 1 { walls } else { p as f64 * gap };
+        particles.push(x, 0.0, spec.mass, fixed);
     }
     particles.vx[spec.node.unwrap_or(1)] = spec.v0;
     (particles, row(n + 2, spec.spacing, spec.k), None)
 }
 
-/// Checks (one t_c apart) that E_kin/E_pot must pass in a row to count as relaxed: 2N + 1 for
-/// the larger side N, a window of 2N t_c, longer than the slowest mode's period
-/// (≈ 4N/√(k/m) = 1.8 N t_c for a column of N springs), so no turning point of a ringing
-/// lattice passes for rest.
-pub fn relaxation_checks(l: &LatticeSpec) -> u32 {
-    (2 * l.nx.max(l.ny) + 1) as u32
+/// Checks (one t_c apart) that the relaxation criterion must pass in a row: 2N + 1 for the
+/// larger side N of a lattice (or the chain's n), a window of 2N t_c, longer than the slowest
+/// mode's period (≈ 4N/√(k/m) = 1.8 N t_c for a column of N springs), so no turning point
+/// of a ringing lattice passes for rest.
+pub fn relaxation_checks(spec: &RunSpec) -> u32 {
+    let side = spec.lattice.as_ref().map_or(spec.n.unwrap_or(1), |l| l.nx.max(l.ny));
+    (2 * side + 1) as u32
 }
 
-/// The springs of a lattice scene: k along rows and columns, k_d across both diagonals.
+/// The force (N) the residual-force criterion is relative to: the load per node of a lattice,
+/// the equilibrium spring force s(ΔW/(n + 1)) of a relaxing chain.
+pub fn load_scale(spec: &RunSpec) -> f64 {
+    match &spec.lattice {
+        Some(l) => l.load_per_node,
+        None => chain_equilibrium(spec).1.abs(),
+    }
+}
+
+/// A relaxing chain's equilibrium: every spring extended by δ = ΔW/(n + 1), carrying
+/// s(δ); returns (δ (m), s (N), secant stiffness of the whole chain s/ΔW (N/m), tangent
+/// stiffness s′(δ)/(n + 1) (N/m)). The secant is the tangent for ΔW = 0.
+pub fn chain_equilibrium(spec: &RunSpec) -> (f64, f64, f64, f64) {
+    let springs = (spec.n.unwrap_or(0) + 1) as f64;
+    let delta = spec.chain_wall_extension() / springs;
+    let law = law_kind(spec);
+    let (force, tangent) = (law.elastic_force(spec.k, delta), law.tangent_stiffness(spec.k, delta));
+    let secant = if delta == 0.0 { tangent / springs } else { force / (delta * springs) };
+    (delta, force, secant, tangent / springs)
+}
+
+/// The springs of a lattice scene: k_x along rows, k_y along columns, k_d across the
+/// diagonals it has.
 pub fn lattice_springs(spec: &RunSpec, l: &LatticeSpec) -> SquareLattice {
+    let (k_rising, k_falling) = l.diagonal_stiffness();
     SquareLattice {
         nx: l.nx,
         ny: l.ny,
         spacing: spec.spacing,
-        k_x: spec.k,
-        k_y: spec.k,
-        k_rising: l.k_diag,
-        k_falling: l.k_diag,
+        k_x: l.k_x,
+        k_y: l.k_y,
+        k_rising,
+        k_falling,
         periodic_x: l.supports == Supports::PeriodicX,
     }
+}
+
+/// The bond list of a lattice scene: its springs, cut and spread at random when it asks.
+/// Bonds that touch the top (loaded) or the bottom (supported) row are never cut: a loaded
+/// node left hanging on one bond would make almost every diluted lattice a mechanism at its
+/// edge, whatever its bulk does; rigidity is lost, or not, in the interior.
+pub fn lattice_bonds(spec: &RunSpec, l: &LatticeSpec) -> Bonds {
+    let edge = |node: usize| node < l.nx || node >= (l.ny - 1) * l.nx;
+    lattice_springs(spec, l).bonds().randomised(l.cut_fraction, l.stiffness_spread, l.seed, |i, j| edge(i) || edge(j))
 }
 
 /// Which axes of node (ix, iy) the supports hold.
@@ -121,7 +168,7 @@ pub fn support(supports: Supports, ix: usize, iy: usize) -> Axes {
 /// The load on every top-row node: up (tensile) or to the right (shear).
 pub fn top_row_loads(l: &LatticeSpec) -> Vec<Load> {
     let (fx, fy) = match l.load_case {
-        LoadCase::Tensile => (0.0, l.load_per_node),
+        LoadCase::Tensile | LoadCase::TensileX => (0.0, l.load_per_node),
         LoadCase::Shear => (l.load_per_node, 0.0),
     };
     top_row(l).into_iter().map(|particle| Load { particle, fx, fy }).collect()

@@ -11,8 +11,7 @@ use std::sync::{Mutex, OnceLock};
 use crate::model::{Axes, BondDashpot, Linear, NoDashpot, Particles, Spring, SquareLattice};
 use crate::scenes::build_scene;
 use crate::sim::{IntegratorKind, LatticeNetwork, Sampling, Scene, State, StepProbe, simulate_with};
-use crate::spec::{Campaign, LawName, RunSpec, SpecError};
-use crate::theory;
+use crate::spec::{Campaign, RunSpec, SpecError};
 
 /// What is known about a run's stability before it starts.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,7 +45,7 @@ pub fn estimate(spec: &RunSpec) -> Stability {
 
 fn estimate_uncached(spec: &RunSpec) -> Stability {
     let scene = build_scene(spec);
-    let modes = modes(&scene, reference_extension(spec));
+    let modes = modes(&scene, crate::spec::reference_extension(spec));
     let oscillation = stability_limit(spec.integrator, modes.damping_ratio);
     let damping = if modes.damping_rate > 0.0 && modes.omega_max > 0.0 {
         damping_limit(spec.integrator) * modes.omega_max / modes.damping_rate
@@ -58,16 +57,6 @@ fn estimate_uncached(spec: &RunSpec) -> Stability {
         damping_ratio: modes.damping_ratio,
         dt_omega_max: modes.omega_max * spec.dt,
         limit: oscillation.min(damping),
-    }
-}
-
-/// The extension (m) at which non-linear springs are linearised: the overlap −δ_max of a
-/// two-body collision at the run's v0 (the deformation the run is expected to reach; a
-/// power-law spring has no stiffness at δ = 0). Linear springs do not care.
-fn reference_extension(spec: &RunSpec) -> f64 {
-    match spec.law {
-        LawName::Linear => 0.0,
-        LawName::Power => -theory::power_law_max_overlap(spec.k, spec.beta, spec.mass, spec.v0),
     }
 }
 

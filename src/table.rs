@@ -7,6 +7,7 @@ use std::collections::BTreeSet;
 
 use crate::output::{Layout, write_atomically};
 use crate::runner::RunRecord;
+use crate::spec::Diagonals;
 
 /// Relative error (measured − reference)/reference, when both exist.
 pub fn relative_error(measured: Option<f64>, reference: Option<f64>) -> Option<f64> {
@@ -93,6 +94,31 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
     if records.iter().any(|r| r.spec.lattice.is_some()) {
         columns.extend(lattice_columns(records));
     }
+    let anisotropic = |l: &crate::spec::LatticeSpec| {
+        l.rotated || l.k_x != l.k_y || matches!(l.diagonals, Diagonals::Rising | Diagonals::Falling)
+    };
+    if records.iter().any(|r| r.spec.lattice.as_ref().is_some_and(anisotropic)) {
+        columns.extend(directional_columns(records));
+    }
+    if records.iter().any(|r| r.spec.kind == crate::spec::SceneKind::Chain && r.spec.relax.is_some()) {
+        let m = |name: &str, get: fn(&crate::runner::Metrics) -> Option<f64>| {
+            optional_floats(records, name, move |r| get(&r.metrics))
+        };
+        columns.extend([
+            optional_floats(records, "wall_displacement", |r| {
+                r.spec.relax.filter(|_| r.spec.lattice.is_none()).map(|_| r.spec.chain_wall_extension())
+            }),
+            m("equilibrium_spacing", |m| m.equilibrium_spacing),
+            m("equilibrium_spacing_theory", |m| m.equilibrium_spacing_theory),
+            m("spacing_spread", |m| m.spacing_spread),
+            m("wall_force", |m| m.wall_force),
+            m("wall_force_theory", |m| m.wall_force_theory),
+            m("secant_stiffness", |m| m.secant_stiffness),
+            m("secant_stiffness_theory", |m| m.secant_stiffness_theory),
+            m("tangent_stiffness", |m| m.tangent_stiffness),
+            m("tangent_stiffness_theory", |m| m.tangent_stiffness_theory),
+        ]);
+    }
     if records.iter().any(|r| r.spec.wave.is_some()) {
         for criterion in crate::measure::ARRIVAL_CRITERIA {
             columns.push(optional_floats(records, &format!("sound_speed_{criterion}"), |r| {
@@ -136,6 +162,13 @@ fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
         Column::new("nx".into(), sizes(|l| l.nx)),
         Column::new("ny".into(), sizes(|l| l.ny)),
         optional_floats(records, "k_diag", lattice(|l| l.k_diag)),
+        Column::new("diagonals".into(), words(|l| l.diagonals.name())),
+        optional_floats(records, "k_x", lattice(|l| l.k_x)),
+        optional_floats(records, "k_y", lattice(|l| l.k_y)),
+        optional_floats(records, "cut_fraction", lattice(|l| l.cut_fraction)),
+        optional_floats(records, "stiffness_spread", lattice(|l| l.stiffness_spread)),
+        Column::new("seed".into(), records.iter().map(|r| r.spec.lattice.as_ref().map(|l| l.seed)).collect::<Vec<_>>()),
+        m("bond_fraction_kept", |m| m.bond_fraction_kept),
         optional_floats(records, "depth", lattice(|l| l.depth)),
         Column::new("supports".into(), words(|l| l.supports.name())),
         Column::new("load_case".into(), words(|l| l.load_case.name())),
@@ -154,6 +187,12 @@ fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
         m("shear_modulus", |m| m.shear_modulus),
         m("shear_modulus_fem", |m| m.shear_modulus_fem),
         m("shear_modulus_theory", |m| m.shear_modulus_theory),
+        m("youngs_modulus_tangent", |m| m.youngs_modulus_tangent),
+        m("youngs_modulus_tangent_fem", |m| m.youngs_modulus_tangent_fem),
+        m("poisson_ratio_tangent", |m| m.poisson_ratio_tangent),
+        m("poisson_ratio_tangent_fem", |m| m.poisson_ratio_tangent_fem),
+        m("shear_modulus_tangent", |m| m.shear_modulus_tangent),
+        m("shear_modulus_tangent_fem", |m| m.shear_modulus_tangent_fem),
         m("static_nonlinearity", |m| m.static_nonlinearity),
         m("homogeneity", |m| m.homogeneity),
         m("dissipation_time", |m| m.dissipation_time),
@@ -168,59 +207,178 @@ fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
     ]
 }
 
-/// How the sound speed of one group of chain-wave runs (a scene's runs that differ only in
-/// v0) scales with v0: V_s ∝ v0^p.
+/// Moduli by direction for anisotropic lattices: a run loaded up (`tensile`) measures E_y and
+/// ν_yx, one loaded along x (`tensile-x`, simulated turned by 90°) E_x and ν_xy; each beside
+/// its static value.
+fn directional_columns(records: &[RunRecord]) -> Vec<Column> {
+    let along = |x: bool, get: fn(&crate::runner::Metrics) -> Option<f64>| {
+        move |r: &RunRecord| r.spec.lattice.as_ref().filter(|l| l.rotated == x).and_then(|_| get(&r.metrics))
+    };
+    vec![
+        optional_floats(records, "youngs_modulus_x", along(true, |m| m.youngs_modulus)),
+        optional_floats(records, "youngs_modulus_x_fem", along(true, |m| m.youngs_modulus_fem)),
+        optional_floats(records, "youngs_modulus_y", along(false, |m| m.youngs_modulus)),
+        optional_floats(records, "youngs_modulus_y_fem", along(false, |m| m.youngs_modulus_fem)),
+        optional_floats(records, "poisson_ratio_xy", along(true, |m| m.poisson_ratio)),
+        optional_floats(records, "poisson_ratio_xy_fem", along(true, |m| m.poisson_ratio_fem)),
+        optional_floats(records, "poisson_ratio_yx", along(false, |m| m.poisson_ratio)),
+        optional_floats(records, "poisson_ratio_yx_fem", along(false, |m| m.poisson_ratio_fem)),
+    ]
+}
+
+/// A scaling law the summary fits, y ∝ x^p, over the runs of one scene that differ only in
+/// the grid paths `paths`.
+struct Scaling {
+    quantity: &'static str,
+    against: &'static str,
+    paths: &'static [&'static str],
+    x: fn(&RunRecord) -> Option<f64>,
+    y: fn(&RunRecord) -> Option<f64>,
+}
+
+/// The impact speed of a chain wave or the kick speed of an impulse lattice (m/s).
+fn excitation_speed(r: &RunRecord) -> Option<f64> {
+    r.spec.wave.as_ref()?;
+    match r.spec.lattice.as_ref().and_then(|l| l.impulse) {
+        Some(i) if i.top_row_force.is_none() => Some(i.vx.hypot(i.vy)),
+        Some(_) => None,
+        None => Some(r.spec.v0),
+    }
+}
+
+/// The load per top-row node of a loaded lattice (N).
+fn load(r: &RunRecord) -> Option<f64> {
+    r.spec.lattice.as_ref().filter(|l| l.impulse.is_none()).map(|l| l.load_per_node)
+}
+
+/// |ΔW| of a relaxing chain (m).
+fn wall_displacement(r: &RunRecord) -> Option<f64> {
+    r.spec.relax.filter(|_| r.spec.lattice.is_none()).map(|_| r.spec.chain_wall_extension().abs())
+}
+
+const SPEED: &[&str] = &["v0", "impulse.velocity"];
+const LOAD: &[&str] = &["load.per_node"];
+const WALLS: &[&str] = &["wall_distance"];
+
+/// Every scaling law the summary looks for.
+const SCALINGS: [Scaling; 7] = [
+    Scaling {
+        quantity: "sound_speed",
+        against: "v0",
+        paths: SPEED,
+        x: excitation_speed,
+        y: |r| r.metrics.arrival_criterion.as_deref().and_then(|c| r.metrics.sound_speed(c)),
+    },
+    Scaling {
+        quantity: "youngs_modulus",
+        against: "load_per_node",
+        paths: LOAD,
+        x: load,
+        y: |r| r.metrics.youngs_modulus,
+    },
+    Scaling {
+        quantity: "youngs_modulus_tangent",
+        against: "load_per_node",
+        paths: LOAD,
+        x: load,
+        y: |r| r.metrics.youngs_modulus_tangent,
+    },
+    Scaling {
+        quantity: "shear_modulus",
+        against: "load_per_node",
+        paths: LOAD,
+        x: load,
+        y: |r| r.metrics.shear_modulus,
+    },
+    Scaling {
+        quantity: "shear_modulus_tangent",
+        against: "load_per_node",
+        paths: LOAD,
+        x: load,
+        y: |r| r.metrics.shear_modulus_tangent,
+    },
+    Scaling {
+        quantity: "secant_stiffness",
+        against: "wall_displacement",
+        paths: WALLS,
+        x: wall_displacement,
+        y: |r| r.metrics.secant_stiffness,
+    },
+    Scaling {
+        quantity: "tangent_stiffness",
+        against: "wall_displacement",
+        paths: WALLS,
+        x: wall_displacement,
+        y: |r| r.metrics.tangent_stiffness,
+    },
+];
+
+/// How one measured quantity of one group of runs (a scene's runs that differ only in the
+/// swept parameter) scales with it: y ∝ x^p.
 #[derive(Clone, Debug, PartialEq)]
-pub struct SpeedFit {
+pub struct ScalingFit {
     /// Scene.
     pub scene: String,
     /// The group's other grid values.
     pub group: String,
     /// Elastic law of the group.
     pub law: &'static str,
-    /// (v0, V_s) of its ok runs, by the recommended criterion.
+    /// The measured quantity (a results column).
+    pub quantity: &'static str,
+    /// What it is plotted against (`v0`, `load_per_node`, `wall_displacement`).
+    pub against: &'static str,
+    /// (x, y) of its ok runs, sorted by x.
     pub points: Vec<(f64, f64)>,
     /// The fit.
     pub fit: crate::measure::PowerLawFit,
 }
 
-/// The V_s-against-v0 fits of every chain-wave scene with at least two values of v0.
-pub fn speed_fits(records: &[RunRecord]) -> Vec<SpeedFit> {
-    /// A group's first run, its label and its (v0, V_s) points.
+/// The power-law fits of every quantity that a scene sweeps over at least two values: the
+/// sound speed against v0, moduli against the load, a chain's stiffness against |ΔW|.
+pub fn scaling_fits(records: &[RunRecord]) -> Vec<ScalingFit> {
+    /// A group's first run, its label and its (x, y) points.
     type Group<'a> = (&'a RunRecord, String, Vec<(f64, f64)>);
-    let mut groups: Vec<Group> = Vec::new();
-    for r in records.iter().filter(|r| r.status == "ok") {
-        let Some(speed) = r.metrics.arrival_criterion.as_deref().and_then(|c| r.metrics.sound_speed(c)) else {
-            continue;
-        };
-        let group = r.spec.varied_label(|path| path != "v0");
-        match groups.iter_mut().find(|(first, label, _)| first.spec.scene == r.spec.scene && *label == group) {
-            Some((_, _, points)) => points.push((r.spec.v0, speed)),
-            None => groups.push((r, group, vec![(r.spec.v0, speed)])),
+    let mut fits = Vec::new();
+    for scaling in &SCALINGS {
+        let mut groups: Vec<Group> = Vec::new();
+        for r in records.iter().filter(|r| r.status == "ok") {
+            let Some(point) = (scaling.x)(r).zip((scaling.y)(r)) else { continue };
+            let group = r.spec.varied_label(|path| !scaling.paths.contains(&path));
+            match groups.iter_mut().find(|(first, label, _)| first.spec.scene == r.spec.scene && *label == group) {
+                Some((_, _, points)) => points.push(point),
+                None => groups.push((r, group, vec![point])),
+            }
         }
-    }
-    groups
-        .into_iter()
-        .filter_map(|(first, group, mut points)| {
+        fits.extend(groups.into_iter().filter_map(|(first, group, mut points)| {
             points.sort_by(|a, b| a.0.total_cmp(&b.0));
             let fit = crate::measure::power_law_fit(&points)?;
-            Some(SpeedFit { scene: first.spec.scene.clone(), group, law: first.spec.law.name(), points, fit })
-        })
-        .collect()
+            Some(ScalingFit {
+                scene: first.spec.scene.clone(),
+                group,
+                law: first.spec.law.name(),
+                quantity: scaling.quantity,
+                against: scaling.against,
+                points,
+                fit,
+            })
+        }));
+    }
+    fits
 }
 
 /// The campaign summary: one row per fitted scaling law (`summary.csv`).
-pub fn summary_frame(fits: &[SpeedFit]) -> PolarsResult<DataFrame> {
+pub fn summary_frame(fits: &[ScalingFit]) -> PolarsResult<DataFrame> {
     DataFrame::new_infer_height(vec![
         Column::new("scene".into(), fits.iter().map(|f| f.scene.clone()).collect::<Vec<String>>()),
         Column::new("group".into(), fits.iter().map(|f| f.group.clone()).collect::<Vec<String>>()),
         Column::new("law".into(), fits.iter().map(|f| f.law).collect::<Vec<&str>>()),
-        Column::new("quantity".into(), fits.iter().map(|_| "sound_speed against v0").collect::<Vec<&str>>()),
+        Column::new("quantity".into(), fits.iter().map(|f| f.quantity).collect::<Vec<&str>>()),
+        Column::new("against".into(), fits.iter().map(|f| f.against).collect::<Vec<&str>>()),
         Column::new("exponent".into(), fits.iter().map(|f| f.fit.exponent).collect::<Vec<f64>>()),
         Column::new("r_squared".into(), fits.iter().map(|f| f.fit.r_squared).collect::<Vec<f64>>()),
         Column::new("points".into(), fits.iter().map(|f| f.points.len() as u64).collect::<Vec<u64>>()),
-        Column::new("v0_min".into(), fits.iter().map(|f| f.points[0].0).collect::<Vec<f64>>()),
-        Column::new("v0_max".into(), fits.iter().map(|f| f.points[f.points.len() - 1].0).collect::<Vec<f64>>()),
+        Column::new("x_min".into(), fits.iter().map(|f| f.points[0].0).collect::<Vec<f64>>()),
+        Column::new("x_max".into(), fits.iter().map(|f| f.points[f.points.len() - 1].0).collect::<Vec<f64>>()),
     ])
 }
 
@@ -235,7 +393,7 @@ pub fn write_tables(layout: &Layout, frame: &mut DataFrame) -> anyhow::Result<()
 }
 
 /// Writes `summary.csv` (the fitted scaling laws), atomically; nothing when there are none.
-pub fn write_summary(layout: &Layout, fits: &[SpeedFit]) -> anyhow::Result<()> {
+pub fn write_summary(layout: &Layout, fits: &[ScalingFit]) -> anyhow::Result<()> {
     if fits.is_empty() {
         return Ok(());
     }

@@ -132,7 +132,7 @@ fn check<L: ForceLaw, D: Dashpot, const C: bool>(
     dilute: f64,
 ) {
     let (particles, lattice) = setup(nx, ny, supports, periodic_x);
-    let bonds = if dilute > 0.0 { lattice.bonds().diluted(dilute, 7) } else { lattice.bonds() };
+    let bonds = if dilute > 0.0 { lattice.bonds().randomised(dilute, 0.0, 7, |_, _| false) } else { lattice.bonds() };
     let network = if dilute > 0.0 { Network::Bonds(bonds.clone()) } else { Network::Lattice(lattice) };
     let scene = Scene {
         particles: particles.clone(),

@@ -93,15 +93,84 @@ fn line_deviation(u: &[f64]) -> f64 {
     u.iter().enumerate().map(|(i, v)| (v - mean_u - slope * (i as f64 - mean_i)).abs()).fold(0.0, f64::max)
 }
 
-/// Continuum moduli of a square lattice with springs k and diagonals k_d (N/m) and depth d
-/// (m): C11 = k + k_d, C12 = C44 = k_d per unit depth, so E = (C11 − C12²/C11)/d,
-/// ν = C12/C11, G = C44/d.
+/// Elastic constants (Voigt notation, engineering shear strain) of a square lattice per unit
+/// depth (N/m), from C_ijkl = (1/a²) Σ k L² n_i n_j n_k n_l over the four bonds of a node:
+/// horizontal k_x, vertical k_y, rising diagonal k_r along (1, 1)/√2 and falling k_f along
+/// (1, −1)/√2 (length a√2, so each adds k/2 to every entry, with the sign of n₁³n₂ in C16).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ElasticConstants {
+    /// C11 = k_x + (k_r + k_f)/2.
+    pub c11: f64,
+    /// C22 = k_y + (k_r + k_f)/2.
+    pub c22: f64,
+    /// C12 = (k_r + k_f)/2.
+    pub c12: f64,
+    /// C66 = (k_r + k_f)/2.
+    pub c66: f64,
+    /// C16 = C26 = (k_r − k_f)/2: one diagonal family couples stretch and shear.
+    pub c16: f64,
+}
+
+/// The elastic constants of a square lattice with springs k_x, k_y, k_rising, k_falling (N/m).
+pub fn lattice_constants(k_x: f64, k_y: f64, k_rising: f64, k_falling: f64) -> ElasticConstants {
+    let half = 0.5 * (k_rising + k_falling);
+    ElasticConstants { c11: k_x + half, c22: k_y + half, c12: half, c66: half, c16: 0.5 * (k_rising - k_falling) }
+}
+
+/// Continuum moduli in both directions (Pa) of an anisotropic lattice.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContinuumModuli {
+    /// E_x = 1/(S11 d).
+    pub youngs_modulus_x: f64,
+    /// E_y = 1/(S22 d).
+    pub youngs_modulus_y: f64,
+    /// ν_xy = −S12/S11 (contraction along y under a pull along x).
+    pub poisson_ratio_xy: f64,
+    /// ν_yx = −S12/S22.
+    pub poisson_ratio_yx: f64,
+    /// G = 1/(S66 d); `None` without diagonals (no shear stiffness).
+    pub shear_modulus: Option<f64>,
+}
+
+/// Moduli under uniaxial stress (the lattice free to shear, as on coursework supports) from
+/// the compliance S = C⁻¹ of [`lattice_constants`], divided by the depth d (m). Without
+/// diagonals C is diagonal in the normal block and singular in shear: E_x = k_x/d,
+/// E_y = k_y/d, ν = 0, no G.
 ///
 /// ```
-/// let (e, nu, g) = mdsolids::measure::continuum_moduli(2.0, 1.0, 0.5);
-/// assert!((e - (3.0 - 1.0 / 3.0) / 0.5).abs() < 1e-12 && (nu - 1.0 / 3.0).abs() < 1e-15 && g == 2.0);
+/// use mdsolids::measure::anisotropic_moduli;
+/// // Both diagonals k_d = 1, k = 2, d = 0.5: the isotropic E = (C11² − C12²)/C11/d, ν = 1/3.
+/// let m = anisotropic_moduli(2.0, 2.0, 1.0, 1.0, 0.5);
+/// assert!((m.youngs_modulus_y - (9.0 - 1.0) / 3.0 / 0.5).abs() < 1e-12);
+/// assert!((m.poisson_ratio_xy - 1.0 / 3.0).abs() < 1e-12 && m.shear_modulus == Some(2.0));
+/// // One diagonal: the block shears freely, so it pulls like its axial springs alone.
+/// let one = anisotropic_moduli(2.0, 3.0, 1.0, 0.0, 1.0);
+/// assert!((one.youngs_modulus_y - 3.0).abs() < 1e-12 && one.poisson_ratio_yx.abs() < 1e-12);
 /// ```
-pub fn continuum_moduli(k: f64, k_diag: f64, depth: f64) -> (f64, f64, f64) {
-    let (c11, c12) = (k + k_diag, k_diag);
-    ((c11 - c12 * c12 / c11) / depth, c12 / c11, k_diag / depth)
+pub fn anisotropic_moduli(k_x: f64, k_y: f64, k_rising: f64, k_falling: f64, depth: f64) -> ContinuumModuli {
+    let c = lattice_constants(k_x, k_y, k_rising, k_falling);
+    if c.c66 == 0.0 {
+        return ContinuumModuli {
+            youngs_modulus_x: k_x / depth,
+            youngs_modulus_y: k_y / depth,
+            poisson_ratio_xy: 0.0,
+            poisson_ratio_yx: 0.0,
+            shear_modulus: None,
+        };
+    }
+    let m = [[c.c11, c.c12, c.c16], [c.c12, c.c22, c.c16], [c.c16, c.c16, c.c66]];
+    // S = C⁻¹ by cofactors: S_ij = cof_ji / det (C is symmetric).
+    let cofactor = |i: usize, j: usize| {
+        let (r, s) = ([(i + 1) % 3, (i + 2) % 3], [(j + 1) % 3, (j + 2) % 3]);
+        m[r[0]][s[0]] * m[r[1]][s[1]] - m[r[0]][s[1]] * m[r[1]][s[0]]
+    };
+    let det = (0..3).map(|j| m[0][j] * cofactor(0, j)).sum::<f64>();
+    let s = |i: usize, j: usize| cofactor(j, i) / det;
+    ContinuumModuli {
+        youngs_modulus_x: 1.0 / (s(0, 0) * depth),
+        youngs_modulus_y: 1.0 / (s(1, 1) * depth),
+        poisson_ratio_xy: -s(0, 1) / s(0, 0),
+        poisson_ratio_yx: -s(0, 1) / s(1, 1),
+        shear_modulus: Some(1.0 / (s(2, 2) * depth)),
+    }
 }

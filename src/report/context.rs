@@ -54,6 +54,7 @@ struct SceneSection {
     orders: Vec<OrderRow>,
     chain_rows: Vec<ChainRow>,
     lattice_rows: Vec<LatticeRow>,
+    wall_rows: Vec<WallRow>,
     precision_rows: Vec<PrecisionRow>,
     stability_rows: Vec<StabilityRow>,
     limit_rows: Vec<LimitRow>,
@@ -67,7 +68,7 @@ struct LatticeRow {
     run_id: String,
     label: String,
     size: String,
-    k_ratio: String,
+    springs: String,
     supports: &'static str,
     load_case: String,
     modulus: &'static str,
@@ -80,9 +81,31 @@ struct LatticeRow {
     poisson_fem: String,
     poisson_theory: String,
     poisson_coursework: String,
+    tangent_md: String,
+    tangent_fem: String,
     dissipation_time: String,
     relax_steps: String,
     homogeneity: String,
+    status: String,
+}
+
+/// A chain between moved walls, relaxed.
+#[derive(Serialize)]
+struct WallRow {
+    run_id: String,
+    label: String,
+    law: &'static str,
+    wall_displacement: String,
+    spacing: String,
+    spacing_theory: String,
+    spacing_spread: String,
+    wall_force: String,
+    wall_force_theory: String,
+    secant: String,
+    secant_theory: String,
+    tangent: String,
+    tangent_theory: String,
+    dissipation_time: String,
     status: String,
 }
 
@@ -220,7 +243,16 @@ fn section(
             .collect(),
         pair_rows: if kind == SceneKind::Pair { mine.iter().map(|r| pair_row(r)).collect() } else { Vec::new() },
         orders: if kind == SceneKind::Pair { order_rows(records, scene) } else { Vec::new() },
-        chain_rows: if kind == SceneKind::Chain { mine.iter().map(|r| chain_row(r)).collect() } else { Vec::new() },
+        chain_rows: mine
+            .iter()
+            .filter(|r| kind == SceneKind::Chain && r.spec.relax.is_none())
+            .map(|r| chain_row(r))
+            .collect(),
+        wall_rows: mine
+            .iter()
+            .filter(|r| kind == SceneKind::Chain && r.spec.relax.is_some())
+            .map(|r| wall_row(r))
+            .collect(),
         lattice_rows: mine.iter().filter_map(|r| lattice_row(r)).collect(),
         precision_rows: precision_rows(records, scene, target_error),
         stability_rows,
@@ -315,20 +347,81 @@ fn percent(a: Option<f64>, b: Option<f64>) -> String {
     relative_error(a, b).map(|e| format!("{:+.3} %", 100.0 * e)).unwrap_or_else(|| "–".into())
 }
 
+fn wall_row(r: &RunRecord) -> WallRow {
+    let m = &r.metrics;
+    WallRow {
+        run_id: r.run_id.clone(),
+        label: r.spec.varied_label(|_| true),
+        law: r.spec.law.name(),
+        wall_displacement: number(r.spec.chain_wall_extension()),
+        spacing: optional(m.equilibrium_spacing),
+        spacing_theory: optional(m.equilibrium_spacing_theory),
+        spacing_spread: optional(m.spacing_spread),
+        wall_force: optional(m.wall_force),
+        wall_force_theory: optional(m.wall_force_theory),
+        secant: optional(m.secant_stiffness),
+        secant_theory: optional(m.secant_stiffness_theory),
+        tangent: optional(m.tangent_stiffness),
+        tangent_theory: optional(m.tangent_stiffness_theory),
+        dissipation_time: optional(m.dissipation_time),
+        status: r.status.clone(),
+    }
+}
+
+/// The springs of a lattice in words: k_d/k, and what makes it anisotropic or random.
+fn springs(r: &RunRecord, l: &crate::spec::LatticeSpec) -> String {
+    let mut words = vec![format!("k_d/k = {}", number(l.k_diag / r.spec.k))];
+    if !matches!(l.diagonals, crate::spec::Diagonals::Both | crate::spec::Diagonals::None) {
+        words.push(format!("{} diagonals only", l.diagonals.name()));
+    }
+    if l.k_x != l.k_y {
+        words.push(format!("k_x/k = {}, k_y/k = {}", number(l.k_x / r.spec.k), number(l.k_y / r.spec.k)));
+    }
+    if l.rotated {
+        words.push("turned by 90° (loads x)".into());
+    }
+    if l.cut_fraction > 0.0 {
+        words.push(format!("{} cut", number(l.cut_fraction)));
+    }
+    if l.stiffness_spread > 0.0 {
+        words.push(format!("k × (1 ± {})", number(l.stiffness_spread)));
+    }
+    if l.is_random() {
+        words.push(format!("seed {}", l.seed));
+    }
+    if let Some(kept) = r.metrics.bond_fraction_kept {
+        words.push(format!("{} of the bonds kept", number(kept)));
+    }
+    words.join(", ")
+}
+
 fn lattice_row(r: &RunRecord) -> Option<LatticeRow> {
     let l = r.spec.lattice.as_ref().filter(|l| l.impulse.is_none())?;
     let m = &r.metrics;
     let tensile = l.load_case == crate::spec::LoadCase::Tensile;
-    let (modulus, md, fem, theory) = if tensile {
-        ("E (Pa)", m.youngs_modulus, m.youngs_modulus_fem, m.youngs_modulus_theory)
-    } else {
-        ("G (Pa)", m.shear_modulus, m.shear_modulus_fem, m.shear_modulus_theory)
+    let (modulus, md, fem, theory, tangent_md, tangent_fem) = match (tensile, l.rotated) {
+        (true, rotated) => (
+            if rotated { "E_x (Pa)" } else { "E_y (Pa)" },
+            m.youngs_modulus,
+            m.youngs_modulus_fem,
+            m.youngs_modulus_theory,
+            m.youngs_modulus_tangent,
+            m.youngs_modulus_tangent_fem,
+        ),
+        (false, _) => (
+            "G (Pa)",
+            m.shear_modulus,
+            m.shear_modulus_fem,
+            m.shear_modulus_theory,
+            m.shear_modulus_tangent,
+            m.shear_modulus_tangent_fem,
+        ),
     };
     Some(LatticeRow {
         run_id: r.run_id.clone(),
         label: r.spec.varied_label(|_| true),
         size: format!("{} × {}", l.nx, l.ny),
-        k_ratio: number(l.k_diag / r.spec.k),
+        springs: springs(r, l),
         supports: l.supports.name(),
         load_case: match l.control {
             crate::spec::Control::Force => l.load_case.name().to_string(),
@@ -346,6 +439,8 @@ fn lattice_row(r: &RunRecord) -> Option<LatticeRow> {
         poisson_fem: optional(m.poisson_ratio_fem),
         poisson_theory: if tensile { optional(m.poisson_ratio_theory) } else { "–".into() },
         poisson_coursework: optional(m.poisson_ratio_coursework),
+        tangent_md: optional(tangent_md),
+        tangent_fem: optional(tangent_fem),
         dissipation_time: optional(m.dissipation_time),
         relax_steps: r.steps.to_string(),
         homogeneity: optional(m.homogeneity),

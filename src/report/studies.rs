@@ -9,7 +9,7 @@ use super::{number, optional};
 use crate::measure::{ARRIVAL_CRITERIA, Recommendation, convergence_order, recommended_dt};
 use crate::runner::RunRecord;
 use crate::spec::SceneKind;
-use crate::table::speed_fits;
+use crate::table::scaling_fits;
 
 /// One dt sweep of one integrator (a group of runs differing only in dt).
 #[derive(Serialize)]
@@ -357,29 +357,33 @@ pub fn wave_rows(records: &[RunRecord], scene: &str) -> Vec<WaveRow> {
         .collect()
 }
 
-/// A fitted V_s ∝ v0^p of one group.
+/// A fitted y ∝ x^p of one group.
 #[derive(Serialize)]
 pub struct ExponentRow {
     group: String,
     law: &'static str,
+    quantity: &'static str,
+    against: &'static str,
     exponent: String,
     r_squared: String,
     points: usize,
-    v0_range: String,
+    range: String,
 }
 
-/// The exponent rows of `scene`.
+/// The exponent rows of `scene`: every scaling law fitted over its runs.
 pub fn exponent_rows(records: &[RunRecord], scene: &str) -> Vec<ExponentRow> {
-    speed_fits(records)
+    scaling_fits(records)
         .into_iter()
         .filter(|f| f.scene == scene)
         .map(|f| ExponentRow {
             group: if f.group.is_empty() { "all".into() } else { f.group },
             law: f.law,
+            quantity: f.quantity,
+            against: f.against,
             exponent: format!("{:.4}", f.fit.exponent),
             r_squared: format!("{:.6}", f.fit.r_squared),
             points: f.points.len(),
-            v0_range: format!("{} … {}", number(f.points[0].0), number(f.points[f.points.len() - 1].0)),
+            range: format!("{} … {}", number(f.points[0].0), number(f.points[f.points.len() - 1].0)),
         })
         .collect()
 }
@@ -388,7 +392,8 @@ pub fn exponent_rows(records: &[RunRecord], scene: &str) -> Vec<ExponentRow> {
 /// picture of one run.
 pub fn wave_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Figure>> {
     let mut figures = Vec::new();
-    let fits: Vec<_> = speed_fits(records).into_iter().filter(|f| f.scene == scene).collect();
+    let fits: Vec<_> =
+        scaling_fits(records).into_iter().filter(|f| f.scene == scene && f.quantity == "sound_speed").collect();
     if !fits.is_empty() {
         let mut series = Vec::new();
         for f in &fits {

@@ -7,14 +7,16 @@ use std::time::Instant;
 use super::record::{Metrics, Movie, RunRecord};
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
-    ARRIVAL_CRITERIA, LatticeShape, arrival_time, contact_timing, continuum_moduli, energy_error, homogeneity,
-    normal_mode_error, shear_modulus, tensile_moduli,
+    ARRIVAL_CRITERIA, LatticeShape, anisotropic_moduli, arrival_time, contact_timing, energy_error, homogeneity,
+    lattice_constants, normal_mode_error, shear_modulus, tensile_moduli,
 };
+use crate::model::{ForceLaw, Linear, PowerLaw};
 use crate::scenes::{
-    build_scene, chain_has_normal_modes, drive_travel, lattice_springs, pair_references, relaxation_checks, top_row,
+    build_scene, chain_equilibrium, chain_has_normal_modes, drive_travel, lattice_bonds, lattice_springs, law_kind,
+    pair_references, relaxation_checks, top_row,
 };
-use crate::sim::{Outcome, RunStatus, Scene, Trace};
-use crate::spec::{Control, LatticeSpec, LoadCase, RunSpec, SceneKind};
+use crate::sim::{LawKind, Outcome, RunStatus, Scene, Trace};
+use crate::spec::{Control, LatticeSpec, LawName, LoadCase, RunSpec, SceneKind, reference_extension};
 use crate::stability::estimate;
 
 /// Runs `spec` and returns its record; never panics.
@@ -97,7 +99,11 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
         ..Metrics::default()
     };
     if let Some(lattice) = spec.lattice.as_ref().filter(|l| l.impulse.is_none()) {
-        let bonds = lattice_springs(spec, lattice).bonds();
+        let bonds = lattice_bonds(spec, lattice);
+        if lattice.is_random() {
+            let full = lattice_springs(spec, lattice).bond_count();
+            metrics.bond_fraction_kept = Some(bonds.len() as f64 / full.max(1) as f64);
+        }
         let (held_x, held_y, prescribed) = static_supports(spec, lattice, &scene);
         let p = &scene.particles;
         let truss = Truss {
@@ -109,36 +115,12 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
             loads: &scene.loads,
             prescribed: &prescribed,
         };
-        // The force on the top row: the load, or what the supports must apply to hold the
-        // driven row where it is.
-        let force = |ux: &[f64], uy: &[f64]| match lattice.control {
-            Control::Force => lattice.total_load(),
-            Control::Velocity => {
-                let (fx, fy) = truss.reaction(&crate::model::Linear, ux, uy, &top_row(lattice));
-                if lattice.load_case == LoadCase::Tensile { fy } else { fx }
-            }
+        let answer = match scene.law {
+            LawKind::Linear => static_answer(spec, lattice, &truss, &Linear, &mut metrics),
+            LawKind::Power { beta } => static_answer(spec, lattice, &truss, &PowerLaw { beta }, &mut metrics),
         };
-        let (ux, uy) = match truss.solve_linear() {
-            StaticSolution::Mechanism { residual } => return Finished::Mechanism { residual },
-            StaticSolution::Displacements { ux, uy } => (ux, uy),
-        };
-        let linear = lattice_moduli(spec, lattice, force(&ux, &uy), &ux, &uy);
-        if let Some(StaticSolution::Displacements { ux, uy }) = truss.solve_nonlinear(&crate::model::Linear) {
-            let fem = lattice_moduli(spec, lattice, force(&ux, &uy), &ux, &uy);
-            // Relative for E and G; absolute for ν, which can be 0 (no diagonals).
-            let relative = |a: Option<f64>, b: Option<f64>| crate::table::relative_error(a, b).map(f64::abs);
-            let absolute = fem.poisson_ratio.zip(linear.poisson_ratio).map(|(a, b)| (a - b).abs());
-            metrics.static_nonlinearity = [
-                relative(fem.youngs_modulus, linear.youngs_modulus),
-                relative(fem.shear_modulus, linear.shear_modulus),
-                absolute,
-            ]
-            .into_iter()
-            .flatten()
-            .reduce(f64::max);
-            metrics.youngs_modulus_fem = fem.youngs_modulus;
-            metrics.poisson_ratio_fem = fem.poisson_ratio;
-            metrics.shear_modulus_fem = fem.shear_modulus;
+        if let Err(residual) = answer {
+            return Finished::Mechanism { residual };
         }
     }
     let start = (scene.particles.x.clone(), scene.particles.y.clone());
@@ -159,6 +141,9 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
         title: format!("{} {}", spec.scene, spec.varied_label(|_| true)),
     });
     measure(spec, &outcome, &start, &mut metrics);
+    if let Some(step) = spec.relax.and_then(|r| r.tangent_step).filter(|_| outcome.trace.relaxed_at.is_some()) {
+        tangent_step(spec, &outcome, step, &mut metrics);
+    }
     let started = Instant::now();
     let reference = spec
         .reference_refinement
@@ -174,6 +159,112 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
     Finished::Simulated(Box::new((outcome, metrics, reference_s, movie)))
 }
 
+/// The static answer of a loaded lattice beside MD: its moduli (`*_fem`), solved non-linearly
+/// like MD; for linear springs how far that is from the linear answer; with a tangent step
+/// the tangent moduli from the tangent stiffness at the equilibrium. `Err(residual)` when
+/// the load drives a mechanism.
+fn static_answer<L: ForceLaw>(
+    spec: &RunSpec,
+    lattice: &LatticeSpec,
+    truss: &Truss,
+    law: &L,
+    metrics: &mut Metrics,
+) -> Result<(), f64> {
+    // The force on the top row: the load, or what the supports must apply to hold the
+    // driven row where it is.
+    let force = |ux: &[f64], uy: &[f64]| match lattice.control {
+        Control::Force => lattice.total_load(),
+        Control::Velocity => {
+            let (fx, fy) = truss.reaction(law, ux, uy, &top_row(lattice));
+            if lattice.load_case == LoadCase::Tensile { fy } else { fx }
+        }
+    };
+    // The linear problem decides whether the network carries the load at all (a power law's
+    // linear answer means nothing else).
+    let linear = match truss.solve_linear() {
+        StaticSolution::Mechanism { residual } => return Err(residual),
+        StaticSolution::Displacements { ux, uy } => lattice_moduli(spec, lattice, force(&ux, &uy), &ux, &uy),
+    };
+    let Some(StaticSolution::Displacements { ux, uy }) = truss.solve_nonlinear(law, reference_extension(spec)) else {
+        return Ok(());
+    };
+    let fem = lattice_moduli(spec, lattice, force(&ux, &uy), &ux, &uy);
+    if spec.law == LawName::Linear {
+        // Relative for E and G; absolute for ν, which can be 0 (no diagonals).
+        let relative = |a: Option<f64>, b: Option<f64>| crate::table::relative_error(a, b).map(f64::abs);
+        let absolute = fem.poisson_ratio.zip(linear.poisson_ratio).map(|(a, b)| (a - b).abs());
+        metrics.static_nonlinearity = [
+            relative(fem.youngs_modulus, linear.youngs_modulus),
+            relative(fem.shear_modulus, linear.shear_modulus),
+            absolute,
+        ]
+        .into_iter()
+        .flatten()
+        .reduce(f64::max);
+    }
+    metrics.youngs_modulus_fem = fem.youngs_modulus;
+    metrics.poisson_ratio_fem = fem.poisson_ratio;
+    metrics.shear_modulus_fem = fem.shear_modulus;
+    if spec.relax.is_some_and(|r| r.tangent_step.is_some()) {
+        // Δu per unit load factor: the increment of the whole load.
+        if let Some((dx, dy)) = truss.tangent_response(law, &ux, &uy) {
+            let tangent = lattice_moduli(spec, lattice, lattice.total_load(), &dx, &dy);
+            metrics.youngs_modulus_tangent_fem = tangent.youngs_modulus;
+            metrics.poisson_ratio_tangent_fem = tangent.poisson_ratio;
+            metrics.shear_modulus_tangent_fem = tangent.shear_modulus;
+        }
+    }
+    Ok(())
+}
+
+/// The small extra step after a relaxation: from the relaxed state (at rest), the load
+/// (a chain's wall displacement) raised by the fraction `step`, relaxed again; tangent moduli
+/// (a chain's tangent stiffness) are the increments' ratios. Nothing is set when the second
+/// relaxation does not finish.
+fn tangent_step(spec: &RunSpec, relaxed: &Outcome, step: f64, metrics: &mut Metrics) {
+    let mut scene = build_scene(spec);
+    let start = &relaxed.state.particles;
+    scene.particles.x.clone_from(&start.x);
+    scene.particles.y.clone_from(&start.y);
+    scene.particles.vx.fill(0.0);
+    scene.particles.vy.fill(0.0);
+    scene.load_ramp = 0.0;
+    for load in &mut scene.loads {
+        load.fx *= 1.0 + step;
+        load.fy *= 1.0 + step;
+    }
+    let wall_step = step * spec.chain_wall_extension();
+    if spec.kind == SceneKind::Chain {
+        let wall = scene.particles.len() - 1;
+        scene.particles.x[wall] += wall_step;
+    }
+    let next = scene.run();
+    if next.trace.relaxed_at.is_none() {
+        return;
+    }
+    let end = &next.state.particles;
+    match &spec.lattice {
+        Some(lattice) => {
+            let dx: Vec<f64> = end.x.iter().zip(&start.x).map(|(b, a)| b - a).collect();
+            let dy: Vec<f64> = end.y.iter().zip(&start.y).map(|(b, a)| b - a).collect();
+            let tangent = lattice_moduli(spec, lattice, step * lattice.total_load(), &dx, &dy);
+            metrics.youngs_modulus_tangent = tangent.youngs_modulus;
+            metrics.poisson_ratio_tangent = tangent.poisson_ratio;
+            metrics.shear_modulus_tangent = tangent.shear_modulus;
+        }
+        None if wall_step != 0.0 => {
+            let before = wall_force(spec, &start.x);
+            metrics.tangent_stiffness = Some((wall_force(spec, &end.x) - before) / wall_step);
+        }
+        None => {}
+    }
+}
+
+/// Tension (N) of a chain's first spring, between the left wall and particle 1.
+fn wall_force(spec: &RunSpec, x: &[f64]) -> f64 {
+    law_kind(spec).elastic_force(spec.k, x[1] - x[0] - spec.spacing)
+}
+
 /// The linear sound speed along the wave's path (m/s): a√(k/m) along a chain; in a lattice
 /// kicked or stepped mostly along y (the bottom row is below) the longitudinal c_L = a√((k + k_d)/m),
 /// kicked mostly along x the transverse c_T = a√(k_d/m). `None` for power-law springs, which
@@ -182,13 +273,16 @@ fn sound_speed_theory(spec: &RunSpec) -> Option<f64> {
     if spec.law != crate::spec::LawName::Linear {
         return None;
     }
-    let a = spec.spacing;
+    // c = a √(C/m) with C = C22 (longitudinal) or C66 (transverse) per unit depth: the mass
+    // per unit area is m/a².
+    let speed = |c: f64| (c > 0.0).then(|| spec.spacing * (c / spec.mass).sqrt());
     match spec.lattice.as_ref().and_then(|l| l.impulse.map(|i| (l, i))) {
-        None => Some(a * (spec.k / spec.mass).sqrt()),
-        Some((l, i)) if i.direction()[1].abs() >= i.direction()[0].abs() => {
-            Some(a * ((spec.k + l.k_diag) / spec.mass).sqrt())
+        None => speed(spec.k),
+        Some((l, i)) => {
+            let (k_rising, k_falling) = l.diagonal_stiffness();
+            let c = lattice_constants(l.k_x, l.k_y, k_rising, k_falling);
+            speed(if i.direction()[1].abs() >= i.direction()[0].abs() { c.c22 } else { c.c66 })
         }
-        Some((l, _)) => (l.k_diag > 0.0).then(|| a * (l.k_diag / spec.mass).sqrt()),
     }
 }
 
@@ -273,7 +367,7 @@ struct LatticeModuli {
 fn lattice_moduli(spec: &RunSpec, lattice: &LatticeSpec, force: f64, ux: &[f64], uy: &[f64]) -> LatticeModuli {
     let shape = lattice_shape(spec, lattice);
     match lattice.load_case {
-        LoadCase::Tensile => {
+        LoadCase::Tensile | LoadCase::TensileX => {
             let t = tensile_moduli(&shape, force, ux, uy);
             LatticeModuli {
                 youngs_modulus: Some(t.youngs_modulus),
@@ -318,6 +412,27 @@ fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metr
         metrics.arrival_time_tc_estimate = Some(wave.springs as f64 * spec.t_c);
         metrics.sound_speed_theory = sound_speed_theory(spec);
     }
+    if spec.kind == SceneKind::Chain && spec.relax.is_some() {
+        let relaxed = outcome.trace.relaxed_at.is_some();
+        let keep = |value: Option<f64>| value.filter(|_| relaxed);
+        let x = &outcome.state.particles.x;
+        let gaps: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
+        let inner = &gaps[..gaps.len() - 1];
+        let (shortest, longest) =
+            gaps.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), g| (a.min(*g), b.max(*g)));
+        let (delta, force, secant, tangent) = chain_equilibrium(spec);
+        let extension = spec.chain_wall_extension();
+        let measured_force = wall_force(spec, x);
+        metrics.equilibrium_spacing = keep(Some(inner.iter().sum::<f64>() / inner.len() as f64));
+        metrics.spacing_spread = keep(Some(longest - shortest));
+        metrics.equilibrium_spacing_theory = Some(spec.spacing + delta);
+        metrics.wall_force = keep(Some(measured_force));
+        metrics.wall_force_theory = Some(force);
+        metrics.secant_stiffness = keep((extension != 0.0).then(|| measured_force / extension));
+        metrics.secant_stiffness_theory = Some(secant);
+        metrics.tangent_stiffness_theory = Some(tangent);
+        metrics.dissipation_time = outcome.trace.relaxed_at;
+    }
     if let Some(lattice) = spec.lattice.as_ref().filter(|l| l.impulse.is_none()) {
         let p = &outcome.state.particles;
         let ux: Vec<f64> = p.x.iter().zip(&start.0).map(|(x, x0)| x - x0).collect();
@@ -337,18 +452,25 @@ fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metr
         let shape = lattice_shape(spec, lattice);
         metrics.homogeneity = keep(homogeneity(&shape, &ux));
         metrics.dissipation_time = outcome.trace.relaxed_at;
-        let checks = relaxation_checks(lattice);
+        // The continuum of the regular linear lattice (a random one is compared with it).
+        if spec.law == LawName::Linear {
+            let (k_rising, k_falling) = lattice.diagonal_stiffness();
+            let continuum = anisotropic_moduli(lattice.k_x, lattice.k_y, k_rising, k_falling, lattice.depth);
+            metrics.youngs_modulus_theory = Some(continuum.youngs_modulus_y);
+            metrics.poisson_ratio_theory = Some(continuum.poisson_ratio_yx);
+            metrics.shear_modulus_theory = continuum.shear_modulus;
+        }
+    }
+    if let Some(relax) = spec.relax {
+        let checks = relaxation_checks(spec);
+        let scale = if spec.lattice.is_some() { "the load per node" } else { "the wall force" };
         metrics.dissipation_criterion =
-            outcome.trace.relaxed_by.as_deref().map(|by| match (by, lattice.residual_force) {
+            outcome.trace.relaxed_by.as_deref().map(|by| match (by, relax.residual_force) {
                 ("residual_force", Some(fraction)) => {
-                    format!("largest static force < {fraction:e} of the load per node at {checks} checks one t_c apart")
+                    format!("largest static force < {fraction:e} of {scale} at {checks} checks one t_c apart")
                 }
-                _ => format!("E_kin/E_pot < {:e} at {checks} checks one t_c apart", lattice.kinetic_ratio),
+                _ => format!("E_kin/E_pot < {:e} at {checks} checks one t_c apart", relax.kinetic_ratio),
             });
-        let (e, nu, g) = continuum_moduli(spec.k, lattice.k_diag, lattice.depth);
-        metrics.youngs_modulus_theory = Some(e);
-        metrics.poisson_ratio_theory = Some(nu);
-        metrics.shear_modulus_theory = (lattice.k_diag > 0.0).then_some(g);
     }
 }
 

@@ -76,6 +76,56 @@ pub struct Metrics {
     pub poisson_ratio_theory: Option<f64>,
     /// Lattice: continuum G = C44/d (Pa).
     pub shear_modulus_theory: Option<f64>,
+    /// Lattice with a tangent step: tangent E = ΔF/d/L_x / Δε (Pa) from the MD increments.
+    #[serde(default)]
+    pub youngs_modulus_tangent: Option<f64>,
+    /// Lattice with a tangent step: ν from the MD increments.
+    #[serde(default)]
+    pub poisson_ratio_tangent: Option<f64>,
+    /// Lattice with a tangent step: tangent G (Pa) from the MD increments.
+    #[serde(default)]
+    pub shear_modulus_tangent: Option<f64>,
+    /// Tangent E (Pa) of the static answer, from its tangent stiffness K_t Δu = Δf.
+    #[serde(default)]
+    pub youngs_modulus_tangent_fem: Option<f64>,
+    /// Tangent ν of the static answer.
+    #[serde(default)]
+    pub poisson_ratio_tangent_fem: Option<f64>,
+    /// Tangent G (Pa) of the static answer.
+    #[serde(default)]
+    pub shear_modulus_tangent_fem: Option<f64>,
+    /// Random lattice: fraction of the bonds kept after cutting.
+    #[serde(default)]
+    pub bond_fraction_kept: Option<f64>,
+    /// Relaxing chain: mean gap (m) of all springs but the last (which starts with the whole
+    /// wall displacement).
+    #[serde(default)]
+    pub equilibrium_spacing: Option<f64>,
+    /// Relaxing chain: equilibrium gap W/(n + 1) (m).
+    #[serde(default)]
+    pub equilibrium_spacing_theory: Option<f64>,
+    /// Relaxing chain: largest minus smallest gap (m); 0 at equilibrium.
+    #[serde(default)]
+    pub spacing_spread: Option<f64>,
+    /// Relaxing chain: tension (N) of the spring at the left wall, s(δ₁); negative in
+    /// compression.
+    #[serde(default)]
+    pub wall_force: Option<f64>,
+    /// Relaxing chain: s(ΔW/(n + 1)) (N).
+    #[serde(default)]
+    pub wall_force_theory: Option<f64>,
+    /// Relaxing chain: secant stiffness of the whole chain, wall force / ΔW (N/m).
+    #[serde(default)]
+    pub secant_stiffness: Option<f64>,
+    /// Relaxing chain: s(δ)/ΔW (N/m).
+    #[serde(default)]
+    pub secant_stiffness_theory: Option<f64>,
+    /// Relaxing chain with a tangent step: ΔF/ΔW (N/m) from the MD increments.
+    #[serde(default)]
+    pub tangent_stiffness: Option<f64>,
+    /// Relaxing chain: s′(δ)/(n + 1) (N/m).
+    #[serde(default)]
+    pub tangent_stiffness_theory: Option<f64>,
 }
 
 /// Everything one run produced.

@@ -24,6 +24,14 @@ pub enum LawKind {
 }
 
 impl LawKind {
+    /// Elastic force s(δ) (N) of a bond with constant `k` at extension `delta` (m).
+    pub fn elastic_force(self, k: f64, delta: f64) -> f64 {
+        match self {
+            LawKind::Linear => Linear.elastic_force(k, delta),
+            LawKind::Power { beta } => PowerLaw { beta }.elastic_force(k, delta),
+        }
+    }
+
     /// Tangent stiffness ds/dδ (N/m) of a bond with constant `k` at extension `delta` (m).
     pub fn tangent_stiffness(self, k: f64, delta: f64) -> f64 {
         match self {

@@ -2,8 +2,10 @@
 //! The only module that knows YAML. Everything is checked before any run starts, and every
 //! error names the file, the field path, the value and what is allowed.
 
-pub use self::raw::{Control, LawName, LoadCase, SceneKind, Supports};
-pub use self::run_spec::{ImpulseSpec, LatticeSpec, MovieSpec, RESULT_FORMAT, RunSpec, WaveSpec};
+pub use self::raw::{Control, Diagonals, LawName, LoadCase, SceneKind, Supports};
+pub use self::run_spec::{
+    ImpulseSpec, LatticeSpec, MovieSpec, RESULT_FORMAT, RelaxSpec, RunSpec, WaveSpec, reference_extension,
+};
 
 mod grid;
 mod raw;

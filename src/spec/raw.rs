@@ -115,7 +115,8 @@ pub struct RawScene {
     pub supports: Option<Supports>,
     /// Lattice: the load on the top row.
     pub load: Option<RawLoad>,
-    /// Lattice: when the relaxation stops.
+    /// Lattice or chain: when the relaxation stops (a chain with `relax` starts at rest spacing
+    /// between its moved walls and relaxes).
     pub relax: Option<RawRelax>,
     /// Chain: time the wave from the excited particle to a receiver (sound speed).
     pub wave: Option<RawWave>,
@@ -123,6 +124,9 @@ pub struct RawScene {
     pub movie: Option<RawMovie>,
     /// Lattice: kick one node instead of loading the top row (a wave scene).
     pub impulse: Option<RawImpulse>,
+    /// Lattice: seed of the random bond cutting and stiffness spread (a grid axis for
+    /// ensembles; default 1).
+    pub seed: Option<u64>,
     /// Grid over this scene only (dotted paths), combined with the campaign's grid.
     pub grid: Option<Grid>,
 }
@@ -143,6 +147,15 @@ pub struct RawLattice {
     pub k_diag: Option<f64>,
     /// k_d / k, instead of `k_diag` (default 0.5).
     pub k_diag_ratio: Option<f64>,
+    /// Horizontal springs k_x = k_x_ratio · k (default 1): an anisotropic lattice.
+    pub k_x_ratio: Option<f64>,
+    /// Vertical springs k_y = k_y_ratio · k (default 1).
+    pub k_y_ratio: Option<f64>,
+    /// Fraction of the bonds cut at random (from `seed`), in [0, 1).
+    pub cut_fraction: Option<f64>,
+    /// Every kept bond's stiffness times 1 + w·U with U uniform in [−1, 1] (from `seed`);
+    /// w in [0, 1).
+    pub stiffness_spread: Option<f64>,
 }
 
 /// Which diagonal springs a lattice has.
@@ -153,6 +166,22 @@ pub enum Diagonals {
     None,
     /// Both diagonals of every cell.
     Both,
+    /// Only the rising diagonals (ix, iy)–(ix+1, iy+1): an anisotropic lattice.
+    Rising,
+    /// Only the falling diagonals (ix+1, iy)–(ix, iy+1).
+    Falling,
+}
+
+impl Diagonals {
+    /// The name used in files and tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            Diagonals::None => "none",
+            Diagonals::Both => "both",
+            Diagonals::Rising => "rising",
+            Diagonals::Falling => "falling",
+        }
+    }
 }
 
 /// How a lattice's bottom row is supported.
@@ -187,8 +216,11 @@ impl Supports {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum LoadCase {
-    /// Up: Young's modulus and Poisson ratio.
+    /// Up: Young's modulus E_y and Poisson ratio ν_yx.
     Tensile,
+    /// The loading turned by 90°: the right column pulled to the right, the left column on
+    /// rollers: E_x and ν_xy.
+    TensileX,
     /// To the right: shear modulus.
     Shear,
 }
@@ -198,6 +230,7 @@ impl LoadCase {
     pub fn name(self) -> &'static str {
         match self {
             LoadCase::Tensile => "tensile",
+            LoadCase::TensileX => "tensile-x",
             LoadCase::Shear => "shear",
         }
     }
@@ -207,7 +240,7 @@ impl LoadCase {
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawLoad {
-    /// `tensile` or `shear`.
+    /// `tensile` (up), `tensile-x` (to the right) or `shear`.
     pub case: Option<LoadCase>,
     /// Force on every top-row node (N), default 1000.
     pub per_node: Option<f64>,
@@ -290,6 +323,9 @@ pub struct RawRelax {
     pub residual_force: Option<f64>,
     /// Give up after this many t_c (default 5000): `status = no_equilibrium`.
     pub max_tc: Option<f64>,
+    /// Tangent moduli (stiffness): after relaxing, raise the load (a chain's wall displacement)
+    /// by this fraction, relax again and divide the increments (e.g. 0.01).
+    pub tangent_step: Option<f64>,
 }
 
 /// `material:` section.

@@ -9,7 +9,8 @@ use super::raw::{
     Control, Diagonals, LawName, LoadCase, RawDamping, RawGeometry, RawMaterial, RawScene, RawTime, RawWave, SceneKind,
     Supports,
 };
-use super::run_spec::{ImpulseSpec, LatticeSpec, MovieSpec, RunSpec, WaveSpec};
+use super::run_spec::{ImpulseSpec, LatticeSpec, MovieSpec, RelaxSpec, RunSpec, WaveSpec, reference_extension};
+use crate::model::{ForceLaw, PowerLaw};
 use crate::sim::IntegratorKind;
 use crate::theory;
 
@@ -84,26 +85,100 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     let material = RawMaterial { mass: solid.mass.or(material.mass), k: solid.k.or(material.k), ..material };
     let (mass, k, law, beta, contact) = resolve_material(&material)?;
     check_kind_fields(kind, raw)?;
+    let relaxing_chain = kind == SceneKind::Chain && raw.relax.is_some();
     let v0 = match kind {
         SceneKind::Lattice => 0.0,
+        SceneKind::Chain if relaxing_chain => {
+            let v0 = raw.v0.unwrap_or(0.0);
+            require(v0.is_finite() && v0 >= 0.0, "v0", v0, "must be a finite number ≥ 0 (m/s)")?;
+            v0
+        }
         _ => positive(raw.v0.ok_or_else(|| missing("v0", "the initial speed (m/s), > 0"))?, "v0")?,
     };
-    if kind == SceneKind::Lattice {
-        require(law == LawName::Linear, "material.law", law.name(), "lattice scenes take linear springs for now")?;
-        require(!contact, "material.contact", contact, "lattice springs are bonded: false")?;
+    if kind == SceneKind::Lattice || relaxing_chain {
+        require(!contact, "material.contact", contact, "lattices and relaxing chains have bonded springs: false")?;
     }
-
-    // The reference deformation of a power law is the overlap of a two-body collision at v0:
-    // its tangent stiffness β C δ^(β−1) stands in for k where a linear formula is needed.
+    let lattice = resolve_lattice(kind, raw, k, geometry.depth)?.map(|l| LatticeSpec { derived_from: solid.note, ..l });
+    let ChainFields { n, node, wall_distance, wave } = resolve_chain(kind, raw, spacing)?;
+    let relax = match (kind, &lattice) {
+        (SceneKind::Lattice, Some(l)) if l.impulse.is_none() => Some(resolve_relax(raw, l.control)?),
+        (SceneKind::Chain, _) if relaxing_chain => Some(resolve_relax(raw, Control::Force)?),
+        _ => None,
+    };
+    if relaxing_chain {
+        let n = n.unwrap_or(1);
+        let walls = wall_distance.unwrap_or_default();
+        require(
+            walls > (n as f64 + 0.1) * spacing,
+            "wall_distance",
+            walls,
+            &format!(
+                "more than (n + 0.1) · spacing = {}: a relaxing chain starts at rest spacing from the left wall, so \
+                 the last spring takes the whole wall displacement at first and must not collapse",
+                (n as f64 + 0.1) * spacing
+            ),
+        )?;
+        require(
+            v0 > 0.0 || (walls - (n + 1) as f64 * spacing).abs() > 1e-12 * walls,
+            "wall_distance",
+            walls,
+            "a relaxing chain needs its walls moved from (n + 1) · spacing, or a v0",
+        )?;
+    }
+    // The spec so far: t_c, γ and dt follow from the reference extension it implies.
+    let mut spec = RunSpec {
+        campaign: campaign.to_string(),
+        scene: name,
+        kind,
+        varied,
+        mass,
+        spacing,
+        k,
+        law,
+        beta,
+        contact,
+        gamma: 0.0,
+        restitution_target: None,
+        gamma_background: 0.0,
+        integrator: time.integrator.unwrap_or(IntegratorKind::PositionVerlet),
+        t_c: 0.0,
+        dt: 0.0,
+        dt_omega_max: time.dt_omega_max,
+        reference_refinement: time.reference_refinement,
+        allow_unstable: time.allow_unstable.unwrap_or(false),
+        duration: 0.0,
+        steps: 0,
+        samples: 0,
+        v0,
+        gap: None,
+        n,
+        node,
+        wall_distance,
+        relax,
+        lattice,
+        wave,
+        movie: None,
+    };
+    // A power law has no stiffness at δ = 0: its tangent β C |δ|^(β−1) at the reference
+    // extension stands in for k where a linear formula is needed.
     let stiffness_for_damping = match law {
         LawName::Linear => k,
-        LawName::Power => beta * k * theory::power_law_max_overlap(k, beta, mass, v0).powf(beta - 1.0),
+        LawName::Power => PowerLaw { beta }.tangent_stiffness(k, reference_extension(&spec)),
     };
+    require(
+        stiffness_for_damping > 0.0 && stiffness_for_damping.is_finite(),
+        "material.law",
+        law.name(),
+        "a power law needs a deformation to have stiffness: a v0, a load or moved walls",
+    )?;
     let (gamma, restitution_target, gamma_background) = resolve_damping(&damping, stiffness_for_damping, mass)?;
+    // A collision (pair, kicked chain) has an exact power-law contact duration; a loaded or
+    // relaxing scene takes the linear one at its tangent stiffness.
+    let collision = kind == SceneKind::Pair || (kind == SceneKind::Chain && !relaxing_chain);
     let t_c = match law {
-        LawName::Linear => theory::linear_contact_duration(k, mass, gamma),
-        LawName::Power => theory::pair_omega(stiffness_for_damping, mass, gamma)
+        LawName::Power if collision => theory::pair_omega(stiffness_for_damping, mass, gamma)
             .map(|_| theory::power_law_contact_duration(k, beta, mass, v0)),
+        _ => theory::linear_contact_duration(stiffness_for_damping, mass, gamma),
     }
     .map_err(|e| Issue { path: "damping".into(), value: format!("γ = {gamma}"), allowed: e.to_string() })?;
 
@@ -120,27 +195,23 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     if let Some(g) = gap {
         require(g.is_finite() && g >= 0.0, "gap", g, "must be a finite number ≥ 0")?;
     }
-    let lattice = resolve_lattice(kind, raw, k, geometry.depth)?.map(|l| LatticeSpec { derived_from: solid.note, ..l });
     let default_duration_tc = match kind {
         SceneKind::Pair if contact => gap.unwrap_or(0.0) / (v0 * t_c) + 1.5,
         SceneKind::Pair => 3.0,
-        SceneKind::Chain => 20.0,
+        SceneKind::Chain if !relaxing_chain => 20.0,
         // An impulse lattice runs until the wave has crossed it about three times.
-        SceneKind::Lattice if raw.impulse.is_some() => 3.0 * lattice.as_ref().map_or(1, |l| l.nx.max(l.ny)) as f64,
-        SceneKind::Lattice => raw.relax.as_ref().and_then(|r| r.max_tc).unwrap_or(DEFAULT_MAX_TC),
+        SceneKind::Lattice if raw.impulse.is_some() => 3.0 * spec.lattice.as_ref().map_or(1, |l| l.nx.max(l.ny)) as f64,
+        _ => raw.relax.as_ref().and_then(|r| r.max_tc).unwrap_or(DEFAULT_MAX_TC),
     };
-    let duration_path =
-        if kind == SceneKind::Lattice && raw.impulse.is_none() { "relax.max_tc" } else { "time.duration_tc" };
+    let duration_path = if spec.relax.is_some() { "relax.max_tc" } else { "time.duration_tc" };
     let duration = t_c * positive(time.duration_tc.unwrap_or(default_duration_tc), duration_path)?;
     let steps = (duration / dt).ceil() as u64;
     require(steps <= 2_000_000_000, "time.duration_tc", duration / t_c, "at most 2e9 steps")?;
     let samples = time.samples.unwrap_or(DEFAULT_SAMPLES);
     require(samples >= 2, "time.samples", samples, "must be ≥ 2")?;
-    let ChainFields { n, node, wall_distance, wave } = resolve_chain(kind, raw, spacing)?;
-    let wave = match (&lattice, &raw.wave) {
-        (Some(l), Some(w)) => lattice_wave(l, w, spacing)?,
-        _ => wave,
-    };
+    if let (Some(l), Some(w)) = (&spec.lattice, &raw.wave) {
+        spec.wave = lattice_wave(l, w, spacing)?;
+    }
     let movie = match &raw.movie {
         None => None,
         Some(m) => {
@@ -152,8 +223,7 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
             Some(MovieSpec { frames, width, height, side_by_side: m.side_by_side.unwrap_or(false) })
         }
     };
-    let reference_refinement = time.reference_refinement;
-    if let Some(r) = reference_refinement {
+    if let Some(r) = spec.reference_refinement {
         require((2..=1000).contains(&r), "time.reference_refinement", r, "an integer from 2 to 1000")?;
         require(
             steps.saturating_mul(u64::from(r)) <= 2_000_000_000,
@@ -164,36 +234,18 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     }
 
     Ok(RunSpec {
-        campaign: campaign.to_string(),
-        scene: name,
-        kind,
-        varied,
-        mass,
-        spacing,
-        k,
-        law,
-        beta,
-        contact,
         gamma,
         restitution_target,
         gamma_background,
         integrator,
         t_c,
         dt,
-        dt_omega_max: time.dt_omega_max,
-        reference_refinement,
-        allow_unstable: time.allow_unstable.unwrap_or(false),
         duration,
         steps,
         samples,
-        v0,
         gap,
-        n,
-        node,
-        wall_distance,
-        lattice,
-        wave,
         movie,
+        ..spec
     })
 }
 
@@ -359,10 +411,12 @@ fn check_kind_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue> {
         (raw.lattice.is_some(), "lattice"),
         (raw.supports.is_some(), "supports"),
         (raw.load.is_some(), "load"),
-        (raw.relax.is_some(), "relax"),
+        (raw.seed.is_some(), "seed"),
     ] {
         only(present && !is(SceneKind::Lattice), path, "lattice scenes")?;
     }
+    only(raw.relax.is_some() && is(SceneKind::Pair), "relax", "lattices and chains between moved walls")?;
+    only(raw.relax.is_some() && raw.wave.is_some(), "wave", "chains that are hit, not relaxed")?;
     only(raw.v0.is_some() && is(SceneKind::Lattice), "v0", "pair and chain scenes (lattices are loaded, not kicked)")
 }
 
@@ -387,9 +441,10 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
     let (nx, ny) = (size(lattice.nx.or(lattice.size), "lattice.nx")?, size(lattice.ny.or(lattice.size), "lattice.ny")?);
     // `diagonals: none` wins over a k_diag or k_diag_ratio set elsewhere, so a grid can switch
     // the diagonals off without touching their stiffness.
-    let k_diag = match (lattice.diagonals.unwrap_or(Diagonals::Both), lattice.k_diag, lattice.k_diag_ratio) {
+    let diagonals = lattice.diagonals.unwrap_or(Diagonals::Both);
+    let k_diag = match (diagonals, lattice.k_diag, lattice.k_diag_ratio) {
         (Diagonals::None, _, _) => 0.0,
-        (Diagonals::Both, Some(_), Some(_)) => {
+        (_, Some(_), Some(_)) => {
             return Err(Issue {
                 path: "lattice".into(),
                 value: "k_diag and k_diag_ratio".into(),
@@ -397,11 +452,20 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
             });
         }
         // Zero is allowed: the same lattice as `diagonals: none`, so a grid can start a sweep there.
-        (Diagonals::Both, Some(k_diag), None) => non_negative(k_diag, "lattice.k_diag")?,
-        (Diagonals::Both, None, ratio) => {
-            k * non_negative(ratio.unwrap_or(DEFAULT_K_DIAG_RATIO), "lattice.k_diag_ratio")?
-        }
+        (_, Some(k_diag), None) => non_negative(k_diag, "lattice.k_diag")?,
+        (_, None, ratio) => k * non_negative(ratio.unwrap_or(DEFAULT_K_DIAG_RATIO), "lattice.k_diag_ratio")?,
     };
+    let ratio = |value: Option<f64>, path: &str| positive(value.unwrap_or(1.0), path).map(|r| r * k);
+    let (k_x, k_y) = (ratio(lattice.k_x_ratio, "lattice.k_x_ratio")?, ratio(lattice.k_y_ratio, "lattice.k_y_ratio")?);
+    let cut_fraction = lattice.cut_fraction.unwrap_or(0.0);
+    require((0.0..1.0).contains(&cut_fraction), "lattice.cut_fraction", cut_fraction, "must be in [0, 1)")?;
+    let stiffness_spread = lattice.stiffness_spread.unwrap_or(0.0);
+    require(
+        (0.0..1.0).contains(&stiffness_spread),
+        "lattice.stiffness_spread",
+        stiffness_spread,
+        "must be in [0, 1) (every stiffness times 1 + w·U[−1, 1])",
+    )?;
     let supports = raw.supports.unwrap_or(Supports::Coursework);
     require(
         supports != Supports::PeriodicX || nx >= 3,
@@ -486,6 +550,52 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
             })
         }
     };
+    let mut load_case = load.case.unwrap_or(LoadCase::Tensile);
+    let (mut nx, mut ny, mut k_x, mut k_y, mut diagonals) = (nx, ny, k_x, k_y, diagonals);
+    let rotated = load_case == LoadCase::TensileX;
+    if rotated {
+        require(
+            matches!(supports, Supports::Coursework | Supports::ClampedBottom),
+            "supports",
+            supports.name(),
+            "coursework or clamped-bottom with load.case: tensile-x (the supports turn with the lattice)",
+        )?;
+        // Turned by +90°: x → y, y → −x; the rising diagonal (1, 1) becomes (−1, 1), a
+        // falling one, and the falling (−1, 1) becomes (−1, −1), a rising one.
+        (nx, ny, k_x, k_y) = (ny, nx, k_y, k_x);
+        diagonals = match diagonals {
+            Diagonals::Rising => Diagonals::Falling,
+            Diagonals::Falling => Diagonals::Rising,
+            other => other,
+        };
+        load_case = LoadCase::Tensile;
+    }
+    Ok(Some(LatticeSpec {
+        nx,
+        ny,
+        k_diag,
+        diagonals: if k_diag == 0.0 { Diagonals::None } else { diagonals },
+        k_x,
+        k_y,
+        rotated,
+        cut_fraction,
+        stiffness_spread,
+        seed: raw.seed.unwrap_or(1),
+        depth: positive(depth.unwrap_or(1.0), "geometry.depth")?,
+        supports,
+        load_case,
+        load_per_node,
+        load_ramp_tc,
+        control,
+        drive_strain,
+        drive_tc,
+        derived_from: None,
+        impulse,
+    }))
+}
+
+/// When a relaxation counts as finished, and its tangent step.
+fn resolve_relax(raw: &RawScene, control: Control) -> Result<RelaxSpec, Issue> {
     let relax = raw.relax.clone().unwrap_or_default();
     let kinetic_ratio = relax.kinetic_ratio.unwrap_or(DEFAULT_KINETIC_RATIO);
     require(kinetic_ratio > 0.0 && kinetic_ratio < 1.0, "relax.kinetic_ratio", kinetic_ratio, "must be in (0, 1)")?;
@@ -494,26 +604,14 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
             fraction > 0.0 && fraction < 1.0,
             "relax.residual_force",
             fraction,
-            "must be in (0, 1) (a fraction of the load per node)",
+            "must be in (0, 1) (a fraction of the load per node, or of a chain's wall force)",
         )?;
     }
-    Ok(Some(LatticeSpec {
-        nx,
-        ny,
-        k_diag,
-        depth: positive(depth.unwrap_or(1.0), "geometry.depth")?,
-        supports,
-        load_case: load.case.unwrap_or(LoadCase::Tensile),
-        load_per_node,
-        load_ramp_tc,
-        control,
-        drive_strain,
-        drive_tc,
-        kinetic_ratio,
-        residual_force: relax.residual_force,
-        derived_from: None,
-        impulse,
-    }))
+    if let Some(step) = relax.tangent_step {
+        require(step > 0.0 && step <= 0.1, "relax.tangent_step", step, "must be in (0, 0.1] (a fraction of the load)")?;
+        require(control == Control::Force, "relax.tangent_step", step, "is for control: force")?;
+    }
+    Ok(RelaxSpec { kinetic_ratio, residual_force: relax.residual_force, tangent_step: relax.tangent_step })
 }
 
 /// The chain-only fields of a run; all `None` for other kinds.

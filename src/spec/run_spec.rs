@@ -4,12 +4,12 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::collections::BTreeMap;
 
-use super::raw::{Control, LawName, LoadCase, SceneKind, Supports};
+use super::raw::{Control, Diagonals, LawName, LoadCase, SceneKind, Supports};
 use crate::sim::IntegratorKind;
 
 /// Bumped whenever stored results of an unchanged spec would differ (new physics or columns),
 /// so the cache never serves results of older code.
-pub const RESULT_FORMAT: u32 = 8;
+pub const RESULT_FORMAT: u32 = 9;
 
 /// A resolved run. Units SI; field names are the results table's column names.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -68,6 +68,9 @@ pub struct RunSpec {
     pub node: Option<usize>,
     /// Chain: distance between the walls (m).
     pub wall_distance: Option<f64>,
+    /// Loaded lattice or relaxing chain: when the relaxation stops, and the tangent step.
+    #[serde(default)]
+    pub relax: Option<RelaxSpec>,
     /// Lattice: what is specific to lattice scenes.
     pub lattice: Option<LatticeSpec>,
     /// Chain: the wave timed from the excited particle to a receiver, if asked for.
@@ -76,6 +79,19 @@ pub struct RunSpec {
     /// The movie to record, if asked for.
     #[serde(default)]
     pub movie: Option<MovieSpec>,
+}
+
+/// When a relaxation is finished, and the small extra step that measures tangent moduli.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RelaxSpec {
+    /// Relaxed when E_kin/E_pot stays below this ...
+    pub kinetic_ratio: f64,
+    /// ... or, when given, when the largest static force stays below this fraction of the
+    /// load per node (lattice) or of the equilibrium wall force (chain).
+    pub residual_force: Option<f64>,
+    /// After relaxing, raise the load (a chain's wall displacement) by this fraction, relax
+    /// again and measure tangent moduli (stiffness) from the increments.
+    pub tangent_step: Option<f64>,
 }
 
 /// An animated GIF of a run: `frames` frames of `width` × `height` pixels.
@@ -138,6 +154,22 @@ pub struct LatticeSpec {
     pub ny: usize,
     /// Diagonal stiffness k_d (N/m); 0 without diagonals.
     pub k_diag: f64,
+    /// Which diagonals are present (of the lattice as simulated, see `rotated`).
+    pub diagonals: Diagonals,
+    /// Horizontal springs k_x (N/m, or C for power laws).
+    pub k_x: f64,
+    /// Vertical springs k_y.
+    pub k_y: f64,
+    /// The campaign's lattice turned by 90° (counter-clockwise) so that its x direction is
+    /// loaded from the top row (`load.case: tensile-x`): nx/ny, k_x/k_y and the diagonal
+    /// families are swapped here; measured E and ν are the original's E_x and ν_xy.
+    pub rotated: bool,
+    /// Fraction of the bonds cut at random.
+    pub cut_fraction: f64,
+    /// Relative half-width w of the uniform stiffness spread 1 + w·U[−1, 1].
+    pub stiffness_spread: f64,
+    /// Seed of the random cutting and spread.
+    pub seed: u64,
     /// Depth d (m).
     pub depth: f64,
     /// Supports.
@@ -154,10 +186,6 @@ pub struct LatticeSpec {
     pub drive_strain: f64,
     /// Velocity control: duration of the drive, in t_c.
     pub drive_tc: f64,
-    /// Relaxation stops when E_kin/E_pot stays below this.
-    pub kinetic_ratio: f64,
-    /// ... or when the largest net force stays below this fraction of the load per node.
-    pub residual_force: Option<f64>,
     /// How mass and stiffness were derived from a solid, when they were.
     pub derived_from: Option<String>,
     /// The kicked node of an impulse scene (no load, no relaxation).
@@ -169,6 +197,46 @@ impl LatticeSpec {
     /// Total force on the top row under force control, load_per_node · nx (N).
     pub fn total_load(&self) -> f64 {
         self.load_per_node * self.nx as f64
+    }
+
+    /// Stiffness of the rising and falling diagonals (0 where absent).
+    pub fn diagonal_stiffness(&self) -> (f64, f64) {
+        match self.diagonals {
+            Diagonals::None => (0.0, 0.0),
+            Diagonals::Both => (self.k_diag, self.k_diag),
+            Diagonals::Rising => (self.k_diag, 0.0),
+            Diagonals::Falling => (0.0, self.k_diag),
+        }
+    }
+
+    /// True when bonds are cut or their stiffness spread at random.
+    pub fn is_random(&self) -> bool {
+        self.cut_fraction > 0.0 || self.stiffness_spread > 0.0
+    }
+}
+
+/// The extension (m) at which a power-law spring (no stiffness at δ = 0) is linearised for
+/// t_c, the damping and the stability estimate: the deformation the run is expected to reach.
+/// A collision or kick at speed v: the two-body overlap −δ_max(v); a loaded lattice: the
+/// extension (F/C)^(1/β) of a spring carrying one node's load F (velocity control: strain · a);
+/// a relaxing chain: its springs' equilibrium extension ΔW/(n + 1). Linear springs: 0.
+pub fn reference_extension(spec: &RunSpec) -> f64 {
+    if spec.law == LawName::Linear {
+        return 0.0;
+    }
+    let overlap = |speed: f64| -crate::theory::power_law_max_overlap(spec.k, spec.beta, spec.mass, speed);
+    let carrying = |force: f64| (force.abs() / spec.k).powf(1.0 / spec.beta);
+    match (&spec.lattice, spec.kind) {
+        (Some(l), _) => match l.impulse {
+            Some(ImpulseSpec { top_row_force: Some([fx, fy]), .. }) => carrying(fx.hypot(fy)),
+            Some(i) => overlap(i.vx.hypot(i.vy)),
+            None if l.control == Control::Velocity => l.drive_strain.abs() * spec.spacing,
+            None => carrying(l.load_per_node),
+        },
+        (None, SceneKind::Chain) if spec.relax.is_some() && spec.chain_wall_extension() != 0.0 => {
+            spec.chain_wall_extension() / (spec.n.unwrap_or(0) + 1) as f64
+        }
+        _ => overlap(spec.v0),
     }
 }
 
@@ -195,6 +263,14 @@ impl RunSpec {
     pub fn set_dt(&mut self, dt: f64) {
         self.dt = dt;
         self.steps = (self.duration / dt).ceil() as u64;
+    }
+
+    /// Chain: how far the walls are moved from the rest length (n + 1) a, ΔW (m); 0 otherwise.
+    pub fn chain_wall_extension(&self) -> f64 {
+        match (self.n, self.wall_distance) {
+            (Some(n), Some(w)) => w - (n + 1) as f64 * self.spacing,
+            _ => 0.0,
+        }
     }
 
     /// dt / t_c.
