@@ -171,7 +171,10 @@ fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
         m("bond_fraction_kept", |m| m.bond_fraction_kept),
         optional_floats(records, "depth", lattice(|l| l.depth)),
         Column::new("supports".into(), words(|l| l.supports.name())),
-        Column::new("load_case".into(), words(|l| l.load_case.name())),
+        Column::new(
+            "load_case".into(),
+            words(|l| if l.rotated { crate::spec::LoadCase::TensileX.name() } else { l.load_case.name() }),
+        ),
         Column::new("load_control".into(), words(|l| l.control.name())),
         optional_floats(records, "drive_strain", |r| {
             r.spec.lattice.as_ref().filter(|l| l.control == crate::spec::Control::Velocity).map(|l| l.drive_strain)

@@ -78,7 +78,9 @@ fn hertz_lattice_moduli_scale_as_the_cube_root_of_the_load() {
         for r in &records {
             let m = &r.metrics;
             let (md, fem, tangent, tangent_fem) = match case {
-                "tensile" => (m.youngs_modulus, m.youngs_modulus_fem, m.youngs_modulus_tangent, m.youngs_modulus_tangent_fem),
+                "tensile" => {
+                    (m.youngs_modulus, m.youngs_modulus_fem, m.youngs_modulus_tangent, m.youngs_modulus_tangent_fem)
+                }
                 _ => (m.shear_modulus, m.shear_modulus_fem, m.shear_modulus_tangent, m.shear_modulus_tangent_fem),
             };
             // MD relaxed to 1e-8 of the load against Newton–Raphson converged to 1e-10: 1e-6.

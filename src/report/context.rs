@@ -60,6 +60,7 @@ struct SceneSection {
     limit_rows: Vec<LimitRow>,
     wave_rows: Vec<WaveRow>,
     exponent_rows: Vec<ExponentRow>,
+    ensemble_rows: Vec<super::solids::EnsembleRow>,
     movies: Vec<FigureRef>,
 }
 
@@ -259,6 +260,7 @@ fn section(
         limit_rows,
         wave_rows: wave_rows(records, scene),
         exponent_rows: exponent_rows(records, scene),
+        ensemble_rows: super::solids::ensemble_rows(records, scene),
         movies: side_by_side
             .iter()
             .filter(|s| *s == scene)

@@ -7,6 +7,7 @@ mod context;
 mod figures;
 mod movie;
 pub mod plots;
+mod solids;
 mod studies;
 
 pub use self::movie::{speed_color, write_movie, write_movie_panels};

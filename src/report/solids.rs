@@ -1,0 +1,207 @@
+//! Non-linear and random solids: moduli and stiffness against the load or the wall
+//! displacement with their fitted power laws, and ensembles of random lattices over seeds
+//! against the effective-medium line.
+
+use serde::Serialize;
+
+use super::figures::Figure;
+use super::plots::{Chart, Scale, Series, line_chart};
+use super::{number, optional};
+use crate::runner::RunRecord;
+use crate::table::scaling_fits;
+
+/// One figure per swept quantity of `scene` (not the sound speed, which the wave study draws):
+/// measured points and the fitted power law on log–log axes.
+pub fn scaling_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Figure>> {
+    let fits: Vec<_> =
+        scaling_fits(records).into_iter().filter(|f| f.scene == scene && f.quantity != "sound_speed").collect();
+    let mut figures = Vec::new();
+    for against in ["load_per_node", "wall_displacement"] {
+        let mine: Vec<_> = fits.iter().filter(|f| f.against == against).collect();
+        if mine.is_empty() {
+            continue;
+        }
+        let mut series = Vec::new();
+        for f in &mine {
+            let label =
+                if f.group.is_empty() { f.quantity.to_string() } else { format!("{}, {}", f.quantity, f.group) };
+            let (x0, y0) = f.points[0];
+            series.push(Series { label: format!("{label}: MD"), points: f.points.clone(), markers: true });
+            series.push(Series {
+                label: format!("{label}: fit x^{:.3} (R² = {:.5})", f.fit.exponent, f.fit.r_squared),
+                points: f.points.iter().map(|&(x, _)| (x, y0 * (x / x0).powf(f.fit.exponent))).collect(),
+                markers: false,
+            });
+        }
+        let (x_label, y_label, what) = match against {
+            "load_per_node" => ("load per top-row node F (N)", "modulus (Pa)", "moduli against the load"),
+            _ => ("wall displacement |ΔW| (m)", "stiffness of the chain (N/m)", "stiffness against |ΔW|"),
+        };
+        let chart = Chart {
+            title: format!("{scene}: {what}"),
+            x_label: x_label.into(),
+            y_label: y_label.into(),
+            scale: Scale::LogLog,
+        };
+        figures.push(Figure {
+            scene: scene.into(),
+            file: format!("plots/{scene}-{against}.svg"),
+            caption: format!(
+                "{scene}: {what} on log–log axes, secant (from the total deformation) and tangent (from a small \
+                 extra step), with fitted power laws. Linear springs: flat (exponent 0). Hertz springs: exponent 1/3 \
+                 against the load, 1/2 against the wall displacement."
+            ),
+            svg: line_chart(&chart, &series)?,
+        });
+    }
+    Ok(figures)
+}
+
+/// Runs of a random scene that differ only in their seed: mean and spread of the moduli.
+#[derive(Serialize)]
+pub struct EnsembleRow {
+    group: String,
+    kept: String,
+    seeds: usize,
+    mechanisms: usize,
+    youngs_mean: String,
+    youngs_spread: String,
+    shear_mean: String,
+    shear_spread: String,
+    poisson_mean: String,
+    poisson_spread: String,
+    md_static: String,
+}
+
+/// An ensemble: its label, the kept fraction of the interior bonds (1 − cut fraction) and its
+/// runs.
+type Ensemble<'a> = (String, f64, Vec<&'a RunRecord>);
+
+fn ensembles<'a>(records: &'a [RunRecord], scene: &str) -> Vec<Ensemble<'a>> {
+    let mut out: Vec<Ensemble> = Vec::new();
+    for r in records.iter().filter(|r| r.spec.scene == scene) {
+        let Some(l) = r.spec.lattice.as_ref().filter(|l| l.is_random() || r.spec.varied.contains_key("seed")) else {
+            continue;
+        };
+        let label = r.spec.varied_label(|path| path != "seed");
+        match out.iter_mut().find(|(l, _, _)| *l == label) {
+            Some((_, _, members)) => members.push(r),
+            None => out.push((label, 1.0 - l.cut_fraction, vec![r])),
+        }
+    }
+    out
+}
+
+/// Mean and sample standard deviation of the values present.
+fn mean_spread(values: impl Iterator<Item = Option<f64>>) -> (Option<f64>, Option<f64>) {
+    let v: Vec<f64> = values.flatten().collect();
+    if v.is_empty() {
+        return (None, None);
+    }
+    let mean = v.iter().sum::<f64>() / v.len() as f64;
+    let spread =
+        (v.len() > 1).then(|| (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (v.len() - 1) as f64).sqrt());
+    (Some(mean), spread)
+}
+
+/// The ensemble rows of `scene` (empty unless it is random or sweeps seeds).
+pub fn ensemble_rows(records: &[RunRecord], scene: &str) -> Vec<EnsembleRow> {
+    ensembles(records, scene)
+        .into_iter()
+        .map(|(group, kept, members)| {
+            let ok = || members.iter().filter(|r| r.status == "ok");
+            let (youngs_mean, youngs_spread) = mean_spread(ok().map(|r| r.metrics.youngs_modulus));
+            let (shear_mean, shear_spread) = mean_spread(ok().map(|r| r.metrics.shear_modulus));
+            let (poisson_mean, poisson_spread) = mean_spread(ok().map(|r| r.metrics.poisson_ratio));
+            let md_static = ok()
+                .flat_map(|r| {
+                    let m = &r.metrics;
+                    [(m.youngs_modulus, m.youngs_modulus_fem), (m.shear_modulus, m.shear_modulus_fem)]
+                })
+                .filter_map(|(md, fem)| crate::table::relative_error(md, fem).map(f64::abs))
+                .reduce(f64::max);
+            EnsembleRow {
+                group: if group.is_empty() { "all".into() } else { group },
+                kept: number(kept),
+                seeds: members.len(),
+                mechanisms: members.iter().filter(|r| r.status == "mechanism").count(),
+                youngs_mean: optional(youngs_mean),
+                youngs_spread: optional(youngs_spread),
+                shear_mean: optional(shear_mean),
+                shear_spread: optional(shear_spread),
+                poisson_mean: optional(poisson_mean),
+                poisson_spread: optional(poisson_spread),
+                md_static: md_static.map(|e| format!("{e:.1e}")).unwrap_or_else(|| "–".into()),
+            }
+        })
+        .collect()
+}
+
+/// Kept bond fraction below which a central-force network in d dimensions with coordination
+/// z loses rigidity in effective-medium theory: 2d/z = 4/8 for the square lattice with both
+/// diagonals.
+const RIGIDITY_THRESHOLD: f64 = 0.5;
+
+/// Mean E and G (± one standard deviation) of a scene's ensembles against the kept fraction,
+/// with the effective-medium line M(p) = M(1) (p − p_c)/(1 − p_c), p_c = 1/2, drawn from the
+/// uncut lattice's mean (or the best-kept ensemble's, scaled, when there is no uncut one).
+pub fn ensemble_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Option<Figure>> {
+    let ensembles = ensembles(records, scene);
+    if ensembles.iter().map(|(_, kept, _)| kept.to_bits()).collect::<std::collections::BTreeSet<_>>().len() < 2 {
+        return Ok(None);
+    }
+    let mut series = Vec::new();
+    for (name, get) in [
+        ("E", (|r: &RunRecord| r.metrics.youngs_modulus) as fn(&RunRecord) -> Option<f64>),
+        ("G", |r: &RunRecord| r.metrics.shear_modulus),
+    ] {
+        let mut points: Vec<(f64, f64, f64)> = ensembles
+            .iter()
+            .filter_map(|(_, kept, members)| {
+                let (mean, spread) = mean_spread(members.iter().filter(|r| r.status == "ok").map(|r| get(r)));
+                mean.map(|m| (*kept, m, spread.unwrap_or(0.0)))
+            })
+            .collect();
+        if points.is_empty() {
+            continue;
+        }
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let &(best_kept, best, _) = points.last().expect("not empty");
+        let full = best / ((best_kept - RIGIDITY_THRESHOLD) / (1.0 - RIGIDITY_THRESHOLD)).max(f64::MIN_POSITIVE);
+        series.push(Series {
+            label: format!("{name}: mean over seeds"),
+            points: points.iter().map(|p| (p.0, p.1)).collect(),
+            markers: true,
+        });
+        series.push(Series {
+            label: format!("{name}: mean ± one standard deviation"),
+            points: points.iter().flat_map(|p| [(p.0, p.1 - p.2), (p.0, p.1 + p.2)]).collect(),
+            markers: true,
+        });
+        series.push(Series {
+            label: format!("{name}: effective medium, zero at p = 1/2"),
+            points: vec![(RIGIDITY_THRESHOLD, 0.0), (1.0, full)],
+            markers: false,
+        });
+    }
+    if series.is_empty() {
+        return Ok(None);
+    }
+    let chart = Chart {
+        title: format!("{scene}: moduli against the kept bond fraction"),
+        x_label: "kept fraction p of the interior bonds".into(),
+        y_label: "modulus (Pa)".into(),
+        scale: Scale::Linear,
+    };
+    Ok(Some(Figure {
+        scene: scene.into(),
+        file: format!("plots/{scene}-dilution.svg"),
+        caption: format!(
+            "{scene}: Young's and shear moduli of randomly diluted lattices (mean over seeds, and mean ± one standard \
+             deviation) against the kept fraction p of the interior bonds, beside the effective-medium line for \
+             central-force networks, falling linearly to zero at p = 2d/z = 1/2. Networks that lost rigidity end as \
+             `mechanism` and are left out of the means."
+        ),
+        svg: line_chart(&chart, &series)?,
+    }))
+}
