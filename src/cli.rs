@@ -69,6 +69,17 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Set two campaigns' reports side by side: the joined results with ratios B/A, the fitted
+    /// exponents of both, and A and B overlaid in one figure per scene, parameter and quantity.
+    Compare {
+        /// Report directory of campaign A (e.g. reports/coursework).
+        a: PathBuf,
+        /// Report directory of campaign B (e.g. reports/coursework-hertz).
+        b: PathBuf,
+        /// Output directory [default: <reports>/compare-<A>-vs-<B>].
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
 }
 
 /// Parses the command line and does what it says.
@@ -82,6 +93,7 @@ pub fn run() -> anyhow::Result<()> {
             let config = BenchConfig { n: *n, steps: *steps, dilute: *dilute, bond_list: *bond_list };
             bench_command(&config, *threads, *repeat, *json)
         }
+        Command::Compare { a, b, out } => compare_command(&cli.reports, a, b, out.as_deref()),
     }
 }
 
@@ -207,5 +219,19 @@ fn bench_command(config: &BenchConfig, threads: Option<usize>, repeat: usize, js
             median.energy_drift
         );
     }
+    Ok(())
+}
+
+fn compare_command(reports: &Path, a: &Path, b: &Path, out: Option<&Path>) -> anyhow::Result<()> {
+    let done = crate::compare::compare(a, b, out, reports)?;
+    println!(
+        "{} against {}: {} joined rows, {} figures, {} fitted exponents -> {}",
+        a.display(),
+        b.display(),
+        done.rows,
+        done.plots,
+        done.exponents,
+        done.out.display()
+    );
     Ok(())
 }

@@ -10,6 +10,7 @@
 //! runner: rayon over RunSpecs, content-hash cache, one stored RunRecord per run
 //! [RunRecord] ──table──▶ results.csv / results.parquet (Polars)
 //! [RunRecord] ──report──▶ plots/*.svg, report.md, index.html (plotters, tera)
+//! two report directories ──compare──▶ compare.csv / .parquet, report.md, index.html, plots/
 //! ```
 //!
 //! The physics core (`model`, `sim`, `theory`, `measure`, `scenes`) does no I/O.
@@ -23,6 +24,7 @@
 
 pub mod bench;
 pub mod cli;
+pub mod compare;
 pub mod fem;
 pub mod measure;
 pub mod model;

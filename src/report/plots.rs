@@ -52,14 +52,16 @@ pub enum Scale {
     LogLog,
     /// Linear x, logarithmic y (energy ratios against time).
     LogY,
+    /// Logarithmic x, linear y (a quantity of order one against a parameter swept over decades).
+    LogX,
 }
 
 impl Scale {
     fn log_x(self) -> bool {
-        self == Scale::LogLog
+        matches!(self, Scale::LogLog | Scale::LogX)
     }
     fn log_y(self) -> bool {
-        self != Scale::Linear
+        matches!(self, Scale::LogLog | Scale::LogY)
     }
     /// True when the point can be drawn on these axes (positive where logarithmic).
     fn shows(self, (x, y): (f64, f64)) -> bool {
@@ -91,6 +93,11 @@ pub fn line_chart(chart: &Chart, series: &[Series]) -> anyhow::Result<String> {
             )?,
             Scale::LogY => draw(
                 &mut builder()?.build_cartesian_2d(x_range, y_range.log_scale()).map_err(draw_error)?,
+                chart,
+                series,
+            )?,
+            Scale::LogX => draw(
+                &mut builder()?.build_cartesian_2d(x_range.log_scale(), y_range).map_err(draw_error)?,
                 chart,
                 series,
             )?,
@@ -136,8 +143,9 @@ where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
-    // Decade ticks read best as 1e-3; linear ticks keep plotters' own format.
+    // Decade ticks read best as 1e-3; linear ticks keep plotters' own format where it fits.
     let scientific = |v: &f64| format!("{v:.0e}");
+    let (x_linear, y_linear) = (linear_labels(ctx.x_range()), linear_labels(ctx.y_range()));
     let mut mesh = ctx.configure_mesh();
     mesh.x_desc(&chart.x_label)
         .y_desc(&chart.y_label)
@@ -145,9 +153,13 @@ where
         .axis_desc_style(("sans-serif", 15));
     if chart.scale.log_x() {
         mesh.x_label_formatter(&scientific);
+    } else if let Some(labels) = &x_linear {
+        mesh.x_label_formatter(labels);
     }
     if chart.scale.log_y() {
         mesh.y_label_formatter(&scientific);
+    } else if let Some(labels) = &y_linear {
+        mesh.y_label_formatter(labels);
     }
     mesh.draw().map_err(draw_error)?;
     for (index, s) in series.iter().enumerate() {
@@ -172,6 +184,20 @@ where
         .position(if chart.scale.log_x() { SeriesLabelPosition::UpperLeft } else { SeriesLabelPosition::UpperRight })
         .draw()
         .map_err(draw_error)
+}
+
+/// Labels of a linear axis over `range` where plotters' own do not fit: they never use an
+/// exponent, so from 1e6 up (a modulus of 2e11) they overflow the label area and below 1e-4 (an
+/// error of 1e-7) they round to 0. There the labels are scientific, with the digits that tell
+/// neighbouring ticks (about ten over the range) apart; elsewhere plotters' stay.
+fn linear_labels(range: std::ops::Range<f64>) -> Option<impl Fn(&f64) -> String> {
+    let largest = range.start.abs().max(range.end.abs());
+    if largest == 0.0 || (1e-4..1e6).contains(&largest) {
+        return None;
+    }
+    let step = (range.end - range.start).abs() / 10.0;
+    let digits = (largest.log10().floor() - step.log10().floor()).clamp(0.0, 6.0) as usize;
+    Some(move |v: &f64| format!("{v:.digits$e}"))
 }
 
 /// Colour of a value in [−1, 1] on a diverging scale: blue (−1), white (0), red (+1).

@@ -1,0 +1,186 @@
+//! `mdsolids compare`, through the binary: two small campaigns, one with linear springs and one
+//! with power-law springs, are run and compared; then the refusals of directories that are not
+//! campaign reports.
+
+use polars::prelude::{DataFrame, ParquetReader, SerReader};
+use std::path::Path;
+use std::process::{Command, Output};
+
+/// Linear springs: a collision over two time steps and a wave chain over two impact speeds.
+const LINEAR: &str = "version: 1
+name: linear
+defaults:
+  material: {mass: 1.0, k: 1.0}
+scenes:
+  - name: pair
+    kind: pair
+    material: {contact: true}
+    v0: 1.0
+    grid:
+      time.dt_per_tc: [20, 50]
+  - name: wave
+    kind: chain
+    n: 30
+    node: first
+    wave: {}
+    time: {duration_tc: 60}
+    grid:
+      v0: [0.01, 0.1]
+";
+
+/// The same scenes with power-law springs; the pair also varies β, which the linear campaign
+/// does not, so each linear pair run meets two of these.
+const POWER: &str = "version: 1
+name: power
+defaults:
+  material: {mass: 1.0, k: 1.0, law: power}
+scenes:
+  - name: pair
+    kind: pair
+    material: {contact: true}
+    v0: 1.0
+    grid:
+      time.dt_per_tc: [20, 50]
+      material.beta: [1.5, 2.0]
+  - name: wave
+    kind: chain
+    n: 30
+    node: first
+    wave: {}
+    material: {contact: true}
+    time: {duration_tc: 60}
+    grid:
+      v0: [0.01, 0.1]
+";
+
+fn mdsolids(reports: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+        .arg("--reports")
+        .arg(reports)
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+/// Runs the binary and returns its standard output, failing the test with its error otherwise.
+fn succeed(reports: &Path, args: &[&str]) -> String {
+    let out = mdsolids(reports, args);
+    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// Runs the binary, expects it to refuse, and returns its error message.
+fn refuse(reports: &Path, args: &[&str]) -> String {
+    let out = mdsolids(reports, args);
+    assert!(!out.status.success(), "{args:?} was accepted");
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
+    stderr
+}
+
+fn read(path: &Path) -> DataFrame {
+    ParquetReader::new(std::fs::File::open(path).unwrap()).finish().unwrap()
+}
+
+fn floats(frame: &DataFrame, name: &str) -> Vec<Option<f64>> {
+    frame.column(name).unwrap().f64().unwrap().iter().collect()
+}
+
+fn texts(frame: &DataFrame, name: &str) -> Vec<String> {
+    frame.column(name).unwrap().str().unwrap().iter().map(|s| s.unwrap().to_string()).collect()
+}
+
+/// Runs both campaigns under `reports`.
+fn run_campaigns(reports: &Path) {
+    for (name, yaml) in [("linear.yaml", LINEAR), ("power.yaml", POWER)] {
+        let file = reports.join(name);
+        std::fs::write(&file, yaml).unwrap();
+        succeed(reports, &["run", file.to_str().unwrap()]);
+    }
+}
+
+#[test]
+fn linear_against_power_law() {
+    let dir = tempfile::tempdir().unwrap();
+    let reports = dir.path();
+    run_campaigns(reports);
+    let (a, b) = (reports.join("linear"), reports.join("power"));
+    let stdout = succeed(reports, &["compare", a.to_str().unwrap(), b.to_str().unwrap()]);
+    let out = reports.join("compare-linear-vs-power");
+    assert!(stdout.contains("6 joined rows") && stdout.contains(out.to_str().unwrap()), "{stdout}");
+
+    // pair: 2 linear runs × 2 values of β on the power side (β is no key); wave: joined on v0.
+    let joined = read(&out.join("compare.parquet"));
+    assert_eq!(joined.height(), 6);
+    let scenes = texts(&joined, "scene");
+    assert_eq!(scenes.iter().filter(|s| *s == "pair").count(), 4);
+    assert_eq!(scenes.iter().filter(|s| *s == "wave").count(), 2);
+    assert!(texts(&joined, "status_a").iter().chain(&texts(&joined, "status_b")).all(|s| s == "ok"));
+    let run_a = texts(&joined, "run_id_a");
+    assert!(run_a[..4].iter().all(|id| run_a[..4].iter().filter(|other| *other == id).count() == 2));
+    assert_eq!(floats(&joined, "v0_a")[4..], floats(&joined, "v0_b")[4..], "wave rows meet at equal v0");
+
+    // The values are the runs' own: A's come from A's table row by row. Exact equality: they
+    // are copied, not computed, and Parquet stores f64 bit for bit.
+    let results_a = read(&a.join("results.parquet"));
+    let ids = texts(&results_a, "run_id");
+    let durations = floats(&results_a, "contact_duration");
+    let duration_a = floats(&joined, "contact_duration_a");
+    for (row, id) in run_a.iter().enumerate() {
+        let source = ids.iter().position(|i| i == id).unwrap();
+        assert_eq!(duration_a[row].map(f64::to_bits), durations[source].map(f64::to_bits), "{id}");
+    }
+
+    // The ratio is B/A. Exact equality: it is the same IEEE division of the same stored values.
+    let duration_b = floats(&joined, "contact_duration_b");
+    let ratio = floats(&joined, "contact_duration_ratio");
+    let theory_ratio = floats(&joined, "contact_duration_theory_ratio");
+    for row in 0..4 {
+        let (da, db) = (duration_a[row].unwrap(), duration_b[row].unwrap());
+        assert_eq!(ratio[row], Some(db / da), "row {row}");
+        // The measured ratio follows the analytical one. Tolerance 3e-3: it bounds the sum of the
+        // two sides' errors against their analytical durations at t_c/20 (measured: 1.0e-3
+        // linear, 1.2e-3 and 1.5e-3 for β = 1.5 and 2; second order, so 4× that at t_c/10),
+        // which bounds the ratio's error whatever their signs; at t_c/50 it is 6× looser still.
+        let expected = theory_ratio[row].unwrap();
+        assert!((ratio[row].unwrap() / expected - 1.0).abs() < 3e-3, "row {row}: {ratio:?} against {expected}");
+    }
+    assert!(ratio[4..].iter().all(Option::is_none), "wave chains have no contact duration");
+
+    let csv = std::fs::read_to_string(out.join("compare.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 7, "a header and the six rows");
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    let figure = "plots/pair-contact_duration-vs-time.dt_per_tc.svg";
+    assert!(out.join(figure).is_file() && report.contains(figure), "{figure} missing or not linked");
+    assert!(report.contains("Varied in B only: `material.beta`"), "{report}");
+    assert!(report.contains("| wave |") && report.contains("| linear | power |"), "exponent table: {report}");
+    let html = std::fs::read_to_string(out.join("index.html")).unwrap();
+    assert!(html.contains("<table>") && html.contains(figure));
+
+    // Without B's summary the exponent section says which file is missing; --out moves it all.
+    std::fs::remove_file(b.join("summary.csv")).unwrap();
+    let elsewhere = reports.join("elsewhere");
+    succeed(reports, &["compare", a.to_str().unwrap(), b.to_str().unwrap(), "--out", elsewhere.to_str().unwrap()]);
+    let report = std::fs::read_to_string(elsewhere.join("report.md")).unwrap();
+    let missing = b.join("summary.csv");
+    assert!(report.contains(&format!("`{}` does not exist", missing.display())), "{report}");
+}
+
+#[test]
+fn refuses_what_is_not_a_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let reports = dir.path();
+    let missing = reports.join("missing");
+    let empty = reports.join("empty");
+    std::fs::create_dir(&empty).unwrap();
+    let (missing, empty_name) = (missing.to_str().unwrap(), empty.to_str().unwrap());
+
+    let error = refuse(reports, &["compare", missing, empty_name]);
+    assert!(error.contains(&format!("report directory '{missing}' does not exist")), "{error}");
+    let error = refuse(reports, &["compare", empty_name, empty_name]);
+    assert!(error.contains(&format!("'{}' is missing", empty.join("results.parquet").display())), "{error}");
+    std::fs::write(empty.join("results.parquet"), b"not parquet").unwrap();
+    let error = refuse(reports, &["compare", empty_name, empty_name]);
+    assert!(error.contains(&format!("cannot read the table '{}'", empty.join("results.parquet").display())), "{error}");
+    assert!(!reports.join("compare-empty-vs-empty").exists(), "nothing is written for a refused comparison");
+}
