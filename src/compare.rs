@@ -19,8 +19,6 @@ use crate::output::write_atomically;
 use crate::report::plots::{Chart, Scale, Series, line_chart};
 
 const MARKDOWN_TEMPLATE: &str = include_str!("../templates/compare.md.tera");
-/// The campaign report's page shell: the comparison is Markdown turned into HTML the same way.
-const HTML_TEMPLATE: &str = include_str!("../templates/index.html.tera");
 
 /// The columns a `summary.csv` row is identified by. `law` is not among them: comparing a linear
 /// campaign with its Hertz twin means comparing fits of different laws.
@@ -87,20 +85,8 @@ pub fn compare(a: &Path, b: &Path, out: Option<&Path>, reports: &Path) -> anyhow
 
 /// Writes `report.md` and `index.html` (the same Markdown as HTML inside the page shell).
 fn render(out: &Path, context: &ReportContext) -> anyhow::Result<()> {
-    let mut tera = tera::Tera::new();
-    tera.add_raw_template("compare.md", MARKDOWN_TEMPLATE).context("templates/compare.md.tera does not parse")?;
-    tera.add_raw_template("index.html", HTML_TEMPLATE).context("templates/index.html.tera does not parse")?;
-    let mut context = tera::Context::from_serialize(context).context("cannot build the comparison context")?;
-    let markdown = tera.render("compare.md", &context).context("cannot render templates/compare.md.tera")?;
-    write_atomically(&out.join("report.md"), markdown.as_bytes())?;
-    let mut body = String::new();
-    pulldown_cmark::html::push_html(
-        &mut body,
-        pulldown_cmark::Parser::new_ext(&markdown, pulldown_cmark::Options::ENABLE_TABLES),
-    );
-    context.insert("body", &body);
-    let html = tera.render("index.html", &context).context("cannot render templates/index.html.tera")?;
-    write_atomically(&out.join("index.html"), html.as_bytes())
+    let context = tera::Context::from_serialize(context).context("cannot build the comparison context")?;
+    crate::report::write_pages(out, ("compare.md", MARKDOWN_TEMPLATE), context)
 }
 
 /// One column of a table read back: numbers (any numeric type, as f64) or text.

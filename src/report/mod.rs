@@ -35,21 +35,32 @@ pub fn render(campaign: &Campaign, layout: &Layout, records: &[RunRecord]) -> an
         .filter(|scene| layout.side_by_side_movie(scene).is_file())
         .collect();
     let context = context::build(campaign, records, &figures, &side_by_side);
-    let mut tera = tera::Tera::new();
-    tera.add_raw_template("report.md", MARKDOWN_TEMPLATE).context("templates/report.md.tera does not parse")?;
-    tera.add_raw_template("index.html", HTML_TEMPLATE).context("templates/index.html.tera does not parse")?;
     let context = tera::Context::from_serialize(&context).context("cannot build the report context")?;
-    let markdown = tera.render("report.md", &context).context("cannot render templates/report.md.tera")?;
-    write_atomically(&layout.file("report.md"), markdown.as_bytes())?;
+    write_pages(&layout.root, ("report.md", MARKDOWN_TEMPLATE), context)
+}
+
+/// Renders the Markdown template `(name, text)` with `context` into `<dir>/report.md`, and the
+/// same Markdown as HTML (pulldown-cmark) inside the page shell into `<dir>/index.html`, so
+/// the text exists once.
+pub(crate) fn write_pages(
+    dir: &std::path::Path,
+    markdown: (&str, &str),
+    mut context: tera::Context,
+) -> anyhow::Result<()> {
+    let (name, text) = markdown;
+    let mut tera = tera::Tera::new();
+    tera.add_raw_template(name, text).with_context(|| format!("templates/{name}.tera does not parse"))?;
+    tera.add_raw_template("index.html", HTML_TEMPLATE).context("templates/index.html.tera does not parse")?;
+    let markdown = tera.render(name, &context).with_context(|| format!("cannot render templates/{name}.tera"))?;
+    write_atomically(&dir.join("report.md"), markdown.as_bytes())?;
     let mut body = String::new();
     pulldown_cmark::html::push_html(
         &mut body,
         pulldown_cmark::Parser::new_ext(&markdown, pulldown_cmark::Options::ENABLE_TABLES),
     );
-    let mut page = context;
-    page.insert("body", &body);
-    let html = tera.render("index.html", &page).context("cannot render templates/index.html.tera")?;
-    write_atomically(&layout.file("index.html"), html.as_bytes())
+    context.insert("body", &body);
+    let html = tera.render("index.html", &context).context("cannot render templates/index.html.tera")?;
+    write_atomically(&dir.join("index.html"), html.as_bytes())
 }
 
 /// A number with 6 significant digits, plain where that reads well, scientific otherwise.
