@@ -27,6 +27,11 @@ fn optional_floats(records: &[RunRecord], name: &str, get: impl Fn(&RunRecord) -
     Column::new(name.into(), records.iter().map(|r| get(r).filter(|v| v.is_finite())).collect::<Vec<Option<f64>>>())
 }
 
+/// A column of one measured quantity.
+fn metric(records: &[RunRecord], name: &str, get: fn(&crate::runner::Metrics) -> Option<f64>) -> Column {
+    optional_floats(records, name, move |r| get(&r.metrics))
+}
+
 fn strings(records: &[RunRecord], name: &str, get: impl Fn(&RunRecord) -> String) -> Column {
     Column::new(name.into(), records.iter().map(get).collect::<Vec<String>>())
 }
@@ -101,9 +106,7 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         columns.extend(directional_columns(records));
     }
     if records.iter().any(|r| r.spec.kind == crate::spec::SceneKind::Chain && r.spec.relax.is_some()) {
-        let m = |name: &str, get: fn(&crate::runner::Metrics) -> Option<f64>| {
-            optional_floats(records, name, move |r| get(&r.metrics))
-        };
+        let m = |name: &str, get| metric(records, name, get);
         columns.extend([
             optional_floats(records, "wall_displacement", |r| {
                 r.spec.relax.filter(|_| r.spec.lattice.is_none()).map(|_| r.spec.chain_wall_extension())
@@ -155,9 +158,7 @@ fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
     let words = |get: fn(&crate::spec::LatticeSpec) -> &'static str| {
         records.iter().map(|r| r.spec.lattice.as_ref().map(get)).collect::<Vec<Option<&str>>>()
     };
-    let m = |name: &str, get: fn(&crate::runner::Metrics) -> Option<f64>| {
-        optional_floats(records, name, move |r| get(&r.metrics))
-    };
+    let m = |name: &str, get| metric(records, name, get);
     vec![
         Column::new("nx".into(), sizes(|l| l.nx)),
         Column::new("ny".into(), sizes(|l| l.ny)),

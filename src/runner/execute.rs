@@ -431,7 +431,6 @@ fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metr
         metrics.secant_stiffness = keep((extension != 0.0).then(|| measured_force / extension));
         metrics.secant_stiffness_theory = Some(secant);
         metrics.tangent_stiffness_theory = Some(tangent);
-        metrics.dissipation_time = outcome.trace.relaxed_at;
     }
     if let Some(lattice) = spec.lattice.as_ref().filter(|l| l.impulse.is_none()) {
         let p = &outcome.state.particles;
@@ -451,7 +450,6 @@ fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metr
         metrics.shear_modulus = keep(md.shear_modulus);
         let shape = lattice_shape(spec, lattice);
         metrics.homogeneity = keep(homogeneity(&shape, &ux));
-        metrics.dissipation_time = outcome.trace.relaxed_at;
         // The continuum of the regular linear lattice (a random one is compared with it).
         if spec.law == LawName::Linear {
             let (k_rising, k_falling) = lattice.diagonal_stiffness();
@@ -462,6 +460,7 @@ fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metr
         }
     }
     if let Some(relax) = spec.relax {
+        metrics.dissipation_time = outcome.trace.relaxed_at;
         let checks = relaxation_checks(spec);
         let scale = if spec.lattice.is_some() { "the load per node" } else { "the wall force" };
         metrics.dissipation_criterion =

@@ -105,26 +105,6 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         (SceneKind::Chain, _) if relaxing_chain => Some(resolve_relax(raw, Control::Force)?),
         _ => None,
     };
-    if relaxing_chain {
-        let n = n.unwrap_or(1);
-        let walls = wall_distance.unwrap_or_default();
-        require(
-            walls > (n as f64 + 0.1) * spacing,
-            "wall_distance",
-            walls,
-            &format!(
-                "more than (n + 0.1) · spacing = {}: a relaxing chain starts at rest spacing from the left wall, so \
-                 the last spring takes the whole wall displacement at first and must not collapse",
-                (n as f64 + 0.1) * spacing
-            ),
-        )?;
-        require(
-            v0 > 0.0 || (walls - (n + 1) as f64 * spacing).abs() > 1e-12 * walls,
-            "wall_distance",
-            walls,
-            "a relaxing chain needs its walls moved from (n + 1) · spacing, or a v0",
-        )?;
-    }
     // The spec so far: t_c, γ and dt follow from the reference extension it implies.
     let mut spec = RunSpec {
         campaign: campaign.to_string(),
@@ -159,6 +139,25 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         wave,
         movie: None,
     };
+    if relaxing_chain {
+        let walls = spec.wall_distance.unwrap_or_default();
+        let least = (spec.n.unwrap_or(1) as f64 + 0.1) * spacing;
+        require(
+            walls > least,
+            "wall_distance",
+            walls,
+            &format!(
+                "more than (n + 0.1) · spacing = {least}: a relaxing chain starts at rest spacing from the left wall, \
+                 so the last spring takes the whole wall displacement at first and must not collapse"
+            ),
+        )?;
+        require(
+            v0 > 0.0 || spec.chain_wall_extension().abs() > 1e-12 * walls,
+            "wall_distance",
+            walls,
+            "a relaxing chain needs its walls moved from (n + 1) · spacing, or a v0",
+        )?;
+    }
     // A power law has no stiffness at δ = 0: its tangent β C |δ|^(β−1) at the reference
     // extension stands in for k where a linear formula is needed.
     let stiffness_for_damping = match law {
@@ -182,7 +181,7 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     }
     .map_err(|e| Issue { path: "damping".into(), value: format!("γ = {gamma}"), allowed: e.to_string() })?;
 
-    let integrator = time.integrator.unwrap_or(IntegratorKind::PositionVerlet);
+    let integrator = spec.integrator;
     require(
         integrator.allows_damping() || (gamma == 0.0 && gamma_background == 0.0),
         "time.integrator",
@@ -233,20 +232,7 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         )?;
     }
 
-    Ok(RunSpec {
-        gamma,
-        restitution_target,
-        gamma_background,
-        integrator,
-        t_c,
-        dt,
-        duration,
-        steps,
-        samples,
-        gap,
-        movie,
-        ..spec
-    })
+    Ok(RunSpec { gamma, restitution_target, gamma_background, t_c, dt, duration, steps, samples, gap, movie, ..spec })
 }
 
 /// Mass and stiffness of a lattice derived from the solid it stands for, and how.
