@@ -53,6 +53,16 @@ fn hertz_chain_between_moved_walls_matches_the_analytical_equilibrium() {
     }
 }
 
+#[test]
+fn a_residual_force_needs_a_wall_force_to_be_relative_to() {
+    // Walls at rest spacing and a kick: the equilibrium wall force is 0, so a residual-force
+    // tolerance relative to it could never be met; refused before anything runs.
+    let yaml = "version: 1\nname: t\nscenes:\n  - name: w\n    kind: chain\n    n: 9\n    v0: 0.1\n    \
+                damping: {restitution: 0.5}\n    relax: {residual_force: 1.0e-9}\n";
+    let error = mdsolids::stability::parse_campaign("walls.yaml", yaml).unwrap_err().to_string();
+    assert!(error.contains("relax.residual_force") && error.contains("kinetic_ratio"), "{error}");
+}
+
 /// A 6 × 6 Hertz lattice (bonded, β = 3/2, both diagonals) pulled with a load over two decades.
 fn hertz_lattice(case: &str) -> Vec<RunRecord> {
     execute_all(&format!(

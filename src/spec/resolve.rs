@@ -157,6 +157,14 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
             walls,
             "a relaxing chain needs its walls moved from (n + 1) · spacing, or a v0",
         )?;
+        // The residual-force criterion is relative to the equilibrium wall force: none when
+        // the walls are not moved, and the run could never count as relaxed.
+        require(
+            spec.relax.is_none_or(|r| r.residual_force.is_none()) || spec.chain_wall_extension() != 0.0,
+            "relax.residual_force",
+            "(set)",
+            "needs walls moved from (n + 1) · spacing (it is a fraction of the wall force); use relax.kinetic_ratio",
+        )?;
     }
     // A power law has no stiffness at δ = 0: its tangent β C |δ|^(β−1) at the reference
     // extension stands in for k where a linear formula is needed.
