@@ -77,3 +77,37 @@ fn a_scene_can_show_its_runs_side_by_side() {
     // Two panels of 300 − 90 pixels and one colour bar of 90.
     assert_eq!(width, 2 * (300 - 90) + 90);
 }
+
+#[test]
+fn bonds_can_be_coloured_by_strain() {
+    // A free 6 × 6 lattice whose top-right node is kicked down and to the left: the bonds it
+    // pushes are compressed (blue), those it pulls stretched (red).
+    let reports = tempfile::tempdir().unwrap();
+    let yaml = |strain: bool| {
+        format!(
+            "version: 1\nname: strain{strain}\nscenes:\n  - name: kick\n    kind: lattice\n    lattice: {{size: 6}}\n    \
+             supports: free\n    impulse: {{velocity: [-0.05, -0.1]}}\n    time: {{integrator: velocity-verlet}}\n    \
+             movie: {{frames: 6, width: 400, height: 400, bond_strain: {strain}}}\n"
+        )
+    };
+    let hues = |strain: bool| {
+        let campaign = parse_campaign("strain.yaml", &yaml(strain)).unwrap();
+        let layout = Layout::new(reports.path(), &campaign.name);
+        let done = run_campaign(&campaign, &layout, Some(1)).unwrap();
+        assert_eq!(done.records[0].status, "ok", "{}", done.records[0].message);
+        let (width, frames) = frames(&layout.movie_file(&done.records[0].run_id));
+        // Pixels left of the colour bar, over all frames, that are clearly red or clearly blue.
+        let inside = |i: usize| i % width as usize + 90 < width as usize;
+        let count = |hue: &dyn Fn(&[u8]) -> bool| -> usize {
+            frames.iter().map(|f| f.chunks(4).enumerate().filter(|(i, p)| inside(*i) && hue(p)).count()).sum()
+        };
+        let red = count(&|p| p[0] > 150 && p[1] < 100 && p[2] < 100);
+        let blue = count(&|p| p[2] > 150 && p[0] < 100 && p[1] < 120);
+        (red, blue)
+    };
+    let (red, blue) = hues(true);
+    assert!(red > 50 && blue > 50, "stretched bonds red, compressed blue: {red} red, {blue} blue pixels");
+    // Without the option the bonds are grey and the discs' colour scale (violet to yellow) has
+    // no red.
+    assert_eq!(hues(false).0, 0);
+}

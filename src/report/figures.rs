@@ -78,6 +78,7 @@ pub fn draw_all(campaign: &Campaign, records: &[RunRecord]) -> anyhow::Result<Ve
         }
         figures.extend(studies::precision_figures(records, scene)?);
         figures.extend(studies::wave_figures(records, scene)?);
+        figures.extend(studies::probe_figures(records, scene)?);
         figures.extend(super::solids::scaling_figures(records, scene)?);
         figures.extend(super::solids::ensemble_figure(records, scene)?);
         if studies::is_stability_scene(records, scene) {

@@ -27,6 +27,11 @@ pub fn render(campaign: &Campaign, layout: &Layout, records: &[RunRecord]) -> an
     for figure in &figures {
         write_atomically(&layout.file(&figure.file), figure.svg.as_bytes())?;
     }
+    for record in records {
+        if let Some(csv) = studies::probe_table(record) {
+            write_atomically(&layout.file(&format!("probes/{}.csv", record.run_id)), csv.as_bytes())?;
+        }
+    }
     // Side-by-side movies exist only when their runs were simulated together (see the runner).
     let side_by_side: Vec<String> = campaign
         .scenes

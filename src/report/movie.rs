@@ -1,10 +1,10 @@
 //! Movies: an animated GIF of a run, particles as discs coloured by speed (with a colour bar),
-//! bonds as grey lines, the time on every frame.
+//! bonds as grey lines (or coloured by strain), the time on every frame.
 
 use plotters::prelude::*;
 use std::path::Path;
 
-use super::plots::{draw_error, ensure_font};
+use super::plots::{diverging, draw_error, ensure_font};
 use crate::runner::Movie;
 
 /// Delay between frames (ms): 12.5 frames per second.
@@ -56,7 +56,7 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
     // The shortest bond at the start sets the disc size and the margin.
     let spacing = panels
         .iter()
-        .flat_map(|m| m.bonds.iter().map(move |&(i, j)| (&m.frames[0], i, j)))
+        .flat_map(|m| m.bonds.iter().map(move |&(i, j, _)| (&m.frames[0], i, j)))
         .map(|(first, i, j)| (first.x[i] - first.x[j]).hypot(first.y[i] - first.y[j]))
         .filter(|d| *d > 0.0)
         .fold(f64::INFINITY, f64::min);
@@ -67,7 +67,9 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
     let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
     let x_range = (cx - scale * plot_w / 2.0)..(cx + scale * plot_w / 2.0);
     let y_range = (cy - scale * plot_h / 2.0)..(cy + scale * plot_h / 2.0);
-    let radius = (0.35 * spacing / scale).clamp(2.0, 14.0) as i32;
+    // Smaller discs when the bonds carry colour, so the bonds show between them.
+    let disc = if panels.iter().any(|m| m.spec.bond_strain) { 0.2 } else { 0.35 };
+    let radius = (disc * spacing / scale).clamp(2.0, 14.0) as i32;
     // Colours span the speeds after the first frame: a kicked node's start speed would leave a
     // spreading 2D wave too dark to see; it is drawn at the top colour (clamped) instead.
     let skip = usize::from(frames > 1);
@@ -77,6 +79,21 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
         .flat_map(|f| f.speed.iter().copied())
         .fold(0.0f64, f64::max);
     let fastest = if fastest > 0.0 { fastest } else { 1.0 };
+    // Bond strain ε = (|r_ij| − rest)/rest on a diverging scale that saturates at the 99th
+    // percentile of |ε| over the run: a kick strains its first bonds far more than the wave
+    // it sends, which would otherwise fade to white.
+    let strain = |frame: &crate::sim::Frame, &(i, j, rest): &(usize, usize, f64)| {
+        (frame.x[i] - frame.x[j]).hypot(frame.y[i] - frame.y[j]) / rest - 1.0
+    };
+    let mut strains: Vec<f64> = panels
+        .iter()
+        .filter(|m| m.spec.bond_strain)
+        .flat_map(|m| m.frames.iter().flat_map(move |f| m.bonds.iter().map(move |b| strain(f, b).abs())))
+        .filter(|e| *e > 0.0)
+        .collect();
+    strains.sort_by(f64::total_cmp);
+    let largest_strain = strains.get(strains.len() * 99 / 100).copied().unwrap_or(0.0);
+    let strained = largest_strain > 0.0;
     let temporary = path.with_extension("gif.tmp");
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir)?;
@@ -100,8 +117,13 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
                     .map_err(draw_error)?;
                 let mut ctx =
                     ChartBuilder::on(&body).build_cartesian_2d(x_range.clone(), y_range.clone()).map_err(draw_error)?;
-                ctx.draw_series(movie.bonds.iter().map(|&(i, j)| {
-                    PathElement::new(vec![(frame.x[i], frame.y[i]), (frame.x[j], frame.y[j])], RGBColor(170, 170, 170))
+                ctx.draw_series(movie.bonds.iter().map(|bond @ &(i, j, _)| {
+                    let style = if movie.spec.bond_strain && strained {
+                        diverging(strain(frame, bond) / largest_strain).stroke_width(2)
+                    } else {
+                        RGBColor(170, 170, 170).stroke_width(1)
+                    };
+                    PathElement::new(vec![(frame.x[i], frame.y[i]), (frame.x[j], frame.y[j])], style)
                 }))
                 .map_err(draw_error)?;
                 ctx.draw_series((0..frame.x.len()).map(|i| {
@@ -109,7 +131,7 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
                 }))
                 .map_err(draw_error)?;
             }
-            draw_colour_bar(&bar, fastest, height)?;
+            draw_colour_bar(&bar, fastest, strained.then_some(largest_strain), height)?;
             root.present().map_err(draw_error)?;
         }
     }
@@ -117,10 +139,12 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
     Ok(())
 }
 
-/// The colour bar: 0 at the bottom, the fastest speed at the top.
+/// The colour bar: 0 at the bottom, the fastest speed at the top; below it, when bonds are
+/// coloured, the strain scale (red stretched, blue compressed, full colour from ±`largest_strain`).
 fn draw_colour_bar(
     bar: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
     fastest: f64,
+    largest_strain: Option<f64>,
     height: u32,
 ) -> anyhow::Result<()> {
     let (top, bottom) = (30i32, height as i32 - 20);
@@ -134,6 +158,12 @@ fn draw_colour_bar(
     let style = ("sans-serif", 12).into_font().color(&BLACK);
     bar.draw(&Text::new(format!("{fastest:.2e}"), (34, top), style.clone())).map_err(draw_error)?;
     bar.draw(&Text::new("0".to_string(), (34, bottom - 12), style.clone())).map_err(draw_error)?;
-    bar.draw(&Text::new("|v| (m/s)".to_string(), (4, 8), style)).map_err(draw_error)?;
+    bar.draw(&Text::new("|v| (m/s)".to_string(), (4, 8), style.clone())).map_err(draw_error)?;
+    if let Some(largest) = largest_strain {
+        // Bonds: red stretched, blue compressed, full colour at ±largest.
+        bar.draw(&Text::new("ε:".to_string(), (2, bottom + 4), style.clone())).map_err(draw_error)?;
+        bar.draw(&Text::new(format!("±{largest:.1e}"), (16, bottom + 4), style.color(&diverging(1.0))))
+            .map_err(draw_error)?;
+    }
     Ok(())
 }

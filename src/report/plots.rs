@@ -201,7 +201,7 @@ fn linear_labels(range: std::ops::Range<f64>) -> Option<impl Fn(&f64) -> String>
 }
 
 /// Colour of a value in [−1, 1] on a diverging scale: blue (−1), white (0), red (+1).
-fn diverging(value: f64) -> RGBColor {
+pub(super) fn diverging(value: f64) -> RGBColor {
     let v = value.clamp(-1.0, 1.0);
     let fade = |c: f64| (255.0 * (1.0 - v.abs()) + c * v.abs()) as u8;
     if v >= 0.0 { RGBColor(fade(200.0), fade(30.0), fade(30.0)) } else { RGBColor(fade(30.0), fade(60.0), fade(200.0)) }

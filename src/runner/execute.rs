@@ -15,8 +15,8 @@ use crate::scenes::{
     build_scene, chain_equilibrium, chain_has_normal_modes, drive_travel, lattice_bonds, lattice_springs, law_kind,
     pair_references, relaxation_checks, top_row,
 };
-use crate::sim::{LawKind, Outcome, RunStatus, Scene, Trace};
-use crate::spec::{Control, LatticeSpec, LawName, LoadCase, RunSpec, SceneKind, reference_extension};
+use crate::sim::{LawKind, Outcome, ProbeTrace, RunStatus, Scene, Trace};
+use crate::spec::{Control, LatticeSpec, LawName, LoadCase, ProbeLine, RunSpec, SceneKind, reference_extension};
 use crate::stability::estimate;
 
 /// Runs `spec` and returns its record; never panics.
@@ -42,16 +42,19 @@ pub fn execute(spec: &RunSpec) -> RunRecord {
             record.movie = movie;
             if let Some(lattice) = &spec.lattice {
                 // Recorded to compare with a reference run or to follow a wave: too bulky to
-                // store whole. An impulse lattice keeps the y displacements of the kicked node's
-                // column, the wave's straight path down, for the space–time picture.
+                // store whole. The probed lines are kept: an impulse lattice's kicked column
+                // (the wave's straight path down, for the space–time picture) and the user's.
                 let t = &mut outcome.trace;
-                if let Some(impulse) = lattice.impulse {
-                    let ix = impulse.node % lattice.nx;
-                    let column: Vec<usize> = (0..lattice.ny).map(|iy| iy * lattice.nx + ix).collect();
-                    t.column_displacement =
-                        t.displacement_y.iter().map(|row| column.iter().map(|&i| row[i]).collect()).collect();
+                let kicked = lattice.impulse.map(|impulse| ProbeLine::Column(impulse.node % lattice.nx));
+                let mut lines: Vec<ProbeLine> = kicked.into_iter().collect();
+                lines.extend(lattice.probes.iter().filter(|&&line| Some(line) != kicked));
+                if !t.displacement_x.is_empty() {
+                    t.probes = lines
+                        .into_iter()
+                        .map(|line| ProbeTrace::from_trace(line.name(), line.nodes(lattice.nx, lattice.ny), t))
+                        .collect();
                 }
-                (t.displacement_x, t.displacement_y, t.velocity_x) = Default::default();
+                (t.displacement_x, t.displacement_y, t.velocity_x, t.velocity_y) = Default::default();
             }
             record.status = outcome.trace.status.word().into();
             record.message = outcome.trace.message.clone();
@@ -126,9 +129,9 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
     let start = (scene.particles.x.clone(), scene.particles.y.clone());
     let mut bonds = Vec::new();
     if spec.movie.is_some() {
-        scene.network.for_each_bond(|i, j, _, _, shift| {
+        scene.network.for_each_bond(|i, j, rest, _, shift| {
             if shift == 0.0 {
-                bonds.push((i, j));
+                bonds.push((i, j, rest));
             }
         });
     }

@@ -158,8 +158,8 @@ pub struct RunRecord {
 pub struct Movie {
     /// Frames in time order.
     pub frames: Vec<crate::sim::Frame>,
-    /// Bonds drawn as lines (i, j); bonds across a periodic side are left out.
-    pub bonds: Vec<(usize, usize)>,
+    /// Bonds drawn as lines (i, j, rest length in m); bonds across a periodic side are left out.
+    pub bonds: Vec<(usize, usize, f64)>,
     /// Frame count and size.
     pub spec: crate::spec::MovieSpec,
     /// Title drawn on every frame.

@@ -38,7 +38,7 @@ pub struct Sampling {
     pub steps: u64,
     /// Record a sample every this many steps (and at the start and the end).
     pub every: u64,
-    /// Record x and y displacements and x velocities of every particle at each sample.
+    /// Record the displacements and velocities of every particle at each sample.
     pub displacements: bool,
     /// Stop early once relaxed.
     pub relaxation: Option<Relaxation>,
@@ -80,13 +80,16 @@ pub struct Trace {
     /// y displacement of every particle (m), recorded with the x displacements.
     #[serde(default)]
     pub displacement_y: Vec<Vec<f64>>,
-    /// Impulse lattice: y displacement (m) of the nodes of the kicked node's column, bottom to
-    /// top, at each sample (kept from the displacements for the space–time picture).
-    #[serde(default)]
-    pub column_displacement: Vec<Vec<f64>>,
     /// x velocity of every particle (m/s) at each sample, recorded with the displacements.
     #[serde(default)]
     pub velocity_x: Vec<Vec<f64>>,
+    /// y velocity of every particle (m/s) at each sample, recorded with the displacements.
+    #[serde(default)]
+    pub velocity_y: Vec<Vec<f64>>,
+    /// Lattice: the probed lines of nodes (an impulse lattice's kicked column first), kept
+    /// from the per-particle series, which are too bulky to store whole.
+    #[serde(default)]
+    pub probes: Vec<ProbeTrace>,
     /// Steps actually taken.
     pub steps: u64,
     /// Wall time of the time loop (s), set-up excluded.
@@ -99,6 +102,41 @@ pub struct Trace {
     pub relaxed_at: Option<f64>,
     /// Relaxation: the criterion that stopped the run, `kinetic_ratio` or `residual_force`.
     pub relaxed_by: Option<String>,
+}
+
+/// The motion of one line of nodes (a lattice row or column), one row per sample and one
+/// entry per node along the line.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ProbeTrace {
+    /// `row 0`, `column 9`.
+    pub name: String,
+    /// The nodes, in order along the line.
+    pub nodes: Vec<usize>,
+    /// x displacement from the start (m).
+    pub displacement_x: Vec<Vec<f64>>,
+    /// y displacement from the start (m).
+    pub displacement_y: Vec<Vec<f64>>,
+    /// x velocity (m/s).
+    pub velocity_x: Vec<Vec<f64>>,
+    /// y velocity (m/s).
+    pub velocity_y: Vec<Vec<f64>>,
+}
+
+impl ProbeTrace {
+    /// Picks the line `nodes` called `name` out of the per-particle series of `trace`.
+    pub fn from_trace(name: String, nodes: Vec<usize>, trace: &Trace) -> ProbeTrace {
+        let pick = |series: &[Vec<f64>]| -> Vec<Vec<f64>> {
+            series.iter().map(|row| nodes.iter().map(|&i| row[i]).collect()).collect()
+        };
+        ProbeTrace {
+            displacement_x: pick(&trace.displacement_x),
+            displacement_y: pick(&trace.displacement_y),
+            velocity_x: pick(&trace.velocity_x),
+            velocity_y: pick(&trace.velocity_y),
+            name,
+            nodes,
+        }
+    }
 }
 
 /// Stored energy may exceed what the start and the loads' work allow by this factor before a
@@ -159,6 +197,7 @@ impl Trace {
             self.displacement_x.push(p.x.iter().zip(&start.x).map(|(x, x0)| x - x0).collect());
             self.displacement_y.push(p.y.iter().zip(&start.y).map(|(y, y0)| y - y0).collect());
             self.velocity_x.push(p.vx.clone());
+            self.velocity_y.push(p.vy.clone());
         }
         Ok(())
     }

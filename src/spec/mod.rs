@@ -4,7 +4,7 @@
 
 pub use self::raw::{Control, Diagonals, LawName, LoadCase, SceneKind, Supports};
 pub use self::run_spec::{
-    ImpulseSpec, LatticeSpec, MovieSpec, RESULT_FORMAT, RelaxSpec, RunSpec, WaveSpec, reference_extension,
+    ImpulseSpec, LatticeSpec, MovieSpec, ProbeLine, RESULT_FORMAT, RelaxSpec, RunSpec, WaveSpec, reference_extension,
 };
 
 mod grid;

@@ -124,6 +124,8 @@ pub struct RawScene {
     pub movie: Option<RawMovie>,
     /// Lattice: kick one node instead of loading the top row (a wave scene).
     pub impulse: Option<RawImpulse>,
+    /// Lattice: rows and columns whose displacement and velocity are recorded at every sample.
+    pub probes: Option<RawProbes>,
     /// Lattice: seed of the random bond cutting and stiffness spread (a grid axis for
     /// ensembles; default 1).
     pub seed: Option<u64>,
@@ -298,6 +300,16 @@ pub struct RawImpulse {
     pub force: Option<[f64; 2]>,
 }
 
+/// `probes:` section of a lattice: the rows and columns to record.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawProbes {
+    /// Rows: `bottom`, `centre`, `top` or 0..ny−1 (0 at the bottom).
+    pub rows: Option<Vec<Value>>,
+    /// Columns: `left`, `centre`, `right` or 0..nx−1 (0 at the left).
+    pub columns: Option<Vec<Value>>,
+}
+
 /// `movie:` section: an animated GIF of the particles coloured by speed.
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -310,6 +322,8 @@ pub struct RawMovie {
     pub height: Option<u32>,
     /// Also show all runs of the scene side by side in one movie (`plots/<scene>-side-by-side.gif`).
     pub side_by_side: Option<bool>,
+    /// Colour the bonds by their strain (red stretched, blue compressed) instead of grey.
+    pub bond_strain: Option<bool>,
 }
 
 /// `relax:` section.

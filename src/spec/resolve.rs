@@ -6,10 +6,12 @@ use std::collections::BTreeMap;
 use std::fmt::Display;
 
 use super::raw::{
-    Control, Diagonals, LawName, LoadCase, RawDamping, RawGeometry, RawMaterial, RawScene, RawTime, RawWave, SceneKind,
-    Supports,
+    Control, Diagonals, LawName, LoadCase, RawDamping, RawGeometry, RawMaterial, RawProbes, RawScene, RawTime, RawWave,
+    SceneKind, Supports,
 };
-use super::run_spec::{ImpulseSpec, LatticeSpec, MovieSpec, RelaxSpec, RunSpec, WaveSpec, reference_extension};
+use super::run_spec::{
+    ImpulseSpec, LatticeSpec, MovieSpec, ProbeLine, RelaxSpec, RunSpec, WaveSpec, reference_extension,
+};
 use crate::model::{ForceLaw, PowerLaw};
 use crate::sim::IntegratorKind;
 use crate::theory;
@@ -227,7 +229,13 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
             let (width, height) = (m.width.unwrap_or(720), m.height.unwrap_or(240));
             require((120..=1920).contains(&width), "movie.width", width, "from 120 to 1920 pixels")?;
             require((80..=1080).contains(&height), "movie.height", height, "from 80 to 1080 pixels")?;
-            Some(MovieSpec { frames, width, height, side_by_side: m.side_by_side.unwrap_or(false) })
+            Some(MovieSpec {
+                frames,
+                width,
+                height,
+                side_by_side: m.side_by_side.unwrap_or(false),
+                bond_strain: m.bond_strain.unwrap_or(false),
+            })
         }
     };
     if let Some(r) = spec.reference_refinement {
@@ -391,6 +399,11 @@ fn check_kind_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue> {
     }
     only(raw.wave.is_some() && is(SceneKind::Pair), "wave", "chain and lattice scenes")?;
     only(raw.impulse.is_some() && !is(SceneKind::Lattice), "impulse", "lattice scenes")?;
+    only(
+        raw.probes.is_some() && !is(SceneKind::Lattice),
+        "probes",
+        "lattice scenes (a chain records every particle; its wave.receiver picks the timed one)",
+    )?;
     if raw.impulse.is_some() {
         only(raw.load.is_some(), "load", "loaded lattices (an impulse lattice is kicked, not loaded)")?;
         only(raw.relax.is_some(), "relax", "loaded lattices (an impulse lattice runs for time.duration_tc)")?;
@@ -545,9 +558,17 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
         }
     };
     let mut load_case = load.case.unwrap_or(LoadCase::Tensile);
+    let probes = resolve_probes(raw.probes.as_ref(), nx, ny)?;
     let (mut nx, mut ny, mut k_x, mut k_y, mut diagonals) = (nx, ny, k_x, k_y, diagonals);
     let rotated = load_case == LoadCase::TensileX;
     if rotated {
+        require(
+            probes.is_empty(),
+            "probes",
+            "(set)",
+            "not with load.case: tensile-x (that lattice is simulated turned by 90°); probe the same lattice in a \
+             load.case: tensile scene",
+        )?;
         require(
             matches!(supports, Supports::Coursework | Supports::ClampedBottom),
             "supports",
@@ -585,7 +606,44 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
         drive_tc,
         derived_from: None,
         impulse,
+        probes,
     }))
+}
+
+/// The probed rows and columns of an `nx` × `ny` lattice, rows first, each once.
+fn resolve_probes(raw: Option<&RawProbes>, nx: usize, ny: usize) -> Result<Vec<ProbeLine>, Issue> {
+    let Some(raw) = raw else { return Ok(Vec::new()) };
+    let line = |value: &Value, path: &str, count: usize, ends: [&str; 2]| -> Result<usize, Issue> {
+        let allowed = || format!("{}, centre, {} or a number 0..={}", ends[0], ends[1], count - 1);
+        match value {
+            Value::String(s) if s == ends[0] => Ok(0),
+            Value::String(s) if s == ends[1] => Ok(count - 1),
+            Value::String(s) if s == "centre" || s == "center" => Ok(count / 2),
+            Value::Number(number) => match number.as_u64() {
+                Some(i) if i < count as u64 => Ok(i as usize),
+                _ => Err(Issue { path: path.into(), value: number.to_string(), allowed: allowed() }),
+            },
+            other => Err(Issue { path: path.into(), value: other.to_string(), allowed: allowed() }),
+        }
+    };
+    let mut probes = Vec::new();
+    for (i, value) in raw.rows.iter().flatten().enumerate() {
+        probes.push(ProbeLine::Row(line(value, &format!("probes.rows[{i}]"), ny, ["bottom", "top"])?));
+    }
+    for (i, value) in raw.columns.iter().flatten().enumerate() {
+        probes.push(ProbeLine::Column(line(value, &format!("probes.columns[{i}]"), nx, ["left", "right"])?));
+    }
+    let mut seen = Vec::new();
+    probes.retain(|p| {
+        if seen.contains(p) {
+            false
+        } else {
+            seen.push(*p);
+            true
+        }
+    });
+    require(!probes.is_empty(), "probes", "(empty)", "at least one row or column (rows: [...], columns: [...])")?;
+    Ok(probes)
 }
 
 /// When a relaxation counts as finished, and its tangent step.

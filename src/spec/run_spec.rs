@@ -9,7 +9,7 @@ use crate::sim::IntegratorKind;
 
 /// Bumped whenever stored results of an unchanged spec would differ (new physics or columns),
 /// so the cache never serves results of older code.
-pub const RESULT_FORMAT: u32 = 9;
+pub const RESULT_FORMAT: u32 = 10;
 
 /// A resolved run. Units SI; field names are the results table's column names.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -106,6 +106,9 @@ pub struct MovieSpec {
     /// Also put the scene's runs side by side in one movie.
     #[serde(default)]
     pub side_by_side: bool,
+    /// Colour the bonds by their strain.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub bond_strain: bool,
 }
 
 /// A timed wave: from the excited particle to the receivers (a chain's particle, a lattice's
@@ -191,6 +194,38 @@ pub struct LatticeSpec {
     /// The kicked node of an impulse scene (no load, no relaxation).
     #[serde(default)]
     pub impulse: Option<ImpulseSpec>,
+    /// Rows and columns whose displacement and velocity are recorded at every sample.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub probes: Vec<ProbeLine>,
+}
+
+/// A line of lattice nodes a probe records.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ProbeLine {
+    /// Row 0..ny−1, from the bottom.
+    Row(usize),
+    /// Column 0..nx−1, from the left.
+    Column(usize),
+}
+
+impl ProbeLine {
+    /// `row 3` or `column 0`.
+    pub fn name(self) -> String {
+        match self {
+            ProbeLine::Row(r) => format!("row {r}"),
+            ProbeLine::Column(c) => format!("column {c}"),
+        }
+    }
+
+    /// Its nodes (index iy·nx + ix) of a lattice of `nx` × `ny` nodes: a row left to right, a
+    /// column bottom to top.
+    pub fn nodes(self, nx: usize, ny: usize) -> Vec<usize> {
+        match self {
+            ProbeLine::Row(r) => (0..nx).map(|ix| r * nx + ix).collect(),
+            ProbeLine::Column(c) => (0..ny).map(|iy| iy * nx + c).collect(),
+        }
+    }
 }
 
 impl LatticeSpec {
