@@ -85,6 +85,7 @@ pub fn reference_scene(config: &BenchConfig) -> Scene {
             steps: config.steps,
             every: config.steps.max(1),
             displacements: false,
+            deadline: None,
             relaxation: None,
         },
         contact_clock: None,

@@ -38,10 +38,8 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
             dt: spec.dt,
             steps: spec.steps,
             every: (spec.steps / spec.samples).max(1),
-            displacements: spec.kind == SceneKind::Chain
-                || spec.reference_refinement.is_some()
-                || spec.wave.is_some()
-                || spec.lattice.as_ref().is_some_and(|l| l.impulse.is_some() || !l.probes.is_empty()),
+            displacements: spec.records_displacements(),
+            deadline: None,
             relaxation: spec.relax.map(|relax| Relaxation {
                 kinetic_ratio: relax.kinetic_ratio,
                 residual_force: relax.residual_force.map(|fraction| fraction * load_scale(spec)),

@@ -312,7 +312,7 @@ fn stays_bounded(kind: IntegratorKind, test: TestEquation, h: f64) -> bool {
         periodic_x: false,
     };
     let sampling =
-        Sampling { dt: h, steps: 2 * TRIAL_STEPS, every: 2 * TRIAL_STEPS, displacements: false, relaxation: None };
+        Sampling { dt: h, steps: 2 * TRIAL_STEPS, every: 2 * TRIAL_STEPS, displacements: false, relaxation: None, deadline: None };
     let mut state = State::new(particles);
     let mut amplitudes = Amplitudes::default();
     if gamma > 0.0 {

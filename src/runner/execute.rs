@@ -2,7 +2,7 @@
 //! panic becomes a `panicked` record, a load that drives a mechanism a `mechanism` record.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use super::record::{Metrics, Movie, RunRecord};
 use crate::fem::{StaticSolution, Truss};
@@ -16,13 +16,25 @@ use crate::scenes::{
     pair_references, relaxation_checks, top_row,
 };
 use crate::sim::{LawKind, Outcome, ProbeTrace, RunStatus, Scene, Trace};
-use crate::spec::{Control, LatticeSpec, LawName, LoadCase, ProbeLine, RunSpec, SceneKind, reference_extension};
+use crate::spec::{Budget, Control, LatticeSpec, LawName, LoadCase, ProbeLine, RunSpec, SceneKind, reference_extension};
 use crate::stability::estimate;
 
-/// Runs `spec` and returns its record; never panics.
+/// Runs `spec` within the default [`Budget`] and returns its record; never panics.
 pub fn execute(spec: &RunSpec) -> RunRecord {
+    execute_within(spec, &Budget::default())
+}
+
+/// Runs `spec` and returns its record; never panics. A run whose estimated memory exceeds
+/// `budget` is not started, one that passes its time budget is stopped: both are recorded
+/// with `status = budget`.
+pub fn execute_within(spec: &RunSpec, budget: &Budget) -> RunRecord {
     let started = Instant::now();
-    let result = catch_unwind(AssertUnwindSafe(|| run_and_measure(spec)));
+    let refused = budget.refuses(spec);
+    let deadline = started + Duration::from_secs_f64(budget.seconds_per_run.min(1e9));
+    let result = match &refused {
+        Some(_) => Ok(Finished::OverBudget),
+        None => catch_unwind(AssertUnwindSafe(|| run_and_measure(spec, deadline))),
+    };
     let mut record = RunRecord {
         run_id: spec.run_id(),
         spec: spec.clone(),
@@ -72,10 +84,22 @@ pub fn execute(spec: &RunSpec) -> RunRecord {
                  (relative residual {residual:.1e}); nothing to relax towards"
             );
         }
+        Ok(Finished::OverBudget) => {
+            record.status = "budget".into();
+            record.message = refused.unwrap_or_default();
+        }
         Err(panic) => {
             record.status = "panicked".into();
             record.message = panic_message(panic.as_ref());
         }
+    }
+    // The reference run or the tangent step may be what passed the deadline.
+    if record.status == "ok" && Instant::now() > deadline {
+        record.status = "budget".into();
+        record.message = format!(
+            "passed its time budget of {} s per run (budget.seconds_per_run) in its reference run or tangent step",
+            budget.seconds_per_run
+        );
     }
     // The run's own cost: a reference run at a finer dt is not part of it.
     record.wall_s = started.elapsed().as_secs_f64() - reference_s;
@@ -89,10 +113,13 @@ enum Finished {
     Simulated(Box<(Outcome, Metrics, f64, Option<Movie>)>),
     /// The static problem is singular for this load: no MD run.
     Mechanism { residual: f64 },
+    /// Not started: beyond the memory budget.
+    OverBudget,
 }
 
-fn run_and_measure(spec: &RunSpec) -> Finished {
-    let scene = build_scene(spec);
+fn run_and_measure(spec: &RunSpec, deadline: Instant) -> Finished {
+    let mut scene = build_scene(spec);
+    scene.sampling.deadline = Some(deadline);
     let stability = estimate(spec);
     let mut metrics = Metrics {
         omega_max: Some(stability.omega_max),
@@ -145,14 +172,14 @@ fn run_and_measure(spec: &RunSpec) -> Finished {
     });
     measure(spec, &outcome, &start, &mut metrics);
     if let Some(step) = spec.relax.and_then(|r| r.tangent_step).filter(|_| outcome.trace.relaxed_at.is_some()) {
-        tangent_step(spec, &outcome, step, &mut metrics);
+        tangent_step(spec, &outcome, step, deadline, &mut metrics);
     }
     let started = Instant::now();
     let reference = spec
         .reference_refinement
         .filter(|_| outcome.trace.status == RunStatus::Ok || outcome.trace.status == RunStatus::NoEquilibrium)
         .and_then(|refinement| {
-            reference_error(spec, &outcome.trace, sample_every, refinement).map(|e| (refinement, e))
+            reference_error(spec, &outcome.trace, sample_every, refinement, deadline).map(|e| (refinement, e))
         });
     let reference_s = if spec.reference_refinement.is_some() { started.elapsed().as_secs_f64() } else { 0.0 };
     (metrics.error, metrics.error_measure) = match reference {
@@ -224,8 +251,9 @@ fn static_answer<L: ForceLaw>(
 /// (a chain's wall displacement) raised by the fraction `step`, relaxed again; tangent moduli
 /// (a chain's tangent stiffness) are the increments' ratios. Nothing is set when the second
 /// relaxation does not finish.
-fn tangent_step(spec: &RunSpec, relaxed: &Outcome, step: f64, metrics: &mut Metrics) {
+fn tangent_step(spec: &RunSpec, relaxed: &Outcome, step: f64, deadline: Instant, metrics: &mut Metrics) {
     let mut scene = build_scene(spec);
+    scene.sampling.deadline = Some(deadline);
     let start = &relaxed.state.particles;
     scene.particles.x.clone_from(&start.x);
     scene.particles.y.clone_from(&start.y);
@@ -309,10 +337,11 @@ fn exact_error(spec: &RunSpec, m: &Metrics) -> (Option<f64>, Option<String>) {
 /// over the samples both have (the reference is sampled at the run's sample times and runs as
 /// long, without stopping early), relative to the reference's largest displacement. The run
 /// was sampled every `sample_every` steps.
-fn reference_error(spec: &RunSpec, run: &Trace, sample_every: u64, refinement: u32) -> Option<f64> {
+fn reference_error(spec: &RunSpec, run: &Trace, sample_every: u64, refinement: u32, deadline: Instant) -> Option<f64> {
     let mut fine = spec.clone();
     fine.set_dt(spec.dt / f64::from(refinement));
     let mut scene = build_scene(&fine);
+    scene.sampling.deadline = Some(deadline);
     let r = u64::from(refinement);
     scene.sampling.every = sample_every * r;
     scene.sampling.steps = run.steps * r;

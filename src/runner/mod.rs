@@ -1,7 +1,7 @@
 //! The job runner: the campaign's runs in parallel (rayon), each stored as soon as it ends,
 //! cached by content hash, with a progress bar; a failing run becomes a record, not a crash.
 
-pub use self::execute::execute;
+pub use self::execute::{execute, execute_within};
 pub use self::record::{Metrics, Movie, RunRecord};
 
 mod execute;
@@ -25,10 +25,12 @@ pub struct CampaignRun {
     pub cached: usize,
 }
 
-/// The stored record of `spec`, if there is one for exactly this spec.
+/// The stored record of `spec`, if there is one for exactly this spec. A run stopped by its
+/// budget does not count: its outcome depends on the machine and the budget, so a rerun
+/// (perhaps with a larger budget) tries it again.
 pub fn stored_record(layout: &Layout, spec: &RunSpec) -> Option<RunRecord> {
     let text = std::fs::read_to_string(layout.run_file(&spec.run_id())).ok()?;
-    serde_json::from_str::<RunRecord>(&text).ok().filter(|record| record.spec == *spec)
+    serde_json::from_str::<RunRecord>(&text).ok().filter(|record| record.spec == *spec && record.status != "budget")
 }
 
 /// Runs every run of `campaign` that has no stored record, on `jobs` threads (all cores when
@@ -54,7 +56,7 @@ pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -
             let (spec, slot, panel, progress) = (todo[index], &finished[index], &panels[index], &progress);
             scope.spawn_fifo(move |_| {
                 let stored = (|| {
-                    let mut record = execute(spec);
+                    let mut record = execute_within(spec, &campaign.budget);
                     if let Some(movie) = record.movie.take() {
                         crate::report::write_movie(&layout.movie_file(&record.run_id), &movie)?;
                         if movie.spec.side_by_side {

@@ -4,7 +4,7 @@
 
 pub use self::raw::{Control, Diagonals, LawName, LoadCase, SceneKind, Supports};
 pub use self::run_spec::{
-    ImpulseSpec, LatticeSpec, MovieSpec, ProbeLine, RESULT_FORMAT, RelaxSpec, RunSpec, WaveSpec, reference_extension,
+    Budget, ImpulseSpec, LatticeSpec, MovieSpec, ProbeLine, RESULT_FORMAT, RelaxSpec, RunSpec, WaveSpec, reference_extension,
 };
 
 mod grid;
@@ -56,6 +56,8 @@ pub struct Campaign {
     pub runs: Vec<RunSpec>,
     /// Relative error the report recommends a time step for.
     pub target_error: f64,
+    /// What one run may use.
+    pub budget: Budget,
 }
 
 /// The accuracy the work–precision report aims at unless the campaign says `target_error`.
@@ -109,14 +111,35 @@ pub fn parse(file: &str, text: &str) -> Result<Campaign, SpecError> {
     if !(target_error > 0.0 && target_error < 1.0) {
         return Err(invalid(format!("target_error = {target_error}: must be in (0, 1) (a relative error)")));
     }
+    let budget = resolve_budget(raw.budget.as_ref()).map_err(invalid)?;
     Ok(Campaign {
         target_error,
+        budget,
         name: raw.name.clone(),
         title: raw.title.clone().unwrap_or_else(|| raw.name.clone()),
         description: raw.description.clone().unwrap_or_default(),
         scenes,
         runs,
     })
+}
+
+/// The campaign's `budget:` over the defaults of [`Budget`].
+fn resolve_budget(raw: Option<&raw::RawBudget>) -> Result<Budget, String> {
+    let mut budget = Budget::default();
+    let Some(raw) = raw else { return Ok(budget) };
+    if let Some(seconds) = raw.seconds_per_run {
+        if !(seconds.is_finite() && seconds > 0.0) {
+            return Err(format!("budget.seconds_per_run = {seconds}: must be a finite number of seconds > 0"));
+        }
+        budget.seconds_per_run = seconds;
+    }
+    if let Some(megabytes) = raw.memory_per_run_mb {
+        if !(megabytes.is_finite() && megabytes > 0.0) {
+            return Err(format!("budget.memory_per_run_mb = {megabytes}: must be a finite number of MB > 0"));
+        }
+        budget.memory_per_run = megabytes * 1e6;
+    }
+    Ok(budget)
 }
 
 fn to_value(scene: &RawScene) -> Value {

@@ -37,6 +37,20 @@ pub struct RawCampaign {
     /// default 1e-3).
     #[serde(default)]
     pub target_error: Option<f64>,
+    /// What one run may use before it is stopped with `status = budget`.
+    #[serde(default)]
+    pub budget: Option<RawBudget>,
+}
+
+/// `budget:` section of a campaign.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawBudget {
+    /// Wall-clock seconds one run may take (default 3600).
+    pub seconds_per_run: Option<f64>,
+    /// Memory one run may hold, in MB (10⁶ bytes), by the estimate made before it starts
+    /// (default 4000).
+    pub memory_per_run_mb: Option<f64>,
 }
 
 /// Kind of scene.

@@ -111,6 +111,52 @@ pub struct MovieSpec {
     pub bond_strain: bool,
 }
 
+/// What one run may use: beyond it, the run is stopped (or not started) and recorded with
+/// `status = budget`, and the campaign goes on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Budget {
+    /// Wall-clock seconds per run.
+    pub seconds_per_run: f64,
+    /// Bytes per run, by [`RunSpec::estimated_memory_bytes`].
+    pub memory_per_run: f64,
+}
+
+impl Default for Budget {
+    /// One hour and 4 GB per run: a coursework run takes seconds and megabytes, so only a
+    /// mistake (a 2000 × 2000 lattice recording every sample, 2e9 steps) comes near.
+    fn default() -> Budget {
+        Budget { seconds_per_run: 3600.0, memory_per_run: 4e9 }
+    }
+}
+
+impl Budget {
+    /// Why `spec` cannot start within this budget, if it cannot.
+    pub fn refuses(&self, spec: &RunSpec) -> Option<String> {
+        let memory = spec.estimated_memory_bytes();
+        (memory > self.memory_per_run).then(|| {
+            format!(
+                "the run would hold about {:.0} MB, beyond the budget of {:.0} MB per run (budget.memory_per_run_mb)",
+                memory / 1e6,
+                self.memory_per_run / 1e6
+            )
+        })
+    }
+
+    /// Why `spec` is expected to exceed this budget, if it is (the plan's warning).
+    pub fn warning(&self, spec: &RunSpec) -> Option<String> {
+        self.refuses(spec).or_else(|| {
+            let seconds = spec.estimated_seconds();
+            (seconds > self.seconds_per_run).then(|| {
+                format!(
+                    "estimated {seconds:.0} s, beyond the budget of {:.0} s per run (budget.seconds_per_run): it \
+                     would be stopped",
+                    self.seconds_per_run
+                )
+            })
+        })
+    }
+}
+
 /// A timed wave: from the excited particle to the receivers (a chain's particle, a lattice's
 /// bottom row).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -292,6 +338,30 @@ impl RunSpec {
         // A reference run at dt/R takes R times as many steps.
         let runs = 1.0 + self.reference_refinement.map_or(0.0, f64::from);
         runs * self.steps as f64 * (80e-9 + 3e-9 * evaluations * self.particles() as f64)
+    }
+
+    /// True when the run records every particle's displacement and velocity at every sample:
+    /// chains (normal modes, space–time), reference runs, waves, impulse and probed lattices.
+    pub fn records_displacements(&self) -> bool {
+        self.kind == SceneKind::Chain
+            || self.reference_refinement.is_some()
+            || self.wave.is_some()
+            || self.lattice.as_ref().is_some_and(|l| l.impulse.is_some() || !l.probes.is_empty())
+    }
+
+    /// Estimated peak memory (bytes) of the run, from what it allocates: per particle ~40
+    /// numbers of state, integrator history and forces plus ~4 bonds of 5 numbers; per sample
+    /// 5 numbers, and 4 per particle when displacements are recorded; 3 per particle per movie
+    /// frame; a wave probe's at most 10⁵ entries of 7 numbers. A reference run holds its own
+    /// copy. Numbers are 8 bytes.
+    pub fn estimated_memory_bytes(&self) -> f64 {
+        let particles = self.particles() as f64;
+        let samples = (self.samples + 2) as f64;
+        let per_sample = 5.0 + if self.records_displacements() { 4.0 * particles } else { 0.0 };
+        let frames = self.movie.map_or(0.0, |m| f64::from(m.frames) * 3.0 * particles);
+        let wave = if self.wave.is_some() { 7.0 * 1e5 } else { 0.0 };
+        let copies = if self.reference_refinement.is_some() { 2.0 } else { 1.0 };
+        8.0 * copies * (particles * (40.0 + 4.0 * 5.0) + samples * per_sample + frames + wave)
     }
 
     /// Sets the time step to `dt` (s) and the step count to cover the same duration.
