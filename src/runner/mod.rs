@@ -25,18 +25,22 @@ pub struct CampaignRun {
     pub cached: usize,
 }
 
-/// The stored record of `spec`, if there is one for exactly this spec. A run stopped by its
-/// budget does not count: its outcome depends on the machine and the budget, so a rerun
-/// (perhaps with a larger budget) tries it again.
+/// The stored record of `spec`, if there is one for exactly this spec.
 pub fn stored_record(layout: &Layout, spec: &RunSpec) -> Option<RunRecord> {
     let text = std::fs::read_to_string(layout.run_file(&spec.run_id())).ok()?;
-    serde_json::from_str::<RunRecord>(&text).ok().filter(|record| record.spec == *spec && record.status != "budget")
+    serde_json::from_str::<RunRecord>(&text).ok().filter(|record| record.spec == *spec)
 }
 
 /// Runs every run of `campaign` that has no stored record, on `jobs` threads (all cores when
 /// `None`), storing each record as soon as it is finished.
 pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -> anyhow::Result<CampaignRun> {
-    let stored: Vec<Option<RunRecord>> = campaign.runs.iter().map(|spec| stored_record(layout, spec)).collect();
+    // A run stopped by its budget is tried again: its outcome depends on the machine and the
+    // budget, not only on its spec.
+    let stored: Vec<Option<RunRecord>> = campaign
+        .runs
+        .iter()
+        .map(|spec| stored_record(layout, spec).filter(|record| record.status != "budget"))
+        .collect();
     let todo: Vec<&RunSpec> = campaign.runs.iter().zip(&stored).filter(|(_, r)| r.is_none()).map(|(s, _)| s).collect();
     let progress = progress_bar(todo.len() as u64);
     let pool = rayon::ThreadPoolBuilder::new()
