@@ -78,6 +78,8 @@ fn report_merges_what_is_stored_and_lists_what_is_missing() {
     assert!(warning.contains(&format!("warning: {} of 5 runs have no stored result", 5 - stored)), "{warning}");
     let table = std::fs::read_to_string(reports.path().join("smoke/results.csv")).unwrap();
     assert_eq!(table.lines().count(), 1 + stored);
+    let page = std::fs::read_to_string(reports.path().join("smoke/report.md")).unwrap();
+    assert!(page.contains(&format!("{} of the campaign's runs without a stored result", 5 - stored)), "{page}");
 }
 
 #[test]
