@@ -1,4 +1,4 @@
-//! Command line: `run`, `plan` and `report` on a campaign file.
+//! Command line: `run`, `plan`, `report` and `slurm` on a campaign file.
 
 use anyhow::Context;
 use clap::{Parser, Subcommand};
@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use crate::bench::{BenchConfig, run_once};
 use crate::output::Layout;
-use crate::runner::{run_campaign, stored_record};
+use crate::runner::{Shard, run_campaign, shard_campaign, shard_of_each_run, stored_record};
 use crate::spec::Campaign;
 use crate::stability::{estimate, load_campaign};
 use crate::{report, table};
@@ -33,16 +33,46 @@ pub enum Command {
         /// Parallel jobs (default: all cores).
         #[arg(short, long)]
         jobs: Option<usize>,
+        /// Run only share I of N (0 ≤ I < N) of the runs, balanced by the plan's cost estimate,
+        /// and store them without writing tables or reports (`report` merges the shares).
+        #[arg(long, value_name = "I/N")]
+        shard: Option<Shard>,
     },
     /// List the expanded runs with dt, t_c, cost and cache state; runs nothing.
     Plan {
         /// Campaign file (YAML).
         campaign: PathBuf,
+        /// List only the runs of share I of N (as `run --shard I/N` would run them).
+        #[arg(long, value_name = "I/N")]
+        shard: Option<Shard>,
     },
-    /// Re-render tables and reports from stored results without simulating.
+    /// Re-render tables and reports from the stored results without simulating; runs without a
+    /// stored result are listed and left out.
     Report {
         /// Campaign file (YAML).
         campaign: PathBuf,
+    },
+    /// Write a Slurm job array (task I runs `run --shard I/N`) and a report job that runs after
+    /// every task has ended (afterany) into <reports>/<campaign>/slurm/; --reports must be on
+    /// a file system all nodes share.
+    Slurm {
+        /// Campaign file (YAML).
+        campaign: PathBuf,
+        /// Array tasks (shares of the campaign).
+        #[arg(long, default_value_t = 4)]
+        tasks: usize,
+        /// Slurm partition (default: the cluster's default partition).
+        #[arg(long)]
+        partition: Option<String>,
+        /// Time limit of each job, in Slurm's format (e.g. 30, 2:00:00, 1-0).
+        #[arg(long)]
+        time: Option<String>,
+        /// CPUs per array task (also its --jobs).
+        #[arg(long, default_value_t = 1)]
+        cpus_per_task: usize,
+        /// Submit with sbatch and print the job ids (otherwise print how to submit).
+        #[arg(long)]
+        submit: bool,
     },
     /// Time the reference workload (README, "Performance"): an N × N lattice with diagonals,
     /// velocity Verlet, dt = 0.01; prints particle-steps/s, bond-updates/s and energy drift.
@@ -86,9 +116,22 @@ pub enum Command {
 pub fn run() -> anyhow::Result<()> {
     let cli = Cli::parse();
     match &cli.command {
-        Command::Run { campaign, jobs } => run_command(&cli.reports, campaign, *jobs),
-        Command::Plan { campaign } => plan_command(&cli.reports, campaign),
+        Command::Run { campaign, jobs, shard } => match shard {
+            Some(shard) => run_shard_command(&cli.reports, campaign, *jobs, *shard),
+            None => run_command(&cli.reports, campaign, *jobs),
+        },
+        Command::Plan { campaign, shard } => plan_command(&cli.reports, campaign, *shard),
         Command::Report { campaign } => report_command(&cli.reports, campaign),
+        Command::Slurm { campaign, tasks, partition, time, cpus_per_task, submit } => {
+            let request = SlurmRequest {
+                tasks: *tasks,
+                partition: partition.clone(),
+                time: time.clone(),
+                cpus_per_task: *cpus_per_task,
+                submit: *submit,
+            };
+            slurm_command(&cli.reports, campaign, &request)
+        }
         Command::Bench { n, steps, threads, dilute, bond_list, repeat, json } => {
             let config = BenchConfig { n: *n, steps: *steps, dilute: *dilute, bond_list: *bond_list };
             bench_command(&config, *threads, *repeat, *json)
@@ -122,11 +165,37 @@ fn run_command(reports: &Path, file: &Path, jobs: Option<usize>) -> anyhow::Resu
     Ok(())
 }
 
+/// Runs one share of the campaign into the store. Tables and reports are left to `report`:
+/// the other shares may still be running, and several shards writing them at once would race.
+fn run_shard_command(reports: &Path, file: &Path, jobs: Option<usize>, shard: Shard) -> anyhow::Result<()> {
+    let started = std::time::Instant::now();
+    let (campaign, layout) = open(reports, file)?;
+    let share = shard_campaign(&campaign, shard);
+    let done = run_campaign(&share, &layout, jobs)?;
+    let failed = done.records.iter().filter(|r| r.status != "ok").count();
+    println!(
+        "{} shard {shard}: {} of {} runs ({} simulated, {} cached, {} not ok) in {:.2} s -> {}; \
+         `mdsolids report` merges the shards",
+        campaign.name,
+        done.records.len(),
+        campaign.runs.len(),
+        done.simulated,
+        done.cached,
+        failed,
+        started.elapsed().as_secs_f64(),
+        layout.file("runs").display()
+    );
+    Ok(())
+}
+
 /// Writing tables, figures and the report of a campaign of a few dozen runs (measured ~0.07 s).
 const REPORT_SECONDS: f64 = 0.1;
 
-fn plan_command(reports: &Path, file: &Path) -> anyhow::Result<()> {
-    let (campaign, layout) = open(reports, file)?;
+fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Result<()> {
+    let (mut campaign, layout) = open(reports, file)?;
+    if let Some(shard) = shard {
+        campaign = shard_campaign(&campaign, shard);
+    }
     println!(
         "{:<28} {:<8} {:<16} {:>11} {:>11} {:>8} {:>10} {:>8} {:>7} {:>7}  varied",
         "run_id", "kind", "integrator", "dt (s)", "t_c (s)", "t_c/dt", "steps", "dt·ω_max", "limit", "cached"
@@ -166,8 +235,13 @@ fn plan_command(reports: &Path, file: &Path) -> anyhow::Result<()> {
 
 fn report_command(reports: &Path, file: &Path) -> anyhow::Result<()> {
     let (campaign, layout) = open(reports, file)?;
-    let records: Vec<_> = campaign.runs.iter().filter_map(|spec| stored_record(&layout, spec)).collect();
-    let missing = campaign.runs.len() - records.len();
+    let (mut records, mut missing) = (Vec::new(), Vec::new());
+    for spec in &campaign.runs {
+        match stored_record(&layout, spec) {
+            Some(record) => records.push(record),
+            None => missing.push(spec.run_id()),
+        }
+    }
     if records.is_empty() {
         anyhow::bail!(
             "no stored results for campaign '{}' under {}: run `mdsolids run {}` first",
@@ -177,12 +251,77 @@ fn report_command(reports: &Path, file: &Path) -> anyhow::Result<()> {
         );
     }
     publish(&campaign, &layout, &records)?;
+    if !missing.is_empty() {
+        // A shard that has not run yet, or an array task that died (time limit, node failure):
+        // rerunning `run` (or its shard) fills these in.
+        const LISTED: usize = 20;
+        let more = missing.len().saturating_sub(LISTED);
+        eprintln!(
+            "warning: {} of {} runs have no stored result and are not in the report: {}{}",
+            missing.len(),
+            campaign.runs.len(),
+            missing[..missing.len().min(LISTED)].join(", "),
+            if more > 0 { format!(" and {more} more") } else { String::new() }
+        );
+    }
     println!(
-        "{}: report re-rendered from {} stored runs ({missing} without results) -> {}",
+        "{}: report re-rendered from {} stored runs ({} without results) -> {}",
         campaign.name,
         records.len(),
+        missing.len(),
         layout.root.display()
     );
+    Ok(())
+}
+
+/// What `mdsolids slurm` was asked for.
+struct SlurmRequest {
+    tasks: usize,
+    partition: Option<String>,
+    time: Option<String>,
+    cpus_per_task: usize,
+    submit: bool,
+}
+
+fn slurm_command(reports: &Path, file: &Path, request: &SlurmRequest) -> anyhow::Result<()> {
+    let (campaign, _) = open(reports, file)?;
+    anyhow::ensure!(
+        (1..=campaign.runs.len()).contains(&request.tasks),
+        "--tasks {}: must be between 1 and the campaign's {} runs",
+        request.tasks,
+        campaign.runs.len()
+    );
+    let job = crate::slurm::ArrayJob {
+        exe: std::env::current_exe().context("cannot locate the mdsolids binary")?,
+        reports: std::path::absolute(reports)
+            .with_context(|| format!("cannot make '{}' absolute", reports.display()))?,
+        campaign_file: std::fs::canonicalize(file).with_context(|| format!("cannot resolve '{}'", file.display()))?,
+        campaign: campaign.name.clone(),
+        tasks: request.tasks,
+        partition: request.partition.clone(),
+        time: request.time.clone(),
+        cpus_per_task: request.cpus_per_task,
+    };
+    let scripts = crate::slurm::write_scripts(&job)?;
+    let mut loads = vec![0.0; request.tasks];
+    for (spec, shard) in campaign.runs.iter().zip(shard_of_each_run(&campaign.runs, request.tasks)) {
+        loads[shard] += spec.estimated_seconds();
+    }
+    println!(
+        "{}: {} runs in {} array tasks, estimated at most {:.3} s of simulation per task on one core \
+         (release build); scripts in {}",
+        campaign.name,
+        campaign.runs.len(),
+        request.tasks,
+        loads.iter().copied().fold(0.0, f64::max),
+        scripts.submit.parent().unwrap_or(Path::new(".")).display()
+    );
+    if request.submit {
+        let submitted = crate::slurm::submit(&scripts)?;
+        println!("submitted: array job {}, report job {} (afterany)", submitted.array, submitted.report);
+    } else {
+        println!("submit with: bash {}", scripts.submit.display());
+    }
     Ok(())
 }
 

@@ -8,6 +8,7 @@
 //! Scene ──Scene::run──▶ Outcome { Trace, crossings, final state }             (sim: pure)
 //! Outcome ──measure::*──▶ Metrics, beside theory::* references                (measure, theory)
 //! runner: rayon over RunSpecs, content-hash cache, one stored RunRecord per run
+//!         (`--shard I/N`: one cost-balanced share; `slurm`: one share per array task)
 //! [RunRecord] ──table──▶ results.csv / results.parquet (Polars)
 //! [RunRecord] ──report──▶ plots/*.svg, report.md, index.html (plotters, tera)
 //! two report directories ──compare──▶ compare.csv / .parquet, report.md, index.html, plots/
@@ -33,6 +34,7 @@ pub mod report;
 pub mod runner;
 pub mod scenes;
 pub mod sim;
+pub mod slurm;
 pub mod spec;
 pub mod stability;
 pub mod table;

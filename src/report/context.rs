@@ -23,6 +23,8 @@ pub struct ReportContext {
     runs: usize,
     ok: usize,
     failed: usize,
+    /// Runs of the campaign without a stored record (a shard not run yet, or a task that died).
+    missing: usize,
     wall_s: String,
     has_pair: bool,
     has_chain: bool,
@@ -166,6 +168,7 @@ pub fn build(campaign: &Campaign, records: &[RunRecord], figures: &[Figure], sid
         runs: records.len(),
         ok,
         failed: records.len() - ok,
+        missing: campaign.runs.len().saturating_sub(records.len()),
         wall_s: number(records.iter().map(|r| r.wall_s).sum()),
         has_pair: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Pair),
         has_chain: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Chain),

@@ -3,9 +3,11 @@
 
 pub use self::execute::{execute, execute_within};
 pub use self::record::{Metrics, Movie, RunRecord};
+pub use self::shard::{Shard, shard_campaign, shard_of_each_run};
 
 mod execute;
 mod record;
+mod shard;
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
