@@ -356,15 +356,17 @@ pub fn check_campaign(file: &str, campaign: &mut Campaign) -> Result<(), SpecErr
         };
         let mut stability = estimate(spec);
         if let Some(target) = spec.dt_omega_max {
-            if stability.omega_max <= 0.0 {
+            if !(stability.omega_max > 0.0 && stability.omega_max.is_finite()) {
                 return Err(invalid(format!(
-                    "{place}.time.dt_omega_max = {target}: the scene has no moving mode (ω_max = 0); give dt or dt_per_tc"
+                    "{place}.time.dt_omega_max = {target}: the scene has no usable fastest mode (ω_max = {}); give dt or \
+                     dt_per_tc",
+                    stability.omega_max
                 )));
             }
             spec.set_dt(target / stability.omega_max);
-            if spec.steps > 2_000_000_000 {
+            if !(1..=2_000_000_000).contains(&spec.steps) {
                 return Err(invalid(format!(
-                    "{place}.time.dt_omega_max = {target}: gives {} steps; at most 2e9",
+                    "{place}.time.dt_omega_max = {target}: gives {} steps; from 1 to 2e9",
                     spec.steps
                 )));
             }

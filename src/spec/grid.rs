@@ -35,6 +35,12 @@ pub fn set_path(value: &mut Value, path: &str, new: Value) {
     *slot = new;
 }
 
+/// Number of points of the cartesian product of `grid`, `None` beyond `u64::MAX`: counted
+/// before the product is expanded, so an enormous grid is refused without allocating it.
+pub fn point_count(grid: &Grid) -> Option<u64> {
+    grid.values().try_fold(1u64, |count, values| count.checked_mul(values.len() as u64))
+}
+
 /// Cartesian product of `grid`: every combination of values, keys in sorted order with the
 /// last key varying fastest. An empty grid has one point (no changes).
 pub fn grid_points(grid: &Grid) -> Vec<Vec<(String, Value)>> {
@@ -65,6 +71,15 @@ mod tests {
         let points = grid_points(&grid);
         let labels: Vec<String> = points.iter().map(|p| format!("{}{}", p[0].1, p[1].1)).collect();
         assert_eq!(labels, ["\"x\"1", "\"x\"2", "\"y\"1", "\"y\"2"]);
+        assert_eq!(point_count(&grid), Some(4));
+    }
+
+    #[test]
+    fn point_count_saturates_to_none() {
+        let axis = vec![json!(0); 1000];
+        let grid: Grid = (0..7).map(|i| (format!("a{i}"), axis.clone())).collect();
+        assert_eq!(point_count(&grid), None); // 1000^7 > 2^64
+        assert_eq!(point_count(&Grid::new()), Some(1));
     }
 
     #[test]

@@ -7,6 +7,7 @@ pub use self::run_spec::{
     Budget, ImpulseSpec, LatticeSpec, MovieSpec, ProbeLine, RESULT_FORMAT, RelaxSpec, RunSpec, WaveSpec, reference_extension,
 };
 
+mod finite;
 mod grid;
 mod raw;
 mod resolve;
@@ -16,7 +17,7 @@ use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use self::grid::{get_path, grid_points, merge, set_path};
+use self::grid::{get_path, grid_points, merge, point_count, set_path};
 use self::raw::{Grid, RawCampaign, RawScene};
 
 /// Why a campaign file was refused.
@@ -60,6 +61,24 @@ pub struct Campaign {
     pub budget: Budget,
 }
 
+/// Longest campaign or scene name. Names become directory and file names (`reports/<name>/`,
+/// `runs/<scene>-<hash>.json`, `plots/<scene>-side-by-side.gif`), which file systems cap at
+/// 255 bytes.
+pub const MAX_NAME_LEN: usize = 100;
+
+/// A campaign or scene name that is safe as a file name: 1 to [`MAX_NAME_LEN`] ASCII letters,
+/// digits, `-` and `_`, so never `..`, a path separator or an absolute path.
+fn is_safe_name(name: &str) -> bool {
+    (1..=MAX_NAME_LEN).contains(&name.len()) && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_')
+}
+
+/// Most runs one campaign may expand to. A grid is a cartesian product, so a few long lists
+/// multiply quickly (10 axes of 100 values: 1e20 runs); the count is checked before the product
+/// is expanded. Every run is resolved and its stability estimated before anything runs, and
+/// stores a result file: 100 000 runs is over a hundred times the largest shipped campaign (688)
+/// and `plan` of 100 000 pair runs takes ~35 s and ~230 MB (release build, 2 cores).
+pub const MAX_RUNS: u64 = 100_000;
+
 /// The accuracy the work–precision report aims at unless the campaign says `target_error`.
 pub const DEFAULT_TARGET_ERROR: f64 = 1e-3;
 
@@ -74,12 +93,15 @@ pub fn load(path: &Path) -> Result<Campaign, SpecError> {
 pub fn parse(file: &str, text: &str) -> Result<Campaign, SpecError> {
     let invalid = |detail: String| SpecError::Invalid { file: file.to_string(), detail };
     let raw: RawCampaign = serde_saphyr::from_str(text).map_err(|e| invalid(describe_yaml_error(text, &e)))?;
+    if let Some((path, value)) = finite::first_non_finite(text) {
+        return Err(invalid(format!("{path} = {value}: must be a finite number (not NaN or an infinity)")));
+    }
     if raw.version != 1 {
         return Err(invalid(format!("version = {}: only version 1 exists", raw.version)));
     }
-    if raw.name.is_empty() || !raw.name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
+    if !is_safe_name(&raw.name) {
         return Err(invalid(format!(
-            "name = {:?}: use letters, digits, '-' and '_' (it names reports/<name>/)",
+            "name = {:?}: use 1 to {MAX_NAME_LEN} letters, digits, '-' and '_' (it names reports/<name>/)",
             raw.name
         )));
     }
@@ -95,11 +117,13 @@ pub fn parse(file: &str, text: &str) -> Result<Campaign, SpecError> {
             return Err(invalid(format!("defaults.{field}: not allowed in defaults; set it in each scene")));
         }
     }
+    let grids: Vec<Grid> = raw.scenes.iter().map(|scene| scene_grid(&raw.grid, scene)).collect();
+    check_run_count(&raw, &grids).map_err(invalid)?;
     let defaults = to_value(&raw.defaults);
     let mut runs = Vec::new();
     let mut scenes: Vec<(String, SceneKind)> = Vec::new();
-    for (index, scene) in raw.scenes.iter().enumerate() {
-        let expanded = expand_scene(&raw, &defaults, index, scene).map_err(invalid)?;
+    for (index, (scene, grid)) in raw.scenes.iter().zip(grids).enumerate() {
+        let expanded = expand_scene(&raw, &defaults, index, scene, grid).map_err(invalid)?;
         let first = &expanded[0];
         if scenes.iter().any(|(name, _)| *name == first.scene) {
             return Err(invalid(format!("scenes[{index}].name = {:?}: scene names must be unique", first.scene)));
@@ -153,9 +177,18 @@ fn describe_yaml_error(text: &str, error: &serde_saphyr::Error) -> String {
         .ok()
         .and_then(|value| serde_path_to_error::deserialize::<_, RawCampaign>(value).err())
         .map(|e| (e.path().to_string(), e.inner().to_string()));
+    let shown = error.to_string();
     match path {
-        Some((path, message)) => format!("{path}: {message}\n{error}"),
-        None => error.to_string(),
+        // "." is the whole document: not a field worth naming.
+        Some((path, message)) if path != "." => format!("{path}: {message}\n{shown}"),
+        _ if shown.contains("budget breached") || shown.contains("recursion limit") => format!(
+            "the YAML exceeds the reader's limits (nesting depth 64, 250 000 values, 50 000 aliases; anchors and \
+             aliases may not expand further)\n{shown}"
+        ),
+        _ if shown.contains("unexpected end of input") => {
+            format!("the file holds no campaign; give version, name and scenes\n{shown}")
+        }
+        _ => shown,
     }
 }
 
@@ -180,19 +213,84 @@ impl Origins<'_> {
     }
 }
 
-/// All runs of one scene: defaults merged under it, then every point of the campaign grid
-/// combined with the scene's own grid.
-fn expand_scene(raw: &RawCampaign, defaults: &Value, index: usize, scene: &RawScene) -> Result<Vec<RunSpec>, String> {
+/// The grid of one scene: the campaign's grid with the scene's own on top (a scene's list for
+/// a path replaces the campaign's).
+fn scene_grid(campaign: &Grid, scene: &RawScene) -> Grid {
+    let mut grid = campaign.clone();
+    grid.extend(scene.grid.iter().flatten().map(|(path, values)| (path.clone(), values.clone())));
+    grid
+}
+
+/// Refuses a campaign of more than [`MAX_RUNS`] runs, counted from the list lengths alone.
+fn check_run_count(raw: &RawCampaign, grids: &[Grid]) -> Result<(), String> {
+    let mut total: u64 = 0;
+    for (index, grid) in grids.iter().enumerate() {
+        let count = point_count(grid).filter(|&count| count <= MAX_RUNS);
+        match count.and_then(|count| total.checked_add(count)) {
+            Some(sum) => total = sum,
+            None => {
+                let field = if raw.scenes[index].grid.is_some() {
+                    format!("scenes[{index}].grid")
+                } else {
+                    format!("grid (in scenes[{index}])")
+                };
+                return Err(format!(
+                    "{field}: {} runs ({}); at most {MAX_RUNS} runs per campaign: shorten the lists or split the campaign",
+                    describe_count(grid),
+                    describe_axes(grid)
+                ));
+            }
+        }
+        if total > MAX_RUNS {
+            let counts: Vec<String> = grids[..=index]
+                .iter()
+                .enumerate()
+                .map(|(i, g)| format!("scenes[{i}]: {}", describe_count(g)))
+                .collect();
+            return Err(format!(
+                "grid: the scenes expand to {total} runs ({}); at most {MAX_RUNS} runs per campaign: shorten the \
+                 lists or split the campaign",
+                counts.join(", ")
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The number of points of `grid`, also when it does not fit in 64 bits (then approximately).
+fn describe_count(grid: &Grid) -> String {
+    match point_count(grid) {
+        Some(count) => count.to_string(),
+        None => format!("about {:.1e}", grid.values().map(|values| values.len() as f64).product::<f64>()),
+    }
+}
+
+/// `time.dt_per_tc: 4 values × v0: 3 values`, the first few axes of `grid`.
+fn describe_axes(grid: &Grid) -> String {
+    const SHOWN: usize = 6;
+    let mut axes: Vec<String> =
+        grid.iter().take(SHOWN).map(|(path, values)| format!("{path}: {} values", values.len())).collect();
+    if grid.len() > SHOWN {
+        axes.push(format!("{} more axes", grid.len() - SHOWN));
+    }
+    axes.join(" × ")
+}
+
+/// All runs of one scene: defaults merged under it, then every point of its `grid` (the
+/// campaign grid combined with the scene's own).
+fn expand_scene(
+    raw: &RawCampaign,
+    defaults: &Value,
+    index: usize,
+    scene: &RawScene,
+    grid: Grid,
+) -> Result<Vec<RunSpec>, String> {
     let mut base = defaults.clone();
     let own = to_value(scene);
     merge(&mut base, &own);
     base.as_object_mut().expect("a scene is a map").remove("grid");
-    let mut grid: Grid = raw.grid.clone();
     let mut grid_keys: BTreeMap<String, &'static str> = raw.grid.keys().map(|k| (k.clone(), "campaign")).collect();
-    for (path, values) in scene.grid.iter().flatten() {
-        grid.insert(path.clone(), values.clone());
-        grid_keys.insert(path.clone(), "scene");
-    }
+    grid_keys.extend(scene.grid.iter().flatten().map(|(path, _)| (path.clone(), "scene")));
     let origins = Origins { index, scene: own, defaults, grid_keys };
     check_grid_paths(&base, &grid, &origins)?;
     grid_points(&grid)

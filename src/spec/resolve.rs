@@ -5,9 +5,10 @@ use serde_json::Value;
 use std::collections::BTreeMap;
 use std::fmt::Display;
 
+use super::MAX_NAME_LEN;
 use super::raw::{
-    Control, Diagonals, LawName, LoadCase, RawDamping, RawGeometry, RawMaterial, RawProbes, RawScene, RawTime, RawWave,
-    SceneKind, Supports,
+    Control, Diagonals, LawName, LoadCase, RawDamping, RawGeometry, RawLattice, RawMaterial, RawProbes, RawScene,
+    RawTime, RawWave, SceneKind, Supports,
 };
 use super::run_spec::{
     ImpulseSpec, LatticeSpec, MovieSpec, ProbeLine, RelaxSpec, RunSpec, WaveSpec, reference_extension,
@@ -35,13 +36,33 @@ fn require(ok: bool, path: &str, value: impl Display, allowed: &str) -> Result<(
     }
 }
 
+/// A number shown in a message: in full when it is short that way, else in exponent form
+/// (`1e-300`, not three hundred zeros).
+struct Num(f64);
+
+impl Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let size = self.0.abs();
+        if size == 0.0 || (1e-4..1e15).contains(&size) || !size.is_finite() {
+            write!(f, "{}", self.0)
+        } else {
+            write!(f, "{:e}", self.0)
+        }
+    }
+}
+
 fn non_negative(value: f64, path: &str) -> Result<f64, Issue> {
-    require(value.is_finite() && value >= 0.0, path, value, "must be a finite number ≥ 0 (0: no diagonal springs)")?;
+    require(
+        value.is_finite() && value >= 0.0,
+        path,
+        Num(value),
+        "must be a finite number ≥ 0 (0: no diagonal springs)",
+    )?;
     Ok(value)
 }
 
 fn positive(value: f64, path: &str) -> Result<f64, Issue> {
-    require(value.is_finite() && value > 0.0, path, value, "must be a finite number > 0")?;
+    require(value.is_finite() && value > 0.0, path, Num(value), "must be a finite number > 0")?;
     Ok(value)
 }
 
@@ -67,10 +88,10 @@ const DEFAULT_WAVE_THRESHOLD: f64 = 0.01;
 pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) -> Result<RunSpec, Issue> {
     let name = raw.name.clone().unwrap_or_default();
     require(
-        !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_'),
+        super::is_safe_name(&name),
         "name",
         format!("{name:?}"),
-        "a non-empty name of letters, digits, '-' and '_'",
+        &format!("1 to {MAX_NAME_LEN} letters, digits, '-' and '_' (it names files: plots/<name>-....svg)"),
     )?;
     let kind = raw.kind.ok_or_else(|| Issue {
         path: "kind".into(),
@@ -86,6 +107,13 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     let solid = derive_from_solid(kind, raw, &material, spacing, geometry.depth)?;
     let material = RawMaterial { mass: solid.mass.or(material.mass), k: solid.k.or(material.k), ..material };
     let (mass, k, law, beta, contact) = resolve_material(&material)?;
+    // Each finite and > 0, but a ratio beyond f64's range (m = 1e300, k = 1e-300) leaves no time scale.
+    require(
+        (k / mass).is_normal(),
+        "material",
+        format!("mass = {}, k = {}", Num(mass), Num(k)),
+        &format!("k / mass = {} must be a normal number > 0 (mass and k too far apart)", Num(k / mass)),
+    )?;
     check_kind_fields(kind, raw)?;
     let relaxing_chain = kind == SceneKind::Chain && raw.relax.is_some();
     let v0 = match kind {
@@ -190,6 +218,13 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         _ => theory::linear_contact_duration(stiffness_for_damping, mass, gamma),
     }
     .map_err(|e| Issue { path: "damping".into(), value: format!("γ = {gamma}"), allowed: e.to_string() })?;
+    // Extreme but finite inputs (m = 1e-300 with k = 1e300) can still over- or underflow here.
+    require(
+        t_c.is_finite() && t_c > 0.0,
+        "material",
+        format!("mass = {}, k = {}", Num(mass), Num(k)),
+        &format!("give a contact time t_c = {} s; it must be finite and > 0 (mass, k and v0 too far apart)", Num(t_c)),
+    )?;
 
     let integrator = spec.integrator;
     require(
@@ -215,7 +250,12 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     let duration_path = if spec.relax.is_some() { "relax.max_tc" } else { "time.duration_tc" };
     let duration = t_c * positive(time.duration_tc.unwrap_or(default_duration_tc), duration_path)?;
     let steps = (duration / dt).ceil() as u64;
-    require(steps <= 2_000_000_000, "time.duration_tc", duration / t_c, "at most 2e9 steps")?;
+    require(
+        (1..=2_000_000_000).contains(&steps),
+        duration_path,
+        Num(duration / t_c),
+        &format!("from 1 to 2e9 steps of dt = {} s (it gives {steps})", Num(dt)),
+    )?;
     let samples = time.samples.unwrap_or(DEFAULT_SAMPLES);
     require(samples >= 2, "time.samples", samples, "must be ≥ 2")?;
     if let (Some(l), Some(w)) = (&spec.lattice, &raw.wave) {
@@ -276,7 +316,8 @@ fn derive_from_solid(
     let only_lattices = "only for lattice scenes (give mass and k directly)";
     require(kind == SceneKind::Lattice, "material.density", "(set)", only_lattices)?;
     let lattice = raw.lattice.clone().unwrap_or_default();
-    let (nx, ny) = (lattice.nx.or(lattice.size).unwrap_or(2), lattice.ny.or(lattice.size).unwrap_or(2));
+    // Checked first: the node count divides the block's mass.
+    let (nx, ny) = lattice_size(&lattice)?;
     let depth = depth.unwrap_or(1.0);
     let mut solid = Solid::default();
     let mut notes = Vec::new();
@@ -433,19 +474,7 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
         return Ok(None);
     }
     let lattice = raw.lattice.clone().unwrap_or_default();
-    let size = |value: Option<usize>, path: &str| {
-        let n = value.ok_or_else(|| missing(path, "the number of nodes, 2..=2000"))?;
-        require((2..=2000).contains(&n), path, n, "must be in 2..=2000")?;
-        Ok::<usize, Issue>(n)
-    };
-    if lattice.size.is_some() && (lattice.nx.is_some() || lattice.ny.is_some()) {
-        return Err(Issue {
-            path: "lattice.size".into(),
-            value: format!("{:?}", lattice.size.unwrap_or_default()),
-            allowed: "give either size (an N × N lattice) or nx and ny, not both".into(),
-        });
-    }
-    let (nx, ny) = (size(lattice.nx.or(lattice.size), "lattice.nx")?, size(lattice.ny.or(lattice.size), "lattice.ny")?);
+    let (nx, ny) = lattice_size(&lattice)?;
     // `diagonals: none` wins over a k_diag or k_diag_ratio set elsewhere, so a grid can switch
     // the diagonals off without touching their stiffness.
     let diagonals = lattice.diagonals.unwrap_or(Diagonals::Both);
@@ -608,6 +637,23 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
         impulse,
         probes,
     }))
+}
+
+/// Nodes per row and rows (nx, ny) of a lattice, each 2..=2000.
+fn lattice_size(lattice: &RawLattice) -> Result<(usize, usize), Issue> {
+    let size = |value: Option<usize>, path: &str| {
+        let n = value.ok_or_else(|| missing(path, "the number of nodes, 2..=2000"))?;
+        require((2..=2000).contains(&n), path, n, "must be in 2..=2000")?;
+        Ok::<usize, Issue>(n)
+    };
+    if lattice.size.is_some() && (lattice.nx.is_some() || lattice.ny.is_some()) {
+        return Err(Issue {
+            path: "lattice.size".into(),
+            value: format!("{:?}", lattice.size.unwrap_or_default()),
+            allowed: "give either size (an N × N lattice) or nx and ny, not both".into(),
+        });
+    }
+    Ok((size(lattice.nx.or(lattice.size), "lattice.nx")?, size(lattice.ny.or(lattice.size), "lattice.ny")?))
 }
 
 /// The probed rows and columns of an `nx` × `ny` lattice, rows first, each once.

@@ -1,0 +1,535 @@
+//! Hostile and malformed campaigns (issue 8): every fixture in `tests/campaigns/bad/` is refused
+//! with an error that names the file and the field, and fuzzing the parser with random text and
+//! random campaigns never panics, never hangs and never lets an unusable run through. Nothing
+//! here simulates: the parser and the stability check (`parse_campaign`) only.
+
+use mdsolids::spec::{Campaign, RunSpec, SpecError};
+use mdsolids::stability::parse_campaign;
+use proptest::prelude::*;
+use proptest::strategy::ValueTree;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::mpsc;
+use std::time::Duration;
+
+const BAD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/campaigns/bad");
+const SHIPPED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/campaigns");
+
+/// A hang guard, not a speed test: every case here parses in well under a second.
+const HANG_GUARD: Duration = Duration::from_secs(10);
+
+/// `parse(file, text)` on its own thread: `Err` with a description if it panicked or has not
+/// returned within [`HANG_GUARD`].
+fn guarded<T: Send + 'static>(
+    text: String,
+    parse: fn(&str, &str) -> Result<T, SpecError>,
+) -> Result<Result<T, SpecError>, String> {
+    let (send, receive) = mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = send.send(parse("fuzz.yaml", &text));
+    });
+    match receive.recv_timeout(HANG_GUARD) {
+        Ok(result) => Ok(result),
+        Err(mpsc::RecvTimeoutError::Timeout) => Err(format!("no answer within {HANG_GUARD:?}")),
+        Err(mpsc::RecvTimeoutError::Disconnected) => Err("the parser panicked".into()),
+    }
+}
+
+/// The fixtures: (campaign, expected-message file), sorted by name.
+fn fixtures() -> Vec<(PathBuf, PathBuf)> {
+    let mut found: Vec<(PathBuf, PathBuf)> = std::fs::read_dir(BAD)
+        .expect("tests/campaigns/bad exists")
+        .map(|entry| entry.expect("a readable directory entry").path())
+        .filter(|path| path.extension().is_some_and(|e| e == "yaml"))
+        .map(|path| (path.clone(), path.with_extension("expected")))
+        .collect();
+    found.sort();
+    found
+}
+
+#[test]
+fn every_bad_fixture_is_refused_naming_the_file_and_the_field() {
+    let fixtures = fixtures();
+    assert!(fixtures.len() >= 20, "only {} fixtures in {BAD}", fixtures.len());
+    let mut failures = Vec::new();
+    for (campaign, expected) in &fixtures {
+        let file = campaign.display().to_string();
+        let wanted = std::fs::read_to_string(expected).unwrap_or_else(|_| panic!("{} is missing", expected.display()));
+        let wanted: Vec<&str> = wanted.lines().filter(|line| !line.trim().is_empty()).collect();
+        assert!(!wanted.is_empty(), "{} names no expected text", expected.display());
+        let text = std::fs::read_to_string(campaign).expect("fixtures are UTF-8");
+        let file_for_thread = file.clone();
+        let (send, receive) = mpsc::channel();
+        std::thread::spawn(move || {
+            let _ = send.send(parse_campaign(&file_for_thread, &text).map(|c| c.runs.len()));
+        });
+        let message = match receive.recv_timeout(HANG_GUARD) {
+            Ok(Err(e)) => e.to_string(),
+            Ok(Ok(runs)) => format!("(accepted, {runs} runs)"),
+            Err(e) => format!("(no answer: {e:?})"),
+        };
+        let missing: Vec<&&str> = wanted.iter().filter(|w| !message.contains(*w)).collect();
+        if !message.starts_with(&format!("{file}: ")) || !missing.is_empty() {
+            failures.push(format!("{file}\n  missing {missing:?}\n  got: {message}"));
+        }
+    }
+    assert!(failures.is_empty(), "{} of {} fixtures:\n{}", failures.len(), fixtures.len(), failures.join("\n"));
+}
+
+/// The binary refuses a campaign whose name climbs out of `--reports` before it writes
+/// anything, in `plan` and in `run`.
+#[test]
+fn the_binary_writes_nothing_for_a_hostile_campaign() {
+    for fixture in ["name-parent", "name-absolute", "scene-name-parent", "enormous-grid"] {
+        for command in ["plan", "run"] {
+            let work = tempfile::tempdir().unwrap();
+            let reports = work.path().join("reports");
+            let campaign = Path::new(BAD).join(format!("{fixture}.yaml"));
+            let output = Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+                .current_dir(work.path())
+                .arg("--reports")
+                .arg(&reports)
+                .arg(command)
+                .arg(&campaign)
+                .output()
+                .unwrap();
+            let stderr = String::from_utf8_lossy(&output.stderr);
+            assert!(!output.status.success(), "{command} {fixture} succeeded");
+            assert!(stderr.contains(&campaign.display().to_string()), "{command} {fixture}: {stderr}");
+            let written: Vec<_> = std::fs::read_dir(work.path()).unwrap().collect();
+            assert!(written.is_empty(), "{command} {fixture} wrote {written:?}");
+        }
+        assert!(!Path::new("/tmp/escape").exists(), "{fixture} escaped to /tmp/escape");
+    }
+}
+
+/// A grid over the limit is refused with its count before it is expanded, and one at the
+/// limit is not refused for its size.
+#[test]
+fn the_run_limit_counts_before_expanding() {
+    let values = |n: usize| (1..=n).map(|i| format!("{}", i as f64 / 1000.0)).collect::<Vec<_>>().join(", ");
+    let campaign = |a: usize, b: usize| {
+        format!(
+            "version: 1\nname: t\nscenes:\n  - name: p\n    kind: pair\n    v0: 1.0\n    grid:\n      v0: [{}]\n      \
+             material.mass: [{}]\n",
+            values(a),
+            values(b)
+        )
+    };
+    let error = mdsolids::spec::parse("big.yaml", &campaign(1001, 100)).unwrap_err().to_string();
+    assert!(error.contains("scenes[0].grid: 100100 runs (material.mass: 100 values × v0: 1001 values)"), "{error}");
+    assert!(error.contains(&format!("at most {} runs", mdsolids::spec::MAX_RUNS)), "{error}");
+    assert_eq!(mdsolids::spec::parse("ok.yaml", &campaign(10, 10)).unwrap().runs.len(), 100);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Fuzzing. Cases per test are set explicitly; together more than 10 000.
+
+const RANDOM_TEXT_CASES: u32 = 3000;
+const MUTATION_CASES: u32 = 3000;
+const TOKEN_SOUP_CASES: u32 = 2000;
+const STRUCTURED_CASES: u32 = 3000;
+
+fn config(cases: u32) -> ProptestConfig {
+    ProptestConfig { cases, ..ProptestConfig::default() }
+}
+
+/// Parses `text` with the stability check and, when it is accepted, checks every run.
+fn assert_refused_or_sane(text: String) -> Result<(), TestCaseError> {
+    match guarded(text, parse_campaign) {
+        Err(problem) => Err(TestCaseError::fail(problem)),
+        Ok(Err(e)) => {
+            let message = e.to_string();
+            prop_assert!(message.starts_with("fuzz.yaml: "), "the error does not name the file: {}", message);
+            Ok(())
+        }
+        Ok(Ok(campaign)) => check_sane(&campaign),
+    }
+}
+
+/// What every accepted run must satisfy before it may start.
+fn check_sane(campaign: &Campaign) -> Result<(), TestCaseError> {
+    prop_assert!(!campaign.runs.is_empty() && campaign.runs.len() as u64 <= mdsolids::spec::MAX_RUNS);
+    for spec in &campaign.runs {
+        let RunSpec { mass, k, spacing, t_c, dt, duration, steps, samples, gamma, gamma_background, v0, .. } = *spec;
+        let positive =
+            [("mass", mass), ("k", k), ("spacing", spacing), ("t_c", t_c), ("dt", dt), ("duration", duration)];
+        for (what, value) in positive {
+            prop_assert!(value.is_finite() && value > 0.0, "{} = {} in {:?}", what, value, spec);
+        }
+        for (what, value) in [("gamma", gamma), ("gamma_background", gamma_background), ("v0", v0)] {
+            prop_assert!(value.is_finite() && value >= 0.0, "{} = {} in {:?}", what, value, spec);
+        }
+        prop_assert!((1..=2_000_000_000).contains(&steps), "steps = {} in {:?}", steps, spec);
+        prop_assert!(samples >= 2);
+        prop_assert!(spec.n.is_none_or(|n| (1..=100_000).contains(&n)));
+        if let Some(l) = &spec.lattice {
+            prop_assert!((2..=2000).contains(&l.nx) && (2..=2000).contains(&l.ny));
+        }
+    }
+    Ok(())
+}
+
+/// The shipped campaigns, small ones first.
+fn shipped() -> Vec<String> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(SHIPPED)
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.extension().is_some_and(|e| e == "yaml"))
+        .collect();
+    files.sort_by_key(|path| std::fs::metadata(path).map(|m| m.len()).unwrap_or(0));
+    files.iter().map(|path| std::fs::read_to_string(path).unwrap()).collect()
+}
+
+/// One random edit of a text, at a position given as a fraction of its length.
+#[derive(Clone, Debug)]
+enum Edit {
+    Delete(f64, usize),
+    Insert(f64, String),
+    Duplicate(f64, usize),
+    Swap(f64, f64),
+}
+
+fn edit() -> impl Strategy<Value = Edit> {
+    let at = 0.0..1.0f64;
+    prop_oneof![
+        (at.clone(), 1..40usize).prop_map(|(at, n)| Edit::Delete(at, n)),
+        (at.clone(), token()).prop_map(|(at, t)| Edit::Insert(at, t)),
+        (at.clone(), 1..200usize).prop_map(|(at, n)| Edit::Duplicate(at, n)),
+        (at.clone(), at).prop_map(|(a, b)| Edit::Swap(a, b)),
+    ]
+}
+
+fn apply(text: &str, edits: &[Edit]) -> String {
+    let mut chars: Vec<char> = text.chars().collect();
+    let index = |at: f64, len: usize| ((at * len as f64) as usize).min(len);
+    for edit in edits {
+        let len = chars.len();
+        match edit {
+            Edit::Delete(at, n) => {
+                let start = index(*at, len);
+                chars.drain(start..(start + n).min(len));
+            }
+            Edit::Insert(at, token) => {
+                let start = index(*at, len);
+                chars.splice(start..start, token.chars());
+            }
+            Edit::Duplicate(at, n) => {
+                let start = index(*at, len);
+                let copy: Vec<char> = chars[start..(start + n).min(len)].to_vec();
+                chars.splice(start..start, copy);
+            }
+            Edit::Swap(a, b) if len > 0 => chars.swap(index(*a, len - 1), index(*b, len - 1)),
+            Edit::Swap(..) => {}
+        }
+    }
+    chars.into_iter().collect()
+}
+
+/// YAML syntax, campaign keys and hostile values.
+fn token() -> impl Strategy<Value = String> {
+    let fixed = [
+        "{",
+        "}",
+        "[",
+        "]",
+        ":",
+        ": ",
+        ",",
+        "- ",
+        "\n",
+        "\n  ",
+        "\n    ",
+        "  ",
+        "\t",
+        "&a ",
+        "*a",
+        "&b ",
+        "*b",
+        "<<: *a",
+        "!!str ",
+        "!!float ",
+        "!!map ",
+        "!tag ",
+        "? ",
+        "|\n",
+        ">-\n",
+        "'",
+        "\"",
+        "#",
+        "---\n",
+        "...\n",
+        "%YAML 1.2\n",
+        "\\",
+        "\0",
+        "\u{feff}",
+        "version: 1\n",
+        "name: ",
+        "scenes:",
+        "defaults:",
+        "grid:",
+        "kind: ",
+        "pair",
+        "chain",
+        "lattice",
+        "v0: ",
+        "n: ",
+        "material: ",
+        "mass: ",
+        "k: ",
+        "time: ",
+        "dt_per_tc: ",
+        "dt: ",
+        "samples: ",
+        "lattice: ",
+        "size: ",
+        "nx: ",
+        "ny: ",
+        "duration_tc: ",
+        "damping: ",
+        "restitution: ",
+        "gamma: ",
+        "density: ",
+        "law: power",
+        "beta: ",
+        "contact: true",
+        "relax: {}",
+        "wall_distance: ",
+        "..",
+        "/",
+        "../",
+        ".nan",
+        ".inf",
+        "-.inf",
+        "0",
+        "-1",
+        "1e308",
+        "1e-308",
+        "1e400",
+        "-0",
+        "0x7f",
+        "0o17",
+        "18446744073709551616",
+        "2000",
+        "2001",
+        "100000",
+        "null",
+        "~",
+        "true",
+        "yes",
+        "é",
+        "\u{202e}",
+    ];
+    prop_oneof![
+        proptest::sample::select(fixed.to_vec()).prop_map(str::to_string),
+        any::<f64>().prop_map(|x| x.to_string()),
+        any::<i64>().prop_map(|x| x.to_string()),
+        "[a-z_.]{1,12}",
+    ]
+}
+
+proptest! {
+    #![proptest_config(config(RANDOM_TEXT_CASES))]
+    /// Random bytes (read as UTF-8 with replacement characters).
+    #[test]
+    fn random_text_never_panics(bytes in proptest::collection::vec(any::<u8>(), 0..2000)) {
+        assert_refused_or_sane(String::from_utf8_lossy(&bytes).into_owned())?;
+    }
+}
+
+proptest! {
+    #![proptest_config(config(MUTATION_CASES))]
+    /// Random edits of the shipped campaigns. The large ones are mutated through the spec
+    /// layer only: their stability check takes seconds (one power iteration per lattice run).
+    #[test]
+    fn mutated_campaigns_never_panic(
+        which in 0..5usize,
+        edits in proptest::collection::vec(edit(), 1..6),
+    ) {
+        let files = shipped();
+        let text = apply(&files[which % files.len()], &edits);
+        if which == 0 {
+            assert_refused_or_sane(text)?;
+        } else {
+            match guarded(text, mdsolids::spec::parse) {
+                Err(problem) => return Err(TestCaseError::fail(problem)),
+                Ok(Err(e)) => prop_assert!(e.to_string().starts_with("fuzz.yaml: ")),
+                Ok(Ok(_)) => {}
+            }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(config(TOKEN_SOUP_CASES))]
+    /// Random sequences of YAML syntax, keys and values.
+    #[test]
+    fn token_soup_never_panics(tokens in proptest::collection::vec(token(), 0..80)) {
+        assert_refused_or_sane(tokens.concat())?;
+    }
+}
+
+/// A number as YAML text: usually in the plausible range `good`, sometimes of any sign and size,
+/// sometimes hostile.
+fn number(good: std::ops::Range<f64>) -> impl Strategy<Value = String> {
+    prop_oneof![
+        12 => good.prop_map(|x| format!("{x}")),
+        1 => proptest::sample::select(vec![
+            "0", "-0", "-1", "1", "2", "0.5", "1e-12", "-1e-300", "1e-300", "1e300", "1e308", "-1e308", "1e-320",
+            ".nan", ".NaN", ".inf", "-.inf", "1e400", "18446744073709551616", "99999999999999999999999", "2000000001",
+            "\"1.0\"", "one", "[]", "{}", "null", "true",
+        ])
+        .prop_map(str::to_string),
+        1 => any::<f64>().prop_map(|x| format!("{x:e}")),
+    ]
+}
+
+/// A count in `good` (small, so the stability check stays quick) or a hostile one.
+fn count(good: std::ops::Range<u32>) -> impl Strategy<Value = String> {
+    prop_oneof![
+        12 => good.prop_map(|n| n.to_string()),
+        1 => proptest::sample::select(vec![
+            "0", "-1", "-3", "2001", "100001", "4294967296", "18446744073709551615", "1e300", "2.5", ".nan", "x",
+        ])
+        .prop_map(str::to_string),
+    ]
+}
+
+/// An enum value: usually one of `words`, sometimes a wrong one.
+fn word(words: &'static [&'static str]) -> impl Strategy<Value = String> {
+    prop_oneof![
+        12 => proptest::sample::select(words).prop_map(str::to_string),
+        1 => proptest::sample::select(vec!["", "PAIR", "0", "[pair]", "{a: 1}", "null", "../x"]).prop_map(str::to_string),
+    ]
+}
+
+/// `key: value, ` with probability `p`, else nothing.
+fn field(p: f64, key: &'static str, value: impl Strategy<Value = String>) -> impl Strategy<Value = String> {
+    proptest::option::weighted(p, value).prop_map(move |v| v.map_or(String::new(), |v| format!("{key}: {v}, ")))
+}
+
+/// `{a, b, ...}` from fields that each end in ", ".
+fn flow_map(fields: &[String]) -> String {
+    format!("{{{}}}", fields.concat()).replace(", }", "}")
+}
+
+/// The fields every kind of scene has: material, time, damping, geometry and a small grid.
+fn common_fields() -> impl Strategy<Value = String> {
+    let material = (
+        field(0.3, "mass", number(0.1..10.0)),
+        field(0.3, "k", number(0.1..10.0)),
+        field(0.1, "law", word(&["linear", "power", "hertz"])),
+        field(0.1, "beta", number(1.0..3.0)),
+    )
+        .prop_map(|(a, b, c, d)| flow_map(&[a, b, c, d]));
+    let time = (
+        field(0.2, "integrator", word(&["position-verlet", "velocity-verlet", "rk4", "gear"])),
+        field(0.3, "dt_per_tc", number(20.0..100.0)),
+        field(0.05, "dt", number(0.001..0.1)),
+        field(0.05, "dt_omega_max", number(0.05..1.0)),
+        field(0.3, "duration_tc", number(0.5..20.0)),
+        field(0.2, "samples", count(2..500)),
+    )
+        .prop_map(|(a, b, c, d, e, f)| flow_map(&[a, b, c, d, e, f]));
+    let damping = (
+        field(0.2, "restitution", number(0.05..1.0)),
+        field(0.1, "gamma", number(0.0..0.5)),
+        field(0.1, "background", number(0.0..0.5)),
+    )
+        .prop_map(|(a, b, c)| flow_map(&[a, b, c]));
+    let geometry = (field(0.3, "spacing", number(0.1..10.0)), field(0.2, "depth", number(0.1..10.0)))
+        .prop_map(|(a, b)| flow_map(&[a, b]));
+    let grid = proptest::collection::vec(
+        (
+            proptest::sample::select(vec!["v0", "material.mass", "material.k", "time.dt_per_tc", "bogus"]),
+            proptest::collection::vec(number(1.0..50.0), 0..4),
+        ),
+        1..3,
+    )
+    .prop_map(|axes| {
+        let axes: Vec<String> =
+            axes.iter().map(|(path, values)| format!("{path}: [{}], ", values.join(", "))).collect();
+        flow_map(&axes)
+    });
+    (
+        field(0.5, "material", material),
+        field(0.5, "time", time),
+        field(0.3, "damping", damping),
+        field(0.2, "geometry", geometry),
+        field(0.2, "grid", grid),
+    )
+        .prop_map(|(a, b, c, d, e)| [a, b, c, d, e].concat())
+}
+
+/// A scene of a random kind with mostly plausible and sometimes hostile fields; sometimes a
+/// field of another kind.
+fn scene() -> impl Strategy<Value = String> {
+    let pair = (field(0.95, "v0", number(0.1..5.0)), field(0.2, "material", Just("{contact: true}".to_string())))
+        .prop_map(|(v0, contact)| format!("kind: pair, {v0}{contact}"));
+    let chain = (
+        field(0.95, "n", count(1..12)),
+        field(0.95, "v0", number(0.1..5.0)),
+        field(0.2, "node", word(&["first", "last", "centre", "3"])),
+        field(0.1, "wave", Just("{}".to_string())),
+    )
+        .prop_map(|(n, v0, node, wave)| format!("kind: chain, {n}{v0}{node}{wave}"));
+    let lattice = (
+        field(0.9, "size", count(2..6)),
+        field(0.1, "nx", count(2..6)),
+        field(0.2, "supports", word(&["coursework", "clamped-bottom", "periodic-x", "free"])),
+        field(0.1, "relax", Just("{max_tc: 50}".to_string())),
+    )
+        .prop_map(|(size, nx, supports, relax)| {
+            format!("kind: lattice, lattice: {}, {supports}{relax}", flow_map(&[size, nx]))
+        });
+    let stray =
+        (word(&["pair", "chain", "lattice"]), field(0.5, "n", count(1..5)), field(0.5, "gap", number(0.0..1.0)))
+            .prop_map(|(kind, n, gap)| format!("kind: {kind}, {n}{gap}"));
+    (prop_oneof![3 => pair, 3 => chain, 3 => lattice, 1 => stray], common_fields())
+        .prop_map(|(own, common)| format!("{{{}}}", format!("{own}{common}").trim_end_matches(", ")))
+}
+
+/// A whole campaign of one or two random scenes, usually named well.
+fn campaign() -> impl Strategy<Value = String> {
+    (
+        prop_oneof![4 => Just("fuzz".to_string()), 1 => "[ -~]{0,12}".prop_map(|s| format!("{s:?}"))],
+        proptest::collection::vec(scene(), 1..3),
+    )
+        .prop_map(|(name, scenes)| {
+            let scenes: String =
+                scenes.iter().enumerate().map(|(i, s)| format!("  - {{name: s{i}, {}\n", &s[1..])).collect();
+            format!("version: 1\nname: {name}\nscenes:\n{scenes}")
+        })
+}
+
+proptest! {
+    #![proptest_config(config(STRUCTURED_CASES))]
+    /// Whole campaigns with random field values: refused with the file named, or every run is
+    /// finite and within its limits.
+    #[test]
+    fn structured_campaigns_are_refused_or_sane(text in campaign()) {
+        assert_refused_or_sane(text)?;
+    }
+}
+
+/// The structured fuzz reaches the end of the resolver: a fair share of its campaigns is
+/// accepted, so the checks on accepted runs above are exercised, not only the refusals.
+#[test]
+fn structured_campaigns_are_often_valid() {
+    let mut runner = proptest::test_runner::TestRunner::deterministic();
+    let strategy = campaign();
+    let samples = 300;
+    let accepted = (0..samples)
+        .filter(|_| parse_campaign("fuzz.yaml", &strategy.new_tree(&mut runner).unwrap().current()).is_ok())
+        .count();
+    assert!(accepted * 20 >= samples, "only {accepted} of {samples} random campaigns accepted");
+}
+
+/// [`guarded`] itself reports a panic instead of passing it by.
+#[test]
+fn the_guard_reports_a_panic() {
+    fn panics(_: &str, _: &str) -> Result<(), SpecError> {
+        panic!("on purpose")
+    }
+    assert_eq!(guarded(String::new(), panics).err().as_deref(), Some("the parser panicked"));
+}
