@@ -230,6 +230,20 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
         simulation_s,
         simulation_s / threads as f64 + REPORT_SECONDS
     );
+    let over: Vec<(String, String)> =
+        campaign.runs.iter().filter_map(|spec| campaign.budget.warning(spec).map(|why| (spec.run_id(), why))).collect();
+    for (run_id, why) in &over {
+        println!("warning: {run_id}: {why}; it will end with status = budget");
+    }
+    if !over.is_empty() {
+        println!(
+            "warning: {} of {} runs exceed the budget per run ({:.0} s, {:.0} MB; campaign field budget:)",
+            over.len(),
+            campaign.runs.len(),
+            campaign.budget.seconds_per_run,
+            campaign.budget.memory_per_run / 1e6
+        );
+    }
     Ok(())
 }
 

@@ -19,6 +19,10 @@ impl Layout {
     pub fn run_file(&self, run_id: &str) -> PathBuf {
         self.root.join("runs").join(format!("{run_id}.json"))
     }
+    /// The lock file held while run `run_id` is simulated (hidden, beside the records).
+    pub fn run_lock_file(&self, run_id: &str) -> PathBuf {
+        self.root.join("runs").join(".locks").join(format!("{run_id}.lock"))
+    }
     /// The movie of run `run_id`, beside its record.
     pub fn movie_file(&self, run_id: &str) -> PathBuf {
         self.root.join("runs").join(format!("{run_id}.gif"))
@@ -44,6 +48,19 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create directory '{}'", dir.display()))?;
     let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("output");
     let temporary = dir.join(format!(".{name}.{}.{:?}.tmp", std::process::id(), std::thread::current().id()));
-    std::fs::write(&temporary, bytes).with_context(|| format!("cannot write '{}'", temporary.display()))?;
-    std::fs::rename(&temporary, path).with_context(|| format!("cannot move '{}' into place", path.display()))
+    // Flushed to the disk before the rename, so that after a crash the name holds the whole
+    // new file or the old one. A failed write removes its partial temporary file.
+    let written = std::fs::File::create(&temporary).and_then(|mut file| {
+        std::io::Write::write_all(&mut file, bytes)?;
+        file.sync_all()
+    });
+    if let Err(error) = written {
+        let _ = std::fs::remove_file(&temporary);
+        return Err(error).with_context(|| format!("cannot write '{}'", temporary.display()));
+    }
+    if let Err(error) = std::fs::rename(&temporary, path) {
+        let _ = std::fs::remove_file(&temporary);
+        return Err(error).with_context(|| format!("cannot move '{}' into place", path.display()));
+    }
+    Ok(())
 }

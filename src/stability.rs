@@ -311,8 +311,14 @@ fn stays_bounded(kind: IntegratorKind, test: TestEquation, h: f64) -> bool {
         k_falling: 0.0,
         periodic_x: false,
     };
-    let sampling =
-        Sampling { dt: h, steps: 2 * TRIAL_STEPS, every: 2 * TRIAL_STEPS, displacements: false, relaxation: None, deadline: None };
+    let sampling = Sampling {
+        dt: h,
+        steps: 2 * TRIAL_STEPS,
+        every: 2 * TRIAL_STEPS,
+        displacements: false,
+        relaxation: None,
+        deadline: None,
+    };
     let mut state = State::new(particles);
     let mut amplitudes = Amplitudes::default();
     if gamma > 0.0 {

@@ -16,7 +16,9 @@ use crate::scenes::{
     pair_references, relaxation_checks, top_row,
 };
 use crate::sim::{LawKind, Outcome, ProbeTrace, RunStatus, Scene, Trace};
-use crate::spec::{Budget, Control, LatticeSpec, LawName, LoadCase, ProbeLine, RunSpec, SceneKind, reference_extension};
+use crate::spec::{
+    Budget, Control, LatticeSpec, LawName, LoadCase, ProbeLine, RunSpec, SceneKind, reference_extension,
+};
 use crate::stability::estimate;
 
 /// Runs `spec` within the default [`Budget`] and returns its record; never panics.

@@ -12,6 +12,8 @@ mod shard;
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::output::{Layout, write_atomically};
 use crate::spec::{Campaign, RunSpec};
@@ -53,44 +55,92 @@ pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -
     // short ones fill the gaps, instead of a late long run keeping one core busy alone.
     let mut order: Vec<usize> = (0..todo.len()).collect();
     order.sort_by(|&a, &b| todo[b].estimated_seconds().total_cmp(&todo[a].estimated_seconds()));
-    let finished: Vec<std::sync::Mutex<Option<anyhow::Result<RunRecord>>>> =
-        todo.iter().map(|_| std::sync::Mutex::new(None)).collect();
+    let finished: Vec<Mutex<Option<(RunRecord, bool)>>> = todo.iter().map(|_| Mutex::new(None)).collect();
     // Movies of scenes that show their runs side by side, kept until all runs have ended.
-    let panels: Vec<std::sync::Mutex<Option<Movie>>> = todo.iter().map(|_| std::sync::Mutex::new(None)).collect();
+    let panels: Vec<Mutex<Option<Movie>>> = todo.iter().map(|_| Mutex::new(None)).collect();
+    // The first failure to store a result (disk full, permissions) stops the campaign: runs
+    // not yet started are skipped, the ones running finish, everything stored stays.
+    let failure: Mutex<Option<anyhow::Error>> = Mutex::new(None);
+    let stopping = AtomicBool::new(false);
     pool.scope_fifo(|scope| {
         for &index in &order {
             let (spec, slot, panel, progress) = (todo[index], &finished[index], &panels[index], &progress);
+            let (failure, stopping) = (&failure, &stopping);
             scope.spawn_fifo(move |_| {
-                let stored = (|| {
-                    let mut record = execute_within(spec, &campaign.budget);
-                    if let Some(movie) = record.movie.take() {
-                        crate::report::write_movie(&layout.movie_file(&record.run_id), &movie)?;
-                        if movie.spec.side_by_side {
-                            *panel.lock().expect("a panel is written once") = Some(movie);
+                if !stopping.load(Ordering::Relaxed) {
+                    match run_and_store(campaign, layout, spec, panel) {
+                        Ok(done) => *slot.lock().expect("a slot is written once") = Some(done),
+                        Err(error) => {
+                            stopping.store(true, Ordering::Relaxed);
+                            failure.lock().expect("failures are only pushed").get_or_insert(error);
                         }
                     }
-                    let json = serde_json::to_vec(&record).context("cannot serialise a run record")?;
-                    write_atomically(&layout.run_file(&record.run_id), &json)?;
-                    Ok(record)
-                })();
+                }
                 progress.inc(1);
-                *slot.lock().expect("a slot is written once") = Some(stored);
             });
         }
     });
     progress.finish_and_clear();
+    if let Some(error) = failure.into_inner().expect("failures are only pushed") {
+        let kept = finished.iter().filter(|slot| slot.lock().is_ok_and(|s| s.is_some())).count();
+        return Err(error.context(format!(
+            "campaign '{}' stopped: a result could not be stored; {kept} runs finished now and every result stored \
+             before are kept in {}",
+            campaign.name,
+            layout.root.join("runs").display()
+        )));
+    }
     write_side_by_side(campaign, layout, &todo, panels)?;
-    let fresh: Vec<RunRecord> = finished
+    let fresh: Vec<(RunRecord, bool)> = finished
         .into_iter()
         .map(|slot| slot.into_inner().expect("a slot is written once").expect("every queued run ends"))
-        .collect::<anyhow::Result<_>>()?;
-    let simulated = fresh.len();
+        .collect();
+    let simulated = fresh.iter().filter(|(_, simulated)| *simulated).count();
     let mut fresh = fresh.into_iter();
     let records: Vec<RunRecord> = stored
         .into_iter()
-        .map(|r| r.unwrap_or_else(|| fresh.next().expect("one fresh record per missing run")))
+        .map(|r| r.unwrap_or_else(|| fresh.next().expect("one fresh record per missing run").0))
         .collect();
     Ok(CampaignRun { cached: records.len() - simulated, records, simulated })
+}
+
+/// Runs `spec` and stores its record (and movie), holding the run's lock file so that another
+/// `mdsolids` process on the same store (a second `run`, another shard) never runs it at the
+/// same time: whoever comes second waits, then finds the record stored and takes it. The lock
+/// is an OS file lock, released when the process ends however it ends (even by SIGKILL), so a
+/// killed run leaves nothing that blocks a rerun. Returns the record and whether it was
+/// simulated here.
+fn run_and_store(
+    campaign: &Campaign,
+    layout: &Layout,
+    spec: &RunSpec,
+    panel: &Mutex<Option<Movie>>,
+) -> anyhow::Result<(RunRecord, bool)> {
+    let run_id = spec.run_id();
+    let lock_path = layout.run_lock_file(&run_id);
+    if let Some(dir) = lock_path.parent() {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create directory '{}'", dir.display()))?;
+    }
+    let lock = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&lock_path)
+        .with_context(|| format!("cannot open the lock file '{}'", lock_path.display()))?;
+    lock.lock().with_context(|| format!("cannot lock '{}'", lock_path.display()))?;
+    if let Some(record) = stored_record(layout, spec).filter(|record| record.status != "budget") {
+        return Ok((record, false));
+    }
+    let mut record = execute_within(spec, &campaign.budget);
+    if let Some(movie) = record.movie.take() {
+        crate::report::write_movie(&layout.movie_file(&record.run_id), &movie)?;
+        if movie.spec.side_by_side {
+            *panel.lock().expect("a panel is written once") = Some(movie);
+        }
+    }
+    let json = serde_json::to_vec(&record).context("cannot serialise a run record")?;
+    write_atomically(&layout.run_file(&record.run_id), &json)?;
+    Ok((record, true))
 }
 
 /// Writes one movie per scene that asks for its runs side by side, from the movies of the runs
@@ -100,7 +150,7 @@ fn write_side_by_side(
     campaign: &Campaign,
     layout: &Layout,
     todo: &[&RunSpec],
-    panels: Vec<std::sync::Mutex<Option<Movie>>>,
+    panels: Vec<Mutex<Option<Movie>>>,
 ) -> anyhow::Result<()> {
     let movies: Vec<Option<Movie>> =
         panels.into_iter().map(|m| m.into_inner().expect("a panel is written once")).collect();

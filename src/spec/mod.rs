@@ -4,7 +4,8 @@
 
 pub use self::raw::{Control, Diagonals, LawName, LoadCase, SceneKind, Supports};
 pub use self::run_spec::{
-    Budget, ImpulseSpec, LatticeSpec, MovieSpec, ProbeLine, RESULT_FORMAT, RelaxSpec, RunSpec, WaveSpec, reference_extension,
+    Budget, ImpulseSpec, LatticeSpec, MovieSpec, ProbeLine, RESULT_FORMAT, RelaxSpec, RunSpec, WaveSpec,
+    reference_extension,
 };
 
 mod finite;

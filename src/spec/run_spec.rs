@@ -148,8 +148,7 @@ impl Budget {
             let seconds = spec.estimated_seconds();
             (seconds > self.seconds_per_run).then(|| {
                 format!(
-                    "estimated {seconds:.0} s, beyond the budget of {:.0} s per run (budget.seconds_per_run): it \
-                     would be stopped",
+                    "estimated {seconds:.0} s, beyond the budget of {:.0} s per run (budget.seconds_per_run)",
                     self.seconds_per_run
                 )
             })
