@@ -90,7 +90,7 @@ fn setup(nx: usize, ny: usize, supports: bool, periodic_x: bool) -> (Particles, 
 const STEPS: u64 = 1000;
 
 fn sampling() -> Sampling {
-    Sampling { dt: 0.02, steps: STEPS, every: STEPS, displacements: false, relaxation: None }
+    Sampling { dt: 0.02, steps: STEPS, every: STEPS, displacements: false, relaxation: None, deadline: None }
 }
 
 fn reference<L: ForceLaw, D: Dashpot, const C: bool>(
