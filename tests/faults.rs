@@ -53,6 +53,29 @@ fn stored(reports: &Path) -> Vec<String> {
     names
 }
 
+/// Waits (polling every 2 ms, at most 60 s) until `count` records are stored under
+/// `reports`; returns the time waited.
+fn wait_for_records(reports: &Path, count: usize) -> Duration {
+    let started = Instant::now();
+    while count_records(reports) < count {
+        assert!(started.elapsed() < Duration::from_secs(60), "{count} records never appeared");
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    started.elapsed()
+}
+
+/// The number of stored records, without reading them (they may be being written).
+fn count_records(reports: &Path) -> usize {
+    std::fs::read_dir(reports.join("faults/runs")).map_or(0, |entries| {
+        entries
+            .filter(|e| {
+                let name = e.as_ref().unwrap().file_name().to_string_lossy().to_string();
+                name.ends_with(".json") && !name.starts_with('.')
+            })
+            .count()
+    })
+}
+
 /// "(N simulated, M cached" from a run's summary line.
 fn simulated(output: &std::process::Output) -> usize {
     let text = String::from_utf8_lossy(&output.stdout).to_string() + &String::from_utf8_lossy(&output.stderr);
@@ -74,23 +97,28 @@ fn a_campaign_killed_at_random_moments_reruns_to_the_uninterrupted_table() {
     let dir = tempfile::tempdir().unwrap();
     let file = campaign_file(dir.path(), CAMPAIGN);
     let reference = dir.path().join("reference");
-    let started = Instant::now();
     let out = mdsolids(&reference, &["run", file.to_str().unwrap(), "-j", "2"]).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let whole = started.elapsed().as_secs_f64();
     let expected = table(&reference);
     let expected_runs = stored(&reference);
     assert_eq!(expected_runs.len(), RUNS);
     let seed = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).unwrap().as_nanos() as u64;
-    println!("kill times from seed {seed}; an uninterrupted run takes {whole:.2} s");
+    println!("kill times from seed {seed}");
     let mut rng = Lcg(seed);
     let (trials, mut in_the_middle) = (20, 0);
     for trial in 0..trials {
         let reports = dir.path().join(format!("trial-{trial}"));
-        // One to three kills in a row, each at a random moment of a whole run's duration.
+        // One to three kills in a row.
         for _ in 0..1 + trial % 3 {
             let mut child = mdsolids(&reports, &["run", file.to_str().unwrap(), "-j", "2"]).spawn().unwrap();
-            std::thread::sleep(Duration::from_secs_f64(rng.uniform() * whole));
+            // A random moment while it works: once a random number of further runs is stored
+            // (at least one, never all), plus up to 5 ms.
+            let held = stored(&reports).len();
+            if held + 1 < RUNS {
+                let target = held + 1 + (rng.uniform() * (RUNS - 1 - held) as f64) as usize;
+                wait_for_records(&reports, target);
+            }
+            std::thread::sleep(Duration::from_secs_f64(0.005 * rng.uniform()));
             child.kill().unwrap(); // SIGKILL
             child.wait().unwrap();
             let count = stored(&reports).len();
@@ -103,7 +131,7 @@ fn a_campaign_killed_at_random_moments_reruns_to_the_uninterrupted_table() {
     }
     println!("{trials} trials, {in_the_middle} kills with some but not all runs stored");
     // Not vacuous: most kills must land while the campaign runs.
-    assert!(in_the_middle >= 8, "only {in_the_middle} kills landed in the middle of a campaign");
+    assert!(in_the_middle >= 15, "only {in_the_middle} kills landed in the middle of a campaign");
 }
 
 #[test]
