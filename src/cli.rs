@@ -30,13 +30,17 @@ pub enum Command {
     Run {
         /// Campaign file (YAML).
         campaign: PathBuf,
-        /// Parallel jobs (default: all cores).
-        #[arg(short, long)]
+        /// Parallel jobs, 1 to 1024 (default: all cores).
+        #[arg(short, long, value_parser = thread_count)]
         jobs: Option<usize>,
         /// Run only share I of N (0 ≤ I < N) of the runs, balanced by the plan's cost estimate,
         /// and store them without writing tables or reports (`report` merges the shares).
         #[arg(long, value_name = "I/N")]
         shard: Option<Shard>,
+        /// Write into reports/<name>/ even when another campaign file owns it (it becomes this
+        /// file's; see campaign.json there).
+        #[arg(long)]
+        force: bool,
     },
     /// List the expanded runs with dt, t_c, cost and cache state; runs nothing.
     Plan {
@@ -51,6 +55,9 @@ pub enum Command {
     Report {
         /// Campaign file (YAML).
         campaign: PathBuf,
+        /// Write into reports/<name>/ even when another campaign file owns it.
+        #[arg(long)]
+        force: bool,
     },
     /// Write a Slurm job array (task I runs `run --shard I/N`) and a report job that runs after
     /// every task has ended (afterany) into <reports>/<campaign>/slurm/; --reports must be on
@@ -61,18 +68,21 @@ pub enum Command {
         /// Array tasks (shares of the campaign).
         #[arg(long, default_value_t = 4)]
         tasks: usize,
-        /// Slurm partition (default: the cluster's default partition).
-        #[arg(long)]
+        /// Slurm partition or comma-separated partitions (default: the cluster's default partition).
+        #[arg(long, value_parser = crate::slurm::partition_option)]
         partition: Option<String>,
         /// Time limit of each job, in Slurm's format (e.g. 30, 2:00:00, 1-0).
-        #[arg(long)]
+        #[arg(long, value_parser = crate::slurm::time_option)]
         time: Option<String>,
-        /// CPUs per array task (also its --jobs).
-        #[arg(long, default_value_t = 1)]
+        /// CPUs per array task (also its --jobs), 1 to 1024.
+        #[arg(long, default_value_t = 1, value_parser = thread_count)]
         cpus_per_task: usize,
         /// Submit with sbatch and print the job ids (otherwise print how to submit).
         #[arg(long)]
         submit: bool,
+        /// Write into reports/<name>/ even when another campaign file owns it.
+        #[arg(long)]
+        force: bool,
     },
     /// Time the reference workload (README, "Performance"): an N × N lattice with diagonals,
     /// velocity Verlet, dt = 0.01; prints particle-steps/s, bond-updates/s and energy drift.
@@ -83,8 +93,8 @@ pub enum Command {
         /// Steps to time.
         #[arg(long, default_value_t = 1000)]
         steps: u64,
-        /// Threads (default: all cores).
-        #[arg(long)]
+        /// Threads, 1 to 1024 (default: all cores).
+        #[arg(long, value_parser = thread_count)]
         threads: Option<usize>,
         /// Remove this fraction of the bonds at random (runs the generic bond-list loop).
         #[arg(long, default_value_t = 0.0)]
@@ -116,19 +126,20 @@ pub enum Command {
 pub fn run() -> anyhow::Result<()> {
     let cli = Cli::parse();
     match &cli.command {
-        Command::Run { campaign, jobs, shard } => match shard {
-            Some(shard) => run_shard_command(&cli.reports, campaign, *jobs, *shard),
-            None => run_command(&cli.reports, campaign, *jobs),
+        Command::Run { campaign, jobs, shard, force } => match shard {
+            Some(shard) => run_shard_command(&cli.reports, campaign, *jobs, *shard, *force),
+            None => run_command(&cli.reports, campaign, *jobs, *force),
         },
         Command::Plan { campaign, shard } => plan_command(&cli.reports, campaign, *shard),
-        Command::Report { campaign } => report_command(&cli.reports, campaign),
-        Command::Slurm { campaign, tasks, partition, time, cpus_per_task, submit } => {
+        Command::Report { campaign, force } => report_command(&cli.reports, campaign, *force),
+        Command::Slurm { campaign, tasks, partition, time, cpus_per_task, submit, force } => {
             let request = SlurmRequest {
                 tasks: *tasks,
                 partition: partition.clone(),
                 time: time.clone(),
                 cpus_per_task: *cpus_per_task,
                 submit: *submit,
+                force: *force,
             };
             slurm_command(&cli.reports, campaign, &request)
         }
@@ -146,9 +157,29 @@ fn open(reports: &Path, file: &Path) -> anyhow::Result<(Campaign, Layout)> {
     Ok((campaign, layout))
 }
 
-fn run_command(reports: &Path, file: &Path, jobs: Option<usize>) -> anyhow::Result<()> {
-    let started = std::time::Instant::now();
+/// [`open`] for a command that writes into the campaign's folder: claims the folder for `file`
+/// first, refusing one another campaign file of the same name owns unless `force`.
+fn open_to_write(reports: &Path, file: &Path, force: bool) -> anyhow::Result<(Campaign, Layout)> {
     let (campaign, layout) = open(reports, file)?;
+    crate::owner::claim(&layout, file, force)?;
+    Ok((campaign, layout))
+}
+
+/// Most threads `-j`, `--threads` and `--cpus-per-task` accept: four times the cores of a large
+/// node; starting 100 000 threads took minutes.
+const MAX_THREADS: usize = 1024;
+
+/// A thread count in 1..=[`MAX_THREADS`].
+fn thread_count(text: &str) -> Result<usize, String> {
+    match text.trim().parse::<usize>() {
+        Ok(n) if (1..=MAX_THREADS).contains(&n) => Ok(n),
+        _ => Err(format!("'{text}': give a number of threads from 1 to {MAX_THREADS} (leave it out for all cores)")),
+    }
+}
+
+fn run_command(reports: &Path, file: &Path, jobs: Option<usize>, force: bool) -> anyhow::Result<()> {
+    let started = std::time::Instant::now();
+    let (campaign, layout) = open_to_write(reports, file, force)?;
     let done = run_campaign(&campaign, &layout, jobs)?;
     let failed = done.records.iter().filter(|r| r.status != "ok").count();
     publish(&campaign, &layout, &done.records)?;
@@ -167,9 +198,15 @@ fn run_command(reports: &Path, file: &Path, jobs: Option<usize>) -> anyhow::Resu
 
 /// Runs one share of the campaign into the store. Tables and reports are left to `report`:
 /// the other shares may still be running, and several shards writing them at once would race.
-fn run_shard_command(reports: &Path, file: &Path, jobs: Option<usize>, shard: Shard) -> anyhow::Result<()> {
+fn run_shard_command(
+    reports: &Path,
+    file: &Path,
+    jobs: Option<usize>,
+    shard: Shard,
+    force: bool,
+) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
-    let (campaign, layout) = open(reports, file)?;
+    let (campaign, layout) = open_to_write(reports, file, force)?;
     let share = shard_campaign(&campaign, shard);
     let done = run_campaign(&share, &layout, jobs)?;
     let failed = done.records.iter().filter(|r| r.status != "ok").count();
@@ -247,7 +284,7 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
     Ok(())
 }
 
-fn report_command(reports: &Path, file: &Path) -> anyhow::Result<()> {
+fn report_command(reports: &Path, file: &Path, force: bool) -> anyhow::Result<()> {
     let (campaign, layout) = open(reports, file)?;
     let (mut records, mut missing) = (Vec::new(), Vec::new());
     for spec in &campaign.runs {
@@ -264,6 +301,7 @@ fn report_command(reports: &Path, file: &Path) -> anyhow::Result<()> {
             file.display()
         );
     }
+    crate::owner::claim(&layout, file, force)?;
     publish(&campaign, &layout, &records)?;
     if !missing.is_empty() {
         // A shard that has not run yet, or an array task that died (time limit, node failure):
@@ -295,16 +333,18 @@ struct SlurmRequest {
     time: Option<String>,
     cpus_per_task: usize,
     submit: bool,
+    force: bool,
 }
 
 fn slurm_command(reports: &Path, file: &Path, request: &SlurmRequest) -> anyhow::Result<()> {
-    let (campaign, _) = open(reports, file)?;
+    let (campaign, layout) = open(reports, file)?;
     anyhow::ensure!(
         (1..=campaign.runs.len()).contains(&request.tasks),
         "--tasks {}: must be between 1 and the campaign's {} runs",
         request.tasks,
         campaign.runs.len()
     );
+    crate::owner::claim(&layout, file, request.force)?;
     let job = crate::slurm::ArrayJob {
         exe: std::env::current_exe().context("cannot locate the mdsolids binary")?,
         reports: std::path::absolute(reports)

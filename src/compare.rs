@@ -43,6 +43,12 @@ pub struct Comparison {
 pub fn compare(a: &Path, b: &Path, out: Option<&Path>, reports: &Path) -> anyhow::Result<Comparison> {
     let (a, b) = (Side::open(a)?, Side::open(b)?);
     let out = out.map_or_else(|| reports.join(format!("compare-{}-vs-{}", a.name, b.name)), Path::to_path_buf);
+    if let Some(owner) = crate::owner::campaign_of(&out) {
+        anyhow::bail!(
+            "'{}' is the report folder of {owner}: a comparison would overwrite its report; choose another --out",
+            out.display()
+        );
+    }
     let join = join(&a.results, &b.results)?;
     let joined = joined_table(&a.results, &b.results, &join)?;
     let mut frame = joined.table.frame().context("cannot build the joined table")?;
@@ -54,18 +60,21 @@ pub fn compare(a: &Path, b: &Path, out: Option<&Path>, reports: &Path) -> anyhow
     write_atomically(&out.join("compare.parquet"), &parquet)?;
 
     let mut scenes = Vec::new();
-    let mut plots = 0;
+    let mut plots = BTreeSet::new();
     for scene in &join.scenes {
         let section = scene_section(&a, &b, &joined, scene)?;
         for group in &section.plots {
             for plot in &group.plots {
                 write_atomically(&out.join(&plot.file), plot.svg.as_bytes())?;
-                plots += 1;
+                plots.insert(plot.file.clone());
             }
         }
         scenes.push(section);
     }
-    let (exponent_rows, exponent_note) = exponents(&a, &b)?;
+    // Figures of an earlier comparison into this folder that this one did not draw.
+    crate::report::remove_stale(&out, "plots", ".svg", &plots)?;
+    let plots = plots.len();
+    let (exponent_rows, missing_summaries) = exponents(&a, &b)?;
     let exponents = exponent_rows.len();
     let context = ReportContext {
         title: format!("{} against {}", a.name, b.name),
@@ -77,7 +86,7 @@ pub fn compare(a: &Path, b: &Path, out: Option<&Path>, reports: &Path) -> anyhow
         only_b: join.only_b,
         scenes,
         exponent_rows,
-        exponent_note,
+        missing_summaries,
     };
     render(&out, &context)?;
     Ok(Comparison { out, rows: joined.table.height, plots, exponents })
@@ -432,7 +441,8 @@ struct ReportContext {
     only_b: Vec<String>,
     scenes: Vec<SceneSection>,
     exponent_rows: Vec<ExponentRow>,
-    exponent_note: String,
+    /// The `summary.csv` files that do not exist (then no exponent is compared).
+    missing_summaries: Vec<String>,
 }
 
 #[derive(Serialize)]
@@ -676,20 +686,16 @@ struct ExponentRow {
 }
 
 /// The exponent table: every fit of either `summary.csv`, matched on [`SUMMARY_KEYS`] (a fit
-/// without a partner shows – on the other side), or a note naming the missing files.
-fn exponents(a: &Side, b: &Side) -> anyhow::Result<(Vec<ExponentRow>, String)> {
+/// without a partner shows – on the other side), or the missing `summary.csv` files (the
+/// template names them; paths are data, escaped there).
+fn exponents(a: &Side, b: &Side) -> anyhow::Result<(Vec<ExponentRow>, Vec<String>)> {
     let (Some(sa), Some(sb)) = (&a.summary, &b.summary) else {
-        let missing: Vec<String> = [a, b]
+        let missing = [a, b]
             .iter()
             .filter(|side| side.summary.is_none())
-            .map(|side| format!("`{}`", side.summary_path().display()))
+            .map(|side| side.summary_path().display().to_string())
             .collect();
-        let note = format!(
-            "No fitted exponents to compare: {} does not exist (a campaign writes `summary.csv` only when it \
-             fits a scaling law, such as the sound speed against v0 of its chain-wave scenes).",
-            missing.join(" and ")
-        );
-        return Ok((Vec::new(), note));
+        return Ok((Vec::new(), missing));
     };
     let keys: Vec<(&Values, &Values)> =
         SUMMARY_KEYS.iter().filter_map(|&k| Some((sa.column(k)?, sb.column(k)?))).collect();
@@ -729,6 +735,5 @@ fn exponents(a: &Side, b: &Side) -> anyhow::Result<(Vec<ExponentRow>, String)> {
     for j in (0..sb.height).filter(|&j| !matched[j]) {
         rows.push(row(None, Some(j)));
     }
-    let note = if rows.is_empty() { "Both `summary.csv` files are empty.".to_string() } else { String::new() };
-    Ok((rows, note))
+    Ok((rows, Vec::new()))
 }

@@ -30,6 +30,7 @@ pub mod fem;
 pub mod measure;
 pub mod model;
 pub mod output;
+pub mod owner;
 pub mod report;
 pub mod runner;
 pub mod scenes;

@@ -61,12 +61,54 @@ pub fn write_scripts(job: &ArrayJob) -> anyhow::Result<Scripts> {
         "the reports directory '{}' contains white space, which #SBATCH --output cannot hold",
         job.reports.display()
     );
+    // Each becomes an `#SBATCH` line: a line break in one would add a line of shell to the script.
+    if let Some(partition) = &job.partition {
+        partition_option(partition).map_err(anyhow::Error::msg)?;
+    }
+    if let Some(time) = &job.time {
+        time_option(time).map_err(anyhow::Error::msg)?;
+    }
     let dir = Layout::new(&job.reports, &job.campaign).file("slurm");
     let scripts = Scripts { array: dir.join("array.sh"), report: dir.join("report.sh"), submit: dir.join("submit.sh") };
     write_atomically(&scripts.array, array_script(job, &dir).as_bytes())?;
     write_atomically(&scripts.report, report_script(job, &dir).as_bytes())?;
     write_atomically(&scripts.submit, submit_script(job, &scripts).as_bytes())?;
     Ok(scripts)
+}
+
+/// `--partition`: one partition name or several separated by commas, each 1 to 64 ASCII
+/// letters, digits, `-`, `_` and `.`.
+pub fn partition_option(text: &str) -> Result<String, String> {
+    let name = |p: &str| (1..=64).contains(&p.len()) && p.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c));
+    if text.split(',').all(name) {
+        Ok(text.to_string())
+    } else {
+        Err(format!(
+            "{text:?}: a Slurm partition is 1 to 64 letters, digits, '-', '_' and '.' (several separated by commas)"
+        ))
+    }
+}
+
+/// `--time`: one of Slurm's time formats, `M`, `M:S`, `H:M:S`, `D-H`, `D-H:M`, `D-H:M:S`, or
+/// `UNLIMITED`/`INFINITE`; at most 32 characters.
+pub fn time_option(text: &str) -> Result<String, String> {
+    let clock = |t: &str| {
+        let parts: Vec<&str> = t.split(':').collect();
+        parts.len() <= 3 && parts.iter().all(|p| !p.is_empty() && p.chars().all(|c| c.is_ascii_digit()))
+    };
+    let valid = text.len() <= 32
+        && (["UNLIMITED", "INFINITE"].contains(&text)
+            || match text.split_once('-') {
+                Some((days, rest)) => !days.is_empty() && days.chars().all(|c| c.is_ascii_digit()) && clock(rest),
+                None => clock(text),
+            });
+    if valid {
+        Ok(text.to_string())
+    } else {
+        Err(format!(
+            "{text:?}: a Slurm time limit is minutes, M:S, H:M:S, D-H, D-H:M or D-H:M:S (digits only), or UNLIMITED"
+        ))
+    }
 }
 
 /// Submits the array, then the report job depending on it with `afterany`.
@@ -214,6 +256,29 @@ mod tests {
     fn a_reports_directory_with_spaces_is_refused() {
         let error = write_scripts(&job(Path::new("/shared/my reports"))).unwrap_err();
         assert!(error.to_string().contains("white space"), "{error}");
+    }
+
+    #[test]
+    fn a_partition_or_time_that_is_not_one_is_refused_before_writing() {
+        for (partition, time) in [(Some("short\nrm -rf ~"), None), (None, Some("30\nrm -rf ~")), (None, Some("1-"))] {
+            let reports = tempfile::tempdir().unwrap();
+            let job = ArrayJob { partition: partition.map(Into::into), time: time.map(Into::into), ..job(reports.path()) };
+            let error = write_scripts(&job).unwrap_err().to_string();
+            assert!(error.contains("a Slurm"), "{error}");
+            assert!(std::fs::read_dir(reports.path()).unwrap().next().is_none(), "nothing is written");
+        }
+        for good in ["short", "a,b.c", "gpu_x-1"] {
+            assert_eq!(partition_option(good).as_deref(), Ok(good));
+        }
+        for good in ["30", "30:00", "2:00:00", "1-0", "1-12:30", "1-0:0:0", "UNLIMITED"] {
+            assert_eq!(time_option(good).as_deref(), Ok(good));
+        }
+        for bad in ["", "a b", "a,,b", "x;y", "a\rb"] {
+            assert!(partition_option(bad).is_err(), "{bad:?}");
+        }
+        for bad in ["", "1:2:3:4", "-1", "1-", "1h", "30 ", "1:", "1-2-3"] {
+            assert!(time_option(bad).is_err(), "{bad:?}");
+        }
     }
 
     #[test]

@@ -5,6 +5,7 @@
 
 mod context;
 mod figures;
+mod markdown;
 mod movie;
 pub mod plots;
 mod solids;
@@ -13,6 +14,8 @@ mod studies;
 pub use self::movie::{speed_color, write_movie, write_movie_panels};
 
 use anyhow::Context as _;
+use std::collections::BTreeSet;
+use std::path::Path;
 
 use crate::output::{Layout, write_atomically};
 use crate::runner::RunRecord;
@@ -27,21 +30,57 @@ pub fn render(campaign: &Campaign, layout: &Layout, records: &[RunRecord]) -> an
     for figure in &figures {
         write_atomically(&layout.file(&figure.file), figure.svg.as_bytes())?;
     }
+    let mut probes = BTreeSet::new();
     for record in records {
         if let Some(csv) = studies::probe_table(record) {
-            write_atomically(&layout.file(&format!("probes/{}.csv", record.run_id)), csv.as_bytes())?;
+            let file = format!("probes/{}.csv", record.run_id);
+            write_atomically(&layout.file(&file), csv.as_bytes())?;
+            probes.insert(file);
         }
     }
-    // Side-by-side movies exist only when their runs were simulated together (see the runner).
+    // Side-by-side movies exist only when their runs were simulated together (see the runner),
+    // and show only while the scene still asks for one.
     let side_by_side: Vec<String> = campaign
         .scenes
         .iter()
         .map(|(scene, _)| scene.clone())
+        .filter(|scene| campaign.runs.iter().any(|r| r.scene == *scene && r.movie.is_some_and(|m| m.side_by_side)))
         .filter(|scene| layout.side_by_side_movie(scene).is_file())
         .collect();
+    // What an earlier report of this folder drew and this one did not (a scene renamed or
+    // removed, a campaign that took the folder over) goes.
+    let drawn: BTreeSet<String> = figures.iter().map(|f| f.file.clone()).collect();
+    remove_stale(&layout.root, "plots", ".svg", &drawn)?;
+    let movies = side_by_side.iter().map(|scene| format!("plots/{scene}-side-by-side.gif")).collect();
+    remove_stale(&layout.root, "plots", "-side-by-side.gif", &movies)?;
+    remove_stale(&layout.root, "probes", ".csv", &probes)?;
     let context = context::build(campaign, records, &figures, &side_by_side);
     let context = tera::Context::from_serialize(&context).context("cannot build the report context")?;
     write_pages(&layout.root, ("report.md", MARKDOWN_TEMPLATE), context)
+}
+
+/// Removes the files `<root>/<dir>/*<suffix>` not in `keep` (paths relative to `root`), of the
+/// names this program gives its outputs only: ASCII letters, digits, `-`, `_` and `.`, not
+/// starting with a dot (temporary files of a writer at work are hidden and never touched).
+/// Anything else in the folder, and sub-folders, stay.
+pub(crate) fn remove_stale(root: &Path, dir: &str, suffix: &str, keep: &BTreeSet<String>) -> anyhow::Result<()> {
+    let entries = match std::fs::read_dir(root.join(dir)) {
+        Ok(entries) => entries,
+        Err(error) if error.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(error) => return Err(error).with_context(|| format!("cannot list '{}'", root.join(dir).display())),
+    };
+    for entry in entries {
+        let entry = entry.with_context(|| format!("cannot list '{}'", root.join(dir).display()))?;
+        let Some(name) = entry.file_name().to_str().map(str::to_string) else { continue };
+        let ours = !name.starts_with('.')
+            && name.ends_with(suffix)
+            && name.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c));
+        if ours && entry.file_type().is_ok_and(|t| t.is_file()) && !keep.contains(&format!("{dir}/{name}")) {
+            std::fs::remove_file(entry.path())
+                .with_context(|| format!("cannot remove the stale '{}'", entry.path().display()))?;
+        }
+    }
+    Ok(())
 }
 
 /// Renders the Markdown template `(name, text)` with `context` into `<dir>/report.md`, and the
@@ -53,10 +92,12 @@ pub(crate) fn write_pages(
     mut context: tera::Context,
 ) -> anyhow::Result<()> {
     let (name, text) = markdown;
-    let mut tera = tera::Tera::new();
+    // Two instances: every value is escaped for its target, Markdown (`markdown::tera`) or HTML.
+    let mut tera = markdown::tera();
     tera.add_raw_template(name, text).with_context(|| format!("templates/{name}.tera does not parse"))?;
-    tera.add_raw_template("index.html", HTML_TEMPLATE).context("templates/index.html.tera does not parse")?;
     let markdown = tera.render(name, &context).with_context(|| format!("cannot render templates/{name}.tera"))?;
+    let mut tera = tera::Tera::new();
+    tera.add_raw_template("index.html", HTML_TEMPLATE).context("templates/index.html.tera does not parse")?;
     write_atomically(&dir.join("report.md"), markdown.as_bytes())?;
     let mut body = String::new();
     pulldown_cmark::html::push_html(

@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use crate::spec::{Campaign, RunSpec};
+use crate::spec::{Campaign, MAX_RUNS, RunSpec};
 
 /// Share `index` of `count` (0 ≤ index < count, 0-based like `SLURM_ARRAY_TASK_ID` of an
 /// array `--array=0-(count-1)`), written `index/count`.
@@ -27,6 +27,13 @@ impl std::str::FromStr for Shard {
         let count: usize = count.trim().parse().map_err(|_| invalid())?;
         if index >= count {
             return Err(invalid());
+        }
+        // More shares than a campaign can have runs would only be empty; refused before the
+        // per-share bookkeeping is allocated.
+        if count as u64 > MAX_RUNS {
+            return Err(format!(
+                "'{text}': N = {count} shares; at most {MAX_RUNS} (a campaign has at most {MAX_RUNS} runs)"
+            ));
         }
         Ok(Shard { index, count })
     }
@@ -87,7 +94,11 @@ fn balance(items: &[(f64, String)], count: usize) -> Vec<usize> {
     assert!(count >= 1, "at least one shard");
     let mut order: Vec<usize> = (0..items.len()).collect();
     order.sort_by(|&a, &b| items[b].0.total_cmp(&items[a].0).then_with(|| items[a].1.cmp(&items[b].1)));
-    let mut loads = vec![0.0_f64; count];
+    // Shares past the number of items stay empty: while fewer than all items are placed, one of
+    // the first `items` shares is still empty (load 0, the lowest such index wins the tie), so
+    // with costs ≥ 0 leaving the others out changes nothing and keeps the work O(items²).
+    let mut loads = vec![0.0_f64; count.min(items.len()).max(1)];
+    let count = loads.len();
     let mut shards = vec![0; items.len()];
     for item in order {
         let lightest = (0..count).min_by(|&a, &b| loads[a].total_cmp(&loads[b]).then(a.cmp(&b))).expect("count ≥ 1");
@@ -184,6 +195,12 @@ mod tests {
         for bad in ["4/4", "1/0", "3", "-1/4", "a/b", "1/4/2", ""] {
             let error = bad.parse::<Shard>().expect_err(bad);
             assert!(error.contains("0 ≤ I < N"), "{bad}: {error}");
+        }
+        // One past the limit, and the 800 GB of per-share loads that once aborted the process.
+        assert!("0/100000".parse::<Shard>().is_ok());
+        for huge in ["0/100001", "0/100000000000"] {
+            let error = huge.parse::<Shard>().expect_err(huge);
+            assert!(error.contains("at most 100000"), "{huge}: {error}");
         }
     }
 }

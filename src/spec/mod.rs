@@ -83,11 +83,30 @@ pub const MAX_RUNS: u64 = 100_000;
 /// The accuracy the work–precision report aims at unless the campaign says `target_error`.
 pub const DEFAULT_TARGET_ERROR: f64 = 1e-3;
 
+/// Largest campaign file read, in bytes: a hundred times the largest shipped campaign (10.5 kB),
+/// and room for serde-saphyr's 250 000 values. The file is read only up to one byte past it, so
+/// `/dev/zero` or a runaway generator is refused at once instead of filling the memory.
+pub const MAX_CAMPAIGN_BYTES: u64 = 1 << 20;
+
 /// Reads, validates and expands the campaign file at `path`.
 pub fn load(path: &Path) -> Result<Campaign, SpecError> {
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| SpecError::Read { file: file.clone(), source })?;
+    let text = read_bounded(path).map_err(|source| SpecError::Read { file: file.clone(), source })?;
     parse(&file, &text)
+}
+
+/// The text of `path`, refused past [`MAX_CAMPAIGN_BYTES`] or when it is not UTF-8.
+fn read_bounded(path: &Path) -> std::io::Result<String> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?.take(MAX_CAMPAIGN_BYTES + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > MAX_CAMPAIGN_BYTES {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::FileTooLarge,
+            format!("larger than {MAX_CAMPAIGN_BYTES} bytes (1 MiB), the most a campaign file may hold"),
+        ));
+    }
+    String::from_utf8(bytes).map_err(|_| std::io::Error::new(std::io::ErrorKind::InvalidData, "not UTF-8 text"))
 }
 
 /// Validates and expands campaign text; `file` names it in errors.

@@ -1,0 +1,180 @@
+//! Text from campaign files, run records and results tables, made inert in the Markdown reports.
+//!
+//! The Markdown templates are rendered by a tera instance whose autoescape writes every
+//! `{{ value }}` through [`escape_inline`]: the value shows as the text it is, in running text, a
+//! heading or a table cell, and can open no HTML tag, link, emphasis, code span or new table
+//! column (pulldown-cmark passes raw HTML in Markdown straight into `index.html`, so escaping
+//! has to happen where the text enters the Markdown). Two filters cover the other places text
+//! goes: `code` writes a whole code span, `paragraphs` free text of several paragraphs.
+
+use std::io::Write;
+
+/// Characters with a meaning in inline Markdown (CommonMark and GitHub tables), written with a
+/// backslash: HTML and autolinks (`<`, `>`), entities (`&`), code spans, emphasis, links and
+/// images, table cells (`|`), headings' closing `#`, strikethrough, and the backslash itself.
+/// `_` is escaped only where it could open or close emphasis (see [`escape_inline`]).
+const INLINE_SPECIAL: &[char] = &['\\', '`', '*', '[', ']', '<', '>', '|', '&', '#', '~'];
+
+/// tera's escape function for the Markdown templates: `text` as literal inline Markdown on one
+/// line. Control characters (line breaks included) become spaces, so a value cannot end a table
+/// row or start a block. An `_` between two letters or digits is left alone: CommonMark lets it
+/// neither open nor close emphasis, and `k_d/k`, `no_equilibrium` stay readable in `report.md`.
+pub fn escape_inline(text: &str, out: &mut dyn Write) -> std::io::Result<()> {
+    let chars: Vec<char> = text.chars().collect();
+    let mut buffer = String::with_capacity(text.len() + 8);
+    for (i, &c) in chars.iter().enumerate() {
+        let word = |j: Option<usize>| j.and_then(|j| chars.get(j)).is_some_and(|c| c.is_alphanumeric());
+        if c.is_control() {
+            buffer.push(' ');
+        } else if INLINE_SPECIAL.contains(&c) || (c == '_' && !(word(i.checked_sub(1)) && word(Some(i + 1)))) {
+            buffer.push('\\');
+            buffer.push(c);
+        } else {
+            buffer.push(c);
+        }
+    }
+    out.write_all(buffer.as_bytes())
+}
+
+/// `text` as inline Markdown ([`escape_inline`]) in a `String`.
+pub fn inline(text: &str) -> String {
+    let mut out = Vec::new();
+    escape_inline(text, &mut out).expect("writing to a Vec cannot fail");
+    String::from_utf8(out).expect("escaping keeps UTF-8")
+}
+
+/// `text` as one code span, shown verbatim: fenced by one backtick more than its longest run of
+/// backticks (padded with a space where it starts or ends with one, which CommonMark strips) and
+/// control characters as spaces. In a table cell (`in_cell`) a `|` is written `\|`: a GitHub
+/// table splits cells before it finds code spans, and pulldown-cmark drops that backslash again;
+/// outside a table the backslash would show, so there `|` stays as it is.
+pub fn code(text: &str, in_cell: bool) -> String {
+    let mut text: String = text.chars().map(|c| if c.is_control() { ' ' } else { c }).collect();
+    if in_cell {
+        text = text.replace('|', "\\|");
+    }
+    let longest = text.split(|c| c != '`').map(str::len).max().unwrap_or(0);
+    let fence = "`".repeat(longest + 1);
+    let pad = if text.starts_with('`') || text.ends_with('`') || text.is_empty() { " " } else { "" };
+    format!("{fence}{pad}{text}{pad}{fence}")
+}
+
+/// Free text (a campaign's `description`) as Markdown paragraphs of literal text: split at blank
+/// lines, each paragraph on one line ([`escape_inline`]), leading white space dropped (four
+/// spaces would start a code block), and a leading list marker (`-`, `+`, `1.`, `1)`) or
+/// setext underline (`=`) escaped, so the text stays paragraphs of its own words.
+pub fn paragraphs(text: &str) -> String {
+    let normalised = text.replace("\r\n", "\n").replace('\r', "\n");
+    let mut out = Vec::new();
+    let mut paragraph: Vec<&str> = Vec::new();
+    for line in normalised.split('\n').chain([""]) {
+        if line.trim().is_empty() {
+            if !paragraph.is_empty() {
+                out.push(block_safe(&inline(paragraph.join(" ").trim())));
+                paragraph.clear();
+            }
+        } else {
+            paragraph.push(line.trim());
+        }
+    }
+    out.join("\n\n")
+}
+
+/// An escaped paragraph with a leading block marker escaped too.
+fn block_safe(escaped: &str) -> String {
+    let digits = escaped.chars().take_while(char::is_ascii_digit).count();
+    match escaped[digits..].chars().next() {
+        Some('-' | '+' | '=') if digits == 0 => format!("\\{escaped}"),
+        Some('.' | ')') if digits > 0 => format!("{}\\{}", &escaped[..digits], &escaped[digits..]),
+        _ => escaped.to_string(),
+    }
+}
+
+/// A tera instance for a Markdown template: autoescape by [`escape_inline`] on templates named
+/// `*.md`, and the filters `code` (a code span in running text), `code_cell` (one in a table
+/// cell) and `paragraphs`, whose output is marked safe: they escape themselves.
+pub fn tera() -> tera::Tera {
+    let mut tera = tera::Tera::new();
+    tera.autoescape_on([".md"]);
+    tera.set_escape_fn(escape_inline);
+    tera.register_filter("code", code_filter);
+    tera.register_filter("code_cell", code_cell_filter);
+    tera.register_filter("paragraphs", paragraphs_filter);
+    tera
+}
+
+fn code_filter(text: &str, _: tera::Kwargs, _: &tera::State) -> tera::Value {
+    tera::Value::safe_string(&code(text, false))
+}
+
+fn code_cell_filter(text: &str, _: tera::Kwargs, _: &tera::State) -> tera::Value {
+    tera::Value::safe_string(&code(text, true))
+}
+
+fn paragraphs_filter(text: &str, _: tera::Kwargs, _: &tera::State) -> tera::Value {
+    tera::Value::safe_string(&paragraphs(text))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Renders Markdown as `write_pages` does.
+    fn html(markdown: &str) -> String {
+        let mut body = String::new();
+        pulldown_cmark::html::push_html(
+            &mut body,
+            pulldown_cmark::Parser::new_ext(markdown, pulldown_cmark::Options::ENABLE_TABLES),
+        );
+        body
+    }
+
+    const HOSTILE: &str = "<script>alert(1)</script> | a*b* _c_ [x](javascript:y) ![i](j) `k` &lt; #\n| row\r\n~~s~~ \\";
+
+    #[test]
+    fn inline_text_shows_as_itself_and_opens_nothing() {
+        let body = html(&format!("# {}\n\nbefore {} after\n", inline(HOSTILE), inline(HOSTILE)));
+        for live in ["<script", "<em>", "<a ", "<img", "<code>", "<del>", "<h2", "<tr"] {
+            assert!(!body.contains(live), "{live} in {body}");
+        }
+        assert!(body.contains("&lt;script&gt;alert(1)&lt;/script&gt; | a*b* _c_ [x](javascript:y)"), "{body}");
+        assert!(body.contains("`k` &amp;lt; #"), "{body}");
+        assert_eq!(inline("k_d/k no_equilibrium dt·ω_max"), "k_d/k no_equilibrium dt·ω_max");
+        assert_eq!(inline("-1.5e-3 (x) 2.5 %"), "-1.5e-3 (x) 2.5 %");
+    }
+
+    #[test]
+    fn a_table_keeps_its_columns() {
+        let markdown = format!(
+            "| a | b | c |\n|---|---|---|\n| {} | {} | {} |\n",
+            inline(HOSTILE),
+            code(HOSTILE, true),
+            code("``a`|b", true)
+        );
+        let body = html(&markdown);
+        assert_eq!(body.matches("<td>").count(), 3, "{body}");
+        assert_eq!(body.matches("<tr>").count(), 2, "one header and one body row: {body}");
+        assert!(!body.contains("<script"), "{body}");
+        assert!(body.contains("<code>``a`|b</code>"), "{body}");
+        assert!(body.contains("<code>&lt;script&gt;alert(1)&lt;/script&gt; | a*b*"), "{body}");
+    }
+
+    #[test]
+    fn code_spans_are_verbatim_outside_tables() {
+        assert_eq!(code("run-1", true), "`run-1`");
+        assert_eq!(code("`x`", false), "`` `x` ``");
+        assert!(html(&format!("## Scene {}\n", code("a`b|<i>", false))).contains("<code>a`b|&lt;i&gt;</code>"));
+    }
+
+    #[test]
+    fn paragraphs_stay_paragraphs() {
+        let text = "- not a list\n1. not a list either\n\n    not code\n\n---\n\n# not a heading\n\n1986) a year\n\n<div>x</div>";
+        let body = html(&paragraphs(text));
+        assert_eq!(body.matches("<p>").count(), 6, "{body}");
+        for block in ["<ul", "<ol", "<pre", "<hr", "<h1", "<div"] {
+            assert!(!body.contains(block), "{block} in {body}");
+        }
+        assert!(body.contains("<p>- not a list 1. not a list either</p>"), "{body}");
+        assert!(body.contains("<p>1986) a year</p>"), "{body}");
+    }
+}
