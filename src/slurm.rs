@@ -79,7 +79,8 @@ pub fn write_scripts(job: &ArrayJob) -> anyhow::Result<Scripts> {
 /// `--partition`: one partition name or several separated by commas, each 1 to 64 ASCII
 /// letters, digits, `-`, `_` and `.`.
 pub fn partition_option(text: &str) -> Result<String, String> {
-    let name = |p: &str| (1..=64).contains(&p.len()) && p.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c));
+    let name =
+        |p: &str| (1..=64).contains(&p.len()) && p.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c));
     if text.split(',').all(name) {
         Ok(text.to_string())
     } else {
@@ -262,7 +263,8 @@ mod tests {
     fn a_partition_or_time_that_is_not_one_is_refused_before_writing() {
         for (partition, time) in [(Some("short\nrm -rf ~"), None), (None, Some("30\nrm -rf ~")), (None, Some("1-"))] {
             let reports = tempfile::tempdir().unwrap();
-            let job = ArrayJob { partition: partition.map(Into::into), time: time.map(Into::into), ..job(reports.path()) };
+            let job =
+                ArrayJob { partition: partition.map(Into::into), time: time.map(Into::into), ..job(reports.path()) };
             let error = write_scripts(&job).unwrap_err().to_string();
             assert!(error.contains("a Slurm"), "{error}");
             assert!(std::fs::read_dir(reports.path()).unwrap().next().is_none(), "nothing is written");

@@ -123,4 +123,19 @@ fn slurm_writes_an_array_and_an_afterany_report_job() {
         .output()
         .unwrap();
     assert!(text(&too_many.stderr).contains("--tasks 6: must be between 1 and the campaign's 5 runs"));
+
+    // A line break in --partition or --time once added a line of shell to array.sh.
+    std::fs::remove_dir_all(&dir).unwrap();
+    for option in ["--partition", "--time"] {
+        let out = Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+            .arg("--reports")
+            .arg(reports.path())
+            .args(["slurm", "campaigns/smoke.yaml", option, "10\ntouch /tmp/injected"])
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .unwrap();
+        assert!(!out.status.success(), "{option} with a line break was accepted");
+        assert!(text(&out.stderr).contains("a Slurm"), "{}", text(&out.stderr));
+        assert!(!dir.exists(), "no script is written");
+    }
 }

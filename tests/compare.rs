@@ -184,3 +184,17 @@ fn refuses_what_is_not_a_report() {
     assert!(error.contains(&format!("cannot read the table '{}'", empty.join("results.parquet").display())), "{error}");
     assert!(!reports.join("compare-empty-vs-empty").exists(), "nothing is written for a refused comparison");
 }
+
+/// `--out` may not be a campaign's folder (issue 14, item 13): it would overwrite its report.
+#[test]
+fn refuses_to_write_into_a_campaign_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let reports = dir.path();
+    run_campaigns(reports);
+    let (a, b) = (reports.join("linear"), reports.join("power"));
+    let report = std::fs::read(a.join("report.md")).unwrap();
+    let error = refuse(reports, &["compare", a.to_str().unwrap(), b.to_str().unwrap(), "--out", a.to_str().unwrap()]);
+    assert!(error.contains("is the report folder of campaign file") && error.contains("linear.yaml"), "{error}");
+    assert_eq!(std::fs::read(a.join("report.md")).unwrap(), report, "A's report is untouched");
+    assert!(!a.join("compare.csv").exists());
+}

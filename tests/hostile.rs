@@ -533,3 +533,107 @@ fn the_guard_reports_a_panic() {
     }
     assert_eq!(guarded(String::new(), panics).err().as_deref(), Some("the parser panicked"));
 }
+
+// ---------------------------------------------------------------------------------------------
+// Hostile text in the reports, unbounded inputs and options (issue 14, items 5 and 8).
+
+/// Runs the binary in `dir` with `args`, killing it after [`HANG_GUARD`]: (success, stdout,
+/// stderr), or a panic naming the command if it had to be killed.
+fn binary(dir: &Path, args: &[&str]) -> (bool, String, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+        .current_dir(dir)
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let started = std::time::Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if started.elapsed() > HANG_GUARD {
+            child.kill().unwrap();
+            child.wait().unwrap();
+            panic!("mdsolids {args:?} did not end within {HANG_GUARD:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    let out = child.wait_with_output().unwrap();
+    let text = |bytes: &[u8]| String::from_utf8_lossy(bytes).into_owned();
+    (out.status.success(), text(&out.stdout), text(&out.stderr))
+}
+
+/// The cells of every row of the HTML table that follows `heading` in `html`.
+fn table_rows_after(html: &str, heading: &str) -> Vec<usize> {
+    let start = html.find(heading).unwrap_or_else(|| panic!("{heading} missing from {html}"));
+    let table = &html[start..];
+    let table = &table[..table.find("</table>").expect("the table ends")];
+    table.split("<tr>").skip(1).map(|row| row.matches("<td").count() + row.matches("<th").count()).collect()
+}
+
+/// A campaign's title and description, and a stored run's status and message, reach
+/// `report.md` and `index.html` as text: no live tag, no new table column or row, no block.
+/// Before the Markdown autoescape the `<script>` elements ran in `index.html` and the message's
+/// `|` and line break split its table row.
+#[test]
+fn hostile_text_stays_text_in_the_report() {
+    let work = tempfile::tempdir().unwrap();
+    let yaml = "version: 1\nname: hostile\n\
+                title: \"T <script>alert(1)</script> | *x* [l](javascript:y)\"\n\
+                description: \"<script>alert(2)</script>\\n\\n- not a list | cell\\n# not a heading\\n\\n<img src=x onerror=alert(3)>\"\n\
+                scenes:\n  - name: pair\n    kind: pair\n    v0: 1.0\n";
+    std::fs::write(work.path().join("hostile.yaml"), yaml).unwrap();
+    let (ok, _, stderr) = binary(work.path(), &["--reports", "r", "run", "hostile.yaml"]);
+    assert!(ok, "{stderr}");
+    // A stored record whose status and message carry markup (a tampered or foreign store).
+    let runs = work.path().join("r/hostile/runs");
+    let record = std::fs::read_dir(&runs)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.extension().is_some_and(|e| e == "json"));
+    let record = record.expect("a stored record");
+    let mut json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&record).unwrap()).unwrap();
+    json["status"] = "unstable".into();
+    json["message"] = "<script>alert(4)</script> | `x\n| y | z |\n<b>bold</b>".into();
+    std::fs::write(&record, serde_json::to_vec(&json).unwrap()).unwrap();
+    let (ok, _, stderr) = binary(work.path(), &["--reports", "r", "report", "hostile.yaml"]);
+    assert!(ok, "{stderr}");
+
+    let html = std::fs::read_to_string(work.path().join("r/hostile/index.html")).unwrap();
+    for live in ["<script", "<img", "<b>", "<em>", "<a href=\"javascript", "<ul", "<h1>T <", "<h1>not"] {
+        assert!(!html.contains(live), "{live} is live in index.html:\n{html}");
+    }
+    assert!(html.contains("&lt;script&gt;alert(1)&lt;/script&gt; | *x* [l](javascript:y)"), "{html}");
+    assert!(html.contains("&lt;script&gt;alert(4)&lt;/script&gt; | `x | y | z | &lt;b&gt;bold&lt;/b&gt;"), "{html}");
+    // The failures table: a header and one row, three cells each.
+    assert_eq!(table_rows_after(&html, "Runs that did not end"), vec![3, 3], "{html}");
+    let markdown = std::fs::read_to_string(work.path().join("r/hostile/report.md")).unwrap();
+    assert!(markdown.starts_with("# T \\<script\\>"), "{markdown}");
+    let row = markdown.lines().find(|l| l.contains("alert(4)")).expect("the failure row");
+    assert_eq!(row.replace("\\|", "").matches('|').count(), 4, "three cells: {row}");
+}
+
+/// Inputs and options that once ran out of memory, aborted or took minutes are refused at once
+/// with a message naming the limit: a campaign "file" without end, a huge one, a share count
+/// of 10^11 (an 800 GB allocation) and 100 000 threads.
+#[test]
+fn unbounded_inputs_and_options_are_refused_at_once() {
+    let work = tempfile::tempdir().unwrap();
+    let big = work.path().join("big.yaml");
+    std::fs::write(&big, format!("version: 1\n#{}\n", "x".repeat(2 << 20))).unwrap();
+    for file in ["/dev/zero", big.to_str().unwrap()] {
+        let (ok, _, stderr) = binary(work.path(), &["--reports", "r", "plan", file]);
+        assert!(
+            !ok && stderr.contains(&format!("cannot read campaign file {file}: larger than 1048576 bytes")),
+            "{stderr}"
+        );
+        assert_eq!(stderr.matches("larger than").count(), 1, "said once: {stderr}");
+    }
+    let smoke = Path::new(SHIPPED).join("smoke.yaml");
+    let smoke = smoke.to_str().unwrap();
+    let (ok, _, stderr) = binary(work.path(), &["--reports", "r", "plan", smoke, "--shard", "0/100000000000"]);
+    assert!(!ok && stderr.contains("at most 100000"), "{stderr}");
+    for threads in ["100000", "0"] {
+        let (ok, _, stderr) = binary(work.path(), &["--reports", "r", "run", smoke, "-j", threads]);
+        assert!(!ok && stderr.contains("give a number of threads from 1 to 1024"), "{stderr}");
+    }
+    assert!(!work.path().join("r").exists(), "nothing is written");
+}

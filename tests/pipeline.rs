@@ -178,3 +178,52 @@ fn stored_runs_with_awkward_numbers_are_found_again() {
     let again = mdsolids::runner::run_campaign(&campaign, &layout, Some(1)).unwrap();
     assert_eq!((again.simulated, again.cached), (0, 2));
 }
+
+/// Two campaign files named alike (issue 14, item 13): the second is refused with both files
+/// named and nothing of the first's changed; `--force` hands the folder over, and the figures of
+/// the first's scenes, which the second does not have, are removed. Before `campaign.json` the
+/// second silently overwrote the first's tables and report and kept its figures.
+#[test]
+fn two_campaigns_with_one_name_do_not_share_a_folder() {
+    let work = tempfile::tempdir().unwrap();
+    let scene =
+        |name: &str| format!("version: 1\nname: same\nscenes:\n  - name: {name}\n    kind: pair\n    v0: 1.0\n");
+    let (first, second) = (work.path().join("first.yaml"), work.path().join("second.yaml"));
+    std::fs::write(&first, scene("alpha")).unwrap();
+    std::fs::write(&second, scene("beta")).unwrap();
+    let (first, second) = (first.to_str().unwrap(), second.to_str().unwrap());
+    let reports = work.path().join("reports");
+    let dir = reports.join("same");
+    let out = mdsolids(&reports, &["run", first]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let alpha = dir.join("plots/alpha-energy-0.svg");
+    assert!(alpha.is_file());
+    let results = std::fs::read(dir.join("results.csv")).unwrap();
+    let owner = std::fs::read_to_string(dir.join("campaign.json")).unwrap();
+    assert!(owner.contains(&std::fs::canonicalize(first).unwrap().display().to_string()), "{owner}");
+
+    for command in [&["run", second][..], &["run", second, "--shard", "0/2"], &["slurm", second, "--tasks", "1"]] {
+        let out = mdsolids(&reports, command);
+        let error = text(&out.stderr);
+        assert!(!out.status.success(), "{command:?} was accepted");
+        for part in ["first.yaml", "second.yaml", "--force", "name:"] {
+            assert!(error.contains(part), "{command:?}: {part} missing from {error}");
+        }
+    }
+    assert_eq!(std::fs::read(dir.join("results.csv")).unwrap(), results, "the first's table is untouched");
+
+    // The same file again, by another path, is the same campaign.
+    let out = mdsolids(&reports, &["report", &format!("{}/./first.yaml", work.path().display())]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+
+    let out = mdsolids(&reports, &["run", second, "--force"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(dir.join("plots/beta-energy-0.svg").is_file());
+    assert!(!alpha.exists(), "the first campaign's figure is stale and removed");
+    // The folder is the second's now; the first's runs are still stored, and `report` of the
+    // first is refused too.
+    for command in ["run", "report"] {
+        let out = mdsolids(&reports, &[command, first]);
+        assert!(!out.status.success() && text(&out.stderr).contains("second.yaml"), "{command}: {}", text(&out.stderr));
+    }
+}

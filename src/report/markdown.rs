@@ -129,7 +129,8 @@ mod tests {
         body
     }
 
-    const HOSTILE: &str = "<script>alert(1)</script> | a*b* _c_ [x](javascript:y) ![i](j) `k` &lt; #\n| row\r\n~~s~~ \\";
+    const HOSTILE: &str =
+        "<script>alert(1)</script> | a*b* _c_ [x](javascript:y) ![i](j) `k` &lt; #\n| row\r\n~~s~~ \\";
 
     #[test]
     fn inline_text_shows_as_itself_and_opens_nothing() {

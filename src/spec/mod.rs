@@ -25,13 +25,12 @@ use self::raw::{Grid, RawCampaign, RawScene};
 #[derive(Debug, thiserror::Error)]
 pub enum SpecError {
     /// The file could not be read.
-    #[error("cannot read campaign file {file}: {source}")]
+    #[error("cannot read campaign file {file}: {reason}")]
     Read {
         /// The file.
         file: String,
-        /// The I/O error.
-        #[source]
-        source: std::io::Error,
+        /// The I/O error. Part of the message, not a `source`: `{:#}` would print it twice.
+        reason: std::io::Error,
     },
     /// The file was read but is not a valid campaign.
     #[error("{file}: {detail}")]
@@ -91,7 +90,7 @@ pub const MAX_CAMPAIGN_BYTES: u64 = 1 << 20;
 /// Reads, validates and expands the campaign file at `path`.
 pub fn load(path: &Path) -> Result<Campaign, SpecError> {
     let file = path.display().to_string();
-    let text = read_bounded(path).map_err(|source| SpecError::Read { file: file.clone(), source })?;
+    let text = read_bounded(path).map_err(|reason| SpecError::Read { file: file.clone(), reason })?;
     parse(&file, &text)
 }
 
