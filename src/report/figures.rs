@@ -13,7 +13,7 @@ pub struct Figure {
     pub scene: String,
     /// Path relative to the campaign directory (`plots/…svg`).
     pub file: String,
-    /// Caption.
+    /// Caption, plain text: the report escapes it (no Markdown of its own).
     pub caption: String,
     /// The SVG document.
     pub svg: String,

@@ -200,7 +200,7 @@ pub fn ensemble_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Opt
             "{scene}: Young's and shear moduli of randomly diluted lattices (mean over seeds, and mean ± one standard \
              deviation) against the kept fraction p of the interior bonds, beside the effective-medium line for \
              central-force networks, falling linearly to zero at p = 2d/z = 1/2. Networks that lost rigidity end as \
-             `mechanism` and are left out of the means."
+             status mechanism and are left out of the means."
         ),
         svg: line_chart(&chart, &series)?,
     }))

@@ -501,7 +501,7 @@ pub fn probe_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<F
                 caption: format!(
                     "Probe on {} of {scene}: {what} along {axis} of each of its nodes against time, red positive, \
                      blue negative, scaled to the largest |value| ({peak:.3e} {unit}). Every node's series is in \
-                     `probes/{}.csv`.",
+                     probes/{}.csv.",
                     probe.name, r.run_id
                 ),
                 svg: heatmap(&chart, &r.trace.time, values)?,
