@@ -32,12 +32,12 @@ pub fn render(campaign: &Campaign, layout: &Layout, records: &[RunRecord]) -> an
             write_atomically(&layout.file(&format!("probes/{}.csv", record.run_id)), csv.as_bytes())?;
         }
     }
-    // Side-by-side movies exist only when their runs were simulated together (see the runner).
+    // Only a side-by-side movie drawn from exactly the scene's current runs is shown.
     let side_by_side: Vec<String> = campaign
         .scenes
         .iter()
         .map(|(scene, _)| scene.clone())
-        .filter(|scene| layout.side_by_side_movie(scene).is_file())
+        .filter(|scene| crate::runner::side_by_side_is_current(campaign, layout, scene))
         .collect();
     let context = context::build(campaign, records, &figures, &side_by_side);
     let context = tera::Context::from_serialize(&context).context("cannot build the report context")?;
