@@ -59,20 +59,23 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     let dir = path.parent().unwrap_or(Path::new("."));
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create directory '{}'", dir.display()))?;
     let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("output");
-    let temporary = dir.join(temporary_name(name));
     // A fresh name (host, process, counter) opened with O_CREAT|O_EXCL|O_NOFOLLOW: whatever
-    // is planted there (a symbolic link, a file) makes the open fail instead of being written
-    // through. Flushed to the disk before the rename, so that after a crash the name holds the
-    // whole new file or the old one. A failed write removes its partial temporary file.
-    let written = std::fs::OpenOptions::new()
-        .write(true)
-        .create_new(true)
-        .custom_flags(libc::O_NOFOLLOW)
-        .open(&temporary)
-        .and_then(|mut file| {
-            std::io::Write::write_all(&mut file, bytes)?;
-            file.sync_all()
-        });
+    // is planted there (a symbolic link, a file) is never written through; the next name is
+    // tried instead. Flushed to the disk before the rename, so that after a crash the name
+    // holds the whole new file or the old one. A failed write removes its partial temporary.
+    let mut temporary = dir.join(temporary_name(name));
+    let mut opened = create_exclusive(&temporary);
+    for _ in 0..16 {
+        if !opened.as_ref().is_err_and(|e| e.kind() == std::io::ErrorKind::AlreadyExists) {
+            break;
+        }
+        temporary = dir.join(temporary_name(name));
+        opened = create_exclusive(&temporary);
+    }
+    let written = opened.and_then(|mut file| {
+        std::io::Write::write_all(&mut file, bytes)?;
+        file.sync_all()
+    });
     if let Err(error) = written {
         let _ = std::fs::remove_file(&temporary);
         return Err(error)
@@ -85,11 +88,18 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Creates `path`, failing if anything (a symbolic link included) is there already.
+fn create_exclusive(path: &Path) -> std::io::Result<std::fs::File> {
+    std::fs::OpenOptions::new().write(true).create_new(true).custom_flags(libc::O_NOFOLLOW).open(path)
+}
+
+/// Numbers the temporaries of this process.
+static TEMPORARIES: AtomicU64 = AtomicU64::new(0);
+
 /// `.<name>.<host>.<pid>.<n>.tmp`: unique among the threads and processes of all hosts that
 /// share the folder, hidden, and telling `sweep_temporaries` whose it is.
 fn temporary_name(name: &str) -> String {
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+    let n = TEMPORARIES.fetch_add(1, Ordering::Relaxed);
     format!(".{name}.{}.{}.{n}.tmp", host_name(), std::process::id())
 }
 
@@ -189,5 +199,53 @@ pub fn wait_for_lock(file: &std::fs::File, path: &Path, what: &str, patience: Du
             patience.as_secs_f64(),
             path.display()
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn planted_links_at_the_temporary_names_are_never_written_through() {
+        let dir = tempfile::tempdir().unwrap();
+        let victim = dir.path().join("victim");
+        std::fs::write(&victim, "precious").unwrap();
+        // Links at the next names this process would use (other tests may take some first).
+        let next = TEMPORARIES.load(Ordering::Relaxed);
+        for n in next..next + 8 {
+            let name = format!(".out.json.{}.{}.{n}.tmp", host_name(), std::process::id());
+            std::os::unix::fs::symlink(&victim, dir.path().join(name)).unwrap();
+        }
+        write_atomically(&dir.path().join("out.json"), b"new").unwrap();
+        assert_eq!(std::fs::read_to_string(&victim).unwrap(), "precious");
+        assert_eq!(std::fs::read_to_string(dir.path().join("out.json")).unwrap(), "new");
+    }
+
+    #[test]
+    fn sweeping_removes_only_the_temporaries_of_dead_processes_of_this_host() {
+        let dir = tempfile::tempdir().unwrap();
+        let layout = Layout::new(dir.path(), "c");
+        let runs = layout.root.join("runs");
+        std::fs::create_dir_all(&runs).unwrap();
+        // A pid that has ended (reaped, so /proc has no entry for it).
+        let mut child = std::process::Command::new("true").spawn().unwrap();
+        let dead = child.id();
+        child.wait().unwrap();
+        let (host, live) = (host_name(), std::process::id());
+        let names = [
+            (format!(".a.json.{host}.{dead}.0.tmp"), false),
+            (format!(".a.json.{host}.{live}.0.tmp"), true),      // this process: alive
+            (format!(".a.json.other-host.{dead}.0.tmp"), true),  // its pid cannot be checked here
+            ("a-0123.gif.tmp".to_string(), false),               // the fixed name of earlier versions
+            ("a-0123.json".to_string(), true),
+        ];
+        for (name, _) in &names {
+            std::fs::write(runs.join(name), "x").unwrap();
+        }
+        assert_eq!(sweep_temporaries(&layout), 2);
+        for (name, kept) in &names {
+            assert_eq!(runs.join(name).exists(), *kept, "{name}");
+        }
     }
 }
