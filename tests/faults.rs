@@ -97,24 +97,39 @@ fn without_times(value: &mut serde_json::Value) {
     }
 }
 
-/// `text` with every decimal number (digits with a point) replaced by `#`.
+/// `text` with every decimal number (digits with a point, and an exponent if it has one)
+/// replaced by `#`: the same time prints as `0.000981` or `9.81e-4` by its size.
 fn masked_decimals(text: &str) -> String {
-    let mut out = String::new();
-    let mut number = String::new();
-    for c in text.chars().chain(std::iter::once(' ')) {
-        if c.is_ascii_digit() || (c == '.' && !number.is_empty()) {
-            number.push(c);
-            continue;
+    let chars: Vec<char> = text.chars().collect();
+    let (mut out, mut i) = (String::new(), 0);
+    while i < chars.len() {
+        let start = i;
+        while i < chars.len() && (chars[i].is_ascii_digit() || (chars[i] == '.' && i > start)) {
+            i += 1;
         }
-        let decimal = number.trim_end_matches('.').contains('.');
-        out.push_str(if decimal { "#" } else { &number });
-        if decimal && number.ends_with('.') {
-            out.push('.');
+        let number: String = chars[start..i].iter().collect();
+        let number = number.trim_end_matches('.');
+        i = start + number.len();
+        if number.contains('.') {
+            out.push('#');
+            // The exponent, if one follows: e, an optional sign, digits.
+            let mut j = i + 1;
+            if chars.get(i) == Some(&'e') {
+                j += usize::from(matches!(chars.get(j), Some('+' | '-')));
+                if chars.get(j).is_some_and(char::is_ascii_digit) {
+                    i = j;
+                    while chars.get(i).is_some_and(char::is_ascii_digit) {
+                        i += 1;
+                    }
+                }
+            }
+        } else if number.is_empty() {
+            out.push(chars[i]);
+            i += 1;
+        } else {
+            out.push_str(number);
         }
-        number.clear();
-        out.push(c);
     }
-    out.pop();
     out
 }
 
@@ -182,6 +197,8 @@ fn a_campaign_killed_at_random_moments_reruns_to_the_uninterrupted_table() {
     let out = mdsolids(&reference, &["run", file.to_str().unwrap(), "-j", "2"]).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let expected = table(&reference);
+    let masked = masked_decimals("t = 0.000981 s, 9.81e-4 s, +6.42e-4, 1e-3, run a1b2, 3.");
+    assert_eq!(masked, "t = # s, # s, +#, 1e-3, run a1b2, 3.");
     let expected_folder = folder(&reference);
     assert!(expected_folder.contains_key("plots/film-side-by-side.gif"), "the campaign has a side-by-side movie");
     let expected_runs = stored(&reference);
