@@ -78,8 +78,9 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     });
     if let Err(error) = written {
         let _ = std::fs::remove_file(&temporary);
-        return Err(error)
-            .with_context(|| format!("cannot write '{}' (its temporary '{}' is removed)", path.display(), temporary.display()));
+        return Err(error).with_context(|| {
+            format!("cannot write '{}' (its temporary '{}' is removed)", path.display(), temporary.display())
+        });
     }
     if let Err(error) = std::fs::rename(&temporary, path) {
         let _ = std::fs::remove_file(&temporary);
@@ -106,7 +107,8 @@ fn temporary_name(name: &str) -> String {
 /// This machine's name with dots replaced (they separate the fields of a temporary's name).
 fn host_name() -> String {
     let name = std::fs::read_to_string("/proc/sys/kernel/hostname").unwrap_or_default();
-    let name: String = name.trim().chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' }).collect();
+    let name: String =
+        name.trim().chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' }).collect();
     if name.is_empty() { "host".into() } else { name }
 }
 
@@ -235,9 +237,9 @@ mod tests {
         let (host, live) = (host_name(), std::process::id());
         let names = [
             (format!(".a.json.{host}.{dead}.0.tmp"), false),
-            (format!(".a.json.{host}.{live}.0.tmp"), true),      // this process: alive
-            (format!(".a.json.other-host.{dead}.0.tmp"), true),  // its pid cannot be checked here
-            ("a-0123.gif.tmp".to_string(), false),               // the fixed name of earlier versions
+            (format!(".a.json.{host}.{live}.0.tmp"), true), // this process: alive
+            (format!(".a.json.other-host.{dead}.0.tmp"), true), // its pid cannot be checked here
+            ("a-0123.gif.tmp".to_string(), false),          // the fixed name of earlier versions
             ("a-0123.json".to_string(), true),
         ];
         for (name, _) in &names {

@@ -420,7 +420,7 @@ fn ctrl_c_ends_with_how_many_runs_are_stored_and_how_to_continue() {
     let error = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(130), "{error}");
     let count = stored(&reports).len();
-    assert!(count >= 2 && count < RUNS, "{count} runs stored");
+    assert!((2..RUNS).contains(&count), "{count} runs stored");
     let last = error.lines().last().unwrap_or_default();
     let rerun = format!("rerun `mdsolids --reports {} run {} -j 1` to continue", reports.display(), file.display());
     assert_eq!(last, format!("interrupted: {count} of {RUNS} runs stored; {rerun}"));
@@ -432,7 +432,8 @@ fn a_full_disk_while_a_movie_is_encoded_names_the_file_and_leaves_no_partial_fil
     // full disk fails them with ENOSPC: 20 blocks (10 KB in dash, 20 KB in bash) is less than
     // the movie (about 60 KB).
     let dir = tempfile::tempdir().unwrap();
-    let movie = CAMPAIGN.split("  - name: film").nth(1).unwrap().replace("width: 200, height: 100", "width: 600, height: 300");
+    let movie =
+        CAMPAIGN.split("  - name: film").nth(1).unwrap().replace("width: 200, height: 100", "width: 600, height: 300");
     let text = format!("{}  - name: film{movie}", CAMPAIGN.split("  - name: chain").next().unwrap());
     let file = campaign_file(dir.path(), &text);
     let reports = dir.path().join("reports");
@@ -447,7 +448,8 @@ fn a_full_disk_while_a_movie_is_encoded_names_the_file_and_leaves_no_partial_fil
     assert!(!out.status.success(), "{error}");
     let runs = reports.join("faults/runs");
     let campaign = mdsolids::stability::parse_campaign("faults.yaml", &text).unwrap();
-    let named = campaign.runs.iter().any(|r| error.contains(&format!("cannot write '{}/{}.gif'", runs.display(), r.run_id())));
+    let named =
+        campaign.runs.iter().any(|r| error.contains(&format!("cannot write '{}/{}.gif'", runs.display(), r.run_id())));
     assert!(named, "the error names the movie: {error}");
     let left: Vec<String> = std::fs::read_dir(&runs)
         .unwrap()

@@ -210,8 +210,10 @@ pub fn write_missing_movies(
     records: &[RunRecord],
     mut frames: BTreeMap<String, Movie>,
 ) -> anyhow::Result<()> {
-    let has_movie = |r: &RunRecord| r.spec.movie.is_some() && !matches!(r.status.as_str(), "panicked" | "budget" | "mechanism");
-    let mut movie_of = |spec: &RunSpec| frames.remove(&spec.run_id()).or_else(|| execute_within(spec, &campaign.budget).movie);
+    let has_movie =
+        |r: &RunRecord| r.spec.movie.is_some() && !matches!(r.status.as_str(), "panicked" | "budget" | "mechanism");
+    let mut movie_of =
+        |spec: &RunSpec| frames.remove(&spec.run_id()).or_else(|| execute_within(spec, &campaign.budget).movie);
     let mut redrawn: BTreeMap<String, Movie> = BTreeMap::new();
     for record in records.iter().filter(|r| has_movie(r) && !layout.movie_file(&r.run_id).is_file()) {
         if let Some(movie) = movie_of(&record.spec) {
