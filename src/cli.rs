@@ -6,7 +6,10 @@ use std::path::{Path, PathBuf};
 
 use crate::bench::{BenchConfig, run_once};
 use crate::output::Layout;
-use crate::runner::{Shard, run_campaign, shard_campaign, shard_of_each_run, stored_record};
+use crate::runner::{
+    CampaignRun, INTERRUPTED, Interrupted, Shard, run_campaign_waiting, shard_campaign, shard_of_each_run,
+    stored_count, stored_record, write_missing_movies,
+};
 use crate::spec::Campaign;
 use crate::stability::{estimate, load_campaign};
 use crate::{report, table};
@@ -18,6 +21,10 @@ pub struct Cli {
     /// Directory that holds one output directory per campaign.
     #[arg(long, global = true, default_value = "reports")]
     pub reports: PathBuf,
+    /// Longest wait (s) for a lock another mdsolids process holds (a run it simulates, the
+    /// reports it writes) before giving up [default: the campaign's budget.seconds_per_run].
+    #[arg(long, global = true, value_name = "SECONDS", value_parser = parse_seconds)]
+    pub lock_wait: Option<f64>,
     /// What to do.
     #[command(subcommand)]
     pub command: Command,
@@ -50,8 +57,9 @@ pub enum Command {
         #[arg(long, value_name = "I/N")]
         shard: Option<Shard>,
     },
-    /// Re-render tables and reports from the stored results without simulating; runs without a
-    /// stored result are listed and left out.
+    /// Re-render tables and reports from the stored results without simulating (except the runs
+    /// a missing movie needs: frames are not stored); runs without a stored result are listed
+    /// and left out.
     Report {
         /// Campaign file (YAML).
         campaign: PathBuf,
@@ -127,11 +135,11 @@ pub fn run() -> anyhow::Result<()> {
     let cli = Cli::parse();
     match &cli.command {
         Command::Run { campaign, jobs, shard, force } => match shard {
-            Some(shard) => run_shard_command(&cli.reports, campaign, *jobs, *shard, *force),
-            None => run_command(&cli.reports, campaign, *jobs, *force),
+            Some(shard) => run_shard_command(&cli.reports, campaign, *jobs, *shard, *force, cli.lock_wait),
+            None => run_command(&cli.reports, campaign, *jobs, *force, cli.lock_wait),
         },
         Command::Plan { campaign, shard } => plan_command(&cli.reports, campaign, *shard),
-        Command::Report { campaign, force } => report_command(&cli.reports, campaign, *force),
+        Command::Report { campaign, force } => report_command(&cli.reports, campaign, *force, cli.lock_wait),
         Command::Slurm { campaign, tasks, partition, time, cpus_per_task, submit, force } => {
             let request = SlurmRequest {
                 tasks: *tasks,
@@ -177,11 +185,79 @@ fn thread_count(text: &str) -> Result<usize, String> {
     }
 }
 
-fn run_command(reports: &Path, file: &Path, jobs: Option<usize>, force: bool) -> anyhow::Result<()> {
+/// A number of seconds: finite and not negative.
+fn parse_seconds(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(seconds) if seconds.is_finite() && seconds >= 0.0 => Ok(seconds),
+        _ => Err(format!("'{text}': expected a number of seconds ≥ 0")),
+    }
+}
+
+/// `--lock-wait`, or the campaign's time budget per run: no run holds its lock longer than
+/// that unless its process is suspended or stuck.
+fn lock_patience(campaign: &Campaign, lock_wait: Option<f64>) -> std::time::Duration {
+    std::time::Duration::from_secs_f64(lock_wait.unwrap_or(campaign.budget.seconds_per_run).min(1e9))
+}
+
+/// Takes the campaign's publish lock (tables, figures, report), so that a `report` and a
+/// `run` never write them at the same time; whoever publishes later read the store later.
+fn lock_publishing(campaign: &Campaign, layout: &Layout, lock_wait: Option<f64>) -> anyhow::Result<std::fs::File> {
+    let path = layout.publish_lock_file();
+    let lock = crate::output::open_lock_file(&path)?;
+    let what = format!("the reports of campaign '{}'", campaign.name);
+    crate::output::wait_for_lock(&lock, &path, &what, lock_patience(campaign, lock_wait))?;
+    Ok(lock)
+}
+
+/// Runs `campaign` into the store after sweeping the temporaries killed processes left. On
+/// Ctrl-C (or SIGTERM) the runs in progress finish and are stored and no more start; a second
+/// one ends the process at once; either way it ends (exit code 130) with how many runs are
+/// stored and the command that continues.
+fn run_stored(
+    campaign: &Campaign,
+    layout: &Layout,
+    jobs: Option<usize>,
+    lock_wait: Option<f64>,
+) -> anyhow::Result<CampaignRun> {
+    crate::output::sweep_temporaries(layout);
+    let rerun = format!("rerun `mdsolids {}` to continue", std::env::args().skip(1).collect::<Vec<_>>().join(" "));
+    let mut signals = signal_hook::iterator::Signals::new([signal_hook::consts::SIGINT, signal_hook::consts::SIGTERM])
+        .context("cannot handle Ctrl-C")?;
+    let (owned, hint) = ((campaign.clone(), layout.clone()), rerun.clone());
+    std::thread::spawn(move || {
+        for (count, _) in signals.forever().enumerate() {
+            if count == 0 {
+                INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed);
+                eprintln!("interrupted: the runs in progress finish and are stored, no more start (again: stop now)");
+            } else {
+                let (campaign, layout) = &owned;
+                let stopped = Interrupted { stored: stored_count(campaign, layout), total: campaign.runs.len() };
+                eprintln!("{stopped}; {hint}");
+                std::process::exit(130);
+            }
+        }
+    });
+    match run_campaign_waiting(campaign, layout, jobs, lock_patience(campaign, lock_wait)) {
+        Err(error) if error.is::<Interrupted>() => {
+            eprintln!("{error}; {rerun}");
+            std::process::exit(130)
+        }
+        done => done,
+    }
+}
+
+fn run_command(
+    reports: &Path,
+    file: &Path,
+    jobs: Option<usize>,
+    force: bool,
+    lock_wait: Option<f64>,
+) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
     let (campaign, layout) = open_to_write(reports, file, force)?;
-    let done = run_campaign(&campaign, &layout, jobs)?;
+    let done = run_stored(&campaign, &layout, jobs, lock_wait)?;
     let failed = done.records.iter().filter(|r| r.status != "ok").count();
+    let _publishing = lock_publishing(&campaign, &layout, lock_wait)?;
     publish(&campaign, &layout, &done.records)?;
     println!(
         "{}: {} runs ({} simulated, {} cached, {} not ok) in {:.2} s -> {}",
@@ -204,11 +280,12 @@ fn run_shard_command(
     jobs: Option<usize>,
     shard: Shard,
     force: bool,
+    lock_wait: Option<f64>,
 ) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
     let (campaign, layout) = open_to_write(reports, file, force)?;
     let share = shard_campaign(&campaign, shard);
-    let done = run_campaign(&share, &layout, jobs)?;
+    let done = run_stored(&share, &layout, jobs, lock_wait)?;
     let failed = done.records.iter().filter(|r| r.status != "ok").count();
     println!(
         "{} shard {shard}: {} of {} runs ({} simulated, {} cached, {} not ok) in {:.2} s -> {}; \
@@ -284,8 +361,12 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
     Ok(())
 }
 
-fn report_command(reports: &Path, file: &Path, force: bool) -> anyhow::Result<()> {
+fn report_command(reports: &Path, file: &Path, force: bool, lock_wait: Option<f64>) -> anyhow::Result<()> {
     let (campaign, layout) = open(reports, file)?;
+    // Locked before the store is read: a report publishes what is stored when it starts, so it
+    // can never overwrite the tables of a `run` that stored more.
+    let _publishing = lock_publishing(&campaign, &layout, lock_wait)?;
+    crate::output::sweep_temporaries(&layout);
     let (mut records, mut missing) = (Vec::new(), Vec::new());
     for spec in &campaign.runs {
         match stored_record(&layout, spec) {
@@ -302,6 +383,7 @@ fn report_command(reports: &Path, file: &Path, force: bool) -> anyhow::Result<()
         );
     }
     crate::owner::claim(&layout, file, force)?;
+    write_missing_movies(&campaign, &layout, &records, Default::default())?;
     publish(&campaign, &layout, &records)?;
     if !missing.is_empty() {
         // A shard that has not run yet, or an array task that died (time limit, node failure):

@@ -1,7 +1,10 @@
 //! Where a campaign's files go, and how they are written: whole or not at all.
 
 use anyhow::Context;
+use std::os::unix::fs::OpenOptionsExt;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::{Duration, Instant};
 
 /// The output tree of one campaign: `<reports>/<campaign>/`.
 #[derive(Clone, Debug)]
@@ -31,6 +34,14 @@ impl Layout {
     pub fn side_by_side_movie(&self, scene: &str) -> PathBuf {
         self.plot_file(&format!("{scene}-side-by-side.gif"))
     }
+    /// The run ids (one a line) the side-by-side movie of `scene` was drawn from.
+    pub fn side_by_side_runs(&self, scene: &str) -> PathBuf {
+        self.plot_file(&format!("{scene}-side-by-side.runs"))
+    }
+    /// The lock file held while tables and reports are written.
+    pub fn publish_lock_file(&self) -> PathBuf {
+        self.root.join(".publish.lock")
+    }
     /// A figure.
     pub fn plot_file(&self, name: &str) -> PathBuf {
         self.root.join("plots").join(name)
@@ -42,25 +53,201 @@ impl Layout {
 }
 
 /// Writes `bytes` to `path` atomically: into a temporary file beside it, then renamed over it,
-/// so a reader sees the old file or the new one, never half of one.
+/// so a reader sees the old file or the new one, never half of one. Every file the program
+/// writes goes through here.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     let dir = path.parent().unwrap_or(Path::new("."));
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create directory '{}'", dir.display()))?;
     let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("output");
-    let temporary = dir.join(format!(".{name}.{}.{:?}.tmp", std::process::id(), std::thread::current().id()));
-    // Flushed to the disk before the rename, so that after a crash the name holds the whole
-    // new file or the old one. A failed write removes its partial temporary file.
-    let written = std::fs::File::create(&temporary).and_then(|mut file| {
+    // A fresh name (host, process, counter) opened with O_CREAT|O_EXCL|O_NOFOLLOW: whatever
+    // is planted there (a symbolic link, a file) is never written through; the next name is
+    // tried instead. Flushed to the disk before the rename, so that after a crash the name
+    // holds the whole new file or the old one. A failed write removes its partial temporary.
+    let mut temporary = dir.join(temporary_name(name));
+    let mut opened = create_exclusive(&temporary);
+    for _ in 0..16 {
+        if !opened.as_ref().is_err_and(|e| e.kind() == std::io::ErrorKind::AlreadyExists) {
+            break;
+        }
+        temporary = dir.join(temporary_name(name));
+        opened = create_exclusive(&temporary);
+    }
+    let written = opened.and_then(|mut file| {
         std::io::Write::write_all(&mut file, bytes)?;
         file.sync_all()
     });
     if let Err(error) = written {
         let _ = std::fs::remove_file(&temporary);
-        return Err(error).with_context(|| format!("cannot write '{}'", temporary.display()));
+        return Err(error).with_context(|| {
+            format!("cannot write '{}' (its temporary '{}' is removed)", path.display(), temporary.display())
+        });
     }
     if let Err(error) = std::fs::rename(&temporary, path) {
         let _ = std::fs::remove_file(&temporary);
         return Err(error).with_context(|| format!("cannot move '{}' into place", path.display()));
     }
     Ok(())
+}
+
+/// Creates `path`, failing if anything (a symbolic link included) is there already.
+fn create_exclusive(path: &Path) -> std::io::Result<std::fs::File> {
+    std::fs::OpenOptions::new().write(true).create_new(true).custom_flags(libc::O_NOFOLLOW).open(path)
+}
+
+/// Numbers the temporaries of this process.
+static TEMPORARIES: AtomicU64 = AtomicU64::new(0);
+
+/// `.<name>.<host>.<pid>.<n>.tmp`: unique among the threads and processes of all hosts that
+/// share the folder, hidden, and telling `sweep_temporaries` whose it is.
+fn temporary_name(name: &str) -> String {
+    let n = TEMPORARIES.fetch_add(1, Ordering::Relaxed);
+    format!(".{name}.{}.{}.{n}.tmp", host_name(), std::process::id())
+}
+
+/// This machine's name with dots replaced (they separate the fields of a temporary's name).
+fn host_name() -> String {
+    let name = std::fs::read_to_string("/proc/sys/kernel/hostname").unwrap_or_default();
+    let name: String =
+        name.trim().chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' }).collect();
+    if name.is_empty() { "host".into() } else { name }
+}
+
+/// Removes the temporaries that processes of this host left when they were killed mid-write
+/// (`.<name>.<host>.<pid>.<n>.tmp` whose process no longer exists), in the campaign's folder
+/// and its subfolders, and the fixed-name `<run_id>.gif.tmp` of earlier versions. A live
+/// process's temporary is never touched: its pid is alive; another host's is left alone (its
+/// pids cannot be checked here). Returns how many were removed.
+pub fn sweep_temporaries(layout: &Layout) -> usize {
+    let (host, processes) = (host_name(), Path::new("/proc"));
+    if !processes.join("self").exists() {
+        return 0; // no /proc: whether a process lives cannot be told
+    }
+    let mut dirs = vec![layout.root.clone()];
+    if let Ok(entries) = std::fs::read_dir(&layout.root) {
+        dirs.extend(entries.flatten().filter(|e| e.file_type().is_ok_and(|t| t.is_dir())).map(|e| e.path()));
+    }
+    let mut removed = 0;
+    for dir in dirs {
+        let Ok(entries) = std::fs::read_dir(&dir) else { continue };
+        for entry in entries.flatten() {
+            let name = entry.file_name().to_string_lossy().to_string();
+            let abandoned = match name.strip_prefix('.').and_then(|n| n.strip_suffix(".tmp")) {
+                Some(stem) => {
+                    let mut fields = stem.rsplitn(4, '.');
+                    let (_, pid, owner) = (fields.next(), fields.next(), fields.next());
+                    owner == Some(host.as_str())
+                        && pid.is_some_and(|pid| pid.parse::<u32>().is_ok() && !processes.join(pid).exists())
+                }
+                None => name.ends_with(".gif.tmp"),
+            };
+            if abandoned && entry.file_type().is_ok_and(|t| !t.is_dir()) && std::fs::remove_file(entry.path()).is_ok() {
+                removed += 1;
+            }
+        }
+    }
+    removed
+}
+
+/// Opens (creating it) the lock file at `path`. A symbolic link there is refused (O_NOFOLLOW):
+/// locking must never create or open a file elsewhere.
+pub fn open_lock_file(path: &Path) -> anyhow::Result<std::fs::File> {
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create directory '{}'", dir.display()))?;
+    }
+    std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .custom_flags(libc::O_NOFOLLOW)
+        .open(path)
+        .with_context(|| {
+            let link = if path.is_symlink() { " (it is a symbolic link: remove it)" } else { "" };
+            format!("cannot open the lock file '{}'{link}", path.display())
+        })
+}
+
+/// Takes the OS lock on `file` if no other process holds it: `Ok(false)` when one does.
+pub fn try_lock(file: &std::fs::File, path: &Path) -> anyhow::Result<bool> {
+    match file.try_lock() {
+        Ok(()) => Ok(true),
+        Err(std::fs::TryLockError::WouldBlock) => Ok(false),
+        Err(std::fs::TryLockError::Error(error)) => {
+            Err(error).with_context(|| format!("cannot lock '{}'", path.display()))
+        }
+    }
+}
+
+/// Takes the OS lock on `file` (at `path`, guarding `what`), waiting while another process
+/// holds it: says on stderr what it waits for, and gives up with an error after `patience`.
+pub fn wait_for_lock(file: &std::fs::File, path: &Path, what: &str, patience: Duration) -> anyhow::Result<()> {
+    if try_lock(file, path)? {
+        return Ok(());
+    }
+    eprintln!(
+        "waiting for {what}: another mdsolids process holds its lock file '{}' (giving up after {} s; --lock-wait)",
+        path.display(),
+        patience.as_secs_f64()
+    );
+    let started = Instant::now();
+    loop {
+        std::thread::sleep(Duration::from_millis(50));
+        if try_lock(file, path)? {
+            return Ok(());
+        }
+        anyhow::ensure!(
+            started.elapsed() < patience,
+            "gave up waiting for {what} after {} s: another mdsolids process (suspended, or still working) holds \
+             its lock file '{}'; rerun when it has finished, or wait longer with --lock-wait SECONDS",
+            patience.as_secs_f64(),
+            path.display()
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn planted_links_at_the_temporary_names_are_never_written_through() {
+        let dir = tempfile::tempdir().unwrap();
+        let victim = dir.path().join("victim");
+        std::fs::write(&victim, "precious").unwrap();
+        // Links at the next names this process would use (other tests may take some first).
+        let next = TEMPORARIES.load(Ordering::Relaxed);
+        for n in next..next + 8 {
+            let name = format!(".out.json.{}.{}.{n}.tmp", host_name(), std::process::id());
+            std::os::unix::fs::symlink(&victim, dir.path().join(name)).unwrap();
+        }
+        write_atomically(&dir.path().join("out.json"), b"new").unwrap();
+        assert_eq!(std::fs::read_to_string(&victim).unwrap(), "precious");
+        assert_eq!(std::fs::read_to_string(dir.path().join("out.json")).unwrap(), "new");
+    }
+
+    #[test]
+    fn sweeping_removes_only_the_temporaries_of_dead_processes_of_this_host() {
+        let dir = tempfile::tempdir().unwrap();
+        let layout = Layout::new(dir.path(), "c");
+        let runs = layout.root.join("runs");
+        std::fs::create_dir_all(&runs).unwrap();
+        // A pid that has ended (reaped, so /proc has no entry for it).
+        let mut child = std::process::Command::new("true").spawn().unwrap();
+        let dead = child.id();
+        child.wait().unwrap();
+        let (host, live) = (host_name(), std::process::id());
+        let names = [
+            (format!(".a.json.{host}.{dead}.0.tmp"), false),
+            (format!(".a.json.{host}.{live}.0.tmp"), true), // this process: alive
+            (format!(".a.json.other-host.{dead}.0.tmp"), true), // its pid cannot be checked here
+            ("a-0123.gif.tmp".to_string(), false),          // the fixed name of earlier versions
+            ("a-0123.json".to_string(), true),
+        ];
+        for (name, _) in &names {
+            std::fs::write(runs.join(name), "x").unwrap();
+        }
+        assert_eq!(sweep_temporaries(&layout), 2);
+        for (name, kept) in &names {
+            assert_eq!(runs.join(name).exists(), *kept, "{name}");
+        }
+    }
 }

@@ -1,19 +1,26 @@
-//! Faults: a campaign killed (SIGKILL) at random moments and rerun ends with the table of an
-//! uninterrupted run; two processes on one store do every run once; a result that cannot be
-//! written stops the campaign with a clear error and keeps what was stored; runs beyond their
-//! budget end with `status = budget`.
+//! Faults: a campaign killed (SIGKILL) at random moments and rerun ends with the report folder
+//! of an uninterrupted run, movies included; two processes on one store do every run once; a
+//! run locked by another process is waited for last, saying so, and given up after a stated
+//! time; a report racing a run never publishes less than is stored; Ctrl-C says how many runs
+//! are stored; a result that cannot be written (also a movie on a full disk) stops the campaign
+//! with an error naming the file and leaves no partial file; runs beyond their budget end with
+//! `status = budget`.
 
 mod common;
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-/// 24 chain runs of a few tens of ms each: long enough to be killed in the middle.
+/// 24 chain runs of a few tens of ms each (long enough to be killed in the middle), and two
+/// small chains with movies, also shown side by side.
 const CAMPAIGN: &str = "version: 1\nname: faults\ndefaults:\n  material: {mass: 1.0, k: 1.0}\nscenes:\n  \
     - name: chain\n    kind: chain\n    v0: 0.1\n    time: {duration_tc: 400, samples: 50}\n    grid:\n      \
-    n: [40, 60, 80, 100, 120, 140]\n      damping.restitution: [1.0, 0.9, 0.7, 0.5]\n";
-const RUNS: usize = 24;
+    n: [40, 60, 80, 100, 120, 140]\n      damping.restitution: [1.0, 0.9, 0.7, 0.5]\n  \
+    - name: film\n    kind: chain\n    n: 6\n    v0: 0.1\n    time: {duration_tc: 10, samples: 20}\n    \
+    movie: {frames: 4, width: 200, height: 100, side_by_side: true}\n    grid:\n      node: [first, last]\n";
+const RUNS: usize = 26;
 
 fn mdsolids(reports: &Path, args: &[&str]) -> Command {
     let mut command = Command::new(env!("CARGO_BIN_EXE_mdsolids"));
@@ -34,6 +41,96 @@ fn table(reports: &Path) -> Vec<Vec<String>> {
     let rows: Vec<Vec<String>> = text.lines().map(|l| l.split(',').map(str::to_string).collect()).collect();
     let keep: Vec<bool> = rows[0].iter().map(|name| name != "wall_s" && name != "loop_s").collect();
     rows.iter().map(|row| row.iter().zip(&keep).filter(|(_, k)| **k).map(|(v, _)| v.clone()).collect()).collect()
+}
+
+/// Every file of the campaign's folder (path relative to it) with what must be the same after
+/// an interrupted campaign is rerun as after an uninterrupted one: its bytes, but for the run
+/// times, which differ from run to run: `wall_s` and `loop_s` are taken out of the records and
+/// tables, and every decimal number is masked in the report's text (`report.md`, `index.html`:
+/// its words, tables, figure and movie links stay). Movies, figures, lock files, everything
+/// else: byte for byte.
+fn folder(reports: &Path) -> BTreeMap<String, Vec<u8>> {
+    let root = reports.join("faults");
+    let (mut files, mut dirs) = (BTreeMap::new(), vec![root.clone()]);
+    while let Some(dir) = dirs.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                dirs.push(path);
+                continue;
+            }
+            let name = path.strip_prefix(&root).unwrap().to_string_lossy().to_string();
+            let bytes = std::fs::read(&path).unwrap();
+            let normalised = if name.starts_with("runs/") && name.ends_with(".json") {
+                let mut record: serde_json::Value = serde_json::from_slice(&bytes).unwrap();
+                without_times(&mut record);
+                serde_json::to_vec(&record).unwrap()
+            } else if name == "results.csv" {
+                format!("{:?}", table(reports)).into_bytes()
+            } else if name == "results.parquet" {
+                use polars::prelude::{CsvWriter, ParquetReader, SerReader, SerWriter};
+                let frame = ParquetReader::new(std::fs::File::open(&path).unwrap()).finish().unwrap();
+                let (mut csv, mut frame) = (Vec::new(), frame.drop_many(["wall_s", "loop_s"]));
+                CsvWriter::new(&mut csv).finish(&mut frame).unwrap();
+                csv
+            } else if name.ends_with(".md") || name.ends_with(".html") {
+                masked_decimals(&String::from_utf8(bytes).unwrap()).into_bytes()
+            } else {
+                bytes
+            };
+            files.insert(name, normalised);
+        }
+    }
+    files
+}
+
+/// Removes the timing fields `wall_s` and `loop_s` wherever they are.
+fn without_times(value: &mut serde_json::Value) {
+    match value {
+        serde_json::Value::Object(map) => {
+            map.remove("wall_s");
+            map.remove("loop_s");
+            map.values_mut().for_each(without_times);
+        }
+        serde_json::Value::Array(items) => items.iter_mut().for_each(without_times),
+        _ => {}
+    }
+}
+
+/// `text` with every decimal number (digits with a point, and an exponent if it has one)
+/// replaced by `#`: the same time prints as `0.000981` or `9.81e-4` by its size.
+fn masked_decimals(text: &str) -> String {
+    let chars: Vec<char> = text.chars().collect();
+    let (mut out, mut i) = (String::new(), 0);
+    while i < chars.len() {
+        let start = i;
+        while i < chars.len() && (chars[i].is_ascii_digit() || (chars[i] == '.' && i > start)) {
+            i += 1;
+        }
+        let number: String = chars[start..i].iter().collect();
+        let number = number.trim_end_matches('.');
+        i = start + number.len();
+        if number.contains('.') {
+            out.push('#');
+            // The exponent, if one follows: e, an optional sign, digits.
+            let mut j = i + 1;
+            if chars.get(i) == Some(&'e') {
+                j += usize::from(matches!(chars.get(j), Some('+' | '-')));
+                if chars.get(j).is_some_and(char::is_ascii_digit) {
+                    i = j;
+                    while chars.get(i).is_some_and(char::is_ascii_digit) {
+                        i += 1;
+                    }
+                }
+            }
+        } else if number.is_empty() {
+            out.push(chars[i]);
+            i += 1;
+        } else {
+            out.push_str(number);
+        }
+    }
+    out
 }
 
 /// The stored run records: file names, each parsed once.
@@ -100,6 +197,10 @@ fn a_campaign_killed_at_random_moments_reruns_to_the_uninterrupted_table() {
     let out = mdsolids(&reference, &["run", file.to_str().unwrap(), "-j", "2"]).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let expected = table(&reference);
+    let masked = masked_decimals("t = 0.000981 s, 9.81e-4 s, +6.42e-4, 1e-3, run a1b2, 3.");
+    assert_eq!(masked, "t = # s, # s, +#, 1e-3, run a1b2, 3.");
+    let expected_folder = folder(&reference);
+    assert!(expected_folder.contains_key("plots/film-side-by-side.gif"), "the campaign has a side-by-side movie");
     let expected_runs = stored(&reference);
     assert_eq!(expected_runs.len(), RUNS);
     let seed = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).unwrap().as_nanos() as u64;
@@ -128,6 +229,16 @@ fn a_campaign_killed_at_random_moments_reruns_to_the_uninterrupted_table() {
         assert!(out.status.success(), "trial {trial}: {}", String::from_utf8_lossy(&out.stderr));
         assert_eq!(stored(&reports), expected_runs, "trial {trial}: every run stored exactly once");
         assert_eq!(table(&reports), expected, "trial {trial}: the table of an uninterrupted run");
+        let got = folder(&reports);
+        let names = |f: &BTreeMap<String, Vec<u8>>| f.keys().cloned().collect::<Vec<_>>();
+        assert_eq!(names(&got), names(&expected_folder), "trial {trial}: the same files");
+        for (name, bytes) in &expected_folder {
+            let first_difference = || {
+                let (a, b) = (String::from_utf8_lossy(&got[name]), String::from_utf8_lossy(bytes));
+                a.lines().zip(b.lines()).find(|(x, y)| x != y).map(|(x, y)| format!("{x}\n  instead of\n{y}"))
+            };
+            assert!(got[name] == *bytes, "trial {trial}: {name} differs: {:?}", first_difference());
+        }
     }
     println!("{trials} trials, {in_the_middle} kills with some but not all runs stored");
     // Not vacuous: most kills must land while the campaign runs.
@@ -232,4 +343,118 @@ fn runs_beyond_their_budget_end_with_status_budget_and_plan_warns() {
     .unwrap_err()
     .to_string();
     assert!(error.contains("b.yaml") && error.contains("budget.seconds_per_run"), "{error}");
+}
+
+/// Waits for `child` at most `limit`; kills it and fails if it is still running then.
+fn wait_at_most(mut child: std::process::Child, limit: Duration, what: &str) -> std::process::Output {
+    let started = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if started.elapsed() > limit {
+            child.kill().unwrap();
+            panic!("{what}: still running after {limit:?}");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
+#[test]
+fn a_run_locked_by_another_process_is_left_for_last_and_given_up_after_the_stated_time() {
+    // Another process (here: this test) holds the lock of the longest run, as a suspended
+    // `mdsolids run` would. With one thread, the longest run comes first.
+    let dir = tempfile::tempdir().unwrap();
+    let file = campaign_file(dir.path(), CAMPAIGN);
+    let reports = dir.path().join("reports");
+    let campaign = mdsolids::stability::parse_campaign("faults.yaml", CAMPAIGN).unwrap();
+    let layout = mdsolids::output::Layout::new(&reports, &campaign.name);
+    let longest = campaign.runs.iter().max_by(|a, b| a.estimated_seconds().total_cmp(&b.estimated_seconds())).unwrap();
+    let lock_path = layout.run_lock_file(&longest.run_id());
+    let lock = mdsolids::output::open_lock_file(&lock_path).unwrap();
+    lock.lock().unwrap();
+    let child = mdsolids(&reports, &["--lock-wait", "1", "run", file.to_str().unwrap(), "-j", "1"]).spawn().unwrap();
+    let out = wait_at_most(child, Duration::from_secs(60), "a run waiting on a held lock");
+    let error = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{error}");
+    // Every other run is stored; the wait is announced and given up, naming the run and file.
+    assert_eq!(stored(&reports).len(), RUNS - 1, "{error}");
+    let (id, path) = (longest.run_id(), lock_path.display().to_string());
+    assert!(error.contains(&format!("waiting for run {id}")) && error.contains(&path), "{error}");
+    assert!(error.contains(&format!("gave up waiting for run {id} after 1 s")), "{error}");
+}
+
+#[test]
+fn a_report_racing_a_run_never_publishes_less_than_is_stored() {
+    // Half the runs are stored (one shard) when `report` starts; while it waits for the
+    // publish lock (held here, as by a `run` publishing) the other half is stored. It must
+    // publish every run: it reads the store once it holds the lock.
+    let dir = tempfile::tempdir().unwrap();
+    let file = campaign_file(dir.path(), CAMPAIGN);
+    let reports = dir.path().join("reports");
+    let shard = |i: &str| mdsolids(&reports, &["run", file.to_str().unwrap(), "--shard", i]).output().unwrap();
+    assert!(shard("0/2").status.success());
+    let layout = mdsolids::output::Layout::new(&reports, "faults");
+    let publishing = mdsolids::output::open_lock_file(&layout.publish_lock_file()).unwrap();
+    publishing.lock().unwrap();
+    let report = mdsolids(&reports, &["report", file.to_str().unwrap()]).spawn().unwrap();
+    std::thread::sleep(Duration::from_millis(300));
+    assert!(shard("1/2").status.success());
+    drop(publishing);
+    let out = wait_at_most(report, Duration::from_secs(60), "report");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(table(&reports).len(), RUNS + 1, "every stored run is in the published table");
+    let reference = dir.path().join("reference");
+    assert!(mdsolids(&reference, &["run", file.to_str().unwrap()]).output().unwrap().status.success());
+    assert_eq!(table(&reports), table(&reference));
+}
+
+#[test]
+fn ctrl_c_ends_with_how_many_runs_are_stored_and_how_to_continue() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = campaign_file(dir.path(), CAMPAIGN);
+    let reports = dir.path().join("reports");
+    let child = mdsolids(&reports, &["run", file.to_str().unwrap(), "-j", "1"]).spawn().unwrap();
+    wait_for_records(&reports, 2);
+    // SAFETY: kill(2) on the pid of our own child, which has not been waited for.
+    assert_eq!(unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) }, 0);
+    let out = wait_at_most(child, Duration::from_secs(60), "an interrupted run");
+    let error = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{error}");
+    let count = stored(&reports).len();
+    assert!((2..RUNS).contains(&count), "{count} runs stored");
+    let last = error.lines().last().unwrap_or_default();
+    let rerun = format!("rerun `mdsolids --reports {} run {} -j 1` to continue", reports.display(), file.display());
+    assert_eq!(last, format!("interrupted: {count} of {RUNS} runs stored; {rerun}"));
+}
+
+#[test]
+fn a_full_disk_while_a_movie_is_encoded_names_the_file_and_leaves_no_partial_file() {
+    // A file-size limit (ulimit -f, SIGXFSZ ignored) fails writes beyond it with EFBIG as a
+    // full disk fails them with ENOSPC: 20 blocks (10 KB in dash, 20 KB in bash) is less than
+    // the movie (about 60 KB).
+    let dir = tempfile::tempdir().unwrap();
+    let movie =
+        CAMPAIGN.split("  - name: film").nth(1).unwrap().replace("width: 200, height: 100", "width: 600, height: 300");
+    let text = format!("{}  - name: film{movie}", CAMPAIGN.split("  - name: chain").next().unwrap());
+    let file = campaign_file(dir.path(), &text);
+    let reports = dir.path().join("reports");
+    let script = format!(
+        "trap '' XFSZ; ulimit -f 20; exec {} --reports {} run {} -j 1",
+        env!("CARGO_BIN_EXE_mdsolids"),
+        reports.display(),
+        file.display()
+    );
+    let out = Command::new("sh").args(["-c", &script]).output().unwrap();
+    let error = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{error}");
+    let runs = reports.join("faults/runs");
+    let campaign = mdsolids::stability::parse_campaign("faults.yaml", &text).unwrap();
+    let named =
+        campaign.runs.iter().any(|r| error.contains(&format!("cannot write '{}/{}.gif'", runs.display(), r.run_id())));
+    assert!(named, "the error names the movie: {error}");
+    let left: Vec<String> = std::fs::read_dir(&runs)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+        .filter(|name| name.ends_with(".tmp") || name.ends_with(".gif"))
+        .collect();
+    assert!(left.is_empty(), "partial files left: {left:?}");
 }

@@ -111,3 +111,86 @@ fn bonds_can_be_coloured_by_strain() {
     // no red.
     assert_eq!(hues(false).0, 0);
 }
+
+/// A free 5 × 5 lattice kicked at a corner, its runs side by side (one per `diagonals` value).
+fn side_by_side_campaign(diagonals: &str) -> String {
+    format!(
+        "version: 1\nname: pair\nscenes:\n  - name: kick\n    kind: lattice\n    lattice: {{size: 5}}\n    \
+         supports: free\n    impulse: {{velocity: [0.0, -0.01]}}\n    \
+         movie: {{frames: 5, width: 300, height: 200, side_by_side: true}}\n    \
+         time: {{integrator: velocity-verlet}}\n    grid:\n      lattice.diagonals: [{diagonals}]\n"
+    )
+}
+
+#[test]
+fn movies_lost_after_a_kill_are_drawn_again_the_same() {
+    // A kill can land after the records are stored but before (or while) their movies are
+    // written; the movies must come back, byte for byte (frames are re-simulated, and runs are
+    // deterministic).
+    let reports = tempfile::tempdir().unwrap();
+    let campaign = parse_campaign("pair.yaml", &side_by_side_campaign("none, both")).unwrap();
+    let layout = Layout::new(reports.path(), &campaign.name);
+    let done = run_campaign(&campaign, &layout, Some(2)).unwrap();
+    let run_movie = layout.movie_file(&done.records[1].run_id);
+    let (both, one) = (std::fs::read(layout.side_by_side_movie("kick")).unwrap(), std::fs::read(&run_movie).unwrap());
+    std::fs::remove_file(layout.side_by_side_movie("kick")).unwrap();
+    std::fs::remove_file(&run_movie).unwrap();
+    let again = run_campaign(&campaign, &layout, Some(2)).unwrap();
+    assert_eq!(again.simulated, 0, "the records are stored");
+    assert_eq!(std::fs::read(&run_movie).unwrap(), one, "the run's movie is back");
+    assert_eq!(std::fs::read(layout.side_by_side_movie("kick")).unwrap(), both, "the side-by-side movie is back");
+}
+
+#[test]
+fn a_side_by_side_movie_follows_the_runs_of_its_scene() {
+    let reports = tempfile::tempdir().unwrap();
+    let run = |diagonals: &str| {
+        let campaign = parse_campaign("pair.yaml", &side_by_side_campaign(diagonals)).unwrap();
+        let layout = Layout::new(reports.path(), &campaign.name);
+        run_campaign(&campaign, &layout, Some(2)).unwrap();
+        let movie = layout.side_by_side_movie("kick");
+        (frames(&movie).0, std::fs::read(movie).unwrap())
+    };
+    let (width, two) = run("none, both");
+    assert_eq!(width, 2 * (300 - 90) + 90);
+    // A run added: the movie is drawn again with three panels.
+    let (width, _) = run("none, both, rising");
+    assert_eq!(width, 3 * (300 - 90) + 90);
+    // Another campaign of the same name and scene (one run fewer), then the first again with
+    // all its runs stored: each shows a movie of its own runs, never the other's.
+    let (width, other) = run("none, rising");
+    assert_eq!(width, 2 * (300 - 90) + 90);
+    assert_ne!(other, two);
+    assert_eq!(run("none, both").1, two);
+}
+
+#[test]
+fn movies_never_write_through_a_planted_link() {
+    // Earlier versions wrote `runs/<id>.gif.tmp` (a fixed name) with `File::create`, which
+    // follows a symbolic link planted there and overwrites its target.
+    let reports = tempfile::tempdir().unwrap();
+    let campaign = parse_campaign("film.yaml", CAMPAIGN).unwrap();
+    let layout = Layout::new(reports.path(), &campaign.name);
+    let victim = reports.path().join("victim");
+    std::fs::write(&victim, "precious").unwrap();
+    let movie = layout.movie_file(&campaign.runs[0].run_id());
+    std::fs::create_dir_all(movie.parent().unwrap()).unwrap();
+    std::os::unix::fs::symlink(&victim, movie.with_extension("gif.tmp")).unwrap();
+    run_campaign(&campaign, &layout, Some(1)).unwrap();
+    assert_eq!(std::fs::read_to_string(&victim).unwrap(), "precious");
+    assert_eq!(frames(&movie).1.len(), 12);
+}
+
+#[test]
+fn a_lock_file_that_is_a_symbolic_link_is_refused() {
+    let reports = tempfile::tempdir().unwrap();
+    let campaign = parse_campaign("film.yaml", CAMPAIGN).unwrap();
+    let layout = Layout::new(reports.path(), &campaign.name);
+    let lock = layout.run_lock_file(&campaign.runs[0].run_id());
+    std::fs::create_dir_all(lock.parent().unwrap()).unwrap();
+    let elsewhere = reports.path().join("elsewhere");
+    std::os::unix::fs::symlink(&elsewhere, &lock).unwrap();
+    let error = format!("{:#}", run_campaign(&campaign, &layout, Some(1)).unwrap_err());
+    assert!(error.contains(lock.to_str().unwrap()) && error.contains("symbolic link"), "{error}");
+    assert!(!elsewhere.exists(), "no file is created through the link");
+}

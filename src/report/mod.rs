@@ -38,14 +38,12 @@ pub fn render(campaign: &Campaign, layout: &Layout, records: &[RunRecord]) -> an
             probes.insert(file);
         }
     }
-    // Side-by-side movies exist only when their runs were simulated together (see the runner),
-    // and show only while the scene still asks for one.
+    // Only a side-by-side movie drawn from exactly the scene's current runs is shown.
     let side_by_side: Vec<String> = campaign
         .scenes
         .iter()
         .map(|(scene, _)| scene.clone())
-        .filter(|scene| campaign.runs.iter().any(|r| r.scene == *scene && r.movie.is_some_and(|m| m.side_by_side)))
-        .filter(|scene| layout.side_by_side_movie(scene).is_file())
+        .filter(|scene| crate::runner::side_by_side_is_current(campaign, layout, scene))
         .collect();
     // What an earlier report of this folder drew and this one did not (a scene renamed or
     // removed, a campaign that took the folder over) goes.

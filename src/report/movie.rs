@@ -26,8 +26,7 @@ pub fn speed_color(fraction: f64) -> RGBColor {
     RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
-/// Writes `movie` as an animated GIF at `path`, atomically (a temporary file beside it, then
-/// renamed). The view is fixed over all frames with equal scales on both axes; colours are
+/// Writes `movie` as an animated GIF at `path`, atomically (`output::write_atomically`). The view is fixed over all frames with equal scales on both axes; colours are
 /// scaled to the fastest speed after the first frame.
 pub fn write_movie(path: &Path, movie: &Movie) -> anyhow::Result<()> {
     write_movie_panels(path, &[movie])
@@ -94,14 +93,15 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
     strains.sort_by(f64::total_cmp);
     let largest_strain = strains.get(strains.len() * 99 / 100).copied().unwrap_or(0.0);
     let strained = largest_strain > 0.0;
-    let temporary = path.with_extension("gif.tmp");
-    if let Some(dir) = path.parent() {
-        std::fs::create_dir_all(dir)?;
-    }
-    {
-        let root =
-            BitMapBackend::gif(&temporary, (width, height), FRAME_DELAY_MS).map_err(draw_error)?.into_drawing_area();
-        for k in 0..frames {
+    // Frames are drawn into one RGB buffer and encoded into memory (as plotters' GIF backend
+    // does, but that one writes to a fixed path itself); the file is then written atomically.
+    let encoding = |error: gif::EncodingError| anyhow::anyhow!("cannot encode the movie '{}': {error}", path.display());
+    let mut pixels = vec![0u8; width as usize * height as usize * 3];
+    let mut encoder = gif::Encoder::new(Vec::new(), width as u16, height as u16, &[]).map_err(encoding)?;
+    encoder.set_repeat(gif::Repeat::Infinite).map_err(encoding)?;
+    for k in 0..frames {
+        {
+            let root = BitMapBackend::with_buffer(&mut pixels, (width, height)).into_drawing_area();
             root.fill(&WHITE).map_err(draw_error)?;
             let (plots, bar) = root.split_horizontally(width - BAR_WIDTH);
             let areas = plots.split_evenly((1, panels.len()));
@@ -134,9 +134,12 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
             draw_colour_bar(&bar, fastest, strained.then_some(largest_strain), height)?;
             root.present().map_err(draw_error)?;
         }
+        let mut frame = gif::Frame::from_rgb_speed(width as u16, height as u16, &pixels, 10);
+        frame.delay = ((FRAME_DELAY_MS + 5) / 10) as u16; // GIF delays are in 1/100 s
+        encoder.write_frame(&frame).map_err(encoding)?;
     }
-    std::fs::rename(&temporary, path)?;
-    Ok(())
+    let bytes = encoder.into_inner().map_err(|error| encoding(error.into()))?;
+    crate::output::write_atomically(path, &bytes)
 }
 
 /// The colour bar: 0 at the bottom, the fastest speed at the top; below it, when bonds are

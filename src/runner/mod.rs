@@ -11,11 +11,13 @@ mod shard;
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::collections::BTreeMap;
 use std::io::IsTerminal;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
 
-use crate::output::{Layout, write_atomically};
+use crate::output::{Layout, open_lock_file, try_lock, wait_for_lock, write_atomically};
 use crate::spec::{Campaign, RunSpec};
 
 /// What `run_campaign` did.
@@ -29,6 +31,33 @@ pub struct CampaignRun {
     pub cached: usize,
 }
 
+/// Set when the user interrupts the process (Ctrl-C or SIGTERM, see `cli`): runs not started
+/// yet are skipped, the ones running finish and are stored, and `run_campaign` returns
+/// [`Interrupted`].
+pub static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+
+/// `run_campaign` stopped early because the process was interrupted.
+#[derive(Debug)]
+pub struct Interrupted {
+    /// Runs of the campaign with a stored result.
+    pub stored: usize,
+    /// Runs of the campaign.
+    pub total: usize,
+}
+
+impl std::fmt::Display for Interrupted {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "interrupted: {} of {} runs stored", self.stored, self.total)
+    }
+}
+
+impl std::error::Error for Interrupted {}
+
+/// How many runs of `campaign` have a stored record (counted by file, not read).
+pub fn stored_count(campaign: &Campaign, layout: &Layout) -> usize {
+    campaign.runs.iter().filter(|spec| layout.run_file(&spec.run_id()).is_file()).count()
+}
+
 /// The stored record of `spec`, if there is one for exactly this spec.
 pub fn stored_record(layout: &Layout, spec: &RunSpec) -> Option<RunRecord> {
     let text = std::fs::read_to_string(layout.run_file(&spec.run_id())).ok()?;
@@ -36,8 +65,22 @@ pub fn stored_record(layout: &Layout, spec: &RunSpec) -> Option<RunRecord> {
 }
 
 /// Runs every run of `campaign` that has no stored record, on `jobs` threads (all cores when
-/// `None`), storing each record as soon as it is finished.
+/// `None`), storing each record as soon as it is finished; waits for a run locked by another
+/// process at most the campaign's time budget per run (see [`run_campaign_waiting`]).
 pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -> anyhow::Result<CampaignRun> {
+    let lock_wait = Duration::from_secs_f64(campaign.budget.seconds_per_run.min(1e9));
+    run_campaign_waiting(campaign, layout, jobs, lock_wait)
+}
+
+/// [`run_campaign`], waiting at most `lock_wait` for each run another process holds (its lock
+/// file): those runs are left until every other run is done, then waited for, saying so on
+/// stderr; after `lock_wait` the campaign stops with an error naming the run and lock file.
+pub fn run_campaign_waiting(
+    campaign: &Campaign,
+    layout: &Layout,
+    jobs: Option<usize>,
+    lock_wait: Duration,
+) -> anyhow::Result<CampaignRun> {
     // A run stopped by its budget is tried again: its outcome depends on the machine and the
     // budget, not only on its spec.
     let stored: Vec<Option<RunRecord>> = campaign
@@ -62,35 +105,48 @@ pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -
     // not yet started are skipped, the ones running finish, everything stored stays.
     let failure: Mutex<Option<anyhow::Error>> = Mutex::new(None);
     let stopping = AtomicBool::new(false);
-    pool.scope_fifo(|scope| {
-        for &index in &order {
-            let (spec, slot, panel, progress) = (todo[index], &finished[index], &panels[index], &progress);
-            let (failure, stopping) = (&failure, &stopping);
-            scope.spawn_fifo(move |_| {
-                if !stopping.load(Ordering::Relaxed) {
-                    match run_and_store(campaign, layout, spec, panel) {
-                        Ok(done) => *slot.lock().expect("a slot is written once") = Some(done),
-                        Err(error) => {
-                            stopping.store(true, Ordering::Relaxed);
-                            failure.lock().expect("failures are only pushed").get_or_insert(error);
+    // First every run whose lock is free; the runs another process holds are put aside and
+    // waited for once all others are done, so a suspended process holds back nothing else.
+    let busy: Mutex<Vec<usize>> = Mutex::new(Vec::new());
+    for patience in [None, Some(lock_wait)] {
+        let queue = if patience.is_none() { order.clone() } else { std::mem::take(&mut *busy.lock().expect("pushed")) };
+        pool.scope_fifo(|scope| {
+            for &index in &queue {
+                let (spec, slot, panel, progress) = (todo[index], &finished[index], &panels[index], &progress);
+                let (failure, stopping, busy) = (&failure, &stopping, &busy);
+                scope.spawn_fifo(move |_| {
+                    if !stopping.load(Ordering::Relaxed) && !INTERRUPTED.load(Ordering::Relaxed) {
+                        match run_and_store(campaign, layout, spec, panel, patience) {
+                            Ok(Some(done)) => *slot.lock().expect("a slot is written once") = Some(done),
+                            Ok(None) => return busy.lock().expect("busy runs are only pushed").push(index),
+                            Err(error) => {
+                                stopping.store(true, Ordering::Relaxed);
+                                failure.lock().expect("failures are only pushed").get_or_insert(error);
+                            }
                         }
                     }
-                }
-                progress.inc(1);
-            });
-        }
-    });
+                    progress.inc(1);
+                });
+            }
+        });
+    }
     progress.finish_and_clear();
     if let Some(error) = failure.into_inner().expect("failures are only pushed") {
         let kept = finished.iter().filter(|slot| slot.lock().is_ok_and(|s| s.is_some())).count();
         return Err(error.context(format!(
-            "campaign '{}' stopped: a result could not be stored; {kept} runs finished now and every result stored \
-             before are kept in {}",
+            "campaign '{}' stopped; {kept} runs finished now and every result stored before are kept in {}",
             campaign.name,
             layout.root.join("runs").display()
         )));
     }
-    write_side_by_side(campaign, layout, &todo, panels)?;
+    if finished.iter().any(|slot| slot.lock().is_ok_and(|s| s.is_none())) {
+        return Err(Interrupted { stored: stored_count(campaign, layout), total: campaign.runs.len() }.into());
+    }
+    let frames: BTreeMap<String, Movie> = todo
+        .iter()
+        .zip(panels)
+        .filter_map(|(spec, panel)| panel.into_inner().expect("a panel is written once").map(|m| (spec.run_id(), m)))
+        .collect();
     let fresh: Vec<(RunRecord, bool)> = finished
         .into_iter()
         .map(|slot| slot.into_inner().expect("a slot is written once").expect("every queued run ends"))
@@ -101,35 +157,33 @@ pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -
         .into_iter()
         .map(|r| r.unwrap_or_else(|| fresh.next().expect("one fresh record per missing run").0))
         .collect();
+    write_missing_movies(campaign, layout, &records, frames)?;
     Ok(CampaignRun { cached: records.len() - simulated, records, simulated })
 }
 
 /// Runs `spec` and stores its record (and movie), holding the run's lock file so that another
 /// `mdsolids` process on the same store (a second `run`, another shard) never runs it at the
-/// same time: whoever comes second waits, then finds the record stored and takes it. The lock
-/// is an OS file lock, released when the process ends however it ends (even by SIGKILL), so a
-/// killed run leaves nothing that blocks a rerun. Returns the record and whether it was
-/// simulated here.
+/// same time: whoever comes second waits (at most `patience`; with `None` it returns `None` at
+/// once), then finds the record stored and takes it. The lock is an OS file lock, released
+/// when the process ends however it ends (even by SIGKILL), so a killed run leaves nothing that
+/// blocks a rerun. Returns the record and whether it was simulated here.
 fn run_and_store(
     campaign: &Campaign,
     layout: &Layout,
     spec: &RunSpec,
     panel: &Mutex<Option<Movie>>,
-) -> anyhow::Result<(RunRecord, bool)> {
+    patience: Option<Duration>,
+) -> anyhow::Result<Option<(RunRecord, bool)>> {
     let run_id = spec.run_id();
     let lock_path = layout.run_lock_file(&run_id);
-    if let Some(dir) = lock_path.parent() {
-        std::fs::create_dir_all(dir).with_context(|| format!("cannot create directory '{}'", dir.display()))?;
+    let lock = open_lock_file(&lock_path)?;
+    match patience {
+        None if !try_lock(&lock, &lock_path)? => return Ok(None),
+        None => {}
+        Some(patience) => wait_for_lock(&lock, &lock_path, &format!("run {run_id}"), patience)?,
     }
-    let lock = std::fs::OpenOptions::new()
-        .create(true)
-        .truncate(false)
-        .write(true)
-        .open(&lock_path)
-        .with_context(|| format!("cannot open the lock file '{}'", lock_path.display()))?;
-    lock.lock().with_context(|| format!("cannot lock '{}'", lock_path.display()))?;
     if let Some(record) = stored_record(layout, spec).filter(|record| record.status != "budget") {
-        return Ok((record, false));
+        return Ok(Some((record, false)));
     }
     let mut record = execute_within(spec, &campaign.budget);
     if let Some(movie) = record.movie.take() {
@@ -140,33 +194,70 @@ fn run_and_store(
     }
     let json = serde_json::to_vec(&record).context("cannot serialise a run record")?;
     write_atomically(&layout.run_file(&record.run_id), &json)?;
-    Ok((record, true))
+    Ok(Some((record, true)))
 }
 
-/// Writes one movie per scene that asks for its runs side by side, from the movies of the runs
-/// simulated now (in campaign order); a scene with a stored run has no frames for it and is
-/// left as it is.
-fn write_side_by_side(
+/// Writes the movies of `records` that are missing: each run's GIF, and for each scene that
+/// shows its runs side by side, that movie unless it exists for exactly the scene's current
+/// runs (the ids listed in `plots/<scene>-side-by-side.runs`). Frames are not stored (they would
+/// make the records many times heavier), so the frames not in `frames` (the movies of the runs
+/// simulated now) come from simulating the run again: runs are deterministic, so the frames
+/// are the same, and scenes with movies are small. A side-by-side movie whose runs are not all
+/// stored yet (or left no frames) is removed rather than shown stale.
+pub fn write_missing_movies(
     campaign: &Campaign,
     layout: &Layout,
-    todo: &[&RunSpec],
-    panels: Vec<Mutex<Option<Movie>>>,
+    records: &[RunRecord],
+    mut frames: BTreeMap<String, Movie>,
 ) -> anyhow::Result<()> {
-    let movies: Vec<Option<Movie>> =
-        panels.into_iter().map(|m| m.into_inner().expect("a panel is written once")).collect();
+    let has_movie =
+        |r: &RunRecord| r.spec.movie.is_some() && !matches!(r.status.as_str(), "panicked" | "budget" | "mechanism");
+    let mut movie_of =
+        |spec: &RunSpec| frames.remove(&spec.run_id()).or_else(|| execute_within(spec, &campaign.budget).movie);
+    let mut redrawn: BTreeMap<String, Movie> = BTreeMap::new();
+    for record in records.iter().filter(|r| has_movie(r) && !layout.movie_file(&r.run_id).is_file()) {
+        if let Some(movie) = movie_of(&record.spec) {
+            crate::report::write_movie(&layout.movie_file(&record.run_id), &movie)?;
+            redrawn.insert(record.run_id.clone(), movie);
+        }
+    }
     for (scene, _) in &campaign.scenes {
-        let wanted = campaign.runs.iter().filter(|r| r.scene == *scene && r.movie.is_some_and(|m| m.side_by_side));
-        let fresh: Vec<&Movie> = todo
-            .iter()
-            .zip(&movies)
-            .filter(|(spec, _)| spec.scene == *scene)
-            .filter_map(|(_, movie)| movie.as_ref())
-            .collect();
-        if fresh.len() >= 2 && fresh.len() == wanted.count() {
-            crate::report::write_movie_panels(&layout.side_by_side_movie(scene), &fresh)?;
+        let ids = side_by_side_ids(campaign, scene);
+        if ids.len() < 2 || side_by_side_is_current(campaign, layout, scene) {
+            continue;
+        }
+        let (movie_path, runs_path) = (layout.side_by_side_movie(scene), layout.side_by_side_runs(scene));
+        // The list goes first and comes back last: a movie is never listed with another's runs.
+        for stale in [&runs_path, &movie_path] {
+            if stale.exists() {
+                std::fs::remove_file(stale).with_context(|| format!("cannot remove '{}'", stale.display()))?;
+            }
+        }
+        let stored: Vec<&RunRecord> = ids.iter().filter_map(|id| records.iter().find(|r| r.run_id == *id)).collect();
+        if stored.len() < ids.len() || !stored.iter().all(|r| has_movie(r)) {
+            continue;
+        }
+        let movies: Option<Vec<Movie>> =
+            stored.iter().map(|r| redrawn.remove(&r.run_id).or_else(|| movie_of(&r.spec))).collect();
+        if let Some(movies) = movies {
+            crate::report::write_movie_panels(&movie_path, &movies.iter().collect::<Vec<_>>())?;
+            write_atomically(&runs_path, (ids.join("\n") + "\n").as_bytes())?;
         }
     }
     Ok(())
+}
+
+/// The runs of `scene` shown side by side, in campaign order.
+fn side_by_side_ids(campaign: &Campaign, scene: &str) -> Vec<String> {
+    let shown = campaign.runs.iter().filter(|r| r.scene == scene && r.movie.is_some_and(|m| m.side_by_side));
+    shown.map(RunSpec::run_id).collect()
+}
+
+/// Whether the side-by-side movie of `scene` exists and was drawn from exactly the scene's runs.
+pub fn side_by_side_is_current(campaign: &Campaign, layout: &Layout, scene: &str) -> bool {
+    let ids = side_by_side_ids(campaign, scene);
+    let listed = std::fs::read_to_string(layout.side_by_side_runs(scene)).unwrap_or_default();
+    ids.len() >= 2 && listed == ids.join("\n") + "\n" && layout.side_by_side_movie(scene).is_file()
 }
 
 /// One bar for the whole campaign (count, elapsed, ETA); hidden when stderr is not a terminal.
