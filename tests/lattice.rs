@@ -254,7 +254,9 @@ fn periodic_strip_in_tension_has_the_constrained_modulus_as_its_reference() {
     // A periodic strip cannot contract sideways, so in tension it measures C22 = (k + k_d)/d,
     // exactly at every size (a uniform strain is the static answer), with ν = 0; its theory
     // columns must say so (they showed the free-contraction E and ν = 1/3 before).
-    // Static against C22 to 1e-9 (the solver's round-off); theory exactly (k + k_d)/d to 1e-15.
+    // Static against C22 to 1e-5: the static answer is solved geometrically non-linearly, like
+    // MD, which moves it by about the strain (1e-6; measured 1.2e-6); theory exactly
+    // (k + k_d)/d to 1e-15; the static ν is 0 to round-off.
     let yaml = campaign(
         "{diagonals: both}",
         "    supports: periodic-x\n    load: {per_node: 1.0}\n",
@@ -266,7 +268,7 @@ fn periodic_strip_in_tension_has_the_constrained_modulus_as_its_reference() {
         let c22 = Some((r.spec.k + l.k_diag) / l.depth);
         let m = &r.metrics;
         assert!(relative(m.youngs_modulus_theory, c22) < 1e-15, "theory {}", label(&r));
-        assert!(relative(m.youngs_modulus_fem, c22) < 1e-9, "static {}", label(&r));
+        assert!(relative(m.youngs_modulus_fem, c22) < 1e-5, "static {}", label(&r));
         assert_eq!(m.poisson_ratio_theory, Some(0.0));
         assert!(m.poisson_ratio_fem.unwrap().abs() < 1e-9, "static ν {}", label(&r));
     }
