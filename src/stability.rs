@@ -239,8 +239,12 @@ enum TestEquation {
     Damping,
 }
 
+/// A cached limit's key: the integrator, ζ's bits (`u64::MAX` for pure damping) and the run
+/// length it holds for (0 where the limit does not depend on it).
+type LimitKey = (IntegratorKind, u64, u64);
+
 fn cached_limit(kind: IntegratorKind, test: TestEquation, steps: u64) -> f64 {
-    static LIMITS: OnceLock<Mutex<HashMap<(IntegratorKind, u64, u64), f64>>> = OnceLock::new();
+    static LIMITS: OnceLock<Mutex<HashMap<LimitKey, f64>>> = OnceLock::new();
     // Only Gear's limit depends on the run's length: a power of two at least `steps`.
     let span = if kind == IntegratorKind::Gear { steps.max(1).next_power_of_two() } else { 0 };
     let key = (kind, if let TestEquation::Oscillator { zeta } = test { zeta.to_bits() } else { u64::MAX }, span);
@@ -521,14 +525,16 @@ mod tests {
                 TestField::Damped(mut f) => Gear::amplification_matrix(&state, &mut f, TEST_PARTICLE, h),
                 TestField::Undamped(mut f) => Gear::amplification_matrix(&state, &mut f, TEST_PARTICLE, h),
             };
-            let pascal = |i: usize, j: usize| if j >= i { (1..=i).fold(1.0, |b, m| b * (j + 1 - m) as f64 / m as f64) } else { 0.0 };
+            let pascal = |i: usize, j: usize| {
+                if j >= i { (1..=i).fold(1.0, |b, m| b * (j + 1 - m) as f64 / m as f64) } else { 0.0 }
+            };
             let c = [c0, 251.0 / 360.0, 1.0, 11.0 / 18.0, 1.0 / 6.0, 1.0 / 60.0];
             let g = [-h * h / 2.0, -zeta * h, -1.0, 0.0, 0.0, 0.0];
-            for i in 0..6 {
-                for j in 0..6 {
+            for (i, row) in coded.iter().enumerate() {
+                for (j, &entry) in row.iter().enumerate() {
                     let gp: f64 = (0..6).map(|k| g[k] * pascal(k, j)).sum();
                     let expected = pascal(i, j) + c[i] * gp;
-                    assert!((coded[i][j] - expected).abs() < 1e-13, "ζ {zeta}: G[{i}][{j}] = {} against {expected}", coded[i][j]);
+                    assert!((entry - expected).abs() < 1e-13, "ζ {zeta}: G[{i}][{j}] = {entry} against {expected}");
                 }
             }
         }

@@ -226,7 +226,8 @@ fn residual_force_under_velocity_control_is_judged_against_the_drive_force() {
     // drive stopped (relaxed at exactly drive_tc = 100 t_c while the lattice still rang:
     // E and G off by up to 1e-2); judged against the drive's own force the lattice must ring
     // down first. Tolerance 1e-5 on the static answer: the residual of 1e-6 of the force per
-    // node leaves displacements off by about that (measured ≤ 1e-6).
+    // node leaves displacements off by about that (measured ≤ 5.3e-7, relaxed 33 to 787 t_c after
+    // the drive).
     let yaml = campaign(
         "{size: 6, k_diag_ratio: 0.5}",
         "    time: {integrator: velocity-verlet}\n    load: {control: velocity, strain: 1.0e-6}\n    relax: {residual_force: 1.0e-6}\n",
@@ -236,7 +237,9 @@ fn residual_force_under_velocity_control_is_judged_against_the_drive_force() {
     for r in &records {
         assert_eq!(r.status, "ok", "{}: {}", label(r), r.message);
         let m = &r.metrics;
-        assert!(m.dissipation_time.unwrap() > 100.0 * r.spec.t_c, "relaxed as the drive stopped: {}", label(r));
+        // Half a t_c past the drive's end: the first check after it (one t_c apart) does not count.
+        let after = m.dissipation_time.unwrap() / r.spec.t_c;
+        assert!(after > 100.5, "relaxed at {after} t_c, as the drive stopped: {}", label(r));
         match r.spec.lattice.as_ref().unwrap().load_case.name() {
             "tensile" => assert!(relative(m.youngs_modulus, m.youngs_modulus_fem) < 1e-5, "E {}", label(r)),
             _ => assert!(relative(m.shear_modulus, m.shear_modulus_fem) < 1e-5, "G {}", label(r)),

@@ -7,8 +7,8 @@ use std::time::{Duration, Instant};
 use super::record::{Metrics, Movie, RunRecord};
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
-    ARRIVAL_CRITERIA, LatticeShape, anisotropic_moduli, arrival_time, constrained_modulus_y, contact_timing, energy_error, homogeneity,
-    lattice_constants, normal_mode_error, shear_modulus, tensile_moduli,
+    ARRIVAL_CRITERIA, LatticeShape, anisotropic_moduli, arrival_time, constrained_modulus_y, contact_timing,
+    energy_error, homogeneity, lattice_constants, normal_mode_error, shear_modulus, tensile_moduli,
 };
 use crate::model::{ForceLaw, Linear, PowerLaw};
 use crate::scenes::{
