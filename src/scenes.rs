@@ -42,7 +42,7 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
             deadline: None,
             relaxation: spec.relax.map(|relax| Relaxation {
                 kinetic_ratio: relax.kinetic_ratio,
-                residual_force: relax.residual_force.map(|fraction| fraction * load_scale(spec)),
+                residual_force: relax.residual_force.zip(load_scale(spec)).map(|(fraction, scale)| fraction * scale),
                 check_every: (spec.t_c / spec.dt).round().max(1.0) as u64,
                 confirmations: relaxation_checks(spec),
             }),
@@ -111,12 +111,15 @@ pub fn relaxation_checks(spec: &RunSpec) -> u32 {
     (2 * side + 1) as u32
 }
 
-/// The force (N) the residual-force criterion is relative to: the load per node of a lattice,
-/// the equilibrium spring force s(ΔW/(n + 1)) of a relaxing chain.
-pub fn load_scale(spec: &RunSpec) -> f64 {
+/// The force (N) the residual-force criterion is relative to: the load per node of a
+/// force-loaded lattice, the equilibrium spring force s(ΔW/(n + 1)) of a relaxing chain.
+/// `None` for a velocity-driven lattice: the force its drive must hold is known only from the
+/// static answer of its network, and the runner scales the criterion by that
+/// (`runner::execute`); its `load_per_node` is an unused default.
+pub fn load_scale(spec: &RunSpec) -> Option<f64> {
     match &spec.lattice {
-        Some(l) => l.load_per_node,
-        None => chain_equilibrium(spec).1.abs(),
+        Some(l) => l.force_per_node(),
+        None => Some(chain_equilibrium(spec).1.abs()),
     }
 }
 

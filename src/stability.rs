@@ -10,7 +10,7 @@ use std::sync::{Mutex, OnceLock};
 
 use crate::model::{Axes, BondDashpot, Linear, NoDashpot, Particles, Spring, SquareLattice};
 use crate::scenes::build_scene;
-use crate::sim::{IntegratorKind, LatticeNetwork, Sampling, Scene, State, StepProbe, simulate_with};
+use crate::sim::{Gear, IntegratorKind, LatticeNetwork, Sampling, Scene, State, StepProbe, simulate_with};
 use crate::spec::{Campaign, RunSpec, SpecError};
 
 /// What is known about a run's stability before it starts.
@@ -22,8 +22,25 @@ pub struct Stability {
     pub damping_ratio: f64,
     /// dt · ω_max.
     pub dt_omega_max: f64,
-    /// Largest dt · ω the integrator survives at that damping ratio.
+    /// Largest dt · ω the integrator survives at that damping ratio (Gear: over the run's
+    /// length, see [`stability_limit`]).
     pub limit: f64,
+    /// ν_max (1/s): the largest decay rate damping alone imposes.
+    pub damping_rate: f64,
+}
+
+impl Stability {
+    /// The limit (in units of dt · ω_max) of `kind` over a run of `steps` steps: the smaller of
+    /// the fastest mode's (the test oscillator at its ζ) and the one damping alone sets.
+    pub fn limit_for(&self, kind: IntegratorKind, steps: u64) -> f64 {
+        let oscillation = stability_limit(kind, self.damping_ratio, steps);
+        let damping = if self.damping_rate > 0.0 && self.omega_max > 0.0 {
+            damping_limit(kind, steps) * self.omega_max / self.damping_rate
+        } else {
+            f64::INFINITY
+        };
+        oscillation.min(damping)
+    }
 }
 
 /// Estimates the stability of `spec` as it stands. The limit, in units of dt · ω_max, is the
@@ -46,18 +63,15 @@ pub fn estimate(spec: &RunSpec) -> Stability {
 fn estimate_uncached(spec: &RunSpec) -> Stability {
     let scene = build_scene(spec);
     let modes = modes(&scene, crate::spec::reference_extension(spec));
-    let oscillation = stability_limit(spec.integrator, modes.damping_ratio);
-    let damping = if modes.damping_rate > 0.0 && modes.omega_max > 0.0 {
-        damping_limit(spec.integrator) * modes.omega_max / modes.damping_rate
-    } else {
-        f64::INFINITY
-    };
-    Stability {
+    let mut stability = Stability {
         omega_max: modes.omega_max,
         damping_ratio: modes.damping_ratio,
         dt_omega_max: modes.omega_max * spec.dt,
-        limit: oscillation.min(damping),
-    }
+        limit: f64::INFINITY,
+        damping_rate: modes.damping_rate,
+    };
+    stability.limit = stability.limit_for(spec.integrator, spec.steps);
+    stability
 }
 
 /// Iterations of the power method at most; it stops earlier once the Rayleigh quotient has
@@ -194,16 +208,27 @@ fn modes(scene: &Scene, extension: f64) -> Modes {
 /// (ζ = `damping_ratio`), to 1e-4 relative; cached per integrator and ζ (rounded to three
 /// digits). Undamped values to compare with: 2 for the Verlet schemes and symplectic Euler,
 /// 2√2 for RK4, 1.5734 for Forest–Ruth.
-pub fn stability_limit(kind: IntegratorKind, damping_ratio: f64) -> f64 {
+///
+/// Gear's amplification exceeds 1 by a little almost everywhere (~1e-7 per step at ω dt = 0.2,
+/// ~1e-4 at 0.45), so "bounded" depends on how long it runs: its limit is the largest ω dt
+/// below which every mode grows by at most [`RUN_GROWTH`] over `steps` steps (rounded up to a
+/// power of two), from the spectral radius of its amplification matrix ([`gear_limit`]).
+/// The other schemes' limits do not depend on `steps`.
+pub fn stability_limit(kind: IntegratorKind, damping_ratio: f64, steps: u64) -> f64 {
     let zeta: f64 = format!("{damping_ratio:.2e}").parse().unwrap_or(0.0);
-    cached_limit(kind, TestEquation::Oscillator { zeta })
+    cached_limit(kind, TestEquation::Oscillator { zeta }, steps)
 }
 
 /// The largest ν dt for which `kind` stays bounded on pure damping, ẋ' = −ν ẋ (a slow mode
 /// under heavy damping), measured and cached like [`stability_limit`].
-pub fn damping_limit(kind: IntegratorKind) -> f64 {
-    cached_limit(kind, TestEquation::Damping)
+pub fn damping_limit(kind: IntegratorKind, steps: u64) -> f64 {
+    cached_limit(kind, TestEquation::Damping, steps)
 }
+
+/// The largest factor by which Gear's own amplification may grow any mode over a whole run at
+/// its stability limit (the blow-up check of a run fires at 1000× the energy, ~32× the
+/// amplitude).
+pub const RUN_GROWTH: f64 = 2.0;
 
 /// The scalar problems whose stability limits are measured.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -214,14 +239,20 @@ enum TestEquation {
     Damping,
 }
 
-fn cached_limit(kind: IntegratorKind, test: TestEquation) -> f64 {
-    static LIMITS: OnceLock<Mutex<HashMap<(IntegratorKind, u64), f64>>> = OnceLock::new();
-    let key = (kind, if let TestEquation::Oscillator { zeta } = test { zeta.to_bits() } else { u64::MAX });
+/// A cached limit's key: the integrator, ζ's bits (`u64::MAX` for pure damping) and the run
+/// length it holds for (0 where the limit does not depend on it).
+type LimitKey = (IntegratorKind, u64, u64);
+
+fn cached_limit(kind: IntegratorKind, test: TestEquation, steps: u64) -> f64 {
+    static LIMITS: OnceLock<Mutex<HashMap<LimitKey, f64>>> = OnceLock::new();
+    // Only Gear's limit depends on the run's length: a power of two at least `steps`.
+    let span = if kind == IntegratorKind::Gear { steps.max(1).next_power_of_two() } else { 0 };
+    let key = (kind, if let TestEquation::Oscillator { zeta } = test { zeta.to_bits() } else { u64::MAX }, span);
     let cache = LIMITS.get_or_init(Default::default);
     if let Some(&limit) = cache.lock().expect("the cache is never poisoned").get(&key) {
         return limit;
     }
-    let limit = measure_limit(kind, test);
+    let limit = if kind == IntegratorKind::Gear { gear_limit(test, span) } else { measure_limit(kind, test) };
     cache.lock().expect("the cache is never poisoned").insert(key, limit);
     limit
 }
@@ -293,14 +324,45 @@ impl StepProbe for Amplitudes {
 /// ρ > 1 per step (ρ − 1 ~ √(h − h_c)), so 1000 steps show growth down to (h − h_c)/h_c ≈ 1e-6;
 /// within the limit the amplitude is bounded (or decays).
 fn stays_bounded(kind: IntegratorKind, test: TestEquation, h: f64) -> bool {
+    let (mut state, field) = test_problem(test);
+    state.particles.vx[TEST_PARTICLE] = TRIAL_AMPLITUDE;
+    let sampling = Sampling {
+        dt: h,
+        steps: 2 * TRIAL_STEPS,
+        every: 2 * TRIAL_STEPS,
+        displacements: false,
+        relaxation: None,
+        deadline: None,
+    };
+    let mut amplitudes = Amplitudes::default();
+    match field {
+        TestField::Damped(mut field) => simulate_with(kind, &mut state, &mut field, &sampling, &mut amplitudes),
+        TestField::Undamped(mut field) => simulate_with(kind, &mut state, &mut field, &sampling, &mut amplitudes),
+    };
+    !amplitudes.escaped && amplitudes.late <= 1.5 * amplitudes.early
+}
+
+/// The moving particle of a test problem (particle 0 is fixed).
+const TEST_PARTICLE: usize = 1;
+
+/// The force field of a test problem: with a bond dashpot, or without anything that reads
+/// velocities (Gear's corrector weight c₀ depends on which).
+enum TestField {
+    Damped(LatticeNetwork<Linear, BondDashpot, false>),
+    Undamped(LatticeNetwork<Linear, NoDashpot, false>),
+}
+
+/// The test equation as a scene: a unit mass at rest at x = 1 on a spring of rest length 1
+/// (stiffness 1, dashpot 2ζ) to a fixed particle at 0, ω = 1; or on background damping 1
+/// alone, ν = 1.
+fn test_problem(test: TestEquation) -> (State, TestField) {
     let (k, gamma, background) = match test {
         TestEquation::Oscillator { zeta } => (1.0, 2.0 * zeta, 0.0),
         TestEquation::Damping => (0.0, 0.0, 1.0),
     };
     let mut particles = Particles::default();
     particles.push(0.0, 0.0, 1.0, Axes::FIXED);
-    let moving = particles.push(1.0, 0.0, 1.0, Axes::ONLY_X_MOVES);
-    particles.vx[moving] = TRIAL_AMPLITUDE;
+    particles.push(1.0, 0.0, 1.0, Axes::ONLY_X_MOVES);
     let lattice = SquareLattice {
         nx: 2,
         ny: 1,
@@ -311,26 +373,58 @@ fn stays_bounded(kind: IntegratorKind, test: TestEquation, h: f64) -> bool {
         k_falling: 0.0,
         periodic_x: false,
     };
-    let sampling = Sampling {
-        dt: h,
-        steps: 2 * TRIAL_STEPS,
-        every: 2 * TRIAL_STEPS,
-        displacements: false,
-        relaxation: None,
-        deadline: None,
-    };
-    let mut state = State::new(particles);
-    let mut amplitudes = Amplitudes::default();
-    if gamma > 0.0 {
+    let field = if gamma > 0.0 {
         let spring = Spring::<Linear, BondDashpot, false> { law: Linear, dashpot: BondDashpot { gamma } };
-        let mut field = LatticeNetwork::new(spring, lattice, background);
-        simulate_with(kind, &mut state, &mut field, &sampling, &mut amplitudes);
+        TestField::Damped(LatticeNetwork::new(spring, lattice, background))
     } else {
         let spring = Spring::<Linear, NoDashpot, false> { law: Linear, dashpot: NoDashpot };
-        let mut field = LatticeNetwork::new(spring, lattice, background);
-        simulate_with(kind, &mut state, &mut field, &sampling, &mut amplitudes);
+        TestField::Undamped(LatticeNetwork::new(spring, lattice, background))
+    };
+    (State::new(particles), field)
+}
+
+/// Spectral radius of Gear's amplification matrix on the test equation at ω dt (or ν dt) = `h`.
+fn gear_spectral_radius(test: TestEquation, h: f64) -> f64 {
+    let (state, field) = test_problem(test);
+    let matrix = match field {
+        TestField::Damped(mut field) => Gear::amplification_matrix(&state, &mut field, TEST_PARTICLE, h),
+        TestField::Undamped(mut field) => Gear::amplification_matrix(&state, &mut field, TEST_PARTICLE, h),
+    };
+    let eigenvalues = faer::Mat::<f64>::from_fn(6, 6, |i, j| matrix[i][j]).eigenvalues();
+    // A 6 × 6 matrix of finite numbers always converges; should it not, count it as unstable.
+    eigenvalues.map_or(f64::INFINITY, |values| values.iter().map(|z| z.norm()).fold(0.0, f64::max))
+}
+
+/// Steps of the scan up from ω dt = 0 for Gear's limit: its spectral radius varies smoothly
+/// (no growth interval this narrow shows between 0 and its limits of 0.1 … 0.8), and each
+/// step costs `plan` six Gear steps and an eigenvalue problem.
+const GEAR_SCAN: f64 = 0.05;
+
+/// Gear's limit over a run of `steps` steps: the first ω dt, scanning up from 0, at which the
+/// spectral radius ρ of its amplification passes RUN_GROWTH^(1/steps), refined by bisection
+/// to 1e-4: below it every mode (every smaller ω dt) grows by at most [`RUN_GROWTH`] over the
+/// run, ρ^steps ≤ RUN_GROWTH.
+fn gear_limit(test: TestEquation, steps: u64) -> f64 {
+    let allowed = RUN_GROWTH.ln() / steps as f64;
+    let grows = |h: f64| gear_spectral_radius(test, h).ln() > allowed;
+    let mut low = 0.0;
+    let mut high = GEAR_SCAN;
+    while !grows(high) {
+        low = high;
+        high += GEAR_SCAN;
+        if high > LARGEST_LIMIT {
+            return LARGEST_LIMIT;
+        }
     }
-    !amplitudes.escaped && amplitudes.late <= 1.5 * amplitudes.early
+    while high - low > 1e-4 * high {
+        let middle = 0.5 * (low + high);
+        if grows(middle) {
+            high = middle;
+        } else {
+            low = middle;
+        }
+    }
+    low
 }
 
 /// Reads, validates and expands the campaign file at `path` ([`crate::spec::load`]), then
@@ -377,6 +471,8 @@ pub fn check_campaign(file: &str, campaign: &mut Campaign) -> Result<(), SpecErr
                 )));
             }
             stability.dt_omega_max = target;
+            // Gear's limit depends on the run's length, which the new dt changed.
+            stability.limit = stability.limit_for(spec.integrator, spec.steps);
         }
         if stability.dt_omega_max > stability.limit && !spec.allow_unstable {
             let field = if spec.dt_omega_max.is_some() { "time.dt_omega_max" } else { "time.dt_per_tc (or time.dt)" };
@@ -412,8 +508,52 @@ mod tests {
             (IntegratorKind::SymplecticEuler, 2.0),
             (IntegratorKind::Rk4, 2.0 * 2f64.sqrt()),
         ] {
-            let limit = stability_limit(kind, 0.0);
+            let limit = stability_limit(kind, 0.0, 1000);
             assert!((limit - exact).abs() < 1e-3 * exact, "{}: {limit} against {exact}", kind.name());
         }
+    }
+
+    #[test]
+    fn gear_amplification_matrix_is_the_textbook_scheme() {
+        // Independent answer: predictor P (Pascal's triangle), then r += c Δ with
+        // Δ = (h²/2) a − r₂ᵖ and a = −x − 2ζ ẋ at the prediction: G = (I + c gᵀ) P with
+        // gᵀ = (−h²/2, −ζh, −1, 0, 0, 0), c = (c₀, 251/360, 1, 11/18, 1/6, 1/60) and
+        // c₀ = 3/20 undamped, 3/16 with a dashpot. Tolerance 1e-13: round-off of a few
+        // operations on entries up to 10.
+        for (zeta, c0) in [(0.0, 3.0 / 20.0), (0.1, 3.0 / 16.0)] {
+            let h = 0.37;
+            let (state, field) = test_problem(TestEquation::Oscillator { zeta });
+            let coded = match field {
+                TestField::Damped(mut f) => Gear::amplification_matrix(&state, &mut f, TEST_PARTICLE, h),
+                TestField::Undamped(mut f) => Gear::amplification_matrix(&state, &mut f, TEST_PARTICLE, h),
+            };
+            let pascal = |i: usize, j: usize| {
+                if j >= i { (1..=i).fold(1.0, |b, m| b * (j + 1 - m) as f64 / m as f64) } else { 0.0 }
+            };
+            let c = [c0, 251.0 / 360.0, 1.0, 11.0 / 18.0, 1.0 / 6.0, 1.0 / 60.0];
+            let g = [-h * h / 2.0, -zeta * h, -1.0, 0.0, 0.0, 0.0];
+            for (i, row) in coded.iter().enumerate() {
+                for (j, &entry) in row.iter().enumerate() {
+                    let gp: f64 = (0..6).map(|k| g[k] * pascal(k, j)).sum();
+                    let expected = pascal(i, j) + c[i] * gp;
+                    assert!((entry - expected).abs() < 1e-13, "ζ {zeta}: G[{i}][{j}] = {entry} against {expected}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn gear_limit_bounds_the_growth_over_the_run() {
+        // The limit is where ρ^steps reaches RUN_GROWTH: just below it the growth over the
+        // run is at most 2, just above (by 1 %) more; it falls as runs get longer, because ρ
+        // exceeds 1 (~1e-4 per step at ω dt = 0.45, where the old 4000-step trial put the
+        // limit at 0.4919 and a chain of 78 000 steps blew up at step 38 805).
+        let short = stability_limit(IntegratorKind::Gear, 0.0, 1000);
+        let long = stability_limit(IntegratorKind::Gear, 0.0, 78_181);
+        assert!(long < short && long < 0.45, "limits {short} (1000 steps) and {long} (78 181 steps)");
+        let test = TestEquation::Oscillator { zeta: 0.0 };
+        let steps = 131_072.0; // 78 181 rounded up to a power of two
+        assert!(gear_spectral_radius(test, long).powf(steps) <= RUN_GROWTH);
+        assert!(gear_spectral_radius(test, 1.01 * long).powf(steps) > RUN_GROWTH);
     }
 }

@@ -180,7 +180,7 @@ fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
         optional_floats(records, "drive_strain", |r| {
             r.spec.lattice.as_ref().filter(|l| l.control == crate::spec::Control::Velocity).map(|l| l.drive_strain)
         }),
-        optional_floats(records, "load_per_node", lattice(|l| l.load_per_node)),
+        optional_floats(records, "load_per_node", |r| r.spec.lattice.as_ref().and_then(|l| l.force_per_node())),
         m("youngs_modulus", |m| m.youngs_modulus),
         m("youngs_modulus_fem", |m| m.youngs_modulus_fem),
         m("youngs_modulus_theory", |m| m.youngs_modulus_theory),
@@ -250,9 +250,9 @@ fn excitation_speed(r: &RunRecord) -> Option<f64> {
     }
 }
 
-/// The load per top-row node of a loaded lattice (N).
+/// The load per top-row node of a force-loaded lattice (N).
 fn load(r: &RunRecord) -> Option<f64> {
-    r.spec.lattice.as_ref().filter(|l| l.impulse.is_none()).map(|l| l.load_per_node)
+    r.spec.lattice.as_ref().and_then(|l| l.force_per_node())
 }
 
 /// |ΔW| of a relaxing chain (m).

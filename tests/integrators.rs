@@ -128,3 +128,33 @@ fn blown_up_runs_end_with_their_reason_and_leave_no_nan_in_the_table() {
     }
     assert_table_finite(&records);
 }
+
+/// Gear on a chain of 10 over `duration_tc` t_c at dt·ω_max = `dt_omega_max`.
+fn gear_chain(duration_tc: u32, dt_omega_max: f64, allow_unstable: bool) -> String {
+    format!(
+        "version: 1\nname: t\nscenes:\n  - name: c\n    kind: chain\n    n: 10\n    node: 3\n    v0: 0.1\n    \
+         time: {{integrator: gear, duration_tc: {duration_tc}, dt_omega_max: {dt_omega_max}, allow_unstable: {allow_unstable}}}\n"
+    )
+}
+
+#[test]
+fn gear_limit_is_a_bound_over_the_run_length() {
+    // Gear's amplification grows by ~1e-4 per step at dt·ω_max = 0.45: a chain of 78 000 steps
+    // there, accepted under the old limit 0.4919 (a 4000-step trial), blew up at step 38 805.
+    // The limit now keeps the growth over the run's own length below 2, so that run is refused,
+    // and a run just inside the new limit stays bounded: no mode's amplitude more than doubles,
+    // so the energy error is at most 2² − 1 = 3 (measured 0.35: the fastest modes hold part of
+    // the energy; a blow-up is ≥ 1000).
+    let error = parse_campaign("gear.yaml", &gear_chain(8000, 0.45, false)).unwrap_err().to_string();
+    assert!(error.contains("stability limit") && error.contains("gear"), "{error}");
+    let probe = &runs(&gear_chain(8000, 0.3, true))[0];
+    let limit = estimate(probe).limit;
+    assert!(limit < 0.45, "limit {limit}");
+    let below = &execute_all(&gear_chain(8000, 0.99 * limit, false))[0];
+    assert_eq!(below.status, "ok", "{}", below.message);
+    let bound = mdsolids::stability::RUN_GROWTH.powi(2) - 1.0;
+    assert!(below.metrics.energy_error.unwrap() <= bound, "energy error {:?}", below.metrics.energy_error);
+    // Short runs keep the wide limit: 1000 steps at most double the amplitude up to ~0.55.
+    let short = estimate(&runs(&gear_chain(20, 0.3, true))[0]).limit;
+    assert!(short > limit, "short-run limit {short} against {limit}");
+}

@@ -132,6 +132,22 @@ pub struct ContinuumModuli {
     pub shear_modulus: Option<f64>,
 }
 
+/// The constrained modulus along y (Pa): σ_yy/ε_yy with no lateral strain (ε_xx = 0) and no
+/// shear stress, what a periodic strip (`periodic-x`, bottom clamped) measures in tension:
+/// C22 − C26²/C66 over the depth d (C22 = k_y + (k_r + k_f)/2 without the C26 coupling of
+/// one diagonal family; k_y with no diagonals).
+///
+/// ```
+/// use mdsolids::measure::constrained_modulus_y;
+/// // Both diagonals: (k + k_d)/d.
+/// assert!((constrained_modulus_y(2.0, 2.0, 1.0, 1.0, 0.5) - 6.0).abs() < 1e-12);
+/// ```
+pub fn constrained_modulus_y(k_x: f64, k_y: f64, k_rising: f64, k_falling: f64, depth: f64) -> f64 {
+    let c = lattice_constants(k_x, k_y, k_rising, k_falling);
+    let coupling = if c.c66 > 0.0 { c.c16 * c.c16 / c.c66 } else { 0.0 };
+    (c.c22 - coupling) / depth
+}
+
 /// Moduli under uniaxial stress (the lattice free to shear, as on coursework supports) from
 /// the compliance S = C⁻¹ of [`lattice_constants`], divided by the depth d (m). Without
 /// diagonals C is diagonal in the normal block and singular in shear: E_x = k_x/d,
@@ -146,6 +162,8 @@ pub struct ContinuumModuli {
 /// // One diagonal: the block shears freely, so it pulls like its axial springs alone.
 /// let one = anisotropic_moduli(2.0, 3.0, 1.0, 0.0, 1.0);
 /// assert!((one.youngs_modulus_y - 3.0).abs() < 1e-12 && one.poisson_ratio_yx.abs() < 1e-12);
+/// // S12 = 0 exactly there: ν is +0, never printed as -0.0.
+/// assert!(one.poisson_ratio_yx.is_sign_positive() && one.poisson_ratio_xy.is_sign_positive());
 /// ```
 pub fn anisotropic_moduli(k_x: f64, k_y: f64, k_rising: f64, k_falling: f64, depth: f64) -> ContinuumModuli {
     let c = lattice_constants(k_x, k_y, k_rising, k_falling);
@@ -169,8 +187,9 @@ pub fn anisotropic_moduli(k_x: f64, k_y: f64, k_rising: f64, k_falling: f64, dep
     ContinuumModuli {
         youngs_modulus_x: 1.0 / (s(0, 0) * depth),
         youngs_modulus_y: 1.0 / (s(1, 1) * depth),
-        poisson_ratio_xy: -s(0, 1) / s(0, 0),
-        poisson_ratio_yx: -s(0, 1) / s(1, 1),
+        // 0 − S12, not −S12: S12 = 0 (one diagonal family) gives 0, not −0.
+        poisson_ratio_xy: (0.0 - s(0, 1)) / s(0, 0),
+        poisson_ratio_yx: (0.0 - s(0, 1)) / s(1, 1),
         shear_modulus: Some(1.0 / (s(2, 2) * depth)),
     }
 }

@@ -215,7 +215,15 @@ fn section(
                 l.supports.name(),
                 match l.impulse {
                     Some(i) => impulse_words(&i),
-                    None => format!("{} load {} N per top node", l.load_case.name(), number(l.load_per_node)),
+                    None => match l.force_per_node() {
+                        Some(force) => format!("{} load {} N per top node", l.load_case.name(), number(force)),
+                        None => format!(
+                            "{}, the top row driven to a strain of {} over {} t_c",
+                            l.load_case.name(),
+                            number(l.drive_strain),
+                            number(l.drive_tc)
+                        ),
+                    },
                 },
                 s.integrator.name()
             ) + &l.derived_from.as_ref().map(|note| format!(". Derived from the solid: {note}")).unwrap_or_default()

@@ -7,8 +7,8 @@ use std::time::{Duration, Instant};
 use super::record::{Metrics, Movie, RunRecord};
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
-    ARRIVAL_CRITERIA, LatticeShape, anisotropic_moduli, arrival_time, contact_timing, energy_error, homogeneity,
-    lattice_constants, normal_mode_error, shear_modulus, tensile_moduli,
+    ARRIVAL_CRITERIA, LatticeShape, anisotropic_moduli, arrival_time, constrained_modulus_y, contact_timing,
+    energy_error, homogeneity, lattice_constants, normal_mode_error, shear_modulus, tensile_moduli,
 };
 use crate::model::{ForceLaw, Linear, PowerLaw};
 use crate::scenes::{
@@ -151,8 +151,17 @@ fn run_and_measure(spec: &RunSpec, deadline: Instant) -> Finished {
             LawKind::Linear => static_answer(spec, lattice, &truss, &Linear, &mut metrics),
             LawKind::Power { beta } => static_answer(spec, lattice, &truss, &PowerLaw { beta }, &mut metrics),
         };
-        if let Err(residual) = answer {
-            return Finished::Mechanism { residual };
+        let top_row_force = match answer {
+            Ok(force) => force,
+            Err(residual) => return Finished::Mechanism { residual },
+        };
+        // Under velocity control the residual force is judged against the force the drive
+        // holds at equilibrium (per top-row node), not the unused load_per_node.
+        let fraction = spec.relax.and_then(|r| r.residual_force);
+        if let (Control::Velocity, Some(fraction), Some(relaxation)) =
+            (lattice.control, fraction, scene.sampling.relaxation.as_mut())
+        {
+            relaxation.residual_force = Some(fraction * (top_row_force / lattice.nx as f64).abs());
         }
     }
     let start = (scene.particles.x.clone(), scene.particles.y.clone());
@@ -193,15 +202,17 @@ fn run_and_measure(spec: &RunSpec, deadline: Instant) -> Finished {
 
 /// The static answer of a loaded lattice beside MD: its moduli (`*_fem`), solved non-linearly
 /// like MD; for linear springs how far that is from the linear answer; with a tangent step
-/// the tangent moduli from the tangent stiffness at the equilibrium. `Err(residual)` when
-/// the load drives a mechanism.
+/// the tangent moduli from the tangent stiffness at the equilibrium. Returns the total force
+/// on the top row at the static equilibrium (N): the load, or what the drive must hold
+/// (non-linear answer where it exists, else linear). `Err(residual)` when the load drives a
+/// mechanism.
 fn static_answer<L: ForceLaw>(
     spec: &RunSpec,
     lattice: &LatticeSpec,
     truss: &Truss,
     law: &L,
     metrics: &mut Metrics,
-) -> Result<(), f64> {
+) -> Result<f64, f64> {
     // The force on the top row: the load, or what the supports must apply to hold the
     // driven row where it is.
     let force = |ux: &[f64], uy: &[f64]| match lattice.control {
@@ -213,14 +224,18 @@ fn static_answer<L: ForceLaw>(
     };
     // The linear problem decides whether the network carries the load at all (a power law's
     // linear answer means nothing else).
-    let linear = match truss.solve_linear() {
+    let (linear, linear_force) = match truss.solve_linear() {
         StaticSolution::Mechanism { residual } => return Err(residual),
-        StaticSolution::Displacements { ux, uy } => lattice_moduli(spec, lattice, force(&ux, &uy), &ux, &uy),
+        StaticSolution::Displacements { ux, uy } => {
+            let top = force(&ux, &uy);
+            (lattice_moduli(spec, lattice, top, &ux, &uy), top)
+        }
     };
     let Some(StaticSolution::Displacements { ux, uy }) = truss.solve_nonlinear(law, reference_extension(spec)) else {
-        return Ok(());
+        return Ok(linear_force);
     };
-    let fem = lattice_moduli(spec, lattice, force(&ux, &uy), &ux, &uy);
+    let top_row_force = force(&ux, &uy);
+    let fem = lattice_moduli(spec, lattice, top_row_force, &ux, &uy);
     if spec.law == LawName::Linear {
         // Relative for E and G; absolute for ν, which can be 0 (no diagonals).
         let relative = |a: Option<f64>, b: Option<f64>| crate::table::relative_error(a, b).map(f64::abs);
@@ -246,7 +261,7 @@ fn static_answer<L: ForceLaw>(
             metrics.shear_modulus_tangent_fem = tangent.shear_modulus;
         }
     }
-    Ok(())
+    Ok(top_row_force)
 }
 
 /// The small extra step after a relaxation: from the relaxed state (at rest), the load
@@ -488,15 +503,27 @@ fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metr
         if spec.law == LawName::Linear {
             let (k_rising, k_falling) = lattice.diagonal_stiffness();
             let continuum = anisotropic_moduli(lattice.k_x, lattice.k_y, k_rising, k_falling, lattice.depth);
-            metrics.youngs_modulus_theory = Some(continuum.youngs_modulus_y);
-            metrics.poisson_ratio_theory = Some(continuum.poisson_ratio_yx);
+            // A periodic strip cannot contract sideways: in tension it measures the
+            // constrained modulus (C22 = (k + k_d)/d with both diagonals), with ν = 0.
+            if lattice.supports == crate::spec::Supports::PeriodicX {
+                let strip = constrained_modulus_y(lattice.k_x, lattice.k_y, k_rising, k_falling, lattice.depth);
+                metrics.youngs_modulus_theory = Some(strip);
+                metrics.poisson_ratio_theory = Some(0.0);
+            } else {
+                metrics.youngs_modulus_theory = Some(continuum.youngs_modulus_y);
+                metrics.poisson_ratio_theory = Some(continuum.poisson_ratio_yx);
+            }
             metrics.shear_modulus_theory = continuum.shear_modulus;
         }
     }
     if let Some(relax) = spec.relax {
         metrics.dissipation_time = outcome.trace.relaxed_at;
         let checks = relaxation_checks(spec);
-        let scale = if spec.lattice.is_some() { "the load per node" } else { "the wall force" };
+        let scale = match &spec.lattice {
+            Some(l) if l.control == Control::Velocity => "the drive's static force per node",
+            Some(_) => "the load per node",
+            None => "the wall force",
+        };
         metrics.dissipation_criterion =
             outcome.trace.relaxed_by.as_deref().map(|by| match (by, relax.residual_force) {
                 ("residual_force", Some(fraction)) => {

@@ -9,7 +9,7 @@ use crate::sim::IntegratorKind;
 
 /// Bumped whenever stored results of an unchanged spec would differ (new physics or columns),
 /// so the cache never serves results of older code.
-pub const RESULT_FORMAT: u32 = 10;
+pub const RESULT_FORMAT: u32 = 11;
 
 /// A resolved run. Units SI; field names are the results table's column names.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -279,6 +279,13 @@ impl LatticeSpec {
         self.load_per_node * self.nx as f64
     }
 
+    /// The force on every top-row node (N) where there is a force load: a loaded lattice under
+    /// force control. `None` under velocity control (the drive's force is measured, not given)
+    /// and for impulse lattices, whose `load_per_node` is an unused default.
+    pub fn force_per_node(&self) -> Option<f64> {
+        (self.impulse.is_none() && self.control == Control::Force).then_some(self.load_per_node)
+    }
+
     /// Stiffness of the rising and falling diagonals (0 where absent).
     pub fn diagonal_stiffness(&self) -> (f64, f64) {
         match self.diagonals {
@@ -377,9 +384,11 @@ impl RunSpec {
         }
     }
 
-    /// dt / t_c.
+    /// t_c / dt, to 12 significant digits: dt = t_c / 100 divided back gives 99.99999999999999
+    /// for some t_c (0.9 s), and no table needs more digits of a step ratio.
     pub fn dt_per_tc(&self) -> f64 {
-        self.t_c / self.dt
+        let ratio = self.t_c / self.dt;
+        format!("{ratio:.11e}").parse().unwrap_or(ratio)
     }
 
     /// Number of particles the scene simulates (walls included).
@@ -402,5 +411,21 @@ impl RunSpec {
             .map(|(path, value)| format!("{}={}", path.rsplit('.').next().unwrap_or(path), text(value)))
             .collect();
         parts.join(", ")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn dt_per_tc_reads_back_what_was_asked() {
+        // dt = t_c/100 divided back is 99.99999999999999 for t_c = 0.9 s (and 1.8, 3.5, ...);
+        // the ratio must read back exactly, whatever t_c.
+        let yaml = "version: 1\nname: t\nscenes:\n  - {name: p, kind: pair, v0: 1.0, time: {dt_per_tc: 100}}\n";
+        let mut spec = crate::spec::parse("t.yaml", yaml).unwrap().runs.remove(0);
+        for t_c in [0.9, 1.8, 3.5, spec.t_c] {
+            spec.t_c = t_c;
+            spec.set_dt(t_c / 100.0);
+            assert_eq!(spec.dt_per_tc(), 100.0, "t_c = {t_c}");
+        }
     }
 }

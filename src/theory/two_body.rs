@@ -51,7 +51,8 @@ pub fn linear_restitution(k: f64, m: f64, gamma: f64) -> Result<f64, Overdamped>
 /// ```
 pub fn gamma_for_restitution(r: f64, k: f64, m: f64) -> f64 {
     let ln_r = r.ln();
-    -ln_r * (2.0 * k * m).sqrt() / (PI * PI + ln_r * ln_r).sqrt()
+    // −ln r = |ln r| for r ≤ 1, and |·| keeps r = 1 from giving −0.
+    ln_r.abs() * (2.0 * k * m).sqrt() / (PI * PI + ln_r * ln_r).sqrt()
 }
 
 /// Largest overlap δ_max = ((β+1) μ v² / (2C))^(1/(β+1)) (m) of an undamped power-law
@@ -86,6 +87,12 @@ mod tests {
             let g = gamma_for_restitution(r, 2.0, 3.0);
             assert!((linear_restitution(2.0, 3.0, g).unwrap() - r).abs() < 1e-12);
         }
+    }
+
+    #[test]
+    fn no_damping_is_plus_zero() {
+        // r = 1: −ln r was −0, printed as "-0.0" in the gamma column.
+        assert!(gamma_for_restitution(1.0, 2.0, 3.0).is_sign_positive());
     }
 
     #[test]

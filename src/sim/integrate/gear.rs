@@ -118,3 +118,43 @@ impl Integrator for Gear {
         finish_step(state, dt);
     }
 }
+
+impl Gear {
+    /// The amplification matrix G of one step on a linear test problem, in the scaled
+    /// derivatives r = (r₀ … r₅) of the particle `moving` along x: r after a step = G r.
+    /// `state` holds that particle at its equilibrium at rest; `field` is linear in its
+    /// displacement and velocity. Column j is what [`Gear::step`] itself makes of r_j = 1/8
+    /// alone, so G is the scheme as coded (its c₀ included), not a transcription of it.
+    pub fn amplification_matrix<F: ForceField>(state: &State, field: &mut F, moving: usize, dt: f64) -> [[f64; 6]; 6] {
+        // 1/8 is exact in binary: the predictor's Pascal sums of it carry no rounding.
+        const UNIT: f64 = 0.125;
+        let rest = state.particles.x[moving];
+        let mut matrix = [[0.0; 6]; 6];
+        for j in 0..6 {
+            let mut s = state.clone();
+            let mut gear = Gear::default();
+            gear.start(&mut s, field, dt);
+            let mut r = [0.0; 6];
+            r[j] = UNIT;
+            s.particles.x[moving] = rest + r[0];
+            s.particles.vx[moving] = r[1] / dt;
+            for k in 0..4 {
+                gear.higher_x[k][moving] = r[k + 2];
+            }
+            gear.step(&mut s, field, dt);
+            let h = &gear.higher_x;
+            let after = [
+                s.particles.x[moving] - rest,
+                dt * s.particles.vx[moving],
+                h[0][moving],
+                h[1][moving],
+                h[2][moving],
+                h[3][moving],
+            ];
+            for (row, value) in matrix.iter_mut().zip(after) {
+                row[j] = value / UNIT;
+            }
+        }
+        matrix
+    }
+}
