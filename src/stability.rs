@@ -31,21 +31,17 @@ pub struct Stability {
 /// sets: a heavily damped slow mode decays at rate up to ν_max, and an explicit scheme
 /// needs dt · ν_max below its limit on ẋ' = −ν ẋ (RK4 2.79, symplectic Euler 2, ...).
 pub fn estimate(spec: &RunSpec) -> Stability {
-    // The campaign check and the run itself both ask: compute once per run and process.
-    static ESTIMATES: OnceLock<Mutex<HashMap<String, Stability>>> = OnceLock::new();
-    let key = spec.run_id();
-    let cache = ESTIMATES.get_or_init(Default::default);
-    if let Some(&known) = cache.lock().expect("the cache is never poisoned").get(&key) {
-        return known;
-    }
-    let estimate = estimate_uncached(spec);
-    cache.lock().expect("the cache is never poisoned").insert(key, estimate);
-    estimate
-}
-
-fn estimate_uncached(spec: &RunSpec) -> Stability {
-    let scene = build_scene(spec);
-    let modes = modes(&scene, crate::spec::reference_extension(spec));
+    // The campaign check and the run itself both ask, and so do all the runs of one network
+    // (a grid over dt, integrators, run lengths): compute the modes once per network and process.
+    static MODES: OnceLock<Mutex<HashMap<String, Modes>>> = OnceLock::new();
+    let key = network_key(spec);
+    let cache = MODES.get_or_init(Default::default);
+    let known = cache.lock().expect("the cache is never poisoned").get(&key).copied();
+    let modes = known.unwrap_or_else(|| {
+        let modes = modes(&build_scene(spec), crate::spec::reference_extension(spec));
+        cache.lock().expect("the cache is never poisoned").insert(key, modes);
+        modes
+    });
     let oscillation = stability_limit(spec.integrator, modes.damping_ratio);
     let damping = if modes.damping_rate > 0.0 && modes.omega_max > 0.0 {
         damping_limit(spec.integrator) * modes.omega_max / modes.damping_rate
@@ -146,7 +142,32 @@ fn largest_eigenvalue(springs: &Springs, axes: &FreeAxes) -> (f64, Vec<f64>, Vec
     (lambda.max(0.0), wx, wy)
 }
 
+/// The part of `spec` its modes depend on (the network, masses, supports, dashpots and the
+/// extension springs are linearised at), as text: runs that differ only in their time step,
+/// integrator, length, sampling or outputs have the same.
+fn network_key(spec: &RunSpec) -> String {
+    let network = RunSpec {
+        campaign: String::new(),
+        scene: String::new(),
+        varied: Default::default(),
+        integrator: IntegratorKind::VelocityVerlet,
+        dt: 0.0,
+        dt_omega_max: None,
+        reference_refinement: None,
+        allow_unstable: false,
+        duration: 0.0,
+        steps: 0,
+        samples: 0,
+        relax: None,
+        wave: None,
+        movie: None,
+        ..spec.clone()
+    };
+    serde_json::to_string(&network).expect("a RunSpec always serialises")
+}
+
 /// What the eigenvalue estimates of a scene give.
+#[derive(Clone, Copy)]
 struct Modes {
     /// ω_max (rad/s).
     omega_max: f64,
@@ -352,8 +373,12 @@ pub fn parse_campaign(file: &str, text: &str) -> Result<Campaign, SpecError> {
 /// runs, a run whose dt · ω_max exceeds its integrator's limit unless it says
 /// `time.allow_unstable: true`. Errors name the file, the scene, the grid values and the field.
 pub fn check_campaign(file: &str, campaign: &mut Campaign) -> Result<(), SpecError> {
-    let scenes = &campaign.scenes;
+    let (scenes, budget) = (&campaign.scenes, campaign.budget);
     campaign.runs.par_iter_mut().try_for_each(|spec| {
+        // Not started anyway (its memory does not depend on dt): not worth an estimate.
+        if budget.refuses(spec).is_some() {
+            return Ok(());
+        }
         let invalid = |detail: String| SpecError::Invalid { file: file.to_string(), detail };
         let index = scenes.iter().position(|(name, _)| *name == spec.scene).unwrap_or(0);
         let place = match spec.varied_label(|_| true) {

@@ -26,9 +26,22 @@ pub fn speed_color(fraction: f64) -> RGBColor {
     RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
+/// Encoding a movie stopped at its run's deadline (the movie's `deadline`): nothing written.
+#[derive(Debug)]
+pub struct PastDeadline;
+
+impl std::fmt::Display for PastDeadline {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("the movie was not finished by the run's deadline")
+    }
+}
+
+impl std::error::Error for PastDeadline {}
+
 /// Writes `movie` as an animated GIF at `path`, atomically (a temporary file beside it, then
 /// renamed). The view is fixed over all frames with equal scales on both axes; colours are
-/// scaled to the fastest speed after the first frame.
+/// scaled to the fastest speed after the first frame. Fails with [`PastDeadline`] once the
+/// movie's deadline passes (looked at between frames).
 pub fn write_movie(path: &Path, movie: &Movie) -> anyhow::Result<()> {
     write_movie_panels(path, &[movie])
 }
@@ -94,6 +107,8 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
     strains.sort_by(f64::total_cmp);
     let largest_strain = strains.get(strains.len() * 99 / 100).copied().unwrap_or(0.0);
     let strained = largest_strain > 0.0;
+    // One run's movie is part of the run, and within its deadline; side-by-side panels are not.
+    let deadline = if let [movie] = panels { movie.deadline } else { None };
     let temporary = path.with_extension("gif.tmp");
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir)?;
@@ -102,6 +117,11 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
         let root =
             BitMapBackend::gif(&temporary, (width, height), FRAME_DELAY_MS).map_err(draw_error)?.into_drawing_area();
         for k in 0..frames {
+            if deadline.is_some_and(|deadline| std::time::Instant::now() > deadline) {
+                drop(root);
+                std::fs::remove_file(&temporary).ok();
+                return Err(PastDeadline.into());
+            }
             root.fill(&WHITE).map_err(draw_error)?;
             let (plots, bar) = root.split_horizontally(width - BAR_WIDTH);
             let areas = plots.split_evenly((1, panels.len()));

@@ -69,6 +69,30 @@ impl Scale {
     }
 }
 
+/// A line is drawn through at most this many points (an SVG of a few hundred kB per figure
+/// however long the run), about two per pixel column of the figure.
+pub const LINE_POINTS: usize = 2000;
+
+/// `points` in order, thinned to at most `most` (even): split into `most`/2 runs of
+/// consecutive points, each kept as its lowest and highest point in their order, so peaks,
+/// troughs and the envelope of an oscillation stay where they are.
+fn thin_line(points: Vec<(f64, f64)>, most: usize) -> Vec<(f64, f64)> {
+    if points.len() <= most {
+        return points;
+    }
+    let run = points.len().div_ceil(most / 2);
+    let mut kept = Vec::with_capacity(most);
+    for chunk in points.chunks(run) {
+        let lowest = (0..chunk.len()).min_by(|&a, &b| chunk[a].1.total_cmp(&chunk[b].1)).unwrap_or(0);
+        let highest = (0..chunk.len()).max_by(|&a, &b| chunk[a].1.total_cmp(&chunk[b].1)).unwrap_or(0);
+        kept.push(chunk[lowest.min(highest)]);
+        if lowest != highest {
+            kept.push(chunk[lowest.max(highest)]);
+        }
+    }
+    kept
+}
+
 /// Draws `series` as an SVG document.
 pub fn line_chart(chart: &Chart, series: &[Series]) -> anyhow::Result<String> {
     ensure_font()?;
@@ -165,6 +189,7 @@ where
     for (index, s) in series.iter().enumerate() {
         let color = Palette99::pick(index).to_rgba();
         let points: Vec<(f64, f64)> = s.points.iter().copied().filter(|&p| chart.scale.shows(p)).collect();
+        let points = if s.markers { points } else { thin_line(points, LINE_POINTS) };
         let legend = if s.markers {
             ctx.draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled()))).map_err(draw_error)?
         } else {
