@@ -427,6 +427,21 @@ pub fn check_campaign(file: &str, campaign: &mut Campaign) -> Result<(), SpecErr
 mod tests {
     use super::*;
 
+    /// Runs of one network share its modes: a grid over dt, integrators and run lengths has one
+    /// key (one ω_max estimate, issue 14); a different stiffness or damping has another.
+    #[test]
+    fn runs_of_one_network_share_one_estimate() {
+        let campaign = crate::spec::parse(
+            "k.yaml",
+            "version: 1\nname: k\nscenes:\n  - name: l\n    kind: lattice\n    lattice: {size: 4}\n    \
+             load: {case: tensile}\n    grid:\n      time.dt_per_tc: [20, 50]\n      time.integrator: [velocity-verlet, rk4]\n      \
+             time.duration_tc: [10, 20]\n      material.k: [1.0, 2.0]\n      damping.restitution: [1.0, 0.5]\n",
+        )
+        .unwrap();
+        let keys: std::collections::HashSet<String> = campaign.runs.iter().map(network_key).collect();
+        assert_eq!((campaign.runs.len(), keys.len()), (32, 4));
+    }
+
     #[test]
     fn undamped_limits_match_the_known_values() {
         // Exact limits of the test equation: Verlet and symplectic Euler |1 − h²/2| ≤ 1 → 2;

@@ -273,3 +273,29 @@ pub fn heatmap(chart: &Chart, times: &[f64], values: &[Vec<f64>]) -> anyhow::Res
     }
     Ok(svg)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A line of 10⁶ points (a long run's energy) makes a figure of bounded size (issue 14: 441 MB
+    /// of SVG for 10⁷ samples; here ~40 MB unthinned) that keeps its extremes: a single spike and
+    /// the envelope of the oscillation are drawn.
+    #[test]
+    fn long_lines_are_thinned_keeping_their_extremes() {
+        let spike = 777_777;
+        let points: Vec<(f64, f64)> = (0..1_000_000)
+            .map(|i| (i as f64 * 1e-3, if i == spike { 3.0 } else { (i as f64 * 1e-2).sin() }))
+            .collect();
+        let thinned = thin_line(points.clone(), LINE_POINTS);
+        assert!(thinned.len() <= LINE_POINTS, "{}", thinned.len());
+        assert!(thinned.contains(&points[spike]), "the spike is kept");
+        let lowest = thinned.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+        assert!(lowest < -0.9999, "the troughs are kept: {lowest}");
+        assert!(thinned.windows(2).all(|w| w[0].0 < w[1].0), "in order");
+        let chart = Chart { title: "t".into(), x_label: "x".into(), y_label: "y".into(), scale: Scale::Linear };
+        let svg = line_chart(&chart, &[Series { label: "e".into(), points, markers: false }]).unwrap();
+        // ~30 bytes per drawn point.
+        assert!(svg.len() < 300_000, "{} bytes", svg.len());
+    }
+}

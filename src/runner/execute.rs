@@ -223,7 +223,7 @@ fn static_answer<L: ForceLaw>(
     deadline: Instant,
     metrics: &mut Metrics,
 ) -> Result<(), Finished> {
-    let past_deadline = Finished::PastDeadline { stage: "static solve" };
+    let past_deadline = || Finished::PastDeadline { stage: "static solve" };
     // The force on the top row: the load, or what the supports must apply to hold the
     // driven row where it is.
     let force = |ux: &[f64], uy: &[f64]| match lattice.control {
@@ -235,14 +235,17 @@ fn static_answer<L: ForceLaw>(
     };
     // The linear problem decides whether the network carries the load at all (a power law's
     // linear answer means nothing else).
+    if Instant::now() > deadline {
+        return Err(past_deadline());
+    }
     let linear = match truss.solve_linear() {
         StaticSolution::Mechanism { residual } => return Err(Finished::Mechanism { residual }),
-        StaticSolution::PastDeadline => return Err(past_deadline),
+        StaticSolution::PastDeadline => return Err(past_deadline()),
         StaticSolution::Displacements { ux, uy } => lattice_moduli(spec, lattice, force(&ux, &uy), &ux, &uy),
     };
     let (ux, uy) = match truss.solve_nonlinear(law, reference_extension(spec), Some(deadline)) {
         Some(StaticSolution::Displacements { ux, uy }) => (ux, uy),
-        Some(StaticSolution::PastDeadline) => return Err(past_deadline),
+        Some(StaticSolution::PastDeadline) => return Err(past_deadline()),
         _ => return Ok(()),
     };
     let fem = lattice_moduli(spec, lattice, force(&ux, &uy), &ux, &uy);
@@ -265,7 +268,7 @@ fn static_answer<L: ForceLaw>(
     if spec.relax.is_some_and(|r| r.tangent_step.is_some()) {
         // Δu per unit load factor: the increment of the whole load.
         if Instant::now() > deadline {
-            return Err(past_deadline);
+            return Err(past_deadline());
         }
         if let Some((dx, dy)) = truss.tangent_response(law, &ux, &uy) {
             let tangent = lattice_moduli(spec, lattice, lattice.total_load(), &dx, &dy);
