@@ -208,7 +208,8 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
         }
         // A run the memory budget refuses is not estimated (a large lattice's estimate takes long).
         let stability = campaign.budget.refuses(spec).is_none().then(|| estimate(spec));
-        let shown = |value: fn(&Stability) -> f64| stability.as_ref().map_or("-".into(), |s| format!("{:.4}", value(s)));
+        let shown =
+            |value: fn(&Stability) -> f64| stability.as_ref().map_or("-".into(), |s| format!("{:.4}", value(s)));
         println!(
             "{:<28} {:<8} {:<16} {:>11.4e} {:>11.4e} {:>8.1} {:>10} {:>8} {:>7} {:>7}  {}",
             spec.run_id(),

@@ -284,9 +284,8 @@ mod tests {
     #[test]
     fn long_lines_are_thinned_keeping_their_extremes() {
         let spike = 777_777;
-        let points: Vec<(f64, f64)> = (0..1_000_000)
-            .map(|i| (i as f64 * 1e-3, if i == spike { 3.0 } else { (i as f64 * 1e-2).sin() }))
-            .collect();
+        let points: Vec<(f64, f64)> =
+            (0..1_000_000).map(|i| (i as f64 * 1e-3, if i == spike { 3.0 } else { (i as f64 * 1e-2).sin() })).collect();
         let thinned = thin_line(points.clone(), LINE_POINTS);
         assert!(thinned.len() <= LINE_POINTS, "{}", thinned.len());
         assert!(thinned.contains(&points[spike]), "the spike is kept");

@@ -173,12 +173,15 @@ impl Trace {
         for series in [&mut self.time, &mut self.kinetic, &mut self.potential, &mut self.dissipated, &mut self.work] {
             retain(series, &keep);
         }
-        let per_particle = [&mut self.displacement_x, &mut self.displacement_y, &mut self.velocity_x, &mut self.velocity_y];
+        let per_particle =
+            [&mut self.displacement_x, &mut self.displacement_y, &mut self.velocity_x, &mut self.velocity_y];
         for series in per_particle {
             retain(series, &keep);
         }
         for probe in &mut self.probes {
-            for series in [&mut probe.displacement_x, &mut probe.displacement_y, &mut probe.velocity_x, &mut probe.velocity_y] {
+            for series in
+                [&mut probe.displacement_x, &mut probe.displacement_y, &mut probe.velocity_x, &mut probe.velocity_y]
+            {
                 retain(series, &keep);
             }
         }
@@ -301,7 +304,9 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
         series.reserve_exact(samples);
     }
     if sampling.displacements {
-        for series in [&mut trace.displacement_x, &mut trace.displacement_y, &mut trace.velocity_x, &mut trace.velocity_y] {
+        for series in
+            [&mut trace.displacement_x, &mut trace.displacement_y, &mut trace.velocity_x, &mut trace.velocity_y]
+        {
             series.reserve_exact(samples);
         }
     }
