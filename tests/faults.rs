@@ -236,6 +236,7 @@ fn runs_beyond_their_budget_end_with_status_budget_and_plan_warns() {
 
 /// Peak resident memory (bytes) of `mdsolids run <file>` from start to end, by the kernel's
 /// account of the child (wait4's ru_maxrss, kB on Linux).
+#[allow(clippy::zombie_processes, reason = "the child is reaped by wait4, which also reports its peak memory")]
 fn peak_memory_of_run(reports: &Path, file: &Path) -> f64 {
     let child = Command::new(env!("CARGO_BIN_EXE_mdsolids"))
         .arg("--reports")

@@ -161,7 +161,7 @@ impl Trace {
         }
         // Samples 0, s, 2s, ... and the last: at most `most`.
         let stride = (len - 1).div_ceil(most.max(2) - 1);
-        let keep = |index: usize| index % stride == 0 || index == len - 1;
+        let keep = |index: usize| index.is_multiple_of(stride) || index == len - 1;
         fn retain<T>(series: &mut Vec<T>, keep: &impl Fn(usize) -> bool) {
             let mut index = 0;
             series.retain(|_| {
