@@ -11,7 +11,7 @@ use crate::runner::{
     stored_count, stored_record, write_missing_movies,
 };
 use crate::spec::Campaign;
-use crate::stability::{estimate, load_campaign};
+use crate::stability::{Stability, estimate, load_campaign};
 use crate::{report, table};
 
 /// Molecular-dynamics studies of mass-spring solids: campaign YAML in, tables and reports out.
@@ -320,9 +320,12 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
         if !cached {
             simulation_s += spec.estimated_seconds();
         }
-        let stability = estimate(spec);
+        // A run the memory budget refuses is not estimated (a large lattice's estimate takes long).
+        let stability = campaign.budget.refuses(spec).is_none().then(|| estimate(spec));
+        let shown =
+            |value: fn(&Stability) -> f64| stability.as_ref().map_or("-".into(), |s| format!("{:.4}", value(s)));
         println!(
-            "{:<28} {:<8} {:<16} {:>11.4e} {:>11.4e} {:>8.1} {:>10} {:>8.4} {:>7.4} {:>7}  {}",
+            "{:<28} {:<8} {:<16} {:>11.4e} {:>11.4e} {:>8.1} {:>10} {:>8} {:>7} {:>7}  {}",
             spec.run_id(),
             spec.kind.name(),
             spec.integrator.name(),
@@ -330,8 +333,8 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
             spec.t_c,
             spec.dt_per_tc(),
             spec.steps,
-            stability.dt_omega_max,
-            stability.limit,
+            shown(|s| s.dt_omega_max),
+            shown(|s| s.limit),
             if cached { "yes" } else { "no" },
             spec.varied_label(|_| true)
         );

@@ -12,6 +12,7 @@
 use faer::prelude::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, Side};
+use std::time::Instant;
 
 use crate::model::{Bonds, ForceLaw, Linear};
 use crate::sim::Load;
@@ -32,6 +33,8 @@ pub enum StaticSolution {
         /// ‖K u − f‖ / ‖f‖.
         residual: f64,
     },
+    /// The deadline passed before the iteration converged.
+    PastDeadline,
 }
 
 /// A spring network at rest: node positions, springs (linear, stiffness per bond), held axes
@@ -141,8 +144,18 @@ impl Truss<'_> {
     /// R(u) = f + Σ spring forces at x + u, K_t Δu = R, until ‖R‖ ≤ 1e-10 ‖f‖ or
     /// ‖Δu‖ ≤ 1e-9 ‖u‖. The tangent of a spring with tension s along n̂ at length r is
     /// s′(δ) n̂ n̂ᵀ + (s/r)(I − n̂ n̂ᵀ). A mechanism of the linear problem is reported as one;
-    /// an iteration that does not converge returns `None`.
-    pub fn solve_nonlinear<L: ForceLaw>(&self, law: &L, linearised_at: f64) -> Option<StaticSolution> {
+    /// an iteration that does not converge returns `None`; once the wall clock passes
+    /// `deadline` (looked at before every factorisation) it stops with `PastDeadline`.
+    pub fn solve_nonlinear<L: ForceLaw>(
+        &self,
+        law: &L,
+        linearised_at: f64,
+        deadline: Option<Instant>,
+    ) -> Option<StaticSolution> {
+        let past = || deadline.is_some_and(|deadline| Instant::now() > deadline);
+        if past() {
+            return Some(StaticSolution::PastDeadline);
+        }
         let dofs = self.dofs();
         let mut linearised = self.bonds.clone();
         for k in &mut linearised.stiffness {
@@ -157,6 +170,9 @@ impl Truss<'_> {
             let (entries, residual) = self.tangent_and_residual(law, &ux, &uy, &dofs);
             if norm(&residual) <= NEWTON_TOLERANCE * load_norm {
                 return Some(StaticSolution::Displacements { ux, uy });
+            }
+            if past() {
+                return Some(StaticSolution::PastDeadline);
             }
             let step = factor_and_solve(dofs.free, &entries, &residual)?;
             let (dx, dy) = self.expand(&dofs, &step);
@@ -380,7 +396,7 @@ mod tests {
             other => panic!("{other:?}"),
         };
         assert!((linear - force / 0.2).abs() < 1e-9 && (linear - exact).abs() > 0.01, "linear {linear}, exact {exact}");
-        match truss.solve_nonlinear(&Linear, 0.0) {
+        match truss.solve_nonlinear(&Linear, 0.0, None) {
             // Converged to ‖R‖ ≤ 1e-10 ‖f‖; the tangent ≈ 0.4 turns that into ~1e-11 in v.
             Some(StaticSolution::Displacements { uy, .. }) => {
                 assert!((uy[1] - exact).abs() < 1e-9, "{} against {exact}", uy[1])
@@ -406,7 +422,7 @@ mod tests {
             Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0], held_y: &held_y, loads: &loads, prescribed: &[] };
         let delta = (force / c).powf(1.0 / 1.5);
         // Start deliberately off (at 3 δ): Newton must still converge.
-        let Some(StaticSolution::Displacements { ux, uy }) = truss.solve_nonlinear(&hertz, 3.0 * delta) else {
+        let Some(StaticSolution::Displacements { ux, uy }) = truss.solve_nonlinear(&hertz, 3.0 * delta, None) else {
             panic!("no static answer")
         };
         // Newton stops at ‖R‖ ≤ 1e-10 ‖f‖: relative 1e-9 on δ is ample.

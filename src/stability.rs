@@ -48,21 +48,17 @@ impl Stability {
 /// sets: a heavily damped slow mode decays at rate up to ν_max, and an explicit scheme
 /// needs dt · ν_max below its limit on ẋ' = −ν ẋ (RK4 2.79, symplectic Euler 2, ...).
 pub fn estimate(spec: &RunSpec) -> Stability {
-    // The campaign check and the run itself both ask: compute once per run and process.
-    static ESTIMATES: OnceLock<Mutex<HashMap<String, Stability>>> = OnceLock::new();
-    let key = spec.run_id();
-    let cache = ESTIMATES.get_or_init(Default::default);
-    if let Some(&known) = cache.lock().expect("the cache is never poisoned").get(&key) {
-        return known;
-    }
-    let estimate = estimate_uncached(spec);
-    cache.lock().expect("the cache is never poisoned").insert(key, estimate);
-    estimate
-}
-
-fn estimate_uncached(spec: &RunSpec) -> Stability {
-    let scene = build_scene(spec);
-    let modes = modes(&scene, crate::spec::reference_extension(spec));
+    // The campaign check and the run itself both ask, and so do all the runs of one network
+    // (a grid over dt, integrators, run lengths): compute the modes once per network and process.
+    static MODES: OnceLock<Mutex<HashMap<String, Modes>>> = OnceLock::new();
+    let key = network_key(spec);
+    let cache = MODES.get_or_init(Default::default);
+    let known = cache.lock().expect("the cache is never poisoned").get(&key).copied();
+    let modes = known.unwrap_or_else(|| {
+        let modes = modes(&build_scene(spec), crate::spec::reference_extension(spec));
+        cache.lock().expect("the cache is never poisoned").insert(key, modes);
+        modes
+    });
     let mut stability = Stability {
         omega_max: modes.omega_max,
         damping_ratio: modes.damping_ratio,
@@ -160,7 +156,32 @@ fn largest_eigenvalue(springs: &Springs, axes: &FreeAxes) -> (f64, Vec<f64>, Vec
     (lambda.max(0.0), wx, wy)
 }
 
+/// The part of `spec` its modes depend on (the network, masses, supports, dashpots and the
+/// extension springs are linearised at), as text: runs that differ only in their time step,
+/// integrator, length, sampling or outputs have the same.
+fn network_key(spec: &RunSpec) -> String {
+    let network = RunSpec {
+        campaign: String::new(),
+        scene: String::new(),
+        varied: Default::default(),
+        integrator: IntegratorKind::VelocityVerlet,
+        dt: 0.0,
+        dt_omega_max: None,
+        reference_refinement: None,
+        allow_unstable: false,
+        duration: 0.0,
+        steps: 0,
+        samples: 0,
+        relax: None,
+        wave: None,
+        movie: None,
+        ..spec.clone()
+    };
+    serde_json::to_string(&network).expect("a RunSpec always serialises")
+}
+
 /// What the eigenvalue estimates of a scene give.
+#[derive(Clone, Copy)]
 struct Modes {
     /// ω_max (rad/s).
     omega_max: f64,
@@ -446,8 +467,12 @@ pub fn parse_campaign(file: &str, text: &str) -> Result<Campaign, SpecError> {
 /// runs, a run whose dt · ω_max exceeds its integrator's limit unless it says
 /// `time.allow_unstable: true`. Errors name the file, the scene, the grid values and the field.
 pub fn check_campaign(file: &str, campaign: &mut Campaign) -> Result<(), SpecError> {
-    let scenes = &campaign.scenes;
+    let (scenes, budget) = (&campaign.scenes, campaign.budget);
     campaign.runs.par_iter_mut().try_for_each(|spec| {
+        // Not started anyway (its memory does not depend on dt): not worth an estimate.
+        if budget.refuses(spec).is_some() {
+            return Ok(());
+        }
         let invalid = |detail: String| SpecError::Invalid { file: file.to_string(), detail };
         let index = scenes.iter().position(|(name, _)| *name == spec.scene).unwrap_or(0);
         let place = match spec.varied_label(|_| true) {
@@ -497,6 +522,21 @@ pub fn check_campaign(file: &str, campaign: &mut Campaign) -> Result<(), SpecErr
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Runs of one network share its modes: a grid over dt, integrators and run lengths has one
+    /// key (one ω_max estimate, issue 14); a different stiffness or damping has another.
+    #[test]
+    fn runs_of_one_network_share_one_estimate() {
+        let campaign = crate::spec::parse(
+            "k.yaml",
+            "version: 1\nname: k\nscenes:\n  - name: l\n    kind: lattice\n    lattice: {size: 4}\n    \
+             load: {case: tensile}\n    grid:\n      time.dt_per_tc: [20, 50]\n      time.integrator: [velocity-verlet, rk4]\n      \
+             time.duration_tc: [10, 20]\n      material.k: [1.0, 2.0]\n      damping.restitution: [1.0, 0.5]\n",
+        )
+        .unwrap();
+        let keys: std::collections::HashSet<String> = campaign.runs.iter().map(network_key).collect();
+        assert_eq!((campaign.runs.len(), keys.len()), (32, 4));
+    }
 
     #[test]
     fn undamped_limits_match_the_known_values() {

@@ -457,4 +457,136 @@ fn a_full_disk_while_a_movie_is_encoded_names_the_file_and_leaves_no_partial_fil
         .filter(|name| name.ends_with(".tmp") || name.ends_with(".gif"))
         .collect();
     assert!(left.is_empty(), "partial files left: {left:?}");
+
+/// Peak resident memory (bytes) of `mdsolids run <file>` from start to end, by the kernel's
+/// account of the child (wait4's ru_maxrss, kB on Linux).
+#[allow(clippy::zombie_processes, reason = "the child is reaped by wait4, which also reports its peak memory")]
+fn peak_memory_of_run(reports: &Path, file: &Path) -> f64 {
+    let child = Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+        .arg("--reports")
+        .arg(reports)
+        .arg("run")
+        .arg(file)
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let (mut status, pid) = (0, child.id() as libc::pid_t);
+    // SAFETY: `usage` is a plain C struct the call fills in; `pid` is our own unwaited child.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    assert_eq!(unsafe { libc::wait4(pid, &mut status, 0, &mut usage) }, pid);
+    assert!(libc::WIFEXITED(status) && libc::WEXITSTATUS(status) == 0, "{} failed", file.display());
+    usage.ru_maxrss as f64 * 1024.0
+}
+
+/// The memory estimate of a run covers its whole process: the ω_max estimate, the static
+/// solve, the time loop, storing the record and writing the report (issue 14: a loaded
+/// 300 × 300 lattice estimated at ~45 MB peaked at ~600 MB; 2e6 samples at 660 MB with a 167 MB
+/// record and 73 MB of figures). For each kind of run, the peak resident memory of
+/// `mdsolids run` less that of the smallest campaign (the program itself, ~50 MB) must lie
+/// between estimate / 4 and the estimate: the estimate adds the stages up although their
+/// transient parts do not overlap, and counts 50 bytes per stored number of JSON where ~22 are
+/// written, so it sits about 1.2-2.5 × above the peak; 4 leaves room for the allocator.
+#[test]
+fn the_memory_estimate_covers_the_peak_of_every_kind_of_run() {
+    let loaded = |diagonals: &str| {
+        format!(
+            "  - name: s\n    kind: lattice\n    material: {{mass: 0.785, k: 2.0e9}}\n    geometry: {{spacing: 0.1, \
+             depth: 0.01}}\n    damping: {{restitution: 0.5, background: 12000.0}}\n    lattice: {{size: 150, \
+             k_diag_ratio: 0.5, diagonals: {diagonals}}}\n    load: {{case: tensile, per_node: 1000.0}}\n    relax: \
+             {{max_tc: 20}}\n"
+        )
+    };
+    let cases = [
+        ("the program alone", "  - name: s\n    kind: pair\n    v0: 1.0\n".to_string()),
+        ("loaded lattice with diagonals (static solve)", loaded("both")),
+        ("loaded square lattice (static solve)", loaded("none")),
+        ("pair with 4·10^6 samples", "  - name: s\n    kind: pair\n    v0: 1.0\n    time: {duration_tc: 160000, samples: 4000000}\n".into()),
+        ("chain recording displacements", "  - name: s\n    kind: chain\n    n: 1000\n    v0: 0.1\n    time: {duration_tc: 200, samples: 3000}\n".into()),
+        (
+            "kicked lattice with probes and a movie",
+            "  - name: s\n    kind: lattice\n    lattice: {size: 100, k_diag_ratio: 0.5}\n    supports: free\n    \
+             impulse: {velocity: [0.0, -0.01]}\n    probes: {rows: [bottom, centre]}\n    movie: {frames: 10, width: \
+             300, height: 300, bond_strain: true}\n    time: {integrator: velocity-verlet, duration_tc: 20, samples: 2000}\n"
+                .into(),
+        ),
+    ];
+    let dir = tempfile::tempdir().unwrap();
+    let mut program = 0.0;
+    for (index, (what, scene)) in cases.iter().enumerate() {
+        let yaml = format!("version: 1\nname: m{index}\nscenes:\n{scene}");
+        let estimate = mdsolids::stability::parse_campaign("m.yaml", &yaml).unwrap().runs[0].estimated_memory_bytes();
+        let file = dir.path().join(format!("m{index}.yaml"));
+        std::fs::write(&file, &yaml).unwrap();
+        let peak = peak_memory_of_run(dir.path(), &file);
+        println!("{what}: peak {:.0} MB, estimate {:.0} MB", peak / 1e6, estimate / 1e6);
+        if index == 0 {
+            program = peak;
+            continue;
+        }
+        let run = peak - program;
+        assert!(run <= estimate, "{what}: the run used {:.0} MB, estimated {:.0} MB", run / 1e6, estimate / 1e6);
+        assert!(estimate <= 4.0 * run, "{what}: estimated {:.0} MB, used {:.0} MB", estimate / 1e6, run / 1e6);
+    }
+}
+
+/// A record stores a bounded trace however many samples the run took (issue 14: 10^7 samples
+/// made an 890 MB record): thinned evenly to at most `STORED_SAMPLES`, the first and the last
+/// sample kept, measured from every sample before.
+#[test]
+fn a_long_sampled_run_stores_a_bounded_record() {
+    let runs = common::runs(
+        "version: 1\nname: r\nscenes:\n  - name: p\n    kind: pair\n    v0: 1.0\n    \
+         time: {duration_tc: 10000, samples: 200000}\n",
+    );
+    let record = mdsolids::runner::execute(&runs[0]);
+    let time = &record.trace.time;
+    assert!(time.len() <= mdsolids::sim::STORED_SAMPLES && time.len() > 1000, "{} samples", time.len());
+    let end = runs[0].steps as f64 * runs[0].dt;
+    assert!(time[0] == 0.0 && (time[time.len() - 1] - end).abs() < 1e-9 * end, "first and last kept");
+    assert!(record.metrics.contact_duration.is_some(), "measured from every sample");
+    // 5 numbers per sample of ~20 characters of JSON: about 1 MB (200 001 samples: ~22 MB).
+    let json = serde_json::to_vec(&record).unwrap();
+    assert!(json.len() < 2_000_000, "{} bytes", json.len());
+}
+
+/// Every stage of a run is within its deadline (issue 14: a static solve ran 135 s under a
+/// 60 s budget and the message said "stopped after 1.163 s"): a 150 × 150 loaded lattice, whose
+/// ω_max estimate alone takes longer than a 0.05 s budget, stops before its static solve and
+/// says so, with the time it took.
+#[test]
+fn the_static_solve_is_within_the_time_budget() {
+    use mdsolids::runner::execute_within;
+    use mdsolids::spec::Budget;
+    let runs = common::runs(
+        "version: 1\nname: s\nscenes:\n  - name: s\n    kind: lattice\n    material: {mass: 0.785, k: 2.0e9}\n    \
+         geometry: {spacing: 0.1, depth: 0.01}\n    damping: {restitution: 0.5, background: 12000.0}\n    \
+         lattice: {size: 150, k_diag_ratio: 0.5}\n    load: {case: tensile, per_node: 1000.0}\n",
+    );
+    let r = execute_within(&runs[0], &Budget { seconds_per_run: 0.05, memory_per_run: 4e9 });
+    assert_eq!(r.status, "budget", "{}", r.message);
+    assert!(
+        r.message.contains("static solve") && r.message.contains("budget.seconds_per_run") && r.steps == 0,
+        "{}",
+        r.message
+    );
+    assert!(r.metrics.youngs_modulus_fem.is_none(), "the static solve was not finished");
+}
+
+/// `plan` and the campaign check estimate no ω_max for a run the memory budget refuses
+/// (issue 14: `plan` of one 2000 × 2000 lattice took 168 s and 1.7 GB for a run that could not
+/// start): 4 million nodes under a 100 MB budget are checked at once (the bound is generous:
+/// a hang guard; the estimate alone would take minutes).
+#[test]
+fn runs_the_memory_budget_refuses_are_not_estimated() {
+    let started = Instant::now();
+    let campaign = mdsolids::stability::parse_campaign(
+        "big.yaml",
+        "version: 1\nname: big\nbudget: {memory_per_run_mb: 100}\nscenes:\n  - name: l\n    kind: lattice\n    \
+         lattice: {size: 2000, k_diag_ratio: 0.5}\n    load: {case: tensile, per_node: 1.0}\n    grid:\n      \
+         time.dt_per_tc: [20, 50]\n",
+    )
+    .unwrap();
+    assert!(campaign.runs.iter().all(|spec| campaign.budget.refuses(spec).is_some()));
+    assert!(started.elapsed() < Duration::from_secs(10), "{:?}", started.elapsed());
 }

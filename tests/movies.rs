@@ -193,4 +193,22 @@ fn a_lock_file_that_is_a_symbolic_link_is_refused() {
     let error = format!("{:#}", run_campaign(&campaign, &layout, Some(1)).unwrap_err());
     assert!(error.contains(lock.to_str().unwrap()) && error.contains("symbolic link"), "{error}");
     assert!(!elsewhere.exists(), "no file is created through the link");
+
+/// Encoding a run's movie is part of the run and stops at its deadline (issue 14: a GIF encode
+/// ran 131 s under a 10 s budget with status ok): a movie whose deadline has passed is not
+/// written, and no temporary file is left; the runner records the run with `status = budget`.
+#[test]
+fn a_movie_stops_at_its_runs_deadline() {
+    let campaign = parse_campaign("film.yaml", CAMPAIGN).unwrap();
+    let mut movie = mdsolids::runner::execute(&campaign.runs[0]).movie.unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("late.gif");
+    movie.deadline = std::time::Instant::now().checked_sub(std::time::Duration::from_millis(1));
+    let error = mdsolids::report::write_movie(&path, &movie).unwrap_err();
+    assert!(error.is::<mdsolids::report::PastDeadline>(), "{error}");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "nothing written");
+    // Within its deadline it is written.
+    movie.deadline = Some(std::time::Instant::now() + std::time::Duration::from_secs(600));
+    mdsolids::report::write_movie(&path, &movie).unwrap();
+    assert_eq!(frames(&path).1.len(), 12);
 }

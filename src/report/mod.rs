@@ -11,7 +11,7 @@ pub mod plots;
 mod solids;
 mod studies;
 
-pub use self::movie::{speed_color, write_movie, write_movie_panels};
+pub use self::movie::{PastDeadline, speed_color, write_movie, write_movie_panels};
 
 use anyhow::Context as _;
 use std::collections::BTreeSet;

@@ -26,8 +26,22 @@ pub fn speed_color(fraction: f64) -> RGBColor {
     RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
-/// Writes `movie` as an animated GIF at `path`, atomically (`output::write_atomically`). The view is fixed over all frames with equal scales on both axes; colours are
-/// scaled to the fastest speed after the first frame.
+/// Encoding a movie stopped at its run's deadline (the movie's `deadline`): nothing written.
+#[derive(Debug)]
+pub struct PastDeadline;
+
+impl std::fmt::Display for PastDeadline {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("the movie was not finished by the run's deadline")
+    }
+}
+
+impl std::error::Error for PastDeadline {}
+
+/// Writes `movie` as an animated GIF at `path`, atomically (`output::write_atomically`). The
+/// view is fixed over all frames with equal scales on both axes; colours are scaled to the
+/// fastest speed after the first frame. Fails with [`PastDeadline`] once the movie's deadline
+/// passes (looked at between frames), writing nothing.
 pub fn write_movie(path: &Path, movie: &Movie) -> anyhow::Result<()> {
     write_movie_panels(path, &[movie])
 }
@@ -95,11 +109,16 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
     let strained = largest_strain > 0.0;
     // Frames are drawn into one RGB buffer and encoded into memory (as plotters' GIF backend
     // does, but that one writes to a fixed path itself); the file is then written atomically.
+    // One run's movie is part of the run, and within its deadline; side-by-side panels are not.
+    let deadline = if let [movie] = panels { movie.deadline } else { None };
     let encoding = |error: gif::EncodingError| anyhow::anyhow!("cannot encode the movie '{}': {error}", path.display());
     let mut pixels = vec![0u8; width as usize * height as usize * 3];
     let mut encoder = gif::Encoder::new(Vec::new(), width as u16, height as u16, &[]).map_err(encoding)?;
     encoder.set_repeat(gif::Repeat::Infinite).map_err(encoding)?;
     for k in 0..frames {
+        if deadline.is_some_and(|deadline| std::time::Instant::now() > deadline) {
+            return Err(PastDeadline.into());
+        }
         {
             let root = BitMapBackend::with_buffer(&mut pixels, (width, height)).into_drawing_area();
             root.fill(&WHITE).map_err(draw_error)?;

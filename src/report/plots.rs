@@ -69,6 +69,30 @@ impl Scale {
     }
 }
 
+/// A line is drawn through at most this many points (an SVG of a few hundred kB per figure
+/// however long the run), about two per pixel column of the figure.
+pub const LINE_POINTS: usize = 2000;
+
+/// `points` in order, thinned to at most `most` (even): split into `most`/2 runs of
+/// consecutive points, each kept as its lowest and highest point in their order, so peaks,
+/// troughs and the envelope of an oscillation stay where they are.
+fn thin_line(points: Vec<(f64, f64)>, most: usize) -> Vec<(f64, f64)> {
+    if points.len() <= most {
+        return points;
+    }
+    let run = points.len().div_ceil(most / 2);
+    let mut kept = Vec::with_capacity(most);
+    for chunk in points.chunks(run) {
+        let lowest = (0..chunk.len()).min_by(|&a, &b| chunk[a].1.total_cmp(&chunk[b].1)).unwrap_or(0);
+        let highest = (0..chunk.len()).max_by(|&a, &b| chunk[a].1.total_cmp(&chunk[b].1)).unwrap_or(0);
+        kept.push(chunk[lowest.min(highest)]);
+        if lowest != highest {
+            kept.push(chunk[lowest.max(highest)]);
+        }
+    }
+    kept
+}
+
 /// Draws `series` as an SVG document.
 pub fn line_chart(chart: &Chart, series: &[Series]) -> anyhow::Result<String> {
     ensure_font()?;
@@ -165,6 +189,7 @@ where
     for (index, s) in series.iter().enumerate() {
         let color = Palette99::pick(index).to_rgba();
         let points: Vec<(f64, f64)> = s.points.iter().copied().filter(|&p| chart.scale.shows(p)).collect();
+        let points = if s.markers { points } else { thin_line(points, LINE_POINTS) };
         let legend = if s.markers {
             ctx.draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled()))).map_err(draw_error)?
         } else {
@@ -247,4 +272,29 @@ pub fn heatmap(chart: &Chart, times: &[f64], values: &[Vec<f64>]) -> anyhow::Res
         root.present().map_err(draw_error)?;
     }
     Ok(svg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A line of 10⁶ points (a long run's energy) makes a figure of bounded size (issue 14: 441 MB
+    /// of SVG for 10⁷ samples; here ~40 MB unthinned) that keeps its extremes: a single spike and
+    /// the envelope of the oscillation are drawn.
+    #[test]
+    fn long_lines_are_thinned_keeping_their_extremes() {
+        let spike = 777_777;
+        let points: Vec<(f64, f64)> =
+            (0..1_000_000).map(|i| (i as f64 * 1e-3, if i == spike { 3.0 } else { (i as f64 * 1e-2).sin() })).collect();
+        let thinned = thin_line(points.clone(), LINE_POINTS);
+        assert!(thinned.len() <= LINE_POINTS, "{}", thinned.len());
+        assert!(thinned.contains(&points[spike]), "the spike is kept");
+        let lowest = thinned.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+        assert!(lowest < -0.9999, "the troughs are kept: {lowest}");
+        assert!(thinned.windows(2).all(|w| w[0].0 < w[1].0), "in order");
+        let chart = Chart { title: "t".into(), x_label: "x".into(), y_label: "y".into(), scale: Scale::Linear };
+        let svg = line_chart(&chart, &[Series { label: "e".into(), points, markers: false }]).unwrap();
+        // ~30 bytes per drawn point.
+        assert!(svg.len() < 300_000, "{} bytes", svg.len());
+    }
 }

@@ -15,7 +15,7 @@ use crate::scenes::{
     build_scene, chain_equilibrium, chain_has_normal_modes, drive_travel, lattice_bonds, lattice_springs, law_kind,
     pair_references, relaxation_checks, top_row,
 };
-use crate::sim::{LawKind, Outcome, ProbeTrace, RunStatus, Scene, Trace};
+use crate::sim::{LawKind, Outcome, ProbeTrace, RunStatus, Scene, Trace, stored_samples};
 use crate::spec::{
     Budget, Control, LatticeSpec, LawName, LoadCase, ProbeLine, RunSpec, SceneKind, reference_extension,
 };
@@ -78,6 +78,8 @@ pub fn execute_within(spec: &RunSpec, budget: &Budget) -> RunRecord {
             }
             record.metrics = metrics;
             record.trace = outcome.trace;
+            // Measured from every sample above; stored thinned, within a bounded size.
+            record.trace.thin(stored_samples(record.trace.numbers_per_sample()));
         }
         Ok(Finished::Mechanism { residual }) => {
             record.status = "mechanism".into();
@@ -88,7 +90,11 @@ pub fn execute_within(spec: &RunSpec, budget: &Budget) -> RunRecord {
         }
         Ok(Finished::OverBudget) => {
             record.status = "budget".into();
-            record.message = refused.unwrap_or_default();
+            record.message = refused.clone().unwrap_or_default();
+        }
+        Ok(Finished::PastDeadline { stage }) => {
+            record.status = "budget".into();
+            record.message = format!("stopped in its {stage}");
         }
         Err(panic) => {
             record.status = "panicked".into();
@@ -98,9 +104,14 @@ pub fn execute_within(spec: &RunSpec, budget: &Budget) -> RunRecord {
     // The reference run or the tangent step may be what passed the deadline.
     if record.status == "ok" && Instant::now() > deadline {
         record.status = "budget".into();
+        record.message = "stopped in its reference run or tangent step".into();
+    }
+    if record.status == "budget" && refused.is_none() {
         record.message = format!(
-            "passed its time budget of {} s per run (budget.seconds_per_run) in its reference run or tangent step",
-            budget.seconds_per_run
+            "passed its time budget of {} s per run (budget.seconds_per_run) after {:.3} s: {}",
+            budget.seconds_per_run,
+            started.elapsed().as_secs_f64(),
+            record.message
         );
     }
     // The run's own cost: a reference run at a finer dt is not part of it.
@@ -117,11 +128,19 @@ enum Finished {
     Mechanism { residual: f64 },
     /// Not started: beyond the memory budget.
     OverBudget,
+    /// Stopped before its time loop: the deadline passed in this stage.
+    PastDeadline { stage: &'static str },
+}
+
+/// The scene of `spec`, its time loops stopped at `deadline`.
+fn build_scene_until(spec: &RunSpec, deadline: Instant) -> Scene {
+    let mut scene = build_scene(spec);
+    scene.sampling.deadline = Some(deadline);
+    scene
 }
 
 fn run_and_measure(spec: &RunSpec, deadline: Instant) -> Finished {
-    let mut scene = build_scene(spec);
-    scene.sampling.deadline = Some(deadline);
+    let scene = build_scene_until(spec, deadline);
     let stability = estimate(spec);
     let mut metrics = Metrics {
         omega_max: Some(stability.omega_max),
@@ -148,12 +167,12 @@ fn run_and_measure(spec: &RunSpec, deadline: Instant) -> Finished {
             prescribed: &prescribed,
         };
         let answer = match scene.law {
-            LawKind::Linear => static_answer(spec, lattice, &truss, &Linear, &mut metrics),
-            LawKind::Power { beta } => static_answer(spec, lattice, &truss, &PowerLaw { beta }, &mut metrics),
+            LawKind::Linear => static_answer(spec, lattice, &truss, &Linear, deadline, &mut metrics),
+            LawKind::Power { beta } => static_answer(spec, lattice, &truss, &PowerLaw { beta }, deadline, &mut metrics),
         };
         let top_row_force = match answer {
             Ok(force) => force,
-            Err(residual) => return Finished::Mechanism { residual },
+            Err(stopped) => return stopped,
         };
         // Under velocity control the residual force is judged against the force the drive
         // holds at equilibrium (per top-row node), not the unused load_per_node.
@@ -180,6 +199,7 @@ fn run_and_measure(spec: &RunSpec, deadline: Instant) -> Finished {
         bonds,
         spec: movie,
         title: format!("{} {}", spec.scene, spec.varied_label(|_| true)),
+        deadline: Some(deadline),
     });
     measure(spec, &outcome, &start, &mut metrics);
     if let Some(step) = spec.relax.and_then(|r| r.tangent_step).filter(|_| outcome.trace.relaxed_at.is_some()) {
@@ -204,15 +224,17 @@ fn run_and_measure(spec: &RunSpec, deadline: Instant) -> Finished {
 /// like MD; for linear springs how far that is from the linear answer; with a tangent step
 /// the tangent moduli from the tangent stiffness at the equilibrium. Returns the total force
 /// on the top row at the static equilibrium (N): the load, or what the drive must hold
-/// (non-linear answer where it exists, else linear). `Err(residual)` when the load drives a
-/// mechanism.
+/// (non-linear answer where it exists, else linear). `Err` when the load drives a mechanism,
+/// or when `deadline` passes (checked between factorisations).
 fn static_answer<L: ForceLaw>(
     spec: &RunSpec,
     lattice: &LatticeSpec,
     truss: &Truss,
     law: &L,
+    deadline: Instant,
     metrics: &mut Metrics,
-) -> Result<f64, f64> {
+) -> Result<f64, Finished> {
+    let past_deadline = || Finished::PastDeadline { stage: "static solve" };
     // The force on the top row: the load, or what the supports must apply to hold the
     // driven row where it is.
     let force = |ux: &[f64], uy: &[f64]| match lattice.control {
@@ -224,15 +246,21 @@ fn static_answer<L: ForceLaw>(
     };
     // The linear problem decides whether the network carries the load at all (a power law's
     // linear answer means nothing else).
+    if Instant::now() > deadline {
+        return Err(past_deadline());
+    }
     let (linear, linear_force) = match truss.solve_linear() {
-        StaticSolution::Mechanism { residual } => return Err(residual),
+        StaticSolution::Mechanism { residual } => return Err(Finished::Mechanism { residual }),
+        StaticSolution::PastDeadline => return Err(past_deadline()),
         StaticSolution::Displacements { ux, uy } => {
             let top = force(&ux, &uy);
             (lattice_moduli(spec, lattice, top, &ux, &uy), top)
         }
     };
-    let Some(StaticSolution::Displacements { ux, uy }) = truss.solve_nonlinear(law, reference_extension(spec)) else {
-        return Ok(linear_force);
+    let (ux, uy) = match truss.solve_nonlinear(law, reference_extension(spec), Some(deadline)) {
+        Some(StaticSolution::Displacements { ux, uy }) => (ux, uy),
+        Some(StaticSolution::PastDeadline) => return Err(past_deadline()),
+        _ => return Ok(linear_force),
     };
     let top_row_force = force(&ux, &uy);
     let fem = lattice_moduli(spec, lattice, top_row_force, &ux, &uy);
@@ -254,6 +282,9 @@ fn static_answer<L: ForceLaw>(
     metrics.shear_modulus_fem = fem.shear_modulus;
     if spec.relax.is_some_and(|r| r.tangent_step.is_some()) {
         // Δu per unit load factor: the increment of the whole load.
+        if Instant::now() > deadline {
+            return Err(past_deadline());
+        }
         if let Some((dx, dy)) = truss.tangent_response(law, &ux, &uy) {
             let tangent = lattice_moduli(spec, lattice, lattice.total_load(), &dx, &dy);
             metrics.youngs_modulus_tangent_fem = tangent.youngs_modulus;
@@ -269,8 +300,7 @@ fn static_answer<L: ForceLaw>(
 /// (a chain's tangent stiffness) are the increments' ratios. Nothing is set when the second
 /// relaxation does not finish.
 fn tangent_step(spec: &RunSpec, relaxed: &Outcome, step: f64, deadline: Instant, metrics: &mut Metrics) {
-    let mut scene = build_scene(spec);
-    scene.sampling.deadline = Some(deadline);
+    let mut scene = build_scene_until(spec, deadline);
     let start = &relaxed.state.particles;
     scene.particles.x.clone_from(&start.x);
     scene.particles.y.clone_from(&start.y);
@@ -357,8 +387,7 @@ fn exact_error(spec: &RunSpec, m: &Metrics) -> (Option<f64>, Option<String>) {
 fn reference_error(spec: &RunSpec, run: &Trace, sample_every: u64, refinement: u32, deadline: Instant) -> Option<f64> {
     let mut fine = spec.clone();
     fine.set_dt(spec.dt / f64::from(refinement));
-    let mut scene = build_scene(&fine);
-    scene.sampling.deadline = Some(deadline);
+    let mut scene = build_scene_until(&fine, deadline);
     let r = u64::from(refinement);
     scene.sampling.every = sample_every * r;
     scene.sampling.steps = run.steps * r;

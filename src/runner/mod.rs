@@ -187,8 +187,23 @@ fn run_and_store(
     }
     let mut record = execute_within(spec, &campaign.budget);
     if let Some(movie) = record.movie.take() {
-        crate::report::write_movie(&layout.movie_file(&record.run_id), &movie)?;
-        if movie.spec.side_by_side {
+        match crate::report::write_movie(&layout.movie_file(&record.run_id), &movie) {
+            // A run already stopped by its budget keeps its own reason.
+            Err(error) if error.is::<crate::report::PastDeadline>() && record.status == "budget" => {}
+            Err(error) if error.is::<crate::report::PastDeadline>() => {
+                record.status = "budget".into();
+                record.message = format!(
+                    "passed its time budget of {} s per run (budget.seconds_per_run) while encoding its movie of {} \
+                     frames of {} × {} pixels; the measurements are kept, the movie is not written",
+                    campaign.budget.seconds_per_run,
+                    movie.frames.len(),
+                    movie.spec.width,
+                    movie.spec.height
+                );
+            }
+            written => written?,
+        }
+        if movie.spec.side_by_side && record.status != "budget" {
             *panel.lock().expect("a panel is written once") = Some(movie);
         }
     }

@@ -164,6 +164,8 @@ pub struct Movie {
     pub spec: crate::spec::MovieSpec,
     /// Title drawn on every frame.
     pub title: String,
+    /// The run's deadline: encoding the movie is part of the run (its time budget).
+    pub deadline: Option<std::time::Instant>,
 }
 
 impl Metrics {

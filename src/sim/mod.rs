@@ -7,7 +7,9 @@ pub use self::integrate::{
     simulate_with,
 };
 pub use self::probe::{ContactClock, Crossing, Frame, FrameProbe, StepProbe, WaveProbe, WaveRecord};
-pub use self::run::{ProbeTrace, Relaxation, RunStatus, Sampling, Trace, simulate};
+pub use self::run::{
+    ProbeTrace, Relaxation, RunStatus, STORED_NUMBERS, STORED_SAMPLES, Sampling, Trace, simulate, stored_samples,
+};
 pub use self::scene::{LawKind, Network, Outcome, Scene};
 pub use self::state::{Drive, Load, State};
 pub use self::stencil::LatticeNetwork;

@@ -132,6 +132,62 @@ pub struct ProbeTrace {
     pub velocity_y: Vec<Vec<f64>>,
 }
 
+/// A stored trace (a run's record) holds at most this many numbers, ~25 bytes each as JSON
+/// text (a record of at most ~50 MB), ...
+pub const STORED_NUMBERS: usize = 2_000_000;
+/// ... and at most this many samples: more than a figure shows (its lines are thinned to
+/// `report::plots::LINE_POINTS`) while keeping the shape of every series.
+pub const STORED_SAMPLES: usize = 10_000;
+
+/// Samples a stored trace keeps when each sample holds `numbers` numbers: within both bounds,
+/// at least the first and the last.
+pub fn stored_samples(numbers: usize) -> usize {
+    (STORED_NUMBERS / numbers.max(1)).clamp(2, STORED_SAMPLES)
+}
+
+impl Trace {
+    /// Numbers one sample holds: time, four energies, and four per particle or probed node.
+    pub fn numbers_per_sample(&self) -> usize {
+        let particles = self.displacement_x.first().map_or(0, Vec::len);
+        5 + 4 * (particles + self.probes.iter().map(|p| p.nodes.len()).sum::<usize>())
+    }
+
+    /// Keeps at most `most` (≥ 2) samples, evenly spread, the first and the last among them:
+    /// what a record stores of a long run (its measurements were taken from every sample).
+    pub fn thin(&mut self, most: usize) {
+        let len = self.time.len();
+        if len <= most.max(2) {
+            return;
+        }
+        // Samples 0, s, 2s, ... and the last: at most `most`.
+        let stride = (len - 1).div_ceil(most.max(2) - 1);
+        let keep = |index: usize| index.is_multiple_of(stride) || index == len - 1;
+        fn retain<T>(series: &mut Vec<T>, keep: &impl Fn(usize) -> bool) {
+            let mut index = 0;
+            series.retain(|_| {
+                index += 1;
+                keep(index - 1)
+            });
+            series.shrink_to_fit();
+        }
+        for series in [&mut self.time, &mut self.kinetic, &mut self.potential, &mut self.dissipated, &mut self.work] {
+            retain(series, &keep);
+        }
+        let per_particle =
+            [&mut self.displacement_x, &mut self.displacement_y, &mut self.velocity_x, &mut self.velocity_y];
+        for series in per_particle {
+            retain(series, &keep);
+        }
+        for probe in &mut self.probes {
+            for series in
+                [&mut probe.displacement_x, &mut probe.displacement_y, &mut probe.velocity_x, &mut probe.velocity_y]
+            {
+                retain(series, &keep);
+            }
+        }
+    }
+}
+
 impl ProbeTrace {
     /// Picks the line `nodes` called `name` out of the per-particle series of `trace`.
     pub fn from_trace(name: String, nodes: Vec<usize>, trace: &Trace) -> ProbeTrace {
@@ -240,6 +296,20 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
 ) -> Trace {
     let start = Start { x: state.particles.x.clone(), y: state.particles.y.clone() };
     let mut trace = Trace::default();
+    // Room for every sample (the start, every `every` steps, the end, the relaxed state) up
+    // front: growing the series by doubling would leave freed blocks
+    // resident, ~2.5 × the series at the peak (untouched room costs no memory).
+    let samples = (sampling.steps / sampling.every.max(1)) as usize + 3;
+    for series in [&mut trace.time, &mut trace.kinetic, &mut trace.potential, &mut trace.dissipated, &mut trace.work] {
+        series.reserve_exact(samples);
+    }
+    if sampling.displacements {
+        for series in
+            [&mut trace.displacement_x, &mut trace.displacement_y, &mut trace.velocity_x, &mut trace.velocity_y]
+        {
+            series.reserve_exact(samples);
+        }
+    }
     integrator.start(state, field, sampling.dt);
     probe.observe(state);
     if let Err(reason) = trace.sample(state, &*field, &start, sampling.displacements) {
@@ -271,7 +341,7 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
         {
             trace.status = RunStatus::Budget;
             trace.message = format!(
-                "stopped at its time budget after {:.3} s, at t = {:.6e} s (step {n} of {})",
+                "stopped at its deadline after {:.3} s of time loop, at t = {:.6e} s (step {n} of {})",
                 started.elapsed().as_secs_f64(),
                 state.time,
                 sampling.steps

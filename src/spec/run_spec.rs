@@ -338,12 +338,62 @@ impl RunSpec {
     /// Cost model of the run in a release build (s), from `mdsolids bench` and the coursework
     /// campaign on the project machine: ~80 ns per step for the loop itself and the per-step
     /// probes, plus ~3 ns per particle-step (the reference lattice runs at ~330 million
-    /// particle-steps/s) and force evaluation, for the run and its reference run, if any.
+    /// particle-steps/s) and force evaluation, for the run and its reference run, if any; plus
+    /// the stages around the loop: the ω_max estimate (≤ 1000 power iterations at ~7 ns per
+    /// bond, twice with bond dashpots), a loaded lattice's static solve (sparse Cholesky of a
+    /// 2D network, ~O(dofs^1.5): 2.5e-7 s · dofs^1.5, ~6 s for 200 × 200 nodes) and the movie's
+    /// GIF encoding (~0.2 µs per pixel and frame; faer and the GIF encoder are built without
+    /// optimisation, see Cargo.toml).
     pub fn estimated_seconds(&self) -> f64 {
         let evaluations = self.integrator.evaluations_per_step() as f64;
         // A reference run at dt/R takes R times as many steps.
         let runs = 1.0 + self.reference_refinement.map_or(0.0, f64::from);
-        runs * self.steps as f64 * (80e-9 + 3e-9 * evaluations * self.particles() as f64)
+        let time_loop = runs * self.steps as f64 * (80e-9 + 3e-9 * evaluations * self.particles() as f64);
+        let eigenproblems = if self.gamma > 0.0 { 2.0 } else { 1.0 };
+        let omega_max = eigenproblems * 1000.0 * 7e-9 * self.bonds() as f64;
+        let static_solve = 2.5e-7 * self.static_dofs().powf(1.5);
+        let movie = self.movie.map_or(0.0, |m| 0.2e-6 * f64::from(m.frames) * f64::from(m.width) * f64::from(m.height));
+        time_loop + omega_max + static_solve + movie
+    }
+
+    /// Springs of the run's network: at most one per node and bond family in a lattice (cut
+    /// bonds counted), n + 1 in a chain, one in a pair.
+    pub fn bonds(&self) -> usize {
+        match (&self.lattice, self.kind) {
+            (Some(l), _) => {
+                let families = match l.diagonals {
+                    Diagonals::None => 2,
+                    Diagonals::Both => 4,
+                    Diagonals::Rising | Diagonals::Falling => 3,
+                };
+                families * l.nx * l.ny
+            }
+            (None, SceneKind::Chain) => self.n.unwrap_or(0) + 1,
+            _ => 1,
+        }
+    }
+
+    /// Degrees of freedom of the static problem solved beside MD (a loaded lattice): two per
+    /// node (held ones counted); 0 when there is none.
+    fn static_dofs(&self) -> f64 {
+        match &self.lattice {
+            Some(l) if l.impulse.is_none() => 2.0 * (l.nx * l.ny) as f64,
+            _ => 0.0,
+        }
+    }
+
+    /// Numbers per sample of what a record stores of the trace: time and four energies, and
+    /// four per particle (a chain) or per probed node (a lattice's kicked column and probes).
+    fn stored_numbers_per_sample(&self) -> usize {
+        let nodes = match &self.lattice {
+            Some(l) => {
+                let kicked = if l.impulse.is_some() { l.ny } else { 0 };
+                kicked + l.probes.iter().map(|line| line.nodes(l.nx, l.ny).len()).sum::<usize>()
+            }
+            None if self.kind == SceneKind::Chain => self.particles(),
+            None => 0,
+        };
+        5 + 4 * nodes
     }
 
     /// True when the run records every particle's displacement and velocity at every sample:
@@ -355,19 +405,38 @@ impl RunSpec {
             || self.lattice.as_ref().is_some_and(|l| l.impulse.is_some() || !l.probes.is_empty())
     }
 
-    /// Estimated peak memory (bytes) of the run, from what it allocates: per particle ~40
-    /// numbers of state, integrator history and forces plus ~4 bonds of 5 numbers; per sample
-    /// 5 numbers, and 4 per particle when displacements are recorded; 3 per particle per movie
-    /// frame; a wave probe's at most 10⁵ entries of 7 numbers. A reference run holds its own
-    /// copy. Numbers are 8 bytes.
+    /// Estimated peak memory (bytes) of the run over all its stages, summed (an upper bound:
+    /// the stages' transient parts do not overlap), from what they allocate:
+    /// - the time loop: per particle ~40 numbers of state, integrator history and forces plus
+    ///   ~4 bonds of 5 numbers; per sample 5 numbers, and 4 per particle when displacements
+    ///   are recorded; 3 per particle per movie frame (and one per bond with bond strain); a
+    ///   wave probe's at most 10⁵ entries of 7 numbers; a reference run holds its own copy;
+    /// - the ω_max estimate: two lists of 5 numbers per bond and ~8 vectors over the particles;
+    /// - a loaded lattice's static solve: ~1200 bytes per bond (the stiffness entries twice,
+    ///   16 of 24 bytes per bond, and faer's sorted copy) and the Cholesky factor, whose fill
+    ///   on a 2D network grows as dofs · log dofs: ~70 bytes · dofs · log₂ dofs (measured
+    ///   ~1100 bytes per dof at 200 × 200 nodes);
+    /// - the record: its thinned trace ([`crate::sim::stored_samples`]) in memory and as JSON
+    ///   text (~50 bytes per number with the buffer's growth); figures draw at most
+    ///   2000 points per line, a few MB at most.
+    ///
+    /// Numbers are 8 bytes.
     pub fn estimated_memory_bytes(&self) -> f64 {
         let particles = self.particles() as f64;
+        let bonds = self.bonds() as f64;
         let samples = (self.samples + 2) as f64;
         let per_sample = 5.0 + if self.records_displacements() { 4.0 * particles } else { 0.0 };
-        let frames = self.movie.map_or(0.0, |m| f64::from(m.frames) * 3.0 * particles);
+        let strain = |m: &MovieSpec| if m.bond_strain { bonds } else { 0.0 };
+        let frames = self.movie.map_or(0.0, |m| f64::from(m.frames) * (3.0 * particles + strain(&m)));
         let wave = if self.wave.is_some() { 7.0 * 1e5 } else { 0.0 };
         let copies = if self.reference_refinement.is_some() { 2.0 } else { 1.0 };
-        8.0 * copies * (particles * (40.0 + 4.0 * 5.0) + samples * per_sample + frames + wave)
+        let time_loop = 8.0 * copies * (particles * (40.0 + 4.0 * 5.0) + samples * per_sample + frames + wave);
+        let omega_max = 8.0 * (10.0 * bonds + 8.0 * particles);
+        let dofs = self.static_dofs();
+        let static_solve = if dofs > 0.0 { 1200.0 * bonds + 70.0 * dofs * dofs.log2().max(1.0) } else { 0.0 };
+        let numbers = self.stored_numbers_per_sample();
+        let stored = samples.min(crate::sim::stored_samples(numbers) as f64) * numbers as f64;
+        time_loop + omega_max + static_solve + (8.0 + 50.0) * stored
     }
 
     /// Sets the time step to `dt` (s) and the step count to cover the same duration.
