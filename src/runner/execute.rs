@@ -4,7 +4,7 @@
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::{Duration, Instant};
 
-use super::record::{Metrics, Movie, RunRecord};
+use super::record::{BUILD, Metrics, Movie, RunRecord};
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
     ARRIVAL_CRITERIA, LatticeShape, anisotropic_moduli, arrival_time, contact_timing, energy_error, homogeneity,
@@ -39,6 +39,7 @@ pub fn execute_within(spec: &RunSpec, budget: &Budget) -> RunRecord {
     };
     let mut record = RunRecord {
         run_id: spec.run_id(),
+        build: BUILD.into(),
         spec: spec.clone(),
         status: "ok".into(),
         message: String::new(),
