@@ -122,7 +122,6 @@ fn the_run_limit_counts_before_expanding() {
     assert_eq!(mdsolids::spec::parse("ok.yaml", &campaign(10, 10)).unwrap().runs.len(), 100);
 }
 
-
 /// Numbers equal in value give one run id however they are written (`50` or `50.0`, `0.0` or
 /// `-0.0`), in a grid or in the scene itself, and the grid column shows them one way; the
 /// stored results of one are the results of the other.
