@@ -226,7 +226,7 @@ fn records_of_another_build_are_simulated_again_or_reused_loudly() {
     assert!(plan.contains("1 made by another build"), "{plan}");
     let report = mdsolids(&reports, &["report", file]);
     assert!(report.status.success(), "{}", text(&report.stderr));
-    assert!(text(&report.stderr).contains(&format!("made by another build than this one")), "{}", text(&report.stderr));
+    assert!(text(&report.stderr).contains("made by another build than this one"), "{}", text(&report.stderr));
     let csv = std::fs::read_to_string(reports.join("store/results.csv")).unwrap();
     let row = csv.lines().find(|l| l.starts_with(&run_id)).unwrap();
     assert!(row.contains(",0.0.1+0123456789abcdef,true,"), "{row}");

@@ -42,7 +42,7 @@ pub fn canonical(value: &Value) -> Value {
     match value {
         // Below 2^63 in magnitude an integer-valued f64 is exactly an i64.
         Value::Number(number) if number.is_f64() => match number.as_f64() {
-            Some(x) if x.fract() == 0.0 && x.abs() < 9.223_372_036_854_775_808e18 => Value::from(x as i64),
+            Some(x) if x.fract() == 0.0 && x.abs() < 2f64.powi(63) => Value::from(x as i64),
             _ => value.clone(),
         },
         Value::Array(items) => Value::Array(items.iter().map(canonical).collect()),
