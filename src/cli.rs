@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 use crate::bench::{BenchConfig, run_once};
 use crate::output::Layout;
 use crate::runner::{
-    CampaignRun, INTERRUPTED, Interrupted, Shard, run_campaign_waiting, shard_campaign, shard_of_each_run,
-    stored_count, stored_record, write_missing_movies,
+    BUILD, CampaignRun, INTERRUPTED, Interrupted, OtherBuilds, Shard, Stored, read_stored, run_campaign_with,
+    shard_campaign, shard_of_each_run, stored_count, write_missing_movies,
 };
 use crate::spec::Campaign;
 use crate::stability::{Stability, estimate, load_campaign};
@@ -48,6 +48,10 @@ pub enum Command {
         /// file's; see campaign.json there).
         #[arg(long)]
         force: bool,
+        /// Take stored results made by another build (another version, or other physics source)
+        /// as they are, with one warning per run, instead of simulating them again.
+        #[arg(long)]
+        reuse_other_builds: bool,
     },
     /// List the expanded runs with dt, t_c, cost and cache state; runs nothing.
     Plan {
@@ -134,10 +138,18 @@ pub enum Command {
 pub fn run() -> anyhow::Result<()> {
     let cli = Cli::parse();
     match &cli.command {
-        Command::Run { campaign, jobs, shard, force } => match shard {
-            Some(shard) => run_shard_command(&cli.reports, campaign, *jobs, *shard, *force, cli.lock_wait),
-            None => run_command(&cli.reports, campaign, *jobs, *force, cli.lock_wait),
-        },
+        Command::Run { campaign, jobs, shard, force, reuse_other_builds } => {
+            let options = RunOptions {
+                jobs: *jobs,
+                force: *force,
+                lock_wait: cli.lock_wait,
+                other_builds: if *reuse_other_builds { OtherBuilds::Reuse } else { OtherBuilds::Simulate },
+            };
+            match shard {
+                Some(shard) => run_shard_command(&cli.reports, campaign, *shard, &options),
+                None => run_command(&cli.reports, campaign, &options),
+            }
+        }
         Command::Plan { campaign, shard } => plan_command(&cli.reports, campaign, *shard),
         Command::Report { campaign, force } => report_command(&cli.reports, campaign, *force, cli.lock_wait),
         Command::Slurm { campaign, tasks, partition, time, cpus_per_task, submit, force } => {
@@ -213,12 +225,7 @@ fn lock_publishing(campaign: &Campaign, layout: &Layout, lock_wait: Option<f64>)
 /// Ctrl-C (or SIGTERM) the runs in progress finish and are stored and no more start; a second
 /// one ends the process at once; either way it ends (exit code 130) with how many runs are
 /// stored and the command that continues.
-fn run_stored(
-    campaign: &Campaign,
-    layout: &Layout,
-    jobs: Option<usize>,
-    lock_wait: Option<f64>,
-) -> anyhow::Result<CampaignRun> {
+fn run_stored(campaign: &Campaign, layout: &Layout, options: &RunOptions) -> anyhow::Result<CampaignRun> {
     crate::output::sweep_temporaries(layout);
     let rerun = format!("rerun `mdsolids {}` to continue", std::env::args().skip(1).collect::<Vec<_>>().join(" "));
     let mut signals = signal_hook::iterator::Signals::new([signal_hook::consts::SIGINT, signal_hook::consts::SIGTERM])
@@ -237,7 +244,8 @@ fn run_stored(
             }
         }
     });
-    match run_campaign_waiting(campaign, layout, jobs, lock_patience(campaign, lock_wait)) {
+    let lock_wait = lock_patience(campaign, options.lock_wait);
+    match run_campaign_with(campaign, layout, options.jobs, lock_wait, options.other_builds) {
         Err(error) if error.is::<Interrupted>() => {
             eprintln!("{error}; {rerun}");
             std::process::exit(130)
@@ -246,19 +254,26 @@ fn run_stored(
     }
 }
 
-fn run_command(
-    reports: &Path,
-    file: &Path,
+/// What `run` was asked for besides the campaign.
+struct RunOptions {
+    /// Threads (`-j`).
     jobs: Option<usize>,
+    /// Write into a folder another campaign file owns (`--force`).
     force: bool,
+    /// Longest wait for a lock another process holds (`--lock-wait`, s).
     lock_wait: Option<f64>,
-) -> anyhow::Result<()> {
+    /// What to do with records of another build (`--reuse-other-builds`).
+    other_builds: OtherBuilds,
+}
+
+fn run_command(reports: &Path, file: &Path, options: &RunOptions) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
-    let (campaign, layout) = open_to_write(reports, file, force)?;
-    let done = run_stored(&campaign, &layout, jobs, lock_wait)?;
+    let (campaign, layout) = open_to_write(reports, file, options.force)?;
+    let done = run_stored(&campaign, &layout, options)?;
+    warn_about_store(&layout, &done, options.other_builds);
     let failed = done.records.iter().filter(|r| r.status != "ok").count();
-    let _publishing = lock_publishing(&campaign, &layout, lock_wait)?;
-    publish(&campaign, &layout, &done.records)?;
+    let _publishing = lock_publishing(&campaign, &layout, options.lock_wait)?;
+    publish(&campaign, &layout, &done.records, &report::LeftOut::default())?;
     println!(
         "{}: {} runs ({} simulated, {} cached, {} not ok) in {:.2} s -> {}",
         campaign.name,
@@ -274,18 +289,12 @@ fn run_command(
 
 /// Runs one share of the campaign into the store. Tables and reports are left to `report`:
 /// the other shares may still be running, and several shards writing them at once would race.
-fn run_shard_command(
-    reports: &Path,
-    file: &Path,
-    jobs: Option<usize>,
-    shard: Shard,
-    force: bool,
-    lock_wait: Option<f64>,
-) -> anyhow::Result<()> {
+fn run_shard_command(reports: &Path, file: &Path, shard: Shard, options: &RunOptions) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
-    let (campaign, layout) = open_to_write(reports, file, force)?;
+    let (campaign, layout) = open_to_write(reports, file, options.force)?;
     let share = shard_campaign(&campaign, shard);
-    let done = run_stored(&share, &layout, jobs, lock_wait)?;
+    let done = run_stored(&share, &layout, options)?;
+    warn_about_store(&layout, &done, options.other_builds);
     let failed = done.records.iter().filter(|r| r.status != "ok").count();
     println!(
         "{} shard {shard}: {} of {} runs ({} simulated, {} cached, {} not ok) in {:.2} s -> {}; \
@@ -302,6 +311,37 @@ fn run_shard_command(
     Ok(())
 }
 
+/// Says on stderr what `run` found in the store besides valid records of this build: each
+/// corrupt record (simulated again), each record of another build it reused, or how many it
+/// simulated again.
+fn warn_about_store(layout: &Layout, done: &CampaignRun, other_builds: OtherBuilds) {
+    for (run_id, why) in &done.corrupt {
+        eprintln!("warning: {} is corrupt ({why}); simulated again", layout.run_file(run_id).display());
+    }
+    match other_builds {
+        OtherBuilds::Reuse => {
+            for (run_id, build) in &done.other_build {
+                eprintln!("warning: reusing {run_id}, made by build {build}, not by this build {BUILD}");
+            }
+        }
+        OtherBuilds::Simulate if !done.other_build.is_empty() => eprintln!(
+            "note: {} stored runs were made by another build than this one ({BUILD}) and were simulated again \
+             (--reuse-other-builds takes them as they are): {}",
+            done.other_build.len(),
+            listed(done.other_build.iter().map(|(run_id, _)| run_id.as_str()))
+        ),
+        OtherBuilds::Simulate => {}
+    }
+}
+
+/// At most 20 of `ids`, comma-separated, with how many more there are.
+fn listed<'a>(ids: impl ExactSizeIterator<Item = &'a str>) -> String {
+    const LISTED: usize = 20;
+    let more = ids.len().saturating_sub(LISTED);
+    let shown: Vec<&str> = ids.take(LISTED).collect();
+    format!("{}{}", shown.join(", "), if more > 0 { format!(" and {more} more") } else { String::new() })
+}
+
 /// Writing tables, figures and the report of a campaign of a few dozen runs (measured ~0.07 s).
 const REPORT_SECONDS: f64 = 0.1;
 
@@ -312,12 +352,26 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
     }
     println!(
         "{:<28} {:<8} {:<16} {:>11} {:>11} {:>8} {:>10} {:>8} {:>7} {:>7}  varied",
-        "run_id", "kind", "integrator", "dt (s)", "t_c (s)", "t_c/dt", "steps", "dt·ω_max", "limit", "cached"
+        "run_id", "kind", "integrator", "dt (s)", "t_c (s)", "t_c/dt", "steps", "dt·ω_max", "limit", "stored"
     );
     let mut simulation_s = 0.0;
+    // What `run` would do with each run's stored record: take it (`yes`), or simulate the run
+    // because the record is missing, corrupt, of another build or stopped by its budget.
+    let mut states: std::collections::BTreeMap<&str, usize> = Default::default();
+    let mut corrupt = Vec::new();
     for spec in &campaign.runs {
-        let cached = stored_record(&layout, spec).is_some();
-        if !cached {
+        let state = match read_stored(&layout, spec) {
+            Stored::Current(record) | Stored::OtherBuild(record) if record.status == "budget" => "budget",
+            Stored::Current(_) => "yes",
+            Stored::OtherBuild(_) => "stale",
+            Stored::Corrupt(why) => {
+                corrupt.push((spec.run_id(), why));
+                "corrupt"
+            }
+            Stored::Missing => "missing",
+        };
+        *states.entry(state).or_default() += 1;
+        if state != "yes" {
             simulation_s += spec.estimated_seconds();
         }
         // A run the memory budget refuses is not estimated (a large lattice's estimate takes long).
@@ -335,10 +389,28 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
             spec.steps,
             shown(|s| s.dt_omega_max),
             shown(|s| s.limit),
-            if cached { "yes" } else { "no" },
+            state,
             spec.varied_label(|_| true)
         );
     }
+    for (run_id, why) in &corrupt {
+        println!("corrupt: {} ({why}); `run` simulates it again", layout.run_file(run_id).display());
+    }
+    let to_simulate: Vec<String> = [
+        ("missing", "without a stored result"),
+        ("corrupt", "with a corrupt record"),
+        ("stale", "made by another build (--reuse-other-builds keeps them)"),
+        ("budget", "stopped by their budget"),
+    ]
+    .iter()
+    .filter_map(|(state, what)| states.get(state).map(|count| format!("{count} {what}")))
+    .collect();
+    println!(
+        "stored: {} runs of this build ({BUILD}); `run` simulates {}{}",
+        states.get("yes").copied().unwrap_or(0),
+        campaign.runs.len() - states.get("yes").copied().unwrap_or(0),
+        if to_simulate.is_empty() { String::new() } else { format!(": {}", to_simulate.join(", ")) }
+    );
     let threads = rayon::current_num_threads();
     println!(
         "{} runs; estimated {:.3} s of simulation on one core, about {:.3} s with tables and report on {threads} cores \
@@ -370,16 +442,22 @@ fn report_command(reports: &Path, file: &Path, force: bool, lock_wait: Option<f6
     // can never overwrite the tables of a `run` that stored more.
     let _publishing = lock_publishing(&campaign, &layout, lock_wait)?;
     crate::output::sweep_temporaries(&layout);
-    let (mut records, mut missing) = (Vec::new(), Vec::new());
+    let (mut records, mut left_out) = (Vec::new(), report::LeftOut::default());
     for spec in &campaign.runs {
-        match stored_record(&layout, spec) {
-            Some(record) => records.push(record),
-            None => missing.push(spec.run_id()),
+        match read_stored(&layout, spec) {
+            Stored::Current(record) | Stored::OtherBuild(record) => records.push(record),
+            Stored::Corrupt(why) => left_out.corrupt.push((spec.run_id(), why)),
+            Stored::Missing => left_out.missing.push(spec.run_id()),
         }
+    }
+    // A shard that has not run yet, or an array task that died (time limit, node failure):
+    // rerunning `run` (or its shard) fills these in, and simulates corrupt records again.
+    for (run_id, why) in &left_out.corrupt {
+        eprintln!("warning: {} is corrupt ({why}); left out of the report", layout.run_file(run_id).display());
     }
     if records.is_empty() {
         anyhow::bail!(
-            "no stored results for campaign '{}' under {}: run `mdsolids run {}` first",
+            "no valid stored results for campaign '{}' under {}: run `mdsolids run {}` first",
             campaign.name,
             layout.root.display(),
             file.display()
@@ -387,25 +465,47 @@ fn report_command(reports: &Path, file: &Path, force: bool, lock_wait: Option<f6
     }
     crate::owner::claim(&layout, file, force)?;
     write_missing_movies(&campaign, &layout, &records, Default::default())?;
-    publish(&campaign, &layout, &records)?;
+    if records.len() < campaign.runs.len() {
+        left_out.previous_table = table::keep_larger_table_aside(&layout, records.len())?;
+    }
+    publish(&campaign, &layout, &records, &left_out)?;
+    let missing = &left_out.missing;
     if !missing.is_empty() {
-        // A shard that has not run yet, or an array task that died (time limit, node failure):
-        // rerunning `run` (or its shard) fills these in.
-        const LISTED: usize = 20;
-        let more = missing.len().saturating_sub(LISTED);
         eprintln!(
-            "warning: {} of {} runs have no stored result and are not in the report: {}{}",
+            "warning: {} of {} runs have no stored result and are not in the report: {}",
             missing.len(),
             campaign.runs.len(),
-            missing[..missing.len().min(LISTED)].join(", "),
-            if more > 0 { format!(" and {more} more") } else { String::new() }
+            listed(missing.iter().map(String::as_str))
+        );
+    }
+    if records.len() < campaign.runs.len() {
+        eprintln!(
+            "warning: PARTIAL results: results.csv, results.parquet and report.md hold {} of the campaign's {} runs{}",
+            records.len(),
+            campaign.runs.len(),
+            match left_out.previous_table {
+                Some(rows) =>
+                    format!("; the previous table ({rows} runs) is kept as results.previous.csv and .parquet"),
+                None => String::new(),
+            }
+        );
+    }
+    let other: Vec<&str> = records.iter().filter(|r| r.build != BUILD).map(|r| r.run_id.as_str()).collect();
+    if !other.is_empty() {
+        eprintln!(
+            "warning: {} runs in the report were made by another build than this one ({BUILD}); marked in the table \
+             (other_build) and the report; `mdsolids run` simulates them again: {}",
+            other.len(),
+            listed(other.iter().copied())
         );
     }
     println!(
-        "{}: report re-rendered from {} stored runs ({} without results) -> {}",
+        "{}: report re-rendered from {} stored runs ({} without results, {} corrupt, {} of another build) -> {}",
         campaign.name,
         records.len(),
         missing.len(),
+        left_out.corrupt.len(),
+        other.len(),
         layout.root.display()
     );
     Ok(())
@@ -464,11 +564,16 @@ fn slurm_command(reports: &Path, file: &Path, request: &SlurmRequest) -> anyhow:
     Ok(())
 }
 
-fn publish(campaign: &Campaign, layout: &Layout, records: &[crate::runner::RunRecord]) -> anyhow::Result<()> {
+fn publish(
+    campaign: &Campaign,
+    layout: &Layout,
+    records: &[crate::runner::RunRecord],
+    left_out: &report::LeftOut,
+) -> anyhow::Result<()> {
     let mut frame = table::results_frame(records).context("cannot build the results table")?;
     table::write_tables(layout, &mut frame)?;
     table::write_summary(layout, &table::scaling_fits(records))?;
-    report::render(campaign, layout, records)
+    report::render_with_left_out(campaign, layout, records, left_out)
 }
 
 fn bench_command(config: &BenchConfig, threads: Option<usize>, repeat: usize, json: bool) -> anyhow::Result<()> {

@@ -1,6 +1,7 @@
 //! The results table: one row per run, as a Polars frame, written as CSV and Parquet.
 //! Column names are a contract other tools read (README, "Results table").
 
+use anyhow::Context as _;
 use polars::prelude::*;
 use serde_json::Value;
 use std::collections::BTreeSet;
@@ -46,6 +47,11 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         strings(records, "kind", |r| r.spec.kind.name().into()),
         strings(records, "status", |r| r.status.clone()),
         strings(records, "message", |r| r.message.clone()),
+        strings(records, "build", |r| r.build.clone()),
+        Column::new(
+            "other_build".into(),
+            records.iter().map(|r| r.build != crate::runner::BUILD).collect::<Vec<bool>>(),
+        ),
         floats(records, "wall_s", |r| r.wall_s),
         floats(records, "loop_s", |r| r.trace.loop_s),
         Column::new("steps".into(), records.iter().map(|r| r.steps).collect::<Vec<u64>>()),
@@ -394,6 +400,28 @@ pub fn write_tables(layout: &Layout, frame: &mut DataFrame) -> anyhow::Result<()
     let mut parquet = Vec::new();
     ParquetWriter::new(&mut parquet).finish(frame)?;
     write_atomically(&layout.file("results.parquet"), &parquet)
+}
+
+/// Before a partial table of `rows` runs is written: a larger `results.csv` and
+/// `results.parquet` are moved aside as `results.previous.csv` and `results.previous.parquet`
+/// (over an older pair). Returns the row count of the table aside, moved now or by an earlier
+/// partial report, if there is one.
+pub fn keep_larger_table_aside(layout: &Layout, rows: usize) -> anyhow::Result<Option<usize>> {
+    let count = |name: &str| {
+        let file = std::fs::File::open(layout.file(name)).ok()?;
+        ParquetReader::new(file).num_rows().ok()
+    };
+    if count("results.parquet").is_some_and(|previous| previous > rows) {
+        for (name, aside) in [("results.csv", "results.previous.csv"), ("results.parquet", "results.previous.parquet")]
+        {
+            let (from, to) = (layout.file(name), layout.file(aside));
+            if from.is_file() {
+                std::fs::rename(&from, &to)
+                    .with_context(|| format!("cannot move '{}' aside to '{}'", from.display(), to.display()))?;
+            }
+        }
+    }
+    Ok(count("results.previous.parquet"))
 }
 
 /// Writes `summary.csv` (the fitted scaling laws), atomically; nothing when there are none.

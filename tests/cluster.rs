@@ -59,7 +59,11 @@ fn four_shards_and_a_report_give_the_table_of_one_run() {
     assert!(again.contains("0 simulated"), "{again}");
 
     let report = mdsolids(sharded.path(), &["report", "campaigns/smoke.yaml"]);
-    assert!(text(&report.stdout).contains("from 5 stored runs (0 without results)"), "{}", text(&report.stdout));
+    assert!(
+        text(&report.stdout).contains("from 5 stored runs (0 without results, 0 corrupt"),
+        "{}",
+        text(&report.stdout)
+    );
     assert!(text(&report.stderr).is_empty(), "{}", text(&report.stderr));
     let (a, b) =
         (results_without_timing(&whole.path().join("smoke")), results_without_timing(&sharded.path().join("smoke")));
@@ -82,7 +86,7 @@ fn report_merges_what_is_stored_and_lists_what_is_missing() {
     let table = std::fs::read_to_string(reports.path().join("smoke/results.csv")).unwrap();
     assert_eq!(table.lines().count(), 1 + stored);
     let page = std::fs::read_to_string(reports.path().join("smoke/report.md")).unwrap();
-    assert!(page.contains(&format!("{} of the campaign's runs without a stored result", 5 - stored)), "{page}");
+    assert!(page.contains(&format!("Left out: {} without a stored result", 5 - stored)), "{page}");
 }
 
 #[test]

@@ -457,6 +457,7 @@ fn a_full_disk_while_a_movie_is_encoded_names_the_file_and_leaves_no_partial_fil
         .filter(|name| name.ends_with(".tmp") || name.ends_with(".gif"))
         .collect();
     assert!(left.is_empty(), "partial files left: {left:?}");
+}
 
 /// Peak resident memory (bytes) of `mdsolids run <file>` from start to end, by the kernel's
 /// account of the child (wait4's ru_maxrss, kB on Linux).

@@ -122,6 +122,24 @@ fn the_run_limit_counts_before_expanding() {
     assert_eq!(mdsolids::spec::parse("ok.yaml", &campaign(10, 10)).unwrap().runs.len(), 100);
 }
 
+/// Numbers equal in value give one run id however they are written (`50` or `50.0`, `0.0` or
+/// `-0.0`), in a grid or in the scene itself, and the grid column shows them one way; the
+/// stored results of one are the results of the other.
+#[test]
+fn equal_numbers_written_differently_give_one_run_id() {
+    let campaign = |dt: &str, background: &str, gamma: &str| {
+        format!(
+            "version: 1\nname: t\nscenes:\n  - name: p\n    kind: pair\n    v0: 1.0\n    damping: {{gamma: {gamma}}}\n    \
+             grid:\n      time.dt_per_tc: [{dt}]\n      damping.background: [{background}]\n"
+        )
+    };
+    let run = |dt, background, gamma| parse_campaign("same.yaml", &campaign(dt, background, gamma)).unwrap().runs;
+    let (plain, written_otherwise) = (run("50", "0", "0.0"), run("50.0", "-0.0", "-0.0"));
+    assert_eq!(plain[0].run_id(), written_otherwise[0].run_id());
+    assert_eq!(plain[0].varied, written_otherwise[0].varied);
+    assert_eq!(written_otherwise[0].varied_label(|_| true), "background=0, dt_per_tc=50");
+    assert_ne!(plain[0].run_id(), run("50", "0", "0.001")[0].run_id(), "a different value is another run");
+}
 // ---------------------------------------------------------------------------------------------
 // Fuzzing. Cases per test are set explicitly; together more than 10 000.
 

@@ -193,6 +193,7 @@ fn a_lock_file_that_is_a_symbolic_link_is_refused() {
     let error = format!("{:#}", run_campaign(&campaign, &layout, Some(1)).unwrap_err());
     assert!(error.contains(lock.to_str().unwrap()) && error.contains("symbolic link"), "{error}");
     assert!(!elsewhere.exists(), "no file is created through the link");
+}
 
 /// Encoding a run's movie is part of the run and stops at its deadline (issue 14: a GIF encode
 /// ran 131 s under a 10 s budget with status ok): a movie whose deadline has passed is not

@@ -227,3 +227,131 @@ fn two_campaigns_with_one_name_do_not_share_a_folder() {
         assert!(!out.status.success() && text(&out.stderr).contains("second.yaml"), "{command}: {}", text(&out.stderr));
     }
 }
+
+/// A pair sweep and a probed lattice kick: small, and every kind of stored series.
+const STORE_CAMPAIGN: &str = "version: 1\nname: store\nscenes:\n  - name: kick\n    kind: lattice\n    \
+    lattice: {size: 6}\n    impulse: {node: top-right, velocity: [0.0, -0.1]}\n    time: {duration_tc: 5, samples: 10}\n    \
+    probes: {rows: [bottom]}\n  - name: pair\n    kind: pair\n    v0: 1.0\n    grid:\n      time.dt_per_tc: [20, 50, 100, 200]\n";
+
+/// Runs [`STORE_CAMPAIGN`] into a fresh reports directory: (that directory, the campaign file,
+/// the campaign file).
+fn stored_campaign() -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("store.yaml");
+    std::fs::write(&file, STORE_CAMPAIGN).unwrap();
+    let out = mdsolids(&dir.path().join("reports"), &["run", file.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    (dir, file)
+}
+
+/// The stored record of the first run of `scene`, as JSON.
+fn record_of(runs: &Path, scene: &str) -> (PathBuf, serde_json::Value) {
+    let path = run_files(runs.parent().unwrap())
+        .into_iter()
+        .find(|f| f.file_name().unwrap().to_string_lossy().starts_with(&format!("{scene}-")))
+        .unwrap();
+    let json = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    (path, json)
+}
+
+#[test]
+fn records_of_another_build_are_simulated_again_or_reused_loudly() {
+    let (dir, file) = stored_campaign();
+    let (file, reports) = (file.to_str().unwrap(), dir.path().join("reports"));
+    let runs = reports.join("store/runs");
+    let (path, mut record) = record_of(&runs, "pair");
+    let run_id = record["run_id"].as_str().unwrap().to_string();
+    assert!(record["build"].as_str().is_some_and(|b| b.starts_with(concat!(env!("CARGO_PKG_VERSION"), "+"))));
+    let age = |record: &mut serde_json::Value| {
+        record["build"] = "0.0.1+0123456789abcdef".into();
+        std::fs::write(&path, record.to_string()).unwrap();
+    };
+    age(&mut record);
+
+    // `plan` says it would be simulated again and why; `report` keeps it, marked.
+    let plan = text(&mdsolids(&reports, &["plan", file]).stdout);
+    let line = plan.lines().find(|l| l.starts_with(&run_id)).unwrap();
+    assert!(line.contains(" stale "), "{line}");
+    assert!(plan.contains("1 made by another build"), "{plan}");
+    let report = mdsolids(&reports, &["report", file]);
+    assert!(report.status.success(), "{}", text(&report.stderr));
+    assert!(text(&report.stderr).contains("made by another build than this one"), "{}", text(&report.stderr));
+    let csv = std::fs::read_to_string(reports.join("store/results.csv")).unwrap();
+    let row = csv.lines().find(|l| l.starts_with(&run_id)).unwrap();
+    assert!(row.contains(",0.0.1+0123456789abcdef,true,"), "{row}");
+    let column = csv.lines().next().unwrap().split(',').position(|c| c == "other_build").unwrap();
+    let marks: Vec<&str> = csv.lines().skip(1).map(|l| l.split(',').nth(column).unwrap()).collect();
+    assert_eq!(marks.iter().filter(|&&m| m == "false").count(), 4, "the other runs are of this build: {csv}");
+    let markdown = std::fs::read_to_string(reports.join("store/report.md")).unwrap();
+    assert!(markdown.contains("**1 of these runs were made by another build**"), "{markdown}");
+    assert!(markdown.contains(&format!("| `{run_id}` | `0.0.1+0123456789abcdef` |")), "{markdown}");
+
+    // `run --reuse-other-builds` takes it, saying so for that run; plain `run` simulates it.
+    let reuse = mdsolids(&reports, &["run", file, "--reuse-other-builds"]);
+    assert!(text(&reuse.stdout).contains("(0 simulated, 5 cached"), "{}", text(&reuse.stdout));
+    let warning = format!("warning: reusing {run_id}, made by build 0.0.1+0123456789abcdef, not by this build");
+    assert!(text(&reuse.stderr).contains(&warning), "{}", text(&reuse.stderr));
+    let again = mdsolids(&reports, &["run", file]);
+    assert!(text(&again.stdout).contains("(1 simulated, 4 cached"), "{}", text(&again.stdout));
+    assert!(text(&again.stderr).contains("simulated again"), "{}", text(&again.stderr));
+    let (_, rewritten) = record_of(&runs, "pair");
+    assert_ne!(rewritten["build"], "0.0.1+0123456789abcdef");
+}
+
+#[test]
+fn corrupt_records_are_reported_left_out_and_simulated_again() {
+    let (dir, file) = stored_campaign();
+    let (file, reports) = (file.to_str().unwrap(), dir.path().join("reports"));
+    let runs = reports.join("store/runs");
+    let complete = std::fs::read_to_string(reports.join("store/results.csv")).unwrap();
+    // A record whose run_id climbs out of the reports folder (it named probes/<run_id>.csv),
+    // one whose probe series is a row short (the report indexed past its end), one holding
+    // a number beyond f64 and one that is not JSON.
+    let (kick, mut record) = record_of(&runs, "kick");
+    record["run_id"] = "../../../escaped".into();
+    std::fs::write(&kick, record.to_string()).unwrap();
+    let pairs: Vec<PathBuf> =
+        run_files(&reports.join("store")).into_iter().filter(|f| f.to_string_lossy().contains("/pair-")).collect();
+    let mut short: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&pairs[0]).unwrap()).unwrap();
+    short["trace"]["kinetic"].as_array_mut().unwrap().pop();
+    std::fs::write(&pairs[0], short.to_string()).unwrap();
+    let huge = std::fs::read_to_string(&pairs[1]).unwrap().replacen("\"wall_s\":", "\"wall_s\":1e999,\"x\":", 1);
+    std::fs::write(&pairs[1], huge).unwrap();
+    std::fs::write(&pairs[2], "{\"run_id\": ").unwrap();
+
+    let plan = text(&mdsolids(&reports, &["plan", file]).stdout);
+    assert_eq!(plan.lines().filter(|l| l.split_whitespace().nth(9) == Some("corrupt")).count(), 4, "{plan}");
+    assert!(plan.contains("`run` simulates 4: 4 with a corrupt record"), "{plan}");
+
+    let report = mdsolids(&reports, &["report", file]);
+    let stderr = text(&report.stderr);
+    assert!(report.status.success(), "{stderr}");
+    assert!(!dir.path().join("escaped.csv").exists() && !reports.join("escaped.csv").exists());
+    for why in [
+        "its run_id \"../../../escaped\" is not its file name",
+        "trace.kinetic has 600 entries for 601 sample times", // one short of the pair's 600 steps + start
+        "is not a run record: number out of range",
+        "is not a run record: EOF while parsing",
+    ] {
+        assert!(stderr.contains(why), "{why} not in {stderr}");
+    }
+    assert!(!stderr.contains("no stored result"), "corrupt is not missing: {stderr}");
+    assert!(stderr.contains("PARTIAL results") && stderr.contains("kept as results.previous.csv"), "{stderr}");
+    // The complete table is kept aside, the partial one says what it lacks.
+    assert_eq!(std::fs::read_to_string(reports.join("store/results.previous.csv")).unwrap(), complete);
+    assert_eq!(std::fs::read_to_string(reports.join("store/results.csv")).unwrap().lines().count(), 2);
+    let markdown = std::fs::read_to_string(reports.join("store/report.md")).unwrap();
+    assert!(markdown.contains("**Partial report: 1 of the campaign's 5 runs"), "{markdown}");
+    assert_eq!(markdown.matches("| corrupt record: ").count(), 4, "{markdown}");
+
+    let run = mdsolids(&reports, &["run", file]);
+    assert!(text(&run.stdout).contains("(4 simulated, 1 cached"), "{}", text(&run.stdout));
+    assert_eq!(text(&run.stderr).matches(" is corrupt (").count(), 4, "{}", text(&run.stderr));
+    let report = mdsolids(&reports, &["report", file]);
+    assert!(
+        text(&report.stdout).contains("from 5 stored runs (0 without results, 0 corrupt"),
+        "{}",
+        text(&report.stdout)
+    );
+    assert!(!text(&report.stderr).contains("PARTIAL"), "{}", text(&report.stderr));
+}

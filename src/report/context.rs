@@ -9,7 +9,7 @@ use super::studies::{
 };
 use super::{error, number, optional};
 use crate::measure::convergence_order;
-use crate::runner::RunRecord;
+use crate::runner::{BUILD, RunRecord};
 use crate::spec::{Campaign, LawName, SceneKind};
 use crate::table::relative_error;
 
@@ -19,12 +19,23 @@ pub struct ReportContext {
     name: String,
     title: String,
     description: String,
-    version: &'static str,
+    /// This build (version + source fingerprint).
+    build: &'static str,
     runs: usize,
+    /// Runs of the campaign.
+    campaign_runs: usize,
     ok: usize,
     failed: usize,
     /// Runs of the campaign without a stored record (a shard not run yet, or a task that died).
     missing: usize,
+    /// Runs whose stored record is corrupt.
+    corrupt: usize,
+    /// The runs left out (corrupt ones first, then at most [`LISTED_MISSING`] missing ones).
+    left_out: Vec<LeftOutRow>,
+    /// Row count of the previous, larger table kept aside (0: none kept).
+    previous_table: usize,
+    /// Runs in the report made by another build.
+    other_build: Vec<LeftOutRow>,
     wall_s: String,
     has_pair: bool,
     has_chain: bool,
@@ -150,6 +161,16 @@ struct ChainRow {
     status: String,
 }
 
+/// A run and a reason: why it is left out, or the build that made it.
+#[derive(Serialize)]
+struct LeftOutRow {
+    run_id: String,
+    why: String,
+}
+
+/// Missing runs listed by name in a report (a cluster job may lack thousands).
+const LISTED_MISSING: usize = 50;
+
 #[derive(Serialize)]
 struct FailureRow {
     run_id: String,
@@ -158,17 +179,37 @@ struct FailureRow {
 }
 
 /// Builds the context from the campaign, its records and the drawn figures.
-pub fn build(campaign: &Campaign, records: &[RunRecord], figures: &[Figure], side_by_side: &[String]) -> ReportContext {
+pub fn build(
+    campaign: &Campaign,
+    records: &[RunRecord],
+    left_out: &super::LeftOut,
+    figures: &[Figure],
+    side_by_side: &[String],
+) -> ReportContext {
     let ok = records.iter().filter(|r| r.status == "ok").count();
+    let row = |run_id: &String, why: String| LeftOutRow { run_id: run_id.clone(), why };
+    let mut left_out_rows: Vec<LeftOutRow> =
+        left_out.corrupt.iter().map(|(run_id, why)| row(run_id, format!("corrupt record: {why}"))).collect();
+    left_out_rows
+        .extend(left_out.missing.iter().take(LISTED_MISSING).map(|run_id| row(run_id, "no stored result".into())));
+    if left_out.missing.len() > LISTED_MISSING {
+        let more = left_out.missing.len() - LISTED_MISSING;
+        left_out_rows.push(LeftOutRow { run_id: format!("… and {more} more"), why: "no stored result".into() });
+    }
     ReportContext {
         name: campaign.name.clone(),
         title: campaign.title.clone(),
         description: campaign.description.clone(),
-        version: env!("CARGO_PKG_VERSION"),
+        build: BUILD,
         runs: records.len(),
+        campaign_runs: campaign.runs.len(),
         ok,
         failed: records.len() - ok,
-        missing: campaign.runs.len().saturating_sub(records.len()),
+        missing: left_out.missing.len(),
+        corrupt: left_out.corrupt.len(),
+        left_out: left_out_rows,
+        previous_table: left_out.previous_table.unwrap_or(0),
+        other_build: records.iter().filter(|r| r.build != BUILD).map(|r| row(&r.run_id, r.build.clone())).collect(),
         wall_s: number(records.iter().map(|r| r.wall_s).sum()),
         has_pair: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Pair),
         has_chain: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Chain),

@@ -24,8 +24,32 @@ use crate::spec::Campaign;
 const MARKDOWN_TEMPLATE: &str = include_str!("../../templates/report.md.tera");
 const HTML_TEMPLATE: &str = include_str!("../../templates/index.html.tera");
 
-/// Draws the figures and writes `report.md` and `index.html` for `records`.
+/// Runs of the campaign that are not in a report, and why (`mdsolids report` of a store that
+/// lacks some).
+#[derive(Clone, Debug, Default)]
+pub struct LeftOut {
+    /// Runs without a stored record.
+    pub missing: Vec<String>,
+    /// Runs whose stored record is corrupt, with why.
+    pub corrupt: Vec<(String, String)>,
+    /// The row count of the previous, larger results table, when it was kept aside as
+    /// `results.previous.csv` and `.parquet`.
+    pub previous_table: Option<usize>,
+}
+
+/// Draws the figures and writes `report.md` and `index.html` for `records`, one per run of
+/// the campaign.
 pub fn render(campaign: &Campaign, layout: &Layout, records: &[RunRecord]) -> anyhow::Result<()> {
+    render_with_left_out(campaign, layout, records, &LeftOut::default())
+}
+
+/// [`render`] for `records` that lack the campaign's runs `left_out`: the report says so.
+pub fn render_with_left_out(
+    campaign: &Campaign,
+    layout: &Layout,
+    records: &[RunRecord],
+    left_out: &LeftOut,
+) -> anyhow::Result<()> {
     let figures = figures::draw_all(campaign, records)?;
     for figure in &figures {
         write_atomically(&layout.file(&figure.file), figure.svg.as_bytes())?;
@@ -52,7 +76,7 @@ pub fn render(campaign: &Campaign, layout: &Layout, records: &[RunRecord]) -> an
     let movies = side_by_side.iter().map(|scene| format!("plots/{scene}-side-by-side.gif")).collect();
     remove_stale(&layout.root, "plots", "-side-by-side.gif", &movies)?;
     remove_stale(&layout.root, "probes", ".csv", &probes)?;
-    let context = context::build(campaign, records, &figures, &side_by_side);
+    let context = context::build(campaign, records, left_out, &figures, &side_by_side);
     let context = tera::Context::from_serialize(&context).context("cannot build the report context")?;
     write_pages(&layout.root, ("report.md", MARKDOWN_TEMPLATE), context)
 }

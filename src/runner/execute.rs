@@ -4,7 +4,7 @@
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::{Duration, Instant};
 
-use super::record::{Metrics, Movie, RunRecord};
+use super::record::{BUILD, Metrics, Movie, RunRecord};
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
     ARRIVAL_CRITERIA, LatticeShape, anisotropic_moduli, arrival_time, constrained_modulus_y, contact_timing,
@@ -39,6 +39,7 @@ pub fn execute_within(spec: &RunSpec, budget: &Budget) -> RunRecord {
     };
     let mut record = RunRecord {
         run_id: spec.run_id(),
+        build: BUILD.into(),
         spec: spec.clone(),
         status: "ok".into(),
         message: String::new(),
@@ -140,7 +141,7 @@ fn build_scene_until(spec: &RunSpec, deadline: Instant) -> Scene {
 }
 
 fn run_and_measure(spec: &RunSpec, deadline: Instant) -> Finished {
-    let scene = build_scene_until(spec, deadline);
+    let mut scene = build_scene_until(spec, deadline);
     let stability = estimate(spec);
     let mut metrics = Metrics {
         omega_max: Some(stability.omega_max),

@@ -2,7 +2,7 @@
 //! cached by content hash, with a progress bar; a failing run becomes a record, not a crash.
 
 pub use self::execute::{execute, execute_within};
-pub use self::record::{Metrics, Movie, RunRecord};
+pub use self::record::{BUILD, Metrics, Movie, RunRecord};
 pub use self::shard::{Shard, shard_campaign, shard_of_each_run};
 
 mod execute;
@@ -27,8 +27,13 @@ pub struct CampaignRun {
     pub records: Vec<RunRecord>,
     /// Runs simulated now.
     pub simulated: usize,
-    /// Runs taken from the store.
+    /// Runs taken from the store (with [`OtherBuilds::Reuse`], those of another build too).
     pub cached: usize,
+    /// Runs whose stored record was corrupt, with why: simulated again.
+    pub corrupt: Vec<(String, String)>,
+    /// Runs whose stored record was made by another build, with that build: simulated again,
+    /// or taken as they are with [`OtherBuilds::Reuse`].
+    pub other_build: Vec<(String, String)>,
 }
 
 /// Set when the user interrupts the process (Ctrl-C or SIGTERM, see `cli`): runs not started
@@ -58,35 +63,100 @@ pub fn stored_count(campaign: &Campaign, layout: &Layout) -> usize {
     campaign.runs.iter().filter(|spec| layout.run_file(&spec.run_id()).is_file()).count()
 }
 
-/// The stored record of `spec`, if there is one for exactly this spec.
-pub fn stored_record(layout: &Layout, spec: &RunSpec) -> Option<RunRecord> {
-    let text = std::fs::read_to_string(layout.run_file(&spec.run_id())).ok()?;
-    serde_json::from_str::<RunRecord>(&text).ok().filter(|record| record.spec == *spec)
+/// What `run` does with a valid record made by another build (another version, or other
+/// source that computes results): its numbers may predate a fix.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OtherBuilds {
+    /// Simulate the run again with this build (the default).
+    Simulate,
+    /// Take the record as it is (`run --reuse-other-builds`; the caller says so per run).
+    Reuse,
 }
 
-/// Runs every run of `campaign` that has no stored record, on `jobs` threads (all cores when
-/// `None`), storing each record as soon as it is finished; waits for a run locked by another
-/// process at most the campaign's time budget per run (see [`run_campaign_waiting`]).
+/// What the store holds for one run of a campaign.
+#[derive(Debug)]
+pub enum Stored {
+    /// No record.
+    Missing,
+    /// A file that is not a valid record of this run, and why (unreadable, not a record, another
+    /// run's id or spec, series of the wrong length).
+    Corrupt(String),
+    /// A valid record made by another build ([`RunRecord::build`] is not [`BUILD`]).
+    OtherBuild(RunRecord),
+    /// A valid record made by this build.
+    Current(RunRecord),
+}
+
+/// Reads and checks the stored record of `spec` (`runs/<run_id>.json`).
+pub fn read_stored(layout: &Layout, spec: &RunSpec) -> Stored {
+    let text = match std::fs::read_to_string(layout.run_file(&spec.run_id())) {
+        Ok(text) => text,
+        Err(error) if error.kind() == std::io::ErrorKind::NotFound => return Stored::Missing,
+        Err(error) => return Stored::Corrupt(format!("cannot be read: {error}")),
+    };
+    let record = match serde_json::from_str::<RunRecord>(&text) {
+        Ok(record) => record,
+        Err(error) => return Stored::Corrupt(format!("is not a run record: {error}")),
+    };
+    match record.check(spec) {
+        Err(why) => Stored::Corrupt(why),
+        Ok(()) if record.build == BUILD => Stored::Current(record),
+        Ok(()) => Stored::OtherBuild(record),
+    }
+}
+
+/// The stored record of `spec`, if there is a valid one made by this build.
+pub fn stored_record(layout: &Layout, spec: &RunSpec) -> Option<RunRecord> {
+    match read_stored(layout, spec) {
+        Stored::Current(record) => Some(record),
+        _ => None,
+    }
+}
+
+/// Runs every run of `campaign` that has no valid stored record of this build, on `jobs`
+/// threads (all cores when `None`), storing each record as soon as it is finished; records of
+/// another build are simulated again, and a run locked by another process is waited for at
+/// most the campaign's time budget per run (see [`run_campaign_with`]).
 pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -> anyhow::Result<CampaignRun> {
     let lock_wait = Duration::from_secs_f64(campaign.budget.seconds_per_run.min(1e9));
-    run_campaign_waiting(campaign, layout, jobs, lock_wait)
+    run_campaign_with(campaign, layout, jobs, lock_wait, OtherBuilds::Simulate)
 }
 
-/// [`run_campaign`], waiting at most `lock_wait` for each run another process holds (its lock
-/// file): those runs are left until every other run is done, then waited for, saying so on
-/// stderr; after `lock_wait` the campaign stops with an error naming the run and lock file.
-pub fn run_campaign_waiting(
+/// [`run_campaign`], with records of another build simulated again or reused as `other_builds`
+/// says, and waiting at most `lock_wait` for each run another process holds (its lock file):
+/// those runs are left until every other run is done, then waited for, saying so on stderr;
+/// after `lock_wait` the campaign stops with an error naming the run and lock file.
+pub fn run_campaign_with(
     campaign: &Campaign,
     layout: &Layout,
     jobs: Option<usize>,
     lock_wait: Duration,
+    other_builds: OtherBuilds,
 ) -> anyhow::Result<CampaignRun> {
+    let (mut corrupt, mut other_build) = (Vec::new(), Vec::new());
     // A run stopped by its budget is tried again: its outcome depends on the machine and the
     // budget, not only on its spec.
     let stored: Vec<Option<RunRecord>> = campaign
         .runs
         .iter()
-        .map(|spec| stored_record(layout, spec).filter(|record| record.status != "budget"))
+        .map(|spec| {
+            let record = match read_stored(layout, spec) {
+                Stored::Current(record) => record,
+                Stored::OtherBuild(record) if record.status != "budget" => {
+                    other_build.push((record.run_id.clone(), record.build.clone()));
+                    match other_builds {
+                        OtherBuilds::Reuse => record,
+                        OtherBuilds::Simulate => return None,
+                    }
+                }
+                Stored::Corrupt(why) => {
+                    corrupt.push((spec.run_id(), why));
+                    return None;
+                }
+                Stored::OtherBuild(_) | Stored::Missing => return None,
+            };
+            (record.status != "budget").then_some(record)
+        })
         .collect();
     let todo: Vec<&RunSpec> = campaign.runs.iter().zip(&stored).filter(|(_, r)| r.is_none()).map(|(s, _)| s).collect();
     let progress = progress_bar(todo.len() as u64);
@@ -158,7 +228,7 @@ pub fn run_campaign_waiting(
         .map(|r| r.unwrap_or_else(|| fresh.next().expect("one fresh record per missing run").0))
         .collect();
     write_missing_movies(campaign, layout, &records, frames)?;
-    Ok(CampaignRun { cached: records.len() - simulated, records, simulated })
+    Ok(CampaignRun { cached: records.len() - simulated, records, simulated, corrupt, other_build })
 }
 
 /// Runs `spec` and stores its record (and movie), holding the run's lock file so that another

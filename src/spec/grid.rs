@@ -35,6 +35,22 @@ pub fn set_path(value: &mut Value, path: &str, new: Value) {
     *slot = new;
 }
 
+/// `value` with every number in one form, so that numbers equal in value are equal as JSON:
+/// `-0.0` becomes `0` and an integer-valued float (`50.0`) that integer (`50`). Grid values are
+/// stored this way, and run ids hash the spec this way (`RunSpec::run_id`).
+pub fn canonical(value: &Value) -> Value {
+    match value {
+        // Below 2^63 in magnitude an integer-valued f64 is exactly an i64.
+        Value::Number(number) if number.is_f64() => match number.as_f64() {
+            Some(x) if x.fract() == 0.0 && x.abs() < 2f64.powi(63) => Value::from(x as i64),
+            _ => value.clone(),
+        },
+        Value::Array(items) => Value::Array(items.iter().map(canonical).collect()),
+        Value::Object(map) => Value::Object(map.iter().map(|(key, item)| (key.clone(), canonical(item))).collect()),
+        _ => value.clone(),
+    }
+}
+
 /// Number of points of the cartesian product of `grid`, `None` beyond `u64::MAX`: counted
 /// before the product is expanded, so an enormous grid is refused without allocating it.
 pub fn point_count(grid: &Grid) -> Option<u64> {
@@ -80,6 +96,17 @@ mod tests {
         let grid: Grid = (0..7).map(|i| (format!("a{i}"), axis.clone())).collect();
         assert_eq!(point_count(&grid), None); // 1000^7 > 2^64
         assert_eq!(point_count(&Grid::new()), Some(1));
+    }
+
+    #[test]
+    fn canonical_numbers_are_equal_when_their_values_are() {
+        assert_eq!(canonical(&json!(50.0)), json!(50));
+        assert_eq!(canonical(&json!(-0.0)), json!(0));
+        assert_eq!(canonical(&json!(0.0)).to_string(), canonical(&json!(-0.0)).to_string());
+        assert_eq!(canonical(&json!({"a": [2.0, 0.5], "b": -3.0})), json!({"a": [2, 0.5], "b": -3}));
+        assert_eq!(canonical(&json!(0.5)), json!(0.5));
+        assert_eq!(canonical(&json!(1e300)), json!(1e300)); // beyond i64: left a float
+        assert_eq!(canonical(&json!(u64::MAX)), json!(u64::MAX));
     }
 
     #[test]

@@ -18,7 +18,7 @@ use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use self::grid::{get_path, grid_points, merge, point_count, set_path};
+use self::grid::{canonical, get_path, grid_points, merge, point_count, set_path};
 use self::raw::{Grid, RawCampaign, RawScene};
 
 /// Why a campaign file was refused.
@@ -320,7 +320,7 @@ fn expand_scene(
                 set_path(&mut merged, path, value.clone());
             }
             let resolved: RawScene = serde_json::from_value(merged).map_err(|e| format!("scenes[{index}]: {e}"))?;
-            let varied = point.into_iter().collect();
+            let varied = point.into_iter().map(|(path, value)| (path, canonical(&value))).collect();
             resolve::resolve(&raw.name, &resolved, varied)
                 .map_err(|issue| format!("{} = {}: {}", origins.locate(&issue.path), issue.value, issue.allowed))
         })
@@ -335,6 +335,23 @@ fn check_grid_paths(base: &Value, grid: &Grid, origins: &Origins) -> Result<(), 
         }
         if matches!(path.as_str(), "name" | "kind" | "grid") {
             return Err(format!("{}: the scene's {path} cannot be varied", origins.locate(path)));
+        }
+        // Two equal values (`[50, 50]`, `[50, 50.0]`, `[0.0, -0.0]`) would give two rows of one
+        // run: one id, simulated and stored once.
+        let forms: Vec<Value> = values.iter().map(canonical).collect();
+        if let Some((second, first)) =
+            forms.iter().enumerate().find_map(|(j, form)| forms[..j].iter().position(|f| f == form).map(|i| (j, i)))
+        {
+            let scene = origins.scene.get("name").and_then(Value::as_str).unwrap_or("?");
+            return Err(format!(
+                "{} (scene {scene}): values {} and {} (positions {} and {}) are the same number, so the grid would \
+                 give scene {scene} the same run twice; list each value once",
+                origins.locate(path),
+                values[first],
+                values[second],
+                first + 1,
+                second + 1
+            ));
         }
         for value in values {
             let mut probe = base.clone();

@@ -328,10 +328,11 @@ pub fn reference_extension(spec: &RunSpec) -> f64 {
 }
 
 impl RunSpec {
-    /// Stable identifier: the scene name and a content hash of the resolved run.
+    /// Stable identifier: the scene name and a content hash of the resolved run, its numbers in
+    /// one form (`-0.0` as `0`, `50.0` as `50`), so runs with the same physics share one id.
     pub fn run_id(&self) -> String {
-        let json = serde_json::to_string(&(RESULT_FORMAT, self)).expect("a RunSpec always serialises");
-        let hash = blake3::hash(json.as_bytes()).to_hex();
+        let value = serde_json::to_value((RESULT_FORMAT, self)).expect("a RunSpec always serialises");
+        let hash = blake3::hash(super::grid::canonical(&value).to_string().as_bytes()).to_hex();
         format!("{}-{}", self.scene, &hash[..12])
     }
 
