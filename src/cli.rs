@@ -577,8 +577,10 @@ fn publish(
 }
 
 fn bench_command(config: &BenchConfig, threads: Option<usize>, repeat: usize, json: bool) -> anyhow::Result<()> {
-    anyhow::ensure!(config.n >= 2, "--n {}: the lattice needs N ≥ 2", config.n);
+    // The largest lattice a campaign may hold (2000 × 2000): a larger N aborted on allocation.
+    anyhow::ensure!((2..=2000).contains(&config.n), "--n {}: the lattice side must be in 2..=2000", config.n);
     anyhow::ensure!(config.steps >= 1 && repeat >= 1, "--steps and --repeat must be ≥ 1");
+    anyhow::ensure!(repeat <= 100, "--repeat {repeat}: at most 100 timed repetitions");
     anyhow::ensure!((0.0..1.0).contains(&config.dilute), "--dilute {}: must be in [0, 1)", config.dilute);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build()?;
     let mut results: Vec<_> = (0..repeat).map(|_| pool.install(|| run_once(config))).collect();

@@ -631,7 +631,7 @@ fn hostile_text_stays_text_in_the_report() {
 
 /// Inputs and options that once ran out of memory, aborted or took minutes are refused at once
 /// with a message naming the limit: a campaign "file" without end, a huge one, a share count
-/// of 10^11 (an 800 GB allocation) and 100 000 threads.
+/// of 10^11 (an 800 GB allocation), 100 000 threads and a bench lattice of 10^12 nodes.
 #[test]
 fn unbounded_inputs_and_options_are_refused_at_once() {
     let work = tempfile::tempdir().unwrap();
@@ -653,5 +653,8 @@ fn unbounded_inputs_and_options_are_refused_at_once() {
         let (ok, _, stderr) = binary(work.path(), &["--reports", "r", "run", smoke, "-j", threads]);
         assert!(!ok && stderr.contains("give a number of threads from 1 to 1024"), "{stderr}");
     }
+    // A bench lattice beyond the campaigns' largest aborted on allocation (10^6 × 10^6 nodes).
+    let (ok, _, stderr) = binary(work.path(), &["bench", "--n", "1000000"]);
+    assert!(!ok && stderr.contains("--n 1000000: the lattice side must be in 2..=2000"), "{stderr}");
     assert!(!work.path().join("r").exists(), "nothing is written");
 }
