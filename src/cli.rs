@@ -208,7 +208,7 @@ fn parse_seconds(text: &str) -> Result<f64, String> {
 /// `--lock-wait`, or the campaign's time budget per run: no run holds its lock longer than
 /// that unless its process is suspended or stuck.
 fn lock_patience(campaign: &Campaign, lock_wait: Option<f64>) -> std::time::Duration {
-    std::time::Duration::from_secs_f64(lock_wait.unwrap_or(campaign.budget.seconds_per_run).min(1e9))
+    lock_wait.map_or_else(|| campaign.budget.time_per_run(), crate::spec::seconds_up_to_1e9)
 }
 
 /// Takes the campaign's publish lock (tables, figures, report), so that a `report` and a

@@ -2,7 +2,7 @@
 //! panic becomes a `panicked` record, a load that drives a mechanism a `mechanism` record.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use super::record::{BUILD, Metrics, Movie, RunRecord};
 use crate::fem::{StaticSolution, Truss};
@@ -32,7 +32,7 @@ pub fn execute(spec: &RunSpec) -> RunRecord {
 pub fn execute_within(spec: &RunSpec, budget: &Budget) -> RunRecord {
     let started = Instant::now();
     let refused = budget.refuses(spec);
-    let deadline = started + Duration::from_secs_f64(budget.seconds_per_run.min(1e9));
+    let deadline = started + budget.time_per_run();
     let result = match &refused {
         Some(_) => Ok(Finished::OverBudget),
         None => catch_unwind(AssertUnwindSafe(|| run_and_measure(spec, deadline))),

@@ -118,8 +118,7 @@ pub fn stored_record(layout: &Layout, spec: &RunSpec) -> Option<RunRecord> {
 /// another build are simulated again, and a run locked by another process is waited for at
 /// most the campaign's time budget per run (see [`run_campaign_with`]).
 pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -> anyhow::Result<CampaignRun> {
-    let lock_wait = Duration::from_secs_f64(campaign.budget.seconds_per_run.min(1e9));
-    run_campaign_with(campaign, layout, jobs, lock_wait, OtherBuilds::Simulate)
+    run_campaign_with(campaign, layout, jobs, campaign.budget.time_per_run(), OtherBuilds::Simulate)
 }
 
 /// [`run_campaign`], with records of another build simulated again or reused as `other_builds`

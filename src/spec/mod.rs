@@ -5,7 +5,7 @@
 pub use self::raw::{Control, Diagonals, LawName, LoadCase, SceneKind, Supports};
 pub use self::run_spec::{
     Budget, ImpulseSpec, LatticeSpec, MovieSpec, ProbeLine, RESULT_FORMAT, RelaxSpec, RunSpec, WaveSpec,
-    reference_extension,
+    reference_extension, seconds_up_to_1e9,
 };
 
 mod finite;

@@ -130,6 +130,12 @@ impl Default for Budget {
 }
 
 impl Budget {
+    /// The time budget per run as a duration: capped at 1e9 s (~32 years), which a deadline
+    /// `Instant::now() + it` never overflows.
+    pub fn time_per_run(&self) -> std::time::Duration {
+        seconds_up_to_1e9(self.seconds_per_run)
+    }
+
     /// Why `spec` cannot start within this budget, if it cannot.
     pub fn refuses(&self, spec: &RunSpec) -> Option<String> {
         let memory = spec.estimated_memory_bytes();
@@ -154,6 +160,12 @@ impl Budget {
             })
         })
     }
+}
+
+/// `seconds` (finite, ≥ 0) as a duration, capped at 1e9 s so that adding it to now never
+/// overflows an `Instant`.
+pub fn seconds_up_to_1e9(seconds: f64) -> std::time::Duration {
+    std::time::Duration::from_secs_f64(seconds.min(1e9))
 }
 
 /// A timed wave: from the excited particle to the receivers (a chain's particle, a lattice's
