@@ -4,8 +4,8 @@
 
 pub use self::raw::{Control, Diagonals, LawName, LoadCase, SceneKind, Supports};
 pub use self::run_spec::{
-    Budget, ImpulseSpec, LatticeSpec, MovieSpec, ProbeLine, RESULT_FORMAT, RelaxSpec, RunSpec, WaveSpec,
-    reference_extension, seconds_up_to_1e9,
+    Budget, ImpulseSpec, LatticeSpec, MovieSpec, POWER_METHOD_BONDS, ProbeLine, RESULT_FORMAT, RelaxSpec, RunSpec,
+    WaveSpec, reference_extension, seconds_up_to_1e9,
 };
 
 mod finite;

@@ -314,6 +314,13 @@ impl LatticeSpec {
     }
 }
 
+/// Networks with more bonds ([`RunSpec::bonds`]) than this get their modes from a node-by-node
+/// bound in one pass (`stability::node_bound`) instead of the power method, whose up to 1000
+/// passes over 250 000 bonds take about a second and grow with the network (a 2000 × 2000
+/// lattice took 170 s and 1.7 GB before `plan` printed anything). Every shipped campaign stays
+/// below it (its largest lattice, 40 × 40, has 6 400 bonds).
+pub const POWER_METHOD_BONDS: usize = 250_000;
+
 /// The extension (m) at which a power-law spring (no stiffness at δ = 0) is linearised for
 /// t_c, the damping and the stability estimate: the deformation the run is expected to reach.
 /// A collision or kick at speed v: the two-body overlap −δ_max(v); a loaded lattice: the
@@ -353,7 +360,7 @@ impl RunSpec {
     /// probes, plus ~3 ns per particle-step (the reference lattice runs at ~330 million
     /// particle-steps/s) and force evaluation, for the run and its reference run, if any; plus
     /// the stages around the loop: the ω_max estimate (≤ 1000 power iterations at ~7 ns per
-    /// bond, twice with bond dashpots), a loaded lattice's static solve (sparse Cholesky of a
+    /// bond, twice with bond dashpots; one pass beyond [`POWER_METHOD_BONDS`]), a loaded lattice's static solve (sparse Cholesky of a
     /// 2D network, ~O(dofs^1.5): 2.5e-7 s · dofs^1.5, ~6 s for 200 × 200 nodes) and the movie's
     /// GIF encoding (~0.2 µs per pixel and frame; faer and the GIF encoder are built without
     /// optimisation, see Cargo.toml).
@@ -363,7 +370,8 @@ impl RunSpec {
         let runs = 1.0 + self.reference_refinement.map_or(0.0, f64::from);
         let time_loop = runs * self.steps as f64 * (80e-9 + 3e-9 * evaluations * self.particles() as f64);
         let eigenproblems = if self.gamma > 0.0 { 2.0 } else { 1.0 };
-        let omega_max = eigenproblems * 1000.0 * 7e-9 * self.bonds() as f64;
+        let passes = if self.bonds() > POWER_METHOD_BONDS { 1.0 } else { 1000.0 };
+        let omega_max = eigenproblems * passes * 7e-9 * self.bonds() as f64;
         let static_solve = 2.5e-7 * self.static_dofs().powf(1.5);
         let movie = self.movie.map_or(0.0, |m| 0.2e-6 * f64::from(m.frames) * f64::from(m.width) * f64::from(m.height));
         time_loop + omega_max + static_solve + movie
