@@ -357,3 +357,164 @@ fn corrupt_records_are_reported_left_out_and_simulated_again() {
     );
     assert!(!text(&report.stderr).contains("PARTIAL"), "{}", text(&report.stderr));
 }
+
+// ---------------------------------------------------------------------------------------------
+// Pinned outputs. `MDSOLIDS_UPDATE_SNAPSHOTS=1 cargo test --release --test pipeline pinned`
+// writes the snapshots anew; do that only for a change that is meant to change results or the
+// report, and say so in the commit.
+
+/// Columns that change from run to run (wall times) or from build to build (the build stamp).
+const UNPINNED_COLUMNS: [&str; 3] = ["build", "wall_s", "loop_s"];
+
+fn updating_snapshots() -> bool {
+    std::env::var_os("MDSOLIDS_UPDATE_SNAPSHOTS").is_some()
+}
+
+fn snapshot_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/snapshots")
+}
+
+/// The fields of a CSV text, rows of cells (RFC 4180 quoting, as polars writes it).
+fn csv_cells(text: &str) -> Vec<Vec<String>> {
+    let (mut rows, mut row, mut cell, mut quoted) = (Vec::new(), Vec::new(), String::new(), false);
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        match (c, quoted) {
+            ('"', true) if chars.peek() == Some(&'"') => {
+                cell.push('"');
+                chars.next();
+            }
+            ('"', _) => quoted = !quoted,
+            (',', false) => row.push(std::mem::take(&mut cell)),
+            ('\n', false) => {
+                row.push(std::mem::take(&mut cell));
+                rows.push(std::mem::take(&mut row));
+            }
+            _ => cell.push(c),
+        }
+    }
+    if !cell.is_empty() || !row.is_empty() {
+        row.push(cell);
+        rows.push(row);
+    }
+    rows
+}
+
+/// The table without its unpinned columns, as CSV text.
+fn pinned_table(csv: &str) -> String {
+    let rows = csv_cells(csv);
+    let keep: Vec<bool> = rows[0].iter().map(|name| !UNPINNED_COLUMNS.contains(&name.as_str())).collect();
+    let quote = |cell: &String| {
+        if cell.contains([',', '"', '\n']) { format!("\"{}\"", cell.replace('"', "\"\"")) } else { cell.clone() }
+    };
+    rows.iter()
+        .map(|row| {
+            row.iter().zip(&keep).filter(|(_, keep)| **keep).map(|(cell, _)| quote(cell)).collect::<Vec<_>>().join(",")
+        })
+        .map(|line| line + "\n")
+        .collect()
+}
+
+/// Cells equal as text, or as numbers to 1e-12 relative: a refactor may reorder a sum and move
+/// the last digits of a result (a few ulps, ~1e-15); anything it really changes moves far more.
+fn same_cell(pinned: &str, now: &str) -> bool {
+    match (pinned.parse::<f64>(), now.parse::<f64>()) {
+        (Ok(a), Ok(b)) if a.is_finite() && b.is_finite() => (a - b).abs() <= 1e-12 * a.abs().max(b.abs()),
+        _ => pinned == now,
+    }
+}
+
+/// Where `now` differs from the snapshot, as lines saying row, column and both values.
+fn table_differences(pinned: &str, now: &str) -> Vec<String> {
+    let (pinned, now) = (csv_cells(pinned), csv_cells(now));
+    if pinned.first() != now.first() || pinned.len() != now.len() {
+        return vec![format!(
+            "columns or rows differ: {} rows of {:?} pinned, {} rows of {:?} now",
+            pinned.len(),
+            pinned.first(),
+            now.len(),
+            now.first()
+        )];
+    }
+    let header = &pinned[0];
+    let mut differences = Vec::new();
+    for (row, (a, b)) in pinned.iter().zip(&now).enumerate().skip(1) {
+        for (column, (x, y)) in a.iter().zip(b).enumerate() {
+            if !same_cell(x, y) {
+                differences.push(format!("row {row} ({}) column {}: pinned {x:?}, now {y:?}", a[0], header[column]));
+            }
+        }
+    }
+    differences
+}
+
+/// `results.csv` of every shipped campaign, timing and build columns aside, is pinned in
+/// tests/snapshots/results/: a refactor must leave every result as it was.
+#[test]
+fn pinned_results_of_the_shipped_campaigns() {
+    let reports = tempfile::tempdir().unwrap();
+    let mut failures = Vec::new();
+    for campaign in ["smoke", "shards", "coursework", "coursework-hertz", "stability", "dt-study"] {
+        let out = mdsolids(reports.path(), &["run", &format!("campaigns/{campaign}.yaml")]);
+        assert!(out.status.success(), "{campaign}: {}", text(&out.stderr));
+        let now = pinned_table(&std::fs::read_to_string(reports.path().join(campaign).join("results.csv")).unwrap());
+        let snapshot = snapshot_dir().join("results").join(format!("{campaign}.csv"));
+        if updating_snapshots() {
+            std::fs::create_dir_all(snapshot.parent().unwrap()).unwrap();
+            std::fs::write(&snapshot, &now).unwrap();
+            continue;
+        }
+        let pinned =
+            std::fs::read_to_string(&snapshot).expect("the snapshot exists (MDSOLIDS_UPDATE_SNAPSHOTS=1 writes it)");
+        let differences = table_differences(&pinned, &now);
+        if !differences.is_empty() {
+            failures.push(format!(
+                "{campaign}: {} cells differ:\n  {}",
+                differences.len(),
+                differences[..differences.len().min(20)].join("\n  ")
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "results changed:\n{}", failures.join("\n"));
+}
+
+/// report.md rendered from a frozen set of records (tests/snapshots/report/runs, made once by
+/// `mdsolids run tests/snapshots/report.yaml`) is pinned: any change of the templates, the
+/// report's context or the tables shows here. The records are stamped with this build first,
+/// so they are rendered as current results, and the build stamp in the text is masked.
+#[test]
+fn pinned_report_of_frozen_records() {
+    let reports = tempfile::tempdir().unwrap();
+    let runs = reports.path().join("report-snapshot").join("runs");
+    std::fs::create_dir_all(&runs).unwrap();
+    for entry in std::fs::read_dir(snapshot_dir().join("report").join("runs")).unwrap() {
+        let path = entry.unwrap().path();
+        let mut record: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        record["build"] = serde_json::Value::from(mdsolids::runner::BUILD);
+        std::fs::write(runs.join(path.file_name().unwrap()), serde_json::to_string(&record).unwrap()).unwrap();
+    }
+    let out = mdsolids(reports.path(), &["report", "tests/snapshots/report.yaml"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let now = std::fs::read_to_string(reports.path().join("report-snapshot").join("report.md"))
+        .unwrap()
+        .replace(mdsolids::runner::BUILD, "<build>");
+    let snapshot = snapshot_dir().join("report").join("report.md");
+    if updating_snapshots() {
+        std::fs::write(&snapshot, &now).unwrap();
+        return;
+    }
+    let pinned = std::fs::read_to_string(&snapshot).unwrap();
+    if pinned != now {
+        let line = pinned
+            .lines()
+            .zip(now.lines())
+            .position(|(a, b)| a != b)
+            .unwrap_or(pinned.lines().count().min(now.lines().count()));
+        panic!(
+            "report.md changed at line {}:\n  pinned: {:?}\n  now:    {:?}",
+            line + 1,
+            pinned.lines().nth(line),
+            now.lines().nth(line)
+        );
+    }
+}
