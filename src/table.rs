@@ -6,17 +6,10 @@ use polars::prelude::*;
 use serde_json::Value;
 use std::collections::BTreeSet;
 
+use crate::measure::relative_error;
 use crate::output::{Layout, write_atomically};
 use crate::runner::RunRecord;
 use crate::spec::Diagonals;
-
-/// Relative error (measured − reference)/reference, when both exist.
-pub fn relative_error(measured: Option<f64>, reference: Option<f64>) -> Option<f64> {
-    match (measured, reference) {
-        (Some(m), Some(r)) if r != 0.0 => Some((m - r) / r),
-        _ => None,
-    }
-}
 
 /// A column of numbers; a non-finite value (a blown-up run's measurement) becomes null, so no
 /// NaN or infinity ever reaches a table.

@@ -9,9 +9,9 @@ use super::studies::{
 };
 use super::{error, number, optional};
 use crate::measure::convergence_order;
+use crate::measure::relative_error;
 use crate::runner::{BUILD, RunRecord};
 use crate::spec::{Campaign, LawName, SceneKind};
-use crate::table::relative_error;
 
 /// Everything the report templates show.
 #[derive(Serialize)]

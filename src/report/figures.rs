@@ -3,9 +3,9 @@
 
 use super::plots::{Chart, Scale, Series, line_chart};
 use super::studies;
+use crate::measure::relative_error;
 use crate::runner::RunRecord;
 use crate::spec::{Campaign, SceneKind};
-use crate::table::relative_error;
 
 /// A drawn figure.
 pub struct Figure {

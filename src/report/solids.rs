@@ -118,7 +118,7 @@ pub fn ensemble_rows(records: &[RunRecord], scene: &str) -> Vec<EnsembleRow> {
                     let m = &r.metrics;
                     [(m.youngs_modulus, m.youngs_modulus_fem), (m.shear_modulus, m.shear_modulus_fem)]
                 })
-                .filter_map(|(md, fem)| crate::table::relative_error(md, fem).map(f64::abs))
+                .filter_map(|(md, fem)| crate::measure::relative_error(md, fem).map(f64::abs))
                 .reduce(f64::max);
             EnsembleRow {
                 group: if group.is_empty() { "all".into() } else { group },
