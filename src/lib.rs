@@ -26,6 +26,7 @@
 pub mod bench;
 pub mod cli;
 pub mod compare;
+pub mod draw;
 pub mod fem;
 pub mod measure;
 pub mod model;

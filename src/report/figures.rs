@@ -1,8 +1,8 @@
 //! Which figures a campaign gets: energies per scene, chain displacements, and the
 //! convergence of the pair measurements against their analytical values.
 
-use super::plots::{Chart, Scale, Series, line_chart};
 use super::studies;
+use crate::draw::chart::{Chart, Scale, Series, line_chart};
 use crate::measure::relative_error;
 use crate::runner::RunRecord;
 use crate::spec::{Campaign, SceneKind};

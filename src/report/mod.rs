@@ -6,12 +6,8 @@
 mod context;
 mod figures;
 mod markdown;
-mod movie;
-pub mod plots;
 mod solids;
 mod studies;
-
-pub use self::movie::{PastDeadline, speed_color, write_movie, write_movie_panels};
 
 use anyhow::Context as _;
 use std::collections::BTreeSet;

@@ -5,8 +5,8 @@
 use serde::Serialize;
 
 use super::figures::Figure;
-use super::plots::{Chart, Scale, Series, line_chart};
 use super::{number, optional};
+use crate::draw::chart::{Chart, Scale, Series, line_chart};
 use crate::runner::RunRecord;
 use crate::table::scaling_fits;
 

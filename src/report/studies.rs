@@ -4,8 +4,8 @@
 use serde::Serialize;
 
 use super::figures::{Figure, groups, representative};
-use super::plots::{Chart, Scale, Series, heatmap, line_chart};
 use super::{number, optional};
+use crate::draw::chart::{Chart, Scale, Series, heatmap, line_chart};
 use crate::measure::{ARRIVAL_CRITERIA, Recommendation, convergence_order, recommended_dt};
 use crate::runner::RunRecord;
 use crate::spec::SceneKind;

@@ -4,7 +4,8 @@
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::Instant;
 
-use super::record::{BUILD, Metrics, Movie, RunRecord};
+use super::record::{BUILD, Metrics, RunRecord};
+use crate::draw::Movie;
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
     ARRIVAL_CRITERIA, LatticeShape, anisotropic_moduli, arrival_time, constrained_modulus_y, contact_timing,
