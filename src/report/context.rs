@@ -2,12 +2,12 @@
 
 use serde::Serialize;
 
-use super::figures::{Figure, group_label, groups, representative};
+use super::figure::{Figure, group_label, groups, representative};
 use super::studies::{
     ExponentRow, LimitRow, PrecisionRow, StabilityRow, WaveRow, exponent_rows, is_stability_scene, precision_rows,
     stability_rows, wave_rows,
 };
-use super::{error, number, optional};
+use super::words::{error, impulse_words, number, optional};
 use crate::measure::convergence_order;
 use crate::measure::relative_error;
 use crate::runner::{BUILD, RunRecord};
@@ -329,14 +329,6 @@ fn section(
             }))
             .collect(),
     })
-}
-
-/// An impulse in words: the kick's velocity or the top row's step force.
-pub(super) fn impulse_words(i: &crate::spec::ImpulseSpec) -> String {
-    match i.top_row_force {
-        Some([fx, fy]) => format!("a step force ({}, {}) N on every top-row node", number(fx), number(fy)),
-        None => format!("node {} kicked at ({}, {}) m/s", i.node, number(i.vx), number(i.vy)),
-    }
 }
 
 fn pair_row(r: &RunRecord) -> PairRow {

@@ -4,10 +4,12 @@
 //! in, so the binary works from any directory. Only sections of the campaign's scenes show.
 
 mod context;
+mod figure;
 mod figures;
 mod markdown;
 mod solids;
 mod studies;
+mod words;
 
 use anyhow::Context as _;
 use std::collections::BTreeSet;
@@ -125,27 +127,4 @@ pub(crate) fn write_pages(
     context.insert("body", &body);
     let html = tera.render("index.html", &context).context("cannot render templates/index.html.tera")?;
     write_atomically(&dir.join("index.html"), html.as_bytes())
-}
-
-/// A number with 6 significant digits, plain where that reads well, scientific otherwise.
-fn number(x: f64) -> String {
-    if x == 0.0 {
-        return "0".into();
-    }
-    let magnitude = x.abs().log10().floor();
-    if (-3.0..5.0).contains(&magnitude) {
-        let decimals = (5.0 - magnitude) as usize;
-        let text = format!("{x:.decimals$}");
-        if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.').to_string() } else { text }
-    } else {
-        format!("{x:.5e}")
-    }
-}
-
-fn optional(x: Option<f64>) -> String {
-    x.map(number).unwrap_or_else(|| "–".into())
-}
-
-fn error(x: Option<f64>) -> String {
-    x.map(|e| format!("{e:+.2e}")).unwrap_or_else(|| "–".into())
 }

@@ -4,8 +4,8 @@
 
 use serde::Serialize;
 
-use super::figures::Figure;
-use super::{number, optional};
+use super::figure::Figure;
+use super::words::{number, optional};
 use crate::draw::chart::{Chart, Scale, Series, line_chart};
 use crate::runner::RunRecord;
 use crate::table::scaling_fits;

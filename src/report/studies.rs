@@ -3,8 +3,8 @@
 
 use serde::Serialize;
 
-use super::figures::{Figure, groups, representative};
-use super::{number, optional};
+use super::figure::{Figure, groups, representative};
+use super::words::{impulse_words, number, optional};
 use crate::draw::chart::{Chart, Scale, Series, heatmap, line_chart};
 use crate::measure::{ARRIVAL_CRITERIA, Recommendation, convergence_order, recommended_dt};
 use crate::runner::RunRecord;
@@ -351,7 +351,7 @@ pub fn wave_rows(records: &[RunRecord], scene: &str) -> Vec<WaveRow> {
                 run_id: r.run_id.clone(),
                 label: r.spec.varied_label(|_| true),
                 v0: match r.spec.lattice.as_ref().and_then(|l| l.impulse) {
-                    Some(i) => super::context::impulse_words(&i),
+                    Some(i) => impulse_words(&i),
                     None => format!("v0 = {} m/s", number(r.spec.v0)),
                 },
                 distance: optional(m.wave_distance),
