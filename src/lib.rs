@@ -39,5 +39,6 @@ pub mod sim;
 pub mod slurm;
 pub mod spec;
 pub mod stability;
+pub mod summary;
 pub mod table;
 pub mod theory;

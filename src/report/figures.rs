@@ -7,12 +7,13 @@ use crate::draw::chart::{Chart, Scale, Series, line_chart};
 use crate::measure::relative_error;
 use crate::runner::RunRecord;
 use crate::spec::{Campaign, SceneKind};
+use crate::summary::ScalingFit;
 
 /// At most this many energy figures per scene (one per group).
 const MAX_ENERGY_FIGURES: usize = 4;
 
 /// Every figure of the report.
-pub fn draw_all(campaign: &Campaign, records: &[RunRecord]) -> anyhow::Result<Vec<Figure>> {
+pub fn draw_all(campaign: &Campaign, records: &[RunRecord], fits: &[ScalingFit]) -> anyhow::Result<Vec<Figure>> {
     let mut figures = Vec::new();
     for (scene, kind) in &campaign.scenes {
         let groups = groups(records, scene);
@@ -40,9 +41,9 @@ pub fn draw_all(campaign: &Campaign, records: &[RunRecord]) -> anyhow::Result<Ve
             SceneKind::Pair => {}
         }
         figures.extend(studies::precision_figures(records, scene)?);
-        figures.extend(studies::wave_figures(records, scene)?);
+        figures.extend(studies::wave_figures(records, fits, scene)?);
         figures.extend(studies::probe_figures(records, scene)?);
-        figures.extend(super::solids::scaling_figures(records, scene)?);
+        figures.extend(super::solids::scaling_figures(fits, scene)?);
         figures.extend(super::solids::ensemble_figure(records, scene)?);
         if studies::is_stability_scene(records, scene) {
             figures.extend(studies::stability_figures(records, scene)?);

@@ -18,6 +18,7 @@ use std::path::Path;
 use crate::output::{Layout, write_atomically};
 use crate::runner::RunRecord;
 use crate::spec::Campaign;
+use crate::summary::{ScalingFit, scaling_fits};
 
 const MARKDOWN_TEMPLATE: &str = include_str!("../../templates/report.md.tera");
 const HTML_TEMPLATE: &str = include_str!("../../templates/index.html.tera");
@@ -38,17 +39,20 @@ pub struct LeftOut {
 /// Draws the figures and writes `report.md` and `index.html` for `records`, one per run of
 /// the campaign.
 pub fn render(campaign: &Campaign, layout: &Layout, records: &[RunRecord]) -> anyhow::Result<()> {
-    render_with_left_out(campaign, layout, records, &LeftOut::default())
+    render_with_left_out(campaign, layout, records, &scaling_fits(records), &LeftOut::default())
 }
 
 /// [`render`] for `records` that lack the campaign's runs `left_out`: the report says so.
+/// `fits` are the scaling laws fitted over `records` (`summary::scaling_fits`), the ones the
+/// campaign's `summary.csv` holds.
 pub fn render_with_left_out(
     campaign: &Campaign,
     layout: &Layout,
     records: &[RunRecord],
+    fits: &[ScalingFit],
     left_out: &LeftOut,
 ) -> anyhow::Result<()> {
-    let figures = figures::draw_all(campaign, records)?;
+    let figures = figures::draw_all(campaign, records, fits)?;
     for figure in &figures {
         write_atomically(&layout.file(&figure.file), figure.svg.as_bytes())?;
     }
@@ -74,7 +78,7 @@ pub fn render_with_left_out(
     let movies = side_by_side.iter().map(|scene| format!("plots/{scene}-side-by-side.gif")).collect();
     remove_stale(&layout.root, "plots", "-side-by-side.gif", &movies)?;
     remove_stale(&layout.root, "probes", ".csv", &probes)?;
-    let context = context::build(campaign, records, left_out, &figures, &side_by_side);
+    let context = context::build(campaign, records, fits, left_out, &figures, &side_by_side);
     let context = tera::Context::from_serialize(&context).context("cannot build the report context")?;
     write_pages(&layout.root, ("report.md", MARKDOWN_TEMPLATE), context)
 }

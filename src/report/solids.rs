@@ -8,13 +8,12 @@ use super::figure::Figure;
 use super::words::{number, optional};
 use crate::draw::chart::{Chart, Scale, Series, line_chart};
 use crate::runner::RunRecord;
-use crate::table::scaling_fits;
+use crate::summary::ScalingFit;
 
 /// One figure per swept quantity of `scene` (not the sound speed, which the wave study draws):
 /// measured points and the fitted power law on log–log axes.
-pub fn scaling_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Figure>> {
-    let fits: Vec<_> =
-        scaling_fits(records).into_iter().filter(|f| f.scene == scene && f.quantity != "sound_speed").collect();
+pub fn scaling_figures(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Vec<Figure>> {
+    let fits: Vec<_> = fits.iter().filter(|f| f.scene == scene && f.quantity != "sound_speed").collect();
     let mut figures = Vec::new();
     for against in ["load_per_node", "wall_displacement"] {
         let mine: Vec<_> = fits.iter().filter(|f| f.against == against).collect();

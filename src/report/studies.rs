@@ -9,7 +9,7 @@ use crate::draw::chart::{Chart, Scale, Series, heatmap, line_chart};
 use crate::measure::{ARRIVAL_CRITERIA, Recommendation, convergence_order, recommended_dt};
 use crate::runner::RunRecord;
 use crate::spec::SceneKind;
-use crate::table::scaling_fits;
+use crate::summary::ScalingFit;
 
 /// One dt sweep of one integrator (a group of runs differing only in dt).
 #[derive(Serialize)]
@@ -379,12 +379,11 @@ pub struct ExponentRow {
 }
 
 /// The exponent rows of `scene`: every scaling law fitted over its runs.
-pub fn exponent_rows(records: &[RunRecord], scene: &str) -> Vec<ExponentRow> {
-    scaling_fits(records)
-        .into_iter()
+pub fn exponent_rows(fits: &[ScalingFit], scene: &str) -> Vec<ExponentRow> {
+    fits.iter()
         .filter(|f| f.scene == scene)
         .map(|f| ExponentRow {
-            group: if f.group.is_empty() { "all".into() } else { f.group },
+            group: if f.group.is_empty() { "all".into() } else { f.group.clone() },
             law: f.law,
             quantity: f.quantity,
             against: f.against,
@@ -398,10 +397,9 @@ pub fn exponent_rows(records: &[RunRecord], scene: &str) -> Vec<ExponentRow> {
 
 /// The wave figures of `scene`: V_s against v0 (with the fitted power law) and the space–time
 /// picture of one run.
-pub fn wave_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Figure>> {
+pub fn wave_figures(records: &[RunRecord], fits: &[ScalingFit], scene: &str) -> anyhow::Result<Vec<Figure>> {
     let mut figures = Vec::new();
-    let fits: Vec<_> =
-        scaling_fits(records).into_iter().filter(|f| f.scene == scene && f.quantity == "sound_speed").collect();
+    let fits: Vec<_> = fits.iter().filter(|f| f.scene == scene && f.quantity == "sound_speed").collect();
     if !fits.is_empty() {
         let mut series = Vec::new();
         for f in &fits {
