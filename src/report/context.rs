@@ -2,11 +2,11 @@
 
 use serde::Serialize;
 
+use super::exponents::{ExponentRow, exponent_rows};
 use super::figure::{Figure, group_label, groups, representative};
-use super::studies::{
-    ExponentRow, LimitRow, PrecisionRow, StabilityRow, WaveRow, exponent_rows, is_stability_scene, precision_rows,
-    stability_rows, wave_rows,
-};
+use super::precision::{PrecisionRow, precision_rows};
+use super::stability_map::{LimitRow, StabilityRow, is_stability_scene, stability_rows};
+use super::waves::{WaveRow, wave_rows};
 use super::words::{error, impulse_words, number, optional};
 use crate::measure::convergence_order;
 use crate::measure::relative_error;

@@ -1,8 +1,9 @@
-//! Which figures a campaign gets: energies per scene, chain displacements, and the
-//! convergence of the pair measurements against their analytical values.
+//! Which figures a campaign gets (`draw_all`, the one list of them), and the plain ones:
+//! energies per scene, chain displacements, relaxation, the finite-size convergence of lattice
+//! moduli, and the convergence of the pair measurements against their analytical values.
 
 use super::figure::{Figure, groups, representative};
-use super::studies;
+use super::{precision, probes, solids, stability_map, waves};
 use crate::draw::chart::{Chart, Scale, Series, line_chart};
 use crate::measure::relative_error;
 use crate::runner::RunRecord;
@@ -40,13 +41,13 @@ pub fn draw_all(campaign: &Campaign, records: &[RunRecord], fits: &[ScalingFit])
             }
             SceneKind::Pair => {}
         }
-        figures.extend(studies::precision_figures(records, scene)?);
-        figures.extend(studies::wave_figures(records, fits, scene)?);
-        figures.extend(studies::probe_figures(records, scene)?);
-        figures.extend(super::solids::scaling_figures(fits, scene)?);
-        figures.extend(super::solids::ensemble_figure(records, scene)?);
-        if studies::is_stability_scene(records, scene) {
-            figures.extend(studies::stability_figures(records, scene)?);
+        figures.extend(precision::precision_figures(records, scene)?);
+        figures.extend(waves::wave_figures(records, fits, scene)?);
+        figures.extend(probes::probe_figures(records, scene)?);
+        figures.extend(solids::scaling_figures(fits, scene)?);
+        figures.extend(solids::ensemble_figure(records, scene)?);
+        if stability_map::is_stability_scene(records, scene) {
+            figures.extend(stability_map::stability_figures(records, scene)?);
         }
     }
     Ok(figures)

@@ -4,11 +4,15 @@
 //! in, so the binary works from any directory. Only sections of the campaign's scenes show.
 
 mod context;
+mod exponents;
 mod figure;
 mod figures;
 mod markdown;
+mod precision;
+mod probes;
 mod solids;
-mod studies;
+mod stability_map;
+mod waves;
 mod words;
 
 use anyhow::Context as _;
@@ -58,7 +62,7 @@ pub fn render_with_left_out(
     }
     let mut probes = BTreeSet::new();
     for record in records {
-        if let Some(csv) = studies::probe_table(record) {
+        if let Some(csv) = probes::probe_table(record) {
             let file = format!("probes/{}.csv", record.run_id);
             write_atomically(&layout.file(&file), csv.as_bytes())?;
             probes.insert(file);
