@@ -6,9 +6,9 @@ use std::path::{Path, PathBuf};
 
 /// Everything a run's record depends on: the spec and its resolution, the scenes, the physics
 /// core, the measurements and their references, the stability check that sets dt, the runner's
-/// `execute` and the record it fills, and `table.rs` (whose `relative_error` `execute` uses).
-/// Not the reports, the command line or the store's bookkeeping: they only read records.
-const RESULT_SOURCES: [&str; 11] = [
+/// `execute` and the record it fills.
+/// Not the table, the reports, the command line or the store's bookkeeping: they only read records.
+const RESULT_SOURCES: [&str; 10] = [
     "src/spec",
     "src/scenes.rs",
     "src/model",
@@ -19,7 +19,6 @@ const RESULT_SOURCES: [&str; 11] = [
     "src/stability.rs",
     "src/runner/execute.rs",
     "src/runner/record.rs",
-    "src/table.rs",
 ];
 
 fn main() {

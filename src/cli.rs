@@ -572,8 +572,9 @@ fn publish(
 ) -> anyhow::Result<()> {
     let mut frame = table::results_frame(records).context("cannot build the results table")?;
     table::write_tables(layout, &mut frame)?;
-    table::write_summary(layout, &table::scaling_fits(records))?;
-    report::render_with_left_out(campaign, layout, records, left_out)
+    let fits = crate::summary::scaling_fits(records);
+    table::write_summary(layout, &fits)?;
+    report::render_with_left_out(campaign, layout, records, &fits, left_out)
 }
 
 fn bench_command(config: &BenchConfig, threads: Option<usize>, repeat: usize, json: bool) -> anyhow::Result<()> {

@@ -15,8 +15,8 @@ use std::collections::BTreeSet;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
+use crate::draw::chart::{Chart, Scale, Series, line_chart};
 use crate::output::write_atomically;
-use crate::report::plots::{Chart, Scale, Series, line_chart};
 
 const MARKDOWN_TEMPLATE: &str = include_str!("../templates/compare.md.tera");
 

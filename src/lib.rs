@@ -26,6 +26,7 @@
 pub mod bench;
 pub mod cli;
 pub mod compare;
+pub mod draw;
 pub mod fem;
 pub mod measure;
 pub mod model;
@@ -38,5 +39,6 @@ pub mod sim;
 pub mod slurm;
 pub mod spec;
 pub mod stability;
+pub mod summary;
 pub mod table;
 pub mod theory;

@@ -6,17 +6,11 @@ use polars::prelude::*;
 use serde_json::Value;
 use std::collections::BTreeSet;
 
+use crate::measure::relative_error;
 use crate::output::{Layout, write_atomically};
 use crate::runner::RunRecord;
 use crate::spec::Diagonals;
-
-/// Relative error (measured − reference)/reference, when both exist.
-pub fn relative_error(measured: Option<f64>, reference: Option<f64>) -> Option<f64> {
-    match (measured, reference) {
-        (Some(m), Some(r)) if r != 0.0 => Some((m - r) / r),
-        _ => None,
-    }
-}
+use crate::summary::ScalingFit;
 
 /// A column of numbers; a non-finite value (a blown-up run's measurement) becomes null, so no
 /// NaN or infinity ever reaches a table.
@@ -234,146 +228,6 @@ fn directional_columns(records: &[RunRecord]) -> Vec<Column> {
         optional_floats(records, "poisson_ratio_yx", along(false, |m| m.poisson_ratio)),
         optional_floats(records, "poisson_ratio_yx_fem", along(false, |m| m.poisson_ratio_fem)),
     ]
-}
-
-/// A scaling law the summary fits, y ∝ x^p, over the runs of one scene that differ only in
-/// the grid paths `paths`.
-struct Scaling {
-    quantity: &'static str,
-    against: &'static str,
-    paths: &'static [&'static str],
-    x: fn(&RunRecord) -> Option<f64>,
-    y: fn(&RunRecord) -> Option<f64>,
-}
-
-/// The impact speed of a chain wave or the kick speed of an impulse lattice (m/s).
-fn excitation_speed(r: &RunRecord) -> Option<f64> {
-    r.spec.wave.as_ref()?;
-    match r.spec.lattice.as_ref().and_then(|l| l.impulse) {
-        Some(i) if i.top_row_force.is_none() => Some(i.vx.hypot(i.vy)),
-        Some(_) => None,
-        None => Some(r.spec.v0),
-    }
-}
-
-/// The load per top-row node of a force-loaded lattice (N).
-fn load(r: &RunRecord) -> Option<f64> {
-    r.spec.lattice.as_ref().and_then(|l| l.force_per_node())
-}
-
-/// |ΔW| of a relaxing chain (m).
-fn wall_displacement(r: &RunRecord) -> Option<f64> {
-    r.spec.relax.filter(|_| r.spec.lattice.is_none()).map(|_| r.spec.chain_wall_extension().abs())
-}
-
-const SPEED: &[&str] = &["v0", "impulse.velocity"];
-const LOAD: &[&str] = &["load.per_node"];
-const WALLS: &[&str] = &["wall_distance"];
-
-/// Every scaling law the summary looks for.
-const SCALINGS: [Scaling; 7] = [
-    Scaling {
-        quantity: "sound_speed",
-        against: "v0",
-        paths: SPEED,
-        x: excitation_speed,
-        y: |r| r.metrics.arrival_criterion.as_deref().and_then(|c| r.metrics.sound_speed(c)),
-    },
-    Scaling {
-        quantity: "youngs_modulus",
-        against: "load_per_node",
-        paths: LOAD,
-        x: load,
-        y: |r| r.metrics.youngs_modulus,
-    },
-    Scaling {
-        quantity: "youngs_modulus_tangent",
-        against: "load_per_node",
-        paths: LOAD,
-        x: load,
-        y: |r| r.metrics.youngs_modulus_tangent,
-    },
-    Scaling {
-        quantity: "shear_modulus",
-        against: "load_per_node",
-        paths: LOAD,
-        x: load,
-        y: |r| r.metrics.shear_modulus,
-    },
-    Scaling {
-        quantity: "shear_modulus_tangent",
-        against: "load_per_node",
-        paths: LOAD,
-        x: load,
-        y: |r| r.metrics.shear_modulus_tangent,
-    },
-    Scaling {
-        quantity: "secant_stiffness",
-        against: "wall_displacement",
-        paths: WALLS,
-        x: wall_displacement,
-        y: |r| r.metrics.secant_stiffness,
-    },
-    Scaling {
-        quantity: "tangent_stiffness",
-        against: "wall_displacement",
-        paths: WALLS,
-        x: wall_displacement,
-        y: |r| r.metrics.tangent_stiffness,
-    },
-];
-
-/// How one measured quantity of one group of runs (a scene's runs that differ only in the
-/// swept parameter) scales with it: y ∝ x^p.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ScalingFit {
-    /// Scene.
-    pub scene: String,
-    /// The group's other grid values.
-    pub group: String,
-    /// Elastic law of the group.
-    pub law: &'static str,
-    /// The measured quantity (a results column).
-    pub quantity: &'static str,
-    /// What it is plotted against (`v0`, `load_per_node`, `wall_displacement`).
-    pub against: &'static str,
-    /// (x, y) of its ok runs, sorted by x.
-    pub points: Vec<(f64, f64)>,
-    /// The fit.
-    pub fit: crate::measure::PowerLawFit,
-}
-
-/// The power-law fits of every quantity that a scene sweeps over at least two values: the
-/// sound speed against v0, moduli against the load, a chain's stiffness against |ΔW|.
-pub fn scaling_fits(records: &[RunRecord]) -> Vec<ScalingFit> {
-    /// A group's first run, its label and its (x, y) points.
-    type Group<'a> = (&'a RunRecord, String, Vec<(f64, f64)>);
-    let mut fits = Vec::new();
-    for scaling in &SCALINGS {
-        let mut groups: Vec<Group> = Vec::new();
-        for r in records.iter().filter(|r| r.status == "ok") {
-            let Some(point) = (scaling.x)(r).zip((scaling.y)(r)) else { continue };
-            let group = r.spec.varied_label(|path| !scaling.paths.contains(&path));
-            match groups.iter_mut().find(|(first, label, _)| first.spec.scene == r.spec.scene && *label == group) {
-                Some((_, _, points)) => points.push(point),
-                None => groups.push((r, group, vec![point])),
-            }
-        }
-        fits.extend(groups.into_iter().filter_map(|(first, group, mut points)| {
-            points.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let fit = crate::measure::power_law_fit(&points)?;
-            Some(ScalingFit {
-                scene: first.spec.scene.clone(),
-                group,
-                law: first.spec.law.name(),
-                quantity: scaling.quantity,
-                against: scaling.against,
-                points,
-                fit,
-            })
-        }));
-    }
-    fits
 }
 
 /// The campaign summary: one row per fitted scaling law (`summary.csv`).

@@ -36,7 +36,7 @@ fn movie_has_its_frames_and_colours_follow_the_speed() {
     // conserved, so no particle ever moves faster): its disc is the top colour of the scale
     // (which spans the speeds after the first frame), yellow, every other disc the bottom one. Yellow pixels outside the colour bar (the right
     // 90 pixels) must therefore all lie at the left end of the chain.
-    let top = mdsolids::report::speed_color(1.0);
+    let top = mdsolids::draw::speed_color(1.0);
     let is_top = |p: &[u8]| {
         (i32::from(p[0]) - i32::from(top.0)).abs() < 40
             && (i32::from(p[1]) - i32::from(top.1)).abs() < 40
@@ -205,11 +205,11 @@ fn a_movie_stops_at_its_runs_deadline() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("late.gif");
     movie.deadline = std::time::Instant::now().checked_sub(std::time::Duration::from_millis(1));
-    let error = mdsolids::report::write_movie(&path, &movie).unwrap_err();
-    assert!(error.is::<mdsolids::report::PastDeadline>(), "{error}");
+    let error = mdsolids::draw::write_movie(&path, &movie).unwrap_err();
+    assert!(error.is::<mdsolids::draw::PastDeadline>(), "{error}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "nothing written");
     // Within its deadline it is written.
     movie.deadline = Some(std::time::Instant::now() + std::time::Duration::from_secs(600));
-    mdsolids::report::write_movie(&path, &movie).unwrap();
+    mdsolids::draw::write_movie(&path, &movie).unwrap();
     assert_eq!(frames(&path).1.len(), 12);
 }

@@ -15,6 +15,14 @@ mod energy;
 mod moduli;
 mod wave;
 
+/// Relative error (measured − reference)/reference, when both exist.
+pub fn relative_error(measured: Option<f64>, reference: Option<f64>) -> Option<f64> {
+    match (measured, reference) {
+        (Some(m), Some(r)) if r != 0.0 => Some((m - r) / r),
+        _ => None,
+    }
+}
+
 /// Order of convergence p in |error| ∝ dt^p: least-squares slope of ln|error| against ln dt
 /// over `points` = (dt, error); `None` with fewer than two usable points (finite, above the
 /// round-off floor).

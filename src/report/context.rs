@@ -2,16 +2,17 @@
 
 use serde::Serialize;
 
-use super::figures::{Figure, group_label, groups, representative};
-use super::studies::{
-    ExponentRow, LimitRow, PrecisionRow, StabilityRow, WaveRow, exponent_rows, is_stability_scene, precision_rows,
-    stability_rows, wave_rows,
-};
-use super::{error, number, optional};
+use super::exponents::{ExponentRow, exponent_rows};
+use super::figure::{Figure, group_label, groups, representative};
+use super::precision::{PrecisionRow, precision_rows};
+use super::stability_map::{LimitRow, StabilityRow, is_stability_scene, stability_rows};
+use super::waves::{WaveRow, wave_rows};
+use super::words::{error, impulse_words, number, optional};
 use crate::measure::convergence_order;
+use crate::measure::relative_error;
 use crate::runner::{BUILD, RunRecord};
 use crate::spec::{Campaign, LawName, SceneKind};
-use crate::table::relative_error;
+use crate::summary::ScalingFit;
 
 /// Everything the report templates show.
 #[derive(Serialize)]
@@ -178,10 +179,11 @@ struct FailureRow {
     message: String,
 }
 
-/// Builds the context from the campaign, its records and the drawn figures.
+/// Builds the context from the campaign, its records, their scaling fits and the drawn figures.
 pub fn build(
     campaign: &Campaign,
     records: &[RunRecord],
+    fits: &[ScalingFit],
     left_out: &super::LeftOut,
     figures: &[Figure],
     side_by_side: &[String],
@@ -219,7 +221,9 @@ pub fn build(
         scenes: campaign
             .scenes
             .iter()
-            .filter_map(|(scene, kind)| section(scene, *kind, records, figures, campaign.target_error, side_by_side))
+            .filter_map(|(scene, kind)| {
+                section(scene, *kind, records, fits, figures, campaign.target_error, side_by_side)
+            })
             .collect(),
         failures: records
             .iter()
@@ -233,6 +237,7 @@ fn section(
     scene: &str,
     kind: SceneKind,
     records: &[RunRecord],
+    fits: &[ScalingFit],
     figures: &[Figure],
     target_error: f64,
     side_by_side: &[String],
@@ -311,7 +316,7 @@ fn section(
         stability_rows,
         limit_rows,
         wave_rows: wave_rows(records, scene),
-        exponent_rows: exponent_rows(records, scene),
+        exponent_rows: exponent_rows(fits, scene),
         ensemble_rows: super::solids::ensemble_rows(records, scene),
         movies: side_by_side
             .iter()
@@ -329,14 +334,6 @@ fn section(
             }))
             .collect(),
     })
-}
-
-/// An impulse in words: the kick's velocity or the top row's step force.
-pub(super) fn impulse_words(i: &crate::spec::ImpulseSpec) -> String {
-    match i.top_row_force {
-        Some([fx, fy]) => format!("a step force ({}, {}) N on every top-row node", number(fx), number(fy)),
-        None => format!("node {} kicked at ({}, {}) m/s", i.node, number(i.vx), number(i.vy)),
-    }
 }
 
 fn pair_row(r: &RunRecord) -> PairRow {

@@ -1,55 +1,20 @@
-//! Which figures a campaign gets: energies per scene, chain displacements, and the
-//! convergence of the pair measurements against their analytical values.
+//! Which figures a campaign gets (`draw_all`, the one list of them), and the plain ones:
+//! energies per scene, chain displacements, relaxation, the finite-size convergence of lattice
+//! moduli, and the convergence of the pair measurements against their analytical values.
 
-use super::plots::{Chart, Scale, Series, line_chart};
-use super::studies;
+use super::figure::{Figure, groups, representative};
+use super::{precision, probes, solids, stability_map, waves};
+use crate::draw::chart::{Chart, Scale, Series, line_chart};
+use crate::measure::relative_error;
 use crate::runner::RunRecord;
 use crate::spec::{Campaign, SceneKind};
-use crate::table::relative_error;
-
-/// A drawn figure.
-pub struct Figure {
-    /// Scene it belongs to.
-    pub scene: String,
-    /// Path relative to the campaign directory (`plots/…svg`).
-    pub file: String,
-    /// Caption, plain text: the report escapes it (no Markdown of its own).
-    pub caption: String,
-    /// The SVG document.
-    pub svg: String,
-}
-
-/// The label of a run's grid values other than the time step: runs with the same group label
-/// differ only in dt, so they form one convergence curve.
-pub fn group_label(record: &RunRecord) -> String {
-    let label = record.spec.varied_label(|path| !path.starts_with("time.dt"));
-    if label.is_empty() { "all".into() } else { label }
-}
-
-/// The runs of `scene` that are `ok`, grouped by [`group_label`] in campaign order.
-pub fn groups<'a>(records: &'a [RunRecord], scene: &str) -> Vec<(String, Vec<&'a RunRecord>)> {
-    let mut groups: Vec<(String, Vec<&RunRecord>)> = Vec::new();
-    for record in records.iter().filter(|r| r.spec.scene == scene && r.status == "ok") {
-        let label = group_label(record);
-        match groups.iter_mut().find(|(l, _)| *l == label) {
-            Some((_, members)) => members.push(record),
-            None => groups.push((label, vec![record])),
-        }
-    }
-    groups
-}
-
-/// The run of a group whose dt is closest to t_c/50 (the coursework's choice).
-pub fn representative<'a>(members: &[&'a RunRecord]) -> &'a RunRecord {
-    let distance = |r: &&RunRecord| (r.spec.dt_per_tc().ln() - 50f64.ln()).abs();
-    members.iter().copied().min_by(|a, b| distance(a).total_cmp(&distance(b))).expect("groups are never empty")
-}
+use crate::summary::ScalingFit;
 
 /// At most this many energy figures per scene (one per group).
 const MAX_ENERGY_FIGURES: usize = 4;
 
 /// Every figure of the report.
-pub fn draw_all(campaign: &Campaign, records: &[RunRecord]) -> anyhow::Result<Vec<Figure>> {
+pub fn draw_all(campaign: &Campaign, records: &[RunRecord], fits: &[ScalingFit]) -> anyhow::Result<Vec<Figure>> {
     let mut figures = Vec::new();
     for (scene, kind) in &campaign.scenes {
         let groups = groups(records, scene);
@@ -76,13 +41,13 @@ pub fn draw_all(campaign: &Campaign, records: &[RunRecord]) -> anyhow::Result<Ve
             }
             SceneKind::Pair => {}
         }
-        figures.extend(studies::precision_figures(records, scene)?);
-        figures.extend(studies::wave_figures(records, scene)?);
-        figures.extend(studies::probe_figures(records, scene)?);
-        figures.extend(super::solids::scaling_figures(records, scene)?);
-        figures.extend(super::solids::ensemble_figure(records, scene)?);
-        if studies::is_stability_scene(records, scene) {
-            figures.extend(studies::stability_figures(records, scene)?);
+        figures.extend(precision::precision_figures(records, scene)?);
+        figures.extend(waves::wave_figures(records, fits, scene)?);
+        figures.extend(probes::probe_figures(records, scene)?);
+        figures.extend(solids::scaling_figures(fits, scene)?);
+        figures.extend(solids::ensemble_figure(records, scene)?);
+        if stability_map::is_stability_scene(records, scene) {
+            figures.extend(stability_map::stability_figures(records, scene)?);
         }
     }
     Ok(figures)

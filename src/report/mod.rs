@@ -4,14 +4,16 @@
 //! in, so the binary works from any directory. Only sections of the campaign's scenes show.
 
 mod context;
+mod exponents;
+mod figure;
 mod figures;
 mod markdown;
-mod movie;
-pub mod plots;
+mod precision;
+mod probes;
 mod solids;
-mod studies;
-
-pub use self::movie::{PastDeadline, speed_color, write_movie, write_movie_panels};
+mod stability_map;
+mod waves;
+mod words;
 
 use anyhow::Context as _;
 use std::collections::BTreeSet;
@@ -20,6 +22,7 @@ use std::path::Path;
 use crate::output::{Layout, write_atomically};
 use crate::runner::RunRecord;
 use crate::spec::Campaign;
+use crate::summary::{ScalingFit, scaling_fits};
 
 const MARKDOWN_TEMPLATE: &str = include_str!("../../templates/report.md.tera");
 const HTML_TEMPLATE: &str = include_str!("../../templates/index.html.tera");
@@ -40,23 +43,26 @@ pub struct LeftOut {
 /// Draws the figures and writes `report.md` and `index.html` for `records`, one per run of
 /// the campaign.
 pub fn render(campaign: &Campaign, layout: &Layout, records: &[RunRecord]) -> anyhow::Result<()> {
-    render_with_left_out(campaign, layout, records, &LeftOut::default())
+    render_with_left_out(campaign, layout, records, &scaling_fits(records), &LeftOut::default())
 }
 
 /// [`render`] for `records` that lack the campaign's runs `left_out`: the report says so.
+/// `fits` are the scaling laws fitted over `records` (`summary::scaling_fits`), the ones the
+/// campaign's `summary.csv` holds.
 pub fn render_with_left_out(
     campaign: &Campaign,
     layout: &Layout,
     records: &[RunRecord],
+    fits: &[ScalingFit],
     left_out: &LeftOut,
 ) -> anyhow::Result<()> {
-    let figures = figures::draw_all(campaign, records)?;
+    let figures = figures::draw_all(campaign, records, fits)?;
     for figure in &figures {
         write_atomically(&layout.file(&figure.file), figure.svg.as_bytes())?;
     }
     let mut probes = BTreeSet::new();
     for record in records {
-        if let Some(csv) = studies::probe_table(record) {
+        if let Some(csv) = probes::probe_table(record) {
             let file = format!("probes/{}.csv", record.run_id);
             write_atomically(&layout.file(&file), csv.as_bytes())?;
             probes.insert(file);
@@ -76,7 +82,7 @@ pub fn render_with_left_out(
     let movies = side_by_side.iter().map(|scene| format!("plots/{scene}-side-by-side.gif")).collect();
     remove_stale(&layout.root, "plots", "-side-by-side.gif", &movies)?;
     remove_stale(&layout.root, "probes", ".csv", &probes)?;
-    let context = context::build(campaign, records, left_out, &figures, &side_by_side);
+    let context = context::build(campaign, records, fits, left_out, &figures, &side_by_side);
     let context = tera::Context::from_serialize(&context).context("cannot build the report context")?;
     write_pages(&layout.root, ("report.md", MARKDOWN_TEMPLATE), context)
 }
@@ -129,27 +135,4 @@ pub(crate) fn write_pages(
     context.insert("body", &body);
     let html = tera.render("index.html", &context).context("cannot render templates/index.html.tera")?;
     write_atomically(&dir.join("index.html"), html.as_bytes())
-}
-
-/// A number with 6 significant digits, plain where that reads well, scientific otherwise.
-fn number(x: f64) -> String {
-    if x == 0.0 {
-        return "0".into();
-    }
-    let magnitude = x.abs().log10().floor();
-    if (-3.0..5.0).contains(&magnitude) {
-        let decimals = (5.0 - magnitude) as usize;
-        let text = format!("{x:.decimals$}");
-        if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.').to_string() } else { text }
-    } else {
-        format!("{x:.5e}")
-    }
-}
-
-fn optional(x: Option<f64>) -> String {
-    x.map(number).unwrap_or_else(|| "–".into())
-}
-
-fn error(x: Option<f64>) -> String {
-    x.map(|e| format!("{e:+.2e}")).unwrap_or_else(|| "–".into())
 }

@@ -4,17 +4,16 @@
 
 use serde::Serialize;
 
-use super::figures::Figure;
-use super::plots::{Chart, Scale, Series, line_chart};
-use super::{number, optional};
+use super::figure::Figure;
+use super::words::{number, optional};
+use crate::draw::chart::{Chart, Scale, Series, line_chart};
 use crate::runner::RunRecord;
-use crate::table::scaling_fits;
+use crate::summary::ScalingFit;
 
 /// One figure per swept quantity of `scene` (not the sound speed, which the wave study draws):
 /// measured points and the fitted power law on log–log axes.
-pub fn scaling_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Figure>> {
-    let fits: Vec<_> =
-        scaling_fits(records).into_iter().filter(|f| f.scene == scene && f.quantity != "sound_speed").collect();
+pub fn scaling_figures(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Vec<Figure>> {
+    let fits: Vec<_> = fits.iter().filter(|f| f.scene == scene && f.quantity != "sound_speed").collect();
     let mut figures = Vec::new();
     for against in ["load_per_node", "wall_displacement"] {
         let mine: Vec<_> = fits.iter().filter(|f| f.against == against).collect();
@@ -118,7 +117,7 @@ pub fn ensemble_rows(records: &[RunRecord], scene: &str) -> Vec<EnsembleRow> {
                     let m = &r.metrics;
                     [(m.youngs_modulus, m.youngs_modulus_fem), (m.shear_modulus, m.shear_modulus_fem)]
                 })
-                .filter_map(|(md, fem)| crate::table::relative_error(md, fem).map(f64::abs))
+                .filter_map(|(md, fem)| crate::measure::relative_error(md, fem).map(f64::abs))
                 .reduce(f64::max);
             EnsembleRow {
                 group: if group.is_empty() { "all".into() } else { group },

@@ -4,7 +4,8 @@
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::Instant;
 
-use super::record::{BUILD, Metrics, Movie, RunRecord};
+use super::record::{BUILD, Metrics, RunRecord};
+use crate::draw::Movie;
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
     ARRIVAL_CRITERIA, LatticeShape, anisotropic_moduli, arrival_time, constrained_modulus_y, contact_timing,
@@ -267,7 +268,7 @@ fn static_answer<L: ForceLaw>(
     let fem = lattice_moduli(spec, lattice, top_row_force, &ux, &uy);
     if spec.law == LawName::Linear {
         // Relative for E and G; absolute for ν, which can be 0 (no diagonals).
-        let relative = |a: Option<f64>, b: Option<f64>| crate::table::relative_error(a, b).map(f64::abs);
+        let relative = |a: Option<f64>, b: Option<f64>| crate::measure::relative_error(a, b).map(f64::abs);
         let absolute = fem.poisson_ratio.zip(linear.poisson_ratio).map(|(a, b)| (a - b).abs());
         metrics.static_nonlinearity = [
             relative(fem.youngs_modulus, linear.youngs_modulus),
@@ -369,7 +370,7 @@ fn sound_speed_theory(spec: &RunSpec) -> Option<f64> {
 /// restitution (damped pairs), the normal-mode solution (chains), else the energy balance of
 /// an undamped run; `(None, None)` when none applies.
 fn exact_error(spec: &RunSpec, m: &Metrics) -> (Option<f64>, Option<String>) {
-    let relative = |a, b| crate::table::relative_error(a, b).map(f64::abs);
+    let relative = |a, b| crate::measure::relative_error(a, b).map(f64::abs);
     let undamped = spec.gamma == 0.0 && spec.gamma_background == 0.0;
     let (error, measure) = match spec.kind {
         SceneKind::Pair if undamped => (relative(m.contact_duration, m.contact_duration_theory), "contact_duration"),

@@ -2,7 +2,7 @@
 //! cached by content hash, with a progress bar; a failing run becomes a record, not a crash.
 
 pub use self::execute::{execute, execute_within};
-pub use self::record::{BUILD, Metrics, Movie, RunRecord};
+pub use self::record::{BUILD, Metrics, RunRecord};
 pub use self::shard::{Shard, shard_campaign, shard_of_each_run};
 
 mod execute;
@@ -17,6 +17,7 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
+use crate::draw::Movie;
 use crate::output::{Layout, open_lock_file, try_lock, wait_for_lock, write_atomically};
 use crate::spec::{Campaign, RunSpec};
 
@@ -256,10 +257,10 @@ fn run_and_store(
     }
     let mut record = execute_within(spec, &campaign.budget);
     if let Some(movie) = record.movie.take() {
-        match crate::report::write_movie(&layout.movie_file(&record.run_id), &movie) {
+        match crate::draw::write_movie(&layout.movie_file(&record.run_id), &movie) {
             // A run already stopped by its budget keeps its own reason.
-            Err(error) if error.is::<crate::report::PastDeadline>() && record.status == "budget" => {}
-            Err(error) if error.is::<crate::report::PastDeadline>() => {
+            Err(error) if error.is::<crate::draw::PastDeadline>() && record.status == "budget" => {}
+            Err(error) if error.is::<crate::draw::PastDeadline>() => {
                 record.status = "budget".into();
                 record.message = format!(
                     "passed its time budget of {} s per run (budget.seconds_per_run) while encoding its movie of {} \
@@ -301,7 +302,7 @@ pub fn write_missing_movies(
     let mut redrawn: BTreeMap<String, Movie> = BTreeMap::new();
     for record in records.iter().filter(|r| has_movie(r) && !layout.movie_file(&r.run_id).is_file()) {
         if let Some(movie) = movie_of(&record.spec) {
-            crate::report::write_movie(&layout.movie_file(&record.run_id), &movie)?;
+            crate::draw::write_movie(&layout.movie_file(&record.run_id), &movie)?;
             redrawn.insert(record.run_id.clone(), movie);
         }
     }
@@ -324,7 +325,7 @@ pub fn write_missing_movies(
         let movies: Option<Vec<Movie>> =
             stored.iter().map(|r| redrawn.remove(&r.run_id).or_else(|| movie_of(&r.spec))).collect();
         if let Some(movies) = movies {
-            crate::report::write_movie_panels(&movie_path, &movies.iter().collect::<Vec<_>>())?;
+            crate::draw::write_movie_panels(&movie_path, &movies.iter().collect::<Vec<_>>())?;
             write_atomically(&runs_path, (ids.join("\n") + "\n").as_bytes())?;
         }
     }

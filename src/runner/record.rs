@@ -2,6 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::draw::Movie;
 use crate::sim::Trace;
 use crate::spec::RunSpec;
 
@@ -158,21 +159,6 @@ pub struct RunRecord {
     /// `runs/<run_id>.gif`, never stored in the record.
     #[serde(skip)]
     pub movie: Option<Movie>,
-}
-
-/// What a movie shows: the frames, the bonds between the particles, the size.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Movie {
-    /// Frames in time order.
-    pub frames: Vec<crate::sim::Frame>,
-    /// Bonds drawn as lines (i, j, rest length in m); bonds across a periodic side are left out.
-    pub bonds: Vec<(usize, usize, f64)>,
-    /// Frame count and size.
-    pub spec: crate::spec::MovieSpec,
-    /// Title drawn on every frame.
-    pub title: String,
-    /// The run's deadline: encoding the movie is part of the run (its time budget).
-    pub deadline: Option<std::time::Instant>,
 }
 
 impl RunRecord {

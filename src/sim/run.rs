@@ -136,7 +136,7 @@ pub struct ProbeTrace {
 /// text (a record of at most ~50 MB), ...
 pub const STORED_NUMBERS: usize = 2_000_000;
 /// ... and at most this many samples: more than a figure shows (its lines are thinned to
-/// `report::plots::LINE_POINTS`) while keeping the shape of every series.
+/// `draw::chart::LINE_POINTS`) while keeping the shape of every series.
 pub const STORED_SAMPLES: usize = 10_000;
 
 /// Samples a stored trace keeps when each sample holds `numbers` numbers: within both bounds,

@@ -1,4 +1,5 @@
-//! SVG figures drawn with plotters: one generic line chart, used for every figure.
+//! SVG figures drawn with plotters: one generic line chart and a space–time heat map, with
+//! which every figure of the report and of the comparison is drawn.
 
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
@@ -11,7 +12,7 @@ static DEJAVU_SANS: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 const SIZE: (u32, u32) = (820, 500);
 
 /// Registers the bundled font once; plotters' `ab_glyph` backend draws no text without it.
-pub(super) fn ensure_font() -> anyhow::Result<()> {
+pub(crate) fn ensure_font() -> anyhow::Result<()> {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
     let ok = *REGISTERED
         .get_or_init(|| plotters::style::register_font("sans-serif", FontStyle::Normal, DEJAVU_SANS).is_ok());
@@ -131,7 +132,7 @@ pub fn line_chart(chart: &Chart, series: &[Series]) -> anyhow::Result<String> {
     Ok(svg)
 }
 
-pub(super) fn draw_error<E: std::fmt::Debug>(error: E) -> anyhow::Error {
+pub(crate) fn draw_error<E: std::fmt::Debug>(error: E) -> anyhow::Error {
     anyhow::anyhow!("cannot draw a figure: {error:?}")
 }
 
@@ -226,7 +227,7 @@ fn linear_labels(range: std::ops::Range<f64>) -> Option<impl Fn(&f64) -> String>
 }
 
 /// Colour of a value in [−1, 1] on a diverging scale: blue (−1), white (0), red (+1).
-pub(super) fn diverging(value: f64) -> RGBColor {
+pub(crate) fn diverging(value: f64) -> RGBColor {
     let v = value.clamp(-1.0, 1.0);
     let fade = |c: f64| (255.0 * (1.0 - v.abs()) + c * v.abs()) as u8;
     if v >= 0.0 { RGBColor(fade(200.0), fade(30.0), fade(30.0)) } else { RGBColor(fade(30.0), fade(60.0), fade(200.0)) }

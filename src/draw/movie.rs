@@ -4,8 +4,22 @@
 use plotters::prelude::*;
 use std::path::Path;
 
-use super::plots::{diverging, draw_error, ensure_font};
-use crate::runner::Movie;
+use super::chart::{diverging, draw_error, ensure_font};
+
+/// What a movie shows: the frames, the bonds between the particles, the size.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Movie {
+    /// Frames in time order.
+    pub frames: Vec<crate::sim::Frame>,
+    /// Bonds drawn as lines (i, j, rest length in m); bonds across a periodic side are left out.
+    pub bonds: Vec<(usize, usize, f64)>,
+    /// Frame count and size.
+    pub spec: crate::spec::MovieSpec,
+    /// Title drawn on every frame.
+    pub title: String,
+    /// The run's deadline: encoding the movie is part of the run (its time budget).
+    pub deadline: Option<std::time::Instant>,
+}
 
 /// Delay between frames (ms): 12.5 frames per second.
 const FRAME_DELAY_MS: u32 = 80;

@@ -1,0 +1,8 @@
+//! Drawing, below both the runner and the report: the generic line chart and heat map every
+//! figure is drawn with (`chart.rs`), and the animated GIFs of runs (`movie.rs`), which the
+//! runner writes beside each run's record.
+
+pub mod chart;
+mod movie;
+
+pub use self::movie::{Movie, PastDeadline, speed_color, write_movie, write_movie_panels};

@@ -1,0 +1,37 @@
+//! The exponent table: every scaling law fitted over a scene's runs (`summary::ScalingFit`),
+//! one row per group, as the report writes it.
+
+use serde::Serialize;
+
+use super::words::number;
+use crate::summary::ScalingFit;
+
+/// A fitted y ∝ x^p of one group.
+#[derive(Serialize)]
+pub struct ExponentRow {
+    group: String,
+    law: &'static str,
+    quantity: &'static str,
+    against: &'static str,
+    exponent: String,
+    r_squared: String,
+    points: usize,
+    range: String,
+}
+
+/// The exponent rows of `scene`: every scaling law fitted over its runs.
+pub fn exponent_rows(fits: &[ScalingFit], scene: &str) -> Vec<ExponentRow> {
+    fits.iter()
+        .filter(|f| f.scene == scene)
+        .map(|f| ExponentRow {
+            group: if f.group.is_empty() { "all".into() } else { f.group.clone() },
+            law: f.law,
+            quantity: f.quantity,
+            against: f.against,
+            exponent: format!("{:.4}", f.fit.exponent),
+            r_squared: format!("{:.6}", f.fit.r_squared),
+            points: f.points.len(),
+            range: format!("{} … {}", number(f.points[0].0), number(f.points[f.points.len() - 1].0)),
+        })
+        .collect()
+}

@@ -1,0 +1,133 @@
+//! Waves: the sound speed of chain waves and impulse lattices by each arrival criterion, its
+//! power law against the impact speed, and the space–time picture of one run.
+
+use serde::Serialize;
+
+use super::figure::Figure;
+use super::words::{impulse_words, number, optional};
+use crate::draw::chart::{Chart, Scale, Series, heatmap, line_chart};
+use crate::measure::ARRIVAL_CRITERIA;
+use crate::runner::RunRecord;
+use crate::spec::SceneKind;
+use crate::summary::ScalingFit;
+
+/// One chain-wave run: the sound speed by each criterion beside the estimates.
+#[derive(Serialize)]
+pub struct WaveRow {
+    run_id: String,
+    label: String,
+    v0: String,
+    distance: String,
+    arrival_time: String,
+    speeds: Vec<String>,
+    estimate: String,
+    theory: String,
+    status: String,
+}
+
+/// The chain-wave rows of `scene` (empty when it times no wave).
+pub fn wave_rows(records: &[RunRecord], scene: &str) -> Vec<WaveRow> {
+    records
+        .iter()
+        .filter(|r| r.spec.scene == scene && r.spec.wave.is_some())
+        .map(|r| {
+            let m = &r.metrics;
+            WaveRow {
+                run_id: r.run_id.clone(),
+                label: r.spec.varied_label(|_| true),
+                v0: match r.spec.lattice.as_ref().and_then(|l| l.impulse) {
+                    Some(i) => impulse_words(&i),
+                    None => format!("v0 = {} m/s", number(r.spec.v0)),
+                },
+                distance: optional(m.wave_distance),
+                arrival_time: optional(m.arrival_time()),
+                speeds: ARRIVAL_CRITERIA.iter().map(|c| optional(m.sound_speed(c))).collect(),
+                estimate: optional(m.wave_distance.zip(m.arrival_time_tc_estimate).map(|(l, t)| l / t)),
+                theory: optional(m.sound_speed_theory),
+                status: r.status.clone(),
+            }
+        })
+        .collect()
+}
+
+/// The wave figures of `scene`: V_s against v0 (with the fitted power law) and the space–time
+/// picture of one run.
+pub fn wave_figures(records: &[RunRecord], fits: &[ScalingFit], scene: &str) -> anyhow::Result<Vec<Figure>> {
+    let mut figures = Vec::new();
+    figures.extend(speed_figure(fits, scene)?);
+    figures.extend(space_time_figure(records, scene)?);
+    Ok(figures)
+}
+
+/// V_s against v0 of `scene`, measured and with its fitted power law; `None` without a fit.
+fn speed_figure(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Option<Figure>> {
+    let fits: Vec<_> = fits.iter().filter(|f| f.scene == scene && f.quantity == "sound_speed").collect();
+    if fits.is_empty() {
+        return Ok(None);
+    }
+    let mut series = Vec::new();
+    for f in &fits {
+        let label = if f.group.is_empty() { f.law.to_string() } else { format!("{}, {}", f.law, f.group) };
+        let (x0, y0) = f.points[0];
+        let line = f.points.iter().map(|&(x, _)| (x, y0 * (x / x0).powf(f.fit.exponent))).collect();
+        series.push(Series { label: format!("{label}: measured"), points: f.points.clone(), markers: true });
+        series.push(Series {
+            label: format!("{label}: fit v0^{:.3} (R² = {:.5})", f.fit.exponent, f.fit.r_squared),
+            points: line,
+            markers: false,
+        });
+    }
+    let chart = Chart {
+        title: format!("{scene}: sound speed against impact speed"),
+        x_label: "v0 (m/s)".into(),
+        y_label: "V_s = L / t_s (m/s)".into(),
+        scale: Scale::LogLog,
+    };
+    Ok(Some(Figure {
+        scene: scene.into(),
+        file: format!("plots/{scene}-speed-v0.svg"),
+        caption: format!(
+            "Sound speed by the recommended criterion against the impact speed v0, {scene}, with the fitted power \
+             law: linear springs give the same speed at every v0 (exponent 0); a Hertz chain without pre-load \
+             carries a solitary wave whose speed grows as v0^(1/5)."
+        ),
+        svg: line_chart(&chart, &series)?,
+    }))
+}
+
+/// The displacement in space and time of the first ok wave run of `scene`: a chain's
+/// particles (walls left out), or the kicked column of an impulse lattice; `None` without one.
+fn space_time_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Option<Figure>> {
+    let first_ok = records.iter().find(|r| r.spec.scene == scene && r.spec.wave.is_some() && r.status == "ok");
+    let Some(r) = first_ok else { return Ok(None) };
+    let t = &r.trace;
+    let (values, rows, what): (Vec<Vec<f64>>, &str, &str) = match r.spec.kind {
+        SceneKind::Lattice => (
+            t.probes.first().map(|p| p.displacement_y.clone()).unwrap_or_default(),
+            "node of the kicked column (0: bottom)",
+            "y",
+        ),
+        _ => {
+            (t.displacement_x.iter().map(|row| row[1..row.len().saturating_sub(1)].to_vec()).collect(), "particle", "x")
+        }
+    };
+    if t.time.len() < 2 || values.first().is_none_or(|row| row.is_empty()) {
+        return Ok(None);
+    }
+    let chart = Chart {
+        title: format!("{scene}: displacement in space and time ({})", r.spec.varied_label(|_| true)),
+        x_label: "time t (s)".into(),
+        y_label: rows.into(),
+        scale: Scale::Linear,
+    };
+    Ok(Some(Figure {
+        scene: scene.into(),
+        file: format!("plots/{scene}-space-time.svg"),
+        caption: format!(
+            "Displacement along {what} of every {rows} against time, {scene}: red positive, blue negative, \
+             white at rest, scaled to the largest |u|. The wave front is the edge of the coloured region; its \
+             slope is the sound speed."
+        ),
+        svg: heatmap(&chart, &t.time, &values)?,
+    }))
+}

@@ -1,0 +1,37 @@
+//! How the report writes numbers and specs in words: six significant digits, signed errors, a
+//! dash for a missing value, an impulse as a kick or a step force.
+
+use crate::spec::ImpulseSpec;
+
+/// A number with 6 significant digits, plain where that reads well, scientific otherwise.
+pub(super) fn number(x: f64) -> String {
+    if x == 0.0 {
+        return "0".into();
+    }
+    let magnitude = x.abs().log10().floor();
+    if (-3.0..5.0).contains(&magnitude) {
+        let decimals = (5.0 - magnitude) as usize;
+        let text = format!("{x:.decimals$}");
+        if text.contains('.') { text.trim_end_matches('0').trim_end_matches('.').to_string() } else { text }
+    } else {
+        format!("{x:.5e}")
+    }
+}
+
+/// A number as [`number`] writes it, or a dash when there is none.
+pub(super) fn optional(x: Option<f64>) -> String {
+    x.map(number).unwrap_or_else(|| "–".into())
+}
+
+/// A relative error in scientific notation with its sign, or a dash when there is none.
+pub(super) fn error(x: Option<f64>) -> String {
+    x.map(|e| format!("{e:+.2e}")).unwrap_or_else(|| "–".into())
+}
+
+/// An impulse in words: the kick's velocity or the top row's step force.
+pub(super) fn impulse_words(i: &ImpulseSpec) -> String {
+    match i.top_row_force {
+        Some([fx, fy]) => format!("a step force ({}, {}) N on every top-row node", number(fx), number(fy)),
+        None => format!("node {} kicked at ({}, {}) m/s", i.node, number(i.vx), number(i.vy)),
+    }
+}

@@ -1,0 +1,145 @@
+//! The campaign summary: power-law fits y ∝ x^p of every quantity a scene sweeps, computed once
+//! from the records and handed to both `summary.csv` (`table`) and the report.
+
+use crate::measure::{PowerLawFit, power_law_fit};
+use crate::runner::RunRecord;
+
+/// A scaling law the summary fits, y ∝ x^p, over the runs of one scene that differ only in
+/// the grid paths `paths`.
+struct Scaling {
+    quantity: &'static str,
+    against: &'static str,
+    paths: &'static [&'static str],
+    x: fn(&RunRecord) -> Option<f64>,
+    y: fn(&RunRecord) -> Option<f64>,
+}
+
+/// The impact speed of a chain wave or the kick speed of an impulse lattice (m/s).
+fn excitation_speed(r: &RunRecord) -> Option<f64> {
+    r.spec.wave.as_ref()?;
+    match r.spec.lattice.as_ref().and_then(|l| l.impulse) {
+        Some(i) if i.top_row_force.is_none() => Some(i.vx.hypot(i.vy)),
+        Some(_) => None,
+        None => Some(r.spec.v0),
+    }
+}
+
+/// The load per top-row node of a force-loaded lattice (N).
+fn load(r: &RunRecord) -> Option<f64> {
+    r.spec.lattice.as_ref().and_then(|l| l.force_per_node())
+}
+
+/// |ΔW| of a relaxing chain (m).
+fn wall_displacement(r: &RunRecord) -> Option<f64> {
+    r.spec.relax.filter(|_| r.spec.lattice.is_none()).map(|_| r.spec.chain_wall_extension().abs())
+}
+
+const SPEED: &[&str] = &["v0", "impulse.velocity"];
+const LOAD: &[&str] = &["load.per_node"];
+const WALLS: &[&str] = &["wall_distance"];
+
+/// Every scaling law the summary looks for.
+const SCALINGS: [Scaling; 7] = [
+    Scaling {
+        quantity: "sound_speed",
+        against: "v0",
+        paths: SPEED,
+        x: excitation_speed,
+        y: |r| r.metrics.arrival_criterion.as_deref().and_then(|c| r.metrics.sound_speed(c)),
+    },
+    Scaling {
+        quantity: "youngs_modulus",
+        against: "load_per_node",
+        paths: LOAD,
+        x: load,
+        y: |r| r.metrics.youngs_modulus,
+    },
+    Scaling {
+        quantity: "youngs_modulus_tangent",
+        against: "load_per_node",
+        paths: LOAD,
+        x: load,
+        y: |r| r.metrics.youngs_modulus_tangent,
+    },
+    Scaling {
+        quantity: "shear_modulus",
+        against: "load_per_node",
+        paths: LOAD,
+        x: load,
+        y: |r| r.metrics.shear_modulus,
+    },
+    Scaling {
+        quantity: "shear_modulus_tangent",
+        against: "load_per_node",
+        paths: LOAD,
+        x: load,
+        y: |r| r.metrics.shear_modulus_tangent,
+    },
+    Scaling {
+        quantity: "secant_stiffness",
+        against: "wall_displacement",
+        paths: WALLS,
+        x: wall_displacement,
+        y: |r| r.metrics.secant_stiffness,
+    },
+    Scaling {
+        quantity: "tangent_stiffness",
+        against: "wall_displacement",
+        paths: WALLS,
+        x: wall_displacement,
+        y: |r| r.metrics.tangent_stiffness,
+    },
+];
+
+/// How one measured quantity of one group of runs (a scene's runs that differ only in the
+/// swept parameter) scales with it: y ∝ x^p.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScalingFit {
+    /// Scene.
+    pub scene: String,
+    /// The group's other grid values.
+    pub group: String,
+    /// Elastic law of the group.
+    pub law: &'static str,
+    /// The measured quantity (a results column).
+    pub quantity: &'static str,
+    /// What it is plotted against (`v0`, `load_per_node`, `wall_displacement`).
+    pub against: &'static str,
+    /// (x, y) of its ok runs, sorted by x.
+    pub points: Vec<(f64, f64)>,
+    /// The fit.
+    pub fit: PowerLawFit,
+}
+
+/// The power-law fits of every quantity that a scene sweeps over at least two values: the
+/// sound speed against v0, moduli against the load, a chain's stiffness against |ΔW|.
+pub fn scaling_fits(records: &[RunRecord]) -> Vec<ScalingFit> {
+    /// A group's first run, its label and its (x, y) points.
+    type Group<'a> = (&'a RunRecord, String, Vec<(f64, f64)>);
+    let mut fits = Vec::new();
+    for scaling in &SCALINGS {
+        let mut groups: Vec<Group> = Vec::new();
+        for r in records.iter().filter(|r| r.status == "ok") {
+            let Some(point) = (scaling.x)(r).zip((scaling.y)(r)) else { continue };
+            let group = r.spec.varied_label(|path| !scaling.paths.contains(&path));
+            match groups.iter_mut().find(|(first, label, _)| first.spec.scene == r.spec.scene && *label == group) {
+                Some((_, _, points)) => points.push(point),
+                None => groups.push((r, group, vec![point])),
+            }
+        }
+        fits.extend(groups.into_iter().filter_map(|(first, group, mut points)| {
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let fit = power_law_fit(&points)?;
+            Some(ScalingFit {
+                scene: first.spec.scene.clone(),
+                group,
+                law: first.spec.law.name(),
+                quantity: scaling.quantity,
+                against: scaling.against,
+                points,
+                fit,
+            })
+        }));
+    }
+    fits
+}
