@@ -2,9 +2,11 @@
 //! choices (law, dashpot, contact, integrator) are turned into monomorphised code.
 
 use super::field::{BondNetwork, ForceField};
-use super::integrate::{IntegratorKind, simulate_with};
-use super::probe::{ContactClock, Crossing, Frame, FrameProbe, WaveProbe, WaveRecord};
-use super::run::{Sampling, Trace};
+use super::integrate::{
+    ForestRuth, Gear, IntegratorKind, PositionVerlet, RungeKutta4, SymplecticEuler, VelocityVerlet,
+};
+use super::probe::{ContactClock, Crossing, Frame, FrameProbe, StepProbe, WaveProbe, WaveRecord};
+use super::run::{Sampling, Trace, simulate};
 use super::state::{Drive, Load, State};
 use super::stencil::LatticeNetwork;
 use crate::model::{
@@ -162,5 +164,24 @@ impl Scene {
             frames: movie.map(|m| m.frames).unwrap_or_default(),
             state,
         }
+    }
+}
+
+/// Runs `sampling` on `state` under `field` with the integrator `kind`: the one place that
+/// turns the choice into monomorphised code.
+pub fn simulate_with<F: ForceField, P: StepProbe>(
+    kind: IntegratorKind,
+    state: &mut State,
+    field: &mut F,
+    sampling: &Sampling,
+    probe: &mut P,
+) -> Trace {
+    match kind {
+        IntegratorKind::PositionVerlet => simulate(state, field, &mut PositionVerlet::default(), sampling, probe),
+        IntegratorKind::VelocityVerlet => simulate(state, field, &mut VelocityVerlet::default(), sampling, probe),
+        IntegratorKind::SymplecticEuler => simulate(state, field, &mut SymplecticEuler, sampling, probe),
+        IntegratorKind::Rk4 => simulate(state, field, &mut RungeKutta4::default(), sampling, probe),
+        IntegratorKind::ForestRuth => simulate(state, field, &mut ForestRuth::default(), sampling, probe),
+        IntegratorKind::Gear => simulate(state, field, &mut Gear::default(), sampling, probe),
     }
 }
