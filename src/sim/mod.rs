@@ -9,7 +9,7 @@ pub use self::probe::{ContactClock, Crossing, Frame, FrameProbe, StepProbe, Wave
 pub use self::run::{
     ProbeTrace, Relaxation, RunStatus, STORED_NUMBERS, STORED_SAMPLES, Sampling, Trace, simulate, stored_samples,
 };
-pub use self::scene::{LawKind, Network, Outcome, Scene, simulate_with};
+pub use self::scene::{Network, Outcome, Scene, simulate_with};
 pub use self::state::{Drive, Load, State};
 pub use self::stencil::LatticeNetwork;
 
