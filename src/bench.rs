@@ -6,8 +6,8 @@
 
 use serde::Serialize;
 
-use crate::model::{Axes, Particles, SquareLattice};
-use crate::sim::{IntegratorKind, LawKind, Network, Sampling, Scene};
+use crate::model::{Axes, LawSpec, Particles, SquareLattice};
+use crate::sim::{IntegratorKind, Network, Sampling, Scene};
 
 /// What to run.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -75,7 +75,7 @@ pub fn reference_scene(config: &BenchConfig) -> Scene {
     Scene {
         particles,
         network,
-        law: LawKind::Linear,
+        law: LawSpec::Linear,
         contact: false,
         gamma: 0.0,
         background_gamma: 0.0,

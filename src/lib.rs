@@ -17,8 +17,9 @@
 //! The physics core (`model`, `sim`, `theory`, `measure`, `scenes`) does no I/O.
 //!
 //! To add a force law: implement [`model::ForceLaw`] (force and energy, with a doctest), add a
-//! variant to [`sim::LawKind`] and one arm to `Scene::run`; the bond loop, integrators and
-//! measurements need no change. To add a measurement: a pure function in `measure`, a field in
+//! variant to [`model::LawSpec`] with its arm in `LawSpec::dispatch` and its name, and read it in
+//! `spec/resolve.rs`; the bond loop, static solver, integrators and measurements need no
+//! change. To add a measurement: a pure function in `measure`, a field in
 //! [`runner::Metrics`], a column in `table`.
 
 #![warn(missing_docs)]

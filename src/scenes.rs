@@ -1,9 +1,10 @@
 //! From a [`RunSpec`] to the [`Scene`] it describes, and to the analytical answers it is
 //! compared with. Pure: no I/O.
 
+use crate::model::LawSpec;
 use crate::model::{Axes, Bonds, Particles, SquareLattice};
-use crate::sim::{Drive, LawKind, Load, Network, Relaxation, Sampling, Scene};
-use crate::spec::{Control, LatticeSpec, LawName, LoadCase, RunSpec, SceneKind, Supports};
+use crate::sim::{Drive, Load, Network, Relaxation, Sampling, Scene};
+use crate::spec::{Control, LatticeSpec, LoadCase, RunSpec, SceneKind, Supports};
 use crate::theory;
 
 /// Builds the scene of `spec`.
@@ -29,7 +30,7 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
     Scene {
         particles,
         network,
-        law: law_kind(spec),
+        law: spec.law,
         contact: spec.contact,
         gamma: spec.gamma,
         background_gamma: spec.gamma_background,
@@ -54,14 +55,6 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
         loads,
         load_ramp: spec.lattice.as_ref().map_or(0.0, |l| l.load_ramp_tc * spec.t_c),
         drive,
-    }
-}
-
-/// The elastic law of the run's springs.
-pub fn law_kind(spec: &RunSpec) -> LawKind {
-    match spec.law {
-        LawName::Linear => LawKind::Linear,
-        LawName::Power => LawKind::Power { beta: spec.beta },
     }
 }
 
@@ -129,7 +122,7 @@ pub fn load_scale(spec: &RunSpec) -> Option<f64> {
 pub fn chain_equilibrium(spec: &RunSpec) -> (f64, f64, f64, f64) {
     let springs = (spec.n.unwrap_or(0) + 1) as f64;
     let delta = spec.chain_wall_extension() / springs;
-    let law = law_kind(spec);
+    let law = spec.law;
     let (force, tangent) = (law.elastic_force(spec.k, delta), law.tangent_stiffness(spec.k, delta));
     let secant = if delta == 0.0 { tangent / springs } else { force / (delta * springs) };
     (delta, force, secant, tangent / springs)
@@ -222,14 +215,14 @@ pub fn pair_references(spec: &RunSpec) -> (Option<f64>, Option<f64>) {
         return (None, None);
     }
     match spec.law {
-        LawName::Linear => (
+        LawSpec::Linear => (
             theory::linear_contact_duration(spec.k, spec.mass, spec.gamma).ok(),
             theory::linear_restitution(spec.k, spec.mass, spec.gamma).ok(),
         ),
-        LawName::Power if spec.gamma == 0.0 => {
-            (Some(theory::power_law_contact_duration(spec.k, spec.beta, spec.mass, spec.v0)), Some(1.0))
+        LawSpec::Power { beta } if spec.gamma == 0.0 => {
+            (Some(theory::power_law_contact_duration(spec.k, beta, spec.mass, spec.v0)), Some(1.0))
         }
-        LawName::Power => (None, None),
+        LawSpec::Power { .. } => (None, None),
     }
 }
 
@@ -237,7 +230,7 @@ pub fn pair_references(spec: &RunSpec) -> (Option<f64>, Option<f64>) {
 /// walls at the rest spacing.
 pub fn chain_has_normal_modes(spec: &RunSpec) -> bool {
     spec.kind == SceneKind::Chain
-        && spec.law == LawName::Linear
+        && spec.law.is_linear()
         && !spec.contact
         && spec.gamma == 0.0
         && spec.gamma_background == 0.0

@@ -53,7 +53,7 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         floats(records, "spacing", |r| r.spec.spacing),
         floats(records, "k", |r| r.spec.k),
         strings(records, "law", |r| r.spec.law.name().into()),
-        floats(records, "beta", |r| r.spec.beta),
+        floats(records, "beta", |r| r.spec.law.beta()),
         Column::new("contact".into(), records.iter().map(|r| r.spec.contact).collect::<Vec<bool>>()),
         floats(records, "gamma", |r| r.spec.gamma),
         floats(records, "gamma_background", |r| r.spec.gamma_background),

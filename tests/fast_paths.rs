@@ -3,9 +3,9 @@
 //! steps, for linear, Hertz, damped, contact, constrained and diluted networks.
 
 use mdsolids::model::{
-    Axes, BondDashpot, Bonds, Dashpot, ForceLaw, Linear, NoDashpot, Particles, PowerLaw, Spring, SquareLattice,
+    Axes, BondDashpot, Bonds, Dashpot, ForceLaw, LawSpec, Linear, NoDashpot, Particles, PowerLaw, Spring, SquareLattice,
 };
-use mdsolids::sim::{ForceField, IntegratorKind, LawKind, Network, Sampling, Scene, State, simulate_with};
+use mdsolids::sim::{ForceField, IntegratorKind, Network, Sampling, Scene, State, simulate_with};
 
 /// The reference: every bond in list order, safe indexing, no blocks, no threads.
 struct ReferenceLoop<L, D, const CONTACT: bool> {
@@ -124,7 +124,7 @@ fn compare(fast: &State, slow: &State, start: &Particles) -> (f64, f64) {
 fn check<L: ForceLaw, D: Dashpot, const C: bool>(
     name: &str,
     spring: Spring<L, D, C>,
-    law: LawKind,
+    law: LawSpec,
     gamma: f64,
     background: f64,
     integrator: IntegratorKind,
@@ -178,37 +178,37 @@ const PERIODIC_LARGE: (usize, usize, bool, bool) = (120, 90, true, true);
 fn linear_lattice() {
     let spring = Spring::<Linear, NoDashpot, false> { law: Linear, dashpot: NoDashpot };
     for size in [SMALL, LARGE] {
-        check("linear", spring, LawKind::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, size, 0.0);
+        check("linear", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, size, 0.0);
     }
-    check("linear, position Verlet", spring, LawKind::Linear, 0.0, 0.0, IntegratorKind::PositionVerlet, LARGE, 0.0);
+    check("linear, position Verlet", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::PositionVerlet, LARGE, 0.0);
 }
 
 #[test]
 fn hertz_lattice_bonded_and_contact() {
     let law = PowerLaw { beta: 1.5 };
     let bonded = Spring::<PowerLaw, NoDashpot, false> { law, dashpot: NoDashpot };
-    check("hertz", bonded, LawKind::Power { beta: 1.5 }, 0.0, 0.0, IntegratorKind::VelocityVerlet, LARGE, 0.0);
+    check("hertz", bonded, LawSpec::Power { beta: 1.5 }, 0.0, 0.0, IntegratorKind::VelocityVerlet, LARGE, 0.0);
     let contact = Spring::<PowerLaw, NoDashpot, true> { law, dashpot: NoDashpot };
-    check("hertz contact", contact, LawKind::Power { beta: 1.5 }, 0.0, 0.0, IntegratorKind::VelocityVerlet, SMALL, 0.0);
+    check("hertz contact", contact, LawSpec::Power { beta: 1.5 }, 0.0, 0.0, IntegratorKind::VelocityVerlet, SMALL, 0.0);
 }
 
 #[test]
 fn damped_lattice() {
     let spring = Spring::<Linear, BondDashpot, false> { law: Linear, dashpot: BondDashpot { gamma: 0.05 } };
     for size in [SMALL, LARGE] {
-        check("damped", spring, LawKind::Linear, 0.05, 0.01, IntegratorKind::VelocityVerlet, size, 0.0);
+        check("damped", spring, LawSpec::Linear, 0.05, 0.01, IntegratorKind::VelocityVerlet, size, 0.0);
     }
-    check("damped, position Verlet", spring, LawKind::Linear, 0.05, 0.01, IntegratorKind::PositionVerlet, SMALL, 0.0);
+    check("damped, position Verlet", spring, LawSpec::Linear, 0.05, 0.01, IntegratorKind::PositionVerlet, SMALL, 0.0);
 }
 
 #[test]
 fn constrained_lattice() {
     let spring = Spring::<Linear, NoDashpot, false> { law: Linear, dashpot: NoDashpot };
-    check("supported", spring, LawKind::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, SUPPORTED, 0.0);
+    check("supported", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, SUPPORTED, 0.0);
     check(
         "supported, position Verlet",
         spring,
-        LawKind::Linear,
+        LawSpec::Linear,
         0.0,
         0.0,
         IntegratorKind::PositionVerlet,
@@ -221,24 +221,24 @@ fn constrained_lattice() {
 fn periodic_lattice() {
     let spring = Spring::<Linear, BondDashpot, false> { law: Linear, dashpot: BondDashpot { gamma: 0.05 } };
     for size in [PERIODIC_SMALL, PERIODIC_LARGE] {
-        check("periodic", spring, LawKind::Linear, 0.05, 0.0, IntegratorKind::VelocityVerlet, size, 0.0);
+        check("periodic", spring, LawSpec::Linear, 0.05, 0.0, IntegratorKind::VelocityVerlet, size, 0.0);
     }
     // The bond-list path keeps the wrapped bonds (with their shift) in a list of their own.
-    check("periodic, diluted", spring, LawKind::Linear, 0.05, 0.0, IntegratorKind::VelocityVerlet, PERIODIC_LARGE, 0.1);
+    check("periodic, diluted", spring, LawSpec::Linear, 0.05, 0.0, IntegratorKind::VelocityVerlet, PERIODIC_LARGE, 0.1);
 }
 
 #[test]
 fn diluted_network_bond_list() {
     let spring = Spring::<Linear, NoDashpot, false> { law: Linear, dashpot: NoDashpot };
     for size in [SMALL, LARGE] {
-        check("diluted", spring, LawKind::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, size, 0.15);
+        check("diluted", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, size, 0.15);
     }
     let damped =
         Spring::<PowerLaw, BondDashpot, false> { law: PowerLaw { beta: 1.5 }, dashpot: BondDashpot { gamma: 0.05 } };
     check(
         "diluted hertz damped",
         damped,
-        LawKind::Power { beta: 1.5 },
+        LawSpec::Power { beta: 1.5 },
         0.05,
         0.0,
         IntegratorKind::VelocityVerlet,

@@ -5,9 +5,9 @@ mod common;
 
 use common::{execute_all, pair_campaign, relative};
 use mdsolids::measure::convergence_order;
-use mdsolids::model::{Axes, BondDashpot, Bonds, ForceLaw, Linear, NoDashpot, Particles, PowerLaw, Spring};
+use mdsolids::model::{Axes, BondDashpot, Bonds, ForceLaw, LawSpec, Linear, NoDashpot, Particles, PowerLaw, Spring};
 use mdsolids::runner::RunRecord;
-use mdsolids::sim::{BondNetwork, ForceField, IntegratorKind, LawKind, Network, Sampling, Scene};
+use mdsolids::sim::{BondNetwork, ForceField, IntegratorKind, Network, Sampling, Scene};
 
 /// Separations to test: stretched and compressed, oblique, in 2D.
 const SEPARATIONS: [(f64, f64); 4] = [(1.07, 0.02), (0.93, -0.05), (-0.6, 0.71), (0.3, -0.96)];
@@ -166,7 +166,7 @@ fn free_pair_conserves_momentum_with_damping() {
         let scene = Scene {
             particles,
             network: Network::Bonds(bonds),
-            law: LawKind::Power { beta: 1.5 },
+            law: LawSpec::Power { beta: 1.5 },
             contact: false,
             gamma: 0.3,
             background_gamma: 0.0,

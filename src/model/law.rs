@@ -159,3 +159,145 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> Spring<L, D, CONTACT> {
         if CONTACT && delta >= 0.0 { 0.0 } else { self.law.energy(k, delta) }
     }
 }
+
+/// Which law every bond of a run follows, as a value: what a campaign asks for, a run
+/// records and a scene carries. [`LawSpec::dispatch`] turns it into the concrete
+/// [`ForceLaw`] type, once per run, for the bond loop and the static solver alike.
+///
+/// Serialised as the two keys `law` (`linear`, `power`) and `beta` (1 for linear springs), the
+/// shape records and run ids have always had.
+///
+/// ```
+/// use mdsolids::model::LawSpec;
+/// let hertz = LawSpec::Power { beta: 1.5 };
+/// assert!(!hertz.is_linear() && hertz.beta() == 1.5 && hertz.name() == "power");
+/// assert_eq!(LawSpec::Linear.elastic_force(2.0, 0.5), 1.0);
+/// assert_eq!(serde_json::to_string(&LawSpec::Linear).unwrap(), r#"{"law":"linear","beta":1.0}"#);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(into = "LawFields", from = "LawFields")]
+pub enum LawSpec {
+    /// s = k δ ([`Linear`]).
+    Linear,
+    /// s = C |δ|^β sign δ ([`PowerLaw`]).
+    Power {
+        /// Exponent β.
+        beta: f64,
+    },
+}
+
+/// Code generic over the force law, called by [`LawSpec::dispatch`] with the concrete type:
+/// the one place a law value becomes monomorphised code.
+pub trait LawVisitor {
+    /// What the visit returns.
+    type Output;
+    /// Runs with the law `law`.
+    fn visit<L: ForceLaw>(self, law: L) -> Self::Output;
+}
+
+impl LawSpec {
+    /// Calls `visitor` with the concrete law.
+    pub fn dispatch<V: LawVisitor>(self, visitor: V) -> V::Output {
+        match self {
+            LawSpec::Linear => visitor.visit(Linear),
+            LawSpec::Power { beta } => visitor.visit(PowerLaw { beta }),
+        }
+    }
+
+    /// The name written in campaigns, records and tables.
+    pub fn name(self) -> &'static str {
+        LawFields::from(self).law.name()
+    }
+
+    /// The exponent β: 1 for linear springs.
+    pub fn beta(self) -> f64 {
+        LawFields::from(self).beta
+    }
+
+    /// Linear springs (s = k δ), for which the analytical references and the linear continuum hold.
+    pub fn is_linear(self) -> bool {
+        self == LawSpec::Linear
+    }
+
+    /// Elastic force s(δ) (N) of a bond with constant `k` at extension `delta` (m), for the
+    /// scalar uses outside the bond loop (references, wall forces).
+    pub fn elastic_force(self, k: f64, delta: f64) -> f64 {
+        self.dispatch(Evaluate { k, delta, quantity: Quantity::Force })
+    }
+
+    /// Tangent stiffness ds/dδ (N/m) of a bond with constant `k` at extension `delta` (m), for
+    /// the scalar uses outside the bond loop (t_c, damping, stability estimates).
+    pub fn tangent_stiffness(self, k: f64, delta: f64) -> f64 {
+        self.dispatch(Evaluate { k, delta, quantity: Quantity::Tangent })
+    }
+}
+
+/// Which of a law's functions [`Evaluate`] asks for.
+#[derive(Clone, Copy)]
+enum Quantity {
+    Force,
+    Tangent,
+}
+
+/// A [`Quantity`] at stiffness constant `k` and extension `delta` (m).
+struct Evaluate {
+    k: f64,
+    delta: f64,
+    quantity: Quantity,
+}
+
+impl LawVisitor for Evaluate {
+    type Output = f64;
+    fn visit<L: ForceLaw>(self, law: L) -> f64 {
+        match self.quantity {
+            Quantity::Force => law.elastic_force(self.k, self.delta),
+            Quantity::Tangent => law.tangent_stiffness(self.k, self.delta),
+        }
+    }
+}
+
+/// The name of a law family, as campaigns and records write it (`material.law`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LawName {
+    /// f = k δ.
+    Linear,
+    /// f = C |δ|^β (`hertz` is accepted and means β = 3/2 unless `beta` says otherwise).
+    #[serde(alias = "hertz")]
+    Power,
+}
+
+impl LawName {
+    /// The name used in tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            LawName::Linear => "linear",
+            LawName::Power => "power",
+        }
+    }
+}
+
+/// The serialised shape of a [`LawSpec`]: `law` and `beta`.
+#[derive(serde::Serialize, serde::Deserialize)]
+struct LawFields {
+    law: LawName,
+    beta: f64,
+}
+
+impl From<LawSpec> for LawFields {
+    fn from(law: LawSpec) -> LawFields {
+        match law {
+            LawSpec::Linear => LawFields { law: LawName::Linear, beta: 1.0 },
+            LawSpec::Power { beta } => LawFields { law: LawName::Power, beta },
+        }
+    }
+}
+
+impl From<LawFields> for LawSpec {
+    fn from(fields: LawFields) -> LawSpec {
+        match fields.law {
+            LawName::Linear => LawSpec::Linear,
+            LawName::Power => LawSpec::Power { beta: fields.beta },
+        }
+    }
+}

@@ -5,7 +5,9 @@
 
 pub use self::bonds::Bonds;
 pub use self::lattice::SquareLattice;
-pub use self::law::{BondDashpot, Dashpot, ForceLaw, Linear, NoDashpot, PowerLaw, Spring};
+pub use self::law::{
+    BondDashpot, Dashpot, ForceLaw, LawName, LawSpec, LawVisitor, Linear, NoDashpot, PowerLaw, Spring,
+};
 pub use self::particles::{Axes, Particles};
 
 mod bonds;

@@ -10,8 +10,9 @@ use super::waves::{WaveRow, wave_rows};
 use super::words::{error, impulse_words, number, optional};
 use crate::measure::convergence_order;
 use crate::measure::relative_error;
+use crate::model::LawSpec;
 use crate::runner::{BUILD, RunRecord};
-use crate::spec::{Campaign, LawName, SceneKind};
+use crate::spec::{Campaign, SceneKind};
 use crate::summary::ScalingFit;
 
 /// Everything the report templates show.
@@ -246,8 +247,8 @@ fn section(
     let first = mine.first()?;
     let s = &first.spec;
     let law = match s.law {
-        LawName::Linear => format!("linear springs k = {} N/m", number(s.k)),
-        LawName::Power => format!("power-law springs C = {} N/m^β, β = {}", number(s.k), number(s.beta)),
+        LawSpec::Linear => format!("linear springs k = {} N/m", number(s.k)),
+        LawSpec::Power { beta } => format!("power-law springs C = {} N/m^β, β = {}", number(s.k), number(beta)),
     };
     let physics = match &s.lattice {
         Some(l) => {

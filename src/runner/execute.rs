@@ -11,15 +11,13 @@ use crate::measure::{
     ARRIVAL_CRITERIA, LatticeShape, anisotropic_moduli, arrival_time, constrained_modulus_y, contact_timing,
     energy_error, homogeneity, lattice_constants, normal_mode_error, shear_modulus, tensile_moduli,
 };
-use crate::model::{ForceLaw, Linear, PowerLaw};
+use crate::model::{ForceLaw, LawVisitor};
 use crate::scenes::{
-    build_scene, chain_equilibrium, chain_has_normal_modes, drive_travel, lattice_bonds, lattice_springs, law_kind,
+    build_scene, chain_equilibrium, chain_has_normal_modes, drive_travel, lattice_bonds, lattice_springs,
     pair_references, relaxation_checks, top_row,
 };
-use crate::sim::{LawKind, Outcome, ProbeTrace, RunStatus, Scene, Trace, stored_samples};
-use crate::spec::{
-    Budget, Control, LatticeSpec, LawName, LoadCase, ProbeLine, RunSpec, SceneKind, reference_extension,
-};
+use crate::sim::{Outcome, ProbeTrace, RunStatus, Scene, Trace, stored_samples};
+use crate::spec::{Budget, Control, LatticeSpec, LoadCase, ProbeLine, RunSpec, SceneKind, reference_extension};
 use crate::stability::estimate;
 
 /// Runs `spec` within the default [`Budget`] and returns its record; never panics.
@@ -168,10 +166,7 @@ fn run_and_measure(spec: &RunSpec, deadline: Instant) -> Finished {
             loads: &scene.loads,
             prescribed: &prescribed,
         };
-        let answer = match scene.law {
-            LawKind::Linear => static_answer(spec, lattice, &truss, &Linear, deadline, &mut metrics),
-            LawKind::Power { beta } => static_answer(spec, lattice, &truss, &PowerLaw { beta }, deadline, &mut metrics),
-        };
+        let answer = scene.law.dispatch(StaticAnswer { spec, lattice, truss: &truss, deadline, metrics: &mut metrics });
         let top_row_force = match answer {
             Ok(force) => force,
             Err(stopped) => return stopped,
@@ -222,6 +217,22 @@ fn run_and_measure(spec: &RunSpec, deadline: Instant) -> Finished {
     Finished::Simulated(Box::new((outcome, metrics, reference_s, movie)))
 }
 
+/// [`static_answer`] with the run's concrete law, from [`crate::model::LawSpec::dispatch`].
+struct StaticAnswer<'a> {
+    spec: &'a RunSpec,
+    lattice: &'a LatticeSpec,
+    truss: &'a Truss<'a>,
+    deadline: Instant,
+    metrics: &'a mut Metrics,
+}
+
+impl LawVisitor for StaticAnswer<'_> {
+    type Output = Result<f64, Finished>;
+    fn visit<L: ForceLaw>(self, law: L) -> Self::Output {
+        static_answer(self.spec, self.lattice, self.truss, &law, self.deadline, self.metrics)
+    }
+}
+
 /// The static answer of a loaded lattice beside MD: its moduli (`*_fem`), solved non-linearly
 /// like MD; for linear springs how far that is from the linear answer; with a tangent step
 /// the tangent moduli from the tangent stiffness at the equilibrium. Returns the total force
@@ -266,7 +277,7 @@ fn static_answer<L: ForceLaw>(
     };
     let top_row_force = force(&ux, &uy);
     let fem = lattice_moduli(spec, lattice, top_row_force, &ux, &uy);
-    if spec.law == LawName::Linear {
+    if spec.law.is_linear() {
         // Relative for E and G; absolute for ν, which can be 0 (no diagonals).
         let relative = |a: Option<f64>, b: Option<f64>| crate::measure::relative_error(a, b).map(f64::abs);
         let absolute = fem.poisson_ratio.zip(linear.poisson_ratio).map(|(a, b)| (a - b).abs());
@@ -342,7 +353,7 @@ fn tangent_step(spec: &RunSpec, relaxed: &Outcome, step: f64, deadline: Instant,
 
 /// Tension (N) of a chain's first spring, between the left wall and particle 1.
 fn wall_force(spec: &RunSpec, x: &[f64]) -> f64 {
-    law_kind(spec).elastic_force(spec.k, x[1] - x[0] - spec.spacing)
+    spec.law.elastic_force(spec.k, x[1] - x[0] - spec.spacing)
 }
 
 /// The linear sound speed along the wave's path (m/s): a√(k/m) along a chain; in a lattice
@@ -350,7 +361,7 @@ fn wall_force(spec: &RunSpec, x: &[f64]) -> f64 {
 /// kicked mostly along x the transverse c_T = a√(k_d/m). `None` for power-law springs, which
 /// have no linear sound speed without pre-load.
 fn sound_speed_theory(spec: &RunSpec) -> Option<f64> {
-    if spec.law != crate::spec::LawName::Linear {
+    if !spec.law.is_linear() {
         return None;
     }
     // c = a √(C/m) with C = C22 (longitudinal) or C66 (transverse) per unit depth: the mass
@@ -531,7 +542,7 @@ fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metr
         let shape = lattice_shape(spec, lattice);
         metrics.homogeneity = keep(homogeneity(&shape, &ux));
         // The continuum of the regular linear lattice (a random one is compared with it).
-        if spec.law == LawName::Linear {
+        if spec.law.is_linear() {
             let (k_rising, k_falling) = lattice.diagonal_stiffness();
             let continuum = anisotropic_moduli(lattice.k_x, lattice.k_y, k_rising, k_falling, lattice.depth);
             // A periodic strip cannot contract sideways: in tension it measures the

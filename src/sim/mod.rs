@@ -4,13 +4,12 @@
 pub use self::field::{BondNetwork, ForceField};
 pub use self::integrate::{
     ForestRuth, Gear, Integrator, IntegratorKind, PositionVerlet, RungeKutta4, SymplecticEuler, VelocityVerlet,
-    simulate_with,
 };
 pub use self::probe::{ContactClock, Crossing, Frame, FrameProbe, StepProbe, WaveProbe, WaveRecord};
 pub use self::run::{
     ProbeTrace, Relaxation, RunStatus, STORED_NUMBERS, STORED_SAMPLES, Sampling, Trace, simulate, stored_samples,
 };
-pub use self::scene::{LawKind, Network, Outcome, Scene};
+pub use self::scene::{Network, Outcome, Scene, simulate_with};
 pub use self::state::{Drive, Load, State};
 pub use self::stencil::LatticeNetwork;
 

@@ -2,44 +2,16 @@
 //! choices (law, dashpot, contact, integrator) are turned into monomorphised code.
 
 use super::field::{BondNetwork, ForceField};
-use super::integrate::{IntegratorKind, simulate_with};
-use super::probe::{ContactClock, Crossing, Frame, FrameProbe, WaveProbe, WaveRecord};
-use super::run::{Sampling, Trace};
+use super::integrate::{
+    ForestRuth, Gear, IntegratorKind, PositionVerlet, RungeKutta4, SymplecticEuler, VelocityVerlet,
+};
+use super::probe::{ContactClock, Crossing, Frame, FrameProbe, StepProbe, WaveProbe, WaveRecord};
+use super::run::{Sampling, Trace, simulate};
 use super::state::{Drive, Load, State};
 use super::stencil::LatticeNetwork;
 use crate::model::{
-    BondDashpot, Bonds, Dashpot, ForceLaw, Linear, NoDashpot, Particles, PowerLaw, Spring, SquareLattice,
+    BondDashpot, Bonds, Dashpot, ForceLaw, LawSpec, LawVisitor, NoDashpot, Particles, Spring, SquareLattice,
 };
-
-/// The elastic law of every bond in a scene.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum LawKind {
-    /// s = k δ.
-    Linear,
-    /// s = C |δ|^β sign δ.
-    Power {
-        /// Exponent β.
-        beta: f64,
-    },
-}
-
-impl LawKind {
-    /// Elastic force s(δ) (N) of a bond with constant `k` at extension `delta` (m).
-    pub fn elastic_force(self, k: f64, delta: f64) -> f64 {
-        match self {
-            LawKind::Linear => Linear.elastic_force(k, delta),
-            LawKind::Power { beta } => PowerLaw { beta }.elastic_force(k, delta),
-        }
-    }
-
-    /// Tangent stiffness ds/dδ (N/m) of a bond with constant `k` at extension `delta` (m).
-    pub fn tangent_stiffness(self, k: f64, delta: f64) -> f64 {
-        match self {
-            LawKind::Linear => Linear.tangent_stiffness(k, delta),
-            LawKind::Power { beta } => PowerLaw { beta }.tangent_stiffness(k, delta),
-        }
-    }
-}
 
 /// How the particles are connected.
 #[derive(Clone, Debug, PartialEq)]
@@ -69,7 +41,7 @@ pub struct Scene {
     /// Connectivity, rest lengths and stiffness constants.
     pub network: Network,
     /// Elastic law of all bonds.
-    pub law: LawKind,
+    pub law: LawSpec,
     /// Bonds act only in compression.
     pub contact: bool,
     /// Bond dashpot γ (N s/m); 0 for none.
@@ -114,13 +86,7 @@ impl Scene {
     /// Integrates the scene. The law, dashpot and contact switch are chosen here, once, so the
     /// bond loop is compiled for exactly this combination.
     pub fn run(self) -> Outcome {
-        let gamma = self.gamma;
-        match (self.law, gamma > 0.0) {
-            (LawKind::Linear, false) => self.with_contact(Linear, NoDashpot),
-            (LawKind::Linear, true) => self.with_contact(Linear, BondDashpot { gamma }),
-            (LawKind::Power { beta }, false) => self.with_contact(PowerLaw { beta }, NoDashpot),
-            (LawKind::Power { beta }, true) => self.with_contact(PowerLaw { beta }, BondDashpot { gamma }),
-        }
+        self.law.dispatch(WithLaw(self))
     }
 
     fn with_contact<L: ForceLaw, D: Dashpot>(self, law: L, dashpot: D) -> Outcome {
@@ -162,5 +128,36 @@ impl Scene {
             frames: movie.map(|m| m.frames).unwrap_or_default(),
             state,
         }
+    }
+}
+
+/// A scene handed its concrete law by [`LawSpec::dispatch`]; chooses the dashpot next.
+struct WithLaw(Scene);
+
+impl LawVisitor for WithLaw {
+    type Output = Outcome;
+    fn visit<L: ForceLaw>(self, law: L) -> Outcome {
+        let scene = self.0;
+        let gamma = scene.gamma;
+        if gamma > 0.0 { scene.with_contact(law, BondDashpot { gamma }) } else { scene.with_contact(law, NoDashpot) }
+    }
+}
+
+/// Runs `sampling` on `state` under `field` with the integrator `kind`: the one place that
+/// turns the choice into monomorphised code.
+pub fn simulate_with<F: ForceField, P: StepProbe>(
+    kind: IntegratorKind,
+    state: &mut State,
+    field: &mut F,
+    sampling: &Sampling,
+    probe: &mut P,
+) -> Trace {
+    match kind {
+        IntegratorKind::PositionVerlet => simulate(state, field, &mut PositionVerlet::default(), sampling, probe),
+        IntegratorKind::VelocityVerlet => simulate(state, field, &mut VelocityVerlet::default(), sampling, probe),
+        IntegratorKind::SymplecticEuler => simulate(state, field, &mut SymplecticEuler, sampling, probe),
+        IntegratorKind::Rk4 => simulate(state, field, &mut RungeKutta4::default(), sampling, probe),
+        IntegratorKind::ForestRuth => simulate(state, field, &mut ForestRuth::default(), sampling, probe),
+        IntegratorKind::Gear => simulate(state, field, &mut Gear::default(), sampling, probe),
     }
 }

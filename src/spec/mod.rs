@@ -2,7 +2,7 @@
 //! The only module that knows YAML. Everything is checked before any run starts, and every
 //! error names the file, the field path, the value and what is allowed.
 
-pub use self::raw::{Control, Diagonals, LawName, LoadCase, SceneKind, Supports};
+pub use self::raw::{Control, Diagonals, LoadCase, SceneKind, Supports};
 pub use self::run_spec::{
     Budget, ImpulseSpec, LatticeSpec, MovieSpec, POWER_METHOD_BONDS, ProbeLine, RESULT_FORMAT, RelaxSpec, RunSpec,
     WaveSpec, reference_extension, seconds_up_to_1e9,

@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::collections::BTreeMap;
 
+use crate::model::LawName;
 use crate::sim::IntegratorKind;
 
 /// A parameter grid: dotted parameter path → the values it takes.
@@ -72,27 +73,6 @@ impl SceneKind {
             SceneKind::Pair => "pair",
             SceneKind::Chain => "chain",
             SceneKind::Lattice => "lattice",
-        }
-    }
-}
-
-/// Elastic law of the springs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum LawName {
-    /// f = k δ.
-    Linear,
-    /// f = C |δ|^β (`hertz` is accepted and means β = 3/2 unless `beta` says otherwise).
-    #[serde(alias = "hertz")]
-    Power,
-}
-
-impl LawName {
-    /// The name used in tables.
-    pub fn name(self) -> &'static str {
-        match self {
-            LawName::Linear => "linear",
-            LawName::Power => "power",
         }
     }
 }

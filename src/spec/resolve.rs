@@ -7,13 +7,13 @@ use std::fmt::Display;
 
 use super::MAX_NAME_LEN;
 use super::raw::{
-    Control, Diagonals, LawName, LoadCase, RawDamping, RawGeometry, RawLattice, RawMaterial, RawProbes, RawScene,
-    RawTime, RawWave, SceneKind, Supports,
+    Control, Diagonals, LoadCase, RawDamping, RawGeometry, RawLattice, RawMaterial, RawProbes, RawScene, RawTime,
+    RawWave, SceneKind, Supports,
 };
 use super::run_spec::{
     ImpulseSpec, LatticeSpec, MovieSpec, ProbeLine, RelaxSpec, RunSpec, WaveSpec, reference_extension,
 };
-use crate::model::{ForceLaw, PowerLaw};
+use crate::model::{LawName, LawSpec};
 use crate::sim::IntegratorKind;
 use crate::theory;
 
@@ -106,7 +106,7 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     let spacing = positive(geometry_spacing(&geometry), "geometry.spacing")?;
     let solid = derive_from_solid(kind, raw, &material, spacing, geometry.depth)?;
     let material = RawMaterial { mass: solid.mass.or(material.mass), k: solid.k.or(material.k), ..material };
-    let (mass, k, law, beta, contact) = resolve_material(&material)?;
+    let (mass, k, law, contact) = resolve_material(&material)?;
     // Each finite and > 0, but a ratio beyond f64's range (m = 1e300, k = 1e-300) leaves no time scale.
     require(
         (k / mass).is_normal(),
@@ -145,7 +145,6 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         spacing,
         k,
         law,
-        beta,
         contact,
         gamma: 0.0,
         restitution_target: None,
@@ -198,10 +197,7 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     }
     // A power law has no stiffness at δ = 0: its tangent β C |δ|^(β−1) at the reference
     // extension stands in for k where a linear formula is needed.
-    let stiffness_for_damping = match law {
-        LawName::Linear => k,
-        LawName::Power => PowerLaw { beta }.tangent_stiffness(k, reference_extension(&spec)),
-    };
+    let stiffness_for_damping = law.tangent_stiffness(k, reference_extension(&spec));
     require(
         stiffness_for_damping > 0.0 && stiffness_for_damping.is_finite(),
         "material.law",
@@ -213,7 +209,7 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     // relaxing scene takes the linear one at its tangent stiffness.
     let collision = kind == SceneKind::Pair || (kind == SceneKind::Chain && !relaxing_chain);
     let t_c = match law {
-        LawName::Power if collision => theory::pair_omega(stiffness_for_damping, mass, gamma)
+        LawSpec::Power { beta } if collision => theory::pair_omega(stiffness_for_damping, mass, gamma)
             .map(|_| theory::power_law_contact_duration(k, beta, mass, v0)),
         _ => theory::linear_contact_duration(stiffness_for_damping, mass, gamma),
     }
@@ -353,19 +349,18 @@ fn geometry_spacing(geometry: &RawGeometry) -> f64 {
     geometry.spacing.unwrap_or(DEFAULT_SPACING)
 }
 
-fn resolve_material(material: &RawMaterial) -> Result<(f64, f64, LawName, f64, bool), Issue> {
+fn resolve_material(material: &RawMaterial) -> Result<(f64, f64, LawSpec, bool), Issue> {
     let mass = positive(material.mass.unwrap_or(DEFAULT_MASS), "material.mass")?;
     let k = positive(material.k.unwrap_or(DEFAULT_STIFFNESS), "material.k")?;
-    let law = material.law.unwrap_or(LawName::Linear);
-    let beta = match law {
-        LawName::Linear => 1.0,
+    let law = match material.law.unwrap_or(LawName::Linear) {
+        LawName::Linear => LawSpec::Linear,
         LawName::Power => {
             let beta = material.beta.unwrap_or(DEFAULT_BETA);
             require(beta.is_finite() && beta >= 1.0, "material.beta", beta, "must be ≥ 1 (1.5 is Hertz)")?;
-            beta
+            LawSpec::Power { beta }
         }
     };
-    Ok((mass, k, law, beta, material.contact.unwrap_or(false)))
+    Ok((mass, k, law, material.contact.unwrap_or(false)))
 }
 
 /// (γ, the restitution it came from, γ_g).

@@ -4,7 +4,8 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::collections::BTreeMap;
 
-use super::raw::{Control, Diagonals, LawName, LoadCase, SceneKind, Supports};
+use super::raw::{Control, Diagonals, LoadCase, SceneKind, Supports};
+use crate::model::LawSpec;
 use crate::sim::IntegratorKind;
 
 /// Bumped whenever stored results of an unchanged spec would differ (new physics or columns),
@@ -28,10 +29,9 @@ pub struct RunSpec {
     pub spacing: f64,
     /// Stiffness constant: k (N/m) for linear springs, C (N/m^β) for power-law springs.
     pub k: f64,
-    /// Elastic law.
-    pub law: LawName,
-    /// Exponent β (1 for linear springs).
-    pub beta: f64,
+    /// Elastic law, serialised as the columns `law` and `beta` (1 for linear springs).
+    #[serde(flatten)]
+    pub law: LawSpec,
     /// Springs act only in compression.
     pub contact: bool,
     /// Bond dashpot γ (N s/m).
@@ -327,11 +327,11 @@ pub const POWER_METHOD_BONDS: usize = 250_000;
 /// extension (F/C)^(1/β) of a spring carrying one node's load F (velocity control: strain · a);
 /// a relaxing chain: its springs' equilibrium extension ΔW/(n + 1). Linear springs: 0.
 pub fn reference_extension(spec: &RunSpec) -> f64 {
-    if spec.law == LawName::Linear {
+    let LawSpec::Power { beta } = spec.law else {
         return 0.0;
-    }
-    let overlap = |speed: f64| -crate::theory::power_law_max_overlap(spec.k, spec.beta, spec.mass, speed);
-    let carrying = |force: f64| (force.abs() / spec.k).powf(1.0 / spec.beta);
+    };
+    let overlap = |speed: f64| -crate::theory::power_law_max_overlap(spec.k, beta, spec.mass, speed);
+    let carrying = |force: f64| (force.abs() / spec.k).powf(1.0 / beta);
     match (&spec.lattice, spec.kind) {
         (Some(l), _) => match l.impulse {
             Some(ImpulseSpec { top_row_force: Some([fx, fy]), .. }) => carrying(fx.hypot(fy)),

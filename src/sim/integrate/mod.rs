@@ -24,8 +24,6 @@ pub use self::runge_kutta::RungeKutta4;
 pub use self::verlet::{ForestRuth, PositionVerlet, VelocityVerlet};
 
 use super::field::ForceField;
-use super::probe::StepProbe;
-use super::run::{Sampling, Trace, simulate};
 use super::state::State;
 
 /// Which integrator a run uses.
@@ -83,25 +81,6 @@ pub trait Integrator {
     /// Advances by one step `dt` (s); afterwards positions and velocities refer to the new
     /// `state.time`, and so do the forces, except for Gear's, which belong to its prediction.
     fn step<F: ForceField>(&mut self, state: &mut State, field: &mut F, dt: f64);
-}
-
-/// Runs `sampling` on `state` under `field` with the integrator `kind`: the one place that
-/// turns the choice into monomorphised code.
-pub fn simulate_with<F: ForceField, P: StepProbe>(
-    kind: IntegratorKind,
-    state: &mut State,
-    field: &mut F,
-    sampling: &Sampling,
-    probe: &mut P,
-) -> Trace {
-    match kind {
-        IntegratorKind::PositionVerlet => simulate(state, field, &mut PositionVerlet::default(), sampling, probe),
-        IntegratorKind::VelocityVerlet => simulate(state, field, &mut VelocityVerlet::default(), sampling, probe),
-        IntegratorKind::SymplecticEuler => simulate(state, field, &mut SymplecticEuler, sampling, probe),
-        IntegratorKind::Rk4 => simulate(state, field, &mut RungeKutta4::default(), sampling, probe),
-        IntegratorKind::ForestRuth => simulate(state, field, &mut ForestRuth::default(), sampling, probe),
-        IntegratorKind::Gear => simulate(state, field, &mut Gear::default(), sampling, probe),
-    }
 }
 
 /// Adds the loads times `factor` to `(fx, fy)` and zeroes every held axis, so held particles
