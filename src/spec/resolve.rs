@@ -71,7 +71,8 @@ const DEFAULT_MASS: f64 = 1.0;
 const DEFAULT_STIFFNESS: f64 = 1.0;
 const DEFAULT_SPACING: f64 = 1.0;
 const DEFAULT_BETA: f64 = 1.5;
-const DEFAULT_DT_PER_TC: f64 = 50.0;
+/// dt = t_c / this unless the campaign sets dt another way.
+pub const DEFAULT_DT_PER_TC: f64 = 50.0;
 const DEFAULT_SAMPLES: u64 = 400;
 /// Lattice defaults: k_d/k, load per top-row node (N), E_kin/E_pot tolerance, longest run (t_c).
 const DEFAULT_K_DIAG_RATIO: f64 = 0.5;

@@ -315,7 +315,7 @@ impl LatticeSpec {
 }
 
 /// Networks with more bonds ([`RunSpec::bonds`]) than this get their modes from a node-by-node
-/// bound in one pass (`stability::node_bound`) instead of the power method, whose up to 1000
+/// bound in one pass (`plan::stability::node_bound`) instead of the power method, whose up to 1000
 /// passes over 250 000 bonds take about a second and grow with the network (a 2000 × 2000
 /// lattice took 170 s and 1.7 GB before `plan` printed anything). Every shipped campaign stays
 /// below it (its largest lattice, 40 × 40, has 6 400 bonds).
