@@ -143,6 +143,7 @@ fn build_scene_until(spec: &RunSpec, deadline: Instant) -> Scene {
 }
 
 fn run_and_measure(spec: &RunSpec, deadline: Instant, estimates: &Estimates) -> Finished {
+    assert!(spec.is_planned(), "a run reached the runner without its time step: plan the campaign (crate::plan)");
     let mut scene = build_scene_until(spec, deadline);
     let stability = estimates.stability(spec);
     let mut metrics = Metrics {

@@ -289,6 +289,8 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         )?;
     }
 
+    // Where dt_omega_max sets dt, dt and steps are the plan's to decide (unplanned: NaN and 0).
+    let (dt, steps) = if spec.dt_omega_max.is_some() { (f64::NAN, 0) } else { (dt, steps) };
     Ok(RunSpec { gamma, restitution_target, gamma_background, t_c, dt, duration, steps, samples, gap, movie, ..spec })
 }
 
@@ -403,7 +405,8 @@ fn resolve_dt(time: &RawTime, t_c: f64) -> Result<f64, Issue> {
             "give one of dt, dt_per_tc and dt_omega_max",
         )?;
         require(target.is_finite() && target > 0.0, "time.dt_omega_max", target, "must be > 0 (dt = value / ω_max)")?;
-        // Provisional: the stability check sets dt = dt_omega_max / ω_max once the scene is built.
+        // Nominal, for the range checks of the duration and the reference run only: the plan
+        // decides dt = dt_omega_max / ω_max once the scene is built (`crate::plan`).
         return Ok(t_c / DEFAULT_DT_PER_TC);
     }
     match (time.dt, time.dt_per_tc) {
