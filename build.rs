@@ -5,7 +5,7 @@
 use std::path::{Path, PathBuf};
 
 /// Everything a run's record depends on: the spec and its resolution, the scenes, the physics
-/// core, the measurements and their references, the stability check that sets dt, the runner's
+/// core, the measurements and their references, the plan that sets dt, the runner's
 /// `execute` and the record it fills.
 /// Not the table, the reports, the command line or the store's bookkeeping: they only read records.
 const RESULT_SOURCES: [&str; 10] = [
@@ -16,7 +16,7 @@ const RESULT_SOURCES: [&str; 10] = [
     "src/measure",
     "src/theory",
     "src/fem.rs",
-    "src/stability.rs",
+    "src/plan",
     "src/runner/execute.rs",
     "src/runner/record.rs",
 ];

@@ -6,12 +6,12 @@ use std::path::{Path, PathBuf};
 
 use crate::bench::{BenchConfig, run_once};
 use crate::output::Layout;
+use crate::plan::{Plan, Stability};
 use crate::runner::{
     BUILD, CampaignRun, INTERRUPTED, Interrupted, OtherBuilds, Shard, Stored, read_stored, run_campaign_with,
     shard_campaign, shard_of_each_run, stored_count, write_missing_movies,
 };
 use crate::spec::Campaign;
-use crate::stability::{Stability, estimate, load_campaign};
 use crate::{report, table};
 
 /// Molecular-dynamics studies of mass-spring solids: campaign YAML in, tables and reports out.
@@ -171,18 +171,18 @@ pub fn run() -> anyhow::Result<()> {
     }
 }
 
-fn open(reports: &Path, file: &Path) -> anyhow::Result<(Campaign, Layout)> {
-    let campaign = load_campaign(file)?;
-    let layout = Layout::new(reports, &campaign.name);
-    Ok((campaign, layout))
+fn open(reports: &Path, file: &Path) -> anyhow::Result<(Plan, Layout)> {
+    let plan = crate::plan::load(file)?;
+    let layout = Layout::new(reports, &plan.campaign.name);
+    Ok((plan, layout))
 }
 
 /// [`open`] for a command that writes into the campaign's folder: claims the folder for `file`
 /// first, refusing one another campaign file of the same name owns unless `force`.
-fn open_to_write(reports: &Path, file: &Path, force: bool) -> anyhow::Result<(Campaign, Layout)> {
-    let (campaign, layout) = open(reports, file)?;
+fn open_to_write(reports: &Path, file: &Path, force: bool) -> anyhow::Result<(Plan, Layout)> {
+    let (plan, layout) = open(reports, file)?;
     crate::owner::claim(&layout, file, force)?;
-    Ok((campaign, layout))
+    Ok((plan, layout))
 }
 
 /// Most threads `-j`, `--threads` and `--cpus-per-task` accept: four times the cores of a large
@@ -225,7 +225,8 @@ fn lock_publishing(campaign: &Campaign, layout: &Layout, lock_wait: Option<f64>)
 /// Ctrl-C (or SIGTERM) the runs in progress finish and are stored and no more start; a second
 /// one ends the process at once; either way it ends (exit code 130) with how many runs are
 /// stored and the command that continues.
-fn run_stored(campaign: &Campaign, layout: &Layout, options: &RunOptions) -> anyhow::Result<CampaignRun> {
+fn run_stored(plan: &Plan, layout: &Layout, options: &RunOptions) -> anyhow::Result<CampaignRun> {
+    let campaign = &plan.campaign;
     crate::output::sweep_temporaries(layout);
     let rerun = format!("rerun `mdsolids {}` to continue", std::env::args().skip(1).collect::<Vec<_>>().join(" "));
     let mut signals = signal_hook::iterator::Signals::new([signal_hook::consts::SIGINT, signal_hook::consts::SIGTERM])
@@ -245,7 +246,7 @@ fn run_stored(campaign: &Campaign, layout: &Layout, options: &RunOptions) -> any
         }
     });
     let lock_wait = lock_patience(campaign, options.lock_wait);
-    match run_campaign_with(campaign, layout, options.jobs, lock_wait, options.other_builds) {
+    match run_campaign_with(plan, layout, options.jobs, lock_wait, options.other_builds) {
         Err(error) if error.is::<Interrupted>() => {
             eprintln!("{error}; {rerun}");
             std::process::exit(130)
@@ -268,12 +269,13 @@ struct RunOptions {
 
 fn run_command(reports: &Path, file: &Path, options: &RunOptions) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
-    let (campaign, layout) = open_to_write(reports, file, options.force)?;
-    let done = run_stored(&campaign, &layout, options)?;
+    let (plan, layout) = open_to_write(reports, file, options.force)?;
+    let campaign = &plan.campaign;
+    let done = run_stored(&plan, &layout, options)?;
     warn_about_store(&layout, &done, options.other_builds);
     let failed = done.records.iter().filter(|r| r.status != "ok").count();
-    let _publishing = lock_publishing(&campaign, &layout, options.lock_wait)?;
-    publish(&campaign, &layout, &done.records, &report::LeftOut::default())?;
+    let _publishing = lock_publishing(campaign, &layout, options.lock_wait)?;
+    publish(campaign, &layout, &done.records, &report::LeftOut::default())?;
     println!(
         "{}: {} runs ({} simulated, {} cached, {} not ok) in {:.2} s -> {}",
         campaign.name,
@@ -291,17 +293,18 @@ fn run_command(reports: &Path, file: &Path, options: &RunOptions) -> anyhow::Res
 /// the other shares may still be running, and several shards writing them at once would race.
 fn run_shard_command(reports: &Path, file: &Path, shard: Shard, options: &RunOptions) -> anyhow::Result<()> {
     let started = std::time::Instant::now();
-    let (campaign, layout) = open_to_write(reports, file, options.force)?;
-    let share = shard_campaign(&campaign, shard);
-    let done = run_stored(&share, &layout, options)?;
+    let (mut plan, layout) = open_to_write(reports, file, options.force)?;
+    let total = plan.campaign.runs.len();
+    plan.campaign = shard_campaign(&plan.campaign, shard);
+    let done = run_stored(&plan, &layout, options)?;
     warn_about_store(&layout, &done, options.other_builds);
     let failed = done.records.iter().filter(|r| r.status != "ok").count();
     println!(
         "{} shard {shard}: {} of {} runs ({} simulated, {} cached, {} not ok) in {:.2} s -> {}; \
          `mdsolids report` merges the shards",
-        campaign.name,
+        plan.campaign.name,
         done.records.len(),
-        campaign.runs.len(),
+        total,
         done.simulated,
         done.cached,
         failed,
@@ -346,10 +349,11 @@ fn listed<'a>(ids: impl ExactSizeIterator<Item = &'a str>) -> String {
 const REPORT_SECONDS: f64 = 0.1;
 
 fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Result<()> {
-    let (mut campaign, layout) = open(reports, file)?;
+    let (mut plan, layout) = open(reports, file)?;
     if let Some(shard) = shard {
-        campaign = shard_campaign(&campaign, shard);
+        plan.campaign = shard_campaign(&plan.campaign, shard);
     }
+    let campaign = &plan.campaign;
     println!(
         "{:<28} {:<8} {:<16} {:>11} {:>11} {:>8} {:>10} {:>8} {:>7} {:>7}  varied",
         "run_id", "kind", "integrator", "dt (s)", "t_c (s)", "t_c/dt", "steps", "dt·ω_max", "limit", "stored"
@@ -375,7 +379,7 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
             simulation_s += spec.estimated_seconds();
         }
         // A run the memory budget refuses is not estimated (a large lattice's estimate takes long).
-        let stability = campaign.budget.refuses(spec).is_none().then(|| estimate(spec));
+        let stability = campaign.budget.refuses(spec).is_none().then(|| plan.estimates.stability(spec));
         let shown =
             |value: fn(&Stability) -> f64| stability.as_ref().map_or("-".into(), |s| format!("{:.4}", value(s)));
         println!(
@@ -437,10 +441,11 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
 }
 
 fn report_command(reports: &Path, file: &Path, force: bool, lock_wait: Option<f64>) -> anyhow::Result<()> {
-    let (campaign, layout) = open(reports, file)?;
+    let (plan, layout) = open(reports, file)?;
+    let campaign = &plan.campaign;
     // Locked before the store is read: a report publishes what is stored when it starts, so it
     // can never overwrite the tables of a `run` that stored more.
-    let _publishing = lock_publishing(&campaign, &layout, lock_wait)?;
+    let _publishing = lock_publishing(campaign, &layout, lock_wait)?;
     crate::output::sweep_temporaries(&layout);
     let (mut records, mut left_out) = (Vec::new(), report::LeftOut::default());
     for spec in &campaign.runs {
@@ -464,11 +469,11 @@ fn report_command(reports: &Path, file: &Path, force: bool, lock_wait: Option<f6
         );
     }
     crate::owner::claim(&layout, file, force)?;
-    write_missing_movies(&campaign, &layout, &records, Default::default())?;
+    write_missing_movies(&plan, &layout, &records, Default::default())?;
     if records.len() < campaign.runs.len() {
         left_out.previous_table = table::keep_larger_table_aside(&layout, records.len())?;
     }
-    publish(&campaign, &layout, &records, &left_out)?;
+    publish(campaign, &layout, &records, &left_out)?;
     let missing = &left_out.missing;
     if !missing.is_empty() {
         eprintln!(
@@ -522,7 +527,8 @@ struct SlurmRequest {
 }
 
 fn slurm_command(reports: &Path, file: &Path, request: &SlurmRequest) -> anyhow::Result<()> {
-    let (campaign, layout) = open(reports, file)?;
+    let (plan, layout) = open(reports, file)?;
+    let campaign = &plan.campaign;
     anyhow::ensure!(
         (1..=campaign.runs.len()).contains(&request.tasks),
         "--tasks {}: must be between 1 and the campaign's {} runs",

@@ -4,6 +4,7 @@
 //!
 //! ```text
 //! campaign YAML ──spec::load──▶ Campaign { runs: [RunSpec] }                 (spec)
+//! Campaign ──plan::load──▶ Plan { campaign (dt final, stability checked), estimates }  (plan)
 //! RunSpec ──scenes::build_scene──▶ Scene { particles, bonds, law, damping }   (scenes, model)
 //! Scene ──Scene::run──▶ Outcome { Trace, crossings, final state }             (sim: pure)
 //! Outcome ──measure::*──▶ Metrics, beside theory::* references                (measure, theory)
@@ -33,13 +34,13 @@ pub mod measure;
 pub mod model;
 pub mod output;
 pub mod owner;
+pub mod plan;
 pub mod report;
 pub mod runner;
 pub mod scenes;
 pub mod sim;
 pub mod slurm;
 pub mod spec;
-pub mod stability;
 pub mod summary;
 pub mod table;
 pub mod theory;

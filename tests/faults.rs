@@ -280,7 +280,7 @@ fn a_result_that_cannot_be_written_stops_the_campaign_and_keeps_the_stored_ones(
     // The whole grid, with a directory where one new record must go: its rename fails (as a
     // full disk or a read-only folder would fail it; a directory fails even for root).
     let file = campaign_file(dir.path(), CAMPAIGN);
-    let campaign = mdsolids::stability::parse_campaign("faults.yaml", CAMPAIGN).unwrap();
+    let campaign = mdsolids::plan::parse("faults.yaml", CAMPAIGN).unwrap().campaign;
     let blocked = campaign.runs.iter().map(|r| r.run_id()).find(|id| !before.iter().any(|(n, _)| n.starts_with(id)));
     let blocked = reports.join("faults/runs").join(format!("{}.json", blocked.unwrap()));
     std::fs::create_dir_all(blocked.join("in-the-way")).unwrap();
@@ -313,13 +313,13 @@ fn runs_beyond_their_budget_end_with_status_budget_and_plan_warns() {
     // Memory: 2000 particles × 400 samples × 4 numbers ≈ 26 MB recorded; a 1 MB budget refuses it
     // before it starts.
     let tight = Budget { seconds_per_run: 3600.0, memory_per_run: 1e6 };
-    let r = execute_within(&runs[0], &tight);
+    let r = execute_within(&runs[0], &tight, &Default::default());
     assert_eq!(r.status, "budget");
     assert!(r.message.contains("budget.memory_per_run_mb") && r.steps == 0, "{}", r.message);
     // Time: ~1e10 particle-steps would take minutes; a 0.2 s budget stops it (the bound below
     // is a hang guard, not a speed test).
     let started = Instant::now();
-    let r = execute_within(&runs[0], &Budget { seconds_per_run: 0.2, memory_per_run: 4e9 });
+    let r = execute_within(&runs[0], &Budget { seconds_per_run: 0.2, memory_per_run: 4e9 }, &Default::default());
     assert_eq!(r.status, "budget", "{}", r.message);
     assert!(r.message.contains("time budget") && r.steps > 0 && r.steps < runs[0].steps, "{}", r.message);
     assert!(started.elapsed() < Duration::from_secs(30));
@@ -336,7 +336,7 @@ fn runs_beyond_their_budget_end_with_status_budget_and_plan_warns() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("warning") && text.contains("budget.seconds_per_run"), "{text}");
     // A budget must be a positive number.
-    let error = mdsolids::stability::parse_campaign(
+    let error = mdsolids::plan::parse(
         "b.yaml",
         "version: 1\nname: b\nbudget: {seconds_per_run: 0}\nscenes:\n  - name: p\n    kind: pair\n    v0: 1.0\n",
     )
@@ -365,7 +365,7 @@ fn a_run_locked_by_another_process_is_left_for_last_and_given_up_after_the_state
     let dir = tempfile::tempdir().unwrap();
     let file = campaign_file(dir.path(), CAMPAIGN);
     let reports = dir.path().join("reports");
-    let campaign = mdsolids::stability::parse_campaign("faults.yaml", CAMPAIGN).unwrap();
+    let campaign = mdsolids::plan::parse("faults.yaml", CAMPAIGN).unwrap().campaign;
     let layout = mdsolids::output::Layout::new(&reports, &campaign.name);
     let longest = campaign.runs.iter().max_by(|a, b| a.estimated_seconds().total_cmp(&b.estimated_seconds())).unwrap();
     let lock_path = layout.run_lock_file(&longest.run_id());
@@ -447,7 +447,7 @@ fn a_full_disk_while_a_movie_is_encoded_names_the_file_and_leaves_no_partial_fil
     let error = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success(), "{error}");
     let runs = reports.join("faults/runs");
-    let campaign = mdsolids::stability::parse_campaign("faults.yaml", &text).unwrap();
+    let campaign = mdsolids::plan::parse("faults.yaml", &text).unwrap().campaign;
     let named =
         campaign.runs.iter().any(|r| error.contains(&format!("cannot write '{}/{}.gif'", runs.display(), r.run_id())));
     assert!(named, "the error names the movie: {error}");
@@ -516,7 +516,7 @@ fn the_memory_estimate_covers_the_peak_of_every_kind_of_run() {
     let mut program = 0.0;
     for (index, (what, scene)) in cases.iter().enumerate() {
         let yaml = format!("version: 1\nname: m{index}\nscenes:\n{scene}");
-        let estimate = mdsolids::stability::parse_campaign("m.yaml", &yaml).unwrap().runs[0].estimated_memory_bytes();
+        let estimate = mdsolids::plan::parse("m.yaml", &yaml).unwrap().campaign.runs[0].estimated_memory_bytes();
         let file = dir.path().join(format!("m{index}.yaml"));
         std::fs::write(&file, &yaml).unwrap();
         let peak = peak_memory_of_run(dir.path(), &file);
@@ -572,7 +572,7 @@ fn the_static_solve_is_within_the_time_budget() {
          geometry: {spacing: 0.1, depth: 0.01}\n    damping: {restitution: 0.5, background: 12000.0}\n    \
          lattice: {size: 150, k_diag_ratio: 0.5}\n    load: {case: tensile, per_node: 1000.0}\n",
     );
-    let r = execute_within(&runs[0], &Budget { seconds_per_run: 0.05, memory_per_run: 4e9 });
+    let r = execute_within(&runs[0], &Budget { seconds_per_run: 0.05, memory_per_run: 4e9 }, &Default::default());
     assert_eq!(r.status, "budget", "{}", r.message);
     assert!(
         r.message.contains("static solve") && r.message.contains("budget.seconds_per_run") && r.steps == 0,
@@ -589,13 +589,14 @@ fn the_static_solve_is_within_the_time_budget() {
 #[test]
 fn runs_the_memory_budget_refuses_are_not_estimated() {
     let started = Instant::now();
-    let campaign = mdsolids::stability::parse_campaign(
+    let campaign = mdsolids::plan::parse(
         "big.yaml",
         "version: 1\nname: big\nbudget: {memory_per_run_mb: 100}\nscenes:\n  - name: l\n    kind: lattice\n    \
          lattice: {size: 2000, k_diag_ratio: 0.5}\n    load: {case: tensile, per_node: 1.0}\n    grid:\n      \
          time.dt_per_tc: [20, 50]\n",
     )
-    .unwrap();
+    .unwrap()
+    .campaign;
     assert!(campaign.runs.iter().all(|spec| campaign.budget.refuses(spec).is_some()));
     assert!(started.elapsed() < Duration::from_secs(10), "{:?}", started.elapsed());
 }

@@ -1,10 +1,10 @@
 //! Hostile and malformed campaigns (issue 8): every fixture in `tests/campaigns/bad/` is refused
 //! with an error that names the file and the field, and fuzzing the parser with random text and
 //! random campaigns never panics, never hangs and never lets an unusable run through. Nothing
-//! here simulates: the parser and the stability check (`parse_campaign`) only.
+//! here simulates: the parser and the stability check (`plan::parse`) only.
 
+use mdsolids::plan;
 use mdsolids::spec::{Campaign, RunSpec, SpecError};
-use mdsolids::stability::parse_campaign;
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use std::path::{Path, PathBuf};
@@ -61,7 +61,7 @@ fn every_bad_fixture_is_refused_naming_the_file_and_the_field() {
         let file_for_thread = file.clone();
         let (send, receive) = mpsc::channel();
         std::thread::spawn(move || {
-            let _ = send.send(parse_campaign(&file_for_thread, &text).map(|c| c.runs.len()));
+            let _ = send.send(plan::parse(&file_for_thread, &text).map(|p| p.campaign.runs.len()));
         });
         let message = match receive.recv_timeout(HANG_GUARD) {
             Ok(Err(e)) => e.to_string(),
@@ -133,7 +133,7 @@ fn equal_numbers_written_differently_give_one_run_id() {
              grid:\n      time.dt_per_tc: [{dt}]\n      damping.background: [{background}]\n"
         )
     };
-    let run = |dt, background, gamma| parse_campaign("same.yaml", &campaign(dt, background, gamma)).unwrap().runs;
+    let run = |dt, background, gamma| plan::parse("same.yaml", &campaign(dt, background, gamma)).unwrap().campaign.runs;
     let (plain, written_otherwise) = (run("50", "0", "0.0"), run("50.0", "-0.0", "-0.0"));
     assert_eq!(plain[0].run_id(), written_otherwise[0].run_id());
     assert_eq!(plain[0].varied, written_otherwise[0].varied);
@@ -154,14 +154,14 @@ fn config(cases: u32) -> ProptestConfig {
 
 /// Parses `text` with the stability check and, when it is accepted, checks every run.
 fn assert_refused_or_sane(text: String) -> Result<(), TestCaseError> {
-    match guarded(text, parse_campaign) {
+    match guarded(text, plan::parse) {
         Err(problem) => Err(TestCaseError::fail(problem)),
         Ok(Err(e)) => {
             let message = e.to_string();
             prop_assert!(message.starts_with("fuzz.yaml: "), "the error does not name the file: {}", message);
             Ok(())
         }
-        Ok(Ok(campaign)) => check_sane(&campaign),
+        Ok(Ok(plan)) => check_sane(&plan.campaign),
     }
 }
 
@@ -538,7 +538,7 @@ fn structured_campaigns_are_often_valid() {
     let strategy = campaign();
     let samples = 300;
     let accepted = (0..samples)
-        .filter(|_| parse_campaign("fuzz.yaml", &strategy.new_tree(&mut runner).unwrap().current()).is_ok())
+        .filter(|_| plan::parse("fuzz.yaml", &strategy.new_tree(&mut runner).unwrap().current()).is_ok())
         .count();
     assert!(accepted * 20 >= samples, "only {accepted} of {samples} random campaigns accepted");
 }

@@ -7,8 +7,8 @@ mod common;
 
 use common::{assert_table_finite, execute_all, pair_campaign, relative, runs};
 use mdsolids::measure::convergence_order;
+use mdsolids::plan::{self, estimate};
 use mdsolids::runner::RunRecord;
-use mdsolids::stability::{estimate, parse_campaign};
 
 /// A chain of 11 with its 4th particle hit, over 5 t_c, swept over dt: the normal-mode error
 /// (positions and velocities) is smooth in dt, so its slope is the order.
@@ -64,7 +64,7 @@ fn damping_works_with_every_scheme_that_allows_it() {
         assert_eq!(r.metrics.error_measure.as_deref(), Some("restitution"));
     }
     let refused =
-        parse_campaign("fr.yaml", &pair_campaign("{contact: false}", "{restitution: 0.5}", "forest-ruth", &[40.0]))
+        plan::parse("fr.yaml", &pair_campaign("{contact: false}", "{restitution: 0.5}", "forest-ruth", &[40.0]))
             .unwrap_err()
             .to_string();
     assert!(
@@ -103,13 +103,13 @@ fn predicted_stability_limit_of_velocity_verlet_is_where_a_lattice_blows_up() {
 
 #[test]
 fn a_run_beyond_the_limit_is_refused_unless_allowed() {
-    let error = parse_campaign("stiff.yaml", &lattice_campaign("{integrator: velocity-verlet, dt_per_tc: 2}"))
+    let error = plan::parse("stiff.yaml", &lattice_campaign("{integrator: velocity-verlet, dt_per_tc: 2}"))
         .unwrap_err()
         .to_string();
     for needed in ["stiff.yaml", "scenes[0]", "time.dt_per_tc", "stability limit", "allow_unstable"] {
         assert!(error.contains(needed), "{needed} missing from: {error}");
     }
-    assert!(parse_campaign("stiff.yaml", &lattice_campaign("{dt_per_tc: 2, allow_unstable: true}")).is_ok());
+    assert!(plan::parse("stiff.yaml", &lattice_campaign("{dt_per_tc: 2, allow_unstable: true}")).is_ok());
 }
 
 #[test]
@@ -145,14 +145,14 @@ fn gear_limit_is_a_bound_over_the_run_length() {
     // and a run just inside the new limit stays bounded: no mode's amplitude more than doubles,
     // so the energy error is at most 2² − 1 = 3 (measured 0.35: the fastest modes hold part of
     // the energy; a blow-up is ≥ 1000).
-    let error = parse_campaign("gear.yaml", &gear_chain(8000, 0.45, false)).unwrap_err().to_string();
+    let error = plan::parse("gear.yaml", &gear_chain(8000, 0.45, false)).unwrap_err().to_string();
     assert!(error.contains("stability limit") && error.contains("gear"), "{error}");
     let probe = &runs(&gear_chain(8000, 0.3, true))[0];
     let limit = estimate(probe).limit;
     assert!(limit < 0.45, "limit {limit}");
     let below = &execute_all(&gear_chain(8000, 0.99 * limit, false))[0];
     assert_eq!(below.status, "ok", "{}", below.message);
-    let bound = mdsolids::stability::RUN_GROWTH.powi(2) - 1.0;
+    let bound = mdsolids::plan::RUN_GROWTH.powi(2) - 1.0;
     assert!(below.metrics.energy_error.unwrap() <= bound, "energy error {:?}", below.metrics.energy_error);
     // Short runs keep the wide limit: 1000 steps at most double the amplitude up to ~0.55.
     let short = estimate(&runs(&gear_chain(20, 0.3, true))[0]).limit;

@@ -2,8 +2,8 @@
 //! frames beside its record, whose colours follow the particles' speed, and the report shows it.
 
 use mdsolids::output::Layout;
+use mdsolids::plan;
 use mdsolids::runner::run_campaign;
-use mdsolids::stability::parse_campaign;
 
 const CAMPAIGN: &str = "version: 1\nname: film\nscenes:\n  - name: chain\n    kind: chain\n    n: 10\n    \
     node: first\n    v0: 0.1\n    movie: {frames: 12, width: 400, height: 160}\n    time: {duration_tc: 10}\n";
@@ -25,9 +25,10 @@ fn frames(path: &std::path::Path) -> (u16, Vec<Vec<u8>>) {
 #[test]
 fn movie_has_its_frames_and_colours_follow_the_speed() {
     let reports = tempfile::tempdir().unwrap();
-    let campaign = parse_campaign("film.yaml", CAMPAIGN).unwrap();
+    let planned = plan::parse("film.yaml", CAMPAIGN).unwrap();
+    let campaign = &planned.campaign;
     let layout = Layout::new(reports.path(), &campaign.name);
-    let done = run_campaign(&campaign, &layout, Some(1)).unwrap();
+    let done = run_campaign(&planned, &layout, Some(1)).unwrap();
     let record = &done.records[0];
     let path = layout.movie_file(&record.run_id);
     let (width, frames) = frames(&path);
@@ -57,7 +58,7 @@ fn movie_has_its_frames_and_colours_follow_the_speed() {
     // Later the energy has spread: no disc is at the top colour at the left end any more.
     assert!(hot_columns(&frames[6]).iter().all(|&x| x >= 60) || hot_columns(&frames[6]).is_empty());
     // The report shows the movie (the HTML page as an image, the Markdown as a link).
-    mdsolids::report::render(&campaign, &layout, &done.records).unwrap();
+    mdsolids::report::render(campaign, &layout, &done.records).unwrap();
     let link = format!("runs/{}.gif", record.run_id);
     assert!(std::fs::read_to_string(layout.file("report.md")).unwrap().contains(&format!("]({link})")));
     assert!(std::fs::read_to_string(layout.file("index.html")).unwrap().contains(&format!("<img src=\"{link}\"")));
@@ -69,9 +70,10 @@ fn a_scene_can_show_its_runs_side_by_side() {
     let yaml = "version: 1\nname: pair\nscenes:\n  - name: kick\n    kind: lattice\n    lattice: {size: 5}\n    \
                 supports: free\n    impulse: {velocity: [0.0, -0.01]}\n    movie: {frames: 5, width: 300, height: 200, side_by_side: true}\n    \
                 time: {integrator: velocity-verlet}\n    grid:\n      lattice.diagonals: [none, both]\n";
-    let campaign = parse_campaign("pair.yaml", yaml).unwrap();
+    let planned = plan::parse("pair.yaml", yaml).unwrap();
+    let campaign = &planned.campaign;
     let layout = Layout::new(reports.path(), &campaign.name);
-    run_campaign(&campaign, &layout, Some(2)).unwrap();
+    run_campaign(&planned, &layout, Some(2)).unwrap();
     let (width, frames) = frames(&layout.side_by_side_movie("kick"));
     assert_eq!(frames.len(), 5);
     // Two panels of 300 − 90 pixels and one colour bar of 90.
@@ -91,9 +93,10 @@ fn bonds_can_be_coloured_by_strain() {
         )
     };
     let hues = |strain: bool| {
-        let campaign = parse_campaign("strain.yaml", &yaml(strain)).unwrap();
+        let planned = plan::parse("strain.yaml", &yaml(strain)).unwrap();
+        let campaign = &planned.campaign;
         let layout = Layout::new(reports.path(), &campaign.name);
-        let done = run_campaign(&campaign, &layout, Some(1)).unwrap();
+        let done = run_campaign(&planned, &layout, Some(1)).unwrap();
         assert_eq!(done.records[0].status, "ok", "{}", done.records[0].message);
         let (width, frames) = frames(&layout.movie_file(&done.records[0].run_id));
         // Pixels left of the colour bar, over all frames, that are clearly red or clearly blue.
@@ -128,14 +131,15 @@ fn movies_lost_after_a_kill_are_drawn_again_the_same() {
     // written; the movies must come back, byte for byte (frames are re-simulated, and runs are
     // deterministic).
     let reports = tempfile::tempdir().unwrap();
-    let campaign = parse_campaign("pair.yaml", &side_by_side_campaign("none, both")).unwrap();
+    let planned = plan::parse("pair.yaml", &side_by_side_campaign("none, both")).unwrap();
+    let campaign = &planned.campaign;
     let layout = Layout::new(reports.path(), &campaign.name);
-    let done = run_campaign(&campaign, &layout, Some(2)).unwrap();
+    let done = run_campaign(&planned, &layout, Some(2)).unwrap();
     let run_movie = layout.movie_file(&done.records[1].run_id);
     let (both, one) = (std::fs::read(layout.side_by_side_movie("kick")).unwrap(), std::fs::read(&run_movie).unwrap());
     std::fs::remove_file(layout.side_by_side_movie("kick")).unwrap();
     std::fs::remove_file(&run_movie).unwrap();
-    let again = run_campaign(&campaign, &layout, Some(2)).unwrap();
+    let again = run_campaign(&planned, &layout, Some(2)).unwrap();
     assert_eq!(again.simulated, 0, "the records are stored");
     assert_eq!(std::fs::read(&run_movie).unwrap(), one, "the run's movie is back");
     assert_eq!(std::fs::read(layout.side_by_side_movie("kick")).unwrap(), both, "the side-by-side movie is back");
@@ -145,9 +149,10 @@ fn movies_lost_after_a_kill_are_drawn_again_the_same() {
 fn a_side_by_side_movie_follows_the_runs_of_its_scene() {
     let reports = tempfile::tempdir().unwrap();
     let run = |diagonals: &str| {
-        let campaign = parse_campaign("pair.yaml", &side_by_side_campaign(diagonals)).unwrap();
+        let planned = plan::parse("pair.yaml", &side_by_side_campaign(diagonals)).unwrap();
+        let campaign = &planned.campaign;
         let layout = Layout::new(reports.path(), &campaign.name);
-        run_campaign(&campaign, &layout, Some(2)).unwrap();
+        run_campaign(&planned, &layout, Some(2)).unwrap();
         let movie = layout.side_by_side_movie("kick");
         (frames(&movie).0, std::fs::read(movie).unwrap())
     };
@@ -169,14 +174,15 @@ fn movies_never_write_through_a_planted_link() {
     // Earlier versions wrote `runs/<id>.gif.tmp` (a fixed name) with `File::create`, which
     // follows a symbolic link planted there and overwrites its target.
     let reports = tempfile::tempdir().unwrap();
-    let campaign = parse_campaign("film.yaml", CAMPAIGN).unwrap();
+    let planned = plan::parse("film.yaml", CAMPAIGN).unwrap();
+    let campaign = &planned.campaign;
     let layout = Layout::new(reports.path(), &campaign.name);
     let victim = reports.path().join("victim");
     std::fs::write(&victim, "precious").unwrap();
     let movie = layout.movie_file(&campaign.runs[0].run_id());
     std::fs::create_dir_all(movie.parent().unwrap()).unwrap();
     std::os::unix::fs::symlink(&victim, movie.with_extension("gif.tmp")).unwrap();
-    run_campaign(&campaign, &layout, Some(1)).unwrap();
+    run_campaign(&planned, &layout, Some(1)).unwrap();
     assert_eq!(std::fs::read_to_string(&victim).unwrap(), "precious");
     assert_eq!(frames(&movie).1.len(), 12);
 }
@@ -184,13 +190,14 @@ fn movies_never_write_through_a_planted_link() {
 #[test]
 fn a_lock_file_that_is_a_symbolic_link_is_refused() {
     let reports = tempfile::tempdir().unwrap();
-    let campaign = parse_campaign("film.yaml", CAMPAIGN).unwrap();
+    let planned = plan::parse("film.yaml", CAMPAIGN).unwrap();
+    let campaign = &planned.campaign;
     let layout = Layout::new(reports.path(), &campaign.name);
     let lock = layout.run_lock_file(&campaign.runs[0].run_id());
     std::fs::create_dir_all(lock.parent().unwrap()).unwrap();
     let elsewhere = reports.path().join("elsewhere");
     std::os::unix::fs::symlink(&elsewhere, &lock).unwrap();
-    let error = format!("{:#}", run_campaign(&campaign, &layout, Some(1)).unwrap_err());
+    let error = format!("{:#}", run_campaign(&planned, &layout, Some(1)).unwrap_err());
     assert!(error.contains(lock.to_str().unwrap()) && error.contains("symbolic link"), "{error}");
     assert!(!elsewhere.exists(), "no file is created through the link");
 }
@@ -200,7 +207,8 @@ fn a_lock_file_that_is_a_symbolic_link_is_refused() {
 /// written, and no temporary file is left; the runner records the run with `status = budget`.
 #[test]
 fn a_movie_stops_at_its_runs_deadline() {
-    let campaign = parse_campaign("film.yaml", CAMPAIGN).unwrap();
+    let planned = plan::parse("film.yaml", CAMPAIGN).unwrap();
+    let campaign = &planned.campaign;
     let mut movie = mdsolids::runner::execute(&campaign.runs[0]).movie.unwrap();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("late.gif");

@@ -59,7 +59,7 @@ fn a_residual_force_needs_a_wall_force_to_be_relative_to() {
     // tolerance relative to it could never be met; refused before anything runs.
     let yaml = "version: 1\nname: t\nscenes:\n  - name: w\n    kind: chain\n    n: 9\n    v0: 0.1\n    \
                 damping: {restitution: 0.5}\n    relax: {residual_force: 1.0e-9}\n";
-    let error = mdsolids::stability::parse_campaign("walls.yaml", yaml).unwrap_err().to_string();
+    let error = mdsolids::plan::parse("walls.yaml", yaml).unwrap_err().to_string();
     assert!(error.contains("relax.residual_force") && error.contains("kinetic_ratio"), "{error}");
 }
 

@@ -170,12 +170,13 @@ fn stored_runs_with_awkward_numbers_are_found_again() {
                 material: {mass: 0.785, k: 2.0e9}\n    geometry: {spacing: 0.1, depth: 0.01}\n    lattice: {size: 3}\n    \
                 damping: {restitution: 0.3}\n  - name: h\n    kind: pair\n    v0: 0.37\n    \
                 material: {contact: true, law: hertz, mass: 0.785, k: 3.3e7}\n";
-    let campaign = mdsolids::stability::parse_campaign("awkward.yaml", yaml).unwrap();
+    let planned = mdsolids::plan::parse("awkward.yaml", yaml).unwrap();
+    let campaign = &planned.campaign;
     let reports = tempfile::tempdir().unwrap();
     let layout = mdsolids::output::Layout::new(reports.path(), &campaign.name);
-    let first = mdsolids::runner::run_campaign(&campaign, &layout, Some(1)).unwrap();
+    let first = mdsolids::runner::run_campaign(&planned, &layout, Some(1)).unwrap();
     assert_eq!(first.simulated, 2);
-    let again = mdsolids::runner::run_campaign(&campaign, &layout, Some(1)).unwrap();
+    let again = mdsolids::runner::run_campaign(&planned, &layout, Some(1)).unwrap();
     assert_eq!((again.simulated, again.cached), (0, 2));
 }
 

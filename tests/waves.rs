@@ -95,7 +95,7 @@ fn lattice_impulse_reaches_the_bottom_row_at_the_longitudinal_speed() {
 fn an_impulse_lattice_is_not_loaded() {
     let yaml = "version: 1\nname: t\nscenes:\n  - name: l\n    kind: lattice\n    lattice: {size: 5}\n    \
                 impulse: {velocity: [0.0, -0.01]}\n    load: {case: tensile}\n";
-    let error = mdsolids::stability::parse_campaign("kick.yaml", yaml).unwrap_err().to_string();
+    let error = mdsolids::plan::parse("kick.yaml", yaml).unwrap_err().to_string();
     assert!(error.contains("kick.yaml") && error.contains("scenes[0].load") && error.contains("impulse"), "{error}");
 }
 
@@ -160,10 +160,11 @@ fn probes_record_chosen_rows_and_columns_and_see_momentum_conserved() {
 fn probes_are_written_as_csv_and_drawn() {
     use mdsolids::output::Layout;
     let reports = tempfile::tempdir().unwrap();
-    let campaign = mdsolids::stability::parse_campaign("probed.yaml", PROBED).unwrap();
+    let planned = mdsolids::plan::parse("probed.yaml", PROBED).unwrap();
+    let campaign = &planned.campaign;
     let layout = Layout::new(reports.path(), &campaign.name);
-    let done = mdsolids::runner::run_campaign(&campaign, &layout, Some(1)).unwrap();
-    mdsolids::report::render(&campaign, &layout, &done.records).unwrap();
+    let done = mdsolids::runner::run_campaign(&planned, &layout, Some(1)).unwrap();
+    mdsolids::report::render(campaign, &layout, &done.records).unwrap();
     let r = &done.records[0];
     let csv = std::fs::read_to_string(layout.file(&format!("probes/{}.csv", r.run_id))).unwrap();
     let mut lines = csv.lines();
@@ -180,7 +181,7 @@ fn probes_are_written_as_csv_and_drawn() {
 
 #[test]
 fn probes_outside_the_lattice_or_on_chains_are_refused() {
-    let refused = |yaml: &str| mdsolids::stability::parse_campaign("p.yaml", yaml).unwrap_err().to_string();
+    let refused = |yaml: &str| mdsolids::plan::parse("p.yaml", yaml).unwrap_err().to_string();
     let error = refused(&PROBED.replace("columns: [left]", "columns: [6]"));
     assert!(error.contains("p.yaml") && error.contains("probes.columns[0]") && error.contains("0..=5"), "{error}");
     let error = refused(&PROBED.replace("columns: [left]", "columns: [middle]"));

@@ -12,29 +12,31 @@ use crate::measure::{
     energy_error, homogeneity, lattice_constants, normal_mode_error, shear_modulus, tensile_moduli,
 };
 use crate::model::{ForceLaw, LawVisitor};
+use crate::plan::Estimates;
 use crate::scenes::{
     build_scene, chain_equilibrium, chain_has_normal_modes, drive_travel, lattice_bonds, lattice_springs,
     pair_references, relaxation_checks, top_row,
 };
 use crate::sim::{Outcome, ProbeTrace, RunStatus, Scene, Trace, stored_samples};
 use crate::spec::{Budget, Control, LatticeSpec, LoadCase, ProbeLine, RunSpec, SceneKind, reference_extension};
-use crate::stability::estimate;
 
-/// Runs `spec` within the default [`Budget`] and returns its record; never panics.
+/// Runs `spec` (planned: [`crate::plan`]) within the default [`Budget`], estimating its
+/// stability afresh, and returns its record; never panics.
 pub fn execute(spec: &RunSpec) -> RunRecord {
-    execute_within(spec, &Budget::default())
+    execute_within(spec, &Budget::default(), &Estimates::default())
 }
 
-/// Runs `spec` and returns its record; never panics. A run whose estimated memory exceeds
-/// `budget` is not started, one that passes its time budget is stopped: both are recorded
-/// with `status = budget`.
-pub fn execute_within(spec: &RunSpec, budget: &Budget) -> RunRecord {
+/// Runs `spec` (planned: [`crate::plan`]) and returns its record; never panics. Its stability
+/// comes from `estimates` (the plan's, where it was estimated already). A run whose estimated
+/// memory exceeds `budget` is not started, one that passes its time budget is stopped: both
+/// are recorded with `status = budget`.
+pub fn execute_within(spec: &RunSpec, budget: &Budget, estimates: &Estimates) -> RunRecord {
     let started = Instant::now();
     let refused = budget.refuses(spec);
     let deadline = started + budget.time_per_run();
     let result = match &refused {
         Some(_) => Ok(Finished::OverBudget),
-        None => catch_unwind(AssertUnwindSafe(|| run_and_measure(spec, deadline))),
+        None => catch_unwind(AssertUnwindSafe(|| run_and_measure(spec, deadline, estimates))),
     };
     let mut record = RunRecord {
         run_id: spec.run_id(),
@@ -139,9 +141,10 @@ fn build_scene_until(spec: &RunSpec, deadline: Instant) -> Scene {
     scene
 }
 
-fn run_and_measure(spec: &RunSpec, deadline: Instant) -> Finished {
+fn run_and_measure(spec: &RunSpec, deadline: Instant, estimates: &Estimates) -> Finished {
+    assert!(spec.is_planned(), "a run reached the runner without its time step: plan the campaign (crate::plan)");
     let mut scene = build_scene_until(spec, deadline);
-    let stability = estimate(spec);
+    let stability = estimates.stability(spec);
     let mut metrics = Metrics {
         omega_max: Some(stability.omega_max),
         dt_omega_max: Some(stability.dt_omega_max),

@@ -19,6 +19,7 @@ use std::time::Duration;
 
 use crate::draw::Movie;
 use crate::output::{Layout, open_lock_file, try_lock, wait_for_lock, write_atomically};
+use crate::plan::Plan;
 use crate::spec::{Campaign, RunSpec};
 
 /// What `run_campaign` did.
@@ -114,12 +115,12 @@ pub fn stored_record(layout: &Layout, spec: &RunSpec) -> Option<RunRecord> {
     }
 }
 
-/// Runs every run of `campaign` that has no valid stored record of this build, on `jobs`
-/// threads (all cores when `None`), storing each record as soon as it is finished; records of
-/// another build are simulated again, and a run locked by another process is waited for at
-/// most the campaign's time budget per run (see [`run_campaign_with`]).
-pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -> anyhow::Result<CampaignRun> {
-    run_campaign_with(campaign, layout, jobs, campaign.budget.time_per_run(), OtherBuilds::Simulate)
+/// Runs every run of the planned campaign that has no valid stored record of this build, on
+/// `jobs` threads (all cores when `None`), storing each record as soon as it is finished;
+/// records of another build are simulated again, and a run locked by another process is
+/// waited for at most the campaign's time budget per run (see [`run_campaign_with`]).
+pub fn run_campaign(plan: &Plan, layout: &Layout, jobs: Option<usize>) -> anyhow::Result<CampaignRun> {
+    run_campaign_with(plan, layout, jobs, plan.campaign.budget.time_per_run(), OtherBuilds::Simulate)
 }
 
 /// [`run_campaign`], with records of another build simulated again or reused as `other_builds`
@@ -127,12 +128,13 @@ pub fn run_campaign(campaign: &Campaign, layout: &Layout, jobs: Option<usize>) -
 /// those runs are left until every other run is done, then waited for, saying so on stderr;
 /// after `lock_wait` the campaign stops with an error naming the run and lock file.
 pub fn run_campaign_with(
-    campaign: &Campaign,
+    plan: &Plan,
     layout: &Layout,
     jobs: Option<usize>,
     lock_wait: Duration,
     other_builds: OtherBuilds,
 ) -> anyhow::Result<CampaignRun> {
+    let campaign = &plan.campaign;
     let (mut corrupt, mut other_build) = (Vec::new(), Vec::new());
     // A run stopped by its budget is tried again: its outcome depends on the machine and the
     // budget, not only on its spec.
@@ -186,7 +188,7 @@ pub fn run_campaign_with(
                 let (failure, stopping, busy) = (&failure, &stopping, &busy);
                 scope.spawn_fifo(move |_| {
                     if !stopping.load(Ordering::Relaxed) && !INTERRUPTED.load(Ordering::Relaxed) {
-                        match run_and_store(campaign, layout, spec, panel, patience) {
+                        match run_and_store(plan, layout, spec, panel, patience) {
                             Ok(Some(done)) => *slot.lock().expect("a slot is written once") = Some(done),
                             Ok(None) => return busy.lock().expect("busy runs are only pushed").push(index),
                             Err(error) => {
@@ -227,7 +229,7 @@ pub fn run_campaign_with(
         .into_iter()
         .map(|r| r.unwrap_or_else(|| fresh.next().expect("one fresh record per missing run").0))
         .collect();
-    write_missing_movies(campaign, layout, &records, frames)?;
+    write_missing_movies(plan, layout, &records, frames)?;
     Ok(CampaignRun { cached: records.len() - simulated, records, simulated, corrupt, other_build })
 }
 
@@ -238,7 +240,7 @@ pub fn run_campaign_with(
 /// when the process ends however it ends (even by SIGKILL), so a killed run leaves nothing that
 /// blocks a rerun. Returns the record and whether it was simulated here.
 fn run_and_store(
-    campaign: &Campaign,
+    plan: &Plan,
     layout: &Layout,
     spec: &RunSpec,
     panel: &Mutex<Option<Movie>>,
@@ -255,7 +257,8 @@ fn run_and_store(
     if let Some(record) = stored_record(layout, spec).filter(|record| record.status != "budget") {
         return Ok(Some((record, false)));
     }
-    let mut record = execute_within(spec, &campaign.budget);
+    let campaign = &plan.campaign;
+    let mut record = execute_within(spec, &campaign.budget, &plan.estimates);
     if let Some(movie) = record.movie.take() {
         match crate::draw::write_movie(&layout.movie_file(&record.run_id), &movie) {
             // A run already stopped by its budget keeps its own reason.
@@ -290,15 +293,17 @@ fn run_and_store(
 /// are the same, and scenes with movies are small. A side-by-side movie whose runs are not all
 /// stored yet (or left no frames) is removed rather than shown stale.
 pub fn write_missing_movies(
-    campaign: &Campaign,
+    plan: &Plan,
     layout: &Layout,
     records: &[RunRecord],
     mut frames: BTreeMap<String, Movie>,
 ) -> anyhow::Result<()> {
+    let campaign = &plan.campaign;
     let has_movie =
         |r: &RunRecord| r.spec.movie.is_some() && !matches!(r.status.as_str(), "panicked" | "budget" | "mechanism");
-    let mut movie_of =
-        |spec: &RunSpec| frames.remove(&spec.run_id()).or_else(|| execute_within(spec, &campaign.budget).movie);
+    let mut movie_of = |spec: &RunSpec| {
+        frames.remove(&spec.run_id()).or_else(|| execute_within(spec, &campaign.budget, &plan.estimates).movie)
+    };
     let mut redrawn: BTreeMap<String, Movie> = BTreeMap::new();
     for record in records.iter().filter(|r| has_movie(r) && !layout.movie_file(&r.run_id).is_file()) {
         if let Some(movie) = movie_of(&record.spec) {

@@ -173,7 +173,7 @@ mod tests {
                     movie: {frames: 5, width: 300, height: 200, side_by_side: true}\n    \
                     grid:\n      lattice.diagonals: [none, both]\n  \
                     - name: p\n    kind: pair\n    v0: 1.0\n    grid:\n      time.dt_per_tc: [10, 20, 30, 40, 50, 60]\n";
-        let campaign = crate::stability::parse_campaign("t.yaml", yaml).unwrap();
+        let campaign = crate::plan::parse("t.yaml", yaml).unwrap().campaign;
         let owners = shard_of_each_run(&campaign.runs, 4);
         let kick: Vec<usize> =
             campaign.runs.iter().zip(&owners).filter(|(r, _)| r.scene == "kick").map(|(_, &s)| s).collect();

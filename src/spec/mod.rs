@@ -8,6 +8,8 @@ pub use self::run_spec::{
     WaveSpec, reference_extension, seconds_up_to_1e9,
 };
 
+pub use self::resolve::DEFAULT_DT_PER_TC;
+
 mod finite;
 mod grid;
 mod raw;

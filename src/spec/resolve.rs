@@ -71,7 +71,8 @@ const DEFAULT_MASS: f64 = 1.0;
 const DEFAULT_STIFFNESS: f64 = 1.0;
 const DEFAULT_SPACING: f64 = 1.0;
 const DEFAULT_BETA: f64 = 1.5;
-const DEFAULT_DT_PER_TC: f64 = 50.0;
+/// dt = t_c / this unless the campaign sets dt another way.
+pub const DEFAULT_DT_PER_TC: f64 = 50.0;
 const DEFAULT_SAMPLES: u64 = 400;
 /// Lattice defaults: k_d/k, load per top-row node (N), E_kin/E_pot tolerance, longest run (t_c).
 const DEFAULT_K_DIAG_RATIO: f64 = 0.5;
@@ -284,6 +285,8 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         )?;
     }
 
+    // Where dt_omega_max sets dt, dt and steps are the plan's to decide (unplanned: NaN and 0).
+    let (dt, steps) = if spec.dt_omega_max.is_some() { (f64::NAN, 0) } else { (dt, steps) };
     Ok(RunSpec { gamma, restitution_target, gamma_background, t_c, dt, duration, steps, samples, gap, movie, ..spec })
 }
 
@@ -397,7 +400,8 @@ fn resolve_dt(time: &RawTime, t_c: f64) -> Result<f64, Issue> {
             "give one of dt, dt_per_tc and dt_omega_max",
         )?;
         require(target.is_finite() && target > 0.0, "time.dt_omega_max", target, "must be > 0 (dt = value / ω_max)")?;
-        // Provisional: the stability check sets dt = dt_omega_max / ω_max once the scene is built.
+        // Nominal, for the range checks of the duration and the reference run only: the plan
+        // decides dt = dt_omega_max / ω_max once the scene is built (`crate::plan`).
         return Ok(t_c / DEFAULT_DT_PER_TC);
     }
     match (time.dt, time.dt_per_tc) {

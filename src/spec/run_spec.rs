@@ -44,9 +44,10 @@ pub struct RunSpec {
     pub integrator: IntegratorKind,
     /// Reference two-body contact duration t_c (s) that sets dt.
     pub t_c: f64,
-    /// Time step (s).
+    /// Time step (s): from `time.dt` or `time.dt_per_tc` here; where `dt_omega_max` sets it,
+    /// NaN until the plan decides it ([`crate::plan`]).
     pub dt: f64,
-    /// The campaign's dt · ω_max, when it set dt that way (applied by the stability check).
+    /// The campaign's dt · ω_max, when it set dt that way (dt = this / ω_max, by the plan).
     pub dt_omega_max: Option<f64>,
     /// Also run at dt / this and measure the error against that reference.
     pub reference_refinement: Option<u32>,
@@ -54,7 +55,7 @@ pub struct RunSpec {
     pub allow_unstable: bool,
     /// Run length (s).
     pub duration: f64,
-    /// Steps to take.
+    /// Steps to take, ⌈duration / dt⌉ (0 until planned where `dt_omega_max` sets dt).
     pub steps: u64,
     /// Samples recorded over the run.
     pub samples: u64,
@@ -315,7 +316,7 @@ impl LatticeSpec {
 }
 
 /// Networks with more bonds ([`RunSpec::bonds`]) than this get their modes from a node-by-node
-/// bound in one pass (`stability::node_bound`) instead of the power method, whose up to 1000
+/// bound in one pass (`plan::stability::node_bound`) instead of the power method, whose up to 1000
 /// passes over 250 000 bonds take about a second and grow with the network (a 2000 × 2000
 /// lattice took 170 s and 1.7 GB before `plan` printed anything). Every shipped campaign stays
 /// below it (its largest lattice, 40 × 40, has 6 400 bonds).
@@ -458,6 +459,12 @@ impl RunSpec {
         let numbers = self.stored_numbers_per_sample();
         let stored = samples.min(crate::sim::stored_samples(numbers) as f64) * numbers as f64;
         time_loop + omega_max + static_solve + (8.0 + 50.0) * stored
+    }
+
+    /// True once dt and steps are decided: always, except a run whose dt `dt_omega_max` sets
+    /// before the plan ([`crate::plan`]) decides it. Only planned runs may run.
+    pub fn is_planned(&self) -> bool {
+        self.dt.is_finite() && self.steps > 0
     }
 
     /// Sets the time step to `dt` (s) and the step count to cover the same duration.

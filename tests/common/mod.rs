@@ -1,13 +1,13 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)] // each test crate uses its own subset
 
+use mdsolids::plan;
 use mdsolids::runner::{RunRecord, execute};
 use mdsolids::spec::RunSpec;
-use mdsolids::stability::parse_campaign;
 
 /// The runs of an inline campaign (YAML text); panics with the spec error if it is invalid.
 pub fn runs(yaml: &str) -> Vec<RunSpec> {
-    parse_campaign("inline.yaml", yaml).unwrap_or_else(|e| panic!("{e}")).runs
+    plan::parse("inline.yaml", yaml).unwrap_or_else(|e| panic!("{e}")).campaign.runs
 }
 
 /// Executes every run of an inline campaign.

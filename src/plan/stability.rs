@@ -1,18 +1,16 @@
 //! Numerical stability, known before a run starts: the fastest mode ω_max of a scene (power
 //! iteration on its dynamical matrix; a rigorous node-by-node bound on networks too large for
-//! that, see [`POWER_METHOD_BONDS`]), the largest ω dt its integrator survives (measured on the
-//! damped test oscillator with the integrator's own code), and the campaign check that applies
-//! `time.dt_omega_max` and refuses runs beyond the limit unless `time.allow_unstable: true`.
-//! Pure computation, no I/O.
+//! that, see [`POWER_METHOD_BONDS`]) and the largest ω dt its integrator survives (measured on the
+//! damped test oscillator with the integrator's own code). Pure computation, no I/O and no global
+//! state: what is estimated once is kept in the [`Estimates`] value its owner (the plan) passes.
 
-use rayon::prelude::*;
 use std::collections::HashMap;
-use std::sync::{Mutex, OnceLock};
+use std::sync::Mutex;
 
 use crate::model::{Axes, BondDashpot, Linear, NoDashpot, Particles, Spring, SquareLattice};
 use crate::scenes::build_scene;
 use crate::sim::{Gear, IntegratorKind, LatticeNetwork, Sampling, Scene, State, StepProbe, simulate_with};
-use crate::spec::{Campaign, POWER_METHOD_BONDS, RunSpec, SpecError};
+use crate::spec::{POWER_METHOD_BONDS, RunSpec};
 
 /// What is known about a run's stability before it starts.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -24,53 +22,112 @@ pub struct Stability {
     /// dt · ω_max.
     pub dt_omega_max: f64,
     /// Largest dt · ω the integrator survives at that damping ratio (Gear: over the run's
-    /// length, see [`stability_limit`]).
+    /// length, see [`Estimates::stability_limit`]).
     pub limit: f64,
     /// ν_max (1/s): the largest decay rate damping alone imposes.
     pub damping_rate: f64,
 }
 
 impl Stability {
-    /// The limit (in units of dt · ω_max) of `kind` over a run of `steps` steps: the smaller of
-    /// the fastest mode's (the test oscillator at its ζ) and the one damping alone sets.
-    pub fn limit_for(&self, kind: IntegratorKind, steps: u64) -> f64 {
-        let oscillation = stability_limit(kind, self.damping_ratio, steps);
-        let damping = if self.damping_rate > 0.0 && self.omega_max > 0.0 {
-            damping_limit(kind, steps) * self.omega_max / self.damping_rate
+    /// What is known about `spec` from its network's `modes` at time step `dt` (s) over `steps`
+    /// steps. The limit, in units of dt · ω_max, is the smaller of the fastest mode's (the test
+    /// oscillator at its ζ) and the one damping alone sets: a heavily damped slow mode decays at
+    /// rate up to ν_max, and an explicit scheme needs dt · ν_max below its limit on ẋ' = −ν ẋ
+    /// (RK4 2.79, symplectic Euler 2, ...).
+    fn at(modes: Modes, dt: f64, kind: IntegratorKind, steps: u64, estimates: &Estimates) -> Stability {
+        let oscillation = estimates.stability_limit(kind, modes.damping_ratio, steps);
+        let damping = if modes.damping_rate > 0.0 && modes.omega_max > 0.0 {
+            estimates.damping_limit(kind, steps) * modes.omega_max / modes.damping_rate
         } else {
             f64::INFINITY
         };
-        oscillation.min(damping)
+        Stability {
+            omega_max: modes.omega_max,
+            damping_ratio: modes.damping_ratio,
+            dt_omega_max: modes.omega_max * dt,
+            limit: oscillation.min(damping),
+            damping_rate: modes.damping_rate,
+        }
     }
 }
 
-/// Estimates the stability of `spec` as it stands. The limit, in units of dt · ω_max, is the
-/// smaller of the fastest mode's (the test oscillator at its ζ) and the one damping alone
-/// sets: a heavily damped slow mode decays at rate up to ν_max, and an explicit scheme
-/// needs dt · ν_max below its limit on ẋ' = −ν ẋ (RK4 2.79, symplectic Euler 2, ...).
+/// The stability of `spec` as it stands (its dt and steps final), estimated afresh: for a
+/// single run. A campaign's runs share their networks' estimates through [`Estimates`].
 pub fn estimate(spec: &RunSpec) -> Stability {
-    // The campaign check and the run itself both ask, and so do all the runs of one network
-    // (a grid over dt, integrators, run lengths): compute the modes once per network and process.
-    static MODES: OnceLock<Mutex<HashMap<String, Modes>>> = OnceLock::new();
-    let key = network_key(spec);
-    let cache = MODES.get_or_init(Default::default);
-    let known = cache.lock().expect("the cache is never poisoned").get(&key).copied();
-    let modes = known.unwrap_or_else(|| {
-        let (scene, extension) = (build_scene(spec), crate::spec::reference_extension(spec));
-        let modes =
-            if spec.bonds() > POWER_METHOD_BONDS { node_bound(&scene, extension) } else { modes(&scene, extension) };
-        cache.lock().expect("the cache is never poisoned").insert(key, modes);
-        modes
-    });
-    let mut stability = Stability {
-        omega_max: modes.omega_max,
-        damping_ratio: modes.damping_ratio,
-        dt_omega_max: modes.omega_max * spec.dt,
-        limit: f64::INFINITY,
-        damping_rate: modes.damping_rate,
-    };
-    stability.limit = stability.limit_for(spec.integrator, spec.steps);
-    stability
+    Estimates::default().stability(spec)
+}
+
+/// The estimates made so far, so that runs of one network (a grid over dt, integrators, run
+/// lengths) compute its modes once, and runs of one integrator its limit once: the plan fills
+/// it while checking a campaign, and the runs read it again for their records.
+#[derive(Debug, Default)]
+pub struct Estimates {
+    /// The modes of each network, by [`network_key`].
+    modes: Mutex<HashMap<String, Modes>>,
+    /// The stability limits measured, by integrator, test equation and run length.
+    limits: Mutex<HashMap<LimitKey, f64>>,
+}
+
+impl Estimates {
+    /// The stability of `spec` as it stands (its dt and steps final).
+    pub fn stability(&self, spec: &RunSpec) -> Stability {
+        Stability::at(self.modes(spec), spec.dt, spec.integrator, spec.steps, self)
+    }
+
+    /// ω_max of `spec`'s network (rad/s), whatever its time step.
+    pub fn omega_max(&self, spec: &RunSpec) -> f64 {
+        self.modes(spec).omega_max
+    }
+
+    /// The fastest mode of `spec`'s network: the power method, or the node bound beyond
+    /// [`POWER_METHOD_BONDS`].
+    fn modes(&self, spec: &RunSpec) -> Modes {
+        let key = network_key(spec);
+        let known = self.modes.lock().expect("the cache is never poisoned").get(&key).copied();
+        known.unwrap_or_else(|| {
+            let (scene, extension) = (build_scene(spec), crate::spec::reference_extension(spec));
+            let modes = if spec.bonds() > POWER_METHOD_BONDS {
+                node_bound(&scene, extension)
+            } else {
+                modes(&scene, extension)
+            };
+            self.modes.lock().expect("the cache is never poisoned").insert(key, modes);
+            modes
+        })
+    }
+
+    /// The largest ω dt for which `kind` stays bounded on the test oscillator ẍ = −ω²x − 2ζωẋ
+    /// (ζ = `damping_ratio`), to 1e-4 relative; kept per integrator and ζ (rounded to three
+    /// digits). Undamped values to compare with: 2 for the Verlet schemes and symplectic Euler,
+    /// 2√2 for RK4, 1.5734 for Forest–Ruth.
+    ///
+    /// Gear's amplification exceeds 1 by a little almost everywhere (~1e-7 per step at ω dt = 0.2,
+    /// ~1e-4 at 0.45), so "bounded" depends on how long it runs: its limit is the largest ω dt
+    /// below which every mode grows by at most [`RUN_GROWTH`] over `steps` steps (rounded up to a
+    /// power of two), from the spectral radius of its amplification matrix ([`gear_limit`]).
+    /// The other schemes' limits do not depend on `steps`.
+    pub fn stability_limit(&self, kind: IntegratorKind, damping_ratio: f64, steps: u64) -> f64 {
+        let zeta: f64 = format!("{damping_ratio:.2e}").parse().unwrap_or(0.0);
+        self.limit(kind, TestEquation::Oscillator { zeta }, steps)
+    }
+
+    /// The largest ν dt for which `kind` stays bounded on pure damping, ẋ' = −ν ẋ (a slow mode
+    /// under heavy damping), measured and kept like [`Estimates::stability_limit`].
+    pub fn damping_limit(&self, kind: IntegratorKind, steps: u64) -> f64 {
+        self.limit(kind, TestEquation::Damping, steps)
+    }
+
+    fn limit(&self, kind: IntegratorKind, test: TestEquation, steps: u64) -> f64 {
+        // Only Gear's limit depends on the run's length: a power of two at least `steps`.
+        let span = if kind == IntegratorKind::Gear { steps.max(1).next_power_of_two() } else { 0 };
+        let key = (kind, if let TestEquation::Oscillator { zeta } = test { zeta.to_bits() } else { u64::MAX }, span);
+        if let Some(&limit) = self.limits.lock().expect("the cache is never poisoned").get(&key) {
+            return limit;
+        }
+        let limit = if kind == IntegratorKind::Gear { gear_limit(test, span) } else { measure_limit(kind, test) };
+        self.limits.lock().expect("the cache is never poisoned").insert(key, limit);
+        limit
+    }
 }
 
 /// Iterations of the power method at most; it stops earlier once the Rayleigh quotient has
@@ -294,27 +351,6 @@ fn largest_symmetric_2x2([a, b, c]: [f64; 3]) -> (f64, (f64, f64)) {
     if length > 0.0 { (lambda, (u / length, v / length)) } else { (lambda, (1.0, 0.0)) }
 }
 
-/// The largest ω dt for which `kind` stays bounded on the test oscillator ẍ = −ω²x − 2ζωẋ
-/// (ζ = `damping_ratio`), to 1e-4 relative; cached per integrator and ζ (rounded to three
-/// digits). Undamped values to compare with: 2 for the Verlet schemes and symplectic Euler,
-/// 2√2 for RK4, 1.5734 for Forest–Ruth.
-///
-/// Gear's amplification exceeds 1 by a little almost everywhere (~1e-7 per step at ω dt = 0.2,
-/// ~1e-4 at 0.45), so "bounded" depends on how long it runs: its limit is the largest ω dt
-/// below which every mode grows by at most [`RUN_GROWTH`] over `steps` steps (rounded up to a
-/// power of two), from the spectral radius of its amplification matrix ([`gear_limit`]).
-/// The other schemes' limits do not depend on `steps`.
-pub fn stability_limit(kind: IntegratorKind, damping_ratio: f64, steps: u64) -> f64 {
-    let zeta: f64 = format!("{damping_ratio:.2e}").parse().unwrap_or(0.0);
-    cached_limit(kind, TestEquation::Oscillator { zeta }, steps)
-}
-
-/// The largest ν dt for which `kind` stays bounded on pure damping, ẋ' = −ν ẋ (a slow mode
-/// under heavy damping), measured and cached like [`stability_limit`].
-pub fn damping_limit(kind: IntegratorKind, steps: u64) -> f64 {
-    cached_limit(kind, TestEquation::Damping, steps)
-}
-
 /// The largest factor by which Gear's own amplification may grow any mode over a whole run at
 /// its stability limit (the blow-up check of a run fires at 1000× the energy, ~32× the
 /// amplitude).
@@ -332,20 +368,6 @@ enum TestEquation {
 /// A cached limit's key: the integrator, ζ's bits (`u64::MAX` for pure damping) and the run
 /// length it holds for (0 where the limit does not depend on it).
 type LimitKey = (IntegratorKind, u64, u64);
-
-fn cached_limit(kind: IntegratorKind, test: TestEquation, steps: u64) -> f64 {
-    static LIMITS: OnceLock<Mutex<HashMap<LimitKey, f64>>> = OnceLock::new();
-    // Only Gear's limit depends on the run's length: a power of two at least `steps`.
-    let span = if kind == IntegratorKind::Gear { steps.max(1).next_power_of_two() } else { 0 };
-    let key = (kind, if let TestEquation::Oscillator { zeta } = test { zeta.to_bits() } else { u64::MAX }, span);
-    let cache = LIMITS.get_or_init(Default::default);
-    if let Some(&limit) = cache.lock().expect("the cache is never poisoned").get(&key) {
-        return limit;
-    }
-    let limit = if kind == IntegratorKind::Gear { gear_limit(test, span) } else { measure_limit(kind, test) };
-    cache.lock().expect("the cache is never poisoned").insert(key, limit);
-    limit
-}
 
 /// Largest ω dt searched: beyond it every scheme here is unstable (RK4's limit is 2.83).
 const LARGEST_LIMIT: f64 = 64.0;
@@ -517,77 +539,6 @@ fn gear_limit(test: TestEquation, steps: u64) -> f64 {
     low
 }
 
-/// Reads, validates and expands the campaign file at `path` ([`crate::spec::load`]), then
-/// checks every run's stability ([`check_campaign`]): what every command starts from.
-pub fn load_campaign(path: &std::path::Path) -> Result<Campaign, SpecError> {
-    let mut campaign = crate::spec::load(path)?;
-    check_campaign(&path.display().to_string(), &mut campaign)?;
-    Ok(campaign)
-}
-
-/// [`load_campaign`] for campaign text; `file` names it in errors.
-pub fn parse_campaign(file: &str, text: &str) -> Result<Campaign, SpecError> {
-    let mut campaign = crate::spec::parse(file, text)?;
-    check_campaign(file, &mut campaign)?;
-    Ok(campaign)
-}
-
-/// Applies every run's `time.dt_omega_max` (dt = value / ω_max) and refuses, before anything
-/// runs, a run whose dt · ω_max exceeds its integrator's limit unless it says
-/// `time.allow_unstable: true`. Errors name the file, the scene, the grid values and the field.
-pub fn check_campaign(file: &str, campaign: &mut Campaign) -> Result<(), SpecError> {
-    let (scenes, budget) = (&campaign.scenes, campaign.budget);
-    campaign.runs.par_iter_mut().try_for_each(|spec| {
-        // Not started anyway (its memory does not depend on dt): not worth an estimate.
-        if budget.refuses(spec).is_some() {
-            return Ok(());
-        }
-        let invalid = |detail: String| SpecError::Invalid { file: file.to_string(), detail };
-        let index = scenes.iter().position(|(name, _)| *name == spec.scene).unwrap_or(0);
-        let place = match spec.varied_label(|_| true) {
-            label if label.is_empty() => format!("scenes[{index}] ({})", spec.scene),
-            label => format!("scenes[{index}] ({}, run {label})", spec.scene),
-        };
-        let mut stability = estimate(spec);
-        if let Some(target) = spec.dt_omega_max {
-            if !(stability.omega_max > 0.0 && stability.omega_max.is_finite()) {
-                return Err(invalid(format!(
-                    "{place}.time.dt_omega_max = {target}: the scene has no usable fastest mode (ω_max = {}); give dt or \
-                     dt_per_tc",
-                    stability.omega_max
-                )));
-            }
-            spec.set_dt(target / stability.omega_max);
-            if !(1..=2_000_000_000).contains(&spec.steps) {
-                return Err(invalid(format!(
-                    "{place}.time.dt_omega_max = {target}: gives {} steps; from 1 to 2e9",
-                    spec.steps
-                )));
-            }
-            stability.dt_omega_max = target;
-            // Gear's limit depends on the run's length, which the new dt changed.
-            stability.limit = stability.limit_for(spec.integrator, spec.steps);
-        }
-        if stability.dt_omega_max > stability.limit && !spec.allow_unstable {
-            let field = if spec.dt_omega_max.is_some() { "time.dt_omega_max" } else { "time.dt_per_tc (or time.dt)" };
-            return Err(invalid(format!(
-                "{place}.{field}: dt = {:.4e} s gives dt·ω_max = {:.4} (ω_max = {:.4e} rad/s, damping ratio {:.3}), beyond \
-                 the stability limit {:.4} of {}; allowed: dt ≤ {:.4e} s (dt_per_tc ≥ {:.3}), or time.allow_unstable: \
-                 true to run it anyway and watch it blow up",
-                spec.dt,
-                stability.dt_omega_max,
-                stability.omega_max,
-                stability.damping_ratio,
-                stability.limit,
-                spec.integrator.name(),
-                stability.limit / stability.omega_max,
-                spec.t_c * stability.omega_max / stability.limit,
-            )));
-        }
-        Ok(())
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -678,7 +629,7 @@ mod tests {
             (IntegratorKind::SymplecticEuler, 2.0),
             (IntegratorKind::Rk4, 2.0 * 2f64.sqrt()),
         ] {
-            let limit = stability_limit(kind, 0.0, 1000);
+            let limit = Estimates::default().stability_limit(kind, 0.0, 1000);
             assert!((limit - exact).abs() < 1e-3 * exact, "{}: {limit} against {exact}", kind.name());
         }
     }
@@ -718,8 +669,9 @@ mod tests {
         // run is at most 2, just above (by 1 %) more; it falls as runs get longer, because ρ
         // exceeds 1 (~1e-4 per step at ω dt = 0.45, where the old 4000-step trial put the
         // limit at 0.4919 and a chain of 78 000 steps blew up at step 38 805).
-        let short = stability_limit(IntegratorKind::Gear, 0.0, 1000);
-        let long = stability_limit(IntegratorKind::Gear, 0.0, 78_181);
+        let estimates = Estimates::default();
+        let short = estimates.stability_limit(IntegratorKind::Gear, 0.0, 1000);
+        let long = estimates.stability_limit(IntegratorKind::Gear, 0.0, 78_181);
         assert!(long < short && long < 0.45, "limits {short} (1000 steps) and {long} (78 181 steps)");
         let test = TestEquation::Oscillator { zeta: 0.0 };
         let steps = 131_072.0; // 78 181 rounded up to a power of two

@@ -1,0 +1,145 @@
+//! The plan stage, between the campaign file and the first run: the campaign loaded and
+//! expanded ([`crate::spec`]), every run's time step and step count decided (once, here),
+//! its stability checked against its integrator's limit, and the estimates kept for the runs'
+//! records. Every command that reads a campaign file starts from [`load`]; the runner takes
+//! the [`Plan`] it returns. The cost estimate is [`RunSpec::estimated_seconds`] of a planned run.
+
+pub mod stability;
+
+pub use self::stability::{Estimates, RUN_GROWTH, Stability, estimate};
+
+use rayon::prelude::*;
+use std::path::Path;
+
+use crate::spec::{Campaign, DEFAULT_DT_PER_TC, RunSpec, SpecError};
+
+/// A campaign ready to run: every run's dt and steps final, each within its integrator's
+/// stability limit unless it says `time.allow_unstable: true`.
+#[derive(Debug)]
+pub struct Plan {
+    /// The campaign, its runs planned.
+    pub campaign: Campaign,
+    /// The estimates the check made (modes per network, limits per integrator), which the
+    /// runs read again for their records instead of computing them once more.
+    pub estimates: Estimates,
+}
+
+/// Reads, validates and expands the campaign file at `path` ([`crate::spec::load`]), then
+/// plans every run ([`plan`]): what every command starts from.
+pub fn load(path: &Path) -> Result<Plan, SpecError> {
+    plan(&path.display().to_string(), crate::spec::load(path)?)
+}
+
+/// [`load`] for campaign text; `file` names it in errors.
+pub fn parse(file: &str, text: &str) -> Result<Plan, SpecError> {
+    plan(file, crate::spec::parse(file, text)?)
+}
+
+/// Plans every run of `campaign` ([`plan_run`]), refusing the campaign at the first run that
+/// cannot run. Errors name the file, the scene, the grid values and the field.
+pub fn plan(file: &str, mut campaign: Campaign) -> Result<Plan, SpecError> {
+    let estimates = Estimates::default();
+    let (scenes, budget) = (&campaign.scenes, campaign.budget);
+    campaign.runs.par_iter_mut().try_for_each(|spec| {
+        let refused = budget.refuses(spec).is_some();
+        plan_run(spec, refused, &estimates).map_err(|detail| {
+            let index = scenes.iter().position(|(name, _)| *name == spec.scene).unwrap_or(0);
+            let place = match spec.varied_label(|_| true) {
+                label if label.is_empty() => format!("scenes[{index}] ({})", spec.scene),
+                label => format!("scenes[{index}] ({}, run {label})", spec.scene),
+            };
+            SpecError::Invalid { file: file.to_string(), detail: format!("{place}.{detail}") }
+        })
+    })?;
+    Ok(Plan { campaign, estimates })
+}
+
+/// Decides the time step of `spec` where the campaign gave `time.dt_omega_max` (dt = value /
+/// ω_max; `time.dt` and `time.dt_per_tc` set it in the spec layer) and refuses, before
+/// anything runs, a run whose dt · ω_max exceeds its integrator's limit unless it says
+/// `time.allow_unstable: true`. A run its memory budget `refused` is not started anyway (its
+/// memory does not depend on dt): not worth an estimate. The error is the field and why.
+fn plan_run(spec: &mut RunSpec, refused: bool, estimates: &Estimates) -> Result<(), String> {
+    let Some(target) = spec.dt_omega_max else {
+        return if refused {
+            Ok(())
+        } else {
+            check_limit(spec, &estimates.stability(spec), "time.dt_per_tc (or time.dt)")
+        };
+    };
+    if refused {
+        // Its record says why it never ran; the nominal dt = t_c / 50 gives it its run id.
+        spec.set_dt(spec.t_c / DEFAULT_DT_PER_TC);
+        return Ok(());
+    }
+    let omega_max = estimates.omega_max(spec);
+    if !(omega_max > 0.0 && omega_max.is_finite()) {
+        return Err(format!(
+            "time.dt_omega_max = {target}: the scene has no usable fastest mode (ω_max = {omega_max}); give dt or \
+             dt_per_tc"
+        ));
+    }
+    spec.set_dt(target / omega_max);
+    if !(1..=2_000_000_000).contains(&spec.steps) {
+        return Err(format!("time.dt_omega_max = {target}: gives {} steps; from 1 to 2e9", spec.steps));
+    }
+    // Exactly the value asked for (ω_max · dt may differ in the last digit).
+    let stability = Stability { dt_omega_max: target, ..estimates.stability(spec) };
+    check_limit(spec, &stability, "time.dt_omega_max")
+}
+
+/// Refuses `spec` when its dt · ω_max passes the limit of its integrator, unless it allows that;
+/// `field` is the campaign field that set dt.
+fn check_limit(spec: &RunSpec, stability: &Stability, field: &str) -> Result<(), String> {
+    let beyond = stability.dt_omega_max > stability.limit;
+    if !beyond || spec.allow_unstable {
+        return Ok(());
+    }
+    Err(format!(
+        "{field}: dt = {:.4e} s gives dt·ω_max = {:.4} (ω_max = {:.4e} rad/s, damping ratio {:.3}), beyond the \
+         stability limit {:.4} of {}; allowed: dt ≤ {:.4e} s (dt_per_tc ≥ {:.3}), or time.allow_unstable: true to \
+         run it anyway and watch it blow up",
+        spec.dt,
+        stability.dt_omega_max,
+        stability.omega_max,
+        stability.damping_ratio,
+        stability.limit,
+        spec.integrator.name(),
+        stability.limit / stability.omega_max,
+        spec.t_c * stability.omega_max / stability.limit,
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    /// A pair whose dt `time.dt_omega_max` sets, under `budget` (YAML, or empty).
+    fn campaign(budget: &str) -> String {
+        format!(
+            "version: 1\nname: t\n{budget}scenes:\n  - name: p\n    kind: pair\n    v0: 1.0\n    \
+             time: {{dt_omega_max: 0.1}}\n"
+        )
+    }
+
+    /// The spec layer leaves dt to the plan where `dt_omega_max` sets it; the plan decides it
+    /// once: dt = 0.1 / ω_max with ω_max = √(2k/m) = √2 rad/s for the unit pair.
+    #[test]
+    fn the_plan_decides_dt_where_dt_omega_max_sets_it() {
+        let unplanned = crate::spec::parse("t.yaml", &campaign("")).unwrap().runs.remove(0);
+        assert!(!unplanned.is_planned() && unplanned.steps == 0);
+        let spec = super::parse("t.yaml", &campaign("")).unwrap().campaign.runs.remove(0);
+        assert!(spec.is_planned());
+        assert!((spec.dt - 0.1 / 2f64.sqrt()).abs() < 1e-9 * spec.dt, "dt = {}", spec.dt);
+        assert_eq!(spec.steps, (spec.duration / spec.dt).ceil() as u64);
+    }
+
+    /// A run its memory budget refuses is never estimated: it keeps the nominal dt = t_c / 50,
+    /// and with it the run id its records have always had.
+    #[test]
+    fn a_run_the_budget_refuses_gets_the_nominal_dt() {
+        let plan = super::parse("t.yaml", &campaign("budget: {memory_per_run_mb: 0.000001}\n")).unwrap();
+        let spec = &plan.campaign.runs[0];
+        assert!(plan.campaign.budget.refuses(spec).is_some());
+        assert_eq!(spec.dt, spec.t_c / crate::spec::DEFAULT_DT_PER_TC);
+        assert_eq!(spec.steps, (spec.duration / spec.dt).ceil() as u64);
+    }
+}
