@@ -10,6 +10,7 @@ use crate::runner::{
     BUILD, CampaignRun, INTERRUPTED, Interrupted, OtherBuilds, Shard, Stored, read_stored, run_campaign_with,
     shard_campaign, shard_of_each_run, stored_count, write_missing_movies,
 };
+use crate::sim::RunStatus;
 use crate::spec::Campaign;
 use crate::stability::{Stability, estimate, load_campaign};
 use crate::{report, table};
@@ -271,7 +272,7 @@ fn run_command(reports: &Path, file: &Path, options: &RunOptions) -> anyhow::Res
     let (campaign, layout) = open_to_write(reports, file, options.force)?;
     let done = run_stored(&campaign, &layout, options)?;
     warn_about_store(&layout, &done, options.other_builds);
-    let failed = done.records.iter().filter(|r| r.status != "ok").count();
+    let failed = done.records.iter().filter(|r| r.status != RunStatus::Ok).count();
     let _publishing = lock_publishing(&campaign, &layout, options.lock_wait)?;
     publish(&campaign, &layout, &done.records, &report::LeftOut::default())?;
     println!(
@@ -295,7 +296,7 @@ fn run_shard_command(reports: &Path, file: &Path, shard: Shard, options: &RunOpt
     let share = shard_campaign(&campaign, shard);
     let done = run_stored(&share, &layout, options)?;
     warn_about_store(&layout, &done, options.other_builds);
-    let failed = done.records.iter().filter(|r| r.status != "ok").count();
+    let failed = done.records.iter().filter(|r| r.status != RunStatus::Ok).count();
     println!(
         "{} shard {shard}: {} of {} runs ({} simulated, {} cached, {} not ok) in {:.2} s -> {}; \
          `mdsolids report` merges the shards",
@@ -361,7 +362,7 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
     let mut corrupt = Vec::new();
     for spec in &campaign.runs {
         let state = match read_stored(&layout, spec) {
-            Stored::Current(record) | Stored::OtherBuild(record) if record.status == "budget" => "budget",
+            Stored::Current(record) | Stored::OtherBuild(record) if record.status == RunStatus::Budget => "budget",
             Stored::Current(_) => "yes",
             Stored::OtherBuild(_) => "stale",
             Stored::Corrupt(why) => {

@@ -8,6 +8,7 @@ use std::collections::BTreeSet;
 
 use crate::output::{Layout, write_atomically};
 use crate::runner::RunRecord;
+use crate::sim::RunStatus;
 use crate::spec::Diagonals;
 
 /// Relative error (measured − reference)/reference, when both exist.
@@ -45,7 +46,7 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         strings(records, "run_id", |r| r.run_id.clone()),
         strings(records, "scene", |r| r.spec.scene.clone()),
         strings(records, "kind", |r| r.spec.kind.name().into()),
-        strings(records, "status", |r| r.status.clone()),
+        strings(records, "status", |r| r.status.to_string()),
         strings(records, "message", |r| r.message.clone()),
         strings(records, "build", |r| r.build.clone()),
         Column::new(
@@ -351,7 +352,7 @@ pub fn scaling_fits(records: &[RunRecord]) -> Vec<ScalingFit> {
     let mut fits = Vec::new();
     for scaling in &SCALINGS {
         let mut groups: Vec<Group> = Vec::new();
-        for r in records.iter().filter(|r| r.status == "ok") {
+        for r in records.iter().filter(|r| r.status == RunStatus::Ok) {
             let Some(point) = (scaling.x)(r).zip((scaling.y)(r)) else { continue };
             let group = r.spec.varied_label(|path| !scaling.paths.contains(&path));
             match groups.iter_mut().find(|(first, label, _)| first.spec.scene == r.spec.scene && *label == group) {

@@ -4,6 +4,7 @@
 use super::plots::{Chart, Scale, Series, line_chart};
 use super::studies;
 use crate::runner::RunRecord;
+use crate::sim::RunStatus;
 use crate::spec::{Campaign, SceneKind};
 use crate::table::relative_error;
 
@@ -29,7 +30,7 @@ pub fn group_label(record: &RunRecord) -> String {
 /// The runs of `scene` that are `ok`, grouped by [`group_label`] in campaign order.
 pub fn groups<'a>(records: &'a [RunRecord], scene: &str) -> Vec<(String, Vec<&'a RunRecord>)> {
     let mut groups: Vec<(String, Vec<&RunRecord>)> = Vec::new();
-    for record in records.iter().filter(|r| r.spec.scene == scene && r.status == "ok") {
+    for record in records.iter().filter(|r| r.spec.scene == scene && r.status == RunStatus::Ok) {
         let label = group_label(record);
         match groups.iter_mut().find(|(l, _)| *l == label) {
             Some((_, members)) => members.push(record),

@@ -8,6 +8,7 @@ use super::plots::{Chart, Scale, Series, heatmap, line_chart};
 use super::{number, optional};
 use crate::measure::{ARRIVAL_CRITERIA, Recommendation, convergence_order, recommended_dt};
 use crate::runner::RunRecord;
+use crate::sim::RunStatus;
 use crate::spec::SceneKind;
 use crate::table::scaling_fits;
 
@@ -161,7 +162,7 @@ const MAP_FLOOR: f64 = 1e-3;
 
 /// A run blew up (as opposed to staying bounded, relaxed or not).
 fn blew_up(r: &RunRecord) -> bool {
-    r.status == "unstable"
+    r.status == RunStatus::Unstable
 }
 
 /// One run of a stability scene: what was predicted and what happened.
@@ -174,7 +175,7 @@ pub struct StabilityRow {
     limit: String,
     damping_ratio: String,
     predicted: &'static str,
-    outcome: String,
+    outcome: RunStatus,
     message: String,
 }
 
@@ -209,7 +210,7 @@ pub fn stability_rows(records: &[RunRecord], scene: &str) -> (Vec<StabilityRow>,
                 limit: optional(m.stability_limit),
                 damping_ratio: optional(m.mode_damping_ratio),
                 predicted,
-                outcome: r.status.clone(),
+                outcome: r.status,
                 message: if r.message.is_empty() { "–".into() } else { r.message.clone() },
             }
         })
@@ -337,7 +338,7 @@ pub struct WaveRow {
     speeds: Vec<String>,
     estimate: String,
     theory: String,
-    status: String,
+    status: RunStatus,
 }
 
 /// The chain-wave rows of `scene` (empty when it times no wave).
@@ -359,7 +360,7 @@ pub fn wave_rows(records: &[RunRecord], scene: &str) -> Vec<WaveRow> {
                 speeds: ARRIVAL_CRITERIA.iter().map(|c| optional(m.sound_speed(c))).collect(),
                 estimate: optional(m.wave_distance.zip(m.arrival_time_tc_estimate).map(|(l, t)| l / t)),
                 theory: optional(m.sound_speed_theory),
-                status: r.status.clone(),
+                status: r.status,
             }
         })
         .collect()
@@ -433,7 +434,7 @@ pub fn wave_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Fi
         });
     }
     // A chain's particles (walls left out), or the kicked column of an impulse lattice, in time.
-    let first_ok = records.iter().find(|r| r.spec.scene == scene && r.spec.wave.is_some() && r.status == "ok");
+    let first_ok = records.iter().find(|r| r.spec.scene == scene && r.spec.wave.is_some() && r.status == RunStatus::Ok);
     if let Some(r) = first_ok {
         let t = &r.trace;
         let (values, rows, what): (Vec<Vec<f64>>, &str, &str) = match r.spec.kind {
@@ -474,7 +475,9 @@ pub fn wave_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Fi
 /// the displacement and the velocity along its livelier axis as space–time maps.
 pub fn probe_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Figure>> {
     let Some(r) = records.iter().find(|r| {
-        r.spec.scene == scene && r.status == "ok" && r.spec.lattice.as_ref().is_some_and(|l| !l.probes.is_empty())
+        r.spec.scene == scene
+            && r.status == RunStatus::Ok
+            && r.spec.lattice.as_ref().is_some_and(|l| !l.probes.is_empty())
     }) else {
         return Ok(Vec::new());
     };
