@@ -11,6 +11,7 @@ use crate::runner::{
     BUILD, CampaignRun, INTERRUPTED, Interrupted, OtherBuilds, Shard, Stored, read_stored, run_campaign_with,
     shard_campaign, shard_of_each_run, stored_count, write_missing_movies,
 };
+use crate::sim::RunStatus;
 use crate::spec::Campaign;
 use crate::{report, table};
 
@@ -273,7 +274,7 @@ fn run_command(reports: &Path, file: &Path, options: &RunOptions) -> anyhow::Res
     let campaign = &plan.campaign;
     let done = run_stored(&plan, &layout, options)?;
     warn_about_store(&layout, &done, options.other_builds);
-    let failed = done.records.iter().filter(|r| r.status != "ok").count();
+    let failed = done.records.iter().filter(|r| r.status != RunStatus::Ok).count();
     let _publishing = lock_publishing(campaign, &layout, options.lock_wait)?;
     publish(campaign, &layout, &done.records, &report::LeftOut::default())?;
     println!(
@@ -298,7 +299,7 @@ fn run_shard_command(reports: &Path, file: &Path, shard: Shard, options: &RunOpt
     plan.campaign = shard_campaign(&plan.campaign, shard);
     let done = run_stored(&plan, &layout, options)?;
     warn_about_store(&layout, &done, options.other_builds);
-    let failed = done.records.iter().filter(|r| r.status != "ok").count();
+    let failed = done.records.iter().filter(|r| r.status != RunStatus::Ok).count();
     println!(
         "{} shard {shard}: {} of {} runs ({} simulated, {} cached, {} not ok) in {:.2} s -> {}; \
          `mdsolids report` merges the shards",
@@ -365,7 +366,7 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
     let mut corrupt = Vec::new();
     for spec in &campaign.runs {
         let state = match read_stored(&layout, spec) {
-            Stored::Current(record) | Stored::OtherBuild(record) if record.status == "budget" => "budget",
+            Stored::Current(record) | Stored::OtherBuild(record) if record.status == RunStatus::Budget => "budget",
             Stored::Current(_) => "yes",
             Stored::OtherBuild(_) => "stale",
             Stored::Corrupt(why) => {

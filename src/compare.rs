@@ -17,6 +17,7 @@ use std::path::{Path, PathBuf};
 
 use crate::draw::chart::{Chart, Scale, Series, line_chart};
 use crate::output::write_atomically;
+use crate::sim::RunStatus;
 
 const MARKDOWN_TEMPLATE: &str = include_str!("../templates/compare.md.tera");
 
@@ -410,7 +411,8 @@ fn joined_table(a: &Table, b: &Table, join: &Join) -> anyhow::Result<Joined> {
         .pairs
         .iter()
         .map(|&(i, j)| {
-            let ok = |t: &Table, r| t.column("status").and_then(|s| s.key(r)).is_some_and(|s| s == "ok");
+            let ok =
+                |t: &Table, r| t.column("status").and_then(|s| s.key(r)).is_some_and(|s| s == RunStatus::Ok.as_str());
             ok(a, i) && ok(b, j)
         })
         .collect();
@@ -538,7 +540,7 @@ fn scene_section(a: &Side, b: &Side, joined: &Joined, scene: &SceneJoin) -> anyh
     let table = &joined.table;
     let rows: Vec<usize> = scene.pairs.clone().collect();
     let cell = |name: &str, r: usize| table.column(name).and_then(|c| c.key(r));
-    let ok = |side: &str, r: usize| cell(&format!("status_{side}"), r).is_some_and(|s| s == "ok");
+    let ok = |side: &str, r: usize| cell(&format!("status_{side}"), r).is_some_and(|s| s == RunStatus::Ok.as_str());
     let both: Vec<usize> = rows.iter().copied().filter(|&r| ok("a", r) && ok("b", r)).collect();
     let mut statuses: Vec<StatusCount> = Vec::new();
     for &r in rows.iter().filter(|&&r| !(ok("a", r) && ok("b", r))) {

@@ -3,6 +3,7 @@
 
 use crate::measure::{PowerLawFit, power_law_fit};
 use crate::runner::RunRecord;
+use crate::sim::RunStatus;
 
 /// A scaling law the summary fits, y ∝ x^p, over the runs of one scene that differ only in
 /// the grid paths `paths`.
@@ -119,7 +120,7 @@ pub fn scaling_fits(records: &[RunRecord]) -> Vec<ScalingFit> {
     let mut fits = Vec::new();
     for scaling in &SCALINGS {
         let mut groups: Vec<Group> = Vec::new();
-        for r in records.iter().filter(|r| r.status == "ok") {
+        for r in records.iter().filter(|r| r.status == RunStatus::Ok) {
             let Some(point) = (scaling.x)(r).zip((scaling.y)(r)) else { continue };
             let group = r.spec.varied_label(|path| !scaling.paths.contains(&path));
             match groups.iter_mut().find(|(first, label, _)| first.spec.scene == r.spec.scene && *label == group) {

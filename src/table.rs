@@ -39,7 +39,7 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         strings(records, "run_id", |r| r.run_id.clone()),
         strings(records, "scene", |r| r.spec.scene.clone()),
         strings(records, "kind", |r| r.spec.kind.name().into()),
-        strings(records, "status", |r| r.status.clone()),
+        strings(records, "status", |r| r.status.to_string()),
         strings(records, "message", |r| r.message.clone()),
         strings(records, "build", |r| r.build.clone()),
         Column::new(

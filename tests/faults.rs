@@ -13,6 +13,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
+use mdsolids::sim::RunStatus;
+
 /// 24 chain runs of a few tens of ms each (long enough to be killed in the middle), and two
 /// small chains with movies, also shown side by side.
 const CAMPAIGN: &str = "version: 1\nname: faults\ndefaults:\n  material: {mass: 1.0, k: 1.0}\nscenes:\n  \
@@ -314,13 +316,13 @@ fn runs_beyond_their_budget_end_with_status_budget_and_plan_warns() {
     // before it starts.
     let tight = Budget { seconds_per_run: 3600.0, memory_per_run: 1e6 };
     let r = execute_within(&runs[0], &tight, &Default::default());
-    assert_eq!(r.status, "budget");
+    assert_eq!(r.status, RunStatus::Budget);
     assert!(r.message.contains("budget.memory_per_run_mb") && r.steps == 0, "{}", r.message);
     // Time: ~1e10 particle-steps would take minutes; a 0.2 s budget stops it (the bound below
     // is a hang guard, not a speed test).
     let started = Instant::now();
     let r = execute_within(&runs[0], &Budget { seconds_per_run: 0.2, memory_per_run: 4e9 }, &Default::default());
-    assert_eq!(r.status, "budget", "{}", r.message);
+    assert_eq!(r.status, RunStatus::Budget, "{}", r.message);
     assert!(r.message.contains("time budget") && r.steps > 0 && r.steps < runs[0].steps, "{}", r.message);
     assert!(started.elapsed() < Duration::from_secs(30));
     // The plan warns before anything runs.
@@ -573,7 +575,7 @@ fn the_static_solve_is_within_the_time_budget() {
          lattice: {size: 150, k_diag_ratio: 0.5}\n    load: {case: tensile, per_node: 1000.0}\n",
     );
     let r = execute_within(&runs[0], &Budget { seconds_per_run: 0.05, memory_per_run: 4e9 }, &Default::default());
-    assert_eq!(r.status, "budget", "{}", r.message);
+    assert_eq!(r.status, RunStatus::Budget, "{}", r.message);
     assert!(
         r.message.contains("static solve") && r.message.contains("budget.seconds_per_run") && r.steps == 0,
         "{}",

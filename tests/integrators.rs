@@ -9,6 +9,7 @@ use common::{assert_table_finite, execute_all, pair_campaign, relative, runs};
 use mdsolids::measure::convergence_order;
 use mdsolids::plan::{self, estimate};
 use mdsolids::runner::RunRecord;
+use mdsolids::sim::RunStatus;
 
 /// A chain of 11 with its 4th particle hit, over 5 t_c, swept over dt: the normal-mode error
 /// (positions and velocities) is smooth in dt, so its slope is the order.
@@ -96,8 +97,8 @@ fn predicted_stability_limit_of_velocity_verlet_is_where_a_lattice_blows_up() {
     let records = execute_all(&lattice_campaign(&format!(
         "{{integrator: velocity-verlet, allow_unstable: true}}\n    grid:\n      time.dt_omega_max: [{below}, {above}]"
     )));
-    assert_ne!(records[0].status, "unstable", "bounded below the limit: {}", records[0].message);
-    assert_eq!(records[1].status, "unstable", "blows up above the limit");
+    assert_ne!(records[0].status, RunStatus::Unstable, "bounded below the limit: {}", records[0].message);
+    assert_eq!(records[1].status, RunStatus::Unstable, "blows up above the limit");
     assert!(records[1].message.contains("at t ="), "{}", records[1].message);
 }
 
@@ -151,7 +152,7 @@ fn gear_limit_is_a_bound_over_the_run_length() {
     let limit = estimate(probe).limit;
     assert!(limit < 0.45, "limit {limit}");
     let below = &execute_all(&gear_chain(8000, 0.99 * limit, false))[0];
-    assert_eq!(below.status, "ok", "{}", below.message);
+    assert_eq!(below.status, RunStatus::Ok, "{}", below.message);
     let bound = mdsolids::plan::RUN_GROWTH.powi(2) - 1.0;
     assert!(below.metrics.energy_error.unwrap() <= bound, "energy error {:?}", below.metrics.energy_error);
     // Short runs keep the wide limit: 1000 steps at most double the amplitude up to ~0.55.

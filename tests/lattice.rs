@@ -5,6 +5,7 @@ mod common;
 
 use common::{assert_table_finite, execute_all, runs};
 use mdsolids::runner::RunRecord;
+use mdsolids::sim::RunStatus;
 
 /// A lattice campaign: physical-looking values (k = 1e6 N/m, 1 N per node: strains ~1e-6, so
 /// geometric non-linearity, ~strain, is far below the tolerances).
@@ -34,7 +35,7 @@ fn relaxed_md_matches_the_static_answer() {
     let records = execute_all(&yaml);
     assert_eq!(records.len(), 48);
     for r in &records {
-        assert_eq!(r.status, "ok", "{}: {}", label(r), r.message);
+        assert_eq!(r.status, RunStatus::Ok, "{}: {}", label(r), r.message);
         let m = &r.metrics;
         // The bound: 0.5 %. Measured at most 0.01 % for E, 0.09 % for ν and 0.05 % for G
         // (the residual motion of a lattice whose kinetic energy is below 1e-8 of its potential).
@@ -64,12 +65,12 @@ fn lattice_without_diagonals_stretches_but_shears_as_a_mechanism() {
             // N_x columns of springs k carry the load over a width of N_x − 1 spacings:
             // E = k N_x/(N_x − 1)/d exactly, ν = 0.
             let exact = 1.0e6 * 6.0 / 5.0 / 0.01;
-            assert_eq!(r.status, "ok", "{}", label(r));
+            assert_eq!(r.status, RunStatus::Ok, "{}", label(r));
             assert!(relative(r.metrics.youngs_modulus_fem, Some(exact)) < 1e-9, "{}", label(r));
             assert!(relative(r.metrics.youngs_modulus, Some(exact)) < 5e-3, "{}", label(r));
             assert!(r.metrics.poisson_ratio_fem.unwrap().abs() < 1e-9);
         } else {
-            assert_eq!(r.status, "mechanism", "{}", label(r));
+            assert_eq!(r.status, RunStatus::Mechanism, "{}", label(r));
             assert!(r.metrics.shear_modulus.is_none() && r.metrics.shear_modulus_fem.is_none());
         }
     }
@@ -106,11 +107,11 @@ fn relaxation_stops_by_its_criterion_or_reports_no_equilibrium() {
     for r in &records {
         let max_tc = r.spec.duration / r.spec.t_c;
         if max_tc < 10.0 {
-            assert_eq!(r.status, "no_equilibrium", "{}", label(r));
+            assert_eq!(r.status, RunStatus::NoEquilibrium, "{}", label(r));
             assert!(r.metrics.youngs_modulus.is_none(), "a moving lattice has no modulus");
             assert!(r.metrics.youngs_modulus_fem.is_some(), "the static answer does not need MD");
         } else {
-            assert_eq!(r.status, "ok", "{}", label(r));
+            assert_eq!(r.status, RunStatus::Ok, "{}", label(r));
             let at = r.metrics.dissipation_time.expect("relaxed");
             assert!(at > 0.0 && at < r.spec.duration);
             // The run stopped when the criterion had held for its window of 2N + 1 checks, one t_c
@@ -136,7 +137,7 @@ fn periodic_strip_measures_the_shear_modulus_at_every_size() {
     );
     let k_diag_over_depth = 0.5e6 / 0.01;
     for r in execute_all(&yaml) {
-        assert_eq!(r.status, "ok", "{}: {}", label(&r), r.message);
+        assert_eq!(r.status, RunStatus::Ok, "{}: {}", label(&r), r.message);
         let exact = Some(k_diag_over_depth);
         assert!(relative(r.metrics.shear_modulus_fem, exact) < 1e-9, "static G {}", label(&r));
         assert!(relative(r.metrics.shear_modulus, exact) < 5e-3, "MD G {}", label(&r));
@@ -157,7 +158,7 @@ fn residual_force_criterion_waits_for_an_overdamped_creep() {
         "      damping.background: [2000.0]\n      damping.restitution: [1.0]\n",
     );
     let r = &execute_all(&yaml)[0];
-    assert_eq!(r.status, "ok", "{}", r.message);
+    assert_eq!(r.status, RunStatus::Ok, "{}", r.message);
     assert!(relative(r.metrics.poisson_ratio, r.metrics.poisson_ratio_fem) < 1e-4, "{:?}", r.metrics);
     assert!(r.metrics.dissipation_criterion.as_deref().is_some_and(|c| c.starts_with("largest static force")));
 }
@@ -187,7 +188,7 @@ fn ramped_load_relaxes_after_the_ramp_with_its_work_accounted() {
     // excites the lattice; a wrong work would be off by up to the whole stored energy).
     let yaml = campaign("{size: 6}", "    load: {per_node: 1.0, ramp_tc: 200}\n", "      damping.restitution: [0.5]\n");
     let r = &execute_all(&yaml)[0];
-    assert_eq!(r.status, "ok", "{}", r.message);
+    assert_eq!(r.status, RunStatus::Ok, "{}", r.message);
     assert!(r.metrics.dissipation_time.unwrap() >= 200.0 * r.spec.t_c, "relaxed during the ramp");
     assert!(relative(r.metrics.youngs_modulus, r.metrics.youngs_modulus_fem) < 5e-3);
     assert!(r.metrics.energy_error.unwrap() < 2e-3, "energy balance off by {:?}", r.metrics.energy_error);
@@ -204,7 +205,7 @@ fn velocity_control_matches_the_displacement_controlled_static_answer() {
         "      load.case: [tensile, shear]\n      supports: [coursework, clamped-bottom, periodic-x]\n",
     );
     for r in execute_all(&yaml) {
-        assert_eq!(r.status, "ok", "{}: {}", label(&r), r.message);
+        assert_eq!(r.status, RunStatus::Ok, "{}: {}", label(&r), r.message);
         let m = &r.metrics;
         match r.spec.lattice.as_ref().unwrap().load_case.name() {
             "tensile" => assert!(relative(m.youngs_modulus, m.youngs_modulus_fem) < 5e-3, "E {}", label(&r)),
@@ -235,7 +236,7 @@ fn residual_force_under_velocity_control_is_judged_against_the_drive_force() {
     );
     let records = execute_all(&yaml);
     for r in &records {
-        assert_eq!(r.status, "ok", "{}: {}", label(r), r.message);
+        assert_eq!(r.status, RunStatus::Ok, "{}: {}", label(r), r.message);
         let m = &r.metrics;
         // Half a t_c past the drive's end: the first check after it (one t_c apart) does not count.
         let after = m.dissipation_time.unwrap() / r.spec.t_c;
@@ -266,7 +267,7 @@ fn periodic_strip_in_tension_has_the_constrained_modulus_as_its_reference() {
         "      lattice.size: [4, 7]\n      lattice.k_diag_ratio: [0.25, 1.0]\n",
     );
     for r in execute_all(&yaml) {
-        assert_eq!(r.status, "ok", "{}: {}", label(&r), r.message);
+        assert_eq!(r.status, RunStatus::Ok, "{}: {}", label(&r), r.message);
         let l = r.spec.lattice.as_ref().unwrap();
         let c22 = Some((r.spec.k + l.k_diag) / l.depth);
         let m = &r.metrics;

@@ -4,6 +4,7 @@
 use mdsolids::output::Layout;
 use mdsolids::plan;
 use mdsolids::runner::run_campaign;
+use mdsolids::sim::RunStatus;
 
 const CAMPAIGN: &str = "version: 1\nname: film\nscenes:\n  - name: chain\n    kind: chain\n    n: 10\n    \
     node: first\n    v0: 0.1\n    movie: {frames: 12, width: 400, height: 160}\n    time: {duration_tc: 10}\n";
@@ -97,7 +98,7 @@ fn bonds_can_be_coloured_by_strain() {
         let campaign = &planned.campaign;
         let layout = Layout::new(reports.path(), &campaign.name);
         let done = run_campaign(&planned, &layout, Some(1)).unwrap();
-        assert_eq!(done.records[0].status, "ok", "{}", done.records[0].message);
+        assert_eq!(done.records[0].status, RunStatus::Ok, "{}", done.records[0].message);
         let (width, frames) = frames(&layout.movie_file(&done.records[0].run_id));
         // Pixels left of the colour bar, over all frames, that are clearly red or clearly blue.
         let inside = |i: usize| i % width as usize + 90 < width as usize;

@@ -8,10 +8,11 @@ mod common;
 use common::{assert_table_finite, execute_all, relative};
 use mdsolids::measure::{anisotropic_moduli, power_law_fit};
 use mdsolids::runner::RunRecord;
+use mdsolids::sim::RunStatus;
 
 fn ok(records: &[RunRecord]) {
     for r in records {
-        assert_eq!(r.status, "ok", "{} {}: {}", r.spec.scene, r.spec.varied_label(|_| true), r.message);
+        assert_eq!(r.status, RunStatus::Ok, "{} {}: {}", r.spec.scene, r.spec.varied_label(|_| true), r.message);
     }
 }
 
@@ -114,7 +115,7 @@ fn hertz_lattice_moduli_scale_as_the_cube_root_of_the_load() {
 /// MD against the static solution of the same network: relaxation to a residual force of 1e-8
 /// of the load per node leaves ~1e-8 relative in the displacements; the issue bound is 1 %.
 fn assert_md_matches_static(records: &[RunRecord]) {
-    for r in records.iter().filter(|r| r.status == "ok") {
+    for r in records.iter().filter(|r| r.status == RunStatus::Ok) {
         let m = &r.metrics;
         for (md, fem) in [(m.youngs_modulus, m.youngs_modulus_fem), (m.shear_modulus, m.shear_modulus_fem)] {
             if let (Some(md), Some(fem)) = (md, fem) {
@@ -196,5 +197,5 @@ fn a_network_past_rigidity_loss_is_a_mechanism() {
         "version: 1\nname: t\nscenes:\n  - name: r\n    kind: lattice\n    lattice: {size: 10, cut_fraction: 0.7}\n    \
          load: {per_node: 1.0e-3}\n",
     );
-    assert_eq!(records[0].status, "mechanism", "{}", records[0].message);
+    assert_eq!(records[0].status, RunStatus::Mechanism, "{}", records[0].message);
 }

@@ -6,6 +6,7 @@ mod common;
 use common::execute_all;
 use mdsolids::measure::power_law_fit;
 use mdsolids::runner::RunRecord;
+use mdsolids::sim::RunStatus;
 
 /// A chain of 200 hit at its first particle, the wave timed at the last, over `v0s`.
 fn chain(material: &str, duration_tc: f64, v0s: &[f64]) -> Vec<RunRecord> {
@@ -19,7 +20,7 @@ fn speeds(records: &[RunRecord]) -> Vec<(f64, f64)> {
     records
         .iter()
         .map(|r| {
-            assert_eq!(r.status, "ok", "{}", r.message);
+            assert_eq!(r.status, RunStatus::Ok, "{}", r.message);
             (r.spec.v0, r.metrics.sound_speed(r.metrics.arrival_criterion.as_deref().unwrap()).unwrap())
         })
         .collect()
@@ -79,7 +80,7 @@ fn lattice(size: usize, diagonals: &str) -> RunRecord {
 #[test]
 fn lattice_impulse_reaches_the_bottom_row_at_the_longitudinal_speed() {
     let r = lattice(40, "both");
-    assert_eq!(r.status, "ok", "{}", r.message);
+    assert_eq!(r.status, RunStatus::Ok, "{}", r.message);
     let c_l = (1.5f64).sqrt(); // a√((k + k_d)/m)
     assert_eq!(r.metrics.sound_speed_theory, Some(c_l));
     let speed = r.metrics.sound_speed("speed_threshold").unwrap();
@@ -107,7 +108,7 @@ fn a_force_step_on_the_top_row_sends_a_plane_wave_at_c_l() {
          wave: {}\n    time: {integrator: velocity-verlet}\n",
     )
     .remove(0);
-    assert_eq!(r.status, "ok", "{}", r.message);
+    assert_eq!(r.status, RunStatus::Ok, "{}", r.message);
     let c_l = (1.5f64).sqrt();
     let speed = r.metrics.sound_speed("speed_threshold").unwrap();
     // 6 %: a step is not a sharp pulse at its source (the top row accelerates over about a t_c),
@@ -126,7 +127,7 @@ const PROBED: &str = "version: 1\nname: probed\nscenes:\n  - name: l\n    kind: 
 #[test]
 fn probes_record_chosen_rows_and_columns_and_see_momentum_conserved() {
     let r = execute_all(PROBED).remove(0);
-    assert_eq!(r.status, "ok", "{}", r.message);
+    assert_eq!(r.status, RunStatus::Ok, "{}", r.message);
     let probes = &r.trace.probes;
     // The kicked column (right) first, then the rows once each (row 1 was named twice, `centre`
     // is row 2), then the left column.

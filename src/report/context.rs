@@ -12,6 +12,7 @@ use crate::measure::convergence_order;
 use crate::measure::relative_error;
 use crate::model::LawSpec;
 use crate::runner::{BUILD, RunRecord};
+use crate::sim::RunStatus;
 use crate::spec::{Campaign, SceneKind};
 use crate::summary::ScalingFit;
 
@@ -102,7 +103,7 @@ struct LatticeRow {
     dissipation_time: String,
     relax_steps: String,
     homogeneity: String,
-    status: String,
+    status: RunStatus,
 }
 
 /// A chain between moved walls, relaxed.
@@ -122,7 +123,7 @@ struct WallRow {
     tangent: String,
     tangent_theory: String,
     dissipation_time: String,
-    status: String,
+    status: RunStatus,
 }
 
 #[derive(Serialize)]
@@ -138,7 +139,7 @@ struct PairRow {
     restitution_theory: String,
     restitution_error: String,
     energy_error: String,
-    status: String,
+    status: RunStatus,
 }
 
 #[derive(Serialize)]
@@ -160,7 +161,7 @@ struct ChainRow {
     energy_error: String,
     mode_error: String,
     wall_s: String,
-    status: String,
+    status: RunStatus,
 }
 
 /// A run and a reason: why it is left out, or the build that made it.
@@ -176,7 +177,7 @@ const LISTED_MISSING: usize = 50;
 #[derive(Serialize)]
 struct FailureRow {
     run_id: String,
-    status: String,
+    status: RunStatus,
     message: String,
 }
 
@@ -189,7 +190,7 @@ pub fn build(
     figures: &[Figure],
     side_by_side: &[String],
 ) -> ReportContext {
-    let ok = records.iter().filter(|r| r.status == "ok").count();
+    let ok = records.iter().filter(|r| r.status == RunStatus::Ok).count();
     let row = |run_id: &String, why: String| LeftOutRow { run_id: run_id.clone(), why };
     let mut left_out_rows: Vec<LeftOutRow> =
         left_out.corrupt.iter().map(|(run_id, why)| row(run_id, format!("corrupt record: {why}"))).collect();
@@ -228,8 +229,8 @@ pub fn build(
             .collect(),
         failures: records
             .iter()
-            .filter(|r| r.status != "ok")
-            .map(|r| FailureRow { run_id: r.run_id.clone(), status: r.status.clone(), message: r.message.clone() })
+            .filter(|r| r.status != RunStatus::Ok)
+            .map(|r| FailureRow { run_id: r.run_id.clone(), status: r.status, message: r.message.clone() })
             .collect(),
     }
 }
@@ -326,12 +327,14 @@ fn section(
                 file: format!("plots/{scene}-side-by-side.gif"),
                 caption: format!("All runs of {scene} side by side, on one colour scale (m/s)."),
             })
-            .chain(mine.iter().filter(|r| r.spec.movie.is_some() && r.status != "panicked").map(|r| FigureRef {
-                file: format!("runs/{}.gif", r.run_id),
-                caption: format!(
-                    "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), bonds in grey.",
-                    r.spec.varied_label(|_| true)
-                ),
+            .chain(mine.iter().filter(|r| r.spec.movie.is_some() && r.status != RunStatus::Panicked).map(|r| {
+                FigureRef {
+                    file: format!("runs/{}.gif", r.run_id),
+                    caption: format!(
+                        "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), bonds in grey.",
+                        r.spec.varied_label(|_| true)
+                    ),
+                }
             }))
             .collect(),
     })
@@ -351,7 +354,7 @@ fn pair_row(r: &RunRecord) -> PairRow {
         restitution_theory: optional(m.restitution_theory),
         restitution_error: error(relative_error(m.restitution, m.restitution_theory)),
         energy_error: error(m.energy_error),
-        status: r.status.clone(),
+        status: r.status,
     }
 }
 
@@ -390,7 +393,7 @@ fn chain_row(r: &RunRecord) -> ChainRow {
         energy_error: error(r.metrics.energy_error),
         mode_error: error(r.metrics.chain_mode_error),
         wall_s: number(r.wall_s),
-        status: r.status.clone(),
+        status: r.status,
     }
 }
 
@@ -416,7 +419,7 @@ fn wall_row(r: &RunRecord) -> WallRow {
         tangent: optional(m.tangent_stiffness),
         tangent_theory: optional(m.tangent_stiffness_theory),
         dissipation_time: optional(m.dissipation_time),
-        status: r.status.clone(),
+        status: r.status,
     }
 }
 
@@ -496,6 +499,6 @@ fn lattice_row(r: &RunRecord) -> Option<LatticeRow> {
         dissipation_time: optional(m.dissipation_time),
         relax_steps: r.steps.to_string(),
         homogeneity: optional(m.homogeneity),
-        status: r.status.clone(),
+        status: r.status,
     })
 }

@@ -3,6 +3,7 @@
 //! that represents it).
 
 use crate::runner::RunRecord;
+use crate::sim::RunStatus;
 
 /// A drawn figure.
 pub struct Figure {
@@ -26,7 +27,7 @@ pub fn group_label(record: &RunRecord) -> String {
 /// The runs of `scene` that are `ok`, grouped by [`group_label`] in campaign order.
 pub fn groups<'a>(records: &'a [RunRecord], scene: &str) -> Vec<(String, Vec<&'a RunRecord>)> {
     let mut groups: Vec<(String, Vec<&RunRecord>)> = Vec::new();
-    for record in records.iter().filter(|r| r.spec.scene == scene && r.status == "ok") {
+    for record in records.iter().filter(|r| r.spec.scene == scene && r.status == RunStatus::Ok) {
         let label = group_label(record);
         match groups.iter_mut().find(|(l, _)| *l == label) {
             Some((_, members)) => members.push(record),

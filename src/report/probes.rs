@@ -4,12 +4,15 @@
 use super::figure::Figure;
 use crate::draw::chart::{Chart, Scale, heatmap};
 use crate::runner::RunRecord;
+use crate::sim::RunStatus;
 
 /// The probed rows and columns of the first `ok` run of `scene` that asks for probes: per line,
 /// the displacement and the velocity along its livelier axis as space–time maps.
 pub fn probe_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Figure>> {
     let Some(r) = records.iter().find(|r| {
-        r.spec.scene == scene && r.status == "ok" && r.spec.lattice.as_ref().is_some_and(|l| !l.probes.is_empty())
+        r.spec.scene == scene
+            && r.status == RunStatus::Ok
+            && r.spec.lattice.as_ref().is_some_and(|l| !l.probes.is_empty())
     }) else {
         return Ok(Vec::new());
     };

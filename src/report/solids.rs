@@ -8,6 +8,7 @@ use super::figure::Figure;
 use super::words::{number, optional};
 use crate::draw::chart::{Chart, Scale, Series, line_chart};
 use crate::runner::RunRecord;
+use crate::sim::RunStatus;
 use crate::summary::ScalingFit;
 
 /// One figure per swept quantity of `scene` (not the sound speed, which the wave study draws):
@@ -108,7 +109,7 @@ pub fn ensemble_rows(records: &[RunRecord], scene: &str) -> Vec<EnsembleRow> {
     ensembles(records, scene)
         .into_iter()
         .map(|(group, kept, members)| {
-            let ok = || members.iter().filter(|r| r.status == "ok");
+            let ok = || members.iter().filter(|r| r.status == RunStatus::Ok);
             let (youngs_mean, youngs_spread) = mean_spread(ok().map(|r| r.metrics.youngs_modulus));
             let (shear_mean, shear_spread) = mean_spread(ok().map(|r| r.metrics.shear_modulus));
             let (poisson_mean, poisson_spread) = mean_spread(ok().map(|r| r.metrics.poisson_ratio));
@@ -123,7 +124,7 @@ pub fn ensemble_rows(records: &[RunRecord], scene: &str) -> Vec<EnsembleRow> {
                 group: if group.is_empty() { "all".into() } else { group },
                 kept: number(kept),
                 seeds: members.len(),
-                mechanisms: members.iter().filter(|r| r.status == "mechanism").count(),
+                mechanisms: members.iter().filter(|r| r.status == RunStatus::Mechanism).count(),
                 youngs_mean: optional(youngs_mean),
                 youngs_spread: optional(youngs_spread),
                 shear_mean: optional(shear_mean),
@@ -157,7 +158,7 @@ pub fn ensemble_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Opt
         let mut points: Vec<(f64, f64, f64)> = ensembles
             .iter()
             .filter_map(|(_, kept, members)| {
-                let (mean, spread) = mean_spread(members.iter().filter(|r| r.status == "ok").map(|r| get(r)));
+                let (mean, spread) = mean_spread(members.iter().filter(|r| r.status == RunStatus::Ok).map(|r| get(r)));
                 mean.map(|m| (*kept, m, spread.unwrap_or(0.0)))
             })
             .collect();

@@ -7,6 +7,7 @@ use super::figure::Figure;
 use super::words::{number, optional};
 use crate::draw::chart::{Chart, Scale, Series, line_chart};
 use crate::runner::RunRecord;
+use crate::sim::RunStatus;
 use crate::spec::SceneKind;
 
 /// True when `scene` studies stability: some run sets dt by dt·ω_max or may blow up.
@@ -33,7 +34,7 @@ const MAP_FLOOR: f64 = 1e-3;
 
 /// A run blew up (as opposed to staying bounded, relaxed or not).
 fn blew_up(r: &RunRecord) -> bool {
-    r.status == "unstable"
+    r.status == RunStatus::Unstable
 }
 
 /// One run of a stability scene: what was predicted and what happened.
@@ -46,7 +47,7 @@ pub struct StabilityRow {
     limit: String,
     damping_ratio: String,
     predicted: &'static str,
-    outcome: String,
+    outcome: RunStatus,
     message: String,
 }
 
@@ -95,7 +96,7 @@ fn stability_row(r: &RunRecord) -> StabilityRow {
         limit: optional(m.stability_limit),
         damping_ratio: optional(m.mode_damping_ratio),
         predicted,
-        outcome: r.status.clone(),
+        outcome: r.status,
         message: if r.message.is_empty() { "–".into() } else { r.message.clone() },
     }
 }

@@ -8,6 +8,7 @@ use super::words::{impulse_words, number, optional};
 use crate::draw::chart::{Chart, Scale, Series, heatmap, line_chart};
 use crate::measure::ARRIVAL_CRITERIA;
 use crate::runner::RunRecord;
+use crate::sim::RunStatus;
 use crate::spec::SceneKind;
 use crate::summary::ScalingFit;
 
@@ -22,7 +23,7 @@ pub struct WaveRow {
     speeds: Vec<String>,
     estimate: String,
     theory: String,
-    status: String,
+    status: RunStatus,
 }
 
 /// The chain-wave rows of `scene` (empty when it times no wave).
@@ -44,7 +45,7 @@ pub fn wave_rows(records: &[RunRecord], scene: &str) -> Vec<WaveRow> {
                 speeds: ARRIVAL_CRITERIA.iter().map(|c| optional(m.sound_speed(c))).collect(),
                 estimate: optional(m.wave_distance.zip(m.arrival_time_tc_estimate).map(|(l, t)| l / t)),
                 theory: optional(m.sound_speed_theory),
-                status: r.status.clone(),
+                status: r.status,
             }
         })
         .collect()
@@ -98,7 +99,7 @@ fn speed_figure(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Option<Figur
 /// The displacement in space and time of the first ok wave run of `scene`: a chain's
 /// particles (walls left out), or the kicked column of an impulse lattice; `None` without one.
 fn space_time_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Option<Figure>> {
-    let first_ok = records.iter().find(|r| r.spec.scene == scene && r.spec.wave.is_some() && r.status == "ok");
+    let first_ok = records.iter().find(|r| r.spec.scene == scene && r.spec.wave.is_some() && r.status == RunStatus::Ok);
     let Some(r) = first_ok else { return Ok(None) };
     let t = &r.trace;
     let (values, rows, what): (Vec<Vec<f64>>, &str, &str) = match r.spec.kind {

@@ -42,7 +42,7 @@ pub fn execute_within(spec: &RunSpec, budget: &Budget, estimates: &Estimates) ->
         run_id: spec.run_id(),
         build: BUILD.into(),
         spec: spec.clone(),
-        status: "ok".into(),
+        status: RunStatus::Ok,
         message: String::new(),
         wall_s: 0.0,
         steps: 0,
@@ -72,7 +72,7 @@ pub fn execute_within(spec: &RunSpec, budget: &Budget, estimates: &Estimates) ->
                 }
                 (t.displacement_x, t.displacement_y, t.velocity_x, t.velocity_y) = Default::default();
             }
-            record.status = outcome.trace.status.word().into();
+            record.status = outcome.trace.status;
             record.message = outcome.trace.message.clone();
             record.steps = outcome.trace.steps;
             if spec.kind == SceneKind::Pair && metrics.contact_duration.is_none() && record.message.is_empty() {
@@ -84,31 +84,31 @@ pub fn execute_within(spec: &RunSpec, budget: &Budget, estimates: &Estimates) ->
             record.trace.thin(stored_samples(record.trace.numbers_per_sample()));
         }
         Ok(Finished::Mechanism { residual }) => {
-            record.status = "mechanism".into();
+            record.status = RunStatus::Mechanism;
             record.message = format!(
                 "the load drives a zero-stiffness motion: the static equations K u = f have no solution \
                  (relative residual {residual:.1e}); nothing to relax towards"
             );
         }
         Ok(Finished::OverBudget) => {
-            record.status = "budget".into();
+            record.status = RunStatus::Budget;
             record.message = refused.clone().unwrap_or_default();
         }
         Ok(Finished::PastDeadline { stage }) => {
-            record.status = "budget".into();
+            record.status = RunStatus::Budget;
             record.message = format!("stopped in its {stage}");
         }
         Err(panic) => {
-            record.status = "panicked".into();
+            record.status = RunStatus::Panicked;
             record.message = panic_message(panic.as_ref());
         }
     }
     // The reference run or the tangent step may be what passed the deadline.
-    if record.status == "ok" && Instant::now() > deadline {
-        record.status = "budget".into();
+    if record.status == RunStatus::Ok && Instant::now() > deadline {
+        record.status = RunStatus::Budget;
         record.message = "stopped in its reference run or tangent step".into();
     }
-    if record.status == "budget" && refused.is_none() {
+    if record.status == RunStatus::Budget && refused.is_none() {
         record.message = format!(
             "passed its time budget of {} s per run (budget.seconds_per_run) after {:.3} s: {}",
             budget.seconds_per_run,

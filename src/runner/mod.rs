@@ -20,6 +20,7 @@ use std::time::Duration;
 use crate::draw::Movie;
 use crate::output::{Layout, open_lock_file, try_lock, wait_for_lock, write_atomically};
 use crate::plan::Plan;
+use crate::sim::RunStatus;
 use crate::spec::{Campaign, RunSpec};
 
 /// What `run_campaign` did.
@@ -144,7 +145,7 @@ pub fn run_campaign_with(
         .map(|spec| {
             let record = match read_stored(layout, spec) {
                 Stored::Current(record) => record,
-                Stored::OtherBuild(record) if record.status != "budget" => {
+                Stored::OtherBuild(record) if record.status != RunStatus::Budget => {
                     other_build.push((record.run_id.clone(), record.build.clone()));
                     match other_builds {
                         OtherBuilds::Reuse => record,
@@ -157,7 +158,7 @@ pub fn run_campaign_with(
                 }
                 Stored::OtherBuild(_) | Stored::Missing => return None,
             };
-            (record.status != "budget").then_some(record)
+            (record.status != RunStatus::Budget).then_some(record)
         })
         .collect();
     let todo: Vec<&RunSpec> = campaign.runs.iter().zip(&stored).filter(|(_, r)| r.is_none()).map(|(s, _)| s).collect();
@@ -254,7 +255,7 @@ fn run_and_store(
         None => {}
         Some(patience) => wait_for_lock(&lock, &lock_path, &format!("run {run_id}"), patience)?,
     }
-    if let Some(record) = stored_record(layout, spec).filter(|record| record.status != "budget") {
+    if let Some(record) = stored_record(layout, spec).filter(|record| record.status != RunStatus::Budget) {
         return Ok(Some((record, false)));
     }
     let campaign = &plan.campaign;
@@ -262,9 +263,9 @@ fn run_and_store(
     if let Some(movie) = record.movie.take() {
         match crate::draw::write_movie(&layout.movie_file(&record.run_id), &movie) {
             // A run already stopped by its budget keeps its own reason.
-            Err(error) if error.is::<crate::draw::PastDeadline>() && record.status == "budget" => {}
+            Err(error) if error.is::<crate::draw::PastDeadline>() && record.status == RunStatus::Budget => {}
             Err(error) if error.is::<crate::draw::PastDeadline>() => {
-                record.status = "budget".into();
+                record.status = RunStatus::Budget;
                 record.message = format!(
                     "passed its time budget of {} s per run (budget.seconds_per_run) while encoding its movie of {} \
                      frames of {} × {} pixels; the measurements are kept, the movie is not written",
@@ -276,7 +277,7 @@ fn run_and_store(
             }
             written => written?,
         }
-        if movie.spec.side_by_side && record.status != "budget" {
+        if movie.spec.side_by_side && record.status != RunStatus::Budget {
             *panel.lock().expect("a panel is written once") = Some(movie);
         }
     }
@@ -299,8 +300,9 @@ pub fn write_missing_movies(
     mut frames: BTreeMap<String, Movie>,
 ) -> anyhow::Result<()> {
     let campaign = &plan.campaign;
-    let has_movie =
-        |r: &RunRecord| r.spec.movie.is_some() && !matches!(r.status.as_str(), "panicked" | "budget" | "mechanism");
+    let has_movie = |r: &RunRecord| {
+        r.spec.movie.is_some() && !matches!(r.status, RunStatus::Panicked | RunStatus::Budget | RunStatus::Mechanism)
+    };
     let mut movie_of = |spec: &RunSpec| {
         frames.remove(&spec.run_id()).or_else(|| execute_within(spec, &campaign.budget, &plan.estimates).movie)
     };

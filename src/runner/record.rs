@@ -3,7 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::draw::Movie;
-use crate::sim::Trace;
+use crate::sim::{RunStatus, Trace};
 use crate::spec::RunSpec;
 
 /// Measured quantities with their analytical twins; `None` where the scene has no such
@@ -143,8 +143,8 @@ pub struct RunRecord {
     pub build: String,
     /// The resolved run.
     pub spec: RunSpec,
-    /// `ok` or a failure word (`unstable`, `panicked`).
-    pub status: String,
+    /// How the run ended.
+    pub status: RunStatus,
     /// Explanation of a failure or a caveat; empty otherwise.
     pub message: String,
     /// Wall time of the simulation (s).

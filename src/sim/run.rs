@@ -5,7 +5,8 @@ use super::integrate::{Integrator, static_forces};
 use super::probe::StepProbe;
 use super::state::State;
 
-/// How a run ended.
+/// How a run ended: the time loop sets the first four, the runner the last two. Serialised
+/// (records, the `status` column) as the snake-case word [`RunStatus::as_str`] gives.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum RunStatus {
@@ -16,19 +17,32 @@ pub enum RunStatus {
     Unstable,
     /// A relaxation that did not reach its criterion within its time.
     NoEquilibrium,
-    /// Stopped at its wall-clock deadline (the campaign's time budget per run).
+    /// Stopped at its wall-clock deadline (the campaign's time budget per run), or refused
+    /// for its estimated memory.
     Budget,
+    /// The load drives a zero-stiffness motion of the network: nothing was simulated.
+    Mechanism,
+    /// The run panicked; the message says where.
+    Panicked,
 }
 
 impl RunStatus {
-    /// The word written in the `status` column.
-    pub fn word(self) -> &'static str {
+    /// The word written in records and the `status` column.
+    pub fn as_str(self) -> &'static str {
         match self {
             RunStatus::Ok => "ok",
             RunStatus::Unstable => "unstable",
             RunStatus::NoEquilibrium => "no_equilibrium",
             RunStatus::Budget => "budget",
+            RunStatus::Mechanism => "mechanism",
+            RunStatus::Panicked => "panicked",
         }
+    }
+}
+
+impl std::fmt::Display for RunStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
     }
 }
 
