@@ -1,0 +1,234 @@
+//! How the rows of A meet the rows of B: per scene, on the grid parameters both campaigns vary
+//! there; the joined table of both sides' values and their ratios B/A, and one scene's rows of it.
+
+use std::collections::BTreeSet;
+use std::ops::Range;
+use std::path::PathBuf;
+
+use super::table::{Table, Values};
+use crate::sim::RunStatus;
+
+/// How the rows of one scene met.
+pub(super) struct SceneJoin {
+    pub(super) scene: String,
+    /// The grid parameters both campaigns vary in this scene: the join keys besides the scene.
+    pub(super) keys: Vec<String>,
+    /// Parameters only A varies in this scene (one run of B may meet several of A), and only B.
+    pub(super) only_a: Vec<String>,
+    pub(super) only_b: Vec<String>,
+    pub(super) rows_a: usize,
+    pub(super) rows_b: usize,
+    /// This scene's entries of [`Join::pairs`].
+    pub(super) pairs: Range<usize>,
+}
+
+/// Which rows of A met which rows of B.
+pub(super) struct Join {
+    /// (row of A, row of B), scene by scene in A's order.
+    pub(super) pairs: Vec<(usize, usize)>,
+    pub(super) scenes: Vec<SceneJoin>,
+    pub(super) only_a: Vec<String>,
+    pub(super) only_b: Vec<String>,
+}
+
+/// Grid parameters nested in a scene have a dotted column (`time.dt_per_tc`).
+pub(super) fn is_dotted(name: &str) -> bool {
+    name.contains('.')
+}
+
+/// The top-level fields of a scene a grid may vary (`RawScene` in `spec/raw.rs`). Their columns
+/// have no dot, and `v0`, `n` and `supports` share theirs with the resolved value every run has,
+/// so that such a field is varied shows only as more than one value within a scene.
+const TOP_LEVEL_PARAMETERS: [&str; 6] = ["v0", "gap", "n", "node", "wall_distance", "supports"];
+
+/// A column that may hold a grid parameter.
+fn may_be_parameter(name: &str) -> bool {
+    is_dotted(name) || TOP_LEVEL_PARAMETERS.contains(&name)
+}
+
+/// The distinct values of `column` at `rows`, in order of first appearance.
+fn distinct(column: &Values, rows: impl Iterator<Item = usize>) -> Vec<String> {
+    let mut seen = Vec::new();
+    for value in rows.filter_map(|row| column.key(row)) {
+        if !seen.contains(&value) {
+            seen.push(value);
+        }
+    }
+    seen
+}
+
+/// True when `table` varies parameter `name` at `rows` (one scene): a dotted column has a value
+/// there (null only where the scene's grid does not name it), a top-level one takes two values.
+fn varies(table: &Table, rows: &[usize], name: &str) -> bool {
+    match table.column(name) {
+        Some(column) if is_dotted(name) => rows.iter().any(|&r| !column.is_null(r)),
+        Some(column) => distinct(column, rows.iter().copied()).len() > 1,
+        None => false,
+    }
+}
+
+/// Joins the rows of A and B scene by scene. The keys are decided per scene: a parameter is a
+/// key where both campaigns vary it in that scene, so a parameter only one campaign varies there
+/// leaves one row of the other side meeting several. Equal cells match, nulls included (a grid
+/// may list `null`).
+pub(super) fn join(a: &Table, b: &Table) -> anyhow::Result<Join> {
+    let (scene_a, scene_b) = (a.require("scene")?, b.require("scene")?);
+    let (scenes_a, scenes_b) = (distinct(scene_a, 0..a.height), distinct(scene_b, 0..b.height));
+    let common: Vec<&str> = a.names().filter(|n| may_be_parameter(n) && b.column(n).is_some()).collect();
+    let mut pairs = Vec::new();
+    let mut scenes = Vec::new();
+    for scene in scenes_a.iter().filter(|s| scenes_b.contains(s)) {
+        let rows = |table: &Table, column: &Values| -> Vec<usize> {
+            (0..table.height).filter(|&r| column.key(r).as_ref() == Some(scene)).collect()
+        };
+        let (rows_a, rows_b) = (rows(a, scene_a), rows(b, scene_b));
+        let keys: Vec<&str> =
+            common.iter().copied().filter(|&n| varies(a, &rows_a, n) && varies(b, &rows_b, n)).collect();
+        let columns: Vec<(&Values, &Values)> =
+            keys.iter().map(|&n| Ok((a.require(n)?, b.require(n)?))).collect::<anyhow::Result<_>>()?;
+        let start = pairs.len();
+        for &i in &rows_a {
+            for &j in &rows_b {
+                if columns.iter().all(|(ka, kb)| ka.key(i) == kb.key(j)) {
+                    pairs.push((i, j));
+                }
+            }
+        }
+        let only = |table: &Table, rows: &[usize]| -> Vec<String> {
+            let names = table.names().filter(|n| may_be_parameter(n) && !keys.contains(n));
+            names.filter(|n| varies(table, rows, n)).map(str::to_string).collect()
+        };
+        scenes.push(SceneJoin {
+            scene: scene.clone(),
+            only_a: only(a, &rows_a),
+            only_b: only(b, &rows_b),
+            keys: keys.iter().map(|n| n.to_string()).collect(),
+            rows_a: rows_a.len(),
+            rows_b: rows_b.len(),
+            pairs: start..pairs.len(),
+        });
+    }
+    let only = |own: &[String], other: &[String]| own.iter().filter(|s| !other.contains(s)).cloned().collect();
+    Ok(Join { pairs, only_a: only(&scenes_a, &scenes_b), only_b: only(&scenes_b, &scenes_a), scenes })
+}
+
+/// The joined table, with the names of its metric columns.
+pub(super) struct Joined {
+    pub(super) table: Table,
+    /// Metrics: each has `<metric>_a`, `<metric>_b` and `<metric>_ratio` in the table.
+    pub(super) metrics: Vec<String>,
+}
+
+/// B/A where both runs ended `ok`, both values exist and A is not zero.
+fn ratio(ok: bool, a: Option<f64>, b: Option<f64>) -> Option<f64> {
+    match (a, b) {
+        (Some(a), Some(b)) if ok && a != 0.0 => Some(b / a).filter(|r| r.is_finite()),
+        _ => None,
+    }
+}
+
+/// Builds the joined table: `scene`; every dotted grid parameter, holding the value both sides
+/// share where it is a key and otherwise the value of the one side that varies it; `status_a`,
+/// `status_b`, `run_id_a`, `run_id_b`; the text top-level parameters (`supports`) of each side;
+/// then for every numeric column both tables have (the metrics, with the wall times and the
+/// resolved inputs such as `t_c` and `dt`, which differ between campaigns of different laws, and
+/// `v0`, `n`) its two values and their ratio.
+pub(super) fn joined_table(a: &Table, b: &Table, join: &Join) -> anyhow::Result<Joined> {
+    let rows_a = || join.pairs.iter().map(|p| p.0);
+    let rows_b = || join.pairs.iter().map(|p| p.1);
+    let mut columns = vec![("scene".to_string(), a.require("scene")?.gather(rows_a()))];
+    for (name, va) in a.columns.iter().filter(|(n, _)| is_dotted(n)) {
+        let merged = match (va, b.column(name)) {
+            (Values::Numbers(va), Some(Values::Numbers(vb))) => {
+                Values::Numbers(join.pairs.iter().map(|&(i, j)| va[i].or(vb[j])).collect())
+            }
+            (va, Some(vb)) => Values::Text(join.pairs.iter().map(|&(i, j)| va.key(i).or(vb.key(j))).collect()),
+            (va, None) => va.gather(rows_a()),
+        };
+        columns.push((name.clone(), merged));
+    }
+    for (name, vb) in b.columns.iter().filter(|(n, _)| is_dotted(n) && a.column(n).is_none()) {
+        columns.push((name.clone(), vb.gather(rows_b())));
+    }
+    for name in ["status", "run_id"] {
+        columns.push((format!("{name}_a"), a.require(name)?.gather(rows_a())));
+        columns.push((format!("{name}_b"), b.require(name)?.gather(rows_b())));
+    }
+    let is_metric = |name: &str| {
+        !is_dotted(name)
+            && matches!((a.column(name), b.column(name)), (Some(Values::Numbers(_)), Some(Values::Numbers(_))))
+    };
+    for name in TOP_LEVEL_PARAMETERS.into_iter().filter(|n| !is_metric(n)) {
+        if let Some(va) = a.column(name) {
+            columns.push((format!("{name}_a"), va.gather(rows_a())));
+        }
+        if let Some(vb) = b.column(name) {
+            columns.push((format!("{name}_b"), vb.gather(rows_b())));
+        }
+    }
+    let ok: Vec<bool> = join
+        .pairs
+        .iter()
+        .map(|&(i, j)| {
+            let ok =
+                |t: &Table, r| t.column("status").and_then(|s| s.key(r)).is_some_and(|s| s == RunStatus::Ok.as_str());
+            ok(a, i) && ok(b, j)
+        })
+        .collect();
+    let mut metrics = Vec::new();
+    for (name, va) in a.columns.iter().filter(|(n, _)| is_metric(n)) {
+        let vb = b.require(name)?;
+        let value_a = va.gather(rows_a());
+        let value_b = vb.gather(rows_b());
+        let ratios = (0..join.pairs.len()).map(|r| ratio(ok[r], value_a.number(r), value_b.number(r))).collect();
+        columns.push((format!("{name}_a"), value_a));
+        columns.push((format!("{name}_b"), value_b));
+        columns.push((format!("{name}_ratio"), Values::Numbers(ratios)));
+        metrics.push(name.clone());
+    }
+    let table = Table { path: PathBuf::from("compare.parquet"), columns, height: join.pairs.len() };
+    Ok(Joined { table, metrics })
+}
+
+impl Joined {
+    /// The rows of `scene` in the joined table.
+    pub(super) fn scene_rows(&self, scene: &SceneJoin) -> SceneRows<'_> {
+        SceneRows { table: &self.table, rows: scene.pairs.clone().collect() }
+    }
+}
+
+/// The joined rows of one scene, with the questions its report section asks of them.
+pub(super) struct SceneRows<'a> {
+    table: &'a Table,
+    /// The scene's rows of the joined table.
+    pub(super) rows: Vec<usize>,
+}
+
+impl SceneRows<'_> {
+    /// A column of the joined table.
+    pub(super) fn column(&self, name: &str) -> Option<&Values> {
+        self.table.column(name)
+    }
+
+    /// Cell `r` of column `name`, as text.
+    pub(super) fn cell(&self, name: &str, r: usize) -> Option<String> {
+        self.column(name).and_then(|c| c.key(r))
+    }
+
+    /// Row `r` ended `ok` on `side` (`a` or `b`).
+    pub(super) fn ok(&self, side: &str, r: usize) -> bool {
+        self.cell(&format!("status_{side}"), r).is_some_and(|s| s == RunStatus::Ok.as_str())
+    }
+
+    /// `rows` with each run of `side` once: one run of a side may meet several of the other,
+    /// and counts once (by its run id).
+    pub(super) fn once(&self, side: &str, rows: &[usize]) -> Vec<usize> {
+        let mut seen = BTreeSet::new();
+        rows.iter().copied().filter(|&r| seen.insert(self.cell(&format!("run_id_{side}"), r))).collect()
+    }
+
+    /// The column `<name>_<suffix>` of a metric (`suffix`: `a`, `b` or `ratio`).
+    pub(super) fn metric(&self, name: &str, suffix: &str) -> &Values {
+        self.column(&format!("{name}_{suffix}")).expect("every metric has its columns")
+    }
+}

@@ -1,0 +1,130 @@
+//! `mdsolids compare A B`: two campaigns' results side by side. The rows of the two results
+//! tables are joined per scene on the grid parameters both campaigns vary there; every numeric
+//! column the tables share gets its two values and their ratio B/A; the fitted exponents of the
+//! two `summary.csv` files are set against each other; and a report (`report.md`, `index.html`,
+//! `plots/*.svg`) shows it all. Everything is read back from the report directories, so
+//! campaigns run by different versions of mdsolids can be compared as long as their tables are.
+
+mod exponents;
+mod join;
+mod plots;
+mod section;
+mod table;
+mod words;
+
+use anyhow::Context as _;
+use polars::prelude::{CsvWriter, ParquetWriter, SerWriter};
+use serde::Serialize;
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+use self::exponents::{ExponentRow, exponents};
+use self::join::{join, joined_table};
+use self::section::{SceneSection, scene_section};
+use self::table::Side;
+use crate::output::write_atomically;
+
+const MARKDOWN_TEMPLATE: &str = include_str!("../../templates/compare.md.tera");
+
+/// What `compare` wrote.
+#[derive(Clone, Debug)]
+pub struct Comparison {
+    /// The output directory.
+    pub out: PathBuf,
+    /// Rows of the joined table.
+    pub rows: usize,
+    /// Overlaid figures written under `plots/`.
+    pub plots: usize,
+    /// Rows of the exponent table (fits of either side).
+    pub exponents: usize,
+}
+
+/// Compares the report directories `a` and `b` and writes `compare.csv`, `compare.parquet`,
+/// `report.md`, `index.html` and `plots/*.svg` into `out`, by default
+/// `<reports>/compare-<name of a>-vs-<name of b>`.
+pub fn compare(a: &Path, b: &Path, out: Option<&Path>, reports: &Path) -> anyhow::Result<Comparison> {
+    let (a, b) = (Side::open(a)?, Side::open(b)?);
+    let out = out.map_or_else(|| reports.join(format!("compare-{}-vs-{}", a.name, b.name)), Path::to_path_buf);
+    if let Some(owner) = crate::owner::campaign_of(&out) {
+        anyhow::bail!(
+            "'{}' is the report folder of {owner}: a comparison would overwrite its report; choose another --out",
+            out.display()
+        );
+    }
+    let join = join(&a.results, &b.results)?;
+    let joined = joined_table(&a.results, &b.results, &join)?;
+    let mut frame = joined.table.frame().context("cannot build the joined table")?;
+    let mut csv = Vec::new();
+    CsvWriter::new(&mut csv).include_header(true).finish(&mut frame)?;
+    write_atomically(&out.join("compare.csv"), &csv)?;
+    let mut parquet = Vec::new();
+    ParquetWriter::new(&mut parquet).finish(&mut frame)?;
+    write_atomically(&out.join("compare.parquet"), &parquet)?;
+
+    let mut scenes = Vec::new();
+    let mut plots = BTreeSet::new();
+    for scene in &join.scenes {
+        let section = scene_section(&a, &b, &joined, scene)?;
+        for group in &section.plots {
+            for plot in &group.plots {
+                write_atomically(&out.join(&plot.file), plot.svg.as_bytes())?;
+                plots.insert(plot.file.clone());
+            }
+        }
+        scenes.push(section);
+    }
+    // Figures of an earlier comparison into this folder that this one did not draw.
+    crate::report::remove_stale(&out, "plots", ".svg", &plots)?;
+    let plots = plots.len();
+    let (exponent_rows, missing_summaries) = exponents(&a, &b)?;
+    let exponents = exponent_rows.len();
+    let context = ReportContext {
+        title: format!("{} against {}", a.name, b.name),
+        version: env!("CARGO_PKG_VERSION"),
+        a: SideInfo::of(&a),
+        b: SideInfo::of(&b),
+        rows: joined.table.height,
+        only_a: join.only_a,
+        only_b: join.only_b,
+        scenes,
+        exponent_rows,
+        missing_summaries,
+    };
+    render(&out, &context)?;
+    Ok(Comparison { out, rows: joined.table.height, plots, exponents })
+}
+
+/// Writes `report.md` and `index.html` (the same Markdown as HTML inside the page shell).
+fn render(out: &Path, context: &ReportContext) -> anyhow::Result<()> {
+    let context = tera::Context::from_serialize(context).context("cannot build the comparison context")?;
+    crate::report::write_pages(out, ("compare.md", MARKDOWN_TEMPLATE), context)
+}
+
+/// Everything `templates/compare.md.tera` shows.
+#[derive(Serialize)]
+struct ReportContext {
+    title: String,
+    version: &'static str,
+    a: SideInfo,
+    b: SideInfo,
+    rows: usize,
+    only_a: Vec<String>,
+    only_b: Vec<String>,
+    scenes: Vec<SceneSection>,
+    exponent_rows: Vec<ExponentRow>,
+    /// The `summary.csv` files that do not exist (then no exponent is compared).
+    missing_summaries: Vec<String>,
+}
+
+#[derive(Serialize)]
+struct SideInfo {
+    name: String,
+    dir: String,
+    runs: usize,
+}
+
+impl SideInfo {
+    fn of(side: &Side) -> SideInfo {
+        SideInfo { name: side.name.clone(), dir: side.dir.display().to_string(), runs: side.results.height }
+    }
+}
