@@ -72,29 +72,8 @@ pub fn reference_scene(config: &BenchConfig) -> Scene {
     } else {
         Network::Lattice(lattice)
     };
-    Scene {
-        particles,
-        network,
-        law: LawSpec::Linear,
-        contact: false,
-        gamma: 0.0,
-        background_gamma: 0.0,
-        integrator: IntegratorKind::VelocityVerlet,
-        sampling: Sampling {
-            dt: 0.01,
-            steps: config.steps,
-            every: config.steps.max(1),
-            displacements: false,
-            deadline: None,
-            relaxation: None,
-        },
-        contact_clock: None,
-        wave: None,
-        movie_frames: None,
-        loads: Vec::new(),
-        load_ramp: 0.0,
-        drive: None,
-    }
+    Scene::new(particles, network, LawSpec::Linear, Sampling::new(0.01, config.steps))
+        .integrator(IntegratorKind::VelocityVerlet)
 }
 
 /// Runs the reference scene once on the current rayon pool and measures it.

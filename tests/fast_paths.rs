@@ -90,7 +90,7 @@ fn setup(nx: usize, ny: usize, supports: bool, periodic_x: bool) -> (Particles, 
 const STEPS: u64 = 1000;
 
 fn sampling() -> Sampling {
-    Sampling { dt: 0.02, steps: STEPS, every: STEPS, displacements: false, relaxation: None, deadline: None }
+    Sampling::new(0.02, STEPS)
 }
 
 fn reference<L: ForceLaw, D: Dashpot, const C: bool>(
@@ -134,22 +134,10 @@ fn check<L: ForceLaw, D: Dashpot, const C: bool>(
     let (particles, lattice) = setup(nx, ny, supports, periodic_x);
     let bonds = if dilute > 0.0 { lattice.bonds().randomised(dilute, 0.0, 7, |_, _| false) } else { lattice.bonds() };
     let network = if dilute > 0.0 { Network::Bonds(bonds.clone()) } else { Network::Lattice(lattice) };
-    let scene = Scene {
-        particles: particles.clone(),
-        network,
-        law,
-        contact: C,
-        gamma,
-        background_gamma: background,
-        integrator,
-        sampling: sampling(),
-        contact_clock: None,
-        wave: None,
-        movie_frames: None,
-        loads: Vec::new(),
-        load_ramp: 0.0,
-        drive: None,
-    };
+    let scene = Scene::new(particles.clone(), network, law, sampling())
+        .contact(C)
+        .damping(gamma, background)
+        .integrator(integrator);
     // Two threads, so that systems of 10⁴ particles and more take the threaded path.
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
     let fast = pool.install(|| scene.run().state);

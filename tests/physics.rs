@@ -163,29 +163,10 @@ fn free_pair_conserves_momentum_with_damping() {
         let (px0, py0) = particles.momentum();
         let mut bonds = Bonds::default();
         bonds.push(0, 1, 1.0, 1.0);
-        let scene = Scene {
-            particles,
-            network: Network::Bonds(bonds),
-            law: LawSpec::Power { beta: 1.5 },
-            contact: false,
-            gamma: 0.3,
-            background_gamma: 0.0,
-            integrator,
-            sampling: Sampling {
-                dt: 0.01,
-                steps: 5000,
-                every: 100,
-                displacements: false,
-                relaxation: None,
-                deadline: None,
-            },
-            contact_clock: None,
-            wave: None,
-            movie_frames: None,
-            loads: Vec::new(),
-            load_ramp: 0.0,
-            drive: None,
-        };
+        let sampling = Sampling { every: 100, ..Sampling::new(0.01, 5000) };
+        let scene = Scene::new(particles, Network::Bonds(bonds), LawSpec::Power { beta: 1.5 }, sampling)
+            .damping(0.3, 0.0)
+            .integrator(integrator);
         let (px, py) = scene.run().state.particles.momentum();
         // Pair forces cancel exactly; only round-off remains. Störmer's position form adds
         // ε|x| to every position each step and divides by dt for the velocity: after 5000 steps

@@ -63,6 +63,14 @@ pub struct Sampling {
     pub deadline: Option<std::time::Instant>,
 }
 
+impl Sampling {
+    /// `steps` steps of `dt` (s), sampled at the start and the end only, without displacements,
+    /// relaxation or deadline.
+    pub fn new(dt: f64, steps: u64) -> Sampling {
+        Sampling { dt, steps, every: steps.max(1), displacements: false, relaxation: None, deadline: None }
+    }
+}
+
 /// Steps between looks at the clock for the deadline: ~25 ns per look, so at most a few
 /// per cent of the cheapest step (a pair, ~100 ns) and at most a few ms late on a 10⁶-particle
 /// lattice (~3 ms per step).

@@ -83,6 +83,43 @@ pub struct Outcome {
 }
 
 impl Scene {
+    /// `particles` joined by `network` under `law`, integrated over `sampling`: bonded springs,
+    /// undamped, velocity Verlet, nothing watched, loaded or driven. The setters below change
+    /// one choice each; the fields stay open for the rest.
+    pub fn new(particles: Particles, network: Network, law: LawSpec, sampling: Sampling) -> Scene {
+        Scene {
+            particles,
+            network,
+            law,
+            contact: false,
+            gamma: 0.0,
+            background_gamma: 0.0,
+            integrator: IntegratorKind::VelocityVerlet,
+            sampling,
+            contact_clock: None,
+            wave: None,
+            movie_frames: None,
+            loads: Vec::new(),
+            load_ramp: 0.0,
+            drive: None,
+        }
+    }
+
+    /// Bonds act only in compression (`true`) or always (`false`).
+    pub fn contact(self, contact: bool) -> Scene {
+        Scene { contact, ..self }
+    }
+
+    /// Bond dashpot γ and background damping γ_g (N s/m).
+    pub fn damping(self, gamma: f64, background_gamma: f64) -> Scene {
+        Scene { gamma, background_gamma, ..self }
+    }
+
+    /// The time integrator.
+    pub fn integrator(self, integrator: IntegratorKind) -> Scene {
+        Scene { integrator, ..self }
+    }
+
     /// Integrates the scene. The law, dashpot and contact switch are chosen here, once, so the
     /// bond loop is compiled for exactly this combination.
     pub fn run(self) -> Outcome {
