@@ -4,9 +4,9 @@
 //!
 //! ```text
 //! campaign YAML ──spec::load──▶ Campaign { runs: [RunSpec] }                 (spec)
-//! RunSpec ──scenes::build_scene──▶ Scene { particles, bonds, law, damping }   (scenes, model)
+//! RunSpec ──study::build_scene──▶ Scene { particles, bonds, law, damping }    (study, model)
 //! Scene ──Scene::run──▶ Outcome { Trace, crossings, final state }             (sim: pure)
-//! Outcome ──measure::*──▶ Metrics, beside theory::* references                (measure, theory)
+//! Outcome ──study::run, measure::*──▶ Metrics, beside theory::* references    (study, measure, theory)
 //! runner: rayon over RunSpecs, content-hash cache, one stored RunRecord per run
 //!         (`--shard I/N`: one cost-balanced share; `slurm`: one share per array task)
 //! [RunRecord] ──table──▶ results.csv / results.parquet (Polars)
@@ -14,7 +14,7 @@
 //! two report directories ──compare──▶ compare.csv / .parquet, report.md, index.html, plots/
 //! ```
 //!
-//! The physics core (`model`, `sim`, `theory`, `measure`, `scenes`) does no I/O.
+//! The physics core (`model`, `sim`, `theory`, `measure`, `study`) does no I/O.
 //!
 //! To add a force law: implement [`model::ForceLaw`] (force and energy, with a doctest), add a
 //! variant to [`sim::LawKind`] and one arm to `Scene::run`; the bond loop, integrators and
@@ -33,10 +33,10 @@ pub mod output;
 pub mod owner;
 pub mod report;
 pub mod runner;
-pub mod scenes;
 pub mod sim;
 pub mod slurm;
 pub mod spec;
 pub mod stability;
+pub mod study;
 pub mod table;
 pub mod theory;
