@@ -2,11 +2,50 @@
 //! wall is moved. Its scene, its normal-mode solution, equilibrium and sound speed, and its
 //! measurement.
 
+use serde::{Deserialize, Serialize};
+
+use super::Metrics;
 use crate::measure::normal_mode_error;
 use crate::model::{Axes, Particles};
-use crate::runner::Metrics;
 use crate::sim::{Network, Outcome, Scene};
 use crate::spec::{LawName, RunSpec};
+
+/// What a chain measures, with its analytical twins.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ChainMetrics {
+    /// Chain: largest phase-space deviation from the normal-mode solution, relative (see
+    /// `measure::normal_mode_error`).
+    pub chain_mode_error: Option<f64>,
+    /// Relaxing chain: mean gap (m) of all springs but the last (which starts with the whole
+    /// wall displacement).
+    #[serde(default)]
+    pub equilibrium_spacing: Option<f64>,
+    /// Relaxing chain: equilibrium gap W/(n + 1) (m).
+    #[serde(default)]
+    pub equilibrium_spacing_theory: Option<f64>,
+    /// Relaxing chain: largest minus smallest gap (m); 0 at equilibrium.
+    #[serde(default)]
+    pub spacing_spread: Option<f64>,
+    /// Relaxing chain: tension (N) of the spring at the left wall, s(δ₁); negative in
+    /// compression.
+    #[serde(default)]
+    pub wall_force: Option<f64>,
+    /// Relaxing chain: s(ΔW/(n + 1)) (N).
+    #[serde(default)]
+    pub wall_force_theory: Option<f64>,
+    /// Relaxing chain: secant stiffness of the whole chain, wall force / ΔW (N/m).
+    #[serde(default)]
+    pub secant_stiffness: Option<f64>,
+    /// Relaxing chain: s(δ)/ΔW (N/m).
+    #[serde(default)]
+    pub secant_stiffness_theory: Option<f64>,
+    /// Relaxing chain with a tangent step: ΔF/ΔW (N/m) from the MD increments.
+    #[serde(default)]
+    pub tangent_stiffness: Option<f64>,
+    /// Relaxing chain: s′(δ)/(n + 1) (N/m).
+    #[serde(default)]
+    pub tangent_stiffness_theory: Option<f64>,
+}
 
 /// n particles between two fixed walls `wall_distance` apart, bonded as an (n+2) × 1
 /// lattice (the walls are particles 0 and n+1); particle `node` starts at v0. They start
@@ -60,7 +99,7 @@ fn wall_force(spec: &RunSpec, x: &[f64]) -> f64 {
 /// The normal-mode error, the wave's arrival (against the long-wavelength and front speed
 /// a√(k/m)) and a relaxing chain's equilibrium.
 pub(super) fn measure(spec: &RunSpec, outcome: &Outcome, metrics: &mut Metrics) {
-    metrics.chain_mode_error = has_normal_modes(spec)
+    metrics.chain.chain_mode_error = has_normal_modes(spec)
         .then(|| {
             let n = spec.n.unwrap_or(0);
             let movable: Vec<usize> = (1..=n).collect();
@@ -70,14 +109,14 @@ pub(super) fn measure(spec: &RunSpec, outcome: &Outcome, metrics: &mut Metrics) 
         .flatten();
     super::measure_wave(spec, outcome, super::sound_speed(spec, spec.k), metrics);
     if spec.relax.is_some() {
-        measure_equilibrium(spec, outcome, metrics);
+        measure_equilibrium(spec, outcome, &mut metrics.chain);
         super::measure_relaxation(spec, outcome, spec.n.unwrap_or(1), "the wall force", metrics);
     }
 }
 
 /// A relaxing chain's spacing, wall force and secant stiffness beside its equilibrium; the
 /// measured ones only when it came to rest.
-fn measure_equilibrium(spec: &RunSpec, outcome: &Outcome, metrics: &mut Metrics) {
+fn measure_equilibrium(spec: &RunSpec, outcome: &Outcome, metrics: &mut ChainMetrics) {
     let relaxed = outcome.trace.relaxed_at.is_some();
     let keep = |value: Option<f64>| value.filter(|_| relaxed);
     let x = &outcome.state.particles.x;
@@ -104,7 +143,7 @@ pub(super) fn tangent_stiffness(
     wall_step: f64,
     start: &Particles,
     end: &Particles,
-    metrics: &mut Metrics,
+    metrics: &mut ChainMetrics,
 ) {
     if wall_step != 0.0 {
         let before = wall_force(spec, &start.x);

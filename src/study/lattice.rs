@@ -2,18 +2,71 @@
 //! relaxed to its moduli) or kicked (a wave). Its scene, its static answer (linear and
 //! non-linear, `fem`), its continuum moduli and sound speeds, and its measurement.
 
+use serde::{Deserialize, Serialize};
+
 use std::time::Instant;
 
-use super::Stopped;
+use super::{Metrics, Stopped};
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
     LatticeShape, anisotropic_moduli, constrained_modulus_y, homogeneity, lattice_constants, shear_modulus,
     tensile_moduli,
 };
 use crate::model::{Axes, Bonds, ForceLaw, Linear, Particles, PowerLaw, SquareLattice};
-use crate::runner::Metrics;
 use crate::sim::{Drive, LawKind, Load, Network, Outcome, ProbeTrace, Scene, Trace};
 use crate::spec::{Control, LatticeSpec, LawName, LoadCase, ProbeLine, RunSpec, Supports, reference_extension};
+
+/// What a lattice measures, with its static and continuum twins.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct LatticeMetrics {
+    /// Lattice, tensile: Young's modulus E (Pa) of the relaxed MD lattice.
+    pub youngs_modulus: Option<f64>,
+    /// Lattice, tensile: ν = −(ΔL_x/L_x)/(ΔL_y/L_y).
+    pub poisson_ratio: Option<f64>,
+    /// Lattice, tensile: the coursework's ΔL_x/ΔL_y.
+    pub poisson_ratio_coursework: Option<f64>,
+    /// Lattice, shear: shear modulus G (Pa).
+    pub shear_modulus: Option<f64>,
+    /// Lattice: largest deviation of the side columns from straight lines, relative to their
+    /// mean lateral displacement.
+    pub homogeneity: Option<f64>,
+    /// Lattice: largest difference between the non-linear and the linear static answers,
+    /// relative for E and G, absolute for ν (how far the load is from the linear regime).
+    pub static_nonlinearity: Option<f64>,
+    /// Lattice: E of the static solution of the same network, solved non-linearly like MD (Pa).
+    pub youngs_modulus_fem: Option<f64>,
+    /// Lattice: ν of the static solution.
+    pub poisson_ratio_fem: Option<f64>,
+    /// Lattice: G of the static solution (Pa).
+    pub shear_modulus_fem: Option<f64>,
+    /// Lattice: continuum E = (C11 − C12²/C11)/d (Pa).
+    pub youngs_modulus_theory: Option<f64>,
+    /// Lattice: continuum ν = C12/C11.
+    pub poisson_ratio_theory: Option<f64>,
+    /// Lattice: continuum G = C44/d (Pa).
+    pub shear_modulus_theory: Option<f64>,
+    /// Lattice with a tangent step: tangent E = ΔF/d/L_x / Δε (Pa) from the MD increments.
+    #[serde(default)]
+    pub youngs_modulus_tangent: Option<f64>,
+    /// Lattice with a tangent step: ν from the MD increments.
+    #[serde(default)]
+    pub poisson_ratio_tangent: Option<f64>,
+    /// Lattice with a tangent step: tangent G (Pa) from the MD increments.
+    #[serde(default)]
+    pub shear_modulus_tangent: Option<f64>,
+    /// Tangent E (Pa) of the static answer, from its tangent stiffness K_t Δu = Δf.
+    #[serde(default)]
+    pub youngs_modulus_tangent_fem: Option<f64>,
+    /// Tangent ν of the static answer.
+    #[serde(default)]
+    pub poisson_ratio_tangent_fem: Option<f64>,
+    /// Tangent G (Pa) of the static answer.
+    #[serde(default)]
+    pub shear_modulus_tangent_fem: Option<f64>,
+    /// Random lattice: fraction of the bonds kept after cutting.
+    #[serde(default)]
+    pub bond_fraction_kept: Option<f64>,
+}
 
 /// An nx × ny lattice at rest on its supports, node (ix, iy) at (ix a, iy a); a random
 /// lattice as an irregular network (the stencil only knows whole bond families). An impulse
@@ -118,7 +171,7 @@ pub(super) fn static_answer(
     l: &LatticeSpec,
     scene: &mut Scene,
     deadline: Instant,
-    metrics: &mut Metrics,
+    metrics: &mut LatticeMetrics,
 ) -> Result<(), Stopped> {
     let bonds = bonds(spec, l);
     if l.is_random() {
@@ -179,7 +232,7 @@ fn solve<L: ForceLaw>(
     truss: &Truss,
     law: &L,
     deadline: Instant,
-    metrics: &mut Metrics,
+    metrics: &mut LatticeMetrics,
 ) -> Result<f64, Stopped> {
     let past_deadline = || Stopped::PastDeadline { stage: "static solve" };
     // The force on the top row: the load, or what the supports must apply to hold the
@@ -307,13 +360,13 @@ pub(super) fn measure(
     };
     let md = moduli(spec, l, force, &ux, &uy);
     let keep = |value: Option<f64>| value.filter(|_| relaxed);
-    metrics.youngs_modulus = keep(md.youngs_modulus);
-    metrics.poisson_ratio = keep(md.poisson_ratio);
-    metrics.poisson_ratio_coursework = keep(md.poisson_ratio_coursework);
-    metrics.shear_modulus = keep(md.shear_modulus);
-    metrics.homogeneity = keep(homogeneity(&shape(spec, l), &ux));
+    metrics.lattice.youngs_modulus = keep(md.youngs_modulus);
+    metrics.lattice.poisson_ratio = keep(md.poisson_ratio);
+    metrics.lattice.poisson_ratio_coursework = keep(md.poisson_ratio_coursework);
+    metrics.lattice.shear_modulus = keep(md.shear_modulus);
+    metrics.lattice.homogeneity = keep(homogeneity(&shape(spec, l), &ux));
     if spec.law == LawName::Linear {
-        continuum(l, metrics);
+        continuum(l, &mut metrics.lattice);
     }
     let scale = match l.control {
         Control::Velocity => "the drive's static force per node",
@@ -323,7 +376,7 @@ pub(super) fn measure(
 }
 
 /// The continuum moduli of the regular linear lattice (a random one is compared with it).
-fn continuum(l: &LatticeSpec, metrics: &mut Metrics) {
+fn continuum(l: &LatticeSpec, metrics: &mut LatticeMetrics) {
     let (k_rising, k_falling) = l.diagonal_stiffness();
     let continuum = anisotropic_moduli(l.k_x, l.k_y, k_rising, k_falling, l.depth);
     // A periodic strip cannot contract sideways: in tension it measures the constrained
@@ -358,7 +411,7 @@ pub(super) fn tangent_moduli(
     step: f64,
     start: &Particles,
     end: &Particles,
-    metrics: &mut Metrics,
+    metrics: &mut LatticeMetrics,
 ) {
     let dx: Vec<f64> = end.x.iter().zip(&start.x).map(|(b, a)| b - a).collect();
     let dy: Vec<f64> = end.y.iter().zip(&start.y).map(|(b, a)| b - a).collect();

@@ -9,11 +9,71 @@ pub mod pair;
 
 use std::time::Instant;
 
+use serde::{Deserialize, Serialize};
+
 use crate::measure::{ARRIVAL_CRITERIA, arrival_time, energy_error};
 use crate::model::{Particles, SquareLattice};
-use crate::runner::Metrics;
 use crate::sim::{LawKind, Network, Outcome, Relaxation, RunStatus, Sampling, Scene, Trace};
 use crate::spec::{LawName, RunSpec, SceneKind};
+
+/// Measured quantities with their analytical twins; `None` where the scene has no such
+/// quantity or no exact answer exists. What every kind may have is here, each kind's own
+/// group in its file; the groups are flattened in the record, so its keys (and the results
+/// table's column names) are the fields' names.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Metrics {
+    /// max |E(t) − E(0)| / E(0) with E = kinetic + potential + dissipated.
+    pub energy_error: Option<f64>,
+    /// The run's error against the most exact reference it has (see `error_measure`), ≥ 0.
+    pub error: Option<f64>,
+    /// What `error` measures: `contact_duration`, `restitution`, `normal_modes`,
+    /// `reference_dt/R` (a run at dt/R) or `energy`.
+    pub error_measure: Option<String>,
+    /// Chain wave: arrival time (s) at the receiver by each criterion.
+    #[serde(default)]
+    pub arrival_times: std::collections::BTreeMap<String, f64>,
+    /// Chain wave: the recommended criterion.
+    pub arrival_criterion: Option<String>,
+    /// Chain wave: distance from the excited particle to the receiver (m).
+    pub wave_distance: Option<f64>,
+    /// Chain wave: the coursework's estimate t_s = N_s t_c (N_s springs between them) (s).
+    pub arrival_time_tc_estimate: Option<f64>,
+    /// Chain wave: the long-wavelength (and front) speed a√(k/m) of a linear chain (m/s).
+    pub sound_speed_theory: Option<f64>,
+    /// Angular frequency of the fastest mode (rad/s), estimated before the run.
+    pub omega_max: Option<f64>,
+    /// dt · ω_max.
+    pub dt_omega_max: Option<f64>,
+    /// Damping ratio of the fastest mode.
+    pub mode_damping_ratio: Option<f64>,
+    /// Largest dt · ω_max the integrator survives at that damping ratio.
+    pub stability_limit: Option<f64>,
+    /// Lattice: time (s) from which the relaxation criterion held.
+    pub dissipation_time: Option<f64>,
+    /// Lattice: the relaxation criterion, in words.
+    pub dissipation_criterion: Option<String>,
+    /// The pair's contact.
+    #[serde(flatten)]
+    pub pair: pair::PairMetrics,
+    /// The chain's normal modes and equilibrium.
+    #[serde(flatten)]
+    pub chain: chain::ChainMetrics,
+    /// The lattice's moduli and static answer.
+    #[serde(flatten)]
+    pub lattice: lattice::LatticeMetrics,
+}
+
+impl Metrics {
+    /// Arrival time (s) by the recommended criterion.
+    pub fn arrival_time(&self) -> Option<f64> {
+        self.arrival_criterion.as_ref().and_then(|c| self.arrival_times.get(c).copied())
+    }
+
+    /// Sound speed L / t_s (m/s) from the arrival time by `criterion`.
+    pub fn sound_speed(&self, criterion: &str) -> Option<f64> {
+        self.wave_distance.zip(self.arrival_times.get(criterion)).map(|(l, t)| l / t)
+    }
+}
 
 /// Why a run ended before its time loop.
 #[derive(Debug)]
@@ -130,7 +190,7 @@ pub fn run(spec: &RunSpec, deadline: Instant) -> Result<Run, Stopped> {
     let mut scene = build_scene_until(spec, deadline);
     let mut metrics = Metrics::default();
     if let Some(l) = spec.lattice.as_ref().filter(|l| l.impulse.is_none()) {
-        lattice::static_answer(spec, l, &mut scene, deadline, &mut metrics)?;
+        lattice::static_answer(spec, l, &mut scene, deadline, &mut metrics.lattice)?;
     }
     let start = (scene.particles.x.clone(), scene.particles.y.clone());
     let mut bonds = Vec::new();
@@ -167,7 +227,7 @@ pub fn run(spec: &RunSpec, deadline: Instant) -> Result<Run, Stopped> {
 
 /// The caveat a successful run's record carries, if any.
 pub fn caveat(spec: &RunSpec, metrics: &Metrics) -> Option<&'static str> {
-    (spec.kind == SceneKind::Pair).then(|| pair::caveat(metrics)).flatten()
+    (spec.kind == SceneKind::Pair).then(|| pair::caveat(&metrics.pair)).flatten()
 }
 
 /// Measures a finished run: the energy balance, then what its kind measures. `start` holds
@@ -177,7 +237,7 @@ fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metr
     match (spec.kind, &spec.lattice) {
         (SceneKind::Lattice, Some(l)) => lattice::measure(spec, l, outcome, start, metrics),
         (SceneKind::Chain, _) => chain::measure(spec, outcome, metrics),
-        _ => pair::measure(spec, outcome, metrics),
+        _ => pair::measure(spec, outcome, &mut metrics.pair),
     }
 }
 
@@ -244,8 +304,8 @@ fn tangent_step(spec: &RunSpec, relaxed: &Outcome, step: f64, deadline: Instant,
         return;
     }
     match &spec.lattice {
-        Some(l) => lattice::tangent_moduli(spec, l, step, start, &next.state.particles, metrics),
-        None => chain::tangent_stiffness(spec, wall_step, start, &next.state.particles, metrics),
+        Some(l) => lattice::tangent_moduli(spec, l, step, start, &next.state.particles, &mut metrics.lattice),
+        None => chain::tangent_stiffness(spec, wall_step, start, &next.state.particles, &mut metrics.chain),
     }
 }
 
@@ -255,8 +315,8 @@ fn tangent_step(spec: &RunSpec, relaxed: &Outcome, step: f64, deadline: Instant,
 fn exact_error(spec: &RunSpec, m: &Metrics) -> (Option<f64>, Option<String>) {
     let undamped = spec.gamma == 0.0 && spec.gamma_background == 0.0;
     let (error, measure) = match spec.kind {
-        SceneKind::Pair => pair::exact_error(undamped, m),
-        SceneKind::Chain if m.chain_mode_error.is_some() => (m.chain_mode_error, "normal_modes"),
+        SceneKind::Pair => pair::exact_error(undamped, &m.pair),
+        SceneKind::Chain if m.chain.chain_mode_error.is_some() => (m.chain.chain_mode_error, "normal_modes"),
         _ if undamped => (m.energy_error, "energy"),
         _ => (None, ""),
     };
@@ -296,4 +356,29 @@ fn reference_error(spec: &RunSpec, run: &Trace, sample_every: u64, refinement: u
         }
     }
     (largest > 0.0).then(|| largest_difference / largest)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The kinds' groups are flattened: a record's metrics keep one flat object of the
+    /// fields' names, and read back the same.
+    #[test]
+    fn metrics_serialise_flat() {
+        let mut metrics = Metrics { energy_error: Some(1e-3), ..Metrics::default() };
+        metrics.pair.contact_duration = Some(0.5);
+        metrics.chain.wall_force = Some(-2.0);
+        metrics.lattice.youngs_modulus = Some(2e11);
+        let value = serde_json::to_value(&metrics).unwrap();
+        let object = value.as_object().unwrap();
+        assert_eq!(object.len(), 47, "{object:?}");
+        for (key, number) in [("energy_error", 1e-3), ("contact_duration", 0.5), ("wall_force", -2.0)] {
+            assert_eq!(object[key].as_f64(), Some(number), "{key}");
+        }
+        assert_eq!(object["youngs_modulus"].as_f64(), Some(2e11));
+        assert_eq!(serde_json::from_value::<Metrics>(value).unwrap(), metrics);
+        let sparse: Metrics = serde_json::from_str(r#"{"energy_error": 1, "homogeneity": 0.25}"#).unwrap();
+        assert_eq!((sparse.energy_error, sparse.lattice.homogeneity), (Some(1.0), Some(0.25)));
+    }
 }

@@ -1,12 +1,26 @@
 //! The pair: two particles meeting head on. Its scene, its analytical contact duration and
 //! restitution, and its measurement (the contact timed inside the step).
 
+use serde::{Deserialize, Serialize};
+
 use crate::measure::contact_timing;
 use crate::model::{Axes, Particles};
-use crate::runner::Metrics;
 use crate::sim::{Network, Outcome, Scene};
 use crate::spec::{LawName, RunSpec};
 use crate::theory;
+
+/// What a pair measures, with its analytical twins.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PairMetrics {
+    /// Contact duration (s), crossings located inside the step.
+    pub contact_duration: Option<f64>,
+    /// Analytical contact duration (s).
+    pub contact_duration_theory: Option<f64>,
+    /// Restitution coefficient.
+    pub restitution: Option<f64>,
+    /// Analytical restitution.
+    pub restitution_theory: Option<f64>,
+}
 
 /// Two particles on the x axis, approaching at relative speed v0 (each at v0/2): a contact
 /// pair starts `gap` apart (contact begins at t = gap/v0), a bonded pair at its rest length.
@@ -39,7 +53,7 @@ pub fn references(spec: &RunSpec) -> (Option<f64>, Option<f64>) {
 }
 
 /// The contact's duration and restitution, measured and analytical.
-pub(super) fn measure(spec: &RunSpec, outcome: &Outcome, metrics: &mut Metrics) {
+pub(super) fn measure(spec: &RunSpec, outcome: &Outcome, metrics: &mut PairMetrics) {
     let timing = contact_timing(&outcome.crossings);
     let (contact_duration_theory, restitution_theory) = references(spec);
     metrics.contact_duration = timing.map(|t| t.duration);
@@ -50,7 +64,7 @@ pub(super) fn measure(spec: &RunSpec, outcome: &Outcome, metrics: &mut Metrics) 
 
 /// The error against the exact answer: of the contact duration when `undamped`, else of the
 /// restitution; with the name of what it measures.
-pub(super) fn exact_error(undamped: bool, m: &Metrics) -> (Option<f64>, &'static str) {
+pub(super) fn exact_error(undamped: bool, m: &PairMetrics) -> (Option<f64>, &'static str) {
     let relative = |a, b| crate::table::relative_error(a, b).map(f64::abs);
     if undamped {
         (relative(m.contact_duration, m.contact_duration_theory), "contact_duration")
@@ -60,6 +74,6 @@ pub(super) fn exact_error(undamped: bool, m: &Metrics) -> (Option<f64>, &'static
 }
 
 /// Why a pair that ended well has no contact duration.
-pub(super) fn caveat(m: &Metrics) -> Option<&'static str> {
+pub(super) fn caveat(m: &PairMetrics) -> Option<&'static str> {
     m.contact_duration.is_none().then_some("the contact did not close and open again within the run")
 }
