@@ -19,7 +19,8 @@
 //! To add a force law: implement [`model::ForceLaw`] (force and energy, with a doctest), add a
 //! variant to [`sim::LawKind`] and one arm to `Scene::run`; the bond loop, integrators and
 //! measurements need no change. To add a measurement: a pure function in `measure`, a field in
-//! [`runner::Metrics`], a column in `table`.
+//! its kind's group of [`study::Metrics`] (`study/<kind>.rs`, set by that kind's `measure`), a
+//! column in `table`.
 
 #![warn(missing_docs)]
 

@@ -27,18 +27,7 @@ pub fn execute_within(spec: &RunSpec, budget: &Budget) -> RunRecord {
         Some(_) => Ok(Err(None)),
         None => catch_unwind(AssertUnwindSafe(|| run_and_measure(spec, deadline).map_err(Some))),
     };
-    let mut record = RunRecord {
-        run_id: spec.run_id(),
-        build: BUILD.into(),
-        spec: spec.clone(),
-        status: "ok".into(),
-        message: String::new(),
-        wall_s: 0.0,
-        steps: 0,
-        metrics: Metrics::default(),
-        trace: Trace::default(),
-        movie: None,
-    };
+    let mut record = blank_record(spec);
     let mut reference_s = 0.0;
     match result {
         Ok(Ok(run)) => {
@@ -81,6 +70,22 @@ pub fn execute_within(spec: &RunSpec, budget: &Budget) -> RunRecord {
     // The run's own cost: a reference run at a finer dt is not part of it.
     record.wall_s = started.elapsed().as_secs_f64() - reference_s;
     record
+}
+
+/// The record of `spec` before its run: `ok`, nothing measured.
+fn blank_record(spec: &RunSpec) -> RunRecord {
+    RunRecord {
+        run_id: spec.run_id(),
+        build: BUILD.into(),
+        spec: spec.clone(),
+        status: "ok".into(),
+        message: String::new(),
+        wall_s: 0.0,
+        steps: 0,
+        metrics: Metrics::default(),
+        trace: Trace::default(),
+        movie: None,
+    }
 }
 
 /// The run with the stability estimate's numbers among its metrics; `Err` when it stopped
