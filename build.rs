@@ -4,13 +4,13 @@
 
 use std::path::{Path, PathBuf};
 
-/// Everything a run's record depends on: the spec and its resolution, the scenes, the physics
+/// Everything a run's record depends on: the spec and its resolution, the scene kinds (`study`), the physics
 /// core, the measurements and their references, the plan that sets dt, the runner's
 /// `execute` and the record it fills.
 /// Not the table, the reports, the command line or the store's bookkeeping: they only read records.
 const RESULT_SOURCES: [&str; 10] = [
     "src/spec",
-    "src/scenes.rs",
+    "src/study",
     "src/model",
     "src/sim",
     "src/measure",

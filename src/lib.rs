@@ -5,9 +5,9 @@
 //! ```text
 //! campaign YAML ──spec::load──▶ Campaign { runs: [RunSpec] }                 (spec)
 //! Campaign ──plan::load──▶ Plan { campaign (dt final, stability checked), estimates }  (plan)
-//! RunSpec ──scenes::build_scene──▶ Scene { particles, bonds, law, damping }   (scenes, model)
+//! RunSpec ──study::build_scene──▶ Scene { particles, bonds, law, damping }    (study, model)
 //! Scene ──Scene::run──▶ Outcome { Trace, crossings, final state }             (sim: pure)
-//! Outcome ──measure::*──▶ Metrics, beside theory::* references                (measure, theory)
+//! Outcome ──study::run, measure::*──▶ Metrics, beside theory::* references    (study, measure, theory)
 //! runner: rayon over RunSpecs, content-hash cache, one stored RunRecord per run
 //!         (`--shard I/N`: one cost-balanced share; `slurm`: one share per array task)
 //! [RunRecord] ──table──▶ results.csv / results.parquet (Polars)
@@ -15,13 +15,13 @@
 //! two report directories ──compare──▶ compare.csv / .parquet, report.md, index.html, plots/
 //! ```
 //!
-//! The physics core (`model`, `sim`, `theory`, `measure`, `scenes`) does no I/O.
+//! The physics core (`model`, `sim`, `theory`, `measure`, `study`) does no I/O.
 //!
 //! To add a force law: implement [`model::ForceLaw`] (force and energy, with a doctest), add a
 //! variant to [`model::LawSpec`] with its arm in `LawSpec::dispatch` and its name, and read it in
 //! `spec/resolve.rs`; the bond loop, static solver, integrators and measurements need no
 //! change. To add a measurement: a pure function in `measure`, a field in
-//! [`runner::Metrics`], a column in `table`.
+//! its kind's group of [`study::Metrics`] (`study/<kind>.rs`, set by that kind's `measure`), a column in `table`.
 
 #![warn(missing_docs)]
 
@@ -37,10 +37,10 @@ pub mod owner;
 pub mod plan;
 pub mod report;
 pub mod runner;
-pub mod scenes;
 pub mod sim;
 pub mod slurm;
 pub mod spec;
+pub mod study;
 pub mod summary;
 pub mod table;
 pub mod theory;

@@ -64,18 +64,18 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         floats(records, "duration", |r| r.spec.duration),
         Column::new("n".into(), records.iter().map(|r| r.spec.n.map(|n| n as u64)).collect::<Vec<Option<u64>>>()),
         floats(records, "v0", |r| r.spec.v0),
-        optional_floats(records, "contact_duration", |r| r.metrics.contact_duration),
-        optional_floats(records, "contact_duration_theory", |r| r.metrics.contact_duration_theory),
+        optional_floats(records, "contact_duration", |r| r.metrics.pair.contact_duration),
+        optional_floats(records, "contact_duration_theory", |r| r.metrics.pair.contact_duration_theory),
         optional_floats(records, "contact_duration_error", |r| {
-            relative_error(r.metrics.contact_duration, r.metrics.contact_duration_theory)
+            relative_error(r.metrics.pair.contact_duration, r.metrics.pair.contact_duration_theory)
         }),
-        optional_floats(records, "restitution", |r| r.metrics.restitution),
-        optional_floats(records, "restitution_theory", |r| r.metrics.restitution_theory),
+        optional_floats(records, "restitution", |r| r.metrics.pair.restitution),
+        optional_floats(records, "restitution_theory", |r| r.metrics.pair.restitution_theory),
         optional_floats(records, "restitution_error", |r| {
-            relative_error(r.metrics.restitution, r.metrics.restitution_theory)
+            relative_error(r.metrics.pair.restitution, r.metrics.pair.restitution_theory)
         }),
         optional_floats(records, "energy_error", |r| r.metrics.energy_error),
-        optional_floats(records, "chain_mode_error", |r| r.metrics.chain_mode_error),
+        optional_floats(records, "chain_mode_error", |r| r.metrics.chain.chain_mode_error),
         optional_floats(records, "error", |r| r.metrics.error),
         Column::new(
             "error_measure".into(),
@@ -111,15 +111,15 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
             optional_floats(records, "wall_displacement", |r| {
                 r.spec.relax.filter(|_| r.spec.lattice.is_none()).map(|_| r.spec.chain_wall_extension())
             }),
-            m("equilibrium_spacing", |m| m.equilibrium_spacing),
-            m("equilibrium_spacing_theory", |m| m.equilibrium_spacing_theory),
-            m("spacing_spread", |m| m.spacing_spread),
-            m("wall_force", |m| m.wall_force),
-            m("wall_force_theory", |m| m.wall_force_theory),
-            m("secant_stiffness", |m| m.secant_stiffness),
-            m("secant_stiffness_theory", |m| m.secant_stiffness_theory),
-            m("tangent_stiffness", |m| m.tangent_stiffness),
-            m("tangent_stiffness_theory", |m| m.tangent_stiffness_theory),
+            m("equilibrium_spacing", |m| m.chain.equilibrium_spacing),
+            m("equilibrium_spacing_theory", |m| m.chain.equilibrium_spacing_theory),
+            m("spacing_spread", |m| m.chain.spacing_spread),
+            m("wall_force", |m| m.chain.wall_force),
+            m("wall_force_theory", |m| m.chain.wall_force_theory),
+            m("secant_stiffness", |m| m.chain.secant_stiffness),
+            m("secant_stiffness_theory", |m| m.chain.secant_stiffness_theory),
+            m("tangent_stiffness", |m| m.chain.tangent_stiffness),
+            m("tangent_stiffness_theory", |m| m.chain.tangent_stiffness_theory),
         ]);
     }
     if records.iter().any(|r| r.spec.wave.is_some()) {
@@ -169,7 +169,7 @@ fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
         optional_floats(records, "cut_fraction", lattice(|l| l.cut_fraction)),
         optional_floats(records, "stiffness_spread", lattice(|l| l.stiffness_spread)),
         Column::new("seed".into(), records.iter().map(|r| r.spec.lattice.as_ref().map(|l| l.seed)).collect::<Vec<_>>()),
-        m("bond_fraction_kept", |m| m.bond_fraction_kept),
+        m("bond_fraction_kept", |m| m.lattice.bond_fraction_kept),
         optional_floats(records, "depth", lattice(|l| l.depth)),
         Column::new("supports".into(), words(|l| l.supports.name())),
         Column::new(
@@ -181,24 +181,24 @@ fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
             r.spec.lattice.as_ref().filter(|l| l.control == crate::spec::Control::Velocity).map(|l| l.drive_strain)
         }),
         optional_floats(records, "load_per_node", |r| r.spec.lattice.as_ref().and_then(|l| l.force_per_node())),
-        m("youngs_modulus", |m| m.youngs_modulus),
-        m("youngs_modulus_fem", |m| m.youngs_modulus_fem),
-        m("youngs_modulus_theory", |m| m.youngs_modulus_theory),
-        m("poisson_ratio", |m| m.poisson_ratio),
-        m("poisson_ratio_fem", |m| m.poisson_ratio_fem),
-        m("poisson_ratio_theory", |m| m.poisson_ratio_theory),
-        m("poisson_ratio_coursework", |m| m.poisson_ratio_coursework),
-        m("shear_modulus", |m| m.shear_modulus),
-        m("shear_modulus_fem", |m| m.shear_modulus_fem),
-        m("shear_modulus_theory", |m| m.shear_modulus_theory),
-        m("youngs_modulus_tangent", |m| m.youngs_modulus_tangent),
-        m("youngs_modulus_tangent_fem", |m| m.youngs_modulus_tangent_fem),
-        m("poisson_ratio_tangent", |m| m.poisson_ratio_tangent),
-        m("poisson_ratio_tangent_fem", |m| m.poisson_ratio_tangent_fem),
-        m("shear_modulus_tangent", |m| m.shear_modulus_tangent),
-        m("shear_modulus_tangent_fem", |m| m.shear_modulus_tangent_fem),
-        m("static_nonlinearity", |m| m.static_nonlinearity),
-        m("homogeneity", |m| m.homogeneity),
+        m("youngs_modulus", |m| m.lattice.youngs_modulus),
+        m("youngs_modulus_fem", |m| m.lattice.youngs_modulus_fem),
+        m("youngs_modulus_theory", |m| m.lattice.youngs_modulus_theory),
+        m("poisson_ratio", |m| m.lattice.poisson_ratio),
+        m("poisson_ratio_fem", |m| m.lattice.poisson_ratio_fem),
+        m("poisson_ratio_theory", |m| m.lattice.poisson_ratio_theory),
+        m("poisson_ratio_coursework", |m| m.lattice.poisson_ratio_coursework),
+        m("shear_modulus", |m| m.lattice.shear_modulus),
+        m("shear_modulus_fem", |m| m.lattice.shear_modulus_fem),
+        m("shear_modulus_theory", |m| m.lattice.shear_modulus_theory),
+        m("youngs_modulus_tangent", |m| m.lattice.youngs_modulus_tangent),
+        m("youngs_modulus_tangent_fem", |m| m.lattice.youngs_modulus_tangent_fem),
+        m("poisson_ratio_tangent", |m| m.lattice.poisson_ratio_tangent),
+        m("poisson_ratio_tangent_fem", |m| m.lattice.poisson_ratio_tangent_fem),
+        m("shear_modulus_tangent", |m| m.lattice.shear_modulus_tangent),
+        m("shear_modulus_tangent_fem", |m| m.lattice.shear_modulus_tangent_fem),
+        m("static_nonlinearity", |m| m.lattice.static_nonlinearity),
+        m("homogeneity", |m| m.lattice.homogeneity),
         m("dissipation_time", |m| m.dissipation_time),
         Column::new(
             "dissipation_criterion".into(),
@@ -219,14 +219,14 @@ fn directional_columns(records: &[RunRecord]) -> Vec<Column> {
         move |r: &RunRecord| r.spec.lattice.as_ref().filter(|l| l.rotated == x).and_then(|_| get(&r.metrics))
     };
     vec![
-        optional_floats(records, "youngs_modulus_x", along(true, |m| m.youngs_modulus)),
-        optional_floats(records, "youngs_modulus_x_fem", along(true, |m| m.youngs_modulus_fem)),
-        optional_floats(records, "youngs_modulus_y", along(false, |m| m.youngs_modulus)),
-        optional_floats(records, "youngs_modulus_y_fem", along(false, |m| m.youngs_modulus_fem)),
-        optional_floats(records, "poisson_ratio_xy", along(true, |m| m.poisson_ratio)),
-        optional_floats(records, "poisson_ratio_xy_fem", along(true, |m| m.poisson_ratio_fem)),
-        optional_floats(records, "poisson_ratio_yx", along(false, |m| m.poisson_ratio)),
-        optional_floats(records, "poisson_ratio_yx_fem", along(false, |m| m.poisson_ratio_fem)),
+        optional_floats(records, "youngs_modulus_x", along(true, |m| m.lattice.youngs_modulus)),
+        optional_floats(records, "youngs_modulus_x_fem", along(true, |m| m.lattice.youngs_modulus_fem)),
+        optional_floats(records, "youngs_modulus_y", along(false, |m| m.lattice.youngs_modulus)),
+        optional_floats(records, "youngs_modulus_y_fem", along(false, |m| m.lattice.youngs_modulus_fem)),
+        optional_floats(records, "poisson_ratio_xy", along(true, |m| m.lattice.poisson_ratio)),
+        optional_floats(records, "poisson_ratio_xy_fem", along(true, |m| m.lattice.poisson_ratio_fem)),
+        optional_floats(records, "poisson_ratio_yx", along(false, |m| m.lattice.poisson_ratio)),
+        optional_floats(records, "poisson_ratio_yx_fem", along(false, |m| m.lattice.poisson_ratio_fem)),
     ]
 }
 

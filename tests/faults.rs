@@ -555,7 +555,7 @@ fn a_long_sampled_run_stores_a_bounded_record() {
     assert!(time.len() <= mdsolids::sim::STORED_SAMPLES && time.len() > 1000, "{} samples", time.len());
     let end = runs[0].steps as f64 * runs[0].dt;
     assert!(time[0] == 0.0 && (time[time.len() - 1] - end).abs() < 1e-9 * end, "first and last kept");
-    assert!(record.metrics.contact_duration.is_some(), "measured from every sample");
+    assert!(record.metrics.pair.contact_duration.is_some(), "measured from every sample");
     // 5 numbers per sample of ~20 characters of JSON: about 1 MB (200 001 samples: ~22 MB).
     let json = serde_json::to_vec(&record).unwrap();
     assert!(json.len() < 2_000_000, "{} bytes", json.len());
@@ -581,7 +581,7 @@ fn the_static_solve_is_within_the_time_budget() {
         "{}",
         r.message
     );
-    assert!(r.metrics.youngs_modulus_fem.is_none(), "the static solve was not finished");
+    assert!(r.metrics.lattice.youngs_modulus_fem.is_none(), "the static solve was not finished");
 }
 
 /// `plan` and the campaign check estimate no ω_max for a run the memory budget refuses

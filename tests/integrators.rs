@@ -23,7 +23,8 @@ fn chain_sweep(integrator: &str) -> Vec<RunRecord> {
 
 fn chain_order(integrator: &str) -> f64 {
     let records = chain_sweep(integrator);
-    let points: Vec<(f64, f64)> = records.iter().map(|r| (r.spec.dt, r.metrics.chain_mode_error.unwrap())).collect();
+    let points: Vec<(f64, f64)> =
+        records.iter().map(|r| (r.spec.dt, r.metrics.chain.chain_mode_error.unwrap())).collect();
     convergence_order(&points).unwrap()
 }
 
@@ -60,7 +61,7 @@ fn damping_works_with_every_scheme_that_allows_it() {
         ("symplectic-euler", 1.5e-2),
     ] {
         let r = &execute_all(&pair_campaign("{contact: false}", "{restitution: 0.5}", integrator, &[40.0]))[0];
-        let error = relative(r.metrics.restitution, r.metrics.restitution_theory).abs();
+        let error = relative(r.metrics.pair.restitution, r.metrics.pair.restitution_theory).abs();
         assert!(error < bound, "{integrator}: restitution error {error:e} above {bound:e}");
         assert_eq!(r.metrics.error_measure.as_deref(), Some("restitution"));
     }

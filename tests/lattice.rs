@@ -39,14 +39,14 @@ fn relaxed_md_matches_the_static_answer() {
         let m = &r.metrics;
         // The bound: 0.5 %. Measured at most 0.01 % for E, 0.09 % for ν and 0.05 % for G
         // (the residual motion of a lattice whose kinetic energy is below 1e-8 of its potential).
-        if m.youngs_modulus_fem.is_some() {
-            assert!(relative(m.youngs_modulus, m.youngs_modulus_fem) < 5e-3, "E {}", label(r));
+        if m.lattice.youngs_modulus_fem.is_some() {
+            assert!(relative(m.lattice.youngs_modulus, m.lattice.youngs_modulus_fem) < 5e-3, "E {}", label(r));
             // A periodic strip cannot contract sideways: its ν is 0 up to round-off (~1e-13),
             // so ν is compared to within 0.5 % of max(|ν_static|, 1e-3).
-            let (nu, nu_static) = (m.poisson_ratio.unwrap(), m.poisson_ratio_fem.unwrap());
+            let (nu, nu_static) = (m.lattice.poisson_ratio.unwrap(), m.lattice.poisson_ratio_fem.unwrap());
             assert!((nu - nu_static).abs() < 5e-3 * nu_static.abs().max(1e-3), "ν {}", label(r));
         } else {
-            assert!(relative(m.shear_modulus, m.shear_modulus_fem) < 5e-3, "G {}", label(r));
+            assert!(relative(m.lattice.shear_modulus, m.lattice.shear_modulus_fem) < 5e-3, "G {}", label(r));
         }
     }
 }
@@ -66,12 +66,12 @@ fn lattice_without_diagonals_stretches_but_shears_as_a_mechanism() {
             // E = k N_x/(N_x − 1)/d exactly, ν = 0.
             let exact = 1.0e6 * 6.0 / 5.0 / 0.01;
             assert_eq!(r.status, RunStatus::Ok, "{}", label(r));
-            assert!(relative(r.metrics.youngs_modulus_fem, Some(exact)) < 1e-9, "{}", label(r));
-            assert!(relative(r.metrics.youngs_modulus, Some(exact)) < 5e-3, "{}", label(r));
-            assert!(r.metrics.poisson_ratio_fem.unwrap().abs() < 1e-9);
+            assert!(relative(r.metrics.lattice.youngs_modulus_fem, Some(exact)) < 1e-9, "{}", label(r));
+            assert!(relative(r.metrics.lattice.youngs_modulus, Some(exact)) < 5e-3, "{}", label(r));
+            assert!(r.metrics.lattice.poisson_ratio_fem.unwrap().abs() < 1e-9);
         } else {
             assert_eq!(r.status, RunStatus::Mechanism, "{}", label(r));
-            assert!(r.metrics.shear_modulus.is_none() && r.metrics.shear_modulus_fem.is_none());
+            assert!(r.metrics.lattice.shear_modulus.is_none() && r.metrics.lattice.shear_modulus_fem.is_none());
         }
     }
     // No NaN reaches the table: every number present is finite.
@@ -92,7 +92,7 @@ fn static_answer_approaches_the_continuum() {
         .iter()
         .map(|s| {
             let r = mdsolids::runner::execute(s);
-            relative(r.metrics.youngs_modulus_fem, r.metrics.youngs_modulus_theory)
+            relative(r.metrics.lattice.youngs_modulus_fem, r.metrics.lattice.youngs_modulus_theory)
         })
         .collect();
     assert!(errors.windows(2).all(|w| w[1] < w[0]), "E_fem/E_theory does not converge: {errors:?}");
@@ -108,8 +108,8 @@ fn relaxation_stops_by_its_criterion_or_reports_no_equilibrium() {
         let max_tc = r.spec.duration / r.spec.t_c;
         if max_tc < 10.0 {
             assert_eq!(r.status, RunStatus::NoEquilibrium, "{}", label(r));
-            assert!(r.metrics.youngs_modulus.is_none(), "a moving lattice has no modulus");
-            assert!(r.metrics.youngs_modulus_fem.is_some(), "the static answer does not need MD");
+            assert!(r.metrics.lattice.youngs_modulus.is_none(), "a moving lattice has no modulus");
+            assert!(r.metrics.lattice.youngs_modulus_fem.is_some(), "the static answer does not need MD");
         } else {
             assert_eq!(r.status, RunStatus::Ok, "{}", label(r));
             let at = r.metrics.dissipation_time.expect("relaxed");
@@ -139,9 +139,9 @@ fn periodic_strip_measures_the_shear_modulus_at_every_size() {
     for r in execute_all(&yaml) {
         assert_eq!(r.status, RunStatus::Ok, "{}: {}", label(&r), r.message);
         let exact = Some(k_diag_over_depth);
-        assert!(relative(r.metrics.shear_modulus_fem, exact) < 1e-9, "static G {}", label(&r));
-        assert!(relative(r.metrics.shear_modulus, exact) < 5e-3, "MD G {}", label(&r));
-        assert!(relative(r.metrics.shear_modulus_theory, exact) < 1e-15);
+        assert!(relative(r.metrics.lattice.shear_modulus_fem, exact) < 1e-9, "static G {}", label(&r));
+        assert!(relative(r.metrics.lattice.shear_modulus, exact) < 5e-3, "MD G {}", label(&r));
+        assert!(relative(r.metrics.lattice.shear_modulus_theory, exact) < 1e-15);
     }
 }
 
@@ -159,7 +159,7 @@ fn residual_force_criterion_waits_for_an_overdamped_creep() {
     );
     let r = &execute_all(&yaml)[0];
     assert_eq!(r.status, RunStatus::Ok, "{}", r.message);
-    assert!(relative(r.metrics.poisson_ratio, r.metrics.poisson_ratio_fem) < 1e-4, "{:?}", r.metrics);
+    assert!(relative(r.metrics.lattice.poisson_ratio, r.metrics.lattice.poisson_ratio_fem) < 1e-4, "{:?}", r.metrics);
     assert!(r.metrics.dissipation_criterion.as_deref().is_some_and(|c| c.starts_with("largest static force")));
 }
 
@@ -190,7 +190,7 @@ fn ramped_load_relaxes_after_the_ramp_with_its_work_accounted() {
     let r = &execute_all(&yaml)[0];
     assert_eq!(r.status, RunStatus::Ok, "{}", r.message);
     assert!(r.metrics.dissipation_time.unwrap() >= 200.0 * r.spec.t_c, "relaxed during the ramp");
-    assert!(relative(r.metrics.youngs_modulus, r.metrics.youngs_modulus_fem) < 5e-3);
+    assert!(relative(r.metrics.lattice.youngs_modulus, r.metrics.lattice.youngs_modulus_fem) < 5e-3);
     assert!(r.metrics.energy_error.unwrap() < 2e-3, "energy balance off by {:?}", r.metrics.energy_error);
 }
 
@@ -208,8 +208,10 @@ fn velocity_control_matches_the_displacement_controlled_static_answer() {
         assert_eq!(r.status, RunStatus::Ok, "{}: {}", label(&r), r.message);
         let m = &r.metrics;
         match r.spec.lattice.as_ref().unwrap().load_case.name() {
-            "tensile" => assert!(relative(m.youngs_modulus, m.youngs_modulus_fem) < 5e-3, "E {}", label(&r)),
-            _ => assert!(relative(m.shear_modulus, m.shear_modulus_fem) < 5e-3, "G {}", label(&r)),
+            "tensile" => {
+                assert!(relative(m.lattice.youngs_modulus, m.lattice.youngs_modulus_fem) < 5e-3, "E {}", label(&r))
+            }
+            _ => assert!(relative(m.lattice.shear_modulus, m.lattice.shear_modulus_fem) < 5e-3, "G {}", label(&r)),
         }
         assert!(m.dissipation_time.unwrap() >= 100.0 * r.spec.t_c, "relaxed before the drive stopped");
     }
@@ -242,8 +244,10 @@ fn residual_force_under_velocity_control_is_judged_against_the_drive_force() {
         let after = m.dissipation_time.unwrap() / r.spec.t_c;
         assert!(after > 100.5, "relaxed at {after} t_c, as the drive stopped: {}", label(r));
         match r.spec.lattice.as_ref().unwrap().load_case.name() {
-            "tensile" => assert!(relative(m.youngs_modulus, m.youngs_modulus_fem) < 1e-5, "E {}", label(r)),
-            _ => assert!(relative(m.shear_modulus, m.shear_modulus_fem) < 1e-5, "G {}", label(r)),
+            "tensile" => {
+                assert!(relative(m.lattice.youngs_modulus, m.lattice.youngs_modulus_fem) < 1e-5, "E {}", label(r))
+            }
+            _ => assert!(relative(m.lattice.shear_modulus, m.lattice.shear_modulus_fem) < 1e-5, "G {}", label(r)),
         }
         let criterion = m.dissipation_criterion.as_deref().unwrap_or_default();
         assert!(criterion.contains("the drive's static force per node"), "{criterion}");
@@ -271,9 +275,9 @@ fn periodic_strip_in_tension_has_the_constrained_modulus_as_its_reference() {
         let l = r.spec.lattice.as_ref().unwrap();
         let c22 = Some((r.spec.k + l.k_diag) / l.depth);
         let m = &r.metrics;
-        assert!(relative(m.youngs_modulus_theory, c22) < 1e-15, "theory {}", label(&r));
-        assert!(relative(m.youngs_modulus_fem, c22) < 1e-5, "static {}", label(&r));
-        assert_eq!(m.poisson_ratio_theory, Some(0.0));
-        assert!(m.poisson_ratio_fem.unwrap().abs() < 1e-9, "static ν {}", label(&r));
+        assert!(relative(m.lattice.youngs_modulus_theory, c22) < 1e-15, "theory {}", label(&r));
+        assert!(relative(m.lattice.youngs_modulus_fem, c22) < 1e-5, "static {}", label(&r));
+        assert_eq!(m.lattice.poisson_ratio_theory, Some(0.0));
+        assert!(m.lattice.poisson_ratio_fem.unwrap().abs() < 1e-9, "static ν {}", label(&r));
     }
 }

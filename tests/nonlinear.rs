@@ -43,13 +43,13 @@ fn hertz_chain_between_moved_walls_matches_the_analytical_equilibrium() {
             // Issue bound 0.5 %. The residual force 1e-9 of s leaves ~1e-9 in the force and the
             // spacing; the tangent is a forward difference over 0.1 % of ΔW: (β − 1)/2 × 1e-3 =
             // 2.5e-4 for Hertz (measured 2.5e-4), exact for linear springs.
-            assert!((m.equilibrium_spacing.unwrap() / (1.0 + delta) - 1.0).abs() < 5e-3, "{law}: {m:?}");
-            assert!(relative(m.wall_force, Some(force)).abs() < 5e-3, "{law} ΔW = {delta_w}: {m:?}");
-            assert!(relative(m.secant_stiffness, Some(secant)).abs() < 5e-3, "{law} ΔW = {delta_w}");
-            assert!(relative(m.tangent_stiffness, Some(tangent)).abs() < 5e-3, "{law} ΔW = {delta_w}");
-            assert!(relative(m.tangent_stiffness_theory, Some(tangent)).abs() < 1e-12);
+            assert!((m.chain.equilibrium_spacing.unwrap() / (1.0 + delta) - 1.0).abs() < 5e-3, "{law}: {m:?}");
+            assert!(relative(m.chain.wall_force, Some(force)).abs() < 5e-3, "{law} ΔW = {delta_w}: {m:?}");
+            assert!(relative(m.chain.secant_stiffness, Some(secant)).abs() < 5e-3, "{law} ΔW = {delta_w}");
+            assert!(relative(m.chain.tangent_stiffness, Some(tangent)).abs() < 5e-3, "{law} ΔW = {delta_w}");
+            assert!(relative(m.chain.tangent_stiffness_theory, Some(tangent)).abs() < 1e-12);
             // The gaps are equal at equilibrium: the spread is the relaxation's residue.
-            assert!(m.spacing_spread.unwrap() < 1e-6, "{law}: spread {:?}", m.spacing_spread);
+            assert!(m.chain.spacing_spread.unwrap() < 1e-6, "{law}: spread {:?}", m.chain.spacing_spread);
         }
     }
 }
@@ -79,7 +79,9 @@ fn hertz_lattice_moduli_scale_as_the_cube_root_of_the_load() {
     for (case, modulus) in [("tensile", "E"), ("shear", "G")] {
         let records = hertz_lattice(case);
         ok(&records);
-        let get = |r: &RunRecord| if case == "tensile" { r.metrics.youngs_modulus } else { r.metrics.shear_modulus };
+        let get = |r: &RunRecord| {
+            if case == "tensile" { r.metrics.lattice.youngs_modulus } else { r.metrics.lattice.shear_modulus }
+        };
         let points: Vec<(f64, f64)> =
             records.iter().map(|r| (r.spec.lattice.as_ref().unwrap().load_per_node, get(r).unwrap())).collect();
         let fit = power_law_fit(&points).unwrap();
@@ -89,10 +91,18 @@ fn hertz_lattice_moduli_scale_as_the_cube_root_of_the_load() {
         for r in &records {
             let m = &r.metrics;
             let (md, fem, tangent, tangent_fem) = match case {
-                "tensile" => {
-                    (m.youngs_modulus, m.youngs_modulus_fem, m.youngs_modulus_tangent, m.youngs_modulus_tangent_fem)
-                }
-                _ => (m.shear_modulus, m.shear_modulus_fem, m.shear_modulus_tangent, m.shear_modulus_tangent_fem),
+                "tensile" => (
+                    m.lattice.youngs_modulus,
+                    m.lattice.youngs_modulus_fem,
+                    m.lattice.youngs_modulus_tangent,
+                    m.lattice.youngs_modulus_tangent_fem,
+                ),
+                _ => (
+                    m.lattice.shear_modulus,
+                    m.lattice.shear_modulus_fem,
+                    m.lattice.shear_modulus_tangent,
+                    m.lattice.shear_modulus_tangent_fem,
+                ),
             };
             // MD relaxed to 1e-8 of the load against Newton–Raphson converged to 1e-10: 1e-6.
             assert!(relative(md, fem).abs() < 1e-6, "{modulus}: MD {md:?} static {fem:?}");
@@ -107,7 +117,7 @@ fn hertz_lattice_moduli_scale_as_the_cube_root_of_the_load() {
             if case == "tensile" {
                 assert!((tangent_fem.unwrap() / fem.unwrap() - 1.5).abs() < 0.02, "{tangent_fem:?} {fem:?}");
             }
-            assert_eq!(m.youngs_modulus_theory, None, "no linear continuum for a power law");
+            assert_eq!(m.lattice.youngs_modulus_theory, None, "no linear continuum for a power law");
         }
     }
 }
@@ -117,12 +127,15 @@ fn hertz_lattice_moduli_scale_as_the_cube_root_of_the_load() {
 fn assert_md_matches_static(records: &[RunRecord]) {
     for r in records.iter().filter(|r| r.status == RunStatus::Ok) {
         let m = &r.metrics;
-        for (md, fem) in [(m.youngs_modulus, m.youngs_modulus_fem), (m.shear_modulus, m.shear_modulus_fem)] {
+        for (md, fem) in [
+            (m.lattice.youngs_modulus, m.lattice.youngs_modulus_fem),
+            (m.lattice.shear_modulus, m.lattice.shear_modulus_fem),
+        ] {
             if let (Some(md), Some(fem)) = (md, fem) {
                 assert!((md / fem - 1.0).abs() < 0.01, "{}: MD {md} static {fem}", r.spec.varied_label(|_| true));
             }
         }
-        if let (Some(md), Some(fem)) = (m.poisson_ratio, m.poisson_ratio_fem) {
+        if let (Some(md), Some(fem)) = (m.lattice.poisson_ratio, m.lattice.poisson_ratio_fem) {
             assert!((md - fem).abs() < 0.01, "ν MD {md} static {fem}");
         }
     }
@@ -150,7 +163,7 @@ fn anisotropic_lattice_in_both_directions() {
     // The finite block with the coursework supports is stiffer (the pinned corner and the held
     // bottom row restrain the shear): within 30 %, and E_y/E_x near the continuum's 2.
     let continuum = anisotropic_moduli(1.0, 2.0, 0.5, 0.0, 1.0);
-    let (e_y, e_x) = (y.metrics.youngs_modulus.unwrap(), x.metrics.youngs_modulus.unwrap());
+    let (e_y, e_x) = (y.metrics.lattice.youngs_modulus.unwrap(), x.metrics.lattice.youngs_modulus.unwrap());
     assert!((e_y / continuum.youngs_modulus_y - 1.0).abs() < 0.3, "E_y {e_y}");
     assert!((e_x / continuum.youngs_modulus_x - 1.0).abs() < 0.3, "E_x {e_x}");
     assert!((e_y / e_x / 2.0 - 1.0).abs() < 0.15, "E_y/E_x = {}", e_y / e_x);
@@ -159,7 +172,7 @@ fn anisotropic_lattice_in_both_directions() {
     let column = |name: &str| frame.column(name).unwrap().f64().unwrap().get(if name.contains("_x") { 1 } else { 0 });
     assert_eq!(column("youngs_modulus_x"), Some(e_x));
     assert_eq!(column("youngs_modulus_y"), Some(e_y));
-    assert_eq!(column("youngs_modulus_x_fem"), x.metrics.youngs_modulus_fem);
+    assert_eq!(column("youngs_modulus_x_fem"), x.metrics.lattice.youngs_modulus_fem);
 }
 
 /// A 10 × 10 lattice with 10 % or 30 % of its interior bonds cut, three seeds each.
@@ -180,10 +193,13 @@ fn randomly_diluted_lattice_against_static_and_reproducible_by_seed() {
     // Same seed, same everything (bit for bit); another seed, another network.
     let again = diluted("[1, 2, 3]");
     for (a, b) in first.iter().zip(&again) {
-        assert_eq!(a.metrics.youngs_modulus.map(f64::to_bits), b.metrics.youngs_modulus.map(f64::to_bits));
-        assert_eq!(a.metrics.bond_fraction_kept, b.metrics.bond_fraction_kept);
+        assert_eq!(
+            a.metrics.lattice.youngs_modulus.map(f64::to_bits),
+            b.metrics.lattice.youngs_modulus.map(f64::to_bits)
+        );
+        assert_eq!(a.metrics.lattice.bond_fraction_kept, b.metrics.lattice.bond_fraction_kept);
     }
-    let moduli: Vec<f64> = first.iter().map(|r| r.metrics.youngs_modulus.unwrap()).collect();
+    let moduli: Vec<f64> = first.iter().map(|r| r.metrics.lattice.youngs_modulus.unwrap()).collect();
     assert!(moduli[0] != moduli[1] && moduli[1] != moduli[2], "seeds gave {moduli:?}");
     // More cutting, softer: every 30 % network below every 10 % one.
     let (light, heavy) = moduli.split_at(3);

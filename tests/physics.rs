@@ -61,11 +61,11 @@ fn by_dt(records: &[RunRecord], error: impl Fn(&RunRecord) -> f64) -> Vec<(f64, 
 }
 
 fn duration_error(r: &RunRecord) -> f64 {
-    relative(r.metrics.contact_duration, r.metrics.contact_duration_theory)
+    relative(r.metrics.pair.contact_duration, r.metrics.pair.contact_duration_theory)
 }
 
 fn restitution_error(r: &RunRecord) -> f64 {
-    relative(r.metrics.restitution, r.metrics.restitution_theory)
+    relative(r.metrics.pair.restitution, r.metrics.pair.restitution_theory)
 }
 
 /// The sweep used for orders: t_c/20 … t_c/160, with the contact start at gap/v0 = 0.05 s,
@@ -130,7 +130,7 @@ const CHAIN: &str = "version: 1\nname: t\nscenes:\n  - name: c\n    kind: chain\
 #[test]
 fn chain_follows_its_normal_modes() {
     let records = execute_all(&CHAIN.replace("DURATION", "5"));
-    let error = records[0].metrics.chain_mode_error.expect("linear undamped chain has modes");
+    let error = records[0].metrics.chain.chain_mode_error.expect("linear undamped chain has modes");
     // Issue bound: 0.5 % of the largest amplitude at t_c/50 over the first 5 t_c; Verlet's
     // phase error grows like (ω dt)²/24 · ω t, about 0.2 % here (measured 0.11 %).
     assert!(error < 5e-3, "mode error {error}");

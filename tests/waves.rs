@@ -89,7 +89,10 @@ fn lattice_impulse_reaches_the_bottom_row_at_the_longitudinal_speed() {
     // chain, ~39^(1/3) particles ahead).
     assert!((speed / c_l - 1.0).abs() < 0.05, "V = {speed}, c_L = {c_l}");
     assert_eq!(r.metrics.wave_distance, Some(39.0));
-    assert!(r.metrics.youngs_modulus.is_none() && r.metrics.youngs_modulus_fem.is_none(), "no moduli for a kick");
+    assert!(
+        r.metrics.lattice.youngs_modulus.is_none() && r.metrics.lattice.youngs_modulus_fem.is_none(),
+        "no moduli for a kick"
+    );
 }
 
 #[test]

@@ -8,9 +8,9 @@ use std::collections::HashMap;
 use std::sync::Mutex;
 
 use crate::model::{Axes, BondDashpot, Linear, NoDashpot, Particles, Spring, SquareLattice};
-use crate::scenes::build_scene;
 use crate::sim::{Gear, IntegratorKind, LatticeNetwork, Sampling, Scene, State, StepProbe, simulate_with};
 use crate::spec::{POWER_METHOD_BONDS, RunSpec};
+use crate::study::build_scene;
 
 /// What is known about a run's stability before it starts.
 #[derive(Clone, Copy, Debug, PartialEq)]

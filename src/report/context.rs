@@ -347,12 +347,12 @@ fn pair_row(r: &RunRecord) -> PairRow {
         label: group_label(r),
         integrator: r.spec.integrator.name(),
         dt_per_tc: number(r.spec.dt_per_tc()),
-        duration: optional(m.contact_duration),
-        duration_theory: optional(m.contact_duration_theory),
-        duration_error: error(relative_error(m.contact_duration, m.contact_duration_theory)),
-        restitution: optional(m.restitution),
-        restitution_theory: optional(m.restitution_theory),
-        restitution_error: error(relative_error(m.restitution, m.restitution_theory)),
+        duration: optional(m.pair.contact_duration),
+        duration_theory: optional(m.pair.contact_duration_theory),
+        duration_error: error(relative_error(m.pair.contact_duration, m.pair.contact_duration_theory)),
+        restitution: optional(m.pair.restitution),
+        restitution_theory: optional(m.pair.restitution_theory),
+        restitution_error: error(relative_error(m.pair.restitution, m.pair.restitution_theory)),
         energy_error: error(m.energy_error),
         status: r.status,
     }
@@ -369,8 +369,9 @@ fn order_rows(records: &[RunRecord], scene: &str) -> Vec<OrderRow> {
                 convergence_order(&points).map(|p| format!("{p:.2}")).unwrap_or_else(|| "–".into())
             };
             let duration =
-                |r: &RunRecord| relative_error(r.metrics.contact_duration, r.metrics.contact_duration_theory);
-            let restitution = |r: &RunRecord| relative_error(r.metrics.restitution, r.metrics.restitution_theory);
+                |r: &RunRecord| relative_error(r.metrics.pair.contact_duration, r.metrics.pair.contact_duration_theory);
+            let restitution =
+                |r: &RunRecord| relative_error(r.metrics.pair.restitution, r.metrics.pair.restitution_theory);
             let reference = representative(&members);
             OrderRow {
                 duration_error_50: format!("{} at t_c/{:.0}", error(duration(reference)), reference.spec.dt_per_tc()),
@@ -391,7 +392,7 @@ fn chain_row(r: &RunRecord) -> ChainRow {
         node: r.spec.node.map(|n| n.to_string()).unwrap_or_default(),
         dt_per_tc: number(r.spec.dt_per_tc()),
         energy_error: error(r.metrics.energy_error),
-        mode_error: error(r.metrics.chain_mode_error),
+        mode_error: error(r.metrics.chain.chain_mode_error),
         wall_s: number(r.wall_s),
         status: r.status,
     }
@@ -409,15 +410,15 @@ fn wall_row(r: &RunRecord) -> WallRow {
         label: r.spec.varied_label(|_| true),
         law: r.spec.law.name(),
         wall_displacement: number(r.spec.chain_wall_extension()),
-        spacing: optional(m.equilibrium_spacing),
-        spacing_theory: optional(m.equilibrium_spacing_theory),
-        spacing_spread: optional(m.spacing_spread),
-        wall_force: optional(m.wall_force),
-        wall_force_theory: optional(m.wall_force_theory),
-        secant: optional(m.secant_stiffness),
-        secant_theory: optional(m.secant_stiffness_theory),
-        tangent: optional(m.tangent_stiffness),
-        tangent_theory: optional(m.tangent_stiffness_theory),
+        spacing: optional(m.chain.equilibrium_spacing),
+        spacing_theory: optional(m.chain.equilibrium_spacing_theory),
+        spacing_spread: optional(m.chain.spacing_spread),
+        wall_force: optional(m.chain.wall_force),
+        wall_force_theory: optional(m.chain.wall_force_theory),
+        secant: optional(m.chain.secant_stiffness),
+        secant_theory: optional(m.chain.secant_stiffness_theory),
+        tangent: optional(m.chain.tangent_stiffness),
+        tangent_theory: optional(m.chain.tangent_stiffness_theory),
         dissipation_time: optional(m.dissipation_time),
         status: r.status,
     }
@@ -444,7 +445,7 @@ fn springs(r: &RunRecord, l: &crate::spec::LatticeSpec) -> String {
     if l.is_random() {
         words.push(format!("seed {}", l.seed));
     }
-    if let Some(kept) = r.metrics.bond_fraction_kept {
+    if let Some(kept) = r.metrics.lattice.bond_fraction_kept {
         words.push(format!("{} of the bonds kept", number(kept)));
     }
     words.join(", ")
@@ -457,19 +458,19 @@ fn lattice_row(r: &RunRecord) -> Option<LatticeRow> {
     let (modulus, md, fem, theory, tangent_md, tangent_fem) = match (tensile, l.rotated) {
         (true, rotated) => (
             if rotated { "E_x (Pa)" } else { "E_y (Pa)" },
-            m.youngs_modulus,
-            m.youngs_modulus_fem,
-            m.youngs_modulus_theory,
-            m.youngs_modulus_tangent,
-            m.youngs_modulus_tangent_fem,
+            m.lattice.youngs_modulus,
+            m.lattice.youngs_modulus_fem,
+            m.lattice.youngs_modulus_theory,
+            m.lattice.youngs_modulus_tangent,
+            m.lattice.youngs_modulus_tangent_fem,
         ),
         (false, _) => (
             "G (Pa)",
-            m.shear_modulus,
-            m.shear_modulus_fem,
-            m.shear_modulus_theory,
-            m.shear_modulus_tangent,
-            m.shear_modulus_tangent_fem,
+            m.lattice.shear_modulus,
+            m.lattice.shear_modulus_fem,
+            m.lattice.shear_modulus_theory,
+            m.lattice.shear_modulus_tangent,
+            m.lattice.shear_modulus_tangent_fem,
         ),
     };
     Some(LatticeRow {
@@ -490,15 +491,15 @@ fn lattice_row(r: &RunRecord) -> Option<LatticeRow> {
         theory: optional(theory),
         md_fem: percent(md, fem),
         fem_theory: percent(fem, theory),
-        poisson_md: optional(m.poisson_ratio),
-        poisson_fem: optional(m.poisson_ratio_fem),
-        poisson_theory: if tensile { optional(m.poisson_ratio_theory) } else { "–".into() },
-        poisson_coursework: optional(m.poisson_ratio_coursework),
+        poisson_md: optional(m.lattice.poisson_ratio),
+        poisson_fem: optional(m.lattice.poisson_ratio_fem),
+        poisson_theory: if tensile { optional(m.lattice.poisson_ratio_theory) } else { "–".into() },
+        poisson_coursework: optional(m.lattice.poisson_ratio_coursework),
         tangent_md: optional(tangent_md),
         tangent_fem: optional(tangent_fem),
         dissipation_time: optional(m.dissipation_time),
         relax_steps: r.steps.to_string(),
-        homogeneity: optional(m.homogeneity),
+        homogeneity: optional(m.lattice.homogeneity),
         status: r.status,
     })
 }

@@ -125,8 +125,10 @@ fn convergence_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyh
             points: members.iter().filter_map(|r| error(r).map(|e| (1.0 / r.spec.dt_per_tc(), e.abs()))).collect(),
             markers: true,
         };
-        series.push(curve("t_c", &|r| relative_error(r.metrics.contact_duration, r.metrics.contact_duration_theory)));
-        series.push(curve("r", &|r| relative_error(r.metrics.restitution, r.metrics.restitution_theory)));
+        series.push(curve("t_c", &|r| {
+            relative_error(r.metrics.pair.contact_duration, r.metrics.pair.contact_duration_theory)
+        }));
+        series.push(curve("r", &|r| relative_error(r.metrics.pair.restitution, r.metrics.pair.restitution_theory)));
     }
     let chart = Chart {
         title: format!("{scene}: measured against analytical"),
@@ -186,9 +188,9 @@ struct SizeCurve {
 /// The modulus a lattice run measures, from MD and from the static answer, over its continuum value.
 fn modulus_ratios(r: &RunRecord) -> Option<(f64, Option<f64>)> {
     let m = &r.metrics;
-    let (md, fem, theory) = match (m.youngs_modulus_fem, m.shear_modulus_fem) {
-        (Some(fem), _) => (m.youngs_modulus, fem, m.youngs_modulus_theory?),
-        (None, Some(fem)) => (m.shear_modulus, fem, m.shear_modulus_theory?),
+    let (md, fem, theory) = match (m.lattice.youngs_modulus_fem, m.lattice.shear_modulus_fem) {
+        (Some(fem), _) => (m.lattice.youngs_modulus, fem, m.lattice.youngs_modulus_theory?),
+        (None, Some(fem)) => (m.lattice.shear_modulus, fem, m.lattice.shear_modulus_theory?),
         (None, None) => return None,
     };
     Some((fem / theory, md.map(|v| v / theory)))

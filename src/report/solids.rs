@@ -110,13 +110,16 @@ pub fn ensemble_rows(records: &[RunRecord], scene: &str) -> Vec<EnsembleRow> {
         .into_iter()
         .map(|(group, kept, members)| {
             let ok = || members.iter().filter(|r| r.status == RunStatus::Ok);
-            let (youngs_mean, youngs_spread) = mean_spread(ok().map(|r| r.metrics.youngs_modulus));
-            let (shear_mean, shear_spread) = mean_spread(ok().map(|r| r.metrics.shear_modulus));
-            let (poisson_mean, poisson_spread) = mean_spread(ok().map(|r| r.metrics.poisson_ratio));
+            let (youngs_mean, youngs_spread) = mean_spread(ok().map(|r| r.metrics.lattice.youngs_modulus));
+            let (shear_mean, shear_spread) = mean_spread(ok().map(|r| r.metrics.lattice.shear_modulus));
+            let (poisson_mean, poisson_spread) = mean_spread(ok().map(|r| r.metrics.lattice.poisson_ratio));
             let md_static = ok()
                 .flat_map(|r| {
                     let m = &r.metrics;
-                    [(m.youngs_modulus, m.youngs_modulus_fem), (m.shear_modulus, m.shear_modulus_fem)]
+                    [
+                        (m.lattice.youngs_modulus, m.lattice.youngs_modulus_fem),
+                        (m.lattice.shear_modulus, m.lattice.shear_modulus_fem),
+                    ]
                 })
                 .filter_map(|(md, fem)| crate::measure::relative_error(md, fem).map(f64::abs))
                 .reduce(f64::max);
@@ -152,8 +155,8 @@ pub fn ensemble_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Opt
     }
     let mut series = Vec::new();
     for (name, get) in [
-        ("E", (|r: &RunRecord| r.metrics.youngs_modulus) as fn(&RunRecord) -> Option<f64>),
-        ("G", |r: &RunRecord| r.metrics.shear_modulus),
+        ("E", (|r: &RunRecord| r.metrics.lattice.youngs_modulus) as fn(&RunRecord) -> Option<f64>),
+        ("G", |r: &RunRecord| r.metrics.lattice.shear_modulus),
     ] {
         let mut points: Vec<(f64, f64, f64)> = ensembles
             .iter()

@@ -7,8 +7,8 @@ use std::fmt::Display;
 
 use super::MAX_NAME_LEN;
 use super::raw::{
-    Control, Diagonals, LoadCase, RawDamping, RawGeometry, RawLattice, RawMaterial, RawProbes, RawScene, RawTime,
-    RawWave, SceneKind, Supports,
+    Control, Diagonals, LoadCase, RawDamping, RawGeometry, RawImpulse, RawLattice, RawMaterial, RawMovie, RawProbes,
+    RawScene, RawTime, RawWave, SceneKind, Supports,
 };
 use super::run_spec::{
     ImpulseSpec, LatticeSpec, MovieSpec, ProbeLine, RelaxSpec, RunSpec, WaveSpec, reference_extension,
@@ -99,45 +99,65 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         value: "(missing)".into(),
         allowed: "one of pair, chain, lattice".into(),
     })?;
-    let material = raw.material.clone().unwrap_or_default();
-    let damping = raw.damping.clone().unwrap_or_default();
+    let mut spec = resolve_body(campaign, name, kind, raw, varied)?;
+    let time = raw.time.clone().unwrap_or_default();
+    let (gamma, restitution_target, gamma_background, t_c) = resolve_contact_time(&spec, raw)?;
+    let integrator = spec.integrator;
+    require(
+        integrator.allows_damping() || (gamma == 0.0 && gamma_background == 0.0),
+        "time.integrator",
+        integrator.name(),
+        "an integrator that allows damping (all but forest-ruth, whose backward sub-step would run the dashpots \
+         backwards), or no damping",
+    )?;
+    let dt = resolve_dt(&time, t_c)?;
+    let (spacing, contact) = (spec.spacing, spec.contact);
+    let gap = (kind == SceneKind::Pair && contact).then(|| raw.gap.unwrap_or(DEFAULT_GAP_PER_SPACING * spacing));
+    if let Some(g) = gap {
+        require(g.is_finite() && g >= 0.0, "gap", g, "must be a finite number ≥ 0")?;
+    }
+    let (duration, steps, samples) = resolve_length(&spec, raw, gap, t_c, dt)?;
+    if let (Some(l), Some(w)) = (&spec.lattice, &raw.wave) {
+        spec.wave = lattice_wave(l, w, spacing)?;
+    }
+    let movie = raw.movie.as_ref().map(resolve_movie).transpose()?;
+    if let Some(r) = spec.reference_refinement {
+        require((2..=1000).contains(&r), "time.reference_refinement", r, "an integer from 2 to 1000")?;
+        require(
+            steps.saturating_mul(u64::from(r)) <= 2_000_000_000,
+            "time.reference_refinement",
+            r,
+            "a reference run of at most 2e9 steps",
+        )?;
+    }
+    // Where dt_omega_max sets dt, dt and steps are the plan's to decide (unplanned: NaN and 0).
+    let (dt, steps) = if spec.dt_omega_max.is_some() { (f64::NAN, 0) } else { (dt, steps) };
+    Ok(RunSpec { gamma, restitution_target, gamma_background, t_c, dt, duration, steps, samples, gap, movie, ..spec })
+}
+
+/// The spec before its time scale: material, v0 and the kind's own fields (lattice, chain,
+/// relaxation), checked; γ, t_c, dt, the run's length, the gap and the movie still unset.
+fn resolve_body(
+    campaign: &str,
+    name: String,
+    kind: SceneKind,
+    raw: &RawScene,
+    varied: BTreeMap<String, Value>,
+) -> Result<RunSpec, Issue> {
     let time = raw.time.clone().unwrap_or_default();
     let geometry = raw.geometry.clone().unwrap_or_default();
-
     let spacing = positive(geometry_spacing(&geometry), "geometry.spacing")?;
-    let solid = derive_from_solid(kind, raw, &material, spacing, geometry.depth)?;
-    let material = RawMaterial { mass: solid.mass.or(material.mass), k: solid.k.or(material.k), ..material };
-    let (mass, k, law, contact) = resolve_material(&material)?;
-    // Each finite and > 0, but a ratio beyond f64's range (m = 1e300, k = 1e-300) leaves no time scale.
-    require(
-        (k / mass).is_normal(),
-        "material",
-        format!("mass = {}, k = {}", Num(mass), Num(k)),
-        &format!("k / mass = {} must be a normal number > 0 (mass and k too far apart)", Num(k / mass)),
-    )?;
+    let Springs { mass, k, law, contact, derived_from } = resolve_springs(kind, raw, spacing, geometry.depth)?;
     check_kind_fields(kind, raw)?;
-    let relaxing_chain = kind == SceneKind::Chain && raw.relax.is_some();
-    let v0 = match kind {
-        SceneKind::Lattice => 0.0,
-        SceneKind::Chain if relaxing_chain => {
-            let v0 = raw.v0.unwrap_or(0.0);
-            require(v0.is_finite() && v0 >= 0.0, "v0", v0, "must be a finite number ≥ 0 (m/s)")?;
-            v0
-        }
-        _ => positive(raw.v0.ok_or_else(|| missing("v0", "the initial speed (m/s), > 0"))?, "v0")?,
-    };
-    if kind == SceneKind::Lattice || relaxing_chain {
-        require(!contact, "material.contact", contact, "lattices and relaxing chains have bonded springs: false")?;
-    }
-    let lattice = resolve_lattice(kind, raw, k, geometry.depth)?.map(|l| LatticeSpec { derived_from: solid.note, ..l });
+    let v0 = resolve_v0(kind, raw, contact)?;
+    let lattice = resolve_lattice(kind, raw, k, geometry.depth)?.map(|l| LatticeSpec { derived_from, ..l });
     let ChainFields { n, node, wall_distance, wave } = resolve_chain(kind, raw, spacing)?;
     let relax = match (kind, &lattice) {
         (SceneKind::Lattice, Some(l)) if l.impulse.is_none() => Some(resolve_relax(raw, l.control)?),
-        (SceneKind::Chain, _) if relaxing_chain => Some(resolve_relax(raw, Control::Force)?),
+        (SceneKind::Chain, _) if raw.relax.is_some() => Some(resolve_relax(raw, Control::Force)?),
         _ => None,
     };
-    // The spec so far: t_c, γ and dt follow from the reference extension it implies.
-    let mut spec = RunSpec {
+    let spec = RunSpec {
         campaign: campaign.to_string(),
         scene: name,
         kind,
@@ -169,46 +189,105 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         wave,
         movie: None,
     };
-    if relaxing_chain {
-        let walls = spec.wall_distance.unwrap_or_default();
-        let least = (spec.n.unwrap_or(1) as f64 + 0.1) * spacing;
-        require(
-            walls > least,
-            "wall_distance",
-            walls,
-            &format!(
-                "more than (n + 0.1) · spacing = {least}: a relaxing chain starts at rest spacing from the left wall, \
-                 so the last spring takes the whole wall displacement at first and must not collapse"
-            ),
-        )?;
-        require(
-            v0 > 0.0 || spec.chain_wall_extension().abs() > 1e-12 * walls,
-            "wall_distance",
-            walls,
-            "a relaxing chain needs its walls moved from (n + 1) · spacing, or a v0",
-        )?;
-        // The residual-force criterion is relative to the equilibrium wall force: none when
-        // the walls are not moved, and the run could never count as relaxed.
-        require(
-            spec.relax.is_none_or(|r| r.residual_force.is_none()) || spec.chain_wall_extension() != 0.0,
-            "relax.residual_force",
-            "(set)",
-            "needs walls moved from (n + 1) · spacing (it is a fraction of the wall force); use relax.kinetic_ratio",
-        )?;
+    if kind == SceneKind::Chain && raw.relax.is_some() {
+        check_relaxing_chain(&spec)?;
     }
+    Ok(spec)
+}
+
+/// A scene's particles' mass (kg) and springs: stiffness, law, β, contact switch, and how
+/// they were derived from a solid, if they were.
+struct Springs {
+    mass: f64,
+    k: f64,
+    law: LawSpec,
+    contact: bool,
+    derived_from: Option<String>,
+}
+
+/// Mass, stiffness, law, β and the contact switch of a scene's springs, from its material or
+/// the solid a lattice stands for (with the note of how, see [`derive_from_solid`]).
+fn resolve_springs(kind: SceneKind, raw: &RawScene, spacing: f64, depth: Option<f64>) -> Result<Springs, Issue> {
+    let material = raw.material.clone().unwrap_or_default();
+    let solid = derive_from_solid(kind, raw, &material, spacing, depth)?;
+    let material = RawMaterial { mass: solid.mass.or(material.mass), k: solid.k.or(material.k), ..material };
+    let (mass, k, law, contact) = resolve_material(&material)?;
+    // Each finite and > 0, but a ratio beyond f64's range (m = 1e300, k = 1e-300) leaves no time scale.
+    require(
+        (k / mass).is_normal(),
+        "material",
+        format!("mass = {}, k = {}", Num(mass), Num(k)),
+        &format!("k / mass = {} must be a normal number > 0 (mass and k too far apart)", Num(k / mass)),
+    )?;
+    Ok(Springs { mass, k, law, contact, derived_from: solid.note })
+}
+
+/// The initial speed v0 (m/s): none for a lattice, ≥ 0 for a relaxing chain (its walls may
+/// be what moves it), > 0 and required otherwise; lattices and relaxing chains are bonded.
+fn resolve_v0(kind: SceneKind, raw: &RawScene, contact: bool) -> Result<f64, Issue> {
+    let relaxing_chain = kind == SceneKind::Chain && raw.relax.is_some();
+    let v0 = match kind {
+        SceneKind::Lattice => 0.0,
+        SceneKind::Chain if relaxing_chain => {
+            let v0 = raw.v0.unwrap_or(0.0);
+            require(v0.is_finite() && v0 >= 0.0, "v0", v0, "must be a finite number ≥ 0 (m/s)")?;
+            v0
+        }
+        _ => positive(raw.v0.ok_or_else(|| missing("v0", "the initial speed (m/s), > 0"))?, "v0")?,
+    };
+    if kind == SceneKind::Lattice || relaxing_chain {
+        require(!contact, "material.contact", contact, "lattices and relaxing chains have bonded springs: false")?;
+    }
+    Ok(v0)
+}
+
+/// A relaxing chain's walls: far enough apart that its last spring does not collapse, and
+/// moved (or the chain kicked), so that there is something to relax.
+fn check_relaxing_chain(spec: &RunSpec) -> Result<(), Issue> {
+    let walls = spec.wall_distance.unwrap_or_default();
+    let least = (spec.n.unwrap_or(1) as f64 + 0.1) * spec.spacing;
+    require(
+        walls > least,
+        "wall_distance",
+        walls,
+        &format!(
+            "more than (n + 0.1) · spacing = {least}: a relaxing chain starts at rest spacing from the left wall, \
+             so the last spring takes the whole wall displacement at first and must not collapse"
+        ),
+    )?;
+    require(
+        spec.v0 > 0.0 || spec.chain_wall_extension().abs() > 1e-12 * walls,
+        "wall_distance",
+        walls,
+        "a relaxing chain needs its walls moved from (n + 1) · spacing, or a v0",
+    )?;
+    // The residual-force criterion is relative to the equilibrium wall force: none when
+    // the walls are not moved, and the run could never count as relaxed.
+    require(
+        spec.relax.is_none_or(|r| r.residual_force.is_none()) || spec.chain_wall_extension() != 0.0,
+        "relax.residual_force",
+        "(set)",
+        "needs walls moved from (n + 1) · spacing (it is a fraction of the wall force); use relax.kinetic_ratio",
+    )
+}
+
+/// The damping (γ, the restitution it came from, γ_g) and the contact time t_c (s) of `spec`.
+fn resolve_contact_time(spec: &RunSpec, raw: &RawScene) -> Result<(f64, Option<f64>, f64, f64), Issue> {
+    let (mass, k, law, v0) = (spec.mass, spec.k, spec.law, spec.v0);
     // A power law has no stiffness at δ = 0: its tangent β C |δ|^(β−1) at the reference
     // extension stands in for k where a linear formula is needed.
-    let stiffness_for_damping = law.tangent_stiffness(k, reference_extension(&spec));
+    let stiffness_for_damping = law.tangent_stiffness(k, reference_extension(spec));
     require(
         stiffness_for_damping > 0.0 && stiffness_for_damping.is_finite(),
         "material.law",
         law.name(),
         "a power law needs a deformation to have stiffness: a v0, a load or moved walls",
     )?;
+    let damping = raw.damping.clone().unwrap_or_default();
     let (gamma, restitution_target, gamma_background) = resolve_damping(&damping, stiffness_for_damping, mass)?;
     // A collision (pair, kicked chain) has an exact power-law contact duration; a loaded or
     // relaxing scene takes the linear one at its tangent stiffness.
-    let collision = kind == SceneKind::Pair || (kind == SceneKind::Chain && !relaxing_chain);
+    let collision = spec.kind == SceneKind::Pair || (spec.kind == SceneKind::Chain && raw.relax.is_none());
     let t_c = match law {
         LawSpec::Power { beta } if collision => theory::pair_omega(stiffness_for_damping, mass, gamma)
             .map(|_| theory::power_law_contact_duration(k, beta, mass, v0)),
@@ -222,24 +301,23 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         format!("mass = {}, k = {}", Num(mass), Num(k)),
         &format!("give a contact time t_c = {} s; it must be finite and > 0 (mass, k and v0 too far apart)", Num(t_c)),
     )?;
+    Ok((gamma, restitution_target, gamma_background, t_c))
+}
 
-    let integrator = spec.integrator;
-    require(
-        integrator.allows_damping() || (gamma == 0.0 && gamma_background == 0.0),
-        "time.integrator",
-        integrator.name(),
-        "an integrator that allows damping (all but forest-ruth, whose backward sub-step would run the dashpots \
-         backwards), or no damping",
-    )?;
-    let dt = resolve_dt(&time, t_c)?;
-    let gap = (kind == SceneKind::Pair && contact).then(|| raw.gap.unwrap_or(DEFAULT_GAP_PER_SPACING * spacing));
-    if let Some(g) = gap {
-        require(g.is_finite() && g >= 0.0, "gap", g, "must be a finite number ≥ 0")?;
-    }
-    let default_duration_tc = match kind {
-        SceneKind::Pair if contact => gap.unwrap_or(0.0) / (v0 * t_c) + 1.5,
+/// The run's length: duration (s), steps of `dt` and samples, by default long enough for what
+/// the kind shows (a contact, a few wave crossings, a relaxation up to `relax.max_tc`).
+fn resolve_length(
+    spec: &RunSpec,
+    raw: &RawScene,
+    gap: Option<f64>,
+    t_c: f64,
+    dt: f64,
+) -> Result<(f64, u64, u64), Issue> {
+    let time = raw.time.clone().unwrap_or_default();
+    let default_duration_tc = match spec.kind {
+        SceneKind::Pair if spec.contact => gap.unwrap_or(0.0) / (spec.v0 * t_c) + 1.5,
         SceneKind::Pair => 3.0,
-        SceneKind::Chain if !relaxing_chain => 20.0,
+        SceneKind::Chain if raw.relax.is_none() => 20.0,
         // An impulse lattice runs until the wave has crossed it about three times.
         SceneKind::Lattice if raw.impulse.is_some() => 3.0 * spec.lattice.as_ref().map_or(1, |l| l.nx.max(l.ny)) as f64,
         _ => raw.relax.as_ref().and_then(|r| r.max_tc).unwrap_or(DEFAULT_MAX_TC),
@@ -255,39 +333,23 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     )?;
     let samples = time.samples.unwrap_or(DEFAULT_SAMPLES);
     require(samples >= 2, "time.samples", samples, "must be ≥ 2")?;
-    if let (Some(l), Some(w)) = (&spec.lattice, &raw.wave) {
-        spec.wave = lattice_wave(l, w, spacing)?;
-    }
-    let movie = match &raw.movie {
-        None => None,
-        Some(m) => {
-            let frames = m.frames.unwrap_or(60);
-            require((2..=600).contains(&frames), "movie.frames", frames, "from 2 to 600")?;
-            let (width, height) = (m.width.unwrap_or(720), m.height.unwrap_or(240));
-            require((120..=1920).contains(&width), "movie.width", width, "from 120 to 1920 pixels")?;
-            require((80..=1080).contains(&height), "movie.height", height, "from 80 to 1080 pixels")?;
-            Some(MovieSpec {
-                frames,
-                width,
-                height,
-                side_by_side: m.side_by_side.unwrap_or(false),
-                bond_strain: m.bond_strain.unwrap_or(false),
-            })
-        }
-    };
-    if let Some(r) = spec.reference_refinement {
-        require((2..=1000).contains(&r), "time.reference_refinement", r, "an integer from 2 to 1000")?;
-        require(
-            steps.saturating_mul(u64::from(r)) <= 2_000_000_000,
-            "time.reference_refinement",
-            r,
-            "a reference run of at most 2e9 steps",
-        )?;
-    }
+    Ok((duration, steps, samples))
+}
 
-    // Where dt_omega_max sets dt, dt and steps are the plan's to decide (unplanned: NaN and 0).
-    let (dt, steps) = if spec.dt_omega_max.is_some() { (f64::NAN, 0) } else { (dt, steps) };
-    Ok(RunSpec { gamma, restitution_target, gamma_background, t_c, dt, duration, steps, samples, gap, movie, ..spec })
+/// The movie a scene asks for: frames and size in range.
+fn resolve_movie(m: &RawMovie) -> Result<MovieSpec, Issue> {
+    let frames = m.frames.unwrap_or(60);
+    require((2..=600).contains(&frames), "movie.frames", frames, "from 2 to 600")?;
+    let (width, height) = (m.width.unwrap_or(720), m.height.unwrap_or(240));
+    require((120..=1920).contains(&width), "movie.width", width, "from 120 to 1920 pixels")?;
+    require((80..=1080).contains(&height), "movie.height", height, "from 80 to 1080 pixels")?;
+    Ok(MovieSpec {
+        frames,
+        width,
+        height,
+        side_by_side: m.side_by_side.unwrap_or(false),
+        bond_strain: m.bond_strain.unwrap_or(false),
+    })
 }
 
 /// Mass and stiffness of a lattice derived from the solid it stands for, and how.
@@ -474,6 +536,58 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
     }
     let lattice = raw.lattice.clone().unwrap_or_default();
     let (nx, ny) = lattice_size(&lattice)?;
+    let (diagonals, k_diag, k_x, k_y) = lattice_springs(&lattice, k)?;
+    let cut_fraction = lattice.cut_fraction.unwrap_or(0.0);
+    require((0.0..1.0).contains(&cut_fraction), "lattice.cut_fraction", cut_fraction, "must be in [0, 1)")?;
+    let stiffness_spread = lattice.stiffness_spread.unwrap_or(0.0);
+    require(
+        (0.0..1.0).contains(&stiffness_spread),
+        "lattice.stiffness_spread",
+        stiffness_spread,
+        "must be in [0, 1) (every stiffness times 1 + w·U[−1, 1])",
+    )?;
+    let supports = raw.supports.unwrap_or(Supports::Coursework);
+    require(
+        supports != Supports::PeriodicX || nx >= 3,
+        "lattice.nx",
+        nx,
+        "must be ≥ 3 with supports: periodic-x (two nodes would be bonded twice)",
+    )?;
+    let load = resolve_load(raw)?;
+    let impulse = raw.impulse.as_ref().map(|i| resolve_impulse(i, nx, ny)).transpose()?;
+    let probes = resolve_probes(raw.probes.as_ref(), nx, ny)?;
+    let upright = Upright { nx, ny, k_x, k_y, diagonals, load_case: raw.load.as_ref().and_then(|l| l.case) };
+    let rotated = upright.load_case == Some(LoadCase::TensileX);
+    let Upright { nx, ny, k_x, k_y, diagonals, load_case } =
+        if rotated { turned(upright, &probes, supports)? } else { upright };
+    Ok(Some(LatticeSpec {
+        nx,
+        ny,
+        k_diag,
+        diagonals: if k_diag == 0.0 { Diagonals::None } else { diagonals },
+        k_x,
+        k_y,
+        rotated,
+        cut_fraction,
+        stiffness_spread,
+        seed: raw.seed.unwrap_or(1),
+        depth: positive(depth.unwrap_or(1.0), "geometry.depth")?,
+        supports,
+        load_case: load_case.unwrap_or(LoadCase::Tensile),
+        load_per_node: load.per_node,
+        load_ramp_tc: load.ramp_tc,
+        control: load.control,
+        drive_strain: load.strain,
+        drive_tc: load.drive_tc,
+        derived_from: None,
+        impulse,
+        probes,
+    }))
+}
+
+/// The diagonals and the stiffnesses (k_d, k_x, k_y) (N/m) of a lattice's springs, from k and
+/// the ratios (or k_d) it gives.
+fn lattice_springs(lattice: &RawLattice, k: f64) -> Result<(Diagonals, f64, f64, f64), Issue> {
     // `diagonals: none` wins over a k_diag or k_diag_ratio set elsewhere, so a grid can switch
     // the diagonals off without touching their stiffness.
     let diagonals = lattice.diagonals.unwrap_or(Diagonals::Both);
@@ -492,28 +606,27 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
     };
     let ratio = |value: Option<f64>, path: &str| positive(value.unwrap_or(1.0), path).map(|r| r * k);
     let (k_x, k_y) = (ratio(lattice.k_x_ratio, "lattice.k_x_ratio")?, ratio(lattice.k_y_ratio, "lattice.k_y_ratio")?);
-    let cut_fraction = lattice.cut_fraction.unwrap_or(0.0);
-    require((0.0..1.0).contains(&cut_fraction), "lattice.cut_fraction", cut_fraction, "must be in [0, 1)")?;
-    let stiffness_spread = lattice.stiffness_spread.unwrap_or(0.0);
-    require(
-        (0.0..1.0).contains(&stiffness_spread),
-        "lattice.stiffness_spread",
-        stiffness_spread,
-        "must be in [0, 1) (every stiffness times 1 + w·U[−1, 1])",
-    )?;
-    let supports = raw.supports.unwrap_or(Supports::Coursework);
-    require(
-        supports != Supports::PeriodicX || nx >= 3,
-        "lattice.nx",
-        nx,
-        "must be ≥ 3 with supports: periodic-x (two nodes would be bonded twice)",
-    )?;
+    Ok((diagonals, k_diag, k_x, k_y))
+}
+
+/// How a lattice is loaded: a force per top-row node (ramped over `ramp_tc` t_c), or its top
+/// row driven to `strain` in `drive_tc` t_c.
+struct Load {
+    per_node: f64,
+    ramp_tc: f64,
+    control: Control,
+    strain: f64,
+    drive_tc: f64,
+}
+
+/// The `load:` section, each field checked against the control it belongs to.
+fn resolve_load(raw: &RawScene) -> Result<Load, Issue> {
     let load = raw.load.clone().unwrap_or_default();
-    let load_per_node = positive(load.per_node.unwrap_or(DEFAULT_LOAD_PER_NODE), "load.per_node")?;
-    let load_ramp_tc = load.ramp_tc.unwrap_or(0.0);
-    require(load_ramp_tc.is_finite() && load_ramp_tc >= 0.0, "load.ramp_tc", load_ramp_tc, "must be ≥ 0 (t_c)")?;
+    let per_node = positive(load.per_node.unwrap_or(DEFAULT_LOAD_PER_NODE), "load.per_node")?;
+    let ramp_tc = load.ramp_tc.unwrap_or(0.0);
+    require(ramp_tc.is_finite() && ramp_tc >= 0.0, "load.ramp_tc", ramp_tc, "must be ≥ 0 (t_c)")?;
     let control = load.control.unwrap_or(Control::Force);
-    let drive_strain = load.strain.unwrap_or(1e-4);
+    let strain = load.strain.unwrap_or(1e-4);
     let drive_tc = load.drive_tc.unwrap_or(100.0);
     if control == Control::Velocity {
         let position_verlet = raw.time.as_ref().and_then(|t| t.integrator).unwrap_or(IntegratorKind::PositionVerlet)
@@ -531,9 +644,9 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
             "are for control: force",
         )?;
         require(
-            drive_strain.is_finite() && drive_strain != 0.0 && drive_strain.abs() < 0.5,
+            strain.is_finite() && strain != 0.0 && strain.abs() < 0.5,
             "load.strain",
-            drive_strain,
+            strain,
             "must be non-zero, |strain| < 0.5",
         )?;
         positive(drive_tc, "load.drive_tc")?;
@@ -545,97 +658,80 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
             "are for control: velocity",
         )?;
     }
-    let impulse = match &raw.impulse {
-        None => None,
-        Some(i) => {
-            let node = match i.node.as_deref().unwrap_or("top-right") {
-                "top-right" => ny * nx - 1,
-                "top-left" => (ny - 1) * nx,
-                "top-centre" | "top-center" => (ny - 1) * nx + nx / 2,
-                other => {
-                    return Err(Issue {
-                        path: "impulse.node".into(),
-                        value: other.into(),
-                        allowed: "top-right, top-left or top-centre".into(),
-                    });
-                }
-            };
-            let (path, [a, b]) = match (i.velocity, i.force) {
-                (Some(v), None) => ("impulse.velocity", v),
-                (None, Some(f)) => ("impulse.force", f),
-                _ => {
-                    return Err(Issue {
-                        path: "impulse".into(),
-                        value: "velocity and force".into(),
-                        allowed:
-                            "one of velocity: [vx, vy] (m/s, a kick) or force: [fx, fy] (N, a step on the top row)"
-                                .into(),
-                    });
-                }
-            };
-            require(
-                a.is_finite() && b.is_finite() && (a != 0.0 || b != 0.0),
-                path,
-                format!("[{a}, {b}]"),
-                "two finite numbers, not both zero",
-            )?;
-            Some(match i.force {
-                Some(force) => ImpulseSpec { node, vx: 0.0, vy: 0.0, top_row_force: Some(force) },
-                None => ImpulseSpec { node, vx: a, vy: b, top_row_force: None },
-            })
+    Ok(Load { per_node, ramp_tc, control, strain, drive_tc })
+}
+
+/// The impulse of a wave lattice: the node it starts at and its kick or top-row force step.
+fn resolve_impulse(i: &RawImpulse, nx: usize, ny: usize) -> Result<ImpulseSpec, Issue> {
+    let node = match i.node.as_deref().unwrap_or("top-right") {
+        "top-right" => ny * nx - 1,
+        "top-left" => (ny - 1) * nx,
+        "top-centre" | "top-center" => (ny - 1) * nx + nx / 2,
+        other => {
+            return Err(Issue {
+                path: "impulse.node".into(),
+                value: other.into(),
+                allowed: "top-right, top-left or top-centre".into(),
+            });
         }
     };
-    let mut load_case = load.case.unwrap_or(LoadCase::Tensile);
-    let probes = resolve_probes(raw.probes.as_ref(), nx, ny)?;
-    let (mut nx, mut ny, mut k_x, mut k_y, mut diagonals) = (nx, ny, k_x, k_y, diagonals);
-    let rotated = load_case == LoadCase::TensileX;
-    if rotated {
-        require(
-            probes.is_empty(),
-            "probes",
-            "(set)",
-            "not with load.case: tensile-x (that lattice is simulated turned by 90°); probe the same lattice in a \
-             load.case: tensile scene",
-        )?;
-        require(
-            matches!(supports, Supports::Coursework | Supports::ClampedBottom),
-            "supports",
-            supports.name(),
-            "coursework or clamped-bottom with load.case: tensile-x (the supports turn with the lattice)",
-        )?;
-        // Turned by +90°: x → y, y → −x; the rising diagonal (1, 1) becomes (−1, 1), a
-        // falling one, and the falling (−1, 1) becomes (−1, −1), a rising one.
-        (nx, ny, k_x, k_y) = (ny, nx, k_y, k_x);
-        diagonals = match diagonals {
-            Diagonals::Rising => Diagonals::Falling,
-            Diagonals::Falling => Diagonals::Rising,
-            other => other,
-        };
-        load_case = LoadCase::Tensile;
-    }
-    Ok(Some(LatticeSpec {
-        nx,
-        ny,
-        k_diag,
-        diagonals: if k_diag == 0.0 { Diagonals::None } else { diagonals },
-        k_x,
-        k_y,
-        rotated,
-        cut_fraction,
-        stiffness_spread,
-        seed: raw.seed.unwrap_or(1),
-        depth: positive(depth.unwrap_or(1.0), "geometry.depth")?,
-        supports,
-        load_case,
-        load_per_node,
-        load_ramp_tc,
-        control,
-        drive_strain,
-        drive_tc,
-        derived_from: None,
-        impulse,
-        probes,
-    }))
+    let (path, [a, b]) = match (i.velocity, i.force) {
+        (Some(v), None) => ("impulse.velocity", v),
+        (None, Some(f)) => ("impulse.force", f),
+        _ => {
+            return Err(Issue {
+                path: "impulse".into(),
+                value: "velocity and force".into(),
+                allowed: "one of velocity: [vx, vy] (m/s, a kick) or force: [fx, fy] (N, a step on the top row)".into(),
+            });
+        }
+    };
+    require(
+        a.is_finite() && b.is_finite() && (a != 0.0 || b != 0.0),
+        path,
+        format!("[{a}, {b}]"),
+        "two finite numbers, not both zero",
+    )?;
+    Ok(match i.force {
+        Some(force) => ImpulseSpec { node, vx: 0.0, vy: 0.0, top_row_force: Some(force) },
+        None => ImpulseSpec { node, vx: a, vy: b, top_row_force: None },
+    })
+}
+
+/// A lattice's size, spring stiffnesses, diagonals and load case as the campaign gives them.
+struct Upright {
+    nx: usize,
+    ny: usize,
+    k_x: f64,
+    k_y: f64,
+    diagonals: Diagonals,
+    load_case: Option<LoadCase>,
+}
+
+/// The lattice of `load.case: tensile-x`, simulated turned by +90° and pulled along y: x → y,
+/// y → −x; the rising diagonal (1, 1) becomes (−1, 1), a falling one, and the falling (−1, 1)
+/// becomes (−1, −1), a rising one. Not probed, and on supports that turn with it.
+fn turned(upright: Upright, probes: &[ProbeLine], supports: Supports) -> Result<Upright, Issue> {
+    require(
+        probes.is_empty(),
+        "probes",
+        "(set)",
+        "not with load.case: tensile-x (that lattice is simulated turned by 90°); probe the same lattice in a \
+         load.case: tensile scene",
+    )?;
+    require(
+        matches!(supports, Supports::Coursework | Supports::ClampedBottom),
+        "supports",
+        supports.name(),
+        "coursework or clamped-bottom with load.case: tensile-x (the supports turn with the lattice)",
+    )?;
+    let Upright { nx, ny, k_x, k_y, diagonals, .. } = upright;
+    let diagonals = match diagonals {
+        Diagonals::Rising => Diagonals::Falling,
+        Diagonals::Falling => Diagonals::Rising,
+        other => other,
+    };
+    Ok(Upright { nx: ny, ny: nx, k_x: k_y, k_y: k_x, diagonals, load_case: Some(LoadCase::Tensile) })
 }
 
 /// Nodes per row and rows (nx, ny) of a lattice, each 2..=2000.

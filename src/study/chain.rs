@@ -1,0 +1,152 @@
+//! The chain: n particles between two walls, hit (a wave, normal modes) or relaxing after a
+//! wall is moved. Its scene, its normal-mode solution, equilibrium and sound speed, and its
+//! measurement.
+
+use serde::{Deserialize, Serialize};
+
+use super::Metrics;
+use crate::measure::normal_mode_error;
+use crate::model::{Axes, Particles};
+use crate::sim::{Network, Outcome, Scene};
+use crate::spec::RunSpec;
+
+/// What a chain measures, with its analytical twins.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ChainMetrics {
+    /// Chain: largest phase-space deviation from the normal-mode solution, relative (see
+    /// `measure::normal_mode_error`).
+    pub chain_mode_error: Option<f64>,
+    /// Relaxing chain: mean gap (m) of all springs but the last (which starts with the whole
+    /// wall displacement).
+    #[serde(default)]
+    pub equilibrium_spacing: Option<f64>,
+    /// Relaxing chain: equilibrium gap W/(n + 1) (m).
+    #[serde(default)]
+    pub equilibrium_spacing_theory: Option<f64>,
+    /// Relaxing chain: largest minus smallest gap (m); 0 at equilibrium.
+    #[serde(default)]
+    pub spacing_spread: Option<f64>,
+    /// Relaxing chain: tension (N) of the spring at the left wall, s(δ₁); negative in
+    /// compression.
+    #[serde(default)]
+    pub wall_force: Option<f64>,
+    /// Relaxing chain: s(ΔW/(n + 1)) (N).
+    #[serde(default)]
+    pub wall_force_theory: Option<f64>,
+    /// Relaxing chain: secant stiffness of the whole chain, wall force / ΔW (N/m).
+    #[serde(default)]
+    pub secant_stiffness: Option<f64>,
+    /// Relaxing chain: s(δ)/ΔW (N/m).
+    #[serde(default)]
+    pub secant_stiffness_theory: Option<f64>,
+    /// Relaxing chain with a tangent step: ΔF/ΔW (N/m) from the MD increments.
+    #[serde(default)]
+    pub tangent_stiffness: Option<f64>,
+    /// Relaxing chain: s′(δ)/(n + 1) (N/m).
+    #[serde(default)]
+    pub tangent_stiffness_theory: Option<f64>,
+}
+
+/// n particles between two fixed walls `wall_distance` apart, bonded as an (n+2) × 1
+/// lattice (the walls are particles 0 and n+1); particle `node` starts at v0. They start
+/// evenly spaced (at equilibrium), or, in a relaxing chain, at rest spacing from the left
+/// wall, so the last spring takes the whole wall displacement and the chain must relax.
+pub(super) fn build(spec: &RunSpec) -> Scene {
+    let n = spec.n.unwrap_or(1);
+    let walls = spec.wall_distance.unwrap_or((n + 1) as f64 * spec.spacing);
+    let gap = if spec.relax.is_some() { spec.spacing } else { walls / (n + 1) as f64 };
+    let mut particles = Particles::default();
+    for p in 0..n + 2 {
+        let fixed = if p == 0 || p == n + 1 { Axes::FIXED } else { Axes::ONLY_X_MOVES };
+        let x = if p == n + 1 { walls } else { p as f64 * gap };
+        particles.push(x, 0.0, spec.mass, fixed);
+    }
+    particles.vx[spec.node.unwrap_or(1)] = spec.v0;
+    let network = Network::Lattice(super::row(n + 2, spec.spacing, spec.k));
+    let mut scene = super::scene(spec, particles, network, None);
+    // The residual force is relative to the equilibrium spring force s(ΔW/(n + 1)).
+    scene.sampling.relaxation = super::relaxation(spec, Some(equilibrium(spec).1.abs()), n);
+    scene
+}
+
+/// A relaxing chain's equilibrium: every spring extended by δ = ΔW/(n + 1), carrying
+/// s(δ); returns (δ (m), s (N), secant stiffness of the whole chain s/ΔW (N/m), tangent
+/// stiffness s′(δ)/(n + 1) (N/m)). The secant is the tangent for ΔW = 0.
+pub fn equilibrium(spec: &RunSpec) -> (f64, f64, f64, f64) {
+    let springs = (spec.n.unwrap_or(0) + 1) as f64;
+    let delta = spec.chain_wall_extension() / springs;
+    let law = spec.law;
+    let (force, tangent) = (law.elastic_force(spec.k, delta), law.tangent_stiffness(spec.k, delta));
+    let secant = if delta == 0.0 { tangent / springs } else { force / (delta * springs) };
+    (delta, force, secant, tangent / springs)
+}
+
+/// True when the chain has an exact normal-mode solution: linear bonded springs, no damping,
+/// walls at the rest spacing.
+pub fn has_normal_modes(spec: &RunSpec) -> bool {
+    spec.law.is_linear()
+        && !spec.contact
+        && spec.gamma == 0.0
+        && spec.gamma_background == 0.0
+        && spec.wall_distance.is_some_and(|w| (w - (spec.n.unwrap_or(0) + 1) as f64 * spec.spacing).abs() <= 1e-12 * w)
+}
+
+/// Tension (N) of a chain's first spring, between the left wall and particle 1.
+fn wall_force(spec: &RunSpec, x: &[f64]) -> f64 {
+    spec.law.elastic_force(spec.k, x[1] - x[0] - spec.spacing)
+}
+
+/// The normal-mode error, the wave's arrival (against the long-wavelength and front speed
+/// a√(k/m)) and a relaxing chain's equilibrium.
+pub(super) fn measure(spec: &RunSpec, outcome: &Outcome, metrics: &mut Metrics) {
+    metrics.chain.chain_mode_error = has_normal_modes(spec)
+        .then(|| {
+            let n = spec.n.unwrap_or(0);
+            let movable: Vec<usize> = (1..=n).collect();
+            let v0: Vec<f64> = movable.iter().map(|&p| if Some(p) == spec.node { spec.v0 } else { 0.0 }).collect();
+            normal_mode_error(&outcome.trace, &movable, &v0, spec.k, spec.mass)
+        })
+        .flatten();
+    super::measure_wave(spec, outcome, super::sound_speed(spec, spec.k), metrics);
+    if spec.relax.is_some() {
+        measure_equilibrium(spec, outcome, &mut metrics.chain);
+        super::measure_relaxation(spec, outcome, spec.n.unwrap_or(1), "the wall force", metrics);
+    }
+}
+
+/// A relaxing chain's spacing, wall force and secant stiffness beside its equilibrium; the
+/// measured ones only when it came to rest.
+fn measure_equilibrium(spec: &RunSpec, outcome: &Outcome, metrics: &mut ChainMetrics) {
+    let relaxed = outcome.trace.relaxed_at.is_some();
+    let keep = |value: Option<f64>| value.filter(|_| relaxed);
+    let x = &outcome.state.particles.x;
+    let gaps: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
+    let inner = &gaps[..gaps.len() - 1];
+    let (shortest, longest) = gaps.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), g| (a.min(*g), b.max(*g)));
+    let (delta, force, secant, tangent) = equilibrium(spec);
+    let extension = spec.chain_wall_extension();
+    let measured_force = wall_force(spec, x);
+    metrics.equilibrium_spacing = keep(Some(inner.iter().sum::<f64>() / inner.len() as f64));
+    metrics.spacing_spread = keep(Some(longest - shortest));
+    metrics.equilibrium_spacing_theory = Some(spec.spacing + delta);
+    metrics.wall_force = keep(Some(measured_force));
+    metrics.wall_force_theory = Some(force);
+    metrics.secant_stiffness = keep((extension != 0.0).then(|| measured_force / extension));
+    metrics.secant_stiffness_theory = Some(secant);
+    metrics.tangent_stiffness_theory = Some(tangent);
+}
+
+/// The tangent stiffness ΔF/ΔW (N/m) of the tangent step: the wall force's increment from the
+/// relaxed particles `start` to `end` over the wall's step `wall_step` (m); none for a step of 0.
+pub(super) fn tangent_stiffness(
+    spec: &RunSpec,
+    wall_step: f64,
+    start: &Particles,
+    end: &Particles,
+    metrics: &mut ChainMetrics,
+) {
+    if wall_step != 0.0 {
+        let before = wall_force(spec, &start.x);
+        metrics.tangent_stiffness = Some((wall_force(spec, &end.x) - before) / wall_step);
+    }
+}

@@ -1,0 +1,450 @@
+//! The lattice: an nx × ny spring network on its supports, loaded (force or velocity control,
+//! relaxed to its moduli) or kicked (a wave). Its scene, its static answer (linear and
+//! non-linear, `fem`), its continuum moduli and sound speeds, and its measurement.
+
+use serde::{Deserialize, Serialize};
+
+use std::time::Instant;
+
+use super::{Metrics, Stopped};
+use crate::fem::{StaticSolution, Truss};
+use crate::measure::{
+    LatticeShape, anisotropic_moduli, constrained_modulus_y, homogeneity, lattice_constants, shear_modulus,
+    tensile_moduli,
+};
+use crate::model::{Axes, Bonds, ForceLaw, LawVisitor, Particles, SquareLattice};
+use crate::sim::{Drive, Load, Network, Outcome, ProbeTrace, Scene, Trace};
+use crate::spec::{Control, LatticeSpec, LoadCase, ProbeLine, RunSpec, Supports, reference_extension};
+
+/// What a lattice measures, with its static and continuum twins.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct LatticeMetrics {
+    /// Lattice, tensile: Young's modulus E (Pa) of the relaxed MD lattice.
+    pub youngs_modulus: Option<f64>,
+    /// Lattice, tensile: ν = −(ΔL_x/L_x)/(ΔL_y/L_y).
+    pub poisson_ratio: Option<f64>,
+    /// Lattice, tensile: the coursework's ΔL_x/ΔL_y.
+    pub poisson_ratio_coursework: Option<f64>,
+    /// Lattice, shear: shear modulus G (Pa).
+    pub shear_modulus: Option<f64>,
+    /// Lattice: largest deviation of the side columns from straight lines, relative to their
+    /// mean lateral displacement.
+    pub homogeneity: Option<f64>,
+    /// Lattice: largest difference between the non-linear and the linear static answers,
+    /// relative for E and G, absolute for ν (how far the load is from the linear regime).
+    pub static_nonlinearity: Option<f64>,
+    /// Lattice: E of the static solution of the same network, solved non-linearly like MD (Pa).
+    pub youngs_modulus_fem: Option<f64>,
+    /// Lattice: ν of the static solution.
+    pub poisson_ratio_fem: Option<f64>,
+    /// Lattice: G of the static solution (Pa).
+    pub shear_modulus_fem: Option<f64>,
+    /// Lattice: continuum E = (C11 − C12²/C11)/d (Pa).
+    pub youngs_modulus_theory: Option<f64>,
+    /// Lattice: continuum ν = C12/C11.
+    pub poisson_ratio_theory: Option<f64>,
+    /// Lattice: continuum G = C44/d (Pa).
+    pub shear_modulus_theory: Option<f64>,
+    /// Lattice with a tangent step: tangent E = ΔF/d/L_x / Δε (Pa) from the MD increments.
+    #[serde(default)]
+    pub youngs_modulus_tangent: Option<f64>,
+    /// Lattice with a tangent step: ν from the MD increments.
+    #[serde(default)]
+    pub poisson_ratio_tangent: Option<f64>,
+    /// Lattice with a tangent step: tangent G (Pa) from the MD increments.
+    #[serde(default)]
+    pub shear_modulus_tangent: Option<f64>,
+    /// Tangent E (Pa) of the static answer, from its tangent stiffness K_t Δu = Δf.
+    #[serde(default)]
+    pub youngs_modulus_tangent_fem: Option<f64>,
+    /// Tangent ν of the static answer.
+    #[serde(default)]
+    pub poisson_ratio_tangent_fem: Option<f64>,
+    /// Tangent G (Pa) of the static answer.
+    #[serde(default)]
+    pub shear_modulus_tangent_fem: Option<f64>,
+    /// Random lattice: fraction of the bonds kept after cutting.
+    #[serde(default)]
+    pub bond_fraction_kept: Option<f64>,
+}
+
+/// An nx × ny lattice at rest on its supports, node (ix, iy) at (ix a, iy a); a random
+/// lattice as an irregular network (the stencil only knows whole bond families). An impulse
+/// lattice is kicked (or its top row stepped): no load case, drive or relaxation.
+pub(super) fn build(spec: &RunSpec, l: &LatticeSpec) -> Scene {
+    let mut particles = Particles::default();
+    for iy in 0..l.ny {
+        for ix in 0..l.nx {
+            particles.push(ix as f64 * spec.spacing, iy as f64 * spec.spacing, spec.mass, support(l.supports, ix, iy));
+        }
+    }
+    if let Some(impulse) = l.impulse {
+        particles.vx[impulse.node] = impulse.vx;
+        particles.vy[impulse.node] = impulse.vy;
+    }
+    let network = if l.is_random() { Network::Bonds(bonds(spec, l)) } else { Network::Lattice(springs(spec, l)) };
+    let mut scene = super::scene(spec, particles, network, None);
+    // The residual force is relative to the load per node; a velocity-driven lattice's is
+    // known only from its static answer, which sets it (`static_answer`).
+    scene.sampling.relaxation = super::relaxation(spec, l.force_per_node(), l.nx.max(l.ny));
+    let loaded = Some(l).filter(|l| l.impulse.is_none());
+    scene.loads = match l.impulse.and_then(|i| i.top_row_force) {
+        Some([fx, fy]) => top_row(l).into_iter().map(|particle| Load { particle, fx, fy }).collect(),
+        None => loaded.filter(|l| l.control == Control::Force).map(top_row_loads).unwrap_or_default(),
+    };
+    scene.drive = loaded.filter(|l| l.control == Control::Velocity).map(|l| top_row_drive(spec, l));
+    scene.load_ramp = l.load_ramp_tc * spec.t_c;
+    scene
+}
+
+/// The springs of a lattice scene: k_x along rows, k_y along columns, k_d across the
+/// diagonals it has.
+fn springs(spec: &RunSpec, l: &LatticeSpec) -> SquareLattice {
+    let (k_rising, k_falling) = l.diagonal_stiffness();
+    SquareLattice {
+        nx: l.nx,
+        ny: l.ny,
+        spacing: spec.spacing,
+        k_x: l.k_x,
+        k_y: l.k_y,
+        k_rising,
+        k_falling,
+        periodic_x: l.supports == Supports::PeriodicX,
+    }
+}
+
+/// The bond list of a lattice scene: its springs, cut and spread at random when it asks.
+/// Bonds that touch the top (loaded) or the bottom (supported) row are never cut: a loaded
+/// node left hanging on one bond would make almost every diluted lattice a mechanism at its
+/// edge, whatever its bulk does; rigidity is lost, or not, in the interior.
+fn bonds(spec: &RunSpec, l: &LatticeSpec) -> Bonds {
+    let edge = |node: usize| node < l.nx || node >= (l.ny - 1) * l.nx;
+    springs(spec, l).bonds().randomised(l.cut_fraction, l.stiffness_spread, l.seed, |i, j| edge(i) || edge(j))
+}
+
+/// Which axes of node (ix, iy) the supports hold.
+fn support(supports: Supports, ix: usize, iy: usize) -> Axes {
+    match (supports, ix, iy) {
+        (_, _, 1..) | (Supports::Free, _, _) => Axes::FREE,
+        (Supports::Coursework, 0, 0) | (Supports::ClampedBottom | Supports::PeriodicX, _, 0) => Axes::FIXED,
+        (Supports::Coursework, _, 0) => Axes { x: false, y: true },
+    }
+}
+
+/// The load on every top-row node: up (tensile) or to the right (shear).
+fn top_row_loads(l: &LatticeSpec) -> Vec<Load> {
+    let (fx, fy) = match l.load_case {
+        LoadCase::Tensile | LoadCase::TensileX => (0.0, l.load_per_node),
+        LoadCase::Shear => (l.load_per_node, 0.0),
+    };
+    top_row(l).into_iter().map(|particle| Load { particle, fx, fy }).collect()
+}
+
+/// The top-row nodes of a lattice.
+fn top_row(l: &LatticeSpec) -> Vec<usize> {
+    ((l.ny - 1) * l.nx..l.ny * l.nx).collect()
+}
+
+/// How far the top row travels under velocity control: strain · L_y (m), up (tensile) or to
+/// the right (shear).
+fn drive_travel(spec: &RunSpec, l: &LatticeSpec) -> f64 {
+    l.drive_strain * (l.ny - 1) as f64 * spec.spacing
+}
+
+/// The velocity boundary condition: the top row driven to `drive_travel` in `drive_tc` t_c.
+fn top_row_drive(spec: &RunSpec, l: &LatticeSpec) -> Drive {
+    let stop_time = l.drive_tc * spec.t_c;
+    Drive {
+        particles: top_row(l),
+        along_y: l.load_case == LoadCase::Tensile,
+        velocity: drive_travel(spec, l) / stop_time,
+        stop_time,
+    }
+}
+
+/// The static answer of a loaded lattice, before its MD run: the fraction of bonds a random
+/// lattice kept, the moduli of the static solution (see [`solve`]); under velocity control the
+/// residual force of `scene`'s relaxation judged against the force the drive holds at
+/// equilibrium (per top-row node), not the unused load_per_node.
+pub(super) fn static_answer(
+    spec: &RunSpec,
+    l: &LatticeSpec,
+    scene: &mut Scene,
+    deadline: Instant,
+    metrics: &mut LatticeMetrics,
+) -> Result<(), Stopped> {
+    let bonds = bonds(spec, l);
+    if l.is_random() {
+        let full = springs(spec, l).bond_count();
+        metrics.bond_fraction_kept = Some(bonds.len() as f64 / full.max(1) as f64);
+    }
+    let (held_x, held_y, prescribed) = static_supports(spec, l, scene);
+    let p = &scene.particles;
+    let truss = Truss {
+        x: &p.x,
+        y: &p.y,
+        bonds: &bonds,
+        held_x: &held_x,
+        held_y: &held_y,
+        loads: &scene.loads,
+        prescribed: &prescribed,
+    };
+    let top_row_force = scene.law.dispatch(StaticSolve { spec, l, truss: &truss, deadline, metrics })?;
+    let fraction = spec.relax.and_then(|r| r.residual_force);
+    if let (Control::Velocity, Some(fraction), Some(relaxation)) =
+        (l.control, fraction, scene.sampling.relaxation.as_mut())
+    {
+        relaxation.residual_force = Some(fraction * (top_row_force / l.nx as f64).abs());
+    }
+    Ok(())
+}
+
+/// Held axes of the static problem and the displacements imposed on them: the scene's
+/// supports, plus, under velocity control, the top row held where the drive leaves it.
+type StaticSupports = (Vec<usize>, Vec<usize>, Vec<(usize, f64, f64)>);
+
+fn static_supports(spec: &RunSpec, l: &LatticeSpec, scene: &Scene) -> StaticSupports {
+    let mut supported = scene.particles.clone();
+    let mut prescribed = Vec::new();
+    if l.control == Control::Velocity {
+        let travel = drive_travel(spec, l);
+        let tensile = l.load_case == LoadCase::Tensile;
+        for node in top_row(l) {
+            supported.hold(node, tensile);
+            prescribed.push(if tensile { (node, 0.0, travel) } else { (node, travel, 0.0) });
+        }
+    }
+    (supported.held_x, supported.held_y, prescribed)
+}
+
+/// The static solution beside MD: its moduli (`*_fem`), solved non-linearly like MD; for
+/// linear springs how far that is from the linear answer; with a tangent step the tangent
+/// moduli from the tangent stiffness at the equilibrium. Returns the total force on the top
+/// row at the static equilibrium (N): the load, or what the drive must hold (non-linear
+/// answer where it exists, else linear). `Err` when the load drives a mechanism, or when
+/// `deadline` passes (checked between factorisations).
+/// [`solve`] with the run's concrete law, from [`crate::model::LawSpec::dispatch`].
+struct StaticSolve<'a> {
+    spec: &'a RunSpec,
+    l: &'a LatticeSpec,
+    truss: &'a Truss<'a>,
+    deadline: Instant,
+    metrics: &'a mut LatticeMetrics,
+}
+
+impl LawVisitor for StaticSolve<'_> {
+    type Output = Result<f64, Stopped>;
+    fn visit<L: ForceLaw>(self, law: L) -> Self::Output {
+        solve(self.spec, self.l, self.truss, &law, self.deadline, self.metrics)
+    }
+}
+
+fn solve<L: ForceLaw>(
+    spec: &RunSpec,
+    l: &LatticeSpec,
+    truss: &Truss,
+    law: &L,
+    deadline: Instant,
+    metrics: &mut LatticeMetrics,
+) -> Result<f64, Stopped> {
+    let past_deadline = || Stopped::PastDeadline { stage: "static solve" };
+    // The force on the top row: the load, or what the supports must apply to hold the
+    // driven row where it is.
+    let force = |ux: &[f64], uy: &[f64]| match l.control {
+        Control::Force => l.total_load(),
+        Control::Velocity => {
+            let (fx, fy) = truss.reaction(law, ux, uy, &top_row(l));
+            if l.load_case == LoadCase::Tensile { fy } else { fx }
+        }
+    };
+    // The linear problem decides whether the network carries the load at all (a power law's
+    // linear answer means nothing else).
+    if Instant::now() > deadline {
+        return Err(past_deadline());
+    }
+    let (linear, linear_force) = match truss.solve_linear() {
+        StaticSolution::Mechanism { residual } => return Err(Stopped::Mechanism { residual }),
+        StaticSolution::PastDeadline => return Err(past_deadline()),
+        StaticSolution::Displacements { ux, uy } => {
+            let top = force(&ux, &uy);
+            (moduli(spec, l, top, &ux, &uy), top)
+        }
+    };
+    let (ux, uy) = match truss.solve_nonlinear(law, reference_extension(spec), Some(deadline)) {
+        Some(StaticSolution::Displacements { ux, uy }) => (ux, uy),
+        Some(StaticSolution::PastDeadline) => return Err(past_deadline()),
+        _ => return Ok(linear_force),
+    };
+    let top_row_force = force(&ux, &uy);
+    let fem = moduli(spec, l, top_row_force, &ux, &uy);
+    if spec.law.is_linear() {
+        metrics.static_nonlinearity = nonlinearity(&fem, &linear);
+    }
+    metrics.youngs_modulus_fem = fem.youngs_modulus;
+    metrics.poisson_ratio_fem = fem.poisson_ratio;
+    metrics.shear_modulus_fem = fem.shear_modulus;
+    if spec.relax.is_some_and(|r| r.tangent_step.is_some()) {
+        // Δu per unit load factor: the increment of the whole load.
+        if Instant::now() > deadline {
+            return Err(past_deadline());
+        }
+        if let Some((dx, dy)) = truss.tangent_response(law, &ux, &uy) {
+            let tangent = moduli(spec, l, l.total_load(), &dx, &dy);
+            metrics.youngs_modulus_tangent_fem = tangent.youngs_modulus;
+            metrics.poisson_ratio_tangent_fem = tangent.poisson_ratio;
+            metrics.shear_modulus_tangent_fem = tangent.shear_modulus;
+        }
+    }
+    Ok(top_row_force)
+}
+
+/// The largest difference between the non-linear (`fem`) and the linear static answers:
+/// relative for E and G; absolute for ν, which can be 0 (no diagonals).
+fn nonlinearity(fem: &Moduli, linear: &Moduli) -> Option<f64> {
+    let relative = |a: Option<f64>, b: Option<f64>| crate::measure::relative_error(a, b).map(f64::abs);
+    let absolute = fem.poisson_ratio.zip(linear.poisson_ratio).map(|(a, b)| (a - b).abs());
+    [relative(fem.youngs_modulus, linear.youngs_modulus), relative(fem.shear_modulus, linear.shear_modulus), absolute]
+        .into_iter()
+        .flatten()
+        .reduce(f64::max)
+}
+
+/// The moduli a lattice's load case measures; the others stay `None`.
+struct Moduli {
+    youngs_modulus: Option<f64>,
+    poisson_ratio: Option<f64>,
+    poisson_ratio_coursework: Option<f64>,
+    shear_modulus: Option<f64>,
+}
+
+/// The moduli from the total top-row force `force` (N) and the node displacements.
+fn moduli(spec: &RunSpec, l: &LatticeSpec, force: f64, ux: &[f64], uy: &[f64]) -> Moduli {
+    let shape = shape(spec, l);
+    match l.load_case {
+        LoadCase::Tensile | LoadCase::TensileX => {
+            let t = tensile_moduli(&shape, force, ux, uy);
+            Moduli {
+                youngs_modulus: Some(t.youngs_modulus),
+                poisson_ratio: Some(t.poisson_ratio),
+                poisson_ratio_coursework: Some(t.poisson_ratio_coursework),
+                shear_modulus: None,
+            }
+        }
+        LoadCase::Shear => Moduli {
+            youngs_modulus: None,
+            poisson_ratio: None,
+            poisson_ratio_coursework: None,
+            shear_modulus: Some(shear_modulus(&shape, force, ux)),
+        },
+    }
+}
+
+fn shape(spec: &RunSpec, l: &LatticeSpec) -> LatticeShape {
+    LatticeShape {
+        nx: l.nx,
+        ny: l.ny,
+        spacing: spec.spacing,
+        depth: l.depth,
+        periodic_x: l.supports == Supports::PeriodicX,
+    }
+}
+
+/// A loaded lattice's moduli and homogeneity (only when it came to rest: those of a run that
+/// never did would be snapshots of an oscillation) beside the continuum's and its relaxation;
+/// an impulse lattice's wave.
+pub(super) fn measure(
+    spec: &RunSpec,
+    l: &LatticeSpec,
+    outcome: &Outcome,
+    start: &(Vec<f64>, Vec<f64>),
+    metrics: &mut Metrics,
+) {
+    super::measure_wave(spec, outcome, sound_speed_theory(spec, l), metrics);
+    if l.impulse.is_some() {
+        return;
+    }
+    let p = &outcome.state.particles;
+    let ux: Vec<f64> = p.x.iter().zip(&start.0).map(|(x, x0)| x - x0).collect();
+    let uy: Vec<f64> = p.y.iter().zip(&start.1).map(|(y, y0)| y - y0).collect();
+    let relaxed = outcome.trace.relaxed_at.is_some();
+    let force = match l.control {
+        Control::Force => l.total_load(),
+        Control::Velocity => outcome.state.drive_force,
+    };
+    let md = moduli(spec, l, force, &ux, &uy);
+    let keep = |value: Option<f64>| value.filter(|_| relaxed);
+    metrics.lattice.youngs_modulus = keep(md.youngs_modulus);
+    metrics.lattice.poisson_ratio = keep(md.poisson_ratio);
+    metrics.lattice.poisson_ratio_coursework = keep(md.poisson_ratio_coursework);
+    metrics.lattice.shear_modulus = keep(md.shear_modulus);
+    metrics.lattice.homogeneity = keep(homogeneity(&shape(spec, l), &ux));
+    if spec.law.is_linear() {
+        continuum(l, &mut metrics.lattice);
+    }
+    let scale = match l.control {
+        Control::Velocity => "the drive's static force per node",
+        Control::Force => "the load per node",
+    };
+    super::measure_relaxation(spec, outcome, l.nx.max(l.ny), scale, metrics);
+}
+
+/// The continuum moduli of the regular linear lattice (a random one is compared with it).
+fn continuum(l: &LatticeSpec, metrics: &mut LatticeMetrics) {
+    let (k_rising, k_falling) = l.diagonal_stiffness();
+    let continuum = anisotropic_moduli(l.k_x, l.k_y, k_rising, k_falling, l.depth);
+    // A periodic strip cannot contract sideways: in tension it measures the constrained
+    // modulus (C22 = (k + k_d)/d with both diagonals), with ν = 0.
+    if l.supports == Supports::PeriodicX {
+        metrics.youngs_modulus_theory = Some(constrained_modulus_y(l.k_x, l.k_y, k_rising, k_falling, l.depth));
+        metrics.poisson_ratio_theory = Some(0.0);
+    } else {
+        metrics.youngs_modulus_theory = Some(continuum.youngs_modulus_y);
+        metrics.poisson_ratio_theory = Some(continuum.poisson_ratio_yx);
+    }
+    metrics.shear_modulus_theory = continuum.shear_modulus;
+}
+
+/// The linear sound speed along an impulse lattice's wave (m/s): kicked or stepped mostly
+/// along y (the bottom row is below) the longitudinal c_L = a√(C22/m), kicked mostly along x
+/// the transverse c_T = a√(C66/m) (C per unit depth; C22 = k + k_d, C66 = k_d with both
+/// diagonals).
+fn sound_speed_theory(spec: &RunSpec, l: &LatticeSpec) -> Option<f64> {
+    let impulse = l.impulse?;
+    let (k_rising, k_falling) = l.diagonal_stiffness();
+    let c = lattice_constants(l.k_x, l.k_y, k_rising, k_falling);
+    let [x, y] = impulse.direction();
+    super::sound_speed(spec, if y.abs() >= x.abs() { c.c22 } else { c.c66 })
+}
+
+/// The tangent moduli of the tangent step: the increments from the relaxed particles `start`
+/// to `end` under the load raised by the fraction `step`.
+pub(super) fn tangent_moduli(
+    spec: &RunSpec,
+    l: &LatticeSpec,
+    step: f64,
+    start: &Particles,
+    end: &Particles,
+    metrics: &mut LatticeMetrics,
+) {
+    let dx: Vec<f64> = end.x.iter().zip(&start.x).map(|(b, a)| b - a).collect();
+    let dy: Vec<f64> = end.y.iter().zip(&start.y).map(|(b, a)| b - a).collect();
+    let tangent = moduli(spec, l, step * l.total_load(), &dx, &dy);
+    metrics.youngs_modulus_tangent = tangent.youngs_modulus;
+    metrics.poisson_ratio_tangent = tangent.poisson_ratio;
+    metrics.shear_modulus_tangent = tangent.shear_modulus;
+}
+
+/// Cuts a lattice's trace to its probed lines, once measured: the per-particle series are
+/// recorded to compare with a reference run or to follow a wave, too bulky to store whole.
+/// The lines kept are an impulse lattice's kicked column (the wave's straight path down, for
+/// the space–time picture) and the user's.
+pub(super) fn keep_probes(l: &LatticeSpec, t: &mut Trace) {
+    let kicked = l.impulse.map(|impulse| ProbeLine::Column(impulse.node % l.nx));
+    let mut lines: Vec<ProbeLine> = kicked.into_iter().collect();
+    lines.extend(l.probes.iter().filter(|&&line| Some(line) != kicked));
+    if !t.displacement_x.is_empty() {
+        t.probes =
+            lines.into_iter().map(|line| ProbeTrace::from_trace(line.name(), line.nodes(l.nx, l.ny), t)).collect();
+    }
+    (t.displacement_x, t.displacement_y, t.velocity_x, t.velocity_y) = Default::default();
+}

@@ -1,0 +1,376 @@
+//! One home per scene kind: `pair`, `chain` and `lattice` each build their scene from a
+//! [`RunSpec`], hold their analytical and static references and measure their runs; this file
+//! dispatches by kind and holds what the kinds share (the scene's common parts, relaxation,
+//! waves, the tangent step, the reference run and the error a run is judged by). Pure: no I/O.
+
+pub mod chain;
+pub mod lattice;
+pub mod pair;
+
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
+
+use crate::measure::{ARRIVAL_CRITERIA, arrival_time, energy_error};
+use crate::model::{Particles, SquareLattice};
+use crate::sim::{Network, Outcome, Relaxation, RunStatus, Sampling, Scene, Trace};
+use crate::spec::{RunSpec, SceneKind};
+
+/// Measured quantities with their analytical twins; `None` where the scene has no such
+/// quantity or no exact answer exists. What every kind may have is here, each kind's own
+/// group in its file; the groups are flattened in the record, so its keys (and the results
+/// table's column names) are the fields' names.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Metrics {
+    /// max |E(t) − E(0)| / E(0) with E = kinetic + potential + dissipated.
+    pub energy_error: Option<f64>,
+    /// The run's error against the most exact reference it has (see `error_measure`), ≥ 0.
+    pub error: Option<f64>,
+    /// What `error` measures: `contact_duration`, `restitution`, `normal_modes`,
+    /// `reference_dt/R` (a run at dt/R) or `energy`.
+    pub error_measure: Option<String>,
+    /// Chain wave: arrival time (s) at the receiver by each criterion.
+    #[serde(default)]
+    pub arrival_times: std::collections::BTreeMap<String, f64>,
+    /// Chain wave: the recommended criterion.
+    pub arrival_criterion: Option<String>,
+    /// Chain wave: distance from the excited particle to the receiver (m).
+    pub wave_distance: Option<f64>,
+    /// Chain wave: the coursework's estimate t_s = N_s t_c (N_s springs between them) (s).
+    pub arrival_time_tc_estimate: Option<f64>,
+    /// Chain wave: the long-wavelength (and front) speed a√(k/m) of a linear chain (m/s).
+    pub sound_speed_theory: Option<f64>,
+    /// Angular frequency of the fastest mode (rad/s), estimated before the run.
+    pub omega_max: Option<f64>,
+    /// dt · ω_max.
+    pub dt_omega_max: Option<f64>,
+    /// Damping ratio of the fastest mode.
+    pub mode_damping_ratio: Option<f64>,
+    /// Largest dt · ω_max the integrator survives at that damping ratio.
+    pub stability_limit: Option<f64>,
+    /// Lattice: time (s) from which the relaxation criterion held.
+    pub dissipation_time: Option<f64>,
+    /// Lattice: the relaxation criterion, in words.
+    pub dissipation_criterion: Option<String>,
+    /// The pair's contact.
+    #[serde(flatten)]
+    pub pair: pair::PairMetrics,
+    /// The chain's normal modes and equilibrium.
+    #[serde(flatten)]
+    pub chain: chain::ChainMetrics,
+    /// The lattice's moduli and static answer.
+    #[serde(flatten)]
+    pub lattice: lattice::LatticeMetrics,
+}
+
+impl Metrics {
+    /// Arrival time (s) by the recommended criterion.
+    pub fn arrival_time(&self) -> Option<f64> {
+        self.arrival_criterion.as_ref().and_then(|c| self.arrival_times.get(c).copied())
+    }
+
+    /// Sound speed L / t_s (m/s) from the arrival time by `criterion`.
+    pub fn sound_speed(&self, criterion: &str) -> Option<f64> {
+        self.wave_distance.zip(self.arrival_times.get(criterion)).map(|(l, t)| l / t)
+    }
+}
+
+/// Why a run ended before its time loop.
+#[derive(Debug)]
+pub enum Stopped {
+    /// The static problem is singular for this load: no MD run.
+    Mechanism {
+        /// Relative residual of the unregularised equations.
+        residual: f64,
+    },
+    /// The deadline passed in this stage.
+    PastDeadline {
+        /// The stage, in words.
+        stage: &'static str,
+    },
+}
+
+/// A simulated and measured run.
+#[derive(Debug)]
+pub struct Run {
+    /// What the time loop produced (the trace of a lattice already cut to its probed lines).
+    pub outcome: Outcome,
+    /// Its measurements.
+    pub metrics: Metrics,
+    /// Wall time (s) of the reference run at a finer dt, if any: not part of the run's cost.
+    pub reference_s: f64,
+    /// Bonds a movie draws (i, j, rest length in m), collected when the run asks for a movie;
+    /// bonds across a periodic side are left out.
+    pub bonds: Vec<(usize, usize, f64)>,
+}
+
+/// Builds the scene of `spec`.
+pub fn build_scene(spec: &RunSpec) -> Scene {
+    match (spec.kind, &spec.lattice) {
+        (SceneKind::Lattice, Some(l)) => lattice::build(spec, l),
+        (SceneKind::Chain, _) => chain::build(spec),
+        _ => pair::build(spec),
+    }
+}
+
+/// The scene's parts every kind sets alike, around the kind's `particles` and `network`:
+/// no loads, drive, ramp or relaxation (the kinds that have them set them).
+fn scene(spec: &RunSpec, particles: Particles, network: Network, contact_clock: Option<(usize, usize, f64)>) -> Scene {
+    Scene {
+        particles,
+        network,
+        law: spec.law,
+        contact: spec.contact,
+        gamma: spec.gamma,
+        background_gamma: spec.gamma_background,
+        integrator: spec.integrator,
+        sampling: Sampling {
+            dt: spec.dt,
+            steps: spec.steps,
+            every: (spec.steps / spec.samples).max(1),
+            displacements: spec.records_displacements(),
+            deadline: None,
+            relaxation: None,
+        },
+        contact_clock,
+        // A wave is timed every step, but never more than 10⁵ entries are kept.
+        wave: spec.wave.as_ref().map(|w| (w.source, w.receivers.clone(), (spec.steps / 100_000).max(1))),
+        movie_frames: spec.movie.map(|m| u64::from(m.frames)),
+        loads: Vec::new(),
+        load_ramp: 0.0,
+        drive: None,
+    }
+}
+
+/// The chain of `nodes` particles joined by springs `k` of rest length `spacing`: an
+/// `nodes × 1` lattice.
+fn row(nodes: usize, spacing: f64, k: f64) -> SquareLattice {
+    SquareLattice { nx: nodes, ny: 1, spacing, k_x: k, k_y: 0.0, k_rising: 0.0, k_falling: 0.0, periodic_x: false }
+}
+
+/// Checks (one t_c apart) that the relaxation criterion must pass in a row: 2N + 1 for the
+/// larger side N of a lattice (or the chain's n), a window of 2N t_c, longer than the slowest
+/// mode's period (≈ 4N/√(k/m) = 1.8 N t_c for a column of N springs), so no turning point
+/// of a ringing lattice passes for rest.
+fn relaxation_checks(side: usize) -> u32 {
+    (2 * side + 1) as u32
+}
+
+/// The relaxation criterion of a relaxing run (`None` for others): the residual force is
+/// relative to `scale` (N), the force the kind's relaxation is judged against; `side` is the
+/// kind's N of [`relaxation_checks`].
+fn relaxation(spec: &RunSpec, scale: Option<f64>, side: usize) -> Option<Relaxation> {
+    spec.relax.map(|relax| Relaxation {
+        kinetic_ratio: relax.kinetic_ratio,
+        residual_force: relax.residual_force.zip(scale).map(|(fraction, scale)| fraction * scale),
+        check_every: (spec.t_c / spec.dt).round().max(1.0) as u64,
+        confirmations: relaxation_checks(side),
+    })
+}
+
+/// The scene of `spec`, its time loops stopped at `deadline`.
+fn build_scene_until(spec: &RunSpec, deadline: Instant) -> Scene {
+    let mut scene = build_scene(spec);
+    scene.sampling.deadline = Some(deadline);
+    scene
+}
+
+/// Builds and integrates `spec` (a loaded lattice after its static answer), its time loops
+/// stopped at `deadline`, and measures it: the kind's measurements, the tangent step of a
+/// relaxed run, the error against a reference run at a finer dt or the exact answer.
+pub fn run(spec: &RunSpec, deadline: Instant) -> Result<Run, Stopped> {
+    let mut scene = build_scene_until(spec, deadline);
+    let mut metrics = Metrics::default();
+    if let Some(l) = spec.lattice.as_ref().filter(|l| l.impulse.is_none()) {
+        lattice::static_answer(spec, l, &mut scene, deadline, &mut metrics.lattice)?;
+    }
+    let start = (scene.particles.x.clone(), scene.particles.y.clone());
+    let mut bonds = Vec::new();
+    if spec.movie.is_some() {
+        scene.network.for_each_bond(|i, j, rest, _, shift| {
+            if shift == 0.0 {
+                bonds.push((i, j, rest));
+            }
+        });
+    }
+    let sample_every = scene.sampling.every;
+    let mut outcome = scene.run();
+    measure(spec, &outcome, &start, &mut metrics);
+    if let Some(step) = spec.relax.and_then(|r| r.tangent_step).filter(|_| outcome.trace.relaxed_at.is_some()) {
+        tangent_step(spec, &outcome, step, deadline, &mut metrics);
+    }
+    let started = Instant::now();
+    let reference = spec
+        .reference_refinement
+        .filter(|_| outcome.trace.status == RunStatus::Ok || outcome.trace.status == RunStatus::NoEquilibrium)
+        .and_then(|refinement| {
+            reference_error(spec, &outcome.trace, sample_every, refinement, deadline).map(|e| (refinement, e))
+        });
+    let reference_s = if spec.reference_refinement.is_some() { started.elapsed().as_secs_f64() } else { 0.0 };
+    (metrics.error, metrics.error_measure) = match reference {
+        Some((refinement, error)) => (Some(error), Some(format!("reference_dt/{refinement}"))),
+        None => exact_error(spec, &metrics),
+    };
+    if let Some(l) = &spec.lattice {
+        lattice::keep_probes(l, &mut outcome.trace);
+    }
+    Ok(Run { outcome, metrics, reference_s, bonds })
+}
+
+/// The caveat a successful run's record carries, if any.
+pub fn caveat(spec: &RunSpec, metrics: &Metrics) -> Option<&'static str> {
+    (spec.kind == SceneKind::Pair).then(|| pair::caveat(&metrics.pair)).flatten()
+}
+
+/// Measures a finished run: the energy balance, then what its kind measures. `start` holds
+/// the positions (x, y) at t = 0.
+fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metrics: &mut Metrics) {
+    metrics.energy_error = energy_error(&outcome.trace);
+    match (spec.kind, &spec.lattice) {
+        (SceneKind::Lattice, Some(l)) => lattice::measure(spec, l, outcome, start, metrics),
+        (SceneKind::Chain, _) => chain::measure(spec, outcome, metrics),
+        _ => pair::measure(spec, outcome, &mut metrics.pair),
+    }
+}
+
+/// The arrival of a timed wave by every criterion, with the coursework's estimate and
+/// `sound_speed_theory` (m/s), the kind's linear sound speed along the wave's path.
+fn measure_wave(spec: &RunSpec, outcome: &Outcome, sound_speed_theory: Option<f64>, metrics: &mut Metrics) {
+    if let (Some(wave), Some(record)) = (&spec.wave, &outcome.wave) {
+        for criterion in ARRIVAL_CRITERIA {
+            if let Some(time) = arrival_time(record, criterion, wave.threshold) {
+                metrics.arrival_times.insert(criterion.to_string(), time);
+            }
+        }
+        metrics.arrival_criterion = Some(ARRIVAL_CRITERIA[0].to_string());
+        metrics.wave_distance = Some(wave.distance);
+        metrics.arrival_time_tc_estimate = Some(wave.springs as f64 * spec.t_c);
+        metrics.sound_speed_theory = sound_speed_theory;
+    }
+}
+
+/// The linear sound speed a√(C/m) (m/s) for the stiffness C (N/m) along the path (the mass
+/// per unit area is m/a²); `None` for power-law springs, which have no linear sound speed
+/// without pre-load, and for C = 0.
+fn sound_speed(spec: &RunSpec, stiffness: f64) -> Option<f64> {
+    (spec.law.is_linear() && stiffness > 0.0).then(|| spec.spacing * (stiffness / spec.mass).sqrt())
+}
+
+/// When and by which criterion a relaxing run came to rest, `side` as for the scene's
+/// [`relaxation`], `scale` naming the force its residual-force criterion is relative to.
+fn measure_relaxation(spec: &RunSpec, outcome: &Outcome, side: usize, scale: &str, metrics: &mut Metrics) {
+    let Some(relax) = spec.relax else { return };
+    metrics.dissipation_time = outcome.trace.relaxed_at;
+    let checks = relaxation_checks(side);
+    metrics.dissipation_criterion = outcome.trace.relaxed_by.as_deref().map(|by| match (by, relax.residual_force) {
+        ("residual_force", Some(fraction)) => {
+            format!("largest static force < {fraction:e} of {scale} at {checks} checks one t_c apart")
+        }
+        _ => format!("E_kin/E_pot < {:e} at {checks} checks one t_c apart", relax.kinetic_ratio),
+    });
+}
+
+/// The small extra step after a relaxation: from the relaxed state (at rest), the load
+/// (a chain's wall displacement) raised by the fraction `step`, relaxed again; tangent moduli
+/// (a chain's tangent stiffness) are the increments' ratios. Nothing is set when the second
+/// relaxation does not finish.
+fn tangent_step(spec: &RunSpec, relaxed: &Outcome, step: f64, deadline: Instant, metrics: &mut Metrics) {
+    let mut scene = build_scene_until(spec, deadline);
+    let start = &relaxed.state.particles;
+    scene.particles.x.clone_from(&start.x);
+    scene.particles.y.clone_from(&start.y);
+    scene.particles.vx.fill(0.0);
+    scene.particles.vy.fill(0.0);
+    scene.load_ramp = 0.0;
+    for load in &mut scene.loads {
+        load.fx *= 1.0 + step;
+        load.fy *= 1.0 + step;
+    }
+    let wall_step = step * spec.chain_wall_extension();
+    if spec.kind == SceneKind::Chain {
+        let wall = scene.particles.len() - 1;
+        scene.particles.x[wall] += wall_step;
+    }
+    let next = scene.run();
+    if next.trace.relaxed_at.is_none() {
+        return;
+    }
+    match &spec.lattice {
+        Some(l) => lattice::tangent_moduli(spec, l, step, start, &next.state.particles, &mut metrics.lattice),
+        None => chain::tangent_stiffness(spec, wall_step, start, &next.state.particles, &mut metrics.chain),
+    }
+}
+
+/// The error of a run against its exact answer: the contact duration (undamped pairs) or the
+/// restitution (damped pairs), the normal-mode solution (chains), else the energy balance of
+/// an undamped run; `(None, None)` when none applies.
+fn exact_error(spec: &RunSpec, m: &Metrics) -> (Option<f64>, Option<String>) {
+    let undamped = spec.gamma == 0.0 && spec.gamma_background == 0.0;
+    let (error, measure) = match spec.kind {
+        SceneKind::Pair => pair::exact_error(undamped, &m.pair),
+        SceneKind::Chain if m.chain.chain_mode_error.is_some() => (m.chain.chain_mode_error, "normal_modes"),
+        _ if undamped => (m.energy_error, "energy"),
+        _ => (None, ""),
+    };
+    (error, error.map(|_| measure.to_string()))
+}
+
+/// Largest displacement difference between the run and the same scene at dt / `refinement`,
+/// over the samples both have (the reference is sampled at the run's sample times and runs as
+/// long, without stopping early), relative to the reference's largest displacement. The run
+/// was sampled every `sample_every` steps.
+fn reference_error(spec: &RunSpec, run: &Trace, sample_every: u64, refinement: u32, deadline: Instant) -> Option<f64> {
+    let mut fine = spec.clone();
+    fine.set_dt(spec.dt / f64::from(refinement));
+    let mut scene = build_scene_until(&fine, deadline);
+    let r = u64::from(refinement);
+    scene.sampling.every = sample_every * r;
+    scene.sampling.steps = run.steps * r;
+    scene.sampling.relaxation = None;
+    let reference = scene.run().trace;
+    let (mut largest_difference, mut largest) = (0.0f64, 0.0f64);
+    let mut k = 0;
+    for (s, t) in run.time.iter().enumerate() {
+        while k < reference.time.len() && reference.time[k] < t - 1e-9 * t.abs() {
+            k += 1;
+        }
+        if k == reference.time.len() || (reference.time[k] - t).abs() > 1e-9 * t.abs() {
+            continue;
+        }
+        for (mine, theirs) in [
+            (&run.displacement_x[s], &reference.displacement_x[k]),
+            (&run.displacement_y[s], &reference.displacement_y[k]),
+        ] {
+            for (a, b) in mine.iter().zip(theirs) {
+                largest_difference = largest_difference.max((a - b).abs());
+                largest = largest.max(b.abs());
+            }
+        }
+    }
+    (largest > 0.0).then(|| largest_difference / largest)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The kinds' groups are flattened: a record's metrics keep one flat object of the
+    /// fields' names, and read back the same.
+    #[test]
+    fn metrics_serialise_flat() {
+        let mut metrics = Metrics { energy_error: Some(1e-3), ..Metrics::default() };
+        metrics.pair.contact_duration = Some(0.5);
+        metrics.chain.wall_force = Some(-2.0);
+        metrics.lattice.youngs_modulus = Some(2e11);
+        let value = serde_json::to_value(&metrics).unwrap();
+        let object = value.as_object().unwrap();
+        assert_eq!(object.len(), 47, "{object:?}");
+        for (key, number) in [("energy_error", 1e-3), ("contact_duration", 0.5), ("wall_force", -2.0)] {
+            assert_eq!(object[key].as_f64(), Some(number), "{key}");
+        }
+        assert_eq!(object["youngs_modulus"].as_f64(), Some(2e11));
+        assert_eq!(serde_json::from_value::<Metrics>(value).unwrap(), metrics);
+        let sparse: Metrics = serde_json::from_str(r#"{"energy_error": 1, "homogeneity": 0.25}"#).unwrap();
+        assert_eq!((sparse.energy_error, sparse.lattice.homogeneity), (Some(1.0), Some(0.25)));
+    }
+}
