@@ -8,8 +8,8 @@ use crate::bench::{BenchConfig, run_once};
 use crate::output::Layout;
 use crate::plan::{Plan, Stability};
 use crate::runner::{
-    BUILD, CampaignRun, INTERRUPTED, Interrupted, OtherBuilds, Shard, Stored, read_stored, run_campaign_with,
-    shard_campaign, shard_of_each_run, stored_count, write_missing_movies,
+    BUILD, CampaignRun, INTERRUPTED, Interrupted, OtherBuilds, RunRecord, Shard, Stored, read_stored,
+    run_campaign_with, shard_campaign, shard_of_each_run, stored_count, write_missing_movies,
 };
 use crate::sim::RunStatus;
 use crate::spec::Campaign;
@@ -354,30 +354,46 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
     if let Some(shard) = shard {
         plan.campaign = shard_campaign(&plan.campaign, shard);
     }
+    let tally = print_plan_rows(&plan, &layout);
+    print_plan_summary(&plan.campaign, &layout, &tally);
+    print_budget_warnings(&plan.campaign);
+    Ok(())
+}
+
+/// What `plan` found in the store, run by run.
+struct PlanTally<'a> {
+    /// How many runs are in each stored state (yes, missing, corrupt, stale, budget).
+    states: std::collections::BTreeMap<&'a str, usize>,
+    /// Runs whose record is corrupt, with why.
+    corrupt: Vec<(String, String)>,
+    /// Estimated seconds of simulation of the runs `run` would simulate, on one core.
+    simulation_s: f64,
+}
+
+/// Prints the plan's table, one row per run, and returns what it found in the store.
+fn print_plan_rows<'a>(plan: &Plan, layout: &Layout) -> PlanTally<'a> {
     let campaign = &plan.campaign;
     println!(
         "{:<28} {:<8} {:<16} {:>11} {:>11} {:>8} {:>10} {:>8} {:>7} {:>7}  varied",
         "run_id", "kind", "integrator", "dt (s)", "t_c (s)", "t_c/dt", "steps", "dt·ω_max", "limit", "stored"
     );
-    let mut simulation_s = 0.0;
-    // What `run` would do with each run's stored record: take it (`yes`), or simulate the run
-    // because the record is missing, corrupt, of another build or stopped by its budget.
-    let mut states: std::collections::BTreeMap<&str, usize> = Default::default();
-    let mut corrupt = Vec::new();
+    let mut tally = PlanTally { states: Default::default(), corrupt: Vec::new(), simulation_s: 0.0 };
     for spec in &campaign.runs {
-        let state = match read_stored(&layout, spec) {
+        // What `run` would do with the run's stored record: take it (`yes`), or simulate the
+        // run because the record is missing, corrupt, of another build or stopped by its budget.
+        let state = match read_stored(layout, spec) {
             Stored::Current(record) | Stored::OtherBuild(record) if record.status == RunStatus::Budget => "budget",
             Stored::Current(_) => "yes",
             Stored::OtherBuild(_) => "stale",
             Stored::Corrupt(why) => {
-                corrupt.push((spec.run_id(), why));
+                tally.corrupt.push((spec.run_id(), why));
                 "corrupt"
             }
             Stored::Missing => "missing",
         };
-        *states.entry(state).or_default() += 1;
+        *tally.states.entry(state).or_default() += 1;
         if state != "yes" {
-            simulation_s += spec.estimated_seconds();
+            tally.simulation_s += spec.estimated_seconds();
         }
         // A run the memory budget refuses is not estimated (a large lattice's estimate takes long).
         let stability = campaign.budget.refuses(spec).is_none().then(|| plan.estimates.stability(spec));
@@ -398,7 +414,13 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
             spec.varied_label(|_| true)
         );
     }
-    for (run_id, why) in &corrupt {
+    tally
+}
+
+/// Prints the corrupt records, what `run` would simulate and the estimated cost.
+fn print_plan_summary(campaign: &Campaign, layout: &Layout, tally: &PlanTally) {
+    let states = &tally.states;
+    for (run_id, why) in &tally.corrupt {
         println!("corrupt: {} ({why}); `run` simulates it again", layout.run_file(run_id).display());
     }
     let to_simulate: Vec<String> = [
@@ -421,9 +443,13 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
         "{} runs; estimated {:.3} s of simulation on one core, about {:.3} s with tables and report on {threads} cores \
          (release build)",
         campaign.runs.len(),
-        simulation_s,
-        simulation_s / threads as f64 + REPORT_SECONDS
+        tally.simulation_s,
+        tally.simulation_s / threads as f64 + REPORT_SECONDS
     );
+}
+
+/// Warns of every run beyond the campaign's budget per run, before anything runs.
+fn print_budget_warnings(campaign: &Campaign) {
     let over: Vec<(String, String)> =
         campaign.runs.iter().filter_map(|spec| campaign.budget.warning(spec).map(|why| (spec.run_id(), why))).collect();
     for (run_id, why) in &over {
@@ -438,7 +464,6 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
             campaign.budget.memory_per_run / 1e6
         );
     }
-    Ok(())
 }
 
 fn report_command(reports: &Path, file: &Path, force: bool, lock_wait: Option<f64>) -> anyhow::Result<()> {
@@ -448,14 +473,7 @@ fn report_command(reports: &Path, file: &Path, force: bool, lock_wait: Option<f6
     // can never overwrite the tables of a `run` that stored more.
     let _publishing = lock_publishing(campaign, &layout, lock_wait)?;
     crate::output::sweep_temporaries(&layout);
-    let (mut records, mut left_out) = (Vec::new(), report::LeftOut::default());
-    for spec in &campaign.runs {
-        match read_stored(&layout, spec) {
-            Stored::Current(record) | Stored::OtherBuild(record) => records.push(record),
-            Stored::Corrupt(why) => left_out.corrupt.push((spec.run_id(), why)),
-            Stored::Missing => left_out.missing.push(spec.run_id()),
-        }
-    }
+    let (records, mut left_out) = stored_for_report(campaign, &layout);
     // A shard that has not run yet, or an array task that died (time limit, node failure):
     // rerunning `run` (or its shard) fills these in, and simulates corrupt records again.
     for (run_id, why) in &left_out.corrupt {
@@ -475,6 +493,36 @@ fn report_command(reports: &Path, file: &Path, force: bool, lock_wait: Option<f6
         left_out.previous_table = table::keep_larger_table_aside(&layout, records.len())?;
     }
     publish(campaign, &layout, &records, &left_out)?;
+    warn_about_partial_report(campaign, &records, &left_out);
+    let other = records.iter().filter(|r| r.build != BUILD).count();
+    println!(
+        "{}: report re-rendered from {} stored runs ({} without results, {} corrupt, {other} of another build) -> {}",
+        campaign.name,
+        records.len(),
+        left_out.missing.len(),
+        left_out.corrupt.len(),
+        layout.root.display()
+    );
+    Ok(())
+}
+
+/// The stored records of `campaign` (current or of another build), and the runs left out:
+/// those without a record and those whose record is corrupt.
+fn stored_for_report(campaign: &Campaign, layout: &Layout) -> (Vec<RunRecord>, report::LeftOut) {
+    let (mut records, mut left_out) = (Vec::new(), report::LeftOut::default());
+    for spec in &campaign.runs {
+        match read_stored(layout, spec) {
+            Stored::Current(record) | Stored::OtherBuild(record) => records.push(record),
+            Stored::Corrupt(why) => left_out.corrupt.push((spec.run_id(), why)),
+            Stored::Missing => left_out.missing.push(spec.run_id()),
+        }
+    }
+    (records, left_out)
+}
+
+/// Warns on stderr of what a re-rendered report lacks: runs without a result, a partial
+/// table (and the larger one kept aside), runs made by another build.
+fn warn_about_partial_report(campaign: &Campaign, records: &[RunRecord], left_out: &report::LeftOut) {
     let missing = &left_out.missing;
     if !missing.is_empty() {
         eprintln!(
@@ -505,16 +553,6 @@ fn report_command(reports: &Path, file: &Path, force: bool, lock_wait: Option<f6
             listed(other.iter().copied())
         );
     }
-    println!(
-        "{}: report re-rendered from {} stored runs ({} without results, {} corrupt, {} of another build) -> {}",
-        campaign.name,
-        records.len(),
-        missing.len(),
-        left_out.corrupt.len(),
-        other.len(),
-        layout.root.display()
-    );
-    Ok(())
 }
 
 /// What `mdsolids slurm` was asked for.

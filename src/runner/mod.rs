@@ -136,10 +136,36 @@ pub fn run_campaign_with(
     other_builds: OtherBuilds,
 ) -> anyhow::Result<CampaignRun> {
     let campaign = &plan.campaign;
+    let (stored, corrupt, other_build) = read_store(campaign, layout, other_builds);
+    let todo: Vec<&RunSpec> = campaign.runs.iter().zip(&stored).filter(|(_, r)| r.is_none()).map(|(s, _)| s).collect();
+    let (mut frames, mut simulated, mut fresh) = (BTreeMap::new(), 0, Vec::new());
+    for (spec, ran) in todo.iter().zip(simulate_missing(plan, layout, &todo, jobs, lock_wait)?) {
+        if let Some(movie) = ran.panel {
+            frames.insert(spec.run_id(), movie);
+        }
+        simulated += usize::from(ran.simulated);
+        fresh.push(ran.record);
+    }
+    let mut fresh = fresh.into_iter();
+    let records: Vec<RunRecord> = stored
+        .into_iter()
+        .map(|r| r.unwrap_or_else(|| fresh.next().expect("one fresh record per missing run")))
+        .collect();
+    write_missing_movies(plan, layout, &records, frames)?;
+    Ok(CampaignRun { cached: records.len() - simulated, records, simulated, corrupt, other_build })
+}
+
+/// Each run's usable stored record (`None`: to simulate), with the runs whose record was
+/// corrupt (and why) and those made by another build (and which). A run stopped by its
+/// budget is tried again: its outcome depends on the machine and the budget, not only on its
+/// spec.
+fn read_store(
+    campaign: &Campaign,
+    layout: &Layout,
+    other_builds: OtherBuilds,
+) -> (Vec<Option<RunRecord>>, RunNotes, RunNotes) {
     let (mut corrupt, mut other_build) = (Vec::new(), Vec::new());
-    // A run stopped by its budget is tried again: its outcome depends on the machine and the
-    // budget, not only on its spec.
-    let stored: Vec<Option<RunRecord>> = campaign
+    let stored = campaign
         .runs
         .iter()
         .map(|spec| {
@@ -161,7 +187,31 @@ pub fn run_campaign_with(
             (record.status != RunStatus::Budget).then_some(record)
         })
         .collect();
-    let todo: Vec<&RunSpec> = campaign.runs.iter().zip(&stored).filter(|(_, r)| r.is_none()).map(|(s, _)| s).collect();
+    (stored, corrupt, other_build)
+}
+
+/// Run ids with a note each (why a record was corrupt, which build made it).
+type RunNotes = Vec<(String, String)>;
+
+/// One run of [`simulate_missing`]: its record, whether it was simulated here (not found
+/// stored by another process meanwhile), and its movie frames if its scene shows its runs side
+/// by side.
+struct Ran {
+    record: RunRecord,
+    simulated: bool,
+    panel: Option<Movie>,
+}
+
+/// Simulates and stores the runs `todo` on `jobs` threads, longest first. The first failure
+/// to store a result stops the campaign with an error; an interruption with [`Interrupted`].
+fn simulate_missing(
+    plan: &Plan,
+    layout: &Layout,
+    todo: &[&RunSpec],
+    jobs: Option<usize>,
+    lock_wait: Duration,
+) -> anyhow::Result<Vec<Ran>> {
+    let campaign = &plan.campaign;
     let progress = progress_bar(todo.len() as u64);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs.unwrap_or(0))
@@ -171,30 +221,25 @@ pub fn run_campaign_with(
     // short ones fill the gaps, instead of a late long run keeping one core busy alone.
     let mut order: Vec<usize> = (0..todo.len()).collect();
     order.sort_by(|&a, &b| todo[b].estimated_seconds().total_cmp(&todo[a].estimated_seconds()));
-    let finished: Vec<Mutex<Option<(RunRecord, bool)>>> = todo.iter().map(|_| Mutex::new(None)).collect();
-    // Movies of scenes that show their runs side by side, kept until all runs have ended.
-    let panels: Vec<Mutex<Option<Movie>>> = todo.iter().map(|_| Mutex::new(None)).collect();
-    // The first failure to store a result (disk full, permissions) stops the campaign: runs
-    // not yet started are skipped, the ones running finish, everything stored stays.
-    let failure: Mutex<Option<anyhow::Error>> = Mutex::new(None);
-    let stopping = AtomicBool::new(false);
+    let slots = Slots::new(todo.len());
     // First every run whose lock is free; the runs another process holds are put aside and
     // waited for once all others are done, so a suspended process holds back nothing else.
-    let busy: Mutex<Vec<usize>> = Mutex::new(Vec::new());
     for patience in [None, Some(lock_wait)] {
-        let queue = if patience.is_none() { order.clone() } else { std::mem::take(&mut *busy.lock().expect("pushed")) };
+        let queue =
+            if patience.is_none() { order.clone() } else { std::mem::take(&mut *slots.busy.lock().expect("pushed")) };
         pool.scope_fifo(|scope| {
             for &index in &queue {
-                let (spec, slot, panel, progress) = (todo[index], &finished[index], &panels[index], &progress);
-                let (failure, stopping, busy) = (&failure, &stopping, &busy);
+                let (spec, slots, progress) = (todo[index], &slots, &progress);
                 scope.spawn_fifo(move |_| {
-                    if !stopping.load(Ordering::Relaxed) && !INTERRUPTED.load(Ordering::Relaxed) {
-                        match run_and_store(plan, layout, spec, panel, patience) {
-                            Ok(Some(done)) => *slot.lock().expect("a slot is written once") = Some(done),
-                            Ok(None) => return busy.lock().expect("busy runs are only pushed").push(index),
+                    if !slots.stopping.load(Ordering::Relaxed) && !INTERRUPTED.load(Ordering::Relaxed) {
+                        match run_and_store(plan, layout, spec, &slots.panels[index], patience) {
+                            Ok(Some(done)) => {
+                                *slots.finished[index].lock().expect("a slot is written once") = Some(done)
+                            }
+                            Ok(None) => return slots.busy.lock().expect("busy runs are only pushed").push(index),
                             Err(error) => {
-                                stopping.store(true, Ordering::Relaxed);
-                                failure.lock().expect("failures are only pushed").get_or_insert(error);
+                                slots.stopping.store(true, Ordering::Relaxed);
+                                slots.failure.lock().expect("failures are only pushed").get_or_insert(error);
                             }
                         }
                     }
@@ -204,34 +249,59 @@ pub fn run_campaign_with(
         });
     }
     progress.finish_and_clear();
-    if let Some(error) = failure.into_inner().expect("failures are only pushed") {
-        let kept = finished.iter().filter(|slot| slot.lock().is_ok_and(|s| s.is_some())).count();
-        return Err(error.context(format!(
-            "campaign '{}' stopped; {kept} runs finished now and every result stored before are kept in {}",
-            campaign.name,
-            layout.root.join("runs").display()
-        )));
+    slots.into_runs(campaign, layout)
+}
+
+/// Where the parallel runs of [`simulate_missing`] leave what they did, one slot per run.
+struct Slots {
+    /// Each run's record, with whether it was simulated here.
+    finished: Vec<Mutex<Option<(RunRecord, bool)>>>,
+    /// Movies of scenes that show their runs side by side, kept until all runs have ended.
+    panels: Vec<Mutex<Option<Movie>>>,
+    /// The first failure to store a result (disk full, permissions): it stops the campaign;
+    /// runs not yet started are skipped, the ones running finish, everything stored stays.
+    failure: Mutex<Option<anyhow::Error>>,
+    stopping: AtomicBool,
+    /// Runs whose lock another process holds, waited for last.
+    busy: Mutex<Vec<usize>>,
+}
+
+impl Slots {
+    fn new(runs: usize) -> Slots {
+        Slots {
+            finished: (0..runs).map(|_| Mutex::new(None)).collect(),
+            panels: (0..runs).map(|_| Mutex::new(None)).collect(),
+            failure: Mutex::new(None),
+            stopping: AtomicBool::new(false),
+            busy: Mutex::new(Vec::new()),
+        }
     }
-    if finished.iter().any(|slot| slot.lock().is_ok_and(|s| s.is_none())) {
-        return Err(Interrupted { stored: stored_count(campaign, layout), total: campaign.runs.len() }.into());
+
+    /// Every run's outcome, or the failure that stopped the campaign, or [`Interrupted`] when
+    /// some runs never started.
+    fn into_runs(self, campaign: &Campaign, layout: &Layout) -> anyhow::Result<Vec<Ran>> {
+        if let Some(error) = self.failure.into_inner().expect("failures are only pushed") {
+            let kept = self.finished.iter().filter(|slot| slot.lock().is_ok_and(|s| s.is_some())).count();
+            return Err(error.context(format!(
+                "campaign '{}' stopped; {kept} runs finished now and every result stored before are kept in {}",
+                campaign.name,
+                layout.root.join("runs").display()
+            )));
+        }
+        if self.finished.iter().any(|slot| slot.lock().is_ok_and(|s| s.is_none())) {
+            return Err(Interrupted { stored: stored_count(campaign, layout), total: campaign.runs.len() }.into());
+        }
+        Ok(self
+            .finished
+            .into_iter()
+            .zip(self.panels)
+            .map(|(slot, panel)| {
+                let (record, simulated) =
+                    slot.into_inner().expect("a slot is written once").expect("every queued run ends");
+                Ran { record, simulated, panel: panel.into_inner().expect("a panel is written once") }
+            })
+            .collect())
     }
-    let frames: BTreeMap<String, Movie> = todo
-        .iter()
-        .zip(panels)
-        .filter_map(|(spec, panel)| panel.into_inner().expect("a panel is written once").map(|m| (spec.run_id(), m)))
-        .collect();
-    let fresh: Vec<(RunRecord, bool)> = finished
-        .into_iter()
-        .map(|slot| slot.into_inner().expect("a slot is written once").expect("every queued run ends"))
-        .collect();
-    let simulated = fresh.iter().filter(|(_, simulated)| *simulated).count();
-    let mut fresh = fresh.into_iter();
-    let records: Vec<RunRecord> = stored
-        .into_iter()
-        .map(|r| r.unwrap_or_else(|| fresh.next().expect("one fresh record per missing run").0))
-        .collect();
-    write_missing_movies(plan, layout, &records, frames)?;
-    Ok(CampaignRun { cached: records.len() - simulated, records, simulated, corrupt, other_build })
 }
 
 /// Runs `spec` and stores its record (and movie), holding the run's lock file so that another

@@ -317,21 +317,7 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
     probe: &mut P,
 ) -> Trace {
     let start = Start { x: state.particles.x.clone(), y: state.particles.y.clone() };
-    let mut trace = Trace::default();
-    // Room for every sample (the start, every `every` steps, the end, the relaxed state) up
-    // front: growing the series by doubling would leave freed blocks
-    // resident, ~2.5 × the series at the peak (untouched room costs no memory).
-    let samples = (sampling.steps / sampling.every.max(1)) as usize + 3;
-    for series in [&mut trace.time, &mut trace.kinetic, &mut trace.potential, &mut trace.dissipated, &mut trace.work] {
-        series.reserve_exact(samples);
-    }
-    if sampling.displacements {
-        for series in
-            [&mut trace.displacement_x, &mut trace.displacement_y, &mut trace.velocity_x, &mut trace.velocity_y]
-        {
-            series.reserve_exact(samples);
-        }
-    }
+    let mut trace = Trace::with_room_for(sampling);
     integrator.start(state, field, sampling.dt);
     probe.observe(state);
     if let Err(reason) = trace.sample(state, &*field, &start, sampling.displacements) {
@@ -373,19 +359,33 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
     }
     trace.loop_s = started.elapsed().as_secs_f64();
     if let Some(w) = watch {
-        trace.relaxed_at = w.relaxed.map(|(at, _)| at);
-        trace.relaxed_by = w.relaxed.map(|(_, by)| by.to_string());
-        if trace.relaxed_at.is_none() && trace.status == RunStatus::Ok {
-            trace.status = RunStatus::NoEquilibrium;
-            let criterion = match w.rule.residual_force {
-                Some(force) => format!("the largest static force did not stay below {force:e} N"),
-                None => format!("E_kin/E_pot did not stay below {:e}", w.rule.kinetic_ratio),
-            };
-            trace.message = format!("{criterion} within {:.6e} s", state.time);
-        }
+        w.judge(&mut trace, state.time);
     }
     trace.steps = state.steps;
     trace
+}
+
+impl Trace {
+    /// An empty trace with room for every sample of `sampling` (the start, every `every` steps,
+    /// the end, the relaxed state) up front: growing the series by doubling would leave freed
+    /// blocks resident, ~2.5 × the series at the peak (untouched room costs no memory).
+    fn with_room_for(sampling: &Sampling) -> Trace {
+        let mut trace = Trace::default();
+        let samples = (sampling.steps / sampling.every.max(1)) as usize + 3;
+        for series in
+            [&mut trace.time, &mut trace.kinetic, &mut trace.potential, &mut trace.dissipated, &mut trace.work]
+        {
+            series.reserve_exact(samples);
+        }
+        if sampling.displacements {
+            for series in
+                [&mut trace.displacement_x, &mut trace.displacement_y, &mut trace.velocity_x, &mut trace.velocity_y]
+            {
+                series.reserve_exact(samples);
+            }
+        }
+        trace
+    }
 }
 
 /// Follows the relaxation criterion in force: it must hold at `confirmations` consecutive checks.
@@ -422,6 +422,21 @@ impl Streak {
 impl RelaxationWatch {
     fn new(rule: Relaxation) -> Self {
         RelaxationWatch { rule, streak: Streak::default(), relaxed: None, scratch: Default::default() }
+    }
+
+    /// Writes the verdict into `trace` at the end of a run that stopped at `time` (s): when
+    /// and by which criterion it relaxed, or `no_equilibrium` if a run otherwise ok never did.
+    fn judge(self, trace: &mut Trace, time: f64) {
+        trace.relaxed_at = self.relaxed.map(|(at, _)| at);
+        trace.relaxed_by = self.relaxed.map(|(_, by)| by.to_string());
+        if trace.relaxed_at.is_none() && trace.status == RunStatus::Ok {
+            trace.status = RunStatus::NoEquilibrium;
+            let criterion = match self.rule.residual_force {
+                Some(force) => format!("the largest static force did not stay below {force:e} N"),
+                None => format!("E_kin/E_pot did not stay below {:e}", self.rule.kinetic_ratio),
+            };
+            trace.message = format!("{criterion} within {time:.6e} s");
+        }
     }
 
     /// True once a criterion holds; checks only every `check_every` steps.
