@@ -49,7 +49,8 @@ pub fn references(spec: &RunSpec) -> (Option<f64>, Option<f64>) {
         LawSpec::Power { beta } if spec.gamma == 0.0 => {
             (Some(theory::power_law_contact_duration(spec.k, beta, spec.mass, spec.v0)), Some(1.0))
         }
-        LawSpec::Power { .. } => (None, None),
+        // A damped power law (and any law without a closed form here) has no exact answer.
+        _ => (None, None),
     }
 }
 

@@ -156,7 +156,7 @@ impl Integrator for VelocityVerlet {
 /// 1.3512, so the middle one runs backwards (−1.7024 dt). The composition cancels the
 /// symmetric second-order error of velocity Verlet: order 4, still symplectic, three force
 /// evaluations per step. Its stability limit, ω dt < 1.573, is narrower than velocity Verlet's
-/// 2 because of the long sub-steps (`crate::stability` measures it).
+/// 2 because of the long sub-steps (`crate::plan::stability` measures it).
 #[derive(Clone, Debug, Default)]
 pub struct ForestRuth {
     verlet: VelocityVerlet,
