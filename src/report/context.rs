@@ -16,6 +16,19 @@ use crate::sim::RunStatus;
 use crate::spec::{Campaign, SceneKind};
 use crate::summary::ScalingFit;
 
+/// Runs of the campaign that are not in a report, and why (`mdsolids report` of a store that
+/// lacks some).
+#[derive(Clone, Debug, Default)]
+pub struct LeftOut {
+    /// Runs without a stored record.
+    pub missing: Vec<String>,
+    /// Runs whose stored record is corrupt, with why.
+    pub corrupt: Vec<(String, String)>,
+    /// The row count of the previous, larger results table, when it was kept aside as
+    /// `results.previous.csv` and `.parquet`.
+    pub previous_table: Option<usize>,
+}
+
 /// Everything the report templates show.
 #[derive(Serialize)]
 pub struct ReportContext {
@@ -186,7 +199,7 @@ pub fn build(
     campaign: &Campaign,
     records: &[RunRecord],
     fits: &[ScalingFit],
-    left_out: &super::LeftOut,
+    left_out: &LeftOut,
     figures: &[Figure],
     side_by_side: &[String],
 ) -> ReportContext {

@@ -4,6 +4,8 @@
 //! in, so the binary works from any directory. Only sections of the campaign's scenes show.
 
 mod context;
+
+pub use self::context::LeftOut;
 mod exponents;
 mod figure;
 mod figures;
@@ -26,19 +28,6 @@ use crate::summary::{ScalingFit, scaling_fits};
 
 const MARKDOWN_TEMPLATE: &str = include_str!("../../templates/report.md.tera");
 const HTML_TEMPLATE: &str = include_str!("../../templates/index.html.tera");
-
-/// Runs of the campaign that are not in a report, and why (`mdsolids report` of a store that
-/// lacks some).
-#[derive(Clone, Debug, Default)]
-pub struct LeftOut {
-    /// Runs without a stored record.
-    pub missing: Vec<String>,
-    /// Runs whose stored record is corrupt, with why.
-    pub corrupt: Vec<(String, String)>,
-    /// The row count of the previous, larger results table, when it was kept aside as
-    /// `results.previous.csv` and `.parquet`.
-    pub previous_table: Option<usize>,
-}
 
 /// Draws the figures and writes `report.md` and `index.html` for `records`, one per run of
 /// the campaign.
