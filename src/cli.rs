@@ -386,7 +386,7 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
         println!(
             "{:<28} {:<8} {:<16} {:>11.4e} {:>11.4e} {:>8.1} {:>10} {:>8} {:>7} {:>7}  {}",
             spec.run_id(),
-            spec.kind.name(),
+            spec.kind().name(),
             spec.integrator.name(),
             spec.dt,
             spec.t_c,
