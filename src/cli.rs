@@ -402,7 +402,7 @@ fn print_plan_rows<'a>(plan: &Plan, layout: &Layout) -> PlanTally<'a> {
         println!(
             "{:<28} {:<8} {:<16} {:>11.4e} {:>11.4e} {:>8.1} {:>10} {:>8} {:>7} {:>7}  {}",
             spec.run_id(),
-            spec.kind.name(),
+            spec.kind().name(),
             spec.integrator.name(),
             spec.dt,
             spec.t_c,

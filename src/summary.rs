@@ -17,8 +17,8 @@ struct Scaling {
 
 /// The impact speed of a chain wave or the kick speed of an impulse lattice (m/s).
 fn excitation_speed(r: &RunRecord) -> Option<f64> {
-    r.spec.wave.as_ref()?;
-    match r.spec.lattice.as_ref().and_then(|l| l.impulse) {
+    r.spec.wave()?;
+    match r.spec.lattice().and_then(|l| l.impulse) {
         Some(i) if i.top_row_force.is_none() => Some(i.vx.hypot(i.vy)),
         Some(_) => None,
         None => Some(r.spec.v0),
@@ -27,12 +27,12 @@ fn excitation_speed(r: &RunRecord) -> Option<f64> {
 
 /// The load per top-row node of a force-loaded lattice (N).
 fn load(r: &RunRecord) -> Option<f64> {
-    r.spec.lattice.as_ref().and_then(|l| l.force_per_node())
+    r.spec.lattice().and_then(|l| l.force_per_node())
 }
 
 /// |ΔW| of a relaxing chain (m).
 fn wall_displacement(r: &RunRecord) -> Option<f64> {
-    r.spec.relax.filter(|_| r.spec.lattice.is_none()).map(|_| r.spec.chain_wall_extension().abs())
+    r.spec.chain().and_then(|c| c.relax).map(|_| r.spec.chain_wall_extension().abs())
 }
 
 const SPEED: &[&str] = &["v0", "impulse.velocity"];

@@ -38,7 +38,7 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
     let mut columns = vec![
         strings(records, "run_id", |r| r.run_id.clone()),
         strings(records, "scene", |r| r.spec.scene.clone()),
-        strings(records, "kind", |r| r.spec.kind.name().into()),
+        strings(records, "kind", |r| r.spec.kind().name().into()),
         strings(records, "status", |r| r.status.to_string()),
         strings(records, "message", |r| r.message.clone()),
         strings(records, "build", |r| r.build.clone()),
@@ -62,7 +62,10 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         floats(records, "dt_per_tc", |r| r.spec.dt_per_tc()),
         floats(records, "t_c", |r| r.spec.t_c),
         floats(records, "duration", |r| r.spec.duration),
-        Column::new("n".into(), records.iter().map(|r| r.spec.n.map(|n| n as u64)).collect::<Vec<Option<u64>>>()),
+        Column::new(
+            "n".into(),
+            records.iter().map(|r| r.spec.chain().map(|c| c.n as u64)).collect::<Vec<Option<u64>>>(),
+        ),
         floats(records, "v0", |r| r.spec.v0),
         optional_floats(records, "contact_duration", |r| r.metrics.pair.contact_duration),
         optional_floats(records, "contact_duration_theory", |r| r.metrics.pair.contact_duration_theory),
@@ -96,20 +99,20 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         optional_floats(records, "mode_damping_ratio", |r| r.metrics.mode_damping_ratio),
         optional_floats(records, "stability_limit", |r| r.metrics.stability_limit),
     ];
-    if records.iter().any(|r| r.spec.lattice.is_some()) {
+    if records.iter().any(|r| r.spec.lattice().is_some()) {
         columns.extend(lattice_columns(records));
     }
     let anisotropic = |l: &crate::spec::LatticeSpec| {
         l.rotated || l.k_x != l.k_y || matches!(l.diagonals, Diagonals::Rising | Diagonals::Falling)
     };
-    if records.iter().any(|r| r.spec.lattice.as_ref().is_some_and(anisotropic)) {
+    if records.iter().any(|r| r.spec.lattice().is_some_and(anisotropic)) {
         columns.extend(directional_columns(records));
     }
-    if records.iter().any(|r| r.spec.kind == crate::spec::SceneKind::Chain && r.spec.relax.is_some()) {
+    if records.iter().any(|r| r.spec.chain().is_some_and(|c| c.relax.is_some())) {
         let m = |name: &str, get| metric(records, name, get);
         columns.extend([
             optional_floats(records, "wall_displacement", |r| {
-                r.spec.relax.filter(|_| r.spec.lattice.is_none()).map(|_| r.spec.chain_wall_extension())
+                r.spec.chain().and_then(|c| c.relax).map(|_| r.spec.chain_wall_extension())
             }),
             m("equilibrium_spacing", |m| m.chain.equilibrium_spacing),
             m("equilibrium_spacing_theory", |m| m.chain.equilibrium_spacing_theory),
@@ -122,7 +125,7 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
             m("tangent_stiffness_theory", |m| m.chain.tangent_stiffness_theory),
         ]);
     }
-    if records.iter().any(|r| r.spec.wave.is_some()) {
+    if records.iter().any(|r| r.spec.wave().is_some()) {
         for criterion in crate::measure::ARRIVAL_CRITERIA {
             columns.push(optional_floats(records, &format!("sound_speed_{criterion}"), |r| {
                 r.metrics.sound_speed(criterion)
@@ -151,12 +154,12 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
 /// The columns of lattice scenes (absent from campaigns without lattices): the resolved
 /// lattice, then each modulus from MD, from the static solution and from the continuum.
 fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
-    let lattice = |get: fn(&crate::spec::LatticeSpec) -> f64| move |r: &RunRecord| r.spec.lattice.as_ref().map(get);
+    let lattice = |get: fn(&crate::spec::LatticeSpec) -> f64| move |r: &RunRecord| r.spec.lattice().map(get);
     let sizes = |get: fn(&crate::spec::LatticeSpec) -> usize| {
-        records.iter().map(|r| r.spec.lattice.as_ref().map(|l| get(l) as u64)).collect::<Vec<Option<u64>>>()
+        records.iter().map(|r| r.spec.lattice().map(|l| get(l) as u64)).collect::<Vec<Option<u64>>>()
     };
     let words = |get: fn(&crate::spec::LatticeSpec) -> &'static str| {
-        records.iter().map(|r| r.spec.lattice.as_ref().map(get)).collect::<Vec<Option<&str>>>()
+        records.iter().map(|r| r.spec.lattice().map(get)).collect::<Vec<Option<&str>>>()
     };
     let m = |name: &str, get| metric(records, name, get);
     vec![
@@ -168,7 +171,7 @@ fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
         optional_floats(records, "k_y", lattice(|l| l.k_y)),
         optional_floats(records, "cut_fraction", lattice(|l| l.cut_fraction)),
         optional_floats(records, "stiffness_spread", lattice(|l| l.stiffness_spread)),
-        Column::new("seed".into(), records.iter().map(|r| r.spec.lattice.as_ref().map(|l| l.seed)).collect::<Vec<_>>()),
+        Column::new("seed".into(), records.iter().map(|r| r.spec.lattice().map(|l| l.seed)).collect::<Vec<_>>()),
         m("bond_fraction_kept", |m| m.lattice.bond_fraction_kept),
         optional_floats(records, "depth", lattice(|l| l.depth)),
         Column::new("supports".into(), words(|l| l.supports.name())),
@@ -178,9 +181,9 @@ fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
         ),
         Column::new("load_control".into(), words(|l| l.control.name())),
         optional_floats(records, "drive_strain", |r| {
-            r.spec.lattice.as_ref().filter(|l| l.control == crate::spec::Control::Velocity).map(|l| l.drive_strain)
+            r.spec.lattice().filter(|l| l.control == crate::spec::Control::Velocity).map(|l| l.drive_strain)
         }),
-        optional_floats(records, "load_per_node", |r| r.spec.lattice.as_ref().and_then(|l| l.force_per_node())),
+        optional_floats(records, "load_per_node", |r| r.spec.lattice().and_then(|l| l.force_per_node())),
         m("youngs_modulus", |m| m.lattice.youngs_modulus),
         m("youngs_modulus_fem", |m| m.lattice.youngs_modulus_fem),
         m("youngs_modulus_theory", |m| m.lattice.youngs_modulus_theory),
@@ -206,7 +209,7 @@ fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
         ),
         Column::new(
             "relax_steps".into(),
-            records.iter().map(|r| r.spec.lattice.as_ref().map(|_| r.steps)).collect::<Vec<Option<u64>>>(),
+            records.iter().map(|r| r.spec.lattice().map(|_| r.steps)).collect::<Vec<Option<u64>>>(),
         ),
     ]
 }
@@ -216,7 +219,7 @@ fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
 /// its static value.
 fn directional_columns(records: &[RunRecord]) -> Vec<Column> {
     let along = |x: bool, get: fn(&crate::runner::Metrics) -> Option<f64>| {
-        move |r: &RunRecord| r.spec.lattice.as_ref().filter(|l| l.rotated == x).and_then(|_| get(&r.metrics))
+        move |r: &RunRecord| r.spec.lattice().filter(|l| l.rotated == x).and_then(|_| get(&r.metrics))
     };
     vec![
         optional_floats(records, "youngs_modulus_x", along(true, |m| m.lattice.youngs_modulus)),

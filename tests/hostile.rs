@@ -180,8 +180,8 @@ fn check_sane(campaign: &Campaign) -> Result<(), TestCaseError> {
         }
         prop_assert!((1..=2_000_000_000).contains(&steps), "steps = {} in {:?}", steps, spec);
         prop_assert!(samples >= 2);
-        prop_assert!(spec.n.is_none_or(|n| (1..=100_000).contains(&n)));
-        if let Some(l) = &spec.lattice {
+        prop_assert!(spec.chain().is_none_or(|c| (1..=100_000).contains(&c.n)));
+        if let Some(l) = spec.lattice() {
             prop_assert!((2..=2000).contains(&l.nx) && (2..=2000).contains(&l.ny));
         }
     }

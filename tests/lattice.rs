@@ -60,7 +60,7 @@ fn lattice_without_diagonals_stretches_but_shears_as_a_mechanism() {
     );
     let records = execute_all(&yaml);
     for r in &records {
-        let tensile = r.spec.lattice.as_ref().unwrap().load_case.name() == "tensile";
+        let tensile = r.spec.lattice().unwrap().load_case.name() == "tensile";
         if tensile {
             // N_x columns of springs k carry the load over a width of N_x − 1 spacings:
             // E = k N_x/(N_x − 1)/d exactly, ν = 0.
@@ -87,7 +87,7 @@ fn static_answer_approaches_the_continuum() {
         "    relax: {max_tc: 1}\n",
         "      lattice.nx: [6, 11, 21, 41]\n      lattice.ny: [6, 11, 21, 41]\n",
     );
-    let specs: Vec<_> = runs(&yaml).into_iter().filter(|s| s.lattice.as_ref().is_some_and(|l| l.nx == l.ny)).collect();
+    let specs: Vec<_> = runs(&yaml).into_iter().filter(|s| s.lattice().is_some_and(|l| l.nx == l.ny)).collect();
     let errors: Vec<f64> = specs
         .iter()
         .map(|s| {
@@ -171,7 +171,7 @@ fn mass_and_stiffness_derived_from_the_solid() {
     let spec = &runs(yaml)[0];
     let block = 7850.0 * 0.5 * 0.3 * 0.01;
     assert!((spec.mass * 24.0 - block).abs() < 1e-12 * block, "node mass {}", spec.mass);
-    let k_diag = spec.lattice.as_ref().unwrap().k_diag;
+    let k_diag = spec.lattice().unwrap().k_diag;
     let e = mdsolids::measure::anisotropic_moduli(spec.k, spec.k, k_diag, k_diag, 0.01).youngs_modulus_y;
     assert!((e - 200.0e9).abs() < 1e-9 * 200.0e9, "continuum E {e} (round-off only)");
     // Giving both mass and density is refused.
@@ -207,7 +207,7 @@ fn velocity_control_matches_the_displacement_controlled_static_answer() {
     for r in execute_all(&yaml) {
         assert_eq!(r.status, RunStatus::Ok, "{}: {}", label(&r), r.message);
         let m = &r.metrics;
-        match r.spec.lattice.as_ref().unwrap().load_case.name() {
+        match r.spec.lattice().unwrap().load_case.name() {
             "tensile" => {
                 assert!(relative(m.lattice.youngs_modulus, m.lattice.youngs_modulus_fem) < 5e-3, "E {}", label(&r))
             }
@@ -243,7 +243,7 @@ fn residual_force_under_velocity_control_is_judged_against_the_drive_force() {
         // Half a t_c past the drive's end: the first check after it (one t_c apart) does not count.
         let after = m.dissipation_time.unwrap() / r.spec.t_c;
         assert!(after > 100.5, "relaxed at {after} t_c, as the drive stopped: {}", label(r));
-        match r.spec.lattice.as_ref().unwrap().load_case.name() {
+        match r.spec.lattice().unwrap().load_case.name() {
             "tensile" => {
                 assert!(relative(m.lattice.youngs_modulus, m.lattice.youngs_modulus_fem) < 1e-5, "E {}", label(r))
             }
@@ -272,7 +272,7 @@ fn periodic_strip_in_tension_has_the_constrained_modulus_as_its_reference() {
     );
     for r in execute_all(&yaml) {
         assert_eq!(r.status, RunStatus::Ok, "{}: {}", label(&r), r.message);
-        let l = r.spec.lattice.as_ref().unwrap();
+        let l = r.spec.lattice().unwrap();
         let c22 = Some((r.spec.k + l.k_diag) / l.depth);
         let m = &r.metrics;
         assert!(relative(m.lattice.youngs_modulus_theory, c22) < 1e-15, "theory {}", label(&r));

@@ -83,7 +83,7 @@ fn hertz_lattice_moduli_scale_as_the_cube_root_of_the_load() {
             if case == "tensile" { r.metrics.lattice.youngs_modulus } else { r.metrics.lattice.shear_modulus }
         };
         let points: Vec<(f64, f64)> =
-            records.iter().map(|r| (r.spec.lattice.as_ref().unwrap().load_per_node, get(r).unwrap())).collect();
+            records.iter().map(|r| (r.spec.lattice().unwrap().load_per_node, get(r).unwrap())).collect();
         let fit = power_law_fit(&points).unwrap();
         // Issue bound 0.02: springs stretched by δ ∝ F^(2/3) have C δ^(1/2) ∝ F^(1/3); the
         // lattice's geometry changes by the strain (≤ 2e-2 here), so p is 1/3 to ~1e-3.
@@ -153,9 +153,9 @@ fn anisotropic_lattice_in_both_directions() {
     ok(&records);
     assert_md_matches_static(&records);
     let (y, x) = (&records[0], &records[1]);
-    assert!(!y.spec.lattice.as_ref().unwrap().rotated && x.spec.lattice.as_ref().unwrap().rotated);
+    assert!(!y.spec.lattice().unwrap().rotated && x.spec.lattice().unwrap().rotated);
     // Turned by 90°: 6 × 7 with k_x = 2k, k_y = k and the rising family now falling.
-    let turned = x.spec.lattice.as_ref().unwrap();
+    let turned = x.spec.lattice().unwrap();
     assert_eq!((turned.nx, turned.ny, turned.k_x, turned.k_y), (6, 7, 2.0, 1.0));
     assert_eq!(turned.diagonals, mdsolids::spec::Diagonals::Falling);
     // One diagonal family: the block shears freely under a pull, so each direction pulls like

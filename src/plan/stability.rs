@@ -232,8 +232,7 @@ fn network_key(spec: &RunSpec) -> String {
         duration: 0.0,
         steps: 0,
         samples: 0,
-        relax: None,
-        wave: None,
+        scene_kind: spec.scene_kind.without_relax_and_wave(),
         movie: None,
         ..spec.clone()
     };

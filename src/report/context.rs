@@ -232,7 +232,7 @@ pub fn build(
         has_chain: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Chain),
         has_lattice: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Lattice),
         target_error: format!("{:e}", campaign.target_error),
-        has_wave: records.iter().any(|r| r.spec.wave.is_some()),
+        has_wave: records.iter().any(|r| r.spec.wave().is_some()),
         scenes: campaign
             .scenes
             .iter()
@@ -264,7 +264,7 @@ fn section(
         LawSpec::Linear => format!("linear springs k = {} N/m", number(s.k)),
         LawSpec::Power { beta } => format!("power-law springs C = {} N/m^β, β = {}", number(s.k), number(beta)),
     };
-    let physics = match &s.lattice {
+    let physics = match s.lattice() {
         Some(l) => {
             format!(
                 "{law} along rows and columns, diagonals k_d = {} N/m (k_d/k = {}), m = {} kg, a = {} m, depth d = {} m, {} supports, {}, {}",
@@ -318,12 +318,12 @@ fn section(
         orders: if kind == SceneKind::Pair { order_rows(records, scene) } else { Vec::new() },
         chain_rows: mine
             .iter()
-            .filter(|r| kind == SceneKind::Chain && r.spec.relax.is_none())
+            .filter(|r| kind == SceneKind::Chain && r.spec.relax().is_none())
             .map(|r| chain_row(r))
             .collect(),
         wall_rows: mine
             .iter()
-            .filter(|r| kind == SceneKind::Chain && r.spec.relax.is_some())
+            .filter(|r| kind == SceneKind::Chain && r.spec.relax().is_some())
             .map(|r| wall_row(r))
             .collect(),
         lattice_rows: mine.iter().filter_map(|r| lattice_row(r)).collect(),
@@ -401,8 +401,8 @@ fn chain_row(r: &RunRecord) -> ChainRow {
     ChainRow {
         run_id: r.run_id.clone(),
         label: group_label(r),
-        n: r.spec.n.map(|n| n.to_string()).unwrap_or_default(),
-        node: r.spec.node.map(|n| n.to_string()).unwrap_or_default(),
+        n: r.spec.chain().map(|c| c.n.to_string()).unwrap_or_default(),
+        node: r.spec.chain().map(|c| c.node.to_string()).unwrap_or_default(),
         dt_per_tc: number(r.spec.dt_per_tc()),
         energy_error: error(r.metrics.energy_error),
         mode_error: error(r.metrics.chain.chain_mode_error),
@@ -465,7 +465,7 @@ fn springs(r: &RunRecord, l: &crate::spec::LatticeSpec) -> String {
 }
 
 fn lattice_row(r: &RunRecord) -> Option<LatticeRow> {
-    let l = r.spec.lattice.as_ref().filter(|l| l.impulse.is_none())?;
+    let l = r.spec.lattice().filter(|l| l.impulse.is_none())?;
     let m = &r.metrics;
     let tensile = l.load_case == crate::spec::LoadCase::Tensile;
     let (modulus, md, fem, theory, tangent_md, tangent_fem) = match (tensile, l.rotated) {

@@ -29,7 +29,7 @@ pub fn draw_all(campaign: &Campaign, records: &[RunRecord], fits: &[ScalingFit])
                 if let Some((label, members)) = groups.first() {
                     figures.push(displacement_figure(scene, label, representative(members))?);
                 }
-                if records.iter().any(|r| r.spec.scene == *scene && r.spec.wave.is_some()) {
+                if records.iter().any(|r| r.spec.scene == *scene && r.spec.wave().is_some()) {
                     figures.push(relaxation_figure(scene, &groups)?);
                 }
             }
@@ -200,7 +200,7 @@ fn modulus_ratios(r: &RunRecord) -> Option<(f64, Option<f64>)> {
 /// size, one curve per combination of the other grid values; `None` with a single size.
 fn size_figure(scene: &str, records: &[RunRecord]) -> anyhow::Result<Option<Figure>> {
     let mine: Vec<&RunRecord> = records.iter().filter(|r| r.spec.scene == scene).collect();
-    let size = |r: &RunRecord| r.spec.lattice.as_ref().map_or(0, |l| l.nx.max(l.ny));
+    let size = |r: &RunRecord| r.spec.lattice().map_or(0, |l| l.nx.max(l.ny));
     let sizes: std::collections::BTreeSet<usize> = mine.iter().map(|r| size(r)).collect();
     if sizes.len() < 2 {
         return Ok(None);

@@ -10,15 +10,13 @@ use crate::sim::RunStatus;
 /// the displacement and the velocity along its livelier axis as space–time maps.
 pub fn probe_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Figure>> {
     let Some(r) = records.iter().find(|r| {
-        r.spec.scene == scene
-            && r.status == RunStatus::Ok
-            && r.spec.lattice.as_ref().is_some_and(|l| !l.probes.is_empty())
+        r.spec.scene == scene && r.status == RunStatus::Ok && r.spec.lattice().is_some_and(|l| !l.probes.is_empty())
     }) else {
         return Ok(Vec::new());
     };
     let mut figures = Vec::new();
     let run = r.spec.varied_label(|_| true);
-    for probe in r.trace.probes.iter().filter(|p| r.spec.lattice.as_ref().is_some_and(|l| is_requested(l, p))) {
+    for probe in r.trace.probes.iter().filter(|p| r.spec.lattice().is_some_and(|l| is_requested(l, p))) {
         let along = if probe.name.starts_with("row") {
             "node along the row (0: left)"
         } else {
@@ -66,7 +64,7 @@ fn is_requested(lattice: &crate::spec::LatticeSpec, probe: &crate::sim::ProbeTra
 /// along the line, displacements and velocities); `None` unless the run asks for probes.
 pub fn probe_table(record: &RunRecord) -> Option<String> {
     let probes = &record.trace.probes;
-    if record.spec.lattice.as_ref().is_none_or(|l| l.probes.is_empty()) || probes.is_empty() {
+    if record.spec.lattice().is_none_or(|l| l.probes.is_empty()) || probes.is_empty() {
         return None;
     }
     let mut csv = String::from("time,probe,node,index,displacement_x,displacement_y,velocity_x,velocity_y\n");

@@ -80,7 +80,7 @@ type Ensemble<'a> = (String, f64, Vec<&'a RunRecord>);
 fn ensembles<'a>(records: &'a [RunRecord], scene: &str) -> Vec<Ensemble<'a>> {
     let mut out: Vec<Ensemble> = Vec::new();
     for r in records.iter().filter(|r| r.spec.scene == scene) {
-        let Some(l) = r.spec.lattice.as_ref().filter(|l| l.is_random() || r.spec.varied.contains_key("seed")) else {
+        let Some(l) = r.spec.lattice().filter(|l| l.is_random() || r.spec.varied.contains_key("seed")) else {
             continue;
         };
         let label = r.spec.varied_label(|path| path != "seed");

@@ -23,7 +23,7 @@ fn sweeps_the_limit(records: &[RunRecord], scene: &str) -> bool {
 /// The y coordinate of a run on the stability map: k_d/k for lattices, else the damping
 /// ratio of the fastest mode; zero is drawn at [`MAP_FLOOR`] on the logarithmic axis.
 fn map_y(r: &RunRecord) -> f64 {
-    let y = match &r.spec.lattice {
+    let y = match r.spec.lattice() {
         Some(l) => l.k_diag / r.spec.k,
         None => r.metrics.mode_damping_ratio.unwrap_or(0.0),
     };
@@ -147,7 +147,7 @@ pub fn stability_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<V
     let mine: Vec<&RunRecord> =
         records.iter().filter(|r| r.spec.scene == scene && r.metrics.dt_omega_max.is_some()).collect();
     let Some(first) = mine.first() else { return Ok(Vec::new()) };
-    let lattice = first.spec.kind == SceneKind::Lattice;
+    let lattice = first.spec.kind() == SceneKind::Lattice;
     let mut integrators: Vec<crate::sim::IntegratorKind> = Vec::new();
     for r in &mine {
         if !integrators.contains(&r.spec.integrator) {

@@ -30,13 +30,13 @@ pub struct WaveRow {
 pub fn wave_rows(records: &[RunRecord], scene: &str) -> Vec<WaveRow> {
     records
         .iter()
-        .filter(|r| r.spec.scene == scene && r.spec.wave.is_some())
+        .filter(|r| r.spec.scene == scene && r.spec.wave().is_some())
         .map(|r| {
             let m = &r.metrics;
             WaveRow {
                 run_id: r.run_id.clone(),
                 label: r.spec.varied_label(|_| true),
-                v0: match r.spec.lattice.as_ref().and_then(|l| l.impulse) {
+                v0: match r.spec.lattice().and_then(|l| l.impulse) {
                     Some(i) => impulse_words(&i),
                     None => format!("v0 = {} m/s", number(r.spec.v0)),
                 },
@@ -99,10 +99,11 @@ fn speed_figure(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Option<Figur
 /// The displacement in space and time of the first ok wave run of `scene`: a chain's
 /// particles (walls left out), or the kicked column of an impulse lattice; `None` without one.
 fn space_time_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Option<Figure>> {
-    let first_ok = records.iter().find(|r| r.spec.scene == scene && r.spec.wave.is_some() && r.status == RunStatus::Ok);
+    let first_ok =
+        records.iter().find(|r| r.spec.scene == scene && r.spec.wave().is_some() && r.status == RunStatus::Ok);
     let Some(r) = first_ok else { return Ok(None) };
     let t = &r.trace;
-    let (values, rows, what): (Vec<Vec<f64>>, &str, &str) = match r.spec.kind {
+    let (values, rows, what): (Vec<Vec<f64>>, &str, &str) = match r.spec.kind() {
         SceneKind::Lattice => (
             t.probes.first().map(|p| p.displacement_y.clone()).unwrap_or_default(),
             "node of the kicked column (0: bottom)",

@@ -2,6 +2,7 @@
 //! The only module that knows YAML. Everything is checked before any run starts, and every
 //! error names the file, the field path, the value and what is allowed.
 
+pub use self::kind::{ChainRun, KindSpec, LatticeRun, PairRun};
 pub use self::raw::{Control, Diagonals, LoadCase, SceneKind, Supports};
 pub use self::run_spec::{
     Budget, ImpulseSpec, LatticeSpec, MovieSpec, POWER_METHOD_BONDS, ProbeLine, RESULT_FORMAT, RelaxSpec, RunSpec,
@@ -11,7 +12,9 @@ pub use self::run_spec::{
 pub use self::resolve::DEFAULT_DT_PER_TC;
 
 mod finite;
+mod flat;
 mod grid;
+mod kind;
 mod raw;
 mod resolve;
 mod run_spec;
@@ -149,7 +152,7 @@ pub fn parse(file: &str, text: &str) -> Result<Campaign, SpecError> {
         if scenes.iter().any(|(name, _)| *name == first.scene) {
             return Err(invalid(format!("scenes[{index}].name = {:?}: scene names must be unique", first.scene)));
         }
-        scenes.push((first.scene.clone(), first.kind));
+        scenes.push((first.scene.clone(), first.kind()));
         runs.extend(expanded);
     }
     let target_error = raw.target_error.unwrap_or(DEFAULT_TARGET_ERROR);

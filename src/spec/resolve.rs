@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 use std::fmt::Display;
 
 use super::MAX_NAME_LEN;
+use super::kind::{ChainRun, KindSpec, LatticeRun, PairRun};
 use super::raw::{
     Control, Diagonals, LoadCase, RawDamping, RawGeometry, RawImpulse, RawLattice, RawMaterial, RawMovie, RawProbes,
     RawScene, RawTime, RawWave, SceneKind, Supports,
@@ -117,8 +118,10 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
         require(g.is_finite() && g >= 0.0, "gap", g, "must be a finite number ≥ 0")?;
     }
     let (duration, steps, samples) = resolve_length(&spec, raw, gap, t_c, dt)?;
-    if let (Some(l), Some(w)) = (&spec.lattice, &raw.wave) {
-        spec.wave = lattice_wave(l, w, spacing)?;
+    match (&mut spec.scene_kind, &raw.wave) {
+        (KindSpec::Pair(pair), _) => pair.gap = gap,
+        (KindSpec::Lattice(run), Some(w)) => run.wave = lattice_wave(&run.lattice, w, spacing)?,
+        _ => {}
     }
     let movie = raw.movie.as_ref().map(resolve_movie).transpose()?;
     if let Some(r) = spec.reference_refinement {
@@ -132,7 +135,7 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     }
     // Where dt_omega_max sets dt, dt and steps are the plan's to decide (unplanned: NaN and 0).
     let (dt, steps) = if spec.dt_omega_max.is_some() { (f64::NAN, 0) } else { (dt, steps) };
-    Ok(RunSpec { gamma, restitution_target, gamma_background, t_c, dt, duration, steps, samples, gap, movie, ..spec })
+    Ok(RunSpec { gamma, restitution_target, gamma_background, t_c, dt, duration, steps, samples, movie, ..spec })
 }
 
 /// The spec before its time scale: material, v0 and the kind's own fields (lattice, chain,
@@ -150,17 +153,11 @@ fn resolve_body(
     let Springs { mass, k, law, contact, derived_from } = resolve_springs(kind, raw, spacing, geometry.depth)?;
     check_kind_fields(kind, raw)?;
     let v0 = resolve_v0(kind, raw, contact)?;
-    let lattice = resolve_lattice(kind, raw, k, geometry.depth)?.map(|l| LatticeSpec { derived_from, ..l });
-    let ChainFields { n, node, wall_distance, wave } = resolve_chain(kind, raw, spacing)?;
-    let relax = match (kind, &lattice) {
-        (SceneKind::Lattice, Some(l)) if l.impulse.is_none() => Some(resolve_relax(raw, l.control)?),
-        (SceneKind::Chain, _) if raw.relax.is_some() => Some(resolve_relax(raw, Control::Force)?),
-        _ => None,
-    };
+    let scene_kind = resolve_kind(kind, raw, k, spacing, geometry.depth, derived_from)?;
     let spec = RunSpec {
         campaign: campaign.to_string(),
         scene: name,
-        kind,
+        scene_kind,
         varied,
         mass,
         spacing,
@@ -180,19 +177,37 @@ fn resolve_body(
         steps: 0,
         samples: 0,
         v0,
-        gap: None,
-        n,
-        node,
-        wall_distance,
-        relax,
-        lattice,
-        wave,
         movie: None,
     };
-    if kind == SceneKind::Chain && raw.relax.is_some() {
-        check_relaxing_chain(&spec)?;
+    if let Some(chain) = spec.chain().filter(|_| raw.relax.is_some()) {
+        check_relaxing_chain(&spec, chain)?;
     }
     Ok(spec)
+}
+
+/// The kind's own fields: a lattice (with how it was derived from a solid, if it was) or a
+/// chain, and their relaxation; a pair's gap is decided with the time scale.
+fn resolve_kind(
+    kind: SceneKind,
+    raw: &RawScene,
+    k: f64,
+    spacing: f64,
+    depth: Option<f64>,
+    derived_from: Option<String>,
+) -> Result<KindSpec, Issue> {
+    Ok(match kind {
+        SceneKind::Pair => KindSpec::Pair(PairRun { gap: None }),
+        SceneKind::Chain => {
+            let chain = resolve_chain(raw, spacing)?;
+            let relax = raw.relax.is_some().then(|| resolve_relax(raw, Control::Force)).transpose()?;
+            KindSpec::Chain(ChainRun { relax, ..chain })
+        }
+        SceneKind::Lattice => {
+            let lattice = LatticeSpec { derived_from, ..resolve_lattice(raw, k, depth)? };
+            let relax = lattice.impulse.is_none().then(|| resolve_relax(raw, lattice.control)).transpose()?;
+            KindSpec::Lattice(LatticeRun { lattice, relax, wave: None })
+        }
+    })
 }
 
 /// A scene's particles' mass (kg) and springs: stiffness, law, β, contact switch, and how
@@ -243,9 +258,9 @@ fn resolve_v0(kind: SceneKind, raw: &RawScene, contact: bool) -> Result<f64, Iss
 
 /// A relaxing chain's walls: far enough apart that its last spring does not collapse, and
 /// moved (or the chain kicked), so that there is something to relax.
-fn check_relaxing_chain(spec: &RunSpec) -> Result<(), Issue> {
-    let walls = spec.wall_distance.unwrap_or_default();
-    let least = (spec.n.unwrap_or(1) as f64 + 0.1) * spec.spacing;
+fn check_relaxing_chain(spec: &RunSpec, chain: &ChainRun) -> Result<(), Issue> {
+    let walls = chain.wall_distance;
+    let least = (chain.n as f64 + 0.1) * spec.spacing;
     require(
         walls > least,
         "wall_distance",
@@ -264,7 +279,7 @@ fn check_relaxing_chain(spec: &RunSpec) -> Result<(), Issue> {
     // The residual-force criterion is relative to the equilibrium wall force: none when
     // the walls are not moved, and the run could never count as relaxed.
     require(
-        spec.relax.is_none_or(|r| r.residual_force.is_none()) || spec.chain_wall_extension() != 0.0,
+        chain.relax.is_none_or(|r| r.residual_force.is_none()) || spec.chain_wall_extension() != 0.0,
         "relax.residual_force",
         "(set)",
         "needs walls moved from (n + 1) · spacing (it is a fraction of the wall force); use relax.kinetic_ratio",
@@ -287,7 +302,7 @@ fn resolve_contact_time(spec: &RunSpec, raw: &RawScene) -> Result<(f64, Option<f
     let (gamma, restitution_target, gamma_background) = resolve_damping(&damping, stiffness_for_damping, mass)?;
     // A collision (pair, kicked chain) has an exact power-law contact duration; a loaded or
     // relaxing scene takes the linear one at its tangent stiffness.
-    let collision = spec.kind == SceneKind::Pair || (spec.kind == SceneKind::Chain && raw.relax.is_none());
+    let collision = spec.kind() == SceneKind::Pair || (spec.kind() == SceneKind::Chain && raw.relax.is_none());
     let t_c = match law {
         LawSpec::Power { beta } if collision => theory::pair_omega(stiffness_for_damping, mass, gamma)
             .map(|_| theory::power_law_contact_duration(k, beta, mass, v0)),
@@ -314,15 +329,15 @@ fn resolve_length(
     dt: f64,
 ) -> Result<(f64, u64, u64), Issue> {
     let time = raw.time.clone().unwrap_or_default();
-    let default_duration_tc = match spec.kind {
+    let default_duration_tc = match spec.kind() {
         SceneKind::Pair if spec.contact => gap.unwrap_or(0.0) / (spec.v0 * t_c) + 1.5,
         SceneKind::Pair => 3.0,
         SceneKind::Chain if raw.relax.is_none() => 20.0,
         // An impulse lattice runs until the wave has crossed it about three times.
-        SceneKind::Lattice if raw.impulse.is_some() => 3.0 * spec.lattice.as_ref().map_or(1, |l| l.nx.max(l.ny)) as f64,
+        SceneKind::Lattice if raw.impulse.is_some() => 3.0 * spec.lattice().map_or(1, |l| l.nx.max(l.ny)) as f64,
         _ => raw.relax.as_ref().and_then(|r| r.max_tc).unwrap_or(DEFAULT_MAX_TC),
     };
-    let duration_path = if spec.relax.is_some() { "relax.max_tc" } else { "time.duration_tc" };
+    let duration_path = if spec.relax().is_some() { "relax.max_tc" } else { "time.duration_tc" };
     let duration = t_c * positive(time.duration_tc.unwrap_or(default_duration_tc), duration_path)?;
     let steps = (duration / dt).ceil() as u64;
     require(
@@ -529,11 +544,8 @@ fn check_kind_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue> {
     only(raw.v0.is_some() && is(SceneKind::Lattice), "v0", "pair and chain scenes (lattices are loaded, not kicked)")
 }
 
-/// The lattice of a lattice scene; `None` for other kinds.
-fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) -> Result<Option<LatticeSpec>, Issue> {
-    if kind != SceneKind::Lattice {
-        return Ok(None);
-    }
+/// The lattice of a lattice scene.
+fn resolve_lattice(raw: &RawScene, k: f64, depth: Option<f64>) -> Result<LatticeSpec, Issue> {
     let lattice = raw.lattice.clone().unwrap_or_default();
     let (nx, ny) = lattice_size(&lattice)?;
     let (diagonals, k_diag, k_x, k_y) = lattice_springs(&lattice, k)?;
@@ -560,7 +572,7 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
     let rotated = upright.load_case == Some(LoadCase::TensileX);
     let Upright { nx, ny, k_x, k_y, diagonals, load_case } =
         if rotated { turned(upright, &probes, supports)? } else { upright };
-    Ok(Some(LatticeSpec {
+    Ok(LatticeSpec {
         nx,
         ny,
         k_diag,
@@ -582,7 +594,7 @@ fn resolve_lattice(kind: SceneKind, raw: &RawScene, k: f64, depth: Option<f64>) 
         derived_from: None,
         impulse,
         probes,
-    }))
+    })
 }
 
 /// The diagonals and the stiffnesses (k_d, k_x, k_y) (N/m) of a lattice's springs, from k and
@@ -807,20 +819,9 @@ fn resolve_relax(raw: &RawScene, control: Control) -> Result<RelaxSpec, Issue> {
     Ok(RelaxSpec { kinetic_ratio, residual_force: relax.residual_force, tangent_step: relax.tangent_step })
 }
 
-/// The chain-only fields of a run; all `None` for other kinds.
-#[derive(Default)]
-struct ChainFields {
-    n: Option<usize>,
-    node: Option<usize>,
-    wall_distance: Option<f64>,
-    wave: Option<WaveSpec>,
-}
-
-/// Number of particles, excited node (1..n), wall distance and timed wave of a chain scene.
-fn resolve_chain(kind: SceneKind, raw: &RawScene, spacing: f64) -> Result<ChainFields, Issue> {
-    if kind != SceneKind::Chain {
-        return Ok(ChainFields::default());
-    }
+/// Number of particles, excited node (1..n), wall distance and timed wave of a chain scene
+/// (its relaxation still unset).
+fn resolve_chain(raw: &RawScene, spacing: f64) -> Result<ChainRun, Issue> {
     let n = raw.n.ok_or_else(|| missing("n", "the number of moving particles, 1..=100000"))?;
     require((1..=100_000).contains(&n), "n", n, "must be in 1..=100000")?;
     let node = particle(raw.node.as_ref(), n, n.div_ceil(2), "node")?;
@@ -841,7 +842,7 @@ fn resolve_chain(kind: SceneKind, raw: &RawScene, spacing: f64) -> Result<ChainF
             })
         }
     };
-    Ok(ChainFields { n: Some(n), node: Some(node), wall_distance: Some(walls), wave })
+    Ok(ChainRun { n, node, wall_distance: walls, relax: None, wave })
 }
 
 fn wave_threshold(w: &RawWave) -> Result<f64, Issue> {

@@ -4,7 +4,9 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::collections::BTreeMap;
 
-use super::raw::{Control, Diagonals, LoadCase, SceneKind, Supports};
+use super::flat::FlatRunSpec;
+use super::kind::{KindSpec, LatticeRun};
+use super::raw::{Control, Diagonals, LoadCase, Supports};
 use crate::model::LawSpec;
 use crate::sim::IntegratorKind;
 
@@ -12,15 +14,17 @@ use crate::sim::IntegratorKind;
 /// so the cache never serves results of older code.
 pub const RESULT_FORMAT: u32 = 11;
 
-/// A resolved run. Units SI; field names are the results table's column names.
+/// A resolved run. Units SI. Serialised flat ([`super::flat`]): the kind as the tag `kind`
+/// with every kind's fields beside it, the keys being the results table's column names.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(into = "FlatRunSpec", try_from = "FlatRunSpec")]
 pub struct RunSpec {
     /// Campaign name.
     pub campaign: String,
     /// Scene name.
     pub scene: String,
-    /// Scene kind.
-    pub kind: SceneKind,
+    /// Scene kind with its own fields.
+    pub scene_kind: KindSpec,
     /// Grid values of this run, by dotted path.
     pub varied: BTreeMap<String, Value>,
     /// Particle mass m (kg).
@@ -30,7 +34,6 @@ pub struct RunSpec {
     /// Stiffness constant: k (N/m) for linear springs, C (N/m^β) for power-law springs.
     pub k: f64,
     /// Elastic law, serialised as the columns `law` and `beta` (1 for linear springs).
-    #[serde(flatten)]
     pub law: LawSpec,
     /// Springs act only in compression.
     pub contact: bool,
@@ -61,24 +64,7 @@ pub struct RunSpec {
     pub samples: u64,
     /// Pair: relative approach speed; chain: speed of the excited particle (m/s).
     pub v0: f64,
-    /// Pair: initial gap between the surfaces (m).
-    pub gap: Option<f64>,
-    /// Chain: moving particles.
-    pub n: Option<usize>,
-    /// Chain: excited particle, 1..n.
-    pub node: Option<usize>,
-    /// Chain: distance between the walls (m).
-    pub wall_distance: Option<f64>,
-    /// Loaded lattice or relaxing chain: when the relaxation stops, and the tangent step.
-    #[serde(default)]
-    pub relax: Option<RelaxSpec>,
-    /// Lattice: what is specific to lattice scenes.
-    pub lattice: Option<LatticeSpec>,
-    /// Chain: the wave timed from the excited particle to a receiver, if asked for.
-    #[serde(default)]
-    pub wave: Option<WaveSpec>,
     /// The movie to record, if asked for.
-    #[serde(default)]
     pub movie: Option<MovieSpec>,
 }
 
@@ -333,15 +319,15 @@ pub fn reference_extension(spec: &RunSpec) -> f64 {
     };
     let overlap = |speed: f64| -crate::theory::power_law_max_overlap(spec.k, beta, spec.mass, speed);
     let carrying = |force: f64| (force.abs() / spec.k).powf(1.0 / beta);
-    match (&spec.lattice, spec.kind) {
-        (Some(l), _) => match l.impulse {
+    match &spec.scene_kind {
+        KindSpec::Lattice(LatticeRun { lattice: l, .. }) => match l.impulse {
             Some(ImpulseSpec { top_row_force: Some([fx, fy]), .. }) => carrying(fx.hypot(fy)),
             Some(i) => overlap(i.vx.hypot(i.vy)),
             None if l.control == Control::Velocity => l.drive_strain.abs() * spec.spacing,
             None => carrying(l.load_per_node),
         },
-        (None, SceneKind::Chain) if spec.relax.is_some() && spec.chain_wall_extension() != 0.0 => {
-            spec.chain_wall_extension() / (spec.n.unwrap_or(0) + 1) as f64
+        KindSpec::Chain(chain) if chain.relax.is_some() && spec.chain_wall_extension() != 0.0 => {
+            spec.chain_wall_extension() / (chain.n + 1) as f64
         }
         _ => overlap(spec.v0),
     }
@@ -381,8 +367,8 @@ impl RunSpec {
     /// Springs of the run's network: at most one per node and bond family in a lattice (cut
     /// bonds counted), n + 1 in a chain, one in a pair.
     pub fn bonds(&self) -> usize {
-        match (&self.lattice, self.kind) {
-            (Some(l), _) => {
+        match &self.scene_kind {
+            KindSpec::Lattice(LatticeRun { lattice: l, .. }) => {
                 let families = match l.diagonals {
                     Diagonals::None => 2,
                     Diagonals::Both => 4,
@@ -390,15 +376,15 @@ impl RunSpec {
                 };
                 families * l.nx * l.ny
             }
-            (None, SceneKind::Chain) => self.n.unwrap_or(0) + 1,
-            _ => 1,
+            KindSpec::Chain(chain) => chain.n + 1,
+            KindSpec::Pair(_) => 1,
         }
     }
 
     /// Degrees of freedom of the static problem solved beside MD (a loaded lattice): two per
     /// node (held ones counted); 0 when there is none.
     fn static_dofs(&self) -> f64 {
-        match &self.lattice {
+        match self.lattice() {
             Some(l) if l.impulse.is_none() => 2.0 * (l.nx * l.ny) as f64,
             _ => 0.0,
         }
@@ -407,13 +393,13 @@ impl RunSpec {
     /// Numbers per sample of what a record stores of the trace: time and four energies, and
     /// four per particle (a chain) or per probed node (a lattice's kicked column and probes).
     fn stored_numbers_per_sample(&self) -> usize {
-        let nodes = match &self.lattice {
-            Some(l) => {
+        let nodes = match &self.scene_kind {
+            KindSpec::Lattice(LatticeRun { lattice: l, .. }) => {
                 let kicked = if l.impulse.is_some() { l.ny } else { 0 };
                 kicked + l.probes.iter().map(|line| line.nodes(l.nx, l.ny).len()).sum::<usize>()
             }
-            None if self.kind == SceneKind::Chain => self.particles(),
-            None => 0,
+            KindSpec::Chain(_) => self.particles(),
+            KindSpec::Pair(_) => 0,
         };
         5 + 4 * nodes
     }
@@ -421,10 +407,10 @@ impl RunSpec {
     /// True when the run records every particle's displacement and velocity at every sample:
     /// chains (normal modes, space–time), reference runs, waves, impulse and probed lattices.
     pub fn records_displacements(&self) -> bool {
-        self.kind == SceneKind::Chain
+        self.chain().is_some()
             || self.reference_refinement.is_some()
-            || self.wave.is_some()
-            || self.lattice.as_ref().is_some_and(|l| l.impulse.is_some() || !l.probes.is_empty())
+            || self.wave().is_some()
+            || self.lattice().is_some_and(|l| l.impulse.is_some() || !l.probes.is_empty())
     }
 
     /// Estimated peak memory (bytes) of the run over all its stages, summed (an upper bound:
@@ -450,7 +436,7 @@ impl RunSpec {
         let per_sample = 5.0 + if self.records_displacements() { 4.0 * particles } else { 0.0 };
         let strain = |m: &MovieSpec| if m.bond_strain { bonds } else { 0.0 };
         let frames = self.movie.map_or(0.0, |m| f64::from(m.frames) * (3.0 * particles + strain(&m)));
-        let wave = if self.wave.is_some() { 7.0 * 1e5 } else { 0.0 };
+        let wave = if self.wave().is_some() { 7.0 * 1e5 } else { 0.0 };
         let copies = if self.reference_refinement.is_some() { 2.0 } else { 1.0 };
         let time_loop = 8.0 * copies * (particles * (40.0 + 4.0 * 5.0) + samples * per_sample + frames + wave);
         let omega_max = 8.0 * (10.0 * bonds + 8.0 * particles);
@@ -475,10 +461,7 @@ impl RunSpec {
 
     /// Chain: how far the walls are moved from the rest length (n + 1) a, ΔW (m); 0 otherwise.
     pub fn chain_wall_extension(&self) -> f64 {
-        match (self.n, self.wall_distance) {
-            (Some(n), Some(w)) => w - (n + 1) as f64 * self.spacing,
-            _ => 0.0,
-        }
+        self.chain().map_or(0.0, |chain| chain.wall_distance - (chain.n + 1) as f64 * self.spacing)
     }
 
     /// t_c / dt, to 12 significant digits: dt = t_c / 100 divided back gives 99.99999999999999
@@ -490,10 +473,10 @@ impl RunSpec {
 
     /// Number of particles the scene simulates (walls included).
     pub fn particles(&self) -> usize {
-        match self.kind {
-            SceneKind::Pair => 2,
-            SceneKind::Chain => self.n.unwrap_or(0) + 2,
-            SceneKind::Lattice => self.lattice.as_ref().map_or(0, |l| l.nx * l.ny),
+        match &self.scene_kind {
+            KindSpec::Pair(_) => 2,
+            KindSpec::Chain(chain) => chain.n + 2,
+            KindSpec::Lattice(LatticeRun { lattice: l, .. }) => l.nx * l.ny,
         }
     }
 

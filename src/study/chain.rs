@@ -8,7 +8,7 @@ use super::Metrics;
 use crate::measure::normal_mode_error;
 use crate::model::{Axes, Particles};
 use crate::sim::{Network, Outcome, Scene};
-use crate::spec::RunSpec;
+use crate::spec::{ChainRun, RunSpec};
 
 /// What a chain measures, with its analytical twins.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -51,29 +51,28 @@ pub struct ChainMetrics {
 /// lattice (the walls are particles 0 and n+1); particle `node` starts at v0. They start
 /// evenly spaced (at equilibrium), or, in a relaxing chain, at rest spacing from the left
 /// wall, so the last spring takes the whole wall displacement and the chain must relax.
-pub(super) fn build(spec: &RunSpec) -> Scene {
-    let n = spec.n.unwrap_or(1);
-    let walls = spec.wall_distance.unwrap_or((n + 1) as f64 * spec.spacing);
-    let gap = if spec.relax.is_some() { spec.spacing } else { walls / (n + 1) as f64 };
+pub(super) fn build(spec: &RunSpec, chain: &ChainRun) -> Scene {
+    let (n, walls) = (chain.n, chain.wall_distance);
+    let gap = if chain.relax.is_some() { spec.spacing } else { walls / (n + 1) as f64 };
     let mut particles = Particles::default();
     for p in 0..n + 2 {
         let fixed = if p == 0 || p == n + 1 { Axes::FIXED } else { Axes::ONLY_X_MOVES };
         let x = if p == n + 1 { walls } else { p as f64 * gap };
         particles.push(x, 0.0, spec.mass, fixed);
     }
-    particles.vx[spec.node.unwrap_or(1)] = spec.v0;
+    particles.vx[chain.node] = spec.v0;
     let network = Network::Lattice(super::row(n + 2, spec.spacing, spec.k));
     let mut scene = super::scene(spec, particles, network, None);
     // The residual force is relative to the equilibrium spring force s(ΔW/(n + 1)).
-    scene.sampling.relaxation = super::relaxation(spec, Some(equilibrium(spec).1.abs()), n);
+    scene.sampling.relaxation = super::relaxation(spec, Some(equilibrium(spec, chain).1.abs()), n);
     scene
 }
 
 /// A relaxing chain's equilibrium: every spring extended by δ = ΔW/(n + 1), carrying
 /// s(δ); returns (δ (m), s (N), secant stiffness of the whole chain s/ΔW (N/m), tangent
 /// stiffness s′(δ)/(n + 1) (N/m)). The secant is the tangent for ΔW = 0.
-pub fn equilibrium(spec: &RunSpec) -> (f64, f64, f64, f64) {
-    let springs = (spec.n.unwrap_or(0) + 1) as f64;
+pub fn equilibrium(spec: &RunSpec, chain: &ChainRun) -> (f64, f64, f64, f64) {
+    let springs = (chain.n + 1) as f64;
     let delta = spec.chain_wall_extension() / springs;
     let law = spec.law;
     let (force, tangent) = (law.elastic_force(spec.k, delta), law.tangent_stiffness(spec.k, delta));
@@ -83,12 +82,13 @@ pub fn equilibrium(spec: &RunSpec) -> (f64, f64, f64, f64) {
 
 /// True when the chain has an exact normal-mode solution: linear bonded springs, no damping,
 /// walls at the rest spacing.
-pub fn has_normal_modes(spec: &RunSpec) -> bool {
+pub fn has_normal_modes(spec: &RunSpec, chain: &ChainRun) -> bool {
+    let walls = chain.wall_distance;
     spec.law.is_linear()
         && !spec.contact
         && spec.gamma == 0.0
         && spec.gamma_background == 0.0
-        && spec.wall_distance.is_some_and(|w| (w - (spec.n.unwrap_or(0) + 1) as f64 * spec.spacing).abs() <= 1e-12 * w)
+        && (walls - (chain.n + 1) as f64 * spec.spacing).abs() <= 1e-12 * walls
 }
 
 /// Tension (N) of a chain's first spring, between the left wall and particle 1.
@@ -98,32 +98,31 @@ fn wall_force(spec: &RunSpec, x: &[f64]) -> f64 {
 
 /// The normal-mode error, the wave's arrival (against the long-wavelength and front speed
 /// a√(k/m)) and a relaxing chain's equilibrium.
-pub(super) fn measure(spec: &RunSpec, outcome: &Outcome, metrics: &mut Metrics) {
-    metrics.chain.chain_mode_error = has_normal_modes(spec)
+pub(super) fn measure(spec: &RunSpec, chain: &ChainRun, outcome: &Outcome, metrics: &mut Metrics) {
+    metrics.chain.chain_mode_error = has_normal_modes(spec, chain)
         .then(|| {
-            let n = spec.n.unwrap_or(0);
-            let movable: Vec<usize> = (1..=n).collect();
-            let v0: Vec<f64> = movable.iter().map(|&p| if Some(p) == spec.node { spec.v0 } else { 0.0 }).collect();
+            let movable: Vec<usize> = (1..=chain.n).collect();
+            let v0: Vec<f64> = movable.iter().map(|&p| if p == chain.node { spec.v0 } else { 0.0 }).collect();
             normal_mode_error(&outcome.trace, &movable, &v0, spec.k, spec.mass)
         })
         .flatten();
     super::measure_wave(spec, outcome, super::sound_speed(spec, spec.k), metrics);
-    if spec.relax.is_some() {
-        measure_equilibrium(spec, outcome, &mut metrics.chain);
-        super::measure_relaxation(spec, outcome, spec.n.unwrap_or(1), "the wall force", metrics);
+    if chain.relax.is_some() {
+        measure_equilibrium(spec, chain, outcome, &mut metrics.chain);
+        super::measure_relaxation(spec, outcome, chain.n, "the wall force", metrics);
     }
 }
 
 /// A relaxing chain's spacing, wall force and secant stiffness beside its equilibrium; the
 /// measured ones only when it came to rest.
-fn measure_equilibrium(spec: &RunSpec, outcome: &Outcome, metrics: &mut ChainMetrics) {
+fn measure_equilibrium(spec: &RunSpec, chain: &ChainRun, outcome: &Outcome, metrics: &mut ChainMetrics) {
     let relaxed = outcome.trace.relaxed_at.is_some();
     let keep = |value: Option<f64>| value.filter(|_| relaxed);
     let x = &outcome.state.particles.x;
     let gaps: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
     let inner = &gaps[..gaps.len() - 1];
     let (shortest, longest) = gaps.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), g| (a.min(*g), b.max(*g)));
-    let (delta, force, secant, tangent) = equilibrium(spec);
+    let (delta, force, secant, tangent) = equilibrium(spec, chain);
     let extension = spec.chain_wall_extension();
     let measured_force = wall_force(spec, x);
     metrics.equilibrium_spacing = keep(Some(inner.iter().sum::<f64>() / inner.len() as f64));

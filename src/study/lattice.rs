@@ -190,7 +190,7 @@ pub(super) fn static_answer(
         prescribed: &prescribed,
     };
     let top_row_force = scene.law.dispatch(StaticSolve { spec, l, truss: &truss, deadline, metrics })?;
-    let fraction = spec.relax.and_then(|r| r.residual_force);
+    let fraction = spec.relax().and_then(|r| r.residual_force);
     if let (Control::Velocity, Some(fraction), Some(relaxation)) =
         (l.control, fraction, scene.sampling.relaxation.as_mut())
     {
@@ -283,7 +283,7 @@ fn solve<L: ForceLaw>(
     metrics.youngs_modulus_fem = fem.youngs_modulus;
     metrics.poisson_ratio_fem = fem.poisson_ratio;
     metrics.shear_modulus_fem = fem.shear_modulus;
-    if spec.relax.is_some_and(|r| r.tangent_step.is_some()) {
+    if spec.relax().is_some_and(|r| r.tangent_step.is_some()) {
         // Δu per unit load factor: the increment of the whole load.
         if Instant::now() > deadline {
             return Err(past_deadline());

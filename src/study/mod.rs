@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 use crate::measure::{ARRIVAL_CRITERIA, arrival_time, energy_error};
 use crate::model::{Particles, SquareLattice};
 use crate::sim::{Network, Outcome, Relaxation, RunStatus, Sampling, Scene, Trace};
-use crate::spec::{RunSpec, SceneKind};
+use crate::spec::{KindSpec, RunSpec, SceneKind};
 
 /// Measured quantities with their analytical twins; `None` where the scene has no such
 /// quantity or no exact answer exists. What every kind may have is here, each kind's own
@@ -106,10 +106,10 @@ pub struct Run {
 
 /// Builds the scene of `spec`.
 pub fn build_scene(spec: &RunSpec) -> Scene {
-    match (spec.kind, &spec.lattice) {
-        (SceneKind::Lattice, Some(l)) => lattice::build(spec, l),
-        (SceneKind::Chain, _) => chain::build(spec),
-        _ => pair::build(spec),
+    match &spec.scene_kind {
+        KindSpec::Pair(pair) => pair::build(spec, pair),
+        KindSpec::Chain(chain) => chain::build(spec, chain),
+        KindSpec::Lattice(run) => lattice::build(spec, &run.lattice),
     }
 }
 
@@ -134,7 +134,7 @@ fn scene(spec: &RunSpec, particles: Particles, network: Network, contact_clock: 
         },
         contact_clock,
         // A wave is timed every step, but never more than 10⁵ entries are kept.
-        wave: spec.wave.as_ref().map(|w| (w.source, w.receivers.clone(), (spec.steps / 100_000).max(1))),
+        wave: spec.wave().map(|w| (w.source, w.receivers.clone(), (spec.steps / 100_000).max(1))),
         movie_frames: spec.movie.map(|m| u64::from(m.frames)),
         loads: Vec::new(),
         load_ramp: 0.0,
@@ -160,7 +160,7 @@ fn relaxation_checks(side: usize) -> u32 {
 /// relative to `scale` (N), the force the kind's relaxation is judged against; `side` is the
 /// kind's N of [`relaxation_checks`].
 fn relaxation(spec: &RunSpec, scale: Option<f64>, side: usize) -> Option<Relaxation> {
-    spec.relax.map(|relax| Relaxation {
+    spec.relax().map(|relax| Relaxation {
         kinetic_ratio: relax.kinetic_ratio,
         residual_force: relax.residual_force.zip(scale).map(|(fraction, scale)| fraction * scale),
         check_every: (spec.t_c / spec.dt).round().max(1.0) as u64,
@@ -181,7 +181,7 @@ fn build_scene_until(spec: &RunSpec, deadline: Instant) -> Scene {
 pub fn run(spec: &RunSpec, deadline: Instant) -> Result<Run, Stopped> {
     let mut scene = build_scene_until(spec, deadline);
     let mut metrics = Metrics::default();
-    if let Some(l) = spec.lattice.as_ref().filter(|l| l.impulse.is_none()) {
+    if let Some(l) = spec.lattice().filter(|l| l.impulse.is_none()) {
         lattice::static_answer(spec, l, &mut scene, deadline, &mut metrics.lattice)?;
     }
     let start = (scene.particles.x.clone(), scene.particles.y.clone());
@@ -196,7 +196,7 @@ pub fn run(spec: &RunSpec, deadline: Instant) -> Result<Run, Stopped> {
     let sample_every = scene.sampling.every;
     let mut outcome = scene.run();
     measure(spec, &outcome, &start, &mut metrics);
-    if let Some(step) = spec.relax.and_then(|r| r.tangent_step).filter(|_| outcome.trace.relaxed_at.is_some()) {
+    if let Some(step) = spec.relax().and_then(|r| r.tangent_step).filter(|_| outcome.trace.relaxed_at.is_some()) {
         tangent_step(spec, &outcome, step, deadline, &mut metrics);
     }
     let started = Instant::now();
@@ -211,7 +211,7 @@ pub fn run(spec: &RunSpec, deadline: Instant) -> Result<Run, Stopped> {
         Some((refinement, error)) => (Some(error), Some(format!("reference_dt/{refinement}"))),
         None => exact_error(spec, &metrics),
     };
-    if let Some(l) = &spec.lattice {
+    if let Some(l) = spec.lattice() {
         lattice::keep_probes(l, &mut outcome.trace);
     }
     Ok(Run { outcome, metrics, reference_s, bonds })
@@ -219,24 +219,24 @@ pub fn run(spec: &RunSpec, deadline: Instant) -> Result<Run, Stopped> {
 
 /// The caveat a successful run's record carries, if any.
 pub fn caveat(spec: &RunSpec, metrics: &Metrics) -> Option<&'static str> {
-    (spec.kind == SceneKind::Pair).then(|| pair::caveat(&metrics.pair)).flatten()
+    (spec.kind() == SceneKind::Pair).then(|| pair::caveat(&metrics.pair)).flatten()
 }
 
 /// Measures a finished run: the energy balance, then what its kind measures. `start` holds
 /// the positions (x, y) at t = 0.
 fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metrics: &mut Metrics) {
     metrics.energy_error = energy_error(&outcome.trace);
-    match (spec.kind, &spec.lattice) {
-        (SceneKind::Lattice, Some(l)) => lattice::measure(spec, l, outcome, start, metrics),
-        (SceneKind::Chain, _) => chain::measure(spec, outcome, metrics),
-        _ => pair::measure(spec, outcome, &mut metrics.pair),
+    match &spec.scene_kind {
+        KindSpec::Pair(_) => pair::measure(spec, outcome, &mut metrics.pair),
+        KindSpec::Chain(chain) => chain::measure(spec, chain, outcome, metrics),
+        KindSpec::Lattice(run) => lattice::measure(spec, &run.lattice, outcome, start, metrics),
     }
 }
 
 /// The arrival of a timed wave by every criterion, with the coursework's estimate and
 /// `sound_speed_theory` (m/s), the kind's linear sound speed along the wave's path.
 fn measure_wave(spec: &RunSpec, outcome: &Outcome, sound_speed_theory: Option<f64>, metrics: &mut Metrics) {
-    if let (Some(wave), Some(record)) = (&spec.wave, &outcome.wave) {
+    if let (Some(wave), Some(record)) = (spec.wave(), &outcome.wave) {
         for criterion in ARRIVAL_CRITERIA {
             if let Some(time) = arrival_time(record, criterion, wave.threshold) {
                 metrics.arrival_times.insert(criterion.to_string(), time);
@@ -259,7 +259,7 @@ fn sound_speed(spec: &RunSpec, stiffness: f64) -> Option<f64> {
 /// When and by which criterion a relaxing run came to rest, `side` as for the scene's
 /// [`relaxation`], `scale` naming the force its residual-force criterion is relative to.
 fn measure_relaxation(spec: &RunSpec, outcome: &Outcome, side: usize, scale: &str, metrics: &mut Metrics) {
-    let Some(relax) = spec.relax else { return };
+    let Some(relax) = spec.relax() else { return };
     metrics.dissipation_time = outcome.trace.relaxed_at;
     let checks = relaxation_checks(side);
     metrics.dissipation_criterion = outcome.trace.relaxed_by.as_deref().map(|by| match (by, relax.residual_force) {
@@ -287,7 +287,7 @@ fn tangent_step(spec: &RunSpec, relaxed: &Outcome, step: f64, deadline: Instant,
         load.fy *= 1.0 + step;
     }
     let wall_step = step * spec.chain_wall_extension();
-    if spec.kind == SceneKind::Chain {
+    if spec.kind() == SceneKind::Chain {
         let wall = scene.particles.len() - 1;
         scene.particles.x[wall] += wall_step;
     }
@@ -295,9 +295,15 @@ fn tangent_step(spec: &RunSpec, relaxed: &Outcome, step: f64, deadline: Instant,
     if next.trace.relaxed_at.is_none() {
         return;
     }
-    match &spec.lattice {
-        Some(l) => lattice::tangent_moduli(spec, l, step, start, &next.state.particles, &mut metrics.lattice),
-        None => chain::tangent_stiffness(spec, wall_step, start, &next.state.particles, &mut metrics.chain),
+    match &spec.scene_kind {
+        KindSpec::Lattice(run) => {
+            lattice::tangent_moduli(spec, &run.lattice, step, start, &next.state.particles, &mut metrics.lattice)
+        }
+        KindSpec::Chain(_) => {
+            chain::tangent_stiffness(spec, wall_step, start, &next.state.particles, &mut metrics.chain)
+        }
+        // A pair never relaxes, so it takes no tangent step.
+        KindSpec::Pair(_) => {}
     }
 }
 
@@ -306,7 +312,7 @@ fn tangent_step(spec: &RunSpec, relaxed: &Outcome, step: f64, deadline: Instant,
 /// an undamped run; `(None, None)` when none applies.
 fn exact_error(spec: &RunSpec, m: &Metrics) -> (Option<f64>, Option<String>) {
     let undamped = spec.gamma == 0.0 && spec.gamma_background == 0.0;
-    let (error, measure) = match spec.kind {
+    let (error, measure) = match spec.kind() {
         SceneKind::Pair => pair::exact_error(undamped, &m.pair),
         SceneKind::Chain if m.chain.chain_mode_error.is_some() => (m.chain.chain_mode_error, "normal_modes"),
         _ if undamped => (m.energy_error, "energy"),

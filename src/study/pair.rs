@@ -7,7 +7,7 @@ use crate::measure::contact_timing;
 use crate::model::LawSpec;
 use crate::model::{Axes, Particles};
 use crate::sim::{Network, Outcome, Scene};
-use crate::spec::RunSpec;
+use crate::spec::{PairRun, RunSpec};
 use crate::theory;
 
 /// What a pair measures, with its analytical twins.
@@ -25,10 +25,10 @@ pub struct PairMetrics {
 
 /// Two particles on the x axis, approaching at relative speed v0 (each at v0/2): a contact
 /// pair starts `gap` apart (contact begins at t = gap/v0), a bonded pair at its rest length.
-pub(super) fn build(spec: &RunSpec) -> Scene {
+pub(super) fn build(spec: &RunSpec, pair: &PairRun) -> Scene {
     let mut particles = Particles::default();
     let left = particles.push(0.0, 0.0, spec.mass, Axes::ONLY_X_MOVES);
-    let right = particles.push(spec.spacing + spec.gap.unwrap_or(0.0), 0.0, spec.mass, Axes::ONLY_X_MOVES);
+    let right = particles.push(spec.spacing + pair.gap.unwrap_or(0.0), 0.0, spec.mass, Axes::ONLY_X_MOVES);
     particles.vx[left] = 0.5 * spec.v0;
     particles.vx[right] = -0.5 * spec.v0;
     let network = Network::Lattice(super::row(2, spec.spacing, spec.k));

@@ -1,0 +1,299 @@
+//! The serialised form of a [`RunSpec`]: one flat object whose keys are the results table's
+//! column names, the kind's own fields beside the others (`null` where the kind has none).
+//! Run ids hash it and stored records hold it, so it never changes shape.
+
+use serde::{Deserialize, Serialize};
+use serde_json::Value;
+use std::collections::BTreeMap;
+
+use super::kind::{ChainRun, KindSpec, LatticeRun, PairRun};
+use super::raw::SceneKind;
+use super::run_spec::{LatticeSpec, MovieSpec, RelaxSpec, RunSpec, WaveSpec};
+use crate::model::LawSpec;
+use crate::sim::IntegratorKind;
+
+/// [`RunSpec`] as stored: its fields in their order, the kind as a tag with the fields of
+/// every kind beside it.
+#[derive(Serialize, Deserialize)]
+pub(super) struct FlatRunSpec {
+    campaign: String,
+    scene: String,
+    kind: SceneKind,
+    varied: BTreeMap<String, Value>,
+    mass: f64,
+    spacing: f64,
+    k: f64,
+    #[serde(flatten)]
+    law: LawSpec,
+    contact: bool,
+    gamma: f64,
+    restitution_target: Option<f64>,
+    gamma_background: f64,
+    integrator: IntegratorKind,
+    t_c: f64,
+    dt: f64,
+    dt_omega_max: Option<f64>,
+    reference_refinement: Option<u32>,
+    allow_unstable: bool,
+    duration: f64,
+    steps: u64,
+    samples: u64,
+    v0: f64,
+    gap: Option<f64>,
+    n: Option<usize>,
+    node: Option<usize>,
+    wall_distance: Option<f64>,
+    #[serde(default)]
+    relax: Option<RelaxSpec>,
+    lattice: Option<LatticeSpec>,
+    #[serde(default)]
+    wave: Option<WaveSpec>,
+    #[serde(default)]
+    movie: Option<MovieSpec>,
+}
+
+/// The kind's own fields in their flat columns, `None` where the kind has no such field.
+#[derive(Default)]
+struct KindColumns {
+    gap: Option<f64>,
+    n: Option<usize>,
+    node: Option<usize>,
+    wall_distance: Option<f64>,
+    relax: Option<RelaxSpec>,
+    lattice: Option<LatticeSpec>,
+    wave: Option<WaveSpec>,
+}
+
+impl From<KindSpec> for KindColumns {
+    fn from(kind: KindSpec) -> KindColumns {
+        match kind {
+            KindSpec::Pair(PairRun { gap }) => KindColumns { gap, ..KindColumns::default() },
+            KindSpec::Chain(ChainRun { n, node, wall_distance, relax, wave }) => KindColumns {
+                n: Some(n),
+                node: Some(node),
+                wall_distance: Some(wall_distance),
+                relax,
+                wave,
+                ..KindColumns::default()
+            },
+            KindSpec::Lattice(LatticeRun { lattice, relax, wave }) => {
+                KindColumns { lattice: Some(lattice), relax, wave, ..KindColumns::default() }
+            }
+        }
+    }
+}
+
+impl KindColumns {
+    /// The kind `kind` with its fields, refusing a field another kind has or a missing one.
+    fn into_kind(self, kind: SceneKind) -> Result<KindSpec, String> {
+        let KindColumns { gap, n, node, wall_distance, relax, lattice, wave } = self;
+        let refuse = |fields: &[(bool, &str)]| match fields.iter().find(|(present, _)| *present) {
+            Some((_, field)) => Err(format!("a {} run has no `{field}`, yet it is set", kind.name())),
+            None => Ok(()),
+        };
+        let needed = |field: &str| format!("a {} run needs `{field}`, yet it is null", kind.name());
+        Ok(match kind {
+            SceneKind::Pair => {
+                refuse(&[
+                    (n.is_some(), "n"),
+                    (node.is_some(), "node"),
+                    (wall_distance.is_some(), "wall_distance"),
+                    (relax.is_some(), "relax"),
+                    (lattice.is_some(), "lattice"),
+                    (wave.is_some(), "wave"),
+                ])?;
+                KindSpec::Pair(PairRun { gap })
+            }
+            SceneKind::Chain => {
+                refuse(&[(gap.is_some(), "gap"), (lattice.is_some(), "lattice")])?;
+                KindSpec::Chain(ChainRun {
+                    n: n.ok_or_else(|| needed("n"))?,
+                    node: node.ok_or_else(|| needed("node"))?,
+                    wall_distance: wall_distance.ok_or_else(|| needed("wall_distance"))?,
+                    relax,
+                    wave,
+                })
+            }
+            SceneKind::Lattice => {
+                refuse(&[
+                    (gap.is_some(), "gap"),
+                    (n.is_some(), "n"),
+                    (node.is_some(), "node"),
+                    (wall_distance.is_some(), "wall_distance"),
+                ])?;
+                KindSpec::Lattice(LatticeRun { lattice: lattice.ok_or_else(|| needed("lattice"))?, relax, wave })
+            }
+        })
+    }
+}
+
+impl From<RunSpec> for FlatRunSpec {
+    fn from(spec: RunSpec) -> FlatRunSpec {
+        let kind = spec.kind();
+        let RunSpec {
+            campaign,
+            scene,
+            scene_kind,
+            varied,
+            mass,
+            spacing,
+            k,
+            law,
+            contact,
+            gamma,
+            restitution_target,
+            gamma_background,
+            integrator,
+            t_c,
+            dt,
+            dt_omega_max,
+            reference_refinement,
+            allow_unstable,
+            duration,
+            steps,
+            samples,
+            v0,
+            movie,
+        } = spec;
+        let KindColumns { gap, n, node, wall_distance, relax, lattice, wave } = scene_kind.into();
+        FlatRunSpec {
+            campaign,
+            scene,
+            kind,
+            varied,
+            mass,
+            spacing,
+            k,
+            law,
+            contact,
+            gamma,
+            restitution_target,
+            gamma_background,
+            integrator,
+            t_c,
+            dt,
+            dt_omega_max,
+            reference_refinement,
+            allow_unstable,
+            duration,
+            steps,
+            samples,
+            v0,
+            gap,
+            n,
+            node,
+            wall_distance,
+            relax,
+            lattice,
+            wave,
+            movie,
+        }
+    }
+}
+
+impl TryFrom<FlatRunSpec> for RunSpec {
+    type Error = String;
+
+    fn try_from(flat: FlatRunSpec) -> Result<RunSpec, String> {
+        let FlatRunSpec {
+            campaign,
+            scene,
+            kind,
+            varied,
+            mass,
+            spacing,
+            k,
+            law,
+            contact,
+            gamma,
+            restitution_target,
+            gamma_background,
+            integrator,
+            t_c,
+            dt,
+            dt_omega_max,
+            reference_refinement,
+            allow_unstable,
+            duration,
+            steps,
+            samples,
+            v0,
+            gap,
+            n,
+            node,
+            wall_distance,
+            relax,
+            lattice,
+            wave,
+            movie,
+        } = flat;
+        let scene_kind = KindColumns { gap, n, node, wall_distance, relax, lattice, wave }.into_kind(kind)?;
+        Ok(RunSpec {
+            campaign,
+            scene,
+            scene_kind,
+            varied,
+            mass,
+            spacing,
+            k,
+            law,
+            contact,
+            gamma,
+            restitution_target,
+            gamma_background,
+            integrator,
+            t_c,
+            dt,
+            dt_omega_max,
+            reference_refinement,
+            allow_unstable,
+            duration,
+            steps,
+            samples,
+            v0,
+            movie,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A resolved spec of each kind in `yaml`'s scenes.
+    fn specs() -> Vec<RunSpec> {
+        let yaml = "version: 1\nname: t\nscenes:\n\
+            \x20 - {name: p, kind: pair, v0: 1.0, material: {contact: true}}\n\
+            \x20 - {name: c, kind: chain, v0: 1.0, n: 5, wave: {}}\n\
+            \x20 - {name: l, kind: lattice, lattice: {size: 3}}\n";
+        crate::spec::parse("t.yaml", yaml).unwrap().runs
+    }
+
+    #[test]
+    fn every_kind_reads_back_as_written() {
+        for spec in specs() {
+            let json = serde_json::to_value(&spec).unwrap();
+            for key in ["kind", "gap", "n", "node", "wall_distance", "relax", "lattice", "wave"] {
+                assert!(json.get(key).is_some(), "{} has no `{key}` key: {json}", spec.scene);
+            }
+            assert_eq!(serde_json::from_value::<RunSpec>(json).unwrap(), spec);
+        }
+    }
+
+    #[test]
+    fn a_field_of_another_kind_is_refused() {
+        let [pair, chain, lattice] = specs().try_into().unwrap();
+        let mut json = serde_json::to_value(&pair).unwrap();
+        json["n"] = 3.into();
+        let error = serde_json::from_value::<RunSpec>(json).unwrap_err().to_string();
+        assert!(error.contains("a pair run has no `n`"), "{error}");
+        let mut json = serde_json::to_value(&chain).unwrap();
+        json["wall_distance"] = Value::Null;
+        let error = serde_json::from_value::<RunSpec>(json).unwrap_err().to_string();
+        assert!(error.contains("a chain run needs `wall_distance`"), "{error}");
+        let mut json = serde_json::to_value(&lattice).unwrap();
+        json["gap"] = 0.1.into();
+        let error = serde_json::from_value::<RunSpec>(json).unwrap_err().to_string();
+        assert!(error.contains("a lattice run has no `gap`"), "{error}");
+    }
+}
