@@ -6,7 +6,7 @@
 //! with an error naming the file and leaves no partial file; runs beyond their budget end with
 //! `status = budget`.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
