@@ -3,9 +3,7 @@
 //! a Hertz lattice's moduli, and MD against the static (Newton–Raphson / Cholesky) solution of
 //! the same anisotropic or diluted network.
 
-mod common;
-
-use common::{assert_table_finite, execute_all, relative};
+use crate::common::{assert_table_finite, execute_all, relative};
 use mdsolids::measure::{anisotropic_moduli, power_law_fit};
 use mdsolids::runner::RunRecord;
 use mdsolids::sim::RunStatus;

@@ -6,7 +6,7 @@
 //! with an error naming the file and leaves no partial file; runs beyond their budget end with
 //! `status = budget`.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -462,20 +462,25 @@ fn a_full_disk_while_a_movie_is_encoded_names_the_file_and_leaves_no_partial_fil
 }
 
 /// Peak resident memory (bytes) of `mdsolids run <file>` from start to end, by the kernel's
-/// account of the child (wait4's ru_maxrss, kB on Linux).
-#[allow(clippy::zombie_processes, reason = "the child is reaped by wait4, which also reports its peak memory")]
+/// account of the process (wait4's ru_maxrss, kB on Linux). A child spawned from this test
+/// process would start from its memory (exec keeps the spawning process's high-water mark in
+/// the child's ru_maxrss), and this process runs the rest of the suite's tests at the same
+/// time: so a small shell starts the run in the background and exits, and this process, as
+/// child subreaper, inherits the orphaned run and waits for it itself.
 fn peak_memory_of_run(reports: &Path, file: &Path) -> f64 {
-    let child = Command::new(env!("CARGO_BIN_EXE_mdsolids"))
-        .arg("--reports")
+    // SAFETY: a plain integer option; it only makes this process the reaper of orphaned descendants.
+    assert_eq!(unsafe { libc::prctl(libc::PR_SET_CHILD_SUBREAPER, 1) }, 0);
+    let shell = Command::new("sh")
+        .args(["-c", "\"$0\" --reports \"$1\" run \"$2\" >/dev/null 2>&1 & echo $!", env!("CARGO_BIN_EXE_mdsolids")])
         .arg(reports)
-        .arg("run")
         .arg(file)
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
+        .output()
         .unwrap();
-    let (mut status, pid) = (0, child.id() as libc::pid_t);
-    // SAFETY: `usage` is a plain C struct the call fills in; `pid` is our own unwaited child.
+    assert!(shell.status.success(), "{}", String::from_utf8_lossy(&shell.stderr));
+    let pid: libc::pid_t = String::from_utf8_lossy(&shell.stdout).trim().parse().unwrap();
+    let mut status = 0;
+    // SAFETY: `usage` is a plain C struct the call fills in; `pid` is our own unwaited child
+    // since its shell exited.
     let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
     assert_eq!(unsafe { libc::wait4(pid, &mut status, 0, &mut usage) }, pid);
     assert!(libc::WIFEXITED(status) && libc::WEXITSTATUS(status) == 0, "{} failed", file.display());

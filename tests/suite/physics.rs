@@ -1,9 +1,7 @@
 //! Physics against independent answers: force laws, the two-body collision, the chain's
 //! normal modes and the conservation laws. Each tolerance says why it is what it is.
 
-mod common;
-
-use common::{execute_all, pair_campaign, relative};
+use crate::common::{execute_all, pair_campaign, relative};
 use mdsolids::measure::convergence_order;
 use mdsolids::model::{Axes, BondDashpot, Bonds, ForceLaw, LawSpec, Linear, NoDashpot, Particles, PowerLaw, Spring};
 use mdsolids::runner::RunRecord;

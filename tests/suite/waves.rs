@@ -1,9 +1,7 @@
 //! Waves in chains against independent answers: the front speed of a linear chain, a√(k/m),
 //! and the v0^(1/5) speed of the solitary wave in a Hertz chain without pre-load.
 
-mod common;
-
-use common::execute_all;
+use crate::common::execute_all;
 use mdsolids::measure::power_law_fit;
 use mdsolids::runner::RunRecord;
 use mdsolids::sim::RunStatus;

@@ -3,9 +3,7 @@
 //! the predicted stability limit against the dt at which a lattice blows up, and what happens
 //! to runs that blow up (status, message, no NaN in any table).
 
-mod common;
-
-use common::{assert_table_finite, execute_all, pair_campaign, relative, runs};
+use crate::common::{assert_table_finite, execute_all, pair_campaign, relative, runs};
 use mdsolids::measure::convergence_order;
 use mdsolids::plan::{self, estimate};
 use mdsolids::runner::RunRecord;

@@ -1,9 +1,7 @@
 //! Lattices under load: MD relaxed against the static truss answer of the same network, the
 //! static answer against hand-derived and continuum values, mechanisms and relaxation outcomes.
 
-mod common;
-
-use common::{assert_table_finite, execute_all, runs};
+use crate::common::{assert_table_finite, execute_all, runs};
 use mdsolids::runner::RunRecord;
 use mdsolids::sim::RunStatus;
 

@@ -360,7 +360,7 @@ fn corrupt_records_are_reported_left_out_and_simulated_again() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Pinned outputs. `MDSOLIDS_UPDATE_SNAPSHOTS=1 cargo test --release --test pipeline pinned`
+// Pinned outputs. `MDSOLIDS_UPDATE_SNAPSHOTS=1 cargo test --release --test suite pinned`
 // writes the snapshots anew; do that only for a change that is meant to change results or the
 // report, and say so in the commit.
 

@@ -1,0 +1,18 @@
+//! The integration tests, one module per area, in one test binary: each binary links the whole
+//! dependency tree (polars, tera, faer, ...) again, so one binary builds in a fraction of the
+//! time of one per file. A module name filters one area (`cargo test --release --test suite
+//! faults::`); the pinned snapshots: `cargo test --release --test suite pinned`.
+
+mod cluster;
+mod common;
+mod compare;
+mod fast_paths;
+mod faults;
+mod hostile;
+mod integrators;
+mod lattice;
+mod movies;
+mod nonlinear;
+mod physics;
+mod pipeline;
+mod waves;
