@@ -75,14 +75,6 @@ impl RunSpec {
         self.scene_kind.kind()
     }
 
-    /// A pair's fields; `None` for other kinds.
-    pub fn pair(&self) -> Option<&PairRun> {
-        match &self.scene_kind {
-            KindSpec::Pair(pair) => Some(pair),
-            _ => None,
-        }
-    }
-
     /// A chain's fields; `None` for other kinds.
     pub fn chain(&self) -> Option<&ChainRun> {
         match &self.scene_kind {
