@@ -13,7 +13,7 @@ use crate::measure::relative_error;
 use crate::model::LawSpec;
 use crate::runner::{BUILD, RunRecord};
 use crate::sim::RunStatus;
-use crate::spec::{Campaign, SceneKind};
+use crate::spec::{Campaign, RunSpec, SceneKind};
 use crate::summary::ScalingFit;
 
 /// Runs of the campaign that are not in a report, and why (`mdsolids report` of a store that
@@ -258,46 +258,8 @@ fn section(
     side_by_side: &[String],
 ) -> Option<SceneSection> {
     let mine: Vec<&RunRecord> = records.iter().filter(|r| r.spec.scene == scene).collect();
-    let first = mine.first()?;
-    let s = &first.spec;
-    let law = match s.law {
-        LawSpec::Linear => format!("linear springs k = {} N/m", number(s.k)),
-        LawSpec::Power { beta } => format!("power-law springs C = {} N/m^β, β = {}", number(s.k), number(beta)),
-    };
-    let physics = match s.lattice() {
-        Some(l) => {
-            format!(
-                "{law} along rows and columns, diagonals k_d = {} N/m (k_d/k = {}), m = {} kg, a = {} m, depth d = {} m, {} supports, {}, {}",
-                number(l.k_diag),
-                number(l.k_diag / s.k),
-                number(s.mass),
-                number(s.spacing),
-                number(l.depth),
-                l.supports.name(),
-                match l.impulse {
-                    Some(i) => impulse_words(&i),
-                    None => match l.force_per_node() {
-                        Some(force) => format!("{} load {} N per top node", l.load_case.name(), number(force)),
-                        None => format!(
-                            "{}, the top row driven to a strain of {} over {} t_c",
-                            l.load_case.name(),
-                            number(l.drive_strain),
-                            number(l.drive_tc)
-                        ),
-                    },
-                },
-                s.integrator.name()
-            ) + &l.derived_from.as_ref().map(|note| format!(". Derived from the solid: {note}")).unwrap_or_default()
-        }
-        None => format!(
-            "{law}, {}, m = {} kg, x_e = {} m, v0 = {} m/s, {}",
-            if s.contact { "contact (compression only)" } else { "bonded (tension and compression)" },
-            number(s.mass),
-            number(s.spacing),
-            number(s.v0),
-            s.integrator.name()
-        ),
-    };
+    let s = &mine.first()?.spec;
+    let physics = physics_words(s);
     let (stability_rows, limit_rows) =
         if is_stability_scene(records, scene) { stability_rows(records, scene) } else { Default::default() };
     Some(SceneSection {
@@ -333,24 +295,69 @@ fn section(
         wave_rows: wave_rows(records, scene),
         exponent_rows: exponent_rows(fits, scene),
         ensemble_rows: super::solids::ensemble_rows(records, scene),
-        movies: side_by_side
-            .iter()
-            .filter(|s| *s == scene)
-            .map(|_| FigureRef {
-                file: format!("plots/{scene}-side-by-side.gif"),
-                caption: format!("All runs of {scene} side by side, on one colour scale (m/s)."),
-            })
-            .chain(mine.iter().filter(|r| r.spec.movie.is_some() && r.status != RunStatus::Panicked).map(|r| {
-                FigureRef {
-                    file: format!("runs/{}.gif", r.run_id),
-                    caption: format!(
-                        "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), bonds in grey.",
-                        r.spec.varied_label(|_| true)
-                    ),
-                }
-            }))
-            .collect(),
+        movies: movie_refs(scene, &mine, side_by_side),
     })
+}
+
+/// The scene's physics in one sentence: springs, masses, geometry, supports and load, scheme.
+fn physics_words(s: &RunSpec) -> String {
+    let law = match s.law {
+        LawSpec::Linear => format!("linear springs k = {} N/m", number(s.k)),
+        LawSpec::Power { beta } => format!("power-law springs C = {} N/m^β, β = {}", number(s.k), number(beta)),
+    };
+    match s.lattice() {
+        Some(l) => {
+            format!(
+                "{law} along rows and columns, diagonals k_d = {} N/m (k_d/k = {}), m = {} kg, a = {} m, depth d = {} m, {} supports, {}, {}",
+                number(l.k_diag),
+                number(l.k_diag / s.k),
+                number(s.mass),
+                number(s.spacing),
+                number(l.depth),
+                l.supports.name(),
+                match l.impulse {
+                    Some(i) => impulse_words(&i),
+                    None => match l.force_per_node() {
+                        Some(force) => format!("{} load {} N per top node", l.load_case.name(), number(force)),
+                        None => format!(
+                            "{}, the top row driven to a strain of {} over {} t_c",
+                            l.load_case.name(),
+                            number(l.drive_strain),
+                            number(l.drive_tc)
+                        ),
+                    },
+                },
+                s.integrator.name()
+            ) + &l.derived_from.as_ref().map(|note| format!(". Derived from the solid: {note}")).unwrap_or_default()
+        }
+        None => format!(
+            "{law}, {}, m = {} kg, x_e = {} m, v0 = {} m/s, {}",
+            if s.contact { "contact (compression only)" } else { "bonded (tension and compression)" },
+            number(s.mass),
+            number(s.spacing),
+            number(s.v0),
+            s.integrator.name()
+        ),
+    }
+}
+
+/// The movies of a scene: its runs side by side, if drawn, then each run's own.
+fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> Vec<FigureRef> {
+    side_by_side
+        .iter()
+        .filter(|s| *s == scene)
+        .map(|_| FigureRef {
+            file: format!("plots/{scene}-side-by-side.gif"),
+            caption: format!("All runs of {scene} side by side, on one colour scale (m/s)."),
+        })
+        .chain(mine.iter().filter(|r| r.spec.movie.is_some() && r.status != RunStatus::Panicked).map(|r| FigureRef {
+            file: format!("runs/{}.gif", r.run_id),
+            caption: format!(
+                "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), bonds in grey.",
+                r.spec.varied_label(|_| true)
+            ),
+        }))
+        .collect()
 }
 
 fn pair_row(r: &RunRecord) -> PairRow {
