@@ -15,7 +15,7 @@ tasks=4
 recipe=$repo/../shared/slurm/slurm-local.sh
 
 skip() {
-  echo "SKIP slurm test: $* (the sharding itself is still tested by tests/cluster.rs)"
+  echo "SKIP slurm test: $* (the sharding itself is still tested by tests/suite/cluster.rs)"
   exit 0
 }
 [ "$(id -u)" = 0 ] || skip "needs root to install and start Slurm"
