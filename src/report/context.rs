@@ -353,8 +353,12 @@ fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> Vec<
         .chain(mine.iter().filter(|r| r.spec.movie.is_some() && r.status != RunStatus::Panicked).map(|r| FigureRef {
             file: format!("runs/{}.gif", r.run_id),
             caption: format!(
-                "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), bonds in grey.",
-                r.spec.varied_label(|_| true)
+                "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), {}.",
+                r.spec.varied_label(|_| true),
+                match r.spec.movie {
+                    Some(movie) if movie.bond_strain => "bonds coloured by strain (red stretched, blue compressed)",
+                    _ => "bonds in grey",
+                }
             ),
         }))
         .collect()

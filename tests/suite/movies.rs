@@ -99,6 +99,11 @@ fn bonds_can_be_coloured_by_strain() {
         let layout = Layout::new(reports.path(), &campaign.name);
         let done = run_campaign(&planned, &layout, Some(1)).unwrap();
         assert_eq!(done.records[0].status, RunStatus::Ok, "{}", done.records[0].message);
+        // The report's caption says how the bonds are drawn.
+        mdsolids::report::render(campaign, &layout, &done.records).unwrap();
+        let caption =
+            if strain { "bonds coloured by strain (red stretched, blue compressed)" } else { "bonds in grey" };
+        assert!(std::fs::read_to_string(layout.file("report.md")).unwrap().contains(caption), "caption: {caption}");
         let (width, frames) = frames(&layout.movie_file(&done.records[0].run_id));
         // Pixels left of the colour bar, over all frames, that are clearly red or clearly blue.
         let inside = |i: usize| i % width as usize + 90 < width as usize;
