@@ -361,9 +361,9 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
 }
 
 /// What `plan` found in the store, run by run.
-struct PlanTally<'a> {
+struct PlanTally {
     /// How many runs are in each stored state (yes, missing, corrupt, stale, budget).
-    states: std::collections::BTreeMap<&'a str, usize>,
+    states: std::collections::BTreeMap<&'static str, usize>,
     /// Runs whose record is corrupt, with why.
     corrupt: Vec<(String, String)>,
     /// Estimated seconds of simulation of the runs `run` would simulate, on one core.
@@ -371,7 +371,7 @@ struct PlanTally<'a> {
 }
 
 /// Prints the plan's table, one row per run, and returns what it found in the store.
-fn print_plan_rows<'a>(plan: &Plan, layout: &Layout) -> PlanTally<'a> {
+fn print_plan_rows(plan: &Plan, layout: &Layout) -> PlanTally {
     let campaign = &plan.campaign;
     println!(
         "{:<28} {:<8} {:<16} {:>11} {:>11} {:>8} {:>10} {:>8} {:>7} {:>7}  varied",

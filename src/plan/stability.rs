@@ -259,11 +259,9 @@ fn modes(scene: &Scene, extension: f64) -> Modes {
     let axes = FreeAxes::of(p);
     let mut springs = Springs::new();
     let mut dashpots = Springs::new();
-    scene.network.for_each_bond(|i, j, _rest, k, shift| {
-        let (dx, dy) = (p.x[i] - p.x[j] + shift, p.y[i] - p.y[j]);
-        let r = dx.hypot(dy);
-        springs.push((i, j, scene.law.tangent_stiffness(k, extension), dx / r, dy / r));
-        dashpots.push((i, j, scene.gamma, dx / r, dy / r));
+    for_each_bond_direction(scene, extension, |i, j, k_t, nx, ny| {
+        springs.push((i, j, k_t, nx, ny));
+        dashpots.push((i, j, scene.gamma, nx, ny));
     });
     let (lambda, wx, wy) = largest_eigenvalue(&springs, &axes);
     let omega_max = lambda.sqrt();
@@ -275,13 +273,39 @@ fn modes(scene: &Scene, extension: f64) -> Modes {
     damping += scene.background_gamma
         * (0..p.len()).map(|i| axes.displacement(&wx, &wy, i)).map(|(ux, uy)| ux * ux + uy * uy).sum::<f64>();
     let bond_rate = if scene.gamma > 0.0 { largest_eigenvalue(&dashpots, &axes).0 } else { 0.0 };
+    Modes::new(omega_max, damping, bond_rate + background_rate(scene, &axes))
+}
+
+impl Modes {
+    /// From ω_max (rad/s), uᵀCu / uᵀMu of the fastest mode u (1/s) and ν_max (1/s):
+    /// ζ = uᵀCu / (2 ω_max uᵀMu).
+    fn new(omega_max: f64, mode_damping: f64, damping_rate: f64) -> Modes {
+        Modes {
+            omega_max,
+            damping_ratio: if omega_max > 0.0 { mode_damping / (2.0 * omega_max) } else { 0.0 },
+            damping_rate,
+        }
+    }
+}
+
+/// Calls `visit(i, j, k_t, n̂x, n̂y)` for every bond of `scene`: its tangent stiffness at
+/// `extension` (N/m) and its unit direction from j to i.
+fn for_each_bond_direction(scene: &Scene, extension: f64, mut visit: impl FnMut(usize, usize, f64, f64, f64)) {
+    let p = &scene.particles;
+    scene.network.for_each_bond(|i, j, _rest, k, shift| {
+        let (dx, dy) = (p.x[i] - p.x[j] + shift, p.y[i] - p.y[j]);
+        let r = dx.hypot(dy);
+        visit(i, j, scene.law.tangent_stiffness(k, extension), dx / r, dy / r);
+    });
+}
+
+/// The largest decay rate background damping alone imposes, γ_g / m of the lightest free
+/// particle (1/s).
+fn background_rate(scene: &Scene, axes: &FreeAxes) -> f64 {
+    let p = &scene.particles;
     let lightest =
         (0..p.len()).filter(|&i| axes.free_x[i] + axes.free_y[i] > 0.0).map(|i| p.inv_mass[i]).fold(0.0, f64::max);
-    Modes {
-        omega_max,
-        damping_ratio: if omega_max > 0.0 { damping / (2.0 * omega_max) } else { 0.0 },
-        damping_rate: bond_rate + scene.background_gamma * lightest,
-    }
+    scene.background_gamma * lightest
 }
 
 /// The modes of a large network from one pass over its bonds. With S_i = Σ_{b∋i} k_t n̂n̂ᵀ
@@ -299,11 +323,7 @@ fn node_bound(scene: &Scene, extension: f64) -> Modes {
     // Per node: [xx, xy, yy] of S_i (N/m) and of G_i (N s/m).
     let mut stiffness = vec![[0.0; 3]; p.len()];
     let mut dashpots = vec![[0.0; 3]; p.len()];
-    scene.network.for_each_bond(|i, j, _rest, k, shift| {
-        let (dx, dy) = (p.x[i] - p.x[j] + shift, p.y[i] - p.y[j]);
-        let r = dx.hypot(dy);
-        let (nx, ny) = (dx / r, dy / r);
-        let k_t = scene.law.tangent_stiffness(k, extension);
+    for_each_bond_direction(scene, extension, |i, j, k_t, nx, ny| {
         for node in [i, j] {
             for (sum, weight) in [(&mut stiffness[node], k_t), (&mut dashpots[node], scene.gamma)] {
                 sum[0] += weight * nx * nx;
@@ -329,14 +349,7 @@ fn node_bound(scene: &Scene, extension: f64) -> Modes {
         }
         bond_rate = bond_rate.max(2.0 * largest_symmetric_2x2(g).0 * p.inv_mass[i]);
     }
-    let omega_max = fastest.0.sqrt();
-    let lightest =
-        (0..p.len()).filter(|&i| axes.free_x[i] + axes.free_y[i] > 0.0).map(|i| p.inv_mass[i]).fold(0.0, f64::max);
-    Modes {
-        omega_max,
-        damping_ratio: if omega_max > 0.0 { fastest.1 / (2.0 * omega_max) } else { 0.0 },
-        damping_rate: bond_rate + scene.background_gamma * lightest,
-    }
+    Modes::new(fastest.0.sqrt(), fastest.1, bond_rate + background_rate(scene, &axes))
 }
 
 /// The largest eigenvalue of the symmetric [[a, b], [b, c]] given as [a, b, c], with its unit
