@@ -73,12 +73,15 @@ pub fn shear_modulus(shape: &LatticeShape, force: f64, ux: &[f64]) -> f64 {
 
 /// How far the left and right columns are from straight lines: the largest deviation of a
 /// column node's x displacement from the least-squares line through its column, relative to
-/// the mean |x displacement| of the two columns. 0 for a homogeneous deformation.
-pub fn homogeneity(shape: &LatticeShape, ux: &[f64]) -> Option<f64> {
+/// the mean |x displacement| of the two columns. 0 for a homogeneous deformation. Not defined
+/// (`None`) where the edges do not move sideways: a mean |x displacement| below 1e-9 of the
+/// largest displacement `largest` (m) is round-off (a lattice without diagonals, ν = 0), and
+/// a ratio of round-offs says nothing.
+pub fn homogeneity(shape: &LatticeShape, ux: &[f64], largest: f64) -> Option<f64> {
     let columns = [shape.column(ux, 0), shape.column(ux, shape.nx - 1)];
     let mean_lateral = columns.iter().flatten().map(|u| u.abs()).sum::<f64>() / (2 * shape.ny) as f64;
     let deviation = columns.iter().map(|c| line_deviation(c)).fold(0.0, f64::max);
-    (mean_lateral > 0.0).then(|| deviation / mean_lateral)
+    (mean_lateral > 1e-9 * largest).then(|| deviation / mean_lateral)
 }
 
 /// Largest |u_i − (p + q i)| for the least-squares line through (i, u_i).
@@ -191,5 +194,31 @@ pub fn anisotropic_moduli(k_x: f64, k_y: f64, k_rising: f64, k_falling: f64, dep
         poisson_ratio_xy: (0.0 - s(0, 1)) / s(0, 0),
         poisson_ratio_yx: (0.0 - s(0, 1)) / s(1, 1),
         shear_modulus: Some(1.0 / (s(2, 2) * depth)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 3 × 3 block's x displacements, row by row, with left and right columns `left`, `right`.
+    fn block(left: [f64; 3], right: [f64; 3]) -> (LatticeShape, Vec<f64>) {
+        let shape = LatticeShape { nx: 3, ny: 3, spacing: 1.0, depth: 1.0, periodic_x: false };
+        let ux = (0..3).flat_map(|row| [left[row], 0.5 * (left[row] + right[row]), right[row]]).collect();
+        (shape, ux)
+    }
+
+    /// Straight edges give 0, a bowed edge its deviation over the mean sideways displacement,
+    /// and edges that do not move sideways (ν = 0, round-off only) no number at all.
+    #[test]
+    fn homogeneity_is_defined_only_where_the_edges_move() {
+        let (shape, ux) = block([0.0, 0.0, 0.0], [-1e-3, -1e-3, -1e-3]);
+        assert_eq!(homogeneity(&shape, &ux, 1e-2), Some(0.0));
+        let (shape, ux) = block([0.0, 0.0, 0.0], [-1e-3, -2e-3, -1e-3]);
+        // Line through (0, −1e-3), (1, −2e-3), (2, −1e-3): −4/3e-3, deviation 2/3e-3; mean |u| 2/3e-3.
+        let h = homogeneity(&shape, &ux, 1e-2).unwrap();
+        assert!((h - 1.0).abs() < 1e-12, "{h}");
+        let (shape, ux) = block([1e-19, -2e-19, 0.0], [3e-19, 0.0, -1e-19]);
+        assert_eq!(homogeneity(&shape, &ux, 1e-6), None);
     }
 }

@@ -3,7 +3,8 @@
 use serde::Serialize;
 
 use super::exponents::{ExponentRow, exponent_rows};
-use super::figure::{Figure, group_label, groups, representative};
+use super::figure::{Figure, FigureRef, group_label, groups, movie_refs, representative};
+use super::findings::{Evidence, Finding, Paragraph, discussion, findings};
 use super::precision::{PrecisionRow, precision_rows};
 use super::stability_map::{LimitRow, StabilityRow, is_stability_scene, stability_rows};
 use super::waves::{WaveRow, wave_rows};
@@ -58,14 +59,12 @@ pub struct ReportContext {
     has_lattice: bool,
     has_wave: bool,
     target_error: String,
+    /// The coursework's items this campaign answers, in the coursework's order.
+    findings: Vec<Finding>,
+    /// The discussion's paragraphs.
+    discussion: Vec<Paragraph>,
     scenes: Vec<SceneSection>,
     failures: Vec<FailureRow>,
-}
-
-#[derive(Serialize)]
-struct FigureRef {
-    file: String,
-    caption: String,
 }
 
 #[derive(Serialize)]
@@ -204,6 +203,7 @@ pub fn build(
     side_by_side: &[String],
 ) -> ReportContext {
     let ok = records.iter().filter(|r| r.status == RunStatus::Ok).count();
+    let evidence = Evidence::new(records, fits, figures, side_by_side);
     let row = |run_id: &String, why: String| LeftOutRow { run_id: run_id.clone(), why };
     let mut left_out_rows: Vec<LeftOutRow> =
         left_out.corrupt.iter().map(|(run_id, why)| row(run_id, format!("corrupt record: {why}"))).collect();
@@ -233,6 +233,8 @@ pub fn build(
         has_lattice: campaign.scenes.iter().any(|(_, k)| *k == SceneKind::Lattice),
         target_error: format!("{:e}", campaign.target_error),
         has_wave: records.iter().any(|r| r.spec.wave().is_some()),
+        findings: findings(&evidence),
+        discussion: discussion(&evidence),
         scenes: campaign
             .scenes
             .iter()
@@ -339,29 +341,6 @@ fn physics_words(s: &RunSpec) -> String {
             s.integrator.name()
         ),
     }
-}
-
-/// The movies of a scene: its runs side by side, if drawn, then each run's own.
-fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> Vec<FigureRef> {
-    side_by_side
-        .iter()
-        .filter(|s| *s == scene)
-        .map(|_| FigureRef {
-            file: format!("plots/{scene}-side-by-side.gif"),
-            caption: format!("All runs of {scene} side by side, on one colour scale (m/s)."),
-        })
-        .chain(mine.iter().filter(|r| r.spec.movie.is_some() && r.status != RunStatus::Panicked).map(|r| FigureRef {
-            file: format!("runs/{}.gif", r.run_id),
-            caption: format!(
-                "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), {}.",
-                r.spec.varied_label(|_| true),
-                match r.spec.movie {
-                    Some(movie) if movie.bond_strain => "bonds coloured by strain (red stretched, blue compressed)",
-                    _ => "bonds in grey",
-                }
-            ),
-        }))
-        .collect()
 }
 
 fn pair_row(r: &RunRecord) -> PairRow {

@@ -2,6 +2,8 @@
 //! the figures and tables show them (by grid values other than dt, each group with the run
 //! that represents it).
 
+use serde::Serialize;
+
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 
@@ -15,6 +17,38 @@ pub struct Figure {
     pub caption: String,
     /// The SVG document.
     pub svg: String,
+}
+
+/// A figure or movie as the report shows it: its file and caption.
+#[derive(Clone, Serialize)]
+pub struct FigureRef {
+    /// Path relative to the report.
+    pub file: String,
+    /// Caption, plain text.
+    pub caption: String,
+}
+
+/// The movies of a scene: its runs side by side, if drawn, then each run's own.
+pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> Vec<FigureRef> {
+    side_by_side
+        .iter()
+        .filter(|s| *s == scene)
+        .map(|_| FigureRef {
+            file: format!("plots/{scene}-side-by-side.gif"),
+            caption: format!("All runs of {scene} side by side, on one colour scale (m/s)."),
+        })
+        .chain(mine.iter().filter(|r| r.spec.movie.is_some() && r.status != RunStatus::Panicked).map(|r| FigureRef {
+            file: format!("runs/{}.gif", r.run_id),
+            caption: format!(
+                "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), {}.",
+                r.spec.varied_label(|_| true),
+                match r.spec.movie {
+                    Some(movie) if movie.bond_strain => "bonds coloured by strain (red stretched, blue compressed)",
+                    _ => "bonds in grey",
+                }
+            ),
+        }))
+        .collect()
 }
 
 /// The label of a run's grid values other than the time step: runs with the same group label

@@ -9,6 +9,7 @@ pub use self::context::LeftOut;
 mod exponents;
 mod figure;
 mod figures;
+mod findings;
 mod markdown;
 mod precision;
 mod probes;

@@ -377,7 +377,8 @@ pub(super) fn measure(
     metrics.lattice.poisson_ratio = keep(md.poisson_ratio);
     metrics.lattice.poisson_ratio_coursework = keep(md.poisson_ratio_coursework);
     metrics.lattice.shear_modulus = keep(md.shear_modulus);
-    metrics.lattice.homogeneity = keep(homogeneity(&shape(spec, l), &ux));
+    let largest = ux.iter().chain(&uy).fold(0.0, |m: f64, u| m.max(u.abs()));
+    metrics.lattice.homogeneity = keep(homogeneity(&shape(spec, l), &ux, largest));
     if spec.law.is_linear() {
         continuum(l, &mut metrics.lattice);
     }

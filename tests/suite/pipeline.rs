@@ -107,7 +107,7 @@ fn plan_lists_runs_and_simulates_nothing() {
     assert!(out.status.success(), "{}", text(&out.stderr));
     let stdout = text(&out.stdout);
     assert!(stdout.contains("pair-contact-") && stdout.contains("dt_per_tc=500"), "{stdout}");
-    assert!(stdout.contains("208 runs") && stdout.contains("dt·ω_max"), "{stdout}");
+    assert!(stdout.contains("239 runs") && stdout.contains("dt·ω_max"), "{stdout}");
     assert!(!reports.path().join("coursework").exists(), "plan wrote output");
 }
 
@@ -518,4 +518,46 @@ fn pinned_report_of_frozen_records() {
             now.lines().nth(line)
         );
     }
+}
+
+/// Four significant digits, as the report's sentences write a plain number (an independent
+/// copy of the rule, so a change of the report's format shows here).
+fn four_digits(x: f64) -> String {
+    let decimals = (3.0 - x.abs().log10().floor()).max(0.0) as usize;
+    format!("{x:.decimals$}")
+}
+
+/// The report's sentences are computed from the results, not written into the template: the
+/// same campaign with another mass and stiffness states the new t_c and dt, read back from
+/// its own results.csv, and the verdicts follow.
+#[test]
+fn report_sentences_follow_the_results() {
+    let mut stated = Vec::new();
+    for (mass, k) in [(1.0f64, 1.0f64), (2.0, 9.0)] {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("follow.yaml");
+        let yaml = format!(
+            "version: 1\nname: follow\ndefaults:\n  material: {{mass: {mass}, k: {k}}}\nscenes:\n  - name: pair\n    \
+             kind: pair\n    v0: 1.0\n    grid:\n      damping.restitution: [1.0, 0.5]\n      time.dt_per_tc: [10, 50, 200]\n"
+        );
+        std::fs::write(&file, yaml).unwrap();
+        let out = mdsolids(dir.path(), &["run", file.to_str().unwrap()]);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        let report = std::fs::read_to_string(dir.path().join("follow").join("report.md")).unwrap();
+        let csv = std::fs::read_to_string(dir.path().join("follow").join("results.csv")).unwrap();
+        let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+        let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+        let row: Vec<&str> = csv.lines().nth(1).unwrap().split(',').collect();
+        let t_c: f64 = row[column("t_c")].parse().unwrap();
+        assert!((t_c - std::f64::consts::PI * (mass / (2.0 * k)).sqrt()).abs() < 1e-12 * t_c);
+        for sentence in [
+            format!("t_c = π/ω = {} s undamped", four_digits(t_c)),
+            format!("dt = t_c/50 = {} s", four_digits(t_c / 50.0)),
+        ] {
+            assert!(report.contains(&sentence), "report.md of m = {mass}, k = {k} lacks {sentence:?}");
+        }
+        assert!(report.contains("| 2 | [The time step](#2-the-time-step) |"), "the summary links each item");
+        stated.push(four_digits(t_c));
+    }
+    assert_ne!(stated[0], stated[1], "the two campaigns state different numbers");
 }

@@ -1,0 +1,219 @@
+//! The coursework's questions on motion in time: the sound speed by several arrival criteria
+//! against the N_s t_c estimate, the dissipation time against bond and background damping, and
+//! the Hertz lattice kicked over decades of v0.
+
+use super::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
+use crate::model::LawSpec;
+use crate::runner::RunRecord;
+
+/// Relative tolerance of a linear chain's front speed against a√(k/m): a threshold θ = 0.01 of
+/// the source's peak catches the dispersive front a little early, by about 1 % over 200 spacings.
+const SPEED_TOLERANCE: f64 = 0.02;
+
+/// The front speed of a run by its recommended criterion.
+fn speed(r: &RunRecord) -> Option<f64> {
+    r.metrics.arrival_criterion.as_deref().and_then(|c| r.metrics.sound_speed(c))
+}
+
+/// (d): the sound speed, its criteria, and the N_s t_c estimate.
+pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
+    let linear =
+        e.ok(|r| r.metrics.sound_speed_theory.is_some() && r.spec.law == LawSpec::Linear && speed(r).is_some());
+    let chain = linear.iter().copied().find(|r| r.spec.chain().is_some())?;
+    let criteria: Vec<(String, f64)> = chain
+        .metrics
+        .arrival_times
+        .keys()
+        .filter_map(|c| chain.metrics.sound_speed(c).map(|v| (c.replace('_', " "), v)))
+        .collect();
+    let estimate = chain.metrics.wave_distance.zip(chain.metrics.arrival_time_tc_estimate).map(|(l, t)| l / t);
+    let error = relative(speed(chain), chain.metrics.sound_speed_theory);
+    let mut sentences = vec![
+        format!(
+            "A chain of {} hit at one end with v0 = {} m/s: the front reaches the far end, {} m away, at {} m/s by the \
+             speed threshold (the receiver's speed first reaches 1 % of the source's peak), against the exact front \
+             speed a√(k/m) = {} m/s ({}).",
+            chain.spec.chain().map_or(0, |c| c.n),
+            sig(chain.spec.v0),
+            cell(chain.metrics.wave_distance),
+            cell(speed(chain)),
+            cell(chain.metrics.sound_speed_theory),
+            error.map(rel).unwrap_or_default()
+        ),
+        format!(
+            "Other criteria give {}: the displacement lags the speed (it is its integral), an energy threshold θ is a \
+             speed threshold √θ, and the first maximum is the crest behind the dispersive front.",
+            criteria.iter().map(|(c, v)| format!("{} m/s ({c})", sig(*v))).collect::<Vec<_>>().join(", ")
+        ),
+        format!(
+            "The coursework's estimate t_s = N_s t_c gives V = {} m/s: the front travels {} × faster, because t_c is \
+             half a period of one pair, not the time a signal needs to cross a spring.",
+            cell(estimate),
+            estimate.zip(speed(chain)).map(|(a, b)| format!("{:.2}", b / a)).unwrap_or_else(|| "–".into())
+        ),
+    ];
+    let rows: Vec<Vec<String>> = linear
+        .iter()
+        .filter(|r| r.spec.lattice().is_some() && (r.spec.dt_per_tc() - 50.0).abs() < 1.0)
+        .map(|r| {
+            vec![
+                r.spec.scene.clone(),
+                r.spec.varied_label(|_| true),
+                cell(speed(r)),
+                cell(r.metrics.sound_speed_theory),
+                relative(speed(r), r.metrics.sound_speed_theory).map(rel).unwrap_or_else(|| "–".into()),
+            ]
+        })
+        .collect();
+    if !rows.is_empty() {
+        sentences.push(
+            "In the lattices the front is timed at the bottom row from the kicked node and compared with \
+             c_L = a√((k + k_d)/m) of the square lattice (a√(k/m) without diagonals), in the table."
+                .into(),
+        );
+    }
+    Some(Answer {
+        title: "The speed of sound",
+        question: "(d) Estimate the sound speed from the arrival time at the bottom; which criterion, which others, \
+                   and how does it compare with t_s = N_s t_c?",
+        short: format!(
+            "V = {} m/s by the speed threshold, {} of a√(k/m)",
+            cell(speed(chain)),
+            error.map(rel).unwrap_or_default()
+        ),
+        sentences,
+        reference: format!(
+            "The exact front speed a√(k/m) of the linear chain; tolerance {SPEED_TOLERANCE} (the threshold catches \
+             the dispersive front early)."
+        ),
+        verdict: Verdict::of([error.is_some_and(|x| x.abs() <= SPEED_TOLERANCE)]),
+        figures: [(&chain.spec.scene[..], "space-time"), (&chain.spec.scene[..], "speed-v0")]
+            .iter()
+            .filter_map(|(s, p)| e.figure(s, p))
+            .collect(),
+        table: (!rows.is_empty()).then(|| Table {
+            header: ["scene", "run", "V (m/s)", "c theory (m/s)", "error"].map(String::from).to_vec(),
+            rows,
+        }),
+    })
+}
+
+/// (e): the dissipation time against bond damping and background damping.
+pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
+    let relaxed = e.ok(|r| {
+        r.spec.lattice().is_some_and(|l| l.impulse.is_none() && !l.is_random())
+            && r.metrics.dissipation_time.is_some()
+            && r.spec.varied.keys().any(|k| k.starts_with("damping."))
+    });
+    let first = *relaxed.first()?;
+    let bond: Vec<&RunRecord> =
+        relaxed.iter().copied().filter(|r| r.spec.gamma > 0.0 && r.spec.gamma_background == 0.0).collect();
+    let background: Vec<&RunRecord> =
+        relaxed.iter().copied().filter(|r| r.spec.gamma == 0.0 && r.spec.gamma_background > 0.0).collect();
+    let fastest =
+        |runs: &[&RunRecord]| runs.iter().filter_map(|r| r.metrics.dissipation_time).fold(f64::INFINITY, f64::min);
+    let mut sentences = vec![format!(
+        "Dissipated means: {} (the stopping criterion of each run, in the table); the relaxation figures draw \
+         E_kin/E_pot against time with the threshold as a line.",
+        first.metrics.dissipation_criterion.as_deref().unwrap_or("–")
+    )];
+    if !bond.is_empty() {
+        sentences.push(format!(
+            "Bond damping alone: γ = {} N s/m relax the {} lattice in {} s; stronger bond damping relaxes faster, \
+             but it damps only relative motion, so the slowest, nearly rigid modes of the block ring longest.",
+            bond.iter().map(|r| sig(r.spec.gamma)).collect::<Vec<_>>().join(", "),
+            first.spec.lattice().map(|l| format!("{} × {}", l.nx, l.ny)).unwrap_or_default(),
+            bond.iter().map(|r| cell(r.metrics.dissipation_time)).collect::<Vec<_>>().join(", ")
+        ));
+    }
+    if !background.is_empty() {
+        sentences.push(format!(
+            "Background damping f = −γ_g v alone: γ_g = {} N s/m give {} s; it damps every mode, the slow ones \
+             too, and relaxes the block {}× faster than the fastest bond damping here. Too strong, it overdamps: \
+             the block creeps, with little kinetic energy long before it arrives, which is why the residual-force \
+             criterion takes longer than the energy criterion at the same γ_g.",
+            background.iter().map(|r| sig(r.spec.gamma_background)).collect::<Vec<_>>().join(", "),
+            background.iter().map(|r| cell(r.metrics.dissipation_time)).collect::<Vec<_>>().join(", "),
+            if bond.is_empty() { "–".into() } else { format!("{:.0}", fastest(&bond) / fastest(&background)) }
+        ));
+    }
+    let rows = relaxed
+        .iter()
+        .map(|r| {
+            vec![
+                r.spec.scene.clone(),
+                sig(r.spec.gamma),
+                sig(r.spec.gamma_background),
+                r.metrics.dissipation_criterion.clone().unwrap_or_default(),
+                cell(r.metrics.dissipation_time),
+                r.steps.to_string(),
+            ]
+        })
+        .collect();
+    let scenes: Vec<String> = relaxed.iter().map(|r| r.spec.scene.clone()).collect();
+    let mut shown = Vec::new();
+    for s in scenes.iter().collect::<std::collections::BTreeSet<_>>() {
+        shown.extend(e.figure(s, "relaxation"));
+    }
+    Some(Answer {
+        title: "Dissipation",
+        question: "(e) Plot E_kin/E_pot against time: how long until the kinetic energy is dissipated, by which \
+                   criterion, and how does it change with the damping and with background damping?",
+        short: if bond.is_empty() || background.is_empty() {
+            "dissipation times measured".into()
+        } else {
+            format!("background damping relaxes {:.0}× faster than bond damping", fastest(&bond) / fastest(&background))
+        },
+        sentences,
+        reference: "No analytical reference: the times are measured, with the stopping criterion stated.".into(),
+        verdict: Verdict::Observed,
+        figures: shown,
+        table: Some(Table {
+            header: ["scene", "γ (N s/m)", "γ_g (N s/m)", "criterion", "relaxed at (s)", "steps"]
+                .map(String::from)
+                .to_vec(),
+            rows,
+        }),
+    })
+}
+
+/// Non-linear 2D: a Hertz lattice kicked over decades of v0.
+pub(super) fn hertz_kick(e: &Evidence) -> Option<Answer> {
+    let fit = e.fits.iter().find(|f| {
+        f.quantity == "sound_speed"
+            && f.law != "linear"
+            && e.records.iter().any(|r| r.spec.scene == f.scene && r.spec.lattice().is_some())
+    })?;
+    let chain = e.fits.iter().find(|f| f.quantity == "sound_speed" && f.law != "linear" && f.scene != fit.scene);
+    let (low, high) = (fit.points.first()?, fit.points.last()?);
+    let mut sentences = vec![format!(
+        "A Hertz lattice has no linear sound speed: its unstretched springs have no stiffness. Kicked at v0 from {} to \
+         {} m/s, its front speeds up from {} to {} m/s, as v0^{:.3} (R² = {:.4}).",
+        sig(low.0),
+        sig(high.0),
+        sig(low.1),
+        sig(high.1),
+        fit.fit.exponent,
+        fit.fit.r_squared
+    )];
+    if let Some(c) = chain {
+        sentences.push(format!(
+            "The Hertz chain's solitary wave speeds up as v0^{:.3} against Nesterenko's 1/5: the lattice follows the \
+             same strongly non-linear law, while a linear lattice's front speed does not depend on v0 at all.",
+            c.fit.exponent
+        ));
+    }
+    Some(Answer {
+        title: "A Hertz lattice kicked at several speeds",
+        question: "Non-linear 2D: change the velocity v0 of the single-particle impulse test.",
+        short: format!("front speed ∝ v0^{:.3}", fit.fit.exponent),
+        sentences,
+        reference: "Nesterenko's solitary-wave speed ∝ v0^(1/5) for Hertz contacts; within 0.05.".into(),
+        verdict: Verdict::of([(fit.fit.exponent - 0.2).abs() <= 0.05]),
+        figures: [(&fit.scene[..], "speed-v0"), (&fit.scene[..], "space-time")]
+            .iter()
+            .filter_map(|(s, p)| e.figure(s, p))
+            .collect(),
+        table: None,
+    })
+}

@@ -1,0 +1,315 @@
+//! The coursework's questions on the solid the network makes: homogeneity of the deformation,
+//! Hertz moduli against the load, anisotropic and random networks, and MD against the static
+//! truss (FEM) answer.
+
+use std::collections::BTreeMap;
+
+use super::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
+use crate::model::LawSpec;
+use crate::runner::RunRecord;
+use crate::sim::RunStatus;
+use crate::spec::LoadCase;
+
+/// After relaxation: are the left and right edges straight lines?
+pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
+    let regular = |r: &RunRecord| {
+        r.spec.law == LawSpec::Linear
+            && r.spec.lattice().is_some_and(|l| l.impulse.is_none() && !l.is_random() && l.k_x == l.k_y && !l.rotated)
+    };
+    let measured = e.ok(|r| regular(r) && r.metrics.lattice.homogeneity.is_some());
+    let undefined =
+        e.ok(|r| regular(r) && r.metrics.lattice.homogeneity.is_none() && r.metrics.lattice.youngs_modulus.is_some());
+    // Per (load case, supports): homogeneity by lattice size, the first run of each size.
+    let mut by_size: BTreeMap<(&'static str, &'static str), BTreeMap<usize, f64>> = BTreeMap::new();
+    for r in &measured {
+        let l = r.spec.lattice()?;
+        let value = r.metrics.lattice.homogeneity?;
+        by_size.entry((l.load_case.name(), l.supports.name())).or_default().entry(l.nx).or_insert(value);
+    }
+    let mut sentences = vec![
+        "Homogeneity is the largest distance of a left- or right-edge node's horizontal displacement from the \
+         straight line fitted through that edge, divided by the edges' mean horizontal displacement: 0 when the \
+         edges stay straight lines, as a homogeneous strain requires."
+            .to_string(),
+    ];
+    let mut rows = Vec::new();
+    for ((case, supports), sizes) in &by_size {
+        let (small, large) = (sizes.iter().next()?, sizes.iter().next_back()?);
+        let trend = if sizes.len() < 2 {
+            String::new()
+        } else if *large.1 < 0.8 * small.1 {
+            ", shrinking as the block grows: the disturbance stays in a boundary layer of a few rows near the \
+             point loads and the supports"
+                .to_string()
+        } else if *large.1 > 1.25 * small.1 {
+            ", growing with the block: the supports bend it as a whole".to_string()
+        } else {
+            ", about the same at every size".to_string()
+        };
+        sentences.push(format!(
+            "{case}, {supports} supports: {} on {} × {} and {} on {} × {}{trend}.",
+            sig(*small.1),
+            small.0,
+            small.0,
+            sig(*large.1),
+            large.0,
+            large.0
+        ));
+        rows.extend(
+            sizes.iter().map(|(n, h)| vec![case.to_string(), supports.to_string(), format!("{n} × {n}"), sig(*h)]),
+        );
+    }
+    if !undefined.is_empty() {
+        sentences.push(format!(
+            "In {} tensile runs without diagonals (ν = 0) the edges do not move sideways at all: homogeneity is not \
+             defined there, and the tables leave it empty.",
+            undefined.len()
+        ));
+    }
+    Some(Answer {
+        title: "Homogeneity of the deformation",
+        question: "After each relaxation, check that the left and right nodes are aligned on a line; discuss.",
+        short: by_size
+            .iter()
+            .next()
+            .and_then(|((case, supports), sizes)| {
+                sizes.iter().next_back().map(|(n, h)| format!("{case}, {supports}, {n} × {n}: {}", sig(*h)))
+            })
+            .unwrap_or_default(),
+        sentences,
+        reference: "A homogeneous strain keeps the edges straight (0); an observation of how far each set-up departs \
+                    from it."
+            .into(),
+        verdict: Verdict::Observed,
+        figures: Vec::new(),
+        table: Some(Table { header: ["load", "supports", "lattice", "homogeneity"].map(String::from).to_vec(), rows }),
+    })
+}
+
+/// Non-linear 2D: Hertz lattice moduli against the load.
+pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
+    let fits: Vec<_> = e
+        .fits
+        .iter()
+        .filter(|f| f.law != "linear" && f.against == "load_per_node" && !f.quantity.ends_with("tangent"))
+        .collect();
+    let first = fits.first()?;
+    let mut sentences = vec![
+        "A Hertz spring s = C δ^(3/2) stiffens as it is stretched: under a load F its bonds stretch by δ ∝ F^(2/3), \
+         so the secant and tangent moduli, ∝ C δ^(1/2), grow as F^(1/3), the tangent 3/2 × the secant."
+            .to_string(),
+    ];
+    let mut checks = Vec::new();
+    for f in &fits {
+        sentences.push(format!(
+            "{} ({}): {} from {} to {} Pa over loads of {} to {} N per node, ∝ F^{:.3} (R² = {:.4}).",
+            f.quantity.replace('_', " "),
+            f.scene,
+            f.quantity.replace('_', " "),
+            sig(f.points.first().map_or(0.0, |p| p.1)),
+            sig(f.points.last().map_or(0.0, |p| p.1)),
+            sig(f.points.first().map_or(0.0, |p| p.0)),
+            sig(f.points.last().map_or(0.0, |p| p.0)),
+            f.fit.exponent,
+            f.fit.r_squared
+        ));
+        checks.push((f.fit.exponent - 1.0 / 3.0).abs() <= 0.03);
+    }
+    let runs = e.ok(|r| r.spec.law != LawSpec::Linear && r.spec.lattice().is_some_and(|l| l.impulse.is_none()));
+    let ratios: Vec<f64> = runs
+        .iter()
+        .filter_map(|r| Some(r.metrics.lattice.youngs_modulus_tangent? / r.metrics.lattice.youngs_modulus?))
+        .collect();
+    if !ratios.is_empty() {
+        sentences.push(format!(
+            "Tangent over secant Young's modulus: {} (Hertz: 1.5).",
+            ratios.iter().map(|x| format!("{x:.3}")).collect::<Vec<_>>().join(", ")
+        ));
+    }
+    Some(Answer {
+        title: "Hertz lattices: moduli against the load",
+        question: "Non-linear 2D: set the load to different values and analyse the moduli of the different \
+                   equilibria.",
+        short: format!("E ∝ F^{:.3} (Hertz: 1/3)", first.fit.exponent),
+        sentences,
+        reference: "The Hertz scaling F^(1/3); fitted exponents within 0.03.".into(),
+        verdict: Verdict::of(checks),
+        figures: fits.iter().filter_map(|f| e.figure(&f.scene, f.quantity)).take(2).collect(),
+        table: None,
+    })
+}
+
+/// Anisotropic networks: moduli in both directions.
+pub(super) fn anisotropic(e: &Evidence) -> Option<Answer> {
+    let runs = e.ok(|r| {
+        r.spec.lattice().is_some_and(|l| {
+            (l.k_x != l.k_y
+                || !matches!(l.diagonals, crate::spec::Diagonals::Both | crate::spec::Diagonals::None)
+                || l.rotated)
+                && !l.is_random()
+        })
+    });
+    let mut groups: BTreeMap<String, Vec<&RunRecord>> = BTreeMap::new();
+    for r in &runs {
+        let key = r.spec.varied_label(|path| path != "load.case");
+        groups.entry(key).or_default().push(r);
+    }
+    let modulus = |rs: &[&RunRecord], case: LoadCase, rotated: bool, pick: fn(&RunRecord) -> Option<f64>| {
+        rs.iter()
+            .find(|r| r.spec.lattice().is_some_and(|l| l.load_case == case && l.rotated == rotated))
+            .and_then(|r| pick(r))
+    };
+    let mut rows = Vec::new();
+    for (key, rs) in &groups {
+        rows.push(vec![
+            key.clone(),
+            cell(modulus(rs, LoadCase::Tensile, false, |r| r.metrics.lattice.youngs_modulus)),
+            cell(modulus(rs, LoadCase::Tensile, true, |r| r.metrics.lattice.youngs_modulus)),
+            super::noise(modulus(rs, LoadCase::Tensile, false, |r| r.metrics.lattice.poisson_ratio), 1.0),
+            super::noise(modulus(rs, LoadCase::Tensile, true, |r| r.metrics.lattice.poisson_ratio), 1.0),
+            cell(modulus(rs, LoadCase::Shear, false, |r| r.metrics.lattice.shear_modulus)),
+        ]);
+    }
+    let worst = runs
+        .iter()
+        .filter_map(|r| {
+            let m = &r.metrics.lattice;
+            relative(m.youngs_modulus.or(m.shear_modulus), m.youngs_modulus_fem.or(m.shear_modulus_fem))
+        })
+        .map(f64::abs)
+        .fold(0.0, f64::max);
+    let sentences = vec![
+        "Stiffer columns (k_y > k_x) raise E_y above E_x; one diagonal family couples shear to stretch, so ν_xy and \
+         ν_yx differ and the moduli must be measured in both directions (tensile-x turns the loading by 90°)."
+            .to_string(),
+        format!(
+            "MD agrees with the static answer of each anisotropic network to {} at worst.",
+            rel(worst).trim_start_matches('+')
+        ),
+    ];
+    Some(Answer {
+        title: "Anisotropic networks",
+        question: "(a) Make the packing anisotropic (cut one diagonal family, or stiffer vertical springs) and \
+                   measure the moduli in all directions.",
+        short: format!("E_x ≠ E_y measured; MD = static within {}", rel(worst).trim_start_matches('+')),
+        sentences,
+        reference: "The static truss answer of each network (tolerance 2e-3).".into(),
+        verdict: Verdict::of([worst <= 2e-3]),
+        figures: Vec::new(),
+        table: Some(Table {
+            header: ["network", "E_y (Pa)", "E_x (Pa)", "ν (load y)", "ν (load x)", "G (Pa)"]
+                .map(String::from)
+                .to_vec(),
+            rows,
+        }),
+    })
+}
+
+/// Random networks: E and G against the fraction of bonds kept, over seeds.
+pub(super) fn random(e: &Evidence) -> Option<Answer> {
+    let runs = e.all(|r| r.spec.lattice().is_some_and(|l| l.cut_fraction > 0.0));
+    let mut by_cut: BTreeMap<(String, u64), Vec<&RunRecord>> = BTreeMap::new();
+    for r in &runs {
+        let l = r.spec.lattice()?;
+        by_cut.entry((l.load_case.name().to_string(), (l.cut_fraction * 1000.0).round() as u64)).or_default().push(r);
+    }
+    let mut rows = Vec::new();
+    for ((case, cut), rs) in &by_cut {
+        let values: Vec<f64> = rs
+            .iter()
+            .filter(|r| r.status == RunStatus::Ok)
+            .filter_map(|r| r.metrics.lattice.youngs_modulus.or(r.metrics.lattice.shear_modulus))
+            .collect();
+        let mean = values.iter().sum::<f64>() / values.len().max(1) as f64;
+        let spread = (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / values.len().max(1) as f64).sqrt();
+        let kept = rs.iter().filter_map(|r| r.metrics.lattice.bond_fraction_kept).sum::<f64>() / rs.len() as f64;
+        rows.push(vec![
+            case.clone(),
+            format!("{:.2}", *cut as f64 / 1000.0),
+            format!("{kept:.3}"),
+            format!("{}/{}", rs.iter().filter(|r| r.status == RunStatus::Mechanism).count(), rs.len()),
+            if values.is_empty() { "–".into() } else { sig(mean) },
+            if values.is_empty() { "–".into() } else { sig(spread) },
+        ]);
+    }
+    let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
+    let sentences = vec![
+        format!(
+            "Cutting bonds at random softens the network and spreads its moduli over seeds; {} of the {} random runs \
+             lost their rigidity (status mechanism, found by the static solver before MD).",
+            mechanisms,
+            runs.len()
+        ),
+        "Effective-medium theory for central-force networks puts the loss of rigidity where the mean coordination \
+         reaches 2d = 4, a kept fraction 4/8 = 1/2 of the square lattice with both diagonals; finite networks with \
+         intact edges keep some rigidity a little beyond it. A cut network must relax first: its soft, slow modes \
+         take longest."
+            .into(),
+    ];
+    let scene = runs.first()?.spec.scene.clone();
+    Some(Answer {
+        title: "Random networks",
+        question: "(b) Make the system random (cut springs at random, or vary their stiffness): what do you observe?",
+        short: format!("{mechanisms} of {} cut networks lost rigidity", runs.len()),
+        sentences,
+        reference: "Effective-medium theory's rigidity threshold at half the bonds kept; an observation.".into(),
+        verdict: Verdict::Observed,
+        figures: e.figure(&scene, "dilution").into_iter().collect(),
+        table: Some(Table {
+            header: ["load", "cut fraction", "kept", "mechanisms", "modulus mean (Pa)", "spread (Pa)"]
+                .map(String::from)
+                .to_vec(),
+            rows,
+        }),
+    })
+}
+
+/// MD against the static truss (FEM) answer, and how k_FEM relates to k_MD.
+pub(super) fn md_and_fem(e: &Evidence) -> Option<Answer> {
+    let pairs: Vec<(f64, &RunRecord)> = e
+        .ok(|r| r.spec.lattice().is_some())
+        .into_iter()
+        .filter_map(|r| {
+            let m = &r.metrics.lattice;
+            let md = m.youngs_modulus.or(m.shear_modulus);
+            let fem = m.youngs_modulus_fem.or(m.shear_modulus_fem);
+            relative(md, fem).map(|x| (x.abs(), r))
+        })
+        .collect();
+    let (worst, worst_run) = pairs.iter().copied().max_by(|a, b| a.0.total_cmp(&b.0))?;
+    let median = {
+        let mut v: Vec<f64> = pairs.iter().map(|p| p.0).collect();
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let s = &worst_run.spec;
+    let sentences = vec![
+        format!(
+            "Each spring with its masses is a truss bar: k = E_bar A/a. With k = {} N/m and a = {} m a bar of \
+             E_bar A = k a = {} N gives the same network, so k_FEM = k_MD and σ_FEM = (k_FEM/k_MD) σ_MD = σ_MD; the \
+             static solver here is that truss model, solved exactly (sparse Cholesky, then Newton for large \
+             rotations and non-linear springs).",
+            sig(s.k),
+            sig(s.spacing),
+            sig(s.k * s.spacing)
+        ),
+        format!(
+            "Over {} relaxed lattice runs MD and the static answer differ by {} at the median and {} at worst \
+             ({}): the difference is the relaxation's leftover motion, not the method.",
+            pairs.len(),
+            sig(median),
+            sig(worst),
+            worst_run.spec.scene
+        ),
+    ];
+    Some(Answer {
+        title: "MD against the static truss (FEM) answer",
+        question: "Compare MD with FEM for the same systems, and explain how k_FEM and k_MD are computed.",
+        short: format!("median |MD − static| = {}", sig(median)),
+        sentences,
+        reference: "The exact static answer of the same network; the median within 1e-3.".into(),
+        verdict: Verdict::of([median <= 1e-3]),
+        figures: Vec::new(),
+        table: None,
+    })
+}

@@ -1,0 +1,256 @@
+//! The coursework's questions (`../shared/coursework.md`) answered from a campaign's results:
+//! for each item a finding in sentences with this campaign's numbers, the reference it is held
+//! against with its tolerance, a verdict, the figures that show it and a compact table. Every
+//! number is read from the records at render time; an item whose runs the campaign lacks is
+//! left out.
+
+mod discussion;
+mod dynamics;
+mod materials;
+mod one_d;
+mod two_d;
+
+use serde::Serialize;
+
+use super::figure::{Figure, FigureRef, movie_refs};
+use crate::runner::RunRecord;
+use crate::sim::RunStatus;
+use crate::summary::ScalingFit;
+
+pub use self::discussion::{Paragraph, discussion};
+
+/// How a finding stands against its reference.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Verdict {
+    /// Every compared number within its tolerance.
+    Within,
+    /// At least one outside; the finding says why.
+    Outside,
+    /// Nothing to hold it against: an observation (a movie, a trend).
+    Observed,
+}
+
+impl Verdict {
+    /// Within when every check holds, outside otherwise.
+    fn of(checks: impl IntoIterator<Item = bool>) -> Verdict {
+        if checks.into_iter().all(|ok| ok) { Verdict::Within } else { Verdict::Outside }
+    }
+}
+
+/// A compact table: a header (units in it) and rows of formatted cells.
+#[derive(Serialize)]
+pub struct Table {
+    header: Vec<String>,
+    rows: Vec<Vec<String>>,
+}
+
+/// One coursework item answered.
+#[derive(Serialize)]
+pub struct Finding {
+    /// Position in the report (1, 2, ...), set when the list is made.
+    pub number: usize,
+    /// The heading's anchor: the slug of its text.
+    pub id: String,
+    /// Short title.
+    pub title: &'static str,
+    /// The coursework's question in one line.
+    pub question: &'static str,
+    /// The answer in a few words with its number, for the summary.
+    pub short: String,
+    /// The answer in sentences with this campaign's numbers.
+    pub sentences: Vec<String>,
+    /// What it is held against, with the tolerance and why.
+    pub reference: String,
+    /// Within, outside or observed.
+    pub verdict: Verdict,
+    /// Figures that show it.
+    pub figures: Vec<FigureRef>,
+    /// Its numbers in one table.
+    pub table: Option<Table>,
+}
+
+/// A finding before it is numbered: what each question's function returns.
+struct Answer {
+    title: &'static str,
+    question: &'static str,
+    short: String,
+    sentences: Vec<String>,
+    reference: String,
+    verdict: Verdict,
+    figures: Vec<FigureRef>,
+    table: Option<Table>,
+}
+
+/// What the questions read: the records, the scaling fits and the drawn figures.
+pub struct Evidence<'a> {
+    records: &'a [RunRecord],
+    fits: &'a [ScalingFit],
+    figures: &'a [Figure],
+    side_by_side: &'a [String],
+}
+
+impl<'a> Evidence<'a> {
+    /// The evidence of one report.
+    pub fn new(
+        records: &'a [RunRecord],
+        fits: &'a [ScalingFit],
+        figures: &'a [Figure],
+        side_by_side: &'a [String],
+    ) -> Self {
+        Evidence { records, fits, figures, side_by_side }
+    }
+
+    /// The movies of the runs `keep` selects: per scene, its side-by-side movie if drawn, and
+    /// each run's own.
+    fn movies(&self, keep: impl Fn(&RunRecord) -> bool) -> Vec<FigureRef> {
+        let chosen = self.all(keep);
+        let mut scenes: Vec<&str> = chosen.iter().map(|r| r.spec.scene.as_str()).collect();
+        scenes.dedup();
+        scenes
+            .into_iter()
+            .flat_map(|scene| {
+                let mine: Vec<&RunRecord> = chosen.iter().copied().filter(|r| r.spec.scene == scene).collect();
+                movie_refs(scene, &mine, self.side_by_side)
+            })
+            .collect()
+    }
+
+    /// The `ok` runs that `keep` selects, in campaign order.
+    fn ok(&self, keep: impl Fn(&RunRecord) -> bool) -> Vec<&'a RunRecord> {
+        self.records.iter().filter(|r| r.status == RunStatus::Ok && keep(r)).collect()
+    }
+
+    /// The runs of any status that `keep` selects.
+    fn all(&self, keep: impl Fn(&RunRecord) -> bool) -> Vec<&'a RunRecord> {
+        self.records.iter().filter(|r| keep(r)).collect()
+    }
+
+    /// The first figure of `scene` whose file name contains `part`.
+    fn figure(&self, scene: &str, part: &str) -> Option<FigureRef> {
+        self.figures
+            .iter()
+            .find(|f| f.scene == scene && f.file.contains(part))
+            .map(|f| FigureRef { file: f.file.clone(), caption: f.caption.clone() })
+    }
+
+    /// The scaling fit of `quantity` in `scene`, if the scene swept its variable.
+    fn fit(&self, scene: &str, quantity: &str) -> Option<&'a ScalingFit> {
+        self.fits.iter().find(|f| f.scene == scene && f.quantity == quantity)
+    }
+}
+
+/// The coursework's items that `evidence` answers, in the coursework's order, numbered.
+pub fn findings(evidence: &Evidence) -> Vec<Finding> {
+    let questions: [fn(&Evidence) -> Option<Answer>; 19] = [
+        one_d::two_particles,
+        one_d::time_step,
+        one_d::chain,
+        one_d::hertz_pair_and_chain,
+        one_d::walls,
+        two_d::units_and_time_step,
+        two_d::diagonal_stiffness,
+        two_d::lattice_time_step,
+        two_d::kick,
+        two_d::youngs_and_poisson,
+        two_d::shear,
+        dynamics::sound_speed,
+        dynamics::dissipation,
+        materials::homogeneity,
+        materials::hertz_moduli,
+        dynamics::hertz_kick,
+        materials::anisotropic,
+        materials::random,
+        materials::md_and_fem,
+    ];
+    questions
+        .iter()
+        .filter_map(|question| question(evidence))
+        .enumerate()
+        .map(|(i, a)| {
+            let number = i + 1;
+            Finding {
+                number,
+                id: slug(&format!("{number}. {}", a.title)),
+                title: a.title,
+                question: a.question,
+                short: a.short,
+                sentences: a.sentences,
+                reference: a.reference,
+                verdict: a.verdict,
+                figures: a.figures,
+                table: a.table,
+            }
+        })
+        .collect()
+}
+
+/// The anchor GitHub and the HTML page give a heading: lower case, letters, digits, `-` and `_`
+/// kept, spaces to `-`, everything else dropped.
+pub fn slug(text: &str) -> String {
+    text.chars()
+        .flat_map(char::to_lowercase)
+        .filter_map(|c| match c {
+            ' ' => Some('-'),
+            c if c.is_alphanumeric() || c == '-' || c == '_' => Some(c),
+            _ => None,
+        })
+        .collect()
+}
+
+/// `x` with 4 significant digits, plain or scientific as reads best.
+fn sig(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let magnitude = x.abs().log10().floor();
+    if (-3.0..5.0).contains(&magnitude) {
+        let decimals = (3.0 - magnitude).max(0.0) as usize;
+        format!("{x:.decimals$}")
+    } else {
+        format!("{x:.3e}")
+    }
+}
+
+/// A relative error as a signed number with 2 digits (`+1.6e-4`).
+fn rel(e: f64) -> String {
+    format!("{e:+.1e}")
+}
+
+/// `x` when present, a dash otherwise.
+fn cell(x: Option<f64>) -> String {
+    x.map(sig).unwrap_or_else(|| "–".into())
+}
+
+/// `x` as [`cell`] writes it, or 0 when it is below the result's precision: round-off of a
+/// quantity whose scale is `scale` (a Poisson ratio of 3e-13 is 0).
+fn noise(x: Option<f64>, scale: f64) -> String {
+    match x {
+        Some(v) if v.abs() < 1e-9 * scale => "0".into(),
+        other => cell(other),
+    }
+}
+
+/// (a − b)/b when both exist and b ≠ 0.
+fn relative(a: Option<f64>, b: Option<f64>) -> Option<f64> {
+    crate::measure::relative_error(a, b)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slugs_match_the_heading_anchors() {
+        assert_eq!(slug("3. Time step: t_c/50?"), "3-time-step-t_c50");
+        assert_eq!(slug("Young's modulus and ν"), "youngs-modulus-and-ν");
+    }
+
+    #[test]
+    fn significant_digits_read_well() {
+        assert_eq!(sig(2.221441469), "2.221");
+        assert_eq!(sig(0.0444288), "0.04443");
+        assert_eq!(sig(2.0e11), "2.000e11");
+        assert_eq!(rel(-1.6464e-4), "-1.6e-4");
+    }
+}

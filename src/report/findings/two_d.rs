@@ -1,0 +1,407 @@
+//! The coursework's 2D items: units and time step, the diagonal springs, the lattice's time
+//! step, the upper-right kick, E, ν and G against the static truss and the continuum, sound
+//! speed, dissipation, homogeneity, Hertz lattices, anisotropic and random networks, MD against
+//! FEM.
+
+use std::collections::BTreeMap;
+
+use super::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
+use crate::measure::convergence_order;
+use crate::model::LawSpec;
+use crate::runner::RunRecord;
+use crate::sim::RunStatus;
+use crate::spec::{Control, Diagonals, LatticeSpec, LoadCase, Supports};
+
+/// Largest |MD − static|/static of a relaxed lattice's modulus that counts as agreement: the
+/// relaxation stops at E_kin/E_pot < 1e-8 or a residual force of 1e-6 of the load, which leaves
+/// the slowest mode's displacement error at about 1e-4 … 1e-3 of the deformation.
+const STATIC_TOLERANCE: f64 = 2e-3;
+
+/// A loaded (not kicked), regular, linear lattice: the coursework's moduli runs.
+fn regular(r: &RunRecord) -> Option<&LatticeSpec> {
+    r.spec.lattice().filter(|l| {
+        l.impulse.is_none() && !l.is_random() && l.k_x == l.k_y && !l.rotated && r.spec.law == LawSpec::Linear
+    })
+}
+
+/// The fitted order, as text.
+fn order_text(order: Option<f64>) -> String {
+    order.map(|p| format!("{p:.2}")).unwrap_or_else(|| "–".into())
+}
+
+/// The figures `(scene, part)` that exist.
+fn figures(e: &Evidence, wanted: &[(&str, &str)]) -> Vec<super::FigureRef> {
+    wanted.iter().filter_map(|(scene, part)| e.figure(scene, part)).collect()
+}
+
+/// The scenes of `runs`, each once, in order.
+fn scenes(runs: &[&RunRecord]) -> Vec<String> {
+    let mut scenes: Vec<String> = Vec::new();
+    for r in runs {
+        if !scenes.contains(&r.spec.scene) {
+            scenes.push(r.spec.scene.clone());
+        }
+    }
+    scenes
+}
+
+/// Masses and stiffnesses of the lattice, the good time step and its stability margin.
+pub(super) fn units_and_time_step(e: &Evidence) -> Option<Answer> {
+    let lattices = e.ok(|r| r.spec.lattice().is_some() && r.metrics.dt_omega_max.is_some());
+    let derived = lattices.iter().find(|r| r.spec.lattice().is_some_and(|l| l.derived_from.is_some()));
+    let example = derived.or(lattices.first())?;
+    let l = example.spec.lattice()?;
+    let s = &example.spec;
+    let mut sentences = Vec::new();
+    if let Some(note) = &l.derived_from {
+        sentences.push(format!("The masses and springs are derived from the solid: {note}."));
+    }
+    sentences.push(format!(
+        "A node of m = {} kg on springs k = {} N/m gives the pair's t_c = π√(m/(2k)) = {} s, so dt = t_c/50 = {} s; \
+         the whole {} × {} block weighs {} kg.",
+        sig(s.mass),
+        sig(s.k),
+        sig(s.t_c),
+        sig(s.t_c / 50.0),
+        l.nx,
+        l.ny,
+        sig(s.mass * (l.nx * l.ny) as f64)
+    ));
+    let margins: Vec<f64> = lattices
+        .iter()
+        .filter(|r| !r.spec.allow_unstable && (r.spec.dt_per_tc() - 50.0).abs() < 1.0)
+        .filter_map(|r| Some(r.metrics.dt_omega_max? / r.metrics.stability_limit?))
+        .collect();
+    let worst = margins.iter().copied().fold(0.0, f64::max);
+    sentences.push(format!(
+        "The lattice's fastest mode is faster than the pair's (ω_max up to 2√((k + k_d)/m) with diagonals), so the \
+         step is checked against it before every run: the largest dt·ω_max of the {} lattice runs is {} of its \
+         integrator's stability limit at dt = t_c/50.",
+        margins.len(),
+        sig(worst)
+    ));
+    Some(Answer {
+        title: "Masses, stiffnesses and the lattice's time step",
+        question: "Choose masses and stiffnesses so the lattice weighs what the solid weighs and dt is easy to \
+                   estimate; what is a good time step?",
+        short: format!("dt = t_c/50 = {} s, {} of the stability limit", sig(s.t_c / 50.0), sig(worst)),
+        sentences,
+        reference: "The integrator's stability limit dt·ω_max ≤ 2 (Verlet), measured per run; verdict: every run \
+                    below it."
+            .into(),
+        verdict: Verdict::of([worst < 1.0]),
+        figures: Vec::new(),
+        table: None,
+    })
+}
+
+/// k_d/k for equal Young's modulus along the diagonal chain, and the choice made.
+pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
+    let runs = e.ok(|r| regular(r).is_some_and(|l| l.diagonals == Diagonals::Both && l.load_case == LoadCase::Tensile));
+    let mut ratios: BTreeMap<String, &RunRecord> = BTreeMap::new();
+    for r in &runs {
+        ratios.entry(sig(r.spec.lattice()?.k_diag / r.spec.k)).or_insert(r);
+    }
+    let first = *runs.first()?;
+    let mut sentences = vec![
+        "A chain of diagonal springs k_d of length a√2 carries, per unit width, the stiffness k_d/√2 … a row of \
+         springs k of length a carries k: the two have the same Young's modulus when k_d a√2 = k a, i.e. \
+         k_d/k = 1/√2 ≈ 0.7071."
+            .to_string(),
+    ];
+    for r in ratios.values() {
+        let l = r.spec.lattice()?;
+        sentences.push(format!(
+            "With k_d/k = {} the continuum has E = (C11 − C12²/C11)/d = {} Pa and ν = k_d/(k + k_d) = {}; MD measures \
+             ν = {} on {} × {} ({} supports).",
+            sig(l.k_diag / r.spec.k),
+            cell(r.metrics.lattice.youngs_modulus_theory),
+            cell(r.metrics.lattice.poisson_ratio_theory),
+            cell(r.metrics.lattice.poisson_ratio),
+            l.nx,
+            l.ny,
+            l.supports.name()
+        ));
+    }
+    sentences.push(format!(
+        "This campaign's moduli runs use k_d/k = {}: it gives ν = 1/3, the Poisson ratio of many metals, and keeps \
+         the diagonals clearly softer than the axial springs so their role stays visible.",
+        sig(first.spec.lattice()?.k_diag / first.spec.k)
+    ));
+    Some(Answer {
+        title: "The diagonal springs",
+        question: "Choose k_diag so the diagonal chain has the same Young's modulus as the axial one: what is \
+                   k_diag/k? Choose one and argue for it.",
+        short: "k_d/k = 1/√2 ≈ 0.7071 for equal E; 0.5 chosen (ν = 1/3)".into(),
+        sentences,
+        reference: "The continuum constants C11 = k + k_d, C12 = C44 = k_d (per unit depth).".into(),
+        verdict: Verdict::Observed,
+        figures: Vec::new(),
+        table: None,
+    })
+}
+
+/// A dt sweep on a kicked lattice: energy error and arrival time against dt.
+pub(super) fn lattice_time_step(e: &Evidence) -> Option<Answer> {
+    let kicked = e.ok(|r| r.spec.lattice().is_some_and(|l| l.impulse.is_some()) && r.metrics.energy_error.is_some());
+    let scene = scenes(&kicked).into_iter().find(|s| kicked.iter().filter(|r| r.spec.scene == *s).count() >= 3)?;
+    let mut sweep: Vec<&RunRecord> = kicked.into_iter().filter(|r| r.spec.scene == scene).collect();
+    sweep.sort_by(|a, b| b.spec.dt.total_cmp(&a.spec.dt));
+    let points: Vec<(f64, f64)> = sweep.iter().filter_map(|r| r.metrics.energy_error.map(|x| (r.spec.dt, x))).collect();
+    let order = convergence_order(&points);
+    let finest = *sweep.last()?;
+    let arrival =
+        |r: &RunRecord| r.metrics.arrival_criterion.as_deref().and_then(|c| r.metrics.arrival_times.get(c).copied());
+    let rows: Vec<Vec<String>> = sweep
+        .iter()
+        .map(|r| {
+            vec![
+                format!("{:.0}", r.spec.dt_per_tc()),
+                cell(r.metrics.dt_omega_max),
+                cell(r.metrics.energy_error),
+                cell(arrival(r)),
+                relative(arrival(r), arrival(finest)).map(rel).unwrap_or_else(|| "–".into()),
+            ]
+        })
+        .collect();
+    let coarsest = *sweep.first()?;
+    let sentences = vec![format!(
+        "The same kick on the lattice of scene {scene}, undamped, from dt = t_c/{:.0} to t_c/{:.0}: the energy error \
+         falls as dt^{} ({} at the largest step, {} at the smallest), and the arrival time at the bottom row moves \
+         by {} between the largest and the smallest step. dt = t_c/50 keeps the energy to {} here: the pair's rule \
+         holds on the lattice, whose fastest mode sits at dt·ω_max = {} at t_c/50.",
+        coarsest.spec.dt_per_tc(),
+        finest.spec.dt_per_tc(),
+        order_text(order),
+        cell(coarsest.metrics.energy_error),
+        cell(finest.metrics.energy_error),
+        relative(arrival(coarsest), arrival(finest)).map(rel).unwrap_or_else(|| "–".into()),
+        cell(super::super::figure::representative(&sweep).metrics.energy_error),
+        cell(super::super::figure::representative(&sweep).metrics.dt_omega_max),
+    )];
+    Some(Answer {
+        title: "The time step on a lattice",
+        question: "Confirm performance and accuracy on the lattice with larger and smaller time steps.",
+        short: format!("energy error ∝ dt^{}", order_text(order)),
+        sentences,
+        reference: "Velocity Verlet's second order: fitted order within 0.2 of 2.".into(),
+        verdict: Verdict::of([order.is_some_and(|p| (p - 2.0).abs() <= 0.2)]),
+        figures: figures(e, &[(&scene, "work-precision"), (&scene, "error-dt")]),
+        table: Some(Table {
+            header: ["t_c/dt", "dt·ω_max", "energy error", "arrival (s)", "vs finest"].map(String::from).to_vec(),
+            rows,
+        }),
+    })
+}
+
+/// The upper-right node kicked, with and without diagonals.
+pub(super) fn kick(e: &Evidence) -> Option<Answer> {
+    let kicked = e.ok(|r| {
+        r.spec.lattice().is_some_and(|l| l.impulse.is_some_and(|i| i.top_row_force.is_none()))
+            && r.spec.law == LawSpec::Linear
+            && r.metrics.sound_speed_theory.is_some()
+    });
+    let speed = |r: &RunRecord| r.metrics.arrival_criterion.as_deref().and_then(|c| r.metrics.sound_speed(c));
+    let mut sentences = Vec::new();
+    for diagonals in [Diagonals::None, Diagonals::Both] {
+        let Some(r) = kicked.iter().find(|r| r.spec.lattice().is_some_and(|l| l.diagonals == diagonals)) else {
+            continue;
+        };
+        sentences.push(match diagonals {
+            Diagonals::None => format!(
+                "Without diagonals the kicked column is a chain of its own: the vertical kick runs down it at \
+                 {} m/s against a√(k/m) = {} m/s, and almost nothing crosses to the neighbouring columns (a square \
+                 lattice without diagonals has no shear stiffness): the kick stays in its column.",
+                cell(speed(r)),
+                cell(r.metrics.sound_speed_theory)
+            ),
+            _ => format!(
+                "With diagonals every node is tied to its neighbours across the cell: the kick spreads as a \
+                 circular front into the whole block and reaches the bottom row at {} m/s against \
+                 c_L = a√((k + k_d)/m) = {} m/s, followed by a slower shear front.",
+                cell(speed(r)),
+                cell(r.metrics.sound_speed_theory)
+            ),
+        });
+    }
+    let first = *kicked.first()?;
+    let mut shown = e.movies(|r| {
+        r.spec.lattice().is_some_and(|l| l.impulse.is_some()) && r.spec.movie.is_some() && r.spec.law == LawSpec::Linear
+    });
+    shown.truncate(1);
+    shown.extend(figures(e, &[(&first.spec.scene, "space-time")]));
+    Some(Answer {
+        title: "The upper-right kick, with and without diagonals",
+        question: "Give the upper-right particle an initial velocity, animate the motion, and explain the \
+                   differences between the structures with and without diagonal springs.",
+        short: "without diagonals the kick stays in its column; with them it spreads".into(),
+        sentences,
+        reference: "The chain's front speed a√(k/m) and the lattice's c_L; an observation.".into(),
+        verdict: Verdict::Observed,
+        figures: shown,
+        table: None,
+    })
+}
+
+/// The modulus a run measures: its name, MD, static and continuum values (Pa).
+type Modulus = (&'static str, Option<f64>, Option<f64>, Option<f64>);
+
+/// The modulus a run measures.
+fn modulus(r: &RunRecord) -> Option<Modulus> {
+    let m = &r.metrics.lattice;
+    match r.spec.lattice()?.load_case {
+        LoadCase::Tensile | LoadCase::TensileX => {
+            Some(("E", m.youngs_modulus, m.youngs_modulus_fem, m.youngs_modulus_theory))
+        }
+        LoadCase::Shear => Some(("G", m.shear_modulus, m.shear_modulus_fem, m.shear_modulus_theory)),
+    }
+}
+
+/// One load case's moduli answered: sentences, table, checks, and the scenes it read.
+struct Moduli {
+    sentences: Vec<String>,
+    table: Table,
+    checks: Vec<bool>,
+    scenes: Vec<String>,
+}
+
+/// A lattice's size, diagonals and supports in a few words.
+fn lattice_words(l: &LatticeSpec) -> String {
+    let diagonals = match l.diagonals {
+        Diagonals::None => "no".to_string(),
+        other => other.name().to_string(),
+    };
+    format!("{} × {}, {diagonals} diagonals, {} supports", l.nx, l.ny, l.supports.name())
+}
+
+/// The moduli answer of one load case: sentences, table, checks.
+fn moduli(e: &Evidence, case: LoadCase) -> Option<Moduli> {
+    let runs = e.all(|r| regular(r).is_some_and(|l| l.load_case == case && l.control == Control::Force));
+    let ok: Vec<&RunRecord> = runs.iter().copied().filter(|r| r.status == RunStatus::Ok).collect();
+    let largest = ok.iter().map(|r| r.spec.lattice().map_or(0, |l| l.nx)).max()?;
+    let mut rows = Vec::new();
+    let mut worst: f64 = 0.0;
+    for r in &ok {
+        let (_, md, fem, _) = modulus(r)?;
+        worst = worst.max(relative(md, fem).map_or(0.0, f64::abs));
+    }
+    for r in ok.iter().filter(|r| r.spec.lattice().is_some_and(|l| l.nx == largest)) {
+        let (name, md, fem, theory) = modulus(r)?;
+        let l = r.spec.lattice()?;
+        rows.push(vec![
+            lattice_words(l),
+            format!("{name} (Pa)"),
+            cell(md),
+            cell(fem),
+            cell(theory),
+            relative(md, fem).map(rel).unwrap_or_else(|| "–".into()),
+            relative(fem, theory).map(rel).unwrap_or_else(|| "–".into()),
+            super::noise(r.metrics.lattice.poisson_ratio, 1.0),
+        ]);
+    }
+    let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
+    let sentences = vec![format!(
+        "Over the {} relaxed runs the MD modulus agrees with the static truss answer of the same network to {} at \
+         worst; the table shows the {largest} × {largest} lattices, where the static answer still differs from the \
+         continuum by the finite size and the supports.{}",
+        ok.len(),
+        rel(worst).trim_start_matches('+'),
+        if mechanisms > 0 {
+            format!(
+                " {mechanisms} runs end as mechanism: the load drives a zero-stiffness motion (a lattice without \
+                 diagonals has no shear stiffness), and no modulus exists."
+            )
+        } else {
+            String::new()
+        }
+    )];
+    let header = ["lattice", "modulus", "MD", "static", "continuum", "MD − static", "static − continuum", "ν MD"]
+        .map(String::from)
+        .to_vec();
+    Some(Moduli {
+        sentences,
+        table: Table { header, rows },
+        checks: vec![worst <= STATIC_TOLERANCE],
+        scenes: scenes(&ok),
+    })
+}
+
+/// (a) and (b): Young's modulus and Poisson's ratio.
+pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
+    let Moduli { mut sentences, table, checks, scenes } = moduli(e, LoadCase::Tensile)?;
+    let both = e.ok(|r| regular(r).is_some_and(|l| l.load_case == LoadCase::Tensile && l.diagonals == Diagonals::Both));
+    if let Some(r) = both.iter().max_by_key(|r| r.spec.lattice().map_or(0, |l| l.nx)) {
+        sentences.insert(
+            0,
+            format!(
+                "1 kN up on every top-row node of the {}: E = (F/d/L_x)/(ΔL_y/L_y) = {} Pa (continuum {} Pa), \
+                 ν = −(ΔL_x/L_x)/(ΔL_y/L_y) = {} (continuum k_d/(k + k_d) = {}); without diagonals E = k/d and \
+                 ν = 0: nothing ties the columns to the rows.",
+                r.spec.lattice().map(lattice_words).unwrap_or_default(),
+                cell(r.metrics.lattice.youngs_modulus),
+                cell(r.metrics.lattice.youngs_modulus_theory),
+                cell(r.metrics.lattice.poisson_ratio),
+                cell(r.metrics.lattice.poisson_ratio_theory),
+            ),
+        );
+    }
+    Some(Answer {
+        title: "Young's modulus and Poisson's ratio",
+        question: "(a, b) Measure E and ν under 1 kN up on every top-row node.",
+        short: format!("MD = static truss within {}", STATIC_TOLERANCE),
+        sentences,
+        reference: format!(
+            "The static truss answer of the same network (tolerance {STATIC_TOLERANCE:e}: the relaxation's stopping \
+             rule) and the continuum constants (finite size explains the rest)."
+        ),
+        verdict: Verdict::of(checks),
+        figures: scenes.iter().take(1).flat_map(|s| figures(e, &[(s, "size"), (s, "relaxation")])).collect(),
+        table: Some(table),
+    })
+}
+
+/// (c): the shear modulus, and the velocity boundary condition.
+pub(super) fn shear(e: &Evidence) -> Option<Answer> {
+    let Moduli { mut sentences, table, checks, scenes } = moduli(e, LoadCase::Shear)?;
+    let periodic = e.ok(|r| {
+        regular(r).is_some_and(|l| {
+            l.load_case == LoadCase::Shear && l.supports == Supports::PeriodicX && l.control == Control::Force
+        })
+    });
+    if let Some(r) = periodic.first() {
+        sentences.push(format!(
+            "Only the periodic strip shears homogeneously: there G = {} Pa against k_d/d = {} Pa; with the \
+             coursework supports the whole shear force passes through the single pinned corner, and a clamped \
+             bottom bends the block, so both fall short of G.",
+            cell(r.metrics.lattice.shear_modulus),
+            cell(r.metrics.lattice.shear_modulus_theory)
+        ));
+    }
+    let driven = e.ok(regular_or_driven);
+    for r in driven.iter().take(4) {
+        let Some((name, md, fem, _)) = modulus(r) else { continue };
+        sentences.push(format!(
+            "Velocity control ({}): the top row driven to a strain of {}, {name} from the supports' force = {} Pa \
+             against the static {} Pa.",
+            r.spec.lattice().map(lattice_words).unwrap_or_default(),
+            cell(r.spec.lattice().map(|l| l.drive_strain)),
+            cell(md),
+            cell(fem)
+        ));
+    }
+    Some(Answer {
+        title: "The shear modulus",
+        question: "(c) Measure G under a horizontal load on every top-row node.",
+        short: "G = k_d/d on the periodic strip; no shear stiffness without diagonals".into(),
+        sentences,
+        reference: format!("The static truss answer (tolerance {STATIC_TOLERANCE:e}) and G = k_d/d."),
+        verdict: Verdict::of(checks),
+        figures: scenes.iter().take(1).flat_map(|s| figures(e, &[(s, "size")])).collect(),
+        table: Some(table),
+    })
+}
+
+/// A lattice driven at constant velocity (the coursework's velocity boundary condition).
+fn regular_or_driven(r: &RunRecord) -> bool {
+    regular(r).is_some_and(|l| l.control == Control::Velocity)
+}
