@@ -2,7 +2,7 @@
 //! energies per scene, chain displacements, relaxation, the finite-size convergence of lattice
 //! moduli, and the convergence of the pair measurements against their analytical values.
 
-use super::figure::{Figure, groups, representative};
+use super::figure::{Figure, group_label, groups, physics_label, representative};
 use super::{precision, probes, solids, stability_map, waves};
 use crate::draw::chart::{Chart, Scale, Series, line_chart};
 use crate::measure::relative_error;
@@ -10,15 +10,33 @@ use crate::runner::RunRecord;
 use crate::spec::{Campaign, SceneKind};
 use crate::summary::ScalingFit;
 
-/// At most this many energy figures per scene (one per group).
-const MAX_ENERGY_FIGURES: usize = 4;
+/// The groups whose energies are worth a figure: an undamped one and a damped one (the first
+/// of each), in runs that move rather than relax (a relaxing run's energies are its relaxation
+/// figure's, and its samples are the relaxation checks, too few for a time history).
+fn energy_groups<'a>(groups: &'a [(String, Vec<&'a RunRecord>)]) -> Vec<(usize, &'a (String, Vec<&'a RunRecord>))> {
+    let damped = |r: &RunRecord| r.spec.gamma > 0.0 || r.spec.gamma_background > 0.0;
+    let moving = |r: &RunRecord| r.spec.relax().is_none() && r.trace.time.len() >= MIN_ENERGY_SAMPLES;
+    let mut chosen = Vec::new();
+    for want_damped in [false, true] {
+        if let Some(found) = groups.iter().enumerate().find(|(_, (_, members))| {
+            let r = representative(members);
+            moving(r) && damped(r) == want_damped
+        }) {
+            chosen.push(found);
+        }
+    }
+    chosen
+}
+
+/// Fewer samples than this do not make a time history worth drawing.
+const MIN_ENERGY_SAMPLES: usize = 20;
 
 /// Every figure of the report.
 pub fn draw_all(campaign: &Campaign, records: &[RunRecord], fits: &[ScalingFit]) -> anyhow::Result<Vec<Figure>> {
     let mut figures = Vec::new();
     for (scene, kind) in &campaign.scenes {
         let groups = groups(records, scene);
-        for (index, (label, members)) in groups.iter().enumerate().take(MAX_ENERGY_FIGURES) {
+        for (index, (label, members)) in energy_groups(&groups) {
             figures.push(energy_figure(scene, index, label, representative(members))?);
         }
         match kind {
@@ -130,6 +148,7 @@ fn convergence_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyh
         }));
         series.push(curve("r", &|r| relative_error(r.metrics.pair.restitution, r.metrics.pair.restitution_theory)));
     }
+    series.extend(reference_slopes(&series));
     let chart = Chart {
         title: format!("{scene}: measured against analytical"),
         x_label: "dt / t_c".into(),
@@ -146,22 +165,76 @@ fn convergence_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyh
     })
 }
 
+/// Reference lines of slope 1 and 2 on log–log axes, through the geometric middle of the
+/// measured points (first and second order: error ∝ dt^p), over their dt range.
+fn reference_slopes(measured: &[Series]) -> Vec<Series> {
+    let points: Vec<(f64, f64)> =
+        measured.iter().flat_map(|s| s.points.iter().copied()).filter(|&(x, y)| x > 0.0 && y > 1e-13).collect();
+    let (Some(low), Some(high)) =
+        (points.iter().map(|p| p.0).reduce(f64::min), points.iter().map(|p| p.0).reduce(f64::max))
+    else {
+        return Vec::new();
+    };
+    let mid_x = (low * high).sqrt();
+    let mid_y = (points.iter().map(|p| p.1.ln()).sum::<f64>() / points.len() as f64).exp();
+    [1.0, 2.0]
+        .iter()
+        .map(|&order: &f64| Series {
+            label: format!("slope {order:.0} (order {order:.0}, reference)"),
+            points: [low, high].iter().map(|&x| (x, mid_y * (x / mid_x).powf(order))).collect(),
+            markers: false,
+        })
+        .collect()
+}
+
 /// At most this many relaxation curves in one figure.
-const MAX_RELAXATION_CURVES: usize = 8;
+const MAX_RELAXATION_CURVES: usize = 6;
+
+/// At most `most` groups, spread evenly over the list (first and last included), so a figure
+/// shows the range of the grid rather than its first corner.
+fn spread<T>(items: &[T], most: usize) -> Vec<&T> {
+    if items.len() <= most {
+        return items.iter().collect();
+    }
+    (0..most).map(|i| &items[i * (items.len() - 1) / (most - 1)]).collect()
+}
 
 fn relaxation_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyhow::Result<Figure> {
-    let series: Vec<Series> = groups
+    let shown: Vec<&RunRecord> =
+        spread(groups, MAX_RELAXATION_CURVES).into_iter().map(|(_, m)| representative(m)).collect();
+    let ratio = |t: &crate::sim::Trace, s: usize| t.kinetic[s] / t.potential[s];
+    let mut series: Vec<Series> = shown
         .iter()
-        .take(MAX_RELAXATION_CURVES)
-        .map(|(label, members)| {
-            let t = &representative(members).trace;
-            Series {
-                label: label.clone(),
-                points: (0..t.time.len()).map(|s| (t.time[s], t.kinetic[s] / t.potential[s])).collect(),
-                markers: false,
-            }
+        .map(|r| Series {
+            label: group_label(r),
+            points: (0..r.trace.time.len()).map(|s| (r.trace.time[s], ratio(&r.trace, s))).collect(),
+            markers: false,
         })
         .collect();
+    // The energy criterion's threshold, where the runs shown stop by it.
+    let energy_stopped: Vec<&&RunRecord> =
+        shown.iter().filter(|r| r.spec.relax().is_some_and(|x| x.residual_force.is_none())).collect();
+    let threshold = energy_stopped.first().and_then(|r| r.spec.relax()).map(|x| x.kinetic_ratio);
+    if let (Some(threshold), Some(end)) =
+        (threshold, shown.iter().filter_map(|r| r.trace.time.last()).copied().reduce(f64::max))
+    {
+        series.push(Series {
+            label: format!("threshold E_kin/E_pot = {threshold:e}"),
+            points: vec![(0.0, threshold), (end, threshold)],
+            markers: false,
+        });
+    }
+    let relaxed: Vec<(f64, f64)> = shown
+        .iter()
+        .filter_map(|r| {
+            let t = r.metrics.dissipation_time?;
+            let s = r.trace.time.iter().position(|&x| x >= t).unwrap_or(r.trace.time.len().checked_sub(1)?);
+            Some((t, ratio(&r.trace, s)))
+        })
+        .collect();
+    if !relaxed.is_empty() {
+        series.push(Series { label: "relaxed (dissipation time)".into(), points: relaxed, markers: true });
+    }
     let chart = Chart {
         title: format!("{scene}: relaxation"),
         x_label: "time t (s)".into(),
@@ -172,7 +245,9 @@ fn relaxation_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyho
         scene: scene.into(),
         file: format!("plots/{scene}-relaxation.svg"),
         caption: format!(
-            "Kinetic over potential energy against time, {scene}: a loaded lattice relaxing, or an impulse spreading."
+            "Kinetic over potential energy against time, {scene}, {} of its {} runs spread over the grid: a loaded lattice relaxing (markers: where each run counts as relaxed; line: the energy criterion's threshold), or an impulse spreading.",
+            shown.len(),
+            groups.len()
         ),
         svg: line_chart(&chart, &series)?,
     })
@@ -208,7 +283,7 @@ fn size_figure(scene: &str, records: &[RunRecord]) -> anyhow::Result<Option<Figu
     let mut curves: Vec<SizeCurve> = Vec::new();
     for r in &mine {
         let Some((fem, md)) = modulus_ratios(r) else { continue };
-        let label = r.spec.varied_label(|p| !p.starts_with("lattice.size") && !p.starts_with("lattice.n"));
+        let label = physics_label(r, |p| !p.starts_with("lattice.size") && !p.starts_with("lattice.n"));
         let index = match curves.iter().position(|c| c.label == label) {
             Some(index) => index,
             None => {

@@ -1,7 +1,7 @@
 //! Probed lines of a lattice: the space–time maps of their displacement and velocity, and
 //! every node's series as `probes/<run_id>.csv`.
 
-use super::figure::Figure;
+use super::figure::{Figure, physics_label};
 use crate::draw::chart::{Chart, Scale, heatmap};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
@@ -15,7 +15,7 @@ pub fn probe_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<F
         return Ok(Vec::new());
     };
     let mut figures = Vec::new();
-    let run = r.spec.varied_label(|_| true);
+    let run = physics_label(r, |_| true);
     for probe in r.trace.probes.iter().filter(|p| r.spec.lattice().is_some_and(|l| is_requested(l, p))) {
         let along = if probe.name.starts_with("row") {
             "node along the row (0: left)"

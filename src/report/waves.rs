@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use super::figure::Figure;
+use super::figure::{Figure, physics_label};
 use super::words::{impulse_words, number, optional};
 use crate::draw::chart::{Chart, Scale, Series, heatmap, line_chart};
 use crate::measure::ARRIVAL_CRITERIA;
@@ -35,7 +35,7 @@ pub fn wave_rows(records: &[RunRecord], scene: &str) -> Vec<WaveRow> {
             let m = &r.metrics;
             WaveRow {
                 run_id: r.run_id.clone(),
-                label: r.spec.varied_label(|_| true),
+                label: physics_label(r, |_| true),
                 v0: match r.spec.lattice().and_then(|l| l.impulse) {
                     Some(i) => impulse_words(&i),
                     None => format!("v0 = {} m/s", number(r.spec.v0)),
@@ -117,7 +117,7 @@ fn space_time_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Optio
         return Ok(None);
     }
     let chart = Chart {
-        title: format!("{scene}: displacement in space and time ({})", r.spec.varied_label(|_| true)),
+        title: format!("{scene}: displacement in space and time ({})", physics_label(r, |_| true)),
         x_label: "time t (s)".into(),
         y_label: rows.into(),
         scale: Scale::Linear,

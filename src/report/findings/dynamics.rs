@@ -4,6 +4,7 @@
 
 use super::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
 use crate::model::LawSpec;
+use crate::report::figure::physics_label;
 use crate::runner::RunRecord;
 
 /// Relative tolerance of a linear chain's front speed against a√(k/m): a threshold θ = 0.01 of
@@ -58,7 +59,7 @@ pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
         .map(|r| {
             vec![
                 r.spec.scene.clone(),
-                r.spec.varied_label(|_| true),
+                physics_label(r, |_| true),
                 cell(speed(r)),
                 cell(r.metrics.sound_speed_theory),
                 relative(speed(r), r.metrics.sound_speed_theory).map(rel).unwrap_or_else(|| "–".into()),

@@ -2,6 +2,7 @@
 //! Hertz moduli against the load, anisotropic and random networks, and MD against the static
 //! truss (FEM) answer.
 
+use crate::report::figure::physics_label;
 use std::collections::BTreeMap;
 
 use super::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
@@ -151,7 +152,7 @@ pub(super) fn anisotropic(e: &Evidence) -> Option<Answer> {
     });
     let mut groups: BTreeMap<String, Vec<&RunRecord>> = BTreeMap::new();
     for r in &runs {
-        let key = r.spec.varied_label(|path| path != "load.case");
+        let key = physics_label(r, |path| path != "load.case");
         groups.entry(key).or_default().push(r);
     }
     let modulus = |rs: &[&RunRecord], case: LoadCase, rotated: bool, pick: fn(&RunRecord) -> Option<f64>| {
