@@ -68,7 +68,62 @@ pub fn draw_all(campaign: &Campaign, records: &[RunRecord], fits: &[ScalingFit])
             figures.extend(stability_map::stability_figures(records, scene)?);
         }
     }
+    figures.extend(dissipation_figure(records)?);
     Ok(figures)
+}
+
+/// The dissipation time of the loaded lattices whose damping the grid varies, against the
+/// damping coefficient: bond damping γ and background damping γ_g (by stopping criterion) on
+/// one pair of axes, so the two kinds compare at a glance.
+fn dissipation_figure(records: &[RunRecord]) -> anyhow::Result<Option<Figure>> {
+    let swept = |r: &&RunRecord| {
+        r.spec.lattice().is_some_and(|l| l.impulse.is_none() && !l.is_random())
+            && r.spec.varied.keys().any(|k| k.starts_with("damping."))
+    };
+    let runs: Vec<&RunRecord> = records.iter().filter(swept).collect();
+    let curve = |label: &str, keep: &dyn Fn(&RunRecord) -> bool, damping: fn(&RunRecord) -> f64| Series {
+        label: label.into(),
+        points: runs
+            .iter()
+            .filter(|r| keep(r))
+            .filter_map(|r| Some((damping(r), r.metrics.dissipation_time?)))
+            .collect(),
+        markers: true,
+    };
+    let force_criterion = |r: &RunRecord| r.spec.relax().is_some_and(|x| x.residual_force.is_some());
+    let series: Vec<Series> = [
+        curve("bond damping γ", &|r| r.spec.gamma > 0.0 && r.spec.gamma_background == 0.0, |r| r.spec.gamma),
+        curve(
+            "background γ_g, energy criterion",
+            &|r| r.spec.gamma == 0.0 && r.spec.gamma_background > 0.0 && !force_criterion(r),
+            |r| r.spec.gamma_background,
+        ),
+        curve(
+            "background γ_g, force criterion",
+            &|r| r.spec.gamma == 0.0 && r.spec.gamma_background > 0.0 && force_criterion(r),
+            |r| r.spec.gamma_background,
+        ),
+    ]
+    .into_iter()
+    .filter(|s| !s.points.is_empty())
+    .collect();
+    if series.len() < 2 {
+        return Ok(None);
+    }
+    let chart = Chart {
+        title: "Dissipation time against damping".into(),
+        x_label: "damping coefficient γ or γ_g (N s/m)".into(),
+        y_label: "dissipation time (s)".into(),
+        scale: Scale::LogLog,
+    };
+    Ok(Some(Figure {
+        scene: "dissipation".into(),
+        file: "plots/dissipation-damping.svg".into(),
+        caption: "Time until each loaded lattice counts as relaxed, against its damping coefficient: bond damping \
+                  alone, and background damping alone by either stopping criterion."
+            .into(),
+        svg: line_chart(&chart, &series)?,
+    }))
 }
 
 fn energy_figure(scene: &str, index: usize, label: &str, record: &RunRecord) -> anyhow::Result<Figure> {

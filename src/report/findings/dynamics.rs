@@ -138,6 +138,11 @@ pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
             if bond.is_empty() { "–".into() } else { format!("{:.0}", fastest(&bond) / fastest(&background)) }
         ));
     }
+    sentences.extend(trend("bond damping", "γ", &bond, |r| r.spec.gamma));
+    let energy_criterion: Vec<&RunRecord> =
+        background.iter().copied().filter(|r| r.spec.relax().is_some_and(|x| x.residual_force.is_none())).collect();
+    sentences
+        .extend(trend("background damping (energy criterion)", "γ_g", &energy_criterion, |r| r.spec.gamma_background));
     let rows = relaxed
         .iter()
         .map(|r| {
@@ -152,7 +157,7 @@ pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
         })
         .collect();
     let scenes: Vec<String> = relaxed.iter().map(|r| r.spec.scene.clone()).collect();
-    let mut shown = Vec::new();
+    let mut shown: Vec<_> = e.figure("dissipation", "damping").into_iter().collect();
     for s in scenes.iter().collect::<std::collections::BTreeSet<_>>() {
         shown.extend(e.figure(s, "relaxation"));
     }
@@ -176,6 +181,26 @@ pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
             rows,
         }),
     })
+}
+
+/// The dissipation time's trend against one damping coefficient, as a fitted power law.
+fn trend(name: &str, symbol: &str, runs: &[&RunRecord], damping: fn(&RunRecord) -> f64) -> Option<String> {
+    let points: Vec<(f64, f64)> = runs.iter().filter_map(|r| Some((damping(r), r.metrics.dissipation_time?))).collect();
+    let fit = crate::measure::power_law_fit(&points)?;
+    let words = if fit.exponent < -0.1 {
+        "more damping relaxes faster"
+    } else if fit.exponent > 0.1 {
+        "more damping relaxes slower: the lattice is overdamped and creeps towards rest, so the critical value \
+         lies below this range"
+    } else {
+        "the damping hardly matters here"
+    };
+    Some(format!(
+        "With {name} from {symbol} = {} to {} N s/m the dissipation time goes as {symbol}^{:.2}: {words}.",
+        sig(points.iter().map(|p| p.0).fold(f64::INFINITY, f64::min)),
+        sig(points.iter().map(|p| p.0).fold(0.0, f64::max)),
+        fit.exponent
+    ))
 }
 
 /// Non-linear 2D: a Hertz lattice kicked over decades of v0.
