@@ -142,7 +142,7 @@ impl<'a> Evidence<'a> {
 
 /// The coursework's items that `evidence` answers, in the coursework's order, numbered.
 pub fn findings(evidence: &Evidence) -> Vec<Finding> {
-    let questions: [fn(&Evidence) -> Option<Answer>; 19] = [
+    let questions: [fn(&Evidence) -> Option<Answer>; 20] = [
         one_d::two_particles,
         one_d::time_step,
         one_d::chain,
@@ -162,6 +162,7 @@ pub fn findings(evidence: &Evidence) -> Vec<Finding> {
         materials::anisotropic,
         materials::random,
         materials::md_and_fem,
+        discussion::linear_and_hertz,
     ];
     questions
         .iter()
