@@ -194,6 +194,38 @@ pub(super) fn lattice_time_step(e: &Evidence) -> Option<Answer> {
     })
 }
 
+/// The share of the kinetic energy reaching the bottom row (Σ over samples of v², from its
+/// probe) that arrives at the kicked node's column: 1 when the kick stays in its column.
+fn column_share(r: &RunRecord) -> Option<f64> {
+    let l = r.spec.lattice()?;
+    let column = l.impulse?.node % l.nx;
+    let bottom = r.trace.probes.iter().find(|p| p.name == "row 0")?;
+    let at = bottom.nodes.iter().position(|&n| n % l.nx == column)?;
+    let (mut kicked, mut all) = (0.0, 0.0);
+    for (vx, vy) in bottom.velocity_x.iter().zip(&bottom.velocity_y) {
+        for (i, (x, y)) in vx.iter().zip(vy).enumerate() {
+            let energy = x * x + y * y;
+            all += energy;
+            if i == at {
+                kicked += energy;
+            }
+        }
+    }
+    (all > 0.0).then(|| kicked / all)
+}
+
+/// The share in words, when the run recorded its bottom row.
+fn share_words(r: &RunRecord) -> String {
+    column_share(r)
+        .map(|share| {
+            format!(
+                " {:.1} % of the kinetic energy reaching the bottom row arrives in the kicked column.",
+                100.0 * share
+            )
+        })
+        .unwrap_or_default()
+}
+
 /// The upper-right node kicked, with and without diagonals.
 pub(super) fn kick(e: &Evidence) -> Option<Answer> {
     let kicked = e.ok(|r| {
@@ -210,17 +242,18 @@ pub(super) fn kick(e: &Evidence) -> Option<Answer> {
         sentences.push(match diagonals {
             Diagonals::None => format!(
                 "Without diagonals the kicked column is a chain of its own: the vertical kick runs down it at \
-                 {} m/s against a√(k/m) = {} m/s, and almost nothing crosses to the neighbouring columns (a square \
-                 lattice without diagonals has no shear stiffness): the kick stays in its column.",
+                 {} m/s against a√(k/m) = {} m/s, and a square lattice without diagonals has no shear stiffness to \
+                 pass it sideways.{}",
                 cell(speed(r)),
-                cell(r.metrics.sound_speed_theory)
+                cell(r.metrics.sound_speed_theory),
+                share_words(r)
             ),
             _ => format!(
-                "With diagonals every node is tied to its neighbours across the cell: the kick spreads as a \
-                 circular front into the whole block and reaches the bottom row at {} m/s against \
-                 c_L = a√((k + k_d)/m) = {} m/s, followed by a slower shear front.",
+                "With diagonals every node is tied to its neighbours across the cell: the kick spreads into the \
+                 whole block and reaches the bottom row at {} m/s against c_L = a√((k + k_d)/m) = {} m/s.{}",
                 cell(speed(r)),
-                cell(r.metrics.sound_speed_theory)
+                cell(r.metrics.sound_speed_theory),
+                share_words(r)
             ),
         });
     }
@@ -234,7 +267,23 @@ pub(super) fn kick(e: &Evidence) -> Option<Answer> {
         title: "The upper-right kick, with and without diagonals",
         question: "Give the upper-right particle an initial velocity, animate the motion, and explain the \
                    differences between the structures with and without diagonal springs.",
-        short: "without diagonals the kick stays in its column; with them it spreads".into(),
+        short: match (
+            kicked
+                .iter()
+                .find(|r| r.spec.lattice().is_some_and(|l| l.diagonals == Diagonals::None))
+                .and_then(|r| column_share(r)),
+            kicked
+                .iter()
+                .find(|r| r.spec.lattice().is_some_and(|l| l.diagonals == Diagonals::Both))
+                .and_then(|r| column_share(r)),
+        ) {
+            (Some(none), Some(both)) => format!(
+                "{:.0} % of the energy stays in the kicked column without diagonals, {:.0} % with them",
+                100.0 * none,
+                100.0 * both
+            ),
+            _ => "the kick's path with and without diagonals".into(),
+        },
         sentences,
         reference: "The chain's front speed a√(k/m) and the lattice's c_L; an observation.".into(),
         verdict: Verdict::Observed,
