@@ -63,8 +63,35 @@ pub struct ReportContext {
     findings: Vec<Finding>,
     /// The discussion's paragraphs.
     discussion: Vec<Paragraph>,
+    /// Which methods the scenes' tables need explained (once, not per scene).
+    explains: Explains,
     scenes: Vec<SceneSection>,
     failures: Vec<FailureRow>,
+}
+
+/// The methods whose explanation the report needs: those of the tables some scene shows.
+#[derive(Serialize)]
+struct Explains {
+    walls: bool,
+    waves: bool,
+    ensembles: bool,
+    exponents: bool,
+    precision: bool,
+    stability: bool,
+}
+
+impl Explains {
+    fn of(scenes: &[SceneSection]) -> Explains {
+        let any = |has: fn(&SceneSection) -> bool| scenes.iter().any(has);
+        Explains {
+            walls: any(|s| !s.wall_rows.is_empty()),
+            waves: any(|s| !s.wave_rows.is_empty()),
+            ensembles: any(|s| !s.ensemble_rows.is_empty()),
+            exponents: any(|s| !s.exponent_rows.is_empty()),
+            precision: any(|s| !s.precision_rows.is_empty()),
+            stability: any(|s| !s.stability_rows.is_empty()),
+        }
+    }
 }
 
 #[derive(Serialize)]
@@ -204,6 +231,11 @@ pub fn build(
 ) -> ReportContext {
     let ok = records.iter().filter(|r| r.status == RunStatus::Ok).count();
     let evidence = Evidence::new(records, fits, figures, side_by_side);
+    let scenes: Vec<SceneSection> = campaign
+        .scenes
+        .iter()
+        .filter_map(|(scene, kind)| section(scene, *kind, records, fits, figures, campaign.target_error, side_by_side))
+        .collect();
     let row = |run_id: &String, why: String| LeftOutRow { run_id: run_id.clone(), why };
     let mut left_out_rows: Vec<LeftOutRow> =
         left_out.corrupt.iter().map(|(run_id, why)| row(run_id, format!("corrupt record: {why}"))).collect();
@@ -235,13 +267,8 @@ pub fn build(
         has_wave: records.iter().any(|r| r.spec.wave().is_some()),
         findings: findings(&evidence),
         discussion: discussion(&evidence),
-        scenes: campaign
-            .scenes
-            .iter()
-            .filter_map(|(scene, kind)| {
-                section(scene, *kind, records, fits, figures, campaign.target_error, side_by_side)
-            })
-            .collect(),
+        explains: Explains::of(&scenes),
+        scenes,
         failures: records
             .iter()
             .filter(|r| r.status != RunStatus::Ok)
