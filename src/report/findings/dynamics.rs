@@ -21,51 +21,9 @@ pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
     let linear =
         e.ok(|r| r.metrics.sound_speed_theory.is_some() && r.spec.law == LawSpec::Linear && speed(r).is_some());
     let chain = linear.iter().copied().find(|r| r.spec.chain().is_some())?;
-    let criteria: Vec<(String, f64)> = chain
-        .metrics
-        .arrival_times
-        .keys()
-        .filter_map(|c| chain.metrics.sound_speed(c).map(|v| (c.replace('_', " "), v)))
-        .collect();
-    let estimate = chain.metrics.wave_distance.zip(chain.metrics.arrival_time_tc_estimate).map(|(l, t)| l / t);
     let error = relative(speed(chain), chain.metrics.sound_speed_theory);
-    let mut sentences = vec![
-        format!(
-            "A chain of {} hit at one end with v0 = {} m/s: the front reaches the far end, {} m away, at {} m/s by the \
-             speed threshold (the receiver's speed first reaches 1 % of the source's peak), against the exact front \
-             speed a√(k/m) = {} m/s ({}).",
-            chain.spec.chain().map_or(0, |c| c.n),
-            sig(chain.spec.v0),
-            cell(chain.metrics.wave_distance),
-            cell(speed(chain)),
-            cell(chain.metrics.sound_speed_theory),
-            error.map(rel).unwrap_or_default()
-        ),
-        format!(
-            "Other criteria give {}: the displacement lags the speed (it is its integral), an energy threshold θ is a \
-             speed threshold √θ, and the first maximum is the crest behind the dispersive front.",
-            criteria.iter().map(|(c, v)| format!("{} m/s ({c})", sig(*v))).collect::<Vec<_>>().join(", ")
-        ),
-        format!(
-            "The coursework's estimate t_s = N_s t_c gives V = {} m/s: the front travels {} × faster, because t_c is \
-             half a period of one pair, not the time a signal needs to cross a spring.",
-            cell(estimate),
-            estimate.zip(speed(chain)).map(|(a, b)| format!("{:.2}", b / a)).unwrap_or_else(|| "–".into())
-        ),
-    ];
-    let rows: Vec<Vec<String>> = linear
-        .iter()
-        .filter(|r| r.spec.lattice().is_some() && (r.spec.dt_per_tc() - 50.0).abs() < 1.0)
-        .map(|r| {
-            vec![
-                r.spec.scene.clone(),
-                physics_label(r, |_| true),
-                cell(speed(r)),
-                cell(r.metrics.sound_speed_theory),
-                relative(speed(r), r.metrics.sound_speed_theory).map(rel).unwrap_or_else(|| "–".into()),
-            ]
-        })
-        .collect();
+    let mut sentences = chain_speed_sentences(chain, error);
+    let rows = lattice_speed_rows(&linear);
     if !rows.is_empty() {
         sentences.push(
             "In the lattices the front is timed at the bottom row from the kicked node and compared with \
@@ -99,6 +57,58 @@ pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
     })
 }
 
+/// The chain's front: its speed against a√(k/m), the other criteria, the N_s t_c estimate.
+fn chain_speed_sentences(chain: &RunRecord, error: Option<f64>) -> Vec<String> {
+    let criteria: Vec<(String, f64)> = chain
+        .metrics
+        .arrival_times
+        .keys()
+        .filter_map(|c| chain.metrics.sound_speed(c).map(|v| (c.replace('_', " "), v)))
+        .collect();
+    let estimate = chain.metrics.wave_distance.zip(chain.metrics.arrival_time_tc_estimate).map(|(l, t)| l / t);
+    vec![
+        format!(
+            "A chain of {} hit at one end with v0 = {} m/s: the front reaches the far end, {} m away, at {} m/s by the \
+             speed threshold (the receiver's speed first reaches 1 % of the source's peak), against the exact front \
+             speed a√(k/m) = {} m/s ({}).",
+            chain.spec.chain().map_or(0, |c| c.n),
+            sig(chain.spec.v0),
+            cell(chain.metrics.wave_distance),
+            cell(speed(chain)),
+            cell(chain.metrics.sound_speed_theory),
+            error.map(rel).unwrap_or_default()
+        ),
+        format!(
+            "Other criteria give {}: the displacement lags the speed (it is its integral), an energy threshold θ is a \
+             speed threshold √θ, and the first maximum is the crest behind the dispersive front.",
+            criteria.iter().map(|(c, v)| format!("{} m/s ({c})", sig(*v))).collect::<Vec<_>>().join(", ")
+        ),
+        format!(
+            "The coursework's estimate t_s = N_s t_c gives V = {} m/s: the front travels {} × faster, because t_c is \
+             half a period of one pair, not the time a signal needs to cross a spring.",
+            cell(estimate),
+            estimate.zip(speed(chain)).map(|(a, b)| format!("{:.2}", b / a)).unwrap_or_else(|| "–".into())
+        ),
+    ]
+}
+
+/// The linear lattices' front speeds at t_c/50 against c_L, one row each.
+fn lattice_speed_rows(linear: &[&RunRecord]) -> Vec<Vec<String>> {
+    linear
+        .iter()
+        .filter(|r| r.spec.lattice().is_some() && (r.spec.dt_per_tc() - 50.0).abs() < 1.0)
+        .map(|r| {
+            vec![
+                r.spec.scene.clone(),
+                physics_label(r, |_| true),
+                cell(speed(r)),
+                cell(r.metrics.sound_speed_theory),
+                relative(speed(r), r.metrics.sound_speed_theory).map(rel).unwrap_or_else(|| "–".into()),
+            ]
+        })
+        .collect()
+}
+
 /// (e): the dissipation time against bond damping and background damping.
 pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
     let relaxed = e.ok(|r| {
@@ -111,6 +121,33 @@ pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
         relaxed.iter().copied().filter(|r| r.spec.gamma > 0.0 && r.spec.gamma_background == 0.0).collect();
     let background: Vec<&RunRecord> =
         relaxed.iter().copied().filter(|r| r.spec.gamma == 0.0 && r.spec.gamma_background > 0.0).collect();
+    let sentences = damping_sentences(first, &bond, &background);
+    let fastest =
+        |runs: &[&RunRecord]| runs.iter().filter_map(|r| r.metrics.dissipation_time).fold(f64::INFINITY, f64::min);
+    let scenes: Vec<String> = relaxed.iter().map(|r| r.spec.scene.clone()).collect();
+    let mut shown: Vec<_> = e.figure("dissipation", "damping").into_iter().collect();
+    for s in scenes.iter().collect::<std::collections::BTreeSet<_>>() {
+        shown.extend(e.figure(s, "relaxation"));
+    }
+    Some(Answer {
+        title: "Dissipation",
+        question: "(e) Plot E_kin/E_pot against time: how long until the kinetic energy is dissipated, by which \
+                   criterion, and how does it change with the damping and with background damping?",
+        short: if bond.is_empty() || background.is_empty() {
+            "dissipation times measured".into()
+        } else {
+            format!("background damping relaxes {:.0}× faster than bond damping", fastest(&bond) / fastest(&background))
+        },
+        sentences,
+        reference: "No analytical reference: the times are measured, with the stopping criterion stated.".into(),
+        verdict: Verdict::Observed,
+        figures: shown,
+        table: Some(dissipation_table(&relaxed)),
+    })
+}
+
+/// What dissipates how fast: the criterion, bond damping, background damping, their trends.
+fn damping_sentences(first: &RunRecord, bond: &[&RunRecord], background: &[&RunRecord]) -> Vec<String> {
     let fastest =
         |runs: &[&RunRecord]| runs.iter().filter_map(|r| r.metrics.dissipation_time).fold(f64::INFINITY, f64::min);
     let mut sentences = vec![format!(
@@ -130,19 +167,22 @@ pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
     if !background.is_empty() {
         sentences.push(format!(
             "Background damping f = −γ_g v alone: γ_g = {} N s/m give {} s; it damps every mode, the slow ones \
-             too, and relaxes the block {}× faster than the fastest bond damping here. Too strong, it overdamps: \
-             the block creeps, with little kinetic energy long before it arrives, which is why the residual-force \
-             criterion takes longer than the energy criterion at the same γ_g.",
+             too, and relaxes the block {}× faster than the fastest bond damping here.",
             background.iter().map(|r| sig(r.spec.gamma_background)).collect::<Vec<_>>().join(", "),
             background.iter().map(|r| cell(r.metrics.dissipation_time)).collect::<Vec<_>>().join(", "),
-            if bond.is_empty() { "–".into() } else { format!("{:.0}", fastest(&bond) / fastest(&background)) }
+            if bond.is_empty() { "–".into() } else { format!("{:.0}", fastest(bond) / fastest(background)) }
         ));
     }
-    sentences.extend(trend("bond damping", "γ", &bond, |r| r.spec.gamma));
+    sentences.extend(trend("bond damping", "γ", bond, |r| r.spec.gamma));
     let energy_criterion: Vec<&RunRecord> =
         background.iter().copied().filter(|r| r.spec.relax().is_some_and(|x| x.residual_force.is_none())).collect();
     sentences
         .extend(trend("background damping (energy criterion)", "γ_g", &energy_criterion, |r| r.spec.gamma_background));
+    sentences
+}
+
+/// Every run of the dissipation study in one table.
+fn dissipation_table(relaxed: &[&RunRecord]) -> Table {
     let rows = relaxed
         .iter()
         .map(|r| {
@@ -156,31 +196,12 @@ pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
             ]
         })
         .collect();
-    let scenes: Vec<String> = relaxed.iter().map(|r| r.spec.scene.clone()).collect();
-    let mut shown: Vec<_> = e.figure("dissipation", "damping").into_iter().collect();
-    for s in scenes.iter().collect::<std::collections::BTreeSet<_>>() {
-        shown.extend(e.figure(s, "relaxation"));
+    Table {
+        header: ["scene", "γ (N s/m)", "γ_g (N s/m)", "criterion", "relaxed at (s)", "steps"]
+            .map(String::from)
+            .to_vec(),
+        rows,
     }
-    Some(Answer {
-        title: "Dissipation",
-        question: "(e) Plot E_kin/E_pot against time: how long until the kinetic energy is dissipated, by which \
-                   criterion, and how does it change with the damping and with background damping?",
-        short: if bond.is_empty() || background.is_empty() {
-            "dissipation times measured".into()
-        } else {
-            format!("background damping relaxes {:.0}× faster than bond damping", fastest(&bond) / fastest(&background))
-        },
-        sentences,
-        reference: "No analytical reference: the times are measured, with the stopping criterion stated.".into(),
-        verdict: Verdict::Observed,
-        figures: shown,
-        table: Some(Table {
-            header: ["scene", "γ (N s/m)", "γ_g (N s/m)", "criterion", "relaxed at (s)", "steps"]
-                .map(String::from)
-                .to_vec(),
-            rows,
-        }),
-    })
 }
 
 /// The dissipation time's trend against one damping coefficient, as a fitted power law.

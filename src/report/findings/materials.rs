@@ -35,27 +35,7 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
     ];
     let mut rows = Vec::new();
     for ((case, supports), sizes) in &by_size {
-        let (small, large) = (sizes.iter().next()?, sizes.iter().next_back()?);
-        let trend = if sizes.len() < 2 {
-            String::new()
-        } else if *large.1 < 0.8 * small.1 {
-            ", shrinking as the block grows: the disturbance stays in a boundary layer of a few rows near the \
-             point loads and the supports"
-                .to_string()
-        } else if *large.1 > 1.25 * small.1 {
-            ", growing with the block: the supports bend it as a whole".to_string()
-        } else {
-            ", about the same at every size".to_string()
-        };
-        sentences.push(format!(
-            "{case}, {supports} supports: {} on {} × {} and {} on {} × {}{trend}.",
-            sig(*small.1),
-            small.0,
-            small.0,
-            sig(*large.1),
-            large.0,
-            large.0
-        ));
+        sentences.extend(homogeneity_sentence(case, supports, sizes));
         rows.extend(
             sizes.iter().map(|(n, h)| vec![case.to_string(), supports.to_string(), format!("{n} × {n}"), sig(*h)]),
         );
@@ -85,6 +65,32 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
         figures: Vec::new(),
         table: Some(Table { header: ["load", "supports", "lattice", "homogeneity"].map(String::from).to_vec(), rows }),
     })
+}
+
+/// How far one set-up's edges depart from straight lines, smallest against largest lattice,
+/// with the trend in words.
+fn homogeneity_sentence(case: &str, supports: &str, sizes: &BTreeMap<usize, f64>) -> Option<String> {
+    let (small, large) = (sizes.iter().next()?, sizes.iter().next_back()?);
+    let trend = if sizes.len() < 2 {
+        String::new()
+    } else if *large.1 < 0.8 * small.1 {
+        ", shrinking as the block grows: the disturbance stays in a boundary layer of a few rows near the \
+         point loads and the supports"
+            .to_string()
+    } else if *large.1 > 1.25 * small.1 {
+        ", growing with the block: the supports bend it as a whole".to_string()
+    } else {
+        ", about the same at every size".to_string()
+    };
+    Some(format!(
+        "{case}, {supports} supports: {} on {} × {} and {} on {} × {}{trend}.",
+        sig(*small.1),
+        small.0,
+        small.0,
+        sig(*large.1),
+        large.0,
+        large.0
+    ))
 }
 
 /// Non-linear 2D: Hertz lattice moduli against the load.
@@ -155,22 +161,7 @@ pub(super) fn anisotropic(e: &Evidence) -> Option<Answer> {
         let key = physics_label(r, |path| path != "load.case");
         groups.entry(key).or_default().push(r);
     }
-    let modulus = |rs: &[&RunRecord], case: LoadCase, rotated: bool, pick: fn(&RunRecord) -> Option<f64>| {
-        rs.iter()
-            .find(|r| r.spec.lattice().is_some_and(|l| l.load_case == case && l.rotated == rotated))
-            .and_then(|r| pick(r))
-    };
-    let mut rows = Vec::new();
-    for (key, rs) in &groups {
-        rows.push(vec![
-            key.clone(),
-            cell(modulus(rs, LoadCase::Tensile, false, |r| r.metrics.lattice.youngs_modulus)),
-            cell(modulus(rs, LoadCase::Tensile, true, |r| r.metrics.lattice.youngs_modulus)),
-            super::noise(modulus(rs, LoadCase::Tensile, false, |r| r.metrics.lattice.poisson_ratio), 1.0),
-            super::noise(modulus(rs, LoadCase::Tensile, true, |r| r.metrics.lattice.poisson_ratio), 1.0),
-            cell(modulus(rs, LoadCase::Shear, false, |r| r.metrics.lattice.shear_modulus)),
-        ]);
-    }
+    let (rows, mut sentences) = anisotropic_rows(&groups);
     let worst = runs
         .iter()
         .filter_map(|r| {
@@ -179,15 +170,16 @@ pub(super) fn anisotropic(e: &Evidence) -> Option<Answer> {
         })
         .map(f64::abs)
         .fold(0.0, f64::max);
-    let sentences = vec![
-        "Stiffer columns (k_y > k_x) raise E_y above E_x; one diagonal family couples shear to stretch, so ν_xy and \
-         ν_yx differ and the moduli must be measured in both directions (tensile-x turns the loading by 90°)."
+    sentences.insert(
+        0,
+        "Anisotropic networks must be measured in every direction: tensile loads along y and, with the loading \
+         turned by 90° (tensile-x), along x, and shear."
             .to_string(),
-        format!(
-            "MD agrees with the static answer of each anisotropic network to {} at worst.",
-            rel(worst).trim_start_matches('+')
-        ),
-    ];
+    );
+    sentences.push(format!(
+        "MD agrees with the static answer of each anisotropic network to {} at worst.",
+        rel(worst).trim_start_matches('+')
+    ));
     Some(Answer {
         title: "Anisotropic networks",
         question: "(a) Make the packing anisotropic (cut one diagonal family, or stiffer vertical springs) and \
@@ -204,6 +196,41 @@ pub(super) fn anisotropic(e: &Evidence) -> Option<Answer> {
             rows,
         }),
     })
+}
+
+/// One row per anisotropic network (E_y, E_x, ν both ways, G) and a sentence each on how its
+/// directions differ.
+fn anisotropic_rows(groups: &BTreeMap<String, Vec<&RunRecord>>) -> (Vec<Vec<String>>, Vec<String>) {
+    let modulus = |rs: &[&RunRecord], case: LoadCase, rotated: bool, pick: fn(&RunRecord) -> Option<f64>| {
+        rs.iter()
+            .find(|r| r.spec.lattice().is_some_and(|l| l.load_case == case && l.rotated == rotated))
+            .and_then(|r| pick(r))
+    };
+    let (mut rows, mut sentences) = (Vec::new(), Vec::new());
+    for (key, rs) in groups {
+        let e_y = modulus(rs, LoadCase::Tensile, false, |r| r.metrics.lattice.youngs_modulus);
+        let e_x = modulus(rs, LoadCase::Tensile, true, |r| r.metrics.lattice.youngs_modulus);
+        let nu_y = modulus(rs, LoadCase::Tensile, false, |r| r.metrics.lattice.poisson_ratio);
+        let nu_x = modulus(rs, LoadCase::Tensile, true, |r| r.metrics.lattice.poisson_ratio);
+        if let (Some(y), Some(x)) = (e_y, e_x) {
+            sentences.push(format!(
+                "{key}: E_y/E_x = {}, ν = {} loaded along y and {} along x{}.",
+                sig(y / x),
+                super::noise(nu_y, 1.0),
+                super::noise(nu_x, 1.0),
+                if (y / x - 1.0).abs() > 1e-3 { ": the directions differ" } else { ": isotropic in E" }
+            ));
+        }
+        rows.push(vec![
+            key.clone(),
+            cell(e_y),
+            cell(e_x),
+            super::noise(nu_y, 1.0),
+            super::noise(nu_x, 1.0),
+            cell(modulus(rs, LoadCase::Shear, false, |r| r.metrics.lattice.shear_modulus)),
+        ]);
+    }
+    (rows, sentences)
 }
 
 /// Random networks: E and G against the fraction of bonds kept, over seeds.

@@ -83,32 +83,9 @@ pub(super) fn two_particles(e: &Evidence) -> Option<Answer> {
     )];
     let mut checks = Vec::new();
     for r in &cases {
-        let (t_err, r_err) = pair_errors(r);
-        let p = &r.metrics.pair;
-        let within = [t_err, r_err].iter().flatten().all(|x| x.abs() <= PAIR_TOLERANCE);
+        let (sentence, within) = pair_case(e, r);
         checks.push(within);
-        let mut sentence = format!(
-            "{} at dt = t_c/{:.0}: t_c = {} s against {} s ({}), r = {} against {} ({}), energy balance kept to {}",
-            case(r),
-            r.spec.dt_per_tc(),
-            cell(p.contact_duration),
-            cell(p.contact_duration_theory),
-            t_err.map(rel).unwrap_or_default(),
-            cell(p.restitution),
-            cell(p.restitution_theory),
-            r_err.map(rel).unwrap_or_default(),
-            r.metrics.energy_error.map(rel).unwrap_or_default(),
-        );
-        if !within {
-            let order = order_of(e, r, |x| pair_errors(x).1);
-            sentence += &format!(
-                ": outside {PAIR_TOLERANCE:e}, because the contact spring switches on and off inside a step, where \
-                 its damped force jumps by γv; the error falls only at order {} with dt (the bonded pair's at \
-                 order 2)",
-                order.map(|p| format!("{p:.2}")).unwrap_or_else(|| "–".into())
-            );
-        }
-        sentences.push(sentence + ".");
+        sentences.push(sentence);
     }
     sentences.extend(energy_gain(e));
     if let Some(damped) = cases.iter().find(|r| r.spec.gamma > 0.0) {
@@ -120,27 +97,7 @@ pub(super) fn two_particles(e: &Evidence) -> Option<Answer> {
             sig(damped.spec.gamma)
         ));
     }
-    let table = Table {
-        header: ["case", "t_c/dt", "t_c (s)", "π/ω (s)", "error", "r", "exp(−γt_c/m)", "error"]
-            .map(String::from)
-            .to_vec(),
-        rows: cases
-            .iter()
-            .map(|r| {
-                let (t_err, r_err) = pair_errors(r);
-                vec![
-                    case(r),
-                    format!("{:.0}", r.spec.dt_per_tc()),
-                    cell(r.metrics.pair.contact_duration),
-                    cell(r.metrics.pair.contact_duration_theory),
-                    t_err.map(rel).unwrap_or_default(),
-                    cell(r.metrics.pair.restitution),
-                    cell(r.metrics.pair.restitution_theory),
-                    r_err.map(rel).unwrap_or_default(),
-                ]
-            })
-            .collect(),
-    };
+    let table = pair_table(&cases);
     let worst = |pick: fn(PairErrors) -> Option<f64>| {
         cases.iter().filter_map(|r| pick(pair_errors(r))).map(f64::abs).fold(0.0, f64::max)
     };
@@ -162,6 +119,61 @@ pub(super) fn two_particles(e: &Evidence) -> Option<Answer> {
             .collect(),
         table: Some(table),
     })
+}
+
+/// One pair case at t_c/50 in a sentence, and whether it is within the tolerance (if not, the
+/// sentence says why).
+fn pair_case(e: &Evidence, r: &RunRecord) -> (String, bool) {
+    let (t_err, r_err) = pair_errors(r);
+    let p = &r.metrics.pair;
+    let within = [t_err, r_err].iter().flatten().all(|x| x.abs() <= PAIR_TOLERANCE);
+    let mut sentence = format!(
+        "{} at dt = t_c/{:.0}: t_c = {} s against {} s ({}), r = {} against {} ({}), energy balance kept to {}",
+        case(r),
+        r.spec.dt_per_tc(),
+        cell(p.contact_duration),
+        cell(p.contact_duration_theory),
+        t_err.map(rel).unwrap_or_default(),
+        cell(p.restitution),
+        cell(p.restitution_theory),
+        r_err.map(rel).unwrap_or_default(),
+        r.metrics.energy_error.map(rel).unwrap_or_default(),
+    );
+    if !within {
+        let order = order_of(e, r, |x| pair_errors(x).1);
+        sentence += &format!(
+            ": outside {PAIR_TOLERANCE:e}, because the contact spring switches on and off inside a step, where \
+             its damped force jumps by γv; the error falls only at order {} with dt (the bonded pair's at \
+             order 2)",
+            order.map(|p| format!("{p:.2}")).unwrap_or_else(|| "–".into())
+        );
+    }
+    (sentence + ".", within)
+}
+
+/// The pair cases at t_c/50 in one table.
+fn pair_table(cases: &[&RunRecord]) -> Table {
+    Table {
+        header: ["case", "t_c/dt", "t_c (s)", "π/ω (s)", "error", "r", "exp(−γt_c/m)", "error"]
+            .map(String::from)
+            .to_vec(),
+        rows: cases
+            .iter()
+            .map(|r| {
+                let (t_err, r_err) = pair_errors(r);
+                vec![
+                    case(r),
+                    format!("{:.0}", r.spec.dt_per_tc()),
+                    cell(r.metrics.pair.contact_duration),
+                    cell(r.metrics.pair.contact_duration_theory),
+                    t_err.map(rel).unwrap_or_default(),
+                    cell(r.metrics.pair.restitution),
+                    cell(r.metrics.pair.restitution_theory),
+                    r_err.map(rel).unwrap_or_default(),
+                ]
+            })
+            .collect(),
+    }
 }
 
 /// Undamped pairs whose restitution exceeds 1: a result that contradicts theory, said so.
@@ -362,46 +374,15 @@ pub(super) fn walls(e: &Evidence) -> Option<Answer> {
     let relaxed =
         e.ok(|r| r.spec.chain().is_some_and(|c| c.relax.is_some()) && r.metrics.chain.secant_stiffness.is_some());
     let first = *relaxed.first()?;
-    let worst = |law_linear: bool, a: fn(&RunRecord) -> (Option<f64>, Option<f64>)| {
-        relaxed
-            .iter()
-            .filter(|r| (r.spec.law == LawSpec::Linear) == law_linear)
-            .filter_map(|r| {
-                let (x, y) = a(r);
-                relative(x, y)
-            })
-            .map(f64::abs)
-            .fold(None, |m: Option<f64>, x| Some(m.map_or(x, |m| m.max(x))))
-    };
-    let spacing = |r: &RunRecord| (r.metrics.chain.equilibrium_spacing, r.metrics.chain.equilibrium_spacing_theory);
-    let secant = |r: &RunRecord| (r.metrics.chain.secant_stiffness, r.metrics.chain.secant_stiffness_theory);
-    let tangent = |r: &RunRecord| (r.metrics.chain.tangent_stiffness, r.metrics.chain.tangent_stiffness_theory);
-    let n = first.spec.chain().map_or(0, |c| c.n);
     let mut sentences = Vec::new();
     let mut checks = Vec::new();
     for linear in [true, false] {
-        let Some(sp) = worst(linear, spacing) else { continue };
-        let (se, ta) = (worst(linear, secant).unwrap_or(0.0), worst(linear, tangent).unwrap_or(0.0));
-        checks.push(sp.max(se).max(ta) <= WALL_TOLERANCE);
-        sentences.push(if linear {
-            format!(
-                "Linear springs: the {n} particles relax to equal gaps W/(n+1) (largest error {}), and the chain's \
-                 secant and tangent stiffness equal k/(n+1) = {} N/m at every wall displacement (errors {} and {}).",
-                rel(sp),
-                sig(first.spec.k / (n as f64 + 1.0)),
-                rel(se),
-                rel(ta)
-            )
-        } else {
-            format!(
-                "Hertz springs: equal gaps again (error {}), but the stiffness depends on how far the walls moved: \
-                 secant and tangent follow s(δ)/ΔW and s′(δ)/(n+1) (errors {} and {}); the tangent is 3/2 × the \
-                 secant and an unloaded Hertz chain has no stiffness at all.",
-                rel(sp),
-                rel(se),
-                rel(ta)
-            )
-        });
+        let law: Vec<&RunRecord> =
+            relaxed.iter().copied().filter(|r| (r.spec.law == LawSpec::Linear) == linear).collect();
+        if let Some((sentence, within)) = walls_sentence(first, &law, linear) {
+            sentences.push(sentence);
+            checks.push(within);
+        }
     }
     let scenes: Vec<String> = relaxed.iter().map(|r| r.spec.scene.clone()).collect();
     if let Some(fit) = scenes.iter().find_map(|s| e.fit(s, "secant_stiffness").filter(|f| f.law != "linear")) {
@@ -432,6 +413,38 @@ pub(super) fn walls(e: &Evidence) -> Option<Answer> {
         figures,
         table: None,
     })
+}
+
+/// The relaxed chains of one law (`linear` or not) against the static answer in a sentence,
+/// and whether spacing and stiffness are within [`WALL_TOLERANCE`].
+fn walls_sentence(first: &RunRecord, runs: &[&RunRecord], linear: bool) -> Option<(String, bool)> {
+    let worst = |pair: fn(&RunRecord) -> PairErrors| {
+        runs.iter().filter_map(|r| relative(pair(r).0, pair(r).1)).map(f64::abs).reduce(f64::max)
+    };
+    let sp = worst(|r| (r.metrics.chain.equilibrium_spacing, r.metrics.chain.equilibrium_spacing_theory))?;
+    let se = worst(|r| (r.metrics.chain.secant_stiffness, r.metrics.chain.secant_stiffness_theory)).unwrap_or(0.0);
+    let ta = worst(|r| (r.metrics.chain.tangent_stiffness, r.metrics.chain.tangent_stiffness_theory)).unwrap_or(0.0);
+    let n = first.spec.chain().map_or(0, |c| c.n);
+    let sentence = if linear {
+        format!(
+            "Linear springs: the {n} particles relax to equal gaps W/(n+1) (largest error {}), and the chain's \
+             secant and tangent stiffness equal k/(n+1) = {} N/m at every wall displacement (errors {} and {}).",
+            rel(sp),
+            sig(first.spec.k / (n as f64 + 1.0)),
+            rel(se),
+            rel(ta)
+        )
+    } else {
+        format!(
+            "Hertz springs: equal gaps again (error {}), but the stiffness depends on how far the walls moved: \
+             secant and tangent follow s(δ)/ΔW and s′(δ)/(n+1) (errors {} and {}); the tangent is 3/2 × the \
+             secant and an unloaded Hertz chain has no stiffness at all.",
+            rel(sp),
+            rel(se),
+            rel(ta)
+        )
+    };
+    Some((sentence, sp.max(se).max(ta) <= WALL_TOLERANCE))
 }
 
 /// Relative tolerance on a relaxed chain's spacing and stiffness against the static answer.

@@ -226,6 +226,21 @@ fn share_words(r: &RunRecord) -> String {
         .unwrap_or_default()
 }
 
+/// The summary's line: how much of the kick stays in its column, without and with diagonals.
+fn kick_short(kicked: &[&RunRecord]) -> String {
+    let share = |d: Diagonals| {
+        kicked.iter().find(|r| r.spec.lattice().is_some_and(|l| l.diagonals == d)).and_then(|r| column_share(r))
+    };
+    match (share(Diagonals::None), share(Diagonals::Both)) {
+        (Some(none), Some(both)) => format!(
+            "{:.0} % of the energy stays in the kicked column without diagonals, {:.0} % with them",
+            100.0 * none,
+            100.0 * both
+        ),
+        _ => "the kick's path with and without diagonals".into(),
+    }
+}
+
 /// The upper-right node kicked, with and without diagonals.
 pub(super) fn kick(e: &Evidence) -> Option<Answer> {
     let kicked = e.ok(|r| {
@@ -267,23 +282,7 @@ pub(super) fn kick(e: &Evidence) -> Option<Answer> {
         title: "The upper-right kick, with and without diagonals",
         question: "Give the upper-right particle an initial velocity, animate the motion, and explain the \
                    differences between the structures with and without diagonal springs.",
-        short: match (
-            kicked
-                .iter()
-                .find(|r| r.spec.lattice().is_some_and(|l| l.diagonals == Diagonals::None))
-                .and_then(|r| column_share(r)),
-            kicked
-                .iter()
-                .find(|r| r.spec.lattice().is_some_and(|l| l.diagonals == Diagonals::Both))
-                .and_then(|r| column_share(r)),
-        ) {
-            (Some(none), Some(both)) => format!(
-                "{:.0} % of the energy stays in the kicked column without diagonals, {:.0} % with them",
-                100.0 * none,
-                100.0 * both
-            ),
-            _ => "the kick's path with and without diagonals".into(),
-        },
+        short: kick_short(&kicked),
         sentences,
         reference: "The chain's front speed a√(k/m) and the lattice's c_L; an observation.".into(),
         verdict: Verdict::Observed,
