@@ -67,7 +67,7 @@ fn energy_figure(scene: &str, index: usize, label: &str, record: &RunRecord) -> 
         y_label: "energy (J)".into(),
         scale: Scale::Linear,
     };
-    let svg = line_chart(
+    let image = line_chart(
         &chart,
         &[
             series("kinetic", t.kinetic.clone()),
@@ -80,7 +80,7 @@ fn energy_figure(scene: &str, index: usize, label: &str, record: &RunRecord) -> 
         scene: scene.into(),
         file: format!("plots/{scene}-energy-{index}.svg"),
         caption: format!("Kinetic, potential, dissipated and total energy against time, {scene} ({label})."),
-        svg,
+        image,
     })
 }
 
@@ -113,7 +113,7 @@ fn displacement_figure(scene: &str, label: &str, record: &RunRecord) -> anyhow::
         caption: format!(
             "Displacement of every particle against time, {scene} ({label}): one line per particle, offset by its number."
         ),
-        svg: line_chart(&chart, &series)?,
+        image: line_chart(&chart, &series)?,
     })
 }
 
@@ -142,7 +142,7 @@ fn convergence_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyh
         caption: format!(
             "Relative error of contact duration t_c and restitution r against dt/t_c, {scene}. A slope of 2 on these axes is second order."
         ),
-        svg: line_chart(&chart, &series)?,
+        image: line_chart(&chart, &series)?,
     })
 }
 
@@ -174,7 +174,7 @@ fn relaxation_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyho
         caption: format!(
             "Kinetic over potential energy against time, {scene}: a loaded lattice relaxing, or an impulse spreading."
         ),
-        svg: line_chart(&chart, &series)?,
+        image: line_chart(&chart, &series)?,
     })
 }
 
@@ -240,6 +240,6 @@ fn size_figure(scene: &str, records: &[RunRecord]) -> anyhow::Result<Option<Figu
         caption: format!(
             "E (tensile) or G (shear) of the {scene} lattices over the continuum value, against size: lines the static answer, markers the relaxed MD."
         ),
-        svg: line_chart(&chart, &series)?,
+        image: line_chart(&chart, &series)?,
     }))
 }

@@ -1,4 +1,4 @@
-//! Reports: SVG figures, then `report.md` rendered by tera from `templates/report.md.tera`,
+//! Reports: figures (SVG, or PNG where heavy), then `report.md` rendered by tera from `templates/report.md.tera`,
 //! and `index.html`: the same Markdown turned into HTML (pulldown-cmark) inside the page shell
 //! `templates/index.html.tera`, so the report's text exists once. The templates are compiled
 //! in, so the binary works from any directory. Only sections of the campaign's scenes show.
@@ -46,9 +46,10 @@ pub fn render_with_left_out(
     fits: &[ScalingFit],
     left_out: &LeftOut,
 ) -> anyhow::Result<()> {
-    let figures = figures::draw_all(campaign, records, fits)?;
-    for figure in &figures {
-        write_atomically(&layout.file(&figure.file), figure.svg.as_bytes())?;
+    let mut figures = figures::draw_all(campaign, records, fits)?;
+    for figure in &mut figures {
+        figure.file = figure.image.file_name(&figure.file);
+        write_atomically(&layout.file(&figure.file), figure.image.bytes())?;
     }
     let mut probes = BTreeSet::new();
     for record in records {
@@ -69,6 +70,7 @@ pub fn render_with_left_out(
     // removed, a campaign that took the folder over) goes.
     let drawn: BTreeSet<String> = figures.iter().map(|f| f.file.clone()).collect();
     remove_stale(&layout.root, "plots", ".svg", &drawn)?;
+    remove_stale(&layout.root, "plots", ".png", &drawn)?;
     let movies = side_by_side.iter().map(|scene| format!("plots/{scene}-side-by-side.gif")).collect();
     remove_stale(&layout.root, "plots", "-side-by-side.gif", &movies)?;
     remove_stale(&layout.root, "probes", ".csv", &probes)?;
