@@ -2,7 +2,7 @@
 //! tables are joined per scene on the grid parameters both campaigns vary there; every numeric
 //! column the tables share gets its two values and their ratio B/A; the fitted exponents of the
 //! two `summary.csv` files are set against each other; and a report (`report.md`, `index.html`,
-//! `plots/*.svg`) shows it all. Everything is read back from the report directories, so
+//! `plots/*.svg`, `*.png` where heavy) shows it all. Everything is read back from the report directories, so
 //! campaigns run by different versions of mdsolids can be compared as long as their tables are.
 
 mod exponents;
@@ -40,7 +40,7 @@ pub struct Comparison {
 }
 
 /// Compares the report directories `a` and `b` and writes `compare.csv`, `compare.parquet`,
-/// `report.md`, `index.html` and `plots/*.svg` into `out`, by default
+/// `report.md`, `index.html` and `plots/*.svg` (`*.png` where heavy) into `out`, by default
 /// `<reports>/compare-<name of a>-vs-<name of b>`.
 pub fn compare(a: &Path, b: &Path, out: Option<&Path>, reports: &Path) -> anyhow::Result<Comparison> {
     let (a, b) = (Side::open(a)?, Side::open(b)?);
@@ -67,7 +67,7 @@ pub fn compare(a: &Path, b: &Path, out: Option<&Path>, reports: &Path) -> anyhow
         let section = scene_section(&a, &b, &joined, scene)?;
         for group in &section.plots {
             for plot in &group.plots {
-                write_atomically(&out.join(&plot.file), plot.svg.as_bytes())?;
+                write_atomically(&out.join(&plot.file), plot.image.bytes())?;
                 plots.insert(plot.file.clone());
             }
         }
@@ -75,6 +75,7 @@ pub fn compare(a: &Path, b: &Path, out: Option<&Path>, reports: &Path) -> anyhow
     }
     // Figures of an earlier comparison into this folder that this one did not draw.
     crate::report::remove_stale(&out, "plots", ".svg", &plots)?;
+    crate::report::remove_stale(&out, "plots", ".png", &plots)?;
     let plots = plots.len();
     let (exponent_rows, missing_summaries) = exponents(&a, &b)?;
     let exponents = exponent_rows.len();

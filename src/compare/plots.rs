@@ -21,7 +21,7 @@ pub(super) struct PlotLink {
     metric: String,
     pub(super) file: String,
     #[serde(skip)]
-    pub(super) svg: String,
+    pub(super) image: crate::draw::chart::Image,
 }
 
 /// The figures of `scene`: per key parameter with two values or more in its rows, one figure
@@ -86,10 +86,11 @@ fn plot(
         scale: scale(&all),
     };
     let series = [series(format!("A: {}", a.name), pa), series(format!("B: {}", b.name), pb)];
-    let svg = line_chart(&chart, &series)
+    let image = line_chart(&chart, &series)
         .with_context(|| format!("cannot draw {metric} against {parameter} for scene {scene}"))?;
-    let file = format!("plots/{}-{}-vs-{}.svg", file_part(scene), file_part(metric), file_part(parameter));
-    Ok(Some(PlotLink { metric: metric.to_string(), file, svg }))
+    let file =
+        image.file_name(&format!("plots/{}-{}-vs-{}.svg", file_part(scene), file_part(metric), file_part(parameter)));
+    Ok(Some(PlotLink { metric: metric.to_string(), file, image }))
 }
 
 /// A side's points as one series: a line through one run per parameter value, markers where

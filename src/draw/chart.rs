@@ -1,5 +1,6 @@
-//! SVG figures drawn with plotters: one generic line chart and a space–time heat map, with
-//! which every figure of the report and of the comparison is drawn.
+//! Figures drawn with plotters: one generic line chart and a space–time heat map, with which
+//! every figure of the report and of the comparison is drawn, as SVG, or as PNG where the SVG
+//! would be heavy ([`Image`]).
 
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
@@ -94,17 +95,95 @@ fn thin_line(points: Vec<(f64, f64)>, most: usize) -> Vec<(f64, f64)> {
     kept
 }
 
-/// Draws `series` as an SVG document.
-pub fn line_chart(chart: &Chart, series: &[Series]) -> anyhow::Result<String> {
+/// A drawn figure: an SVG document, or a PNG image where the SVG would pass
+/// [`SVG_MOST_BYTES`] (many lines, points or heat-map cells: one PNG of a few tens of kB
+/// instead of up to a megabyte of vector shapes; the report stays light to load).
+#[derive(Clone, Debug)]
+pub enum Image {
+    /// An SVG document.
+    Svg(String),
+    /// A PNG file's bytes.
+    Png(Vec<u8>),
+}
+
+impl Image {
+    /// The file's bytes.
+    pub fn bytes(&self) -> &[u8] {
+        match self {
+            Image::Svg(svg) => svg.as_bytes(),
+            Image::Png(png) => png,
+        }
+    }
+    /// `file` (a name with an extension, `plots/x.svg`) with the extension of this image's format
+    /// instead (`svg` or `png`).
+    pub fn file_name(&self, file: &str) -> String {
+        let extension = match self {
+            Image::Svg(_) => "svg",
+            Image::Png(_) => "png",
+        };
+        std::path::Path::new(file).with_extension(extension).to_string_lossy().into_owned()
+    }
+}
+
+/// A figure whose SVG is larger than this (bytes) is drawn as a PNG instead: past it the
+/// vector shapes (mostly one per line point or heat-map cell) cost more than the pixels.
+pub const SVG_MOST_BYTES: usize = 30_000;
+
+/// Draws a figure by `svg` (an SVG document), or when that passes [`SVG_MOST_BYTES`] again by
+/// `png` on a bitmap of the same size, encoded as PNG: the two are one generic drawing
+/// function instantiated for either backend.
+fn svg_or_png(
+    svg: impl FnOnce(DrawingArea<SVGBackend<'_>, Shift>) -> anyhow::Result<()>,
+    png: impl FnOnce(DrawingArea<BitMapBackend<'_>, Shift>) -> anyhow::Result<()>,
+) -> anyhow::Result<Image> {
     ensure_font()?;
+    let mut text = String::new();
+    svg(SVGBackend::with_string(&mut text, SIZE).into_drawing_area())?;
+    if text.len() <= SVG_MOST_BYTES {
+        return Ok(Image::Svg(text));
+    }
+    let mut pixels = vec![0u8; SIZE.0 as usize * SIZE.1 as usize * 3];
+    png(BitMapBackend::with_buffer(&mut pixels, SIZE).into_drawing_area())?;
+    Ok(Image::Png(indexed_png(&pixels, SIZE)?))
+}
+
+/// RGB `pixels` of `size` as a PNG of at most 256 colours (NeuQuant, as GIF encoders choose
+/// theirs): a chart has a few hundred (its anti-aliased text), and indexed it takes half the
+/// bytes of RGB with no difference to see.
+fn indexed_png(pixels: &[u8], size: (u32, u32)) -> anyhow::Result<Vec<u8>> {
+    let rgba: Vec<u8> = pixels.chunks_exact(3).flat_map(|p| [p[0], p[1], p[2], 255]).collect();
+    let quantiser = color_quant::NeuQuant::new(10, 256, &rgba);
+    let mut nearest = std::collections::HashMap::new();
+    let indices: Vec<u8> =
+        rgba.chunks_exact(4).map(|p| *nearest.entry(p).or_insert_with(|| quantiser.index_of(p) as u8)).collect();
+    let mut bytes = Vec::new();
+    let mut encoder = png::Encoder::new(&mut bytes, size.0, size.1);
+    encoder.set_color(png::ColorType::Indexed);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder.set_palette(quantiser.color_map_rgb());
+    encoder.set_compression(png::Compression::Best);
+    let encoding = |error: png::EncodingError| anyhow::anyhow!("cannot encode a figure as PNG: {error}");
+    encoder.write_header().and_then(|mut writer| writer.write_image_data(&indices)).map_err(encoding)?;
+    Ok(bytes)
+}
+
+/// Draws `series` as a line chart ([`Image`]: SVG, or PNG when heavy).
+pub fn line_chart(chart: &Chart, series: &[Series]) -> anyhow::Result<Image> {
+    svg_or_png(|root| line_chart_on(root, chart, series), |root| line_chart_on(root, chart, series))
+}
+
+/// Draws `series` on `root`, a drawing area of any plotters backend.
+fn line_chart_on<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    chart: &Chart,
+    series: &[Series],
+) -> anyhow::Result<()> {
     let scale = chart.scale;
     let shown: Vec<(f64, f64)> =
         series.iter().flat_map(|s| s.points.iter().copied()).filter(|&p| scale.shows(p)).collect();
     let x_range = bounds(shown.iter().map(|p| p.0), scale.log_x());
     let y_range = bounds(shown.iter().map(|p| p.1), scale.log_y());
-    let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(draw_error)?;
         let builder = || frame(&root, chart);
         match scale {
@@ -129,17 +208,17 @@ pub fn line_chart(chart: &Chart, series: &[Series]) -> anyhow::Result<String> {
         }
         root.present().map_err(draw_error)?;
     }
-    Ok(svg)
+    Ok(())
 }
 
 pub(crate) fn draw_error<E: std::fmt::Debug>(error: E) -> anyhow::Error {
     anyhow::anyhow!("cannot draw a figure: {error:?}")
 }
 
-fn frame<'a, 'b>(
-    root: &'a DrawingArea<SVGBackend<'b>, Shift>,
+fn frame<'a, 'b, DB: DrawingBackend>(
+    root: &'a DrawingArea<DB, Shift>,
     chart: &Chart,
-) -> anyhow::Result<ChartBuilder<'a, 'b, SVGBackend<'b>>> {
+) -> anyhow::Result<ChartBuilder<'a, 'b, DB>> {
     let mut builder = ChartBuilder::on(root);
     builder.caption(&chart.title, ("sans-serif", 20)).margin(12).x_label_area_size(45).y_label_area_size(80);
     Ok(builder)
@@ -159,8 +238,8 @@ fn bounds(values: impl Iterator<Item = f64>, log: bool) -> std::ops::Range<f64> 
     }
 }
 
-fn draw<'a, 'b: 'a, X, Y>(
-    ctx: &mut ChartContext<'a, SVGBackend<'b>, Cartesian2d<X, Y>>,
+fn draw<'a, DB: DrawingBackend + 'a, X, Y>(
+    ctx: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
     chart: &Chart,
     series: &[Series],
 ) -> anyhow::Result<()>
@@ -172,6 +251,9 @@ where
     let scientific = |v: &f64| format!("{v:.0e}");
     let (x_linear, y_linear) = (linear_labels(ctx.x_range()), linear_labels(ctx.y_range()));
     let mut mesh = ctx.configure_mesh();
+    // No faint minor grid between the labelled lines: ten per interval were 40 % of a small
+    // chart's SVG and are barely visible on screen or paper.
+    mesh.max_light_lines(0);
     mesh.x_desc(&chart.x_label)
         .y_desc(&chart.y_label)
         .label_style(("sans-serif", 13))
@@ -233,22 +315,30 @@ pub(crate) fn diverging(value: f64) -> RGBColor {
     if v >= 0.0 { RGBColor(fade(200.0), fade(30.0), fade(30.0)) } else { RGBColor(fade(30.0), fade(60.0), fade(200.0)) }
 }
 
-/// At most this many cells along each axis of a heat map (an SVG of rectangles stays small).
+/// At most this many cells along each axis of a heat map.
 const HEATMAP_CELLS: (usize, usize) = (150, 100);
 
-/// A space–time heat map as an SVG document: `values[s][j]` at time `times[s]` and row `j`
-/// (a particle), coloured by value / max |value| on a blue–white–red scale; long series are
-/// thinned to at most [`HEATMAP_CELLS`] samples and rows.
-pub fn heatmap(chart: &Chart, times: &[f64], values: &[Vec<f64>]) -> anyhow::Result<String> {
-    ensure_font()?;
+/// A space–time heat map ([`Image`]: SVG, or PNG when heavy, as most are): `values[s][j]` at
+/// time `times[s]` and row `j` (a particle), coloured by value / max |value| on a
+/// blue–white–red scale; long series are thinned to at most [`HEATMAP_CELLS`] samples and rows.
+pub fn heatmap(chart: &Chart, times: &[f64], values: &[Vec<f64>]) -> anyhow::Result<Image> {
     let rows = values.first().map_or(0, Vec::len);
     anyhow::ensure!(times.len() >= 2 && rows > 0, "a heat map needs two samples and one row");
+    svg_or_png(|root| heatmap_on(root, chart, times, values), |root| heatmap_on(root, chart, times, values))
+}
+
+/// Draws the heat map of [`heatmap`] on `root`, a drawing area of any plotters backend.
+fn heatmap_on<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    chart: &Chart,
+    times: &[f64],
+    values: &[Vec<f64>],
+) -> anyhow::Result<()> {
+    let rows = values.first().map_or(0, Vec::len);
     let largest = values.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
     let time_stride = times.len().div_ceil(HEATMAP_CELLS.0);
     let row_stride = rows.div_ceil(HEATMAP_CELLS.1);
-    let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(draw_error)?;
         let mut ctx = frame(&root, chart)?
             .build_cartesian_2d(times[0]..times[times.len() - 1], 0.0..rows as f64)
@@ -272,7 +362,7 @@ pub fn heatmap(chart: &Chart, times: &[f64], values: &[Vec<f64>]) -> anyhow::Res
         ctx.draw_series(cells).map_err(draw_error)?;
         root.present().map_err(draw_error)?;
     }
-    Ok(svg)
+    Ok(())
 }
 
 #[cfg(test)]
@@ -294,8 +384,30 @@ mod tests {
         assert!(lowest < -0.9999, "the troughs are kept: {lowest}");
         assert!(thinned.windows(2).all(|w| w[0].0 < w[1].0), "in order");
         let chart = Chart { title: "t".into(), x_label: "x".into(), y_label: "y".into(), scale: Scale::Linear };
-        let svg = line_chart(&chart, &[Series { label: "e".into(), points, markers: false }]).unwrap();
-        // ~30 bytes per drawn point.
-        assert!(svg.len() < 300_000, "{} bytes", svg.len());
+        let image = line_chart(&chart, &[Series { label: "e".into(), points, markers: false }]).unwrap();
+        assert!(image.bytes().len() < SVG_MOST_BYTES, "{} bytes", image.bytes().len());
+    }
+
+    /// A chart of few points stays a vector drawing; one of many lines (or a heat map) passes
+    /// [`SVG_MOST_BYTES`] and is written as a PNG of a few tens of kB.
+    #[test]
+    fn heavy_figures_are_drawn_as_png() {
+        let chart = Chart { title: "t".into(), x_label: "x".into(), y_label: "y".into(), scale: Scale::Linear };
+        let line = |k: usize, n: usize| Series {
+            label: String::new(),
+            points: (0..n).map(|i| (i as f64, k as f64 + (i as f64 * 0.1).sin())).collect(),
+            markers: false,
+        };
+        let light = line_chart(&chart, &[line(0, 50)]).unwrap();
+        assert!(matches!(light, Image::Svg(_)), "{} bytes", light.bytes().len());
+        assert_eq!(light.file_name("plots/a-b.svg"), "plots/a-b.svg");
+        let heavy = line_chart(&chart, &(0..30).map(|k| line(k, 2000)).collect::<Vec<_>>()).unwrap();
+        assert!(matches!(heavy, Image::Png(_)));
+        assert!(heavy.bytes().starts_with(b"\x89PNG") && heavy.bytes().len() < 100_000, "{}", heavy.bytes().len());
+        assert_eq!(heavy.file_name("plots/a-time.dt.svg"), "plots/a-time.dt.png");
+        let times: Vec<f64> = (0..400).map(f64::from).collect();
+        let values: Vec<Vec<f64>> =
+            (0..400).map(|s| (0..60).map(|j| ((s + j) as f64 * 0.05).sin()).collect()).collect();
+        assert!(matches!(heatmap(&chart, &times, &values).unwrap(), Image::Png(_)), "15 000 cells");
     }
 }

@@ -11,12 +11,13 @@ use crate::sim::RunStatus;
 pub struct Figure {
     /// Scene it belongs to.
     pub scene: String,
-    /// Path relative to the campaign directory (`plots/…svg`).
+    /// Path relative to the campaign directory (`plots/….svg`); `render` gives it the extension
+    /// of the drawn image before it is written (`.png` for a heavy figure, `Image::file_name`).
     pub file: String,
     /// Caption, plain text: the report escapes it (no Markdown of its own).
     pub caption: String,
-    /// The SVG document.
-    pub svg: String,
+    /// The drawing: SVG, or PNG when heavy.
+    pub image: crate::draw::chart::Image,
 }
 
 /// A figure or movie as the report shows it: its file and caption.

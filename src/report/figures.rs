@@ -140,7 +140,7 @@ fn energy_figure(scene: &str, index: usize, label: &str, record: &RunRecord) -> 
         y_label: "energy (J)".into(),
         scale: Scale::Linear,
     };
-    let svg = line_chart(
+    let image = line_chart(
         &chart,
         &[
             series("kinetic", t.kinetic.clone()),
@@ -153,7 +153,7 @@ fn energy_figure(scene: &str, index: usize, label: &str, record: &RunRecord) -> 
         scene: scene.into(),
         file: format!("plots/{scene}-energy-{index}.svg"),
         caption: format!("Kinetic, potential, dissipated and total energy against time, {scene} ({label})."),
-        svg,
+        image,
     })
 }
 
@@ -186,7 +186,7 @@ fn displacement_figure(scene: &str, label: &str, record: &RunRecord) -> anyhow::
         caption: format!(
             "Displacement of every particle against time, {scene} ({label}): one line per particle, offset by its number."
         ),
-        svg: line_chart(&chart, &series)?,
+        image: line_chart(&chart, &series)?,
     })
 }
 
@@ -216,7 +216,7 @@ fn convergence_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyh
         caption: format!(
             "Relative error of contact duration t_c and restitution r against dt/t_c, {scene}. A slope of 2 on these axes is second order."
         ),
-        svg: line_chart(&chart, &series)?,
+        image: line_chart(&chart, &series)?,
     })
 }
 
@@ -304,7 +304,7 @@ fn relaxation_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyho
             shown.len(),
             groups.len()
         ),
-        svg: line_chart(&chart, &series)?,
+        image: line_chart(&chart, &series)?,
     })
 }
 
@@ -370,6 +370,6 @@ fn size_figure(scene: &str, records: &[RunRecord]) -> anyhow::Result<Option<Figu
         caption: format!(
             "E (tensile) or G (shear) of the {scene} lattices over the continuum value, against size: lines the static answer, markers the relaxed MD."
         ),
-        svg: line_chart(&chart, &series)?,
+        image: line_chart(&chart, &series)?,
     }))
 }

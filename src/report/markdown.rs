@@ -11,9 +11,10 @@ use std::io::Write;
 
 /// Characters with a meaning in inline Markdown (CommonMark and GitHub tables), written with a
 /// backslash: HTML and autolinks (`<`, `>`), entities (`&`), code spans, emphasis, links and
-/// images, table cells (`|`), headings' closing `#`, strikethrough, and the backslash itself.
-/// `_` is escaped only where it could open or close emphasis (see [`escape_inline`]).
-const INLINE_SPECIAL: &[char] = &['\\', '`', '*', '[', ']', '<', '>', '|', '&', '#', '~'];
+/// images, table cells (`|`), headings' closing `#`, strikethrough, math (`$`, which `index.html`
+/// renders as LaTeX) and the backslash itself. `_` is escaped only where it could open or close
+/// emphasis (see [`escape_inline`]).
+const INLINE_SPECIAL: &[char] = &['\\', '`', '*', '[', ']', '<', '>', '|', '&', '#', '~', '$'];
 
 /// tera's escape function for the Markdown templates: `text` as literal inline Markdown on one
 /// line. Control characters (line breaks included) become spaces, so a value cannot end a table
@@ -90,9 +91,39 @@ fn block_safe(escaped: &str) -> String {
     }
 }
 
+/// `text` for inside math (`$…$`, `$$…$$`, LaTeX): a number in e-notation as LaTeX's
+/// `m \times 10^{e}` (`1.25e-3` → `1.25 \times 10^{-3}`, not "1.25 e − 3"), any other text with
+/// LaTeX's special characters escaped and `|` as `\vert` (a table cell ends at a bare `|`, math
+/// or not). Markdown escaping ([`escape_inline`]) does not belong there: math is read verbatim.
+pub fn tex(text: &str) -> String {
+    if let Some((mantissa, exponent)) = text.trim().split_once(['e', 'E'])
+        && mantissa.parse::<f64>().is_ok()
+        && let Ok(exponent) = exponent.parse::<i32>()
+    {
+        return format!("{mantissa} \\times 10^{{{exponent}}}");
+    }
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '\\' => out.push_str("\\backslash "),
+            '{' | '}' | '$' | '&' | '#' | '%' | '_' => {
+                out.push('\\');
+                out.push(c);
+            }
+            '^' => out.push_str("\\hat{}"),
+            '~' => out.push_str("\\sim "),
+            '|' => out.push_str("\\vert "),
+            c if c.is_control() => out.push(' '),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
 /// A tera instance for a Markdown template: autoescape by [`escape_inline`] on templates named
 /// `*.md`, and the filters `code` (a code span in running text), `code_cell` (one in a table
-/// cell) and `paragraphs`, whose output is marked safe: they escape themselves.
+/// cell), `paragraphs` and `tex` (a value inside math, [`tex`]), whose output is marked safe: they
+/// escape themselves.
 pub fn tera() -> tera::Tera {
     let mut tera = tera::Tera::new();
     tera.autoescape_on([".md"]);
@@ -100,7 +131,12 @@ pub fn tera() -> tera::Tera {
     tera.register_filter("code", code_filter);
     tera.register_filter("code_cell", code_cell_filter);
     tera.register_filter("paragraphs", paragraphs_filter);
+    tera.register_filter("tex", tex_filter);
     tera
+}
+
+fn tex_filter(text: &str, _: tera::Kwargs, _: &tera::State) -> tera::Value {
+    tera::Value::safe_string(&tex(text))
 }
 
 fn code_filter(text: &str, _: tera::Kwargs, _: &tera::State) -> tera::Value {
@@ -119,23 +155,15 @@ fn paragraphs_filter(text: &str, _: tera::Kwargs, _: &tera::State) -> tera::Valu
 mod tests {
     use super::*;
 
-    /// Renders Markdown as `write_pages` does.
-    fn html(markdown: &str) -> String {
-        let mut body = String::new();
-        pulldown_cmark::html::push_html(
-            &mut body,
-            pulldown_cmark::Parser::new_ext(markdown, pulldown_cmark::Options::ENABLE_TABLES),
-        );
-        body
-    }
+    use crate::report::page::to_html as html;
 
     const HOSTILE: &str =
-        "<script>alert(1)</script> | a*b* _c_ [x](javascript:y) ![i](j) `k` &lt; #\n| row\r\n~~s~~ \\";
+        "<script>alert(1)</script> | a*b* _c_ [x](javascript:y) ![i](j) `k` &lt; #\n| row\r\n~~s~~ $x$ \\";
 
     #[test]
     fn inline_text_shows_as_itself_and_opens_nothing() {
         let body = html(&format!("# {}\n\nbefore {} after\n", inline(HOSTILE), inline(HOSTILE)));
-        for live in ["<script", "<em>", "<a ", "<img", "<code>", "<del>", "<h2", "<tr"] {
+        for live in ["<script", "<em>", "<a ", "<img", "<code>", "<del>", "<h2", "<tr", "<math"] {
             assert!(!body.contains(live), "{live} in {body}");
         }
         assert!(body.contains("&lt;script&gt;alert(1)&lt;/script&gt; | a*b* _c_ [x](javascript:y)"), "{body}");
@@ -165,6 +193,17 @@ mod tests {
         assert_eq!(code("run-1", true), "`run-1`");
         assert_eq!(code("`x`", false), "`` `x` ``");
         assert!(html(&format!("## Scene {}\n", code("a`b|<i>", false))).contains("<code>a`b|&lt;i&gt;</code>"));
+    }
+
+    #[test]
+    fn values_inside_math_read_as_latex() {
+        assert_eq!(tex("1.25e-3"), "1.25 \\times 10^{-3}");
+        assert_eq!(tex("-2E+11"), "-2 \\times 10^{11}");
+        assert_eq!(tex("0.636"), "0.636");
+        assert_eq!(tex("k_d|{x}$ 5% #1 ^~\\"), "k\\_d\\vert \\{x\\}\\$ 5\\% \\#1 \\hat{}\\sim \\backslash ");
+        let body = html(&format!("| a |\n|---|\n| ${}$ |\n", tex("x|y_1")));
+        assert_eq!(body.matches("<td>").count(), 1, "{body}");
+        assert!(body.contains("<math") && !body.contains("math-error"), "{body}");
     }
 
     #[test]

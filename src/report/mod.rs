@@ -1,4 +1,4 @@
-//! Reports: SVG figures, then `report.md` rendered by tera from `templates/report.md.tera`,
+//! Reports: figures (SVG, or PNG where heavy), then `report.md` rendered by tera from `templates/report.md.tera`,
 //! and `index.html`: the same Markdown turned into HTML (pulldown-cmark) inside the page shell
 //! `templates/index.html.tera`, so the report's text exists once. The templates are compiled
 //! in, so the binary works from any directory. Only sections of the campaign's scenes show.
@@ -11,6 +11,7 @@ mod figure;
 mod figures;
 mod findings;
 mod markdown;
+mod page;
 mod precision;
 mod probes;
 mod solids;
@@ -46,9 +47,10 @@ pub fn render_with_left_out(
     fits: &[ScalingFit],
     left_out: &LeftOut,
 ) -> anyhow::Result<()> {
-    let figures = figures::draw_all(campaign, records, fits)?;
-    for figure in &figures {
-        write_atomically(&layout.file(&figure.file), figure.svg.as_bytes())?;
+    let mut figures = figures::draw_all(campaign, records, fits)?;
+    for figure in &mut figures {
+        figure.file = figure.image.file_name(&figure.file);
+        write_atomically(&layout.file(&figure.file), figure.image.bytes())?;
     }
     let mut probes = BTreeSet::new();
     for record in records {
@@ -69,6 +71,7 @@ pub fn render_with_left_out(
     // removed, a campaign that took the folder over) goes.
     let drawn: BTreeSet<String> = figures.iter().map(|f| f.file.clone()).collect();
     remove_stale(&layout.root, "plots", ".svg", &drawn)?;
+    remove_stale(&layout.root, "plots", ".png", &drawn)?;
     let movies = side_by_side.iter().map(|scene| format!("plots/{scene}-side-by-side.gif")).collect();
     remove_stale(&layout.root, "plots", "-side-by-side.gif", &movies)?;
     remove_stale(&layout.root, "probes", ".csv", &probes)?;
@@ -116,13 +119,30 @@ pub(crate) fn write_pages(
     let markdown = tera.render(name, &context).with_context(|| format!("cannot render templates/{name}.tera"))?;
     let mut tera = tera::Tera::new();
     tera.add_raw_template("index.html", HTML_TEMPLATE).context("templates/index.html.tera does not parse")?;
-    write_atomically(&dir.join("report.md"), markdown.as_bytes())?;
-    let mut body = String::new();
-    pulldown_cmark::html::push_html(
-        &mut body,
-        pulldown_cmark::Parser::new_ext(&markdown, pulldown_cmark::Options::ENABLE_TABLES),
-    );
-    context.insert("body", &body);
+    write_atomically(&dir.join("report.md"), page::with_contents(&markdown).as_bytes())?;
+    context.insert("body", &page::to_html(&markdown));
     let html = tera.render("index.html", &context).context("cannot render templates/index.html.tera")?;
     write_atomically(&dir.join("index.html"), html.as_bytes())
+}
+
+#[cfg(test)]
+mod tests {
+    /// Math is written once: LaTeX in `report.md`, MathML in `index.html`.
+    #[test]
+    fn write_pages_keeps_math_as_latex_in_markdown_and_mathml_in_html() {
+        let dir = tempfile::tempdir().unwrap();
+        let template =
+            "# {{ title }}\n\nInline $t_c = {{ tc | tex }}\\,\\mathrm{s}$ and\n\n$$r = e^{-\\gamma t_c / 2m}$$\n";
+        let mut context = tera::Context::new();
+        context.insert("title", "Math");
+        context.insert("tc", &"1.25e-3");
+        super::write_pages(dir.path(), ("t.md", template), context).unwrap();
+        let markdown = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
+        assert!(markdown.contains("$t_c = 1.25 \\times 10^{-3}\\,\\mathrm{s}$"), "{markdown}");
+        assert!(markdown.contains("$$r = e^{-\\gamma t_c / 2m}$$"), "{markdown}");
+        let html = std::fs::read_to_string(dir.path().join("index.html")).unwrap();
+        assert!(html.contains("<math display=\"inline\"><msub><mi>t</mi><mi>c</mi></msub><mo>=</mo><mn>1.25</mn><mo>×</mo><msup><mn>10</mn>"), "{html}");
+        assert!(html.contains("<math display=\"block\">"), "{html}");
+        assert!(!html.contains('$'), "{html}");
+    }
 }

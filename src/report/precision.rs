@@ -124,13 +124,13 @@ pub fn precision_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<V
                 "Error against the wall time of the time loop, one line per integrator and setting, {scene}: \
                  lower left is better; a line's slope is −order (error ∝ dt^p ∝ time^(−p))."
             ),
-            svg: line_chart(&work, &curves(&|r| r.trace.loop_s))?,
+            image: line_chart(&work, &curves(&|r| r.trace.loop_s))?,
         },
         Figure {
             scene: scene.into(),
             file: format!("plots/{scene}-error-dt.svg"),
             caption: format!("Error against dt/t_c, {scene}: a slope of p on these axes is order p."),
-            svg: line_chart(&convergence, &curves(&|r| 1.0 / r.spec.dt_per_tc()))?,
+            image: line_chart(&convergence, &curves(&|r| 1.0 / r.spec.dt_per_tc()))?,
         },
     ])
 }

@@ -48,7 +48,7 @@ pub fn probe_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<F
                      probes/{}.csv.",
                     probe.name, r.run_id
                 ),
-                svg: heatmap(&chart, &r.trace.time, values)?,
+                image: heatmap(&chart, &r.trace.time, values)?,
             });
         }
     }

@@ -51,7 +51,7 @@ pub fn scaling_figures(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Vec<F
                  extra step), with fitted power laws. Linear springs: flat (exponent 0). Hertz springs: exponent 1/3 \
                  against the load, 1/2 against the wall displacement."
             ),
-            svg: line_chart(&chart, &series)?,
+            image: line_chart(&chart, &series)?,
         });
     }
     Ok(figures)
@@ -205,6 +205,6 @@ pub fn ensemble_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Opt
              central-force networks, falling linearly to zero at p = 2d/z = 1/2. Networks that lost rigidity end as \
              status mechanism and are left out of the means."
         ),
-        svg: line_chart(&chart, &series)?,
+        image: line_chart(&chart, &series)?,
     }))
 }

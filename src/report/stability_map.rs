@@ -194,7 +194,7 @@ pub fn stability_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<V
                  mode's damping ratio.",
                 integrator.name()
             ),
-            svg: line_chart(&chart, &series)?,
+            image: line_chart(&chart, &series)?,
         });
     }
     Ok(figures)

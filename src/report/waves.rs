@@ -92,7 +92,7 @@ fn speed_figure(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Option<Figur
              law: linear springs give the same speed at every v0 (exponent 0); a Hertz chain without pre-load \
              carries a solitary wave whose speed grows as v0^(1/5)."
         ),
-        svg: line_chart(&chart, &series)?,
+        image: line_chart(&chart, &series)?,
     }))
 }
 
@@ -130,6 +130,6 @@ fn space_time_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Optio
              white at rest, scaled to the largest |u|. The wave front is the edge of the coloured region; its \
              slope is the sound speed."
         ),
-        svg: heatmap(&chart, &t.time, &values)?,
+        image: heatmap(&chart, &t.time, &values)?,
     }))
 }

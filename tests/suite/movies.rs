@@ -9,18 +9,34 @@ use mdsolids::sim::RunStatus;
 const CAMPAIGN: &str = "version: 1\nname: film\nscenes:\n  - name: chain\n    kind: chain\n    n: 10\n    \
     node: first\n    v0: 0.1\n    movie: {frames: 12, width: 400, height: 160}\n    time: {duration_tc: 10}\n";
 
-/// Decodes every frame of the GIF at `path` as RGBA rows of `width` pixels.
+/// Decodes every frame of the GIF at `path` as RGBA rows of `width` pixels, as a viewer shows
+/// it: the first frame whole, each later one (the box that changed, unchanged pixels
+/// transparent) drawn over the picture before.
 fn frames(path: &std::path::Path) -> (u16, Vec<Vec<u8>>) {
     let mut options = gif::DecodeOptions::new();
     options.set_color_output(gif::ColorOutput::RGBA);
     let mut decoder = options.read_info(std::fs::File::open(path).unwrap()).unwrap();
-    let width = decoder.width();
-    let mut frames = Vec::new();
+    let (width, height) = (usize::from(decoder.width()), usize::from(decoder.height()));
+    let mut picture = vec![0u8; width * height * 4];
+    let mut frames: Vec<Vec<u8>> = Vec::new();
     while let Some(frame) = decoder.read_next_frame().unwrap() {
-        assert_eq!((frame.width, frame.left, frame.top), (width, 0, 0), "every frame is whole");
-        frames.push(frame.buffer.to_vec());
+        if frames.is_empty() {
+            assert_eq!(
+                (usize::from(frame.width), usize::from(frame.height)),
+                (width, height),
+                "the first frame is whole"
+            );
+        }
+        let (left, top, w) = (usize::from(frame.left), usize::from(frame.top), usize::from(frame.width));
+        for (i, pixel) in frame.buffer.chunks(4).enumerate() {
+            if pixel[3] > 0 {
+                let at = 4 * ((top + i / w) * width + left + i % w);
+                picture[at..at + 4].copy_from_slice(pixel);
+            }
+        }
+        frames.push(picture.clone());
     }
-    (width, frames)
+    (width as u16, frames)
 }
 
 #[test]

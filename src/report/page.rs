@@ -1,0 +1,402 @@
+//! Markdown → HTML of the report pages (`index.html` of a campaign and of `mdsolids compare`):
+//! LaTeX math as MathML (no JavaScript, no network), an `id` on every heading and a contents
+//! list, numbered figures with their captions, tables that scroll inside their own box, images
+//! loaded lazily. `report.md` keeps the Markdown as the template wrote it (math stays `$…$`),
+//! with the contents list as links where the template asks for it.
+//!
+//! What a template writes:
+//! - math in LaTeX, `$…$` inline and `$$…$$` displayed; LaTeX the renderer cannot read shows as
+//!   its code text, and the page is written all the same;
+//! - a line [`CONTENTS_MARKER`] where the contents list goes (h2 sections with their h3 nested);
+//!   without one, `index.html` gets the list before the first h2 and `report.md` none;
+//! - a figure as a paragraph holding only an image (or a link around one) followed by an italic
+//!   paragraph, its caption: the page numbers it "Figure N." in a `<figure>`, nothing to count.
+
+use std::collections::HashSet;
+use std::ops::Range;
+
+use pulldown_cmark::{CowStr, Event, HeadingLevel, Options, Parser, Tag, TagEnd};
+use pulldown_cmark_escape::{escape_href, escape_html};
+
+/// The line (alone on it) where a template wants the contents list: an HTML comment, so
+/// Markdown viewers show nothing of it when no list follows.
+pub const CONTENTS_MARKER: &str = "<!-- contents -->";
+
+/// GitHub's tables, and `$…$` / `$$…$$` read as math, not text.
+const OPTIONS: Options = Options::ENABLE_TABLES.union(Options::ENABLE_MATH);
+
+/// A heading: level, its Markdown source as written (the contents list's link text) and the id
+/// it gets on the page.
+struct Heading {
+    level: HeadingLevel,
+    source: String,
+    id: String,
+}
+
+/// The id of a heading whose text is `text`, as GitHub makes it: lower case, letters, digits,
+/// `-` and `_` kept, spaces as `-`, everything else dropped (for ASCII headings the same
+/// anchors as GitHub's view of `report.md`).
+fn slug(text: &str) -> String {
+    let slug: String = text
+        .trim()
+        .chars()
+        .filter_map(|c| match c {
+            ' ' => Some('-'),
+            '-' | '_' => Some(c),
+            c if c.is_alphanumeric() => Some(c),
+            _ => None,
+        })
+        .flat_map(char::to_lowercase)
+        .collect();
+    if slug.is_empty() { "section".into() } else { slug }
+}
+
+/// `base`, or `base-1`, `base-2`, … (GitHub's suffixes), the first not in `used`, now used.
+fn unique(base: String, used: &mut HashSet<String>) -> String {
+    let id = (0..).map(|n| if n == 0 { base.clone() } else { format!("{base}-{n}") }).find(|id| !used.contains(id));
+    let id = id.expect("some suffix is free");
+    used.insert(id.clone());
+    id
+}
+
+/// The headings of `markdown` in order, each with a unique id.
+fn headings(markdown: &str) -> Vec<Heading> {
+    let mut found = Vec::new();
+    let mut used = HashSet::new();
+    // (level, text for the slug, source range of the inline content)
+    let mut open: Option<(HeadingLevel, String, Option<Range<usize>>)> = None;
+    for (event, range) in Parser::new_ext(markdown, OPTIONS).into_offset_iter() {
+        match event {
+            Event::Start(Tag::Heading { level, .. }) => open = Some((level, String::new(), None)),
+            Event::End(TagEnd::Heading(_)) => {
+                if let Some((level, text, source)) = open.take() {
+                    let source = source.map_or(String::new(), |r| markdown[r].trim().to_string());
+                    found.push(Heading { level, source, id: unique(slug(&text), &mut used) });
+                }
+            }
+            event => {
+                if let Some((_, text, source)) = open.as_mut() {
+                    if let Event::Text(t) | Event::Code(t) | Event::InlineMath(t) = &event {
+                        text.push_str(t);
+                    }
+                    *source = Some(source.as_ref().map_or(range.clone(), |s| s.start..range.end));
+                }
+            }
+        }
+    }
+    found
+}
+
+/// The contents list of `headings` in Markdown: the h2 sections linked by id, their h3 nested.
+fn contents_list(headings: &[Heading]) -> String {
+    let mut list = String::from("**Contents**\n\n");
+    for heading in headings {
+        let indent = match heading.level {
+            HeadingLevel::H2 => "",
+            HeadingLevel::H3 => "  ",
+            _ => continue,
+        };
+        list.push_str(&format!("{indent}- [{}](#{})\n", heading.source, heading.id));
+    }
+    list
+}
+
+/// `markdown` with the contents list after the [`CONTENTS_MARKER`] line; without that line,
+/// unchanged, or (`before_first_section`) with the marker and list put before the first h2.
+fn place_contents(markdown: &str, before_first_section: bool) -> String {
+    let headings = headings(markdown);
+    let list = contents_list(&headings);
+    let marker_line = markdown.split_inclusive('\n').scan(0, |at, line| {
+        let start = *at;
+        *at += line.len();
+        Some((start, line))
+    });
+    if let Some((start, line)) = marker_line.into_iter().find(|(_, line)| line.trim() == CONTENTS_MARKER) {
+        let rest = &markdown[start + line.len()..];
+        let gap = if rest.starts_with('\n') { "" } else { "\n" };
+        return format!("{}{CONTENTS_MARKER}\n\n{list}{gap}{rest}", &markdown[..start]);
+    }
+    let first_section = Parser::new_ext(markdown, OPTIONS).into_offset_iter().find_map(|(event, range)| {
+        matches!(event, Event::Start(Tag::Heading { level: HeadingLevel::H2, .. })).then_some(range.start)
+    });
+    match first_section {
+        Some(at) if before_first_section => {
+            format!("{}{CONTENTS_MARKER}\n\n{list}\n{}", &markdown[..at], &markdown[at..])
+        }
+        _ => markdown.to_string(),
+    }
+}
+
+/// `markdown` as written to `report.md`: the contents list (Markdown links to the headings'
+/// anchors) after the [`CONTENTS_MARKER`] line, if the template wrote one.
+pub fn with_contents(markdown: &str) -> String {
+    place_contents(markdown, false)
+}
+
+/// `markdown` as the HTML body of `index.html` (see the module's documentation).
+pub fn to_html(markdown: &str) -> String {
+    let markdown = place_contents(markdown, true);
+    let events = number_figures(Parser::new_ext(&markdown, OPTIONS).collect());
+    let mut ids = headings(&markdown).into_iter().map(|h| h.id);
+    let mut out = Vec::with_capacity(events.len());
+    let mut nav: Option<usize> = None; // open lists inside the contents' <nav>
+    let mut image: Option<(CowStr, CowStr, String)> = None; // src, title, alt text so far
+    for event in events {
+        if let Some((_, _, alt)) = image.as_mut() {
+            match event {
+                Event::End(TagEnd::Image) => {
+                    let (src, title, alt) = image.take().expect("an image is open");
+                    out.push(Event::InlineHtml(img(&src, &title, &alt).into()));
+                }
+                Event::Text(t) | Event::Code(t) | Event::InlineMath(t) | Event::DisplayMath(t) => alt.push_str(&t),
+                _ => {}
+            }
+            continue;
+        }
+        match event {
+            Event::Start(Tag::Image { dest_url, title, .. }) => image = Some((dest_url, title, String::new())),
+            Event::Start(Tag::Heading { level, classes, attrs, .. }) => {
+                out.push(Event::Start(Tag::Heading { level, id: ids.next().map(CowStr::from), classes, attrs }))
+            }
+            Event::Html(text) if text.trim() == CONTENTS_MARKER => {
+                nav = Some(0);
+                out.push(Event::Html("<nav class=\"contents\" aria-label=\"Contents\">\n".into()));
+            }
+            Event::Start(Tag::List(start)) => {
+                nav = nav.map(|open| open + 1);
+                out.push(Event::Start(Tag::List(start)));
+            }
+            Event::End(TagEnd::List(ordered)) => {
+                out.push(Event::End(TagEnd::List(ordered)));
+                nav = nav.map(|open| open - 1);
+                if nav == Some(0) {
+                    out.push(Event::Html("</nav>\n".into()));
+                    nav = None;
+                }
+            }
+            Event::Start(Tag::Table(alignments)) => {
+                out.push(Event::Html("<div class=\"table-wrap\">\n".into()));
+                out.push(Event::Start(Tag::Table(alignments)));
+            }
+            Event::End(TagEnd::Table) => {
+                out.push(Event::End(TagEnd::Table));
+                out.push(Event::Html("</div>\n".into()));
+            }
+            Event::InlineMath(latex) => out.push(Event::InlineHtml(math(&latex, false).into())),
+            Event::DisplayMath(latex) => out.push(Event::InlineHtml(math(&latex, true).into())),
+            event => out.push(event),
+        }
+    }
+    let mut body = String::new();
+    pulldown_cmark::html::push_html(&mut body, out.into_iter());
+    body
+}
+
+/// An `<img>` loaded when it comes near the window (the page shows dozens of figures).
+fn img(src: &str, title: &str, alt: &str) -> String {
+    let mut html = String::from("<img src=\"");
+    escape_href(&mut html, src).expect("writing to a String cannot fail");
+    html.push_str("\" alt=\"");
+    escape_html(&mut html, alt).expect("writing to a String cannot fail");
+    if !title.is_empty() {
+        html.push_str("\" title=\"");
+        escape_html(&mut html, title).expect("writing to a String cannot fail");
+    }
+    html.push_str("\" loading=\"lazy\">");
+    html
+}
+
+/// LaTeX `latex` as MathML (a block when `display`); LaTeX the renderer cannot read as its code
+/// text, marked, so one bad formula costs its own rendering and nothing else.
+fn math(latex: &str, display: bool) -> String {
+    let storage = pulldown_latex::Storage::new();
+    let events: Vec<_> = pulldown_latex::Parser::new(latex, &storage).collect();
+    let display_mode =
+        if display { pulldown_latex::config::DisplayMode::Block } else { pulldown_latex::config::DisplayMode::Inline };
+    let config = pulldown_latex::RenderConfig { display_mode, ..Default::default() };
+    let mut mathml = String::new();
+    if events.iter().all(Result::is_ok) && pulldown_latex::push_mathml(&mut mathml, events.into_iter(), config).is_ok()
+    {
+        return mathml;
+    }
+    let mut code = String::from("<code class=\"math-error\" title=\"LaTeX that could not be rendered\">");
+    escape_html(&mut code, latex).expect("writing to a String cannot fail");
+    code.push_str("</code>");
+    code
+}
+
+/// The index of the `End(Paragraph)` closing the paragraph opened at `start`, if one opens there.
+fn paragraph_end(events: &[Event], start: usize) -> Option<usize> {
+    if !matches!(events.get(start), Some(Event::Start(Tag::Paragraph))) {
+        return None;
+    }
+    (start..events.len()).find(|&i| matches!(events[i], Event::End(TagEnd::Paragraph)))
+}
+
+/// Whether `inner` (a paragraph's content) is one image, or one link around one image.
+fn only_an_image(inner: &[Event]) -> bool {
+    let inner = match inner {
+        [Event::Start(Tag::Link { .. }), inside @ .., Event::End(TagEnd::Link)] => inside,
+        inner => inner,
+    };
+    matches!(inner, [Event::Start(Tag::Image { .. }), .., Event::End(TagEnd::Image)])
+        && inner.iter().filter(|e| matches!(e, Event::Start(Tag::Image { .. }))).count() == 1
+}
+
+/// Whether `inner` (a paragraph's content) is one emphasis from its start to its end.
+fn all_emphasis(inner: &[Event]) -> bool {
+    let mut depth = 0usize;
+    for (i, event) in inner.iter().enumerate() {
+        match event {
+            Event::Start(Tag::Emphasis) => depth += 1,
+            Event::End(TagEnd::Emphasis) => depth -= 1,
+            _ if depth == 0 => return false,
+            _ => {}
+        }
+        if depth == 0 && i + 1 < inner.len() {
+            return false;
+        }
+    }
+    !inner.is_empty()
+}
+
+/// `events` with each image paragraph that an italic caption paragraph follows written as a
+/// `<figure id="figure-N">` whose `<figcaption>` starts "Figure N.", N counting from 1.
+fn number_figures(events: Vec<Event>) -> Vec<Event> {
+    let mut out = Vec::with_capacity(events.len());
+    let mut figures = 0;
+    let mut i = 0;
+    while i < events.len() {
+        let image = paragraph_end(&events, i).filter(|&end| only_an_image(&events[i + 1..end]));
+        let caption = image.and_then(|end| paragraph_end(&events, end + 1).map(|close| (end, close)));
+        match caption.filter(|&(end, close)| all_emphasis(&events[end + 2..close])) {
+            Some((end, close)) => {
+                figures += 1;
+                out.push(Event::Html(format!("<figure id=\"figure-{figures}\">\n").into()));
+                out.extend(events[i + 1..end].iter().cloned());
+                out.push(Event::Html(
+                    format!("\n<figcaption><span class=\"figure-number\">Figure {figures}.</span> ").into(),
+                ));
+                out.extend(events[end + 3..close - 1].iter().cloned());
+                out.push(Event::Html("</figcaption>\n</figure>\n".into()));
+                i = close + 1;
+            }
+            None => {
+                out.push(events[i].clone());
+                i += 1;
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const PAGE: &str = "# Title\n\nLead paragraph.\n\n## Results\n\n### Speed `v`\n\n\
+        ![A chart](plots/a.svg)\n\n*The speed against time.*\n\n\
+        [![A movie](plots/m.gif)](plots/m.gif)\n\n*A movie of it.*\n\n![Alone](plots/b.svg)\n\n\
+        ## Results\n\n| a | b |\n|---|---|\n| 1 | 2 |\n\n## Ünïcode & more!\n";
+
+    /// The values of `attribute="…"` in `html`.
+    fn values<'a>(html: &'a str, attribute: &str) -> Vec<&'a str> {
+        let key = format!("{attribute}=\"");
+        html.split(&key).skip(1).map(|rest| &rest[..rest.find('"').unwrap()]).collect()
+    }
+
+    /// `text` with its `%XX` escapes decoded, as a browser reads a link's fragment.
+    fn percent_decoded(text: &str) -> String {
+        let bytes = text.as_bytes();
+        let mut out = Vec::new();
+        let mut i = 0;
+        while i < bytes.len() {
+            if bytes[i] == b'%' {
+                out.push(u8::from_str_radix(&text[i + 1..i + 3], 16).unwrap());
+                i += 3;
+            } else {
+                out.push(bytes[i]);
+                i += 1;
+            }
+        }
+        String::from_utf8(out).unwrap()
+    }
+
+    #[test]
+    fn every_heading_has_a_unique_id_and_every_contents_link_resolves() {
+        let html = to_html(PAGE);
+        let ids = values(&html, "id");
+        assert_eq!(["<h1", "<h2", "<h3"].iter().map(|h| html.matches(h).count()).sum::<usize>(), 5, "{html}");
+        for id in ["title", "results", "speed-v", "results-1", "ünïcode--more"] {
+            assert!(ids.contains(&id), "{id} in {ids:?}");
+        }
+        let unique: HashSet<&&str> = ids.iter().collect();
+        assert_eq!(unique.len(), ids.len(), "{ids:?}");
+        let links: Vec<&str> = values(&html, "href").into_iter().filter_map(|h| h.strip_prefix('#')).collect();
+        assert_eq!(links.len(), 4, "h2 and h3 listed, h1 not: {links:?}");
+        for link in &links {
+            assert!(ids.contains(&percent_decoded(link).as_str()), "#{link} resolves: {ids:?}");
+        }
+        // Before the first section, after the lead; h3 nested in its h2's item.
+        let nav = html.find("<nav class=\"contents\"").unwrap();
+        assert!(html.find("Lead paragraph").unwrap() < nav && nav < html.find("<h2").unwrap(), "{html}");
+        assert!(
+            html.contains("<a href=\"#results\">Results</a>\n<ul>\n<li><a href=\"#speed-v\">Speed <code>v</code>"),
+            "{html}"
+        );
+    }
+
+    #[test]
+    fn the_contents_go_where_the_marker_is_in_both_pages() {
+        let page = format!("# T\n\n{CONTENTS_MARKER}\n\nIntro.\n\n## A b\n\n## C\n");
+        let markdown = with_contents(&page);
+        assert!(markdown.contains("- [A b](#a-b)\n- [C](#c)\n\nIntro."), "{markdown}");
+        assert_eq!(with_contents(PAGE), PAGE, "no marker: report.md unchanged");
+        let html = to_html(&page);
+        assert_eq!(html.matches("<nav").count(), 1, "{html}");
+        assert!(html.find("</nav>").unwrap() < html.find("Intro.").unwrap(), "{html}");
+    }
+
+    #[test]
+    fn captioned_images_are_numbered_figures_and_all_images_load_lazily() {
+        let html = to_html(PAGE);
+        assert_eq!(html.matches("<figure").count(), 2, "{html}");
+        assert!(
+            html.contains(
+                "<figcaption><span class=\"figure-number\">Figure 1.</span> The speed against time.</figcaption>"
+            ),
+            "{html}"
+        );
+        assert!(
+            html.contains("<a href=\"plots/m.gif\"><img src=\"plots/m.gif\" alt=\"A movie\" loading=\"lazy\"></a>"),
+            "{html}"
+        );
+        assert!(html.contains("Figure 2.</span> A movie of it."), "{html}");
+        assert!(
+            html.contains("<p><img src=\"plots/b.svg\" alt=\"Alone\" loading=\"lazy\"></p>"),
+            "no caption, no number: {html}"
+        );
+        assert_eq!(html.matches("<img").count(), html.matches("loading=\"lazy\"").count());
+        let text_after = to_html("![a](x.svg) and text\n\n*not a caption*\n");
+        assert!(!text_after.contains("<figure"), "{text_after}");
+    }
+
+    #[test]
+    fn tables_scroll_inside_their_own_box() {
+        let html = to_html(PAGE);
+        assert!(html.contains("<div class=\"table-wrap\">\n<table>"), "{html}");
+        assert!(html.contains("</table>\n</div>"), "{html}");
+    }
+
+    #[test]
+    fn math_becomes_mathml_and_bad_latex_falls_back_to_its_code() {
+        let html = to_html(
+            "Inline $t_c = \\pi \\sqrt{m/k}$ and\n\n$$E = \\frac{1}{2} m v^2$$\n\nBad $\\frac{1}$, $\\nosuchcommand x$ here.\n",
+        );
+        assert!(html.contains("<math"), "{html}");
+        assert!(html.contains("display=\"block\""), "{html}");
+        assert!(html.contains("<mfrac>"), "{html}");
+        assert!(html.contains("<code class=\"math-error\" title=\"LaTeX that could not be rendered\">\\frac{1}</code>, <code class=\"math-error\" title=\"LaTeX that could not be rendered\">\\nosuchcommand x</code> here."), "{html}");
+        assert!(!html.contains('$'), "{html}");
+    }
+}
