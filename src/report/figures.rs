@@ -122,7 +122,7 @@ fn dissipation_figure(records: &[RunRecord]) -> anyhow::Result<Option<Figure>> {
         caption: "Time until each loaded lattice counts as relaxed, against its damping coefficient: bond damping \
                   alone, and background damping alone by either stopping criterion."
             .into(),
-        svg: line_chart(&chart, &series)?,
+        image: line_chart(&chart, &series)?,
     }))
 }
 

@@ -52,7 +52,8 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
         question: "After each relaxation, check that the left and right nodes are aligned on a line; discuss.",
         short: by_size
             .iter()
-            .next()
+            .find(|((case, supports), _)| *case == "tensile" && *supports == "coursework")
+            .or_else(|| by_size.iter().next())
             .and_then(|((case, supports), sizes)| {
                 sizes.iter().next_back().map(|(n, h)| format!("{case}, {supports}, {n} × {n}: {}", sig(*h)))
             })

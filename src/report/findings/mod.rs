@@ -172,7 +172,7 @@ pub fn findings(evidence: &Evidence) -> Vec<Finding> {
             let number = i + 1;
             Finding {
                 number,
-                id: slug(&format!("{number}. {}", a.title)),
+                id: super::page::slug(&format!("{number}. {}", a.title)),
                 title: a.title,
                 question: a.question,
                 short: a.short,
@@ -182,19 +182,6 @@ pub fn findings(evidence: &Evidence) -> Vec<Finding> {
                 figures: a.figures,
                 table: a.table,
             }
-        })
-        .collect()
-}
-
-/// The anchor GitHub and the HTML page give a heading: lower case, letters, digits, `-` and `_`
-/// kept, spaces to `-`, everything else dropped.
-pub fn slug(text: &str) -> String {
-    text.chars()
-        .flat_map(char::to_lowercase)
-        .filter_map(|c| match c {
-            ' ' => Some('-'),
-            c if c.is_alphanumeric() || c == '-' || c == '_' => Some(c),
-            _ => None,
         })
         .collect()
 }
@@ -240,12 +227,6 @@ fn relative(a: Option<f64>, b: Option<f64>) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn slugs_match_the_heading_anchors() {
-        assert_eq!(slug("3. Time step: t_c/50?"), "3-time-step-t_c50");
-        assert_eq!(slug("Young's modulus and ν"), "youngs-modulus-and-ν");
-    }
 
     #[test]
     fn significant_digits_read_well() {
