@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use std::time::Instant;
 
-use super::{Metrics, Stopped};
+use super::common::{Stopped, relaxation, scene, sound_speed};
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
     LatticeShape, anisotropic_moduli, constrained_modulus_y, homogeneity, lattice_constants, shear_modulus,
@@ -83,10 +83,10 @@ pub(super) fn build(spec: &RunSpec, l: &LatticeSpec) -> Scene {
         particles.vy[impulse.node] = impulse.vy;
     }
     let network = if l.is_random() { Network::Bonds(bonds(spec, l)) } else { Network::Lattice(springs(spec, l)) };
-    let mut scene = super::scene(spec, particles, network, None);
+    let mut scene = scene(spec, particles, network, None);
     // The residual force is relative to the load per node; a velocity-driven lattice's is
     // known only from its static answer, which sets it (`static_answer`).
-    scene.sampling.relaxation = super::relaxation(spec, l.force_per_node(), l.nx.max(l.ny));
+    scene.sampling.relaxation = relaxation(spec, l.force_per_node(), relaxing(l).0);
     let loaded = Some(l).filter(|l| l.impulse.is_none());
     scene.loads = match l.impulse.and_then(|i| i.top_row_force) {
         Some([fx, fy]) => top_row(l).into_iter().map(|particle| Load { particle, fx, fy }).collect(),
@@ -350,16 +350,15 @@ fn shape(spec: &RunSpec, l: &LatticeSpec) -> LatticeShape {
 }
 
 /// A loaded lattice's moduli and homogeneity (only when it came to rest: those of a run that
-/// never did would be snapshots of an oscillation) beside the continuum's and its relaxation;
-/// an impulse lattice's wave.
+/// never did would be snapshots of an oscillation) beside the continuum's; nothing of an
+/// impulse lattice (its wave is measured with the other kinds').
 pub(super) fn measure(
     spec: &RunSpec,
     l: &LatticeSpec,
     outcome: &Outcome,
     start: &(Vec<f64>, Vec<f64>),
-    metrics: &mut Metrics,
+    metrics: &mut LatticeMetrics,
 ) {
-    super::measure_wave(spec, outcome, sound_speed_theory(spec, l), metrics);
     if l.impulse.is_some() {
         return;
     }
@@ -373,19 +372,24 @@ pub(super) fn measure(
     };
     let md = moduli(spec, l, force, &ux, &uy);
     let keep = |value: Option<f64>| value.filter(|_| relaxed);
-    metrics.lattice.youngs_modulus = keep(md.youngs_modulus);
-    metrics.lattice.poisson_ratio = keep(md.poisson_ratio);
-    metrics.lattice.poisson_ratio_coursework = keep(md.poisson_ratio_coursework);
-    metrics.lattice.shear_modulus = keep(md.shear_modulus);
-    metrics.lattice.homogeneity = keep(homogeneity(&shape(spec, l), &ux));
+    metrics.youngs_modulus = keep(md.youngs_modulus);
+    metrics.poisson_ratio = keep(md.poisson_ratio);
+    metrics.poisson_ratio_coursework = keep(md.poisson_ratio_coursework);
+    metrics.shear_modulus = keep(md.shear_modulus);
+    metrics.homogeneity = keep(homogeneity(&shape(spec, l), &ux));
     if spec.law.is_linear() {
-        continuum(l, &mut metrics.lattice);
+        continuum(l, metrics);
     }
+}
+
+/// The side N of the relaxation window (the larger side) and the force the residual-force
+/// criterion is relative to.
+pub(super) fn relaxing(l: &LatticeSpec) -> (usize, &'static str) {
     let scale = match l.control {
         Control::Velocity => "the drive's static force per node",
         Control::Force => "the load per node",
     };
-    super::measure_relaxation(spec, outcome, l.nx.max(l.ny), scale, metrics);
+    (l.nx.max(l.ny), scale)
 }
 
 /// The continuum moduli of the regular linear lattice (a random one is compared with it).
@@ -408,12 +412,12 @@ fn continuum(l: &LatticeSpec, metrics: &mut LatticeMetrics) {
 /// along y (the bottom row is below) the longitudinal c_L = a√(C22/m), kicked mostly along x
 /// the transverse c_T = a√(C66/m) (C per unit depth; C22 = k + k_d, C66 = k_d with both
 /// diagonals).
-fn sound_speed_theory(spec: &RunSpec, l: &LatticeSpec) -> Option<f64> {
+pub(super) fn wave_speed(spec: &RunSpec, l: &LatticeSpec) -> Option<f64> {
     let impulse = l.impulse?;
     let (k_rising, k_falling) = l.diagonal_stiffness();
     let c = lattice_constants(l.k_x, l.k_y, k_rising, k_falling);
     let [x, y] = impulse.direction();
-    super::sound_speed(spec, if y.abs() >= x.abs() { c.c22 } else { c.c66 })
+    sound_speed(spec, if y.abs() >= x.abs() { c.c22 } else { c.c66 })
 }
 
 /// The tangent moduli of the tangent step: the increments from the relaxed particles `start`

@@ -3,6 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::common::{row, scene};
 use crate::measure::contact_timing;
 use crate::model::LawSpec;
 use crate::model::{Axes, Particles};
@@ -31,8 +32,8 @@ pub(super) fn build(spec: &RunSpec, pair: &PairRun) -> Scene {
     let right = particles.push(spec.spacing + pair.gap.unwrap_or(0.0), 0.0, spec.mass, Axes::ONLY_X_MOVES);
     particles.vx[left] = 0.5 * spec.v0;
     particles.vx[right] = -0.5 * spec.v0;
-    let network = Network::Lattice(super::row(2, spec.spacing, spec.k));
-    super::scene(spec, particles, network, Some((left, right, spec.spacing)))
+    let network = Network::Lattice(row(2, spec.spacing, spec.k));
+    scene(spec, particles, network, Some((left, right, spec.spacing)))
 }
 
 /// Analytical contact duration and restitution of a pair, where an exact answer exists:
