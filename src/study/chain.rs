@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::columns::{Block, Column, Slot};
 use super::common::{relaxation, row, scene, sound_speed};
 use crate::measure::normal_mode_error;
 use crate::model::{Axes, Particles};
@@ -156,4 +157,35 @@ pub(super) fn tangent_stiffness(
         let before = wall_force(spec, &start.x);
         metrics.tangent_stiffness = Some((wall_force(spec, &end.x) - before) / wall_step);
     }
+}
+
+/// The chain's result columns: its size, its normal-mode error, and a relaxing chain's
+/// equilibrium beside the exact one.
+pub(super) fn columns() -> Vec<Block<ChainMetrics>> {
+    use Column::{Count, Number};
+    let relaxing: Vec<Column<ChainMetrics>> = vec![
+        Number("wall_displacement", |r| r.spec.chain().and_then(|c| c.relax).map(|_| r.spec.chain_wall_extension())),
+        Number("equilibrium_spacing", |r| r.group.equilibrium_spacing),
+        Number("equilibrium_spacing_theory", |r| r.group.equilibrium_spacing_theory),
+        Number("spacing_spread", |r| r.group.spacing_spread),
+        Number("wall_force", |r| r.group.wall_force),
+        Number("wall_force_theory", |r| r.group.wall_force_theory),
+        Number("secant_stiffness", |r| r.group.secant_stiffness),
+        Number("secant_stiffness_theory", |r| r.group.secant_stiffness_theory),
+        Number("tangent_stiffness", |r| r.group.tangent_stiffness),
+        Number("tangent_stiffness_theory", |r| r.group.tangent_stiffness_theory),
+    ];
+    vec![
+        Block { slot: Slot::Size, shown: None, columns: vec![Count("n", |r| r.spec.chain().map(|c| c.n as u64))] },
+        Block {
+            slot: Slot::Error,
+            shown: None,
+            columns: vec![Number("chain_mode_error", |r| r.group.chain_mode_error)],
+        },
+        Block {
+            slot: Slot::Tail,
+            shown: Some(|spec| spec.chain().is_some_and(|c| c.relax.is_some())),
+            columns: relaxing,
+        },
+    ]
 }

@@ -5,16 +5,19 @@
 //! the facts each kind gives. What the kinds build from is in `common`. Pure: no I/O.
 
 pub mod chain;
+mod columns;
 mod common;
 pub mod lattice;
 pub mod pair;
 
+pub use self::columns::{Slot, Values};
 pub use self::common::Stopped;
 
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
+use self::columns::{Block, Row};
 use self::common::relaxation_checks;
 use crate::measure::{ARRIVAL_CRITERIA, arrival_time, energy_error};
 use crate::sim::{Outcome, RunStatus, Scene, Trace};
@@ -260,6 +263,44 @@ fn exact_error(spec: &RunSpec, m: &Metrics) -> (Option<f64>, Option<String>) {
         _ => (None, ""),
     };
     (error, error.map(|_| measure.to_string()))
+}
+
+/// One run as the results table reads it: its spec, its metrics and the steps it took.
+pub type RunRow<'a> = (&'a RunSpec, &'a Metrics, u64);
+
+/// The kinds' result columns at `slot`, each named with its values over `runs`: the pair's,
+/// the lattice's, then the chain's (the order the table has always had).
+pub fn result_columns(slot: Slot, runs: &[RunRow]) -> Vec<(&'static str, Values)> {
+    let mut columns = kind_columns(pair::columns(), slot, runs, |m| &m.pair);
+    columns.extend(kind_columns(lattice::columns(), slot, runs, |m| &m.lattice));
+    columns.extend(kind_columns(chain::columns(), slot, runs, |m| &m.chain));
+    columns
+}
+
+/// The columns of one kind's `blocks` at `slot` that some run calls for, over `runs`, each
+/// run read through its kind's metrics `group`.
+fn kind_columns<G>(
+    blocks: Vec<Block<G>>,
+    slot: Slot,
+    runs: &[RunRow],
+    group: fn(&Metrics) -> &G,
+) -> Vec<(&'static str, Values)> {
+    let rows: Vec<Row<G>> = runs
+        .iter()
+        .map(|&(spec, m, steps)| Row {
+            spec,
+            group: group(m),
+            dissipation_time: m.dissipation_time,
+            dissipation_criterion: m.dissipation_criterion.as_deref(),
+            steps,
+        })
+        .collect();
+    blocks
+        .into_iter()
+        .filter(|b| b.slot == slot && b.shown.is_none_or(|shown| runs.iter().any(|(spec, _, _)| shown(spec))))
+        .flat_map(|b| b.columns)
+        .map(|column| (column.name(), column.values(&rows)))
+        .collect()
 }
 
 /// Largest displacement difference between the run and the same scene at dt / `refinement`,

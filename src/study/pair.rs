@@ -3,8 +3,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::columns::{Block, Column, Slot};
 use super::common::{row, scene};
-use crate::measure::contact_timing;
+use crate::measure::{contact_timing, relative_error};
 use crate::model::LawSpec;
 use crate::model::{Axes, Particles};
 use crate::sim::{Network, Outcome, Scene};
@@ -68,7 +69,7 @@ pub(super) fn measure(spec: &RunSpec, outcome: &Outcome, metrics: &mut PairMetri
 /// The error against the exact answer: of the contact duration when `undamped`, else of the
 /// restitution; with the name of what it measures.
 pub(super) fn exact_error(undamped: bool, m: &PairMetrics) -> (Option<f64>, &'static str) {
-    let relative = |a, b| crate::measure::relative_error(a, b).map(f64::abs);
+    let relative = |a, b| relative_error(a, b).map(f64::abs);
     if undamped {
         (relative(m.contact_duration, m.contact_duration_theory), "contact_duration")
     } else {
@@ -79,4 +80,18 @@ pub(super) fn exact_error(undamped: bool, m: &PairMetrics) -> (Option<f64>, &'st
 /// Why a pair that ended well has no contact duration.
 pub(super) fn caveat(m: &PairMetrics) -> Option<&'static str> {
     m.contact_duration.is_none().then_some("the contact did not close and open again within the run")
+}
+
+/// The pair's result columns: its contact beside the exact answer, with their relative errors.
+pub(super) fn columns() -> Vec<Block<PairMetrics>> {
+    use Column::Number;
+    let columns: Vec<Column<PairMetrics>> = vec![
+        Number("contact_duration", |r| r.group.contact_duration),
+        Number("contact_duration_theory", |r| r.group.contact_duration_theory),
+        Number("contact_duration_error", |r| relative_error(r.group.contact_duration, r.group.contact_duration_theory)),
+        Number("restitution", |r| r.group.restitution),
+        Number("restitution_theory", |r| r.group.restitution_theory),
+        Number("restitution_error", |r| relative_error(r.group.restitution, r.group.restitution_theory)),
+    ];
+    vec![Block { slot: Slot::Measured, shown: None, columns }]
 }
