@@ -4,9 +4,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::collections::BTreeMap;
 
-use super::chain::ChainRun;
-use super::kind::KindSpec;
-use super::lattice::LatticeSpec;
+use super::kind::{ChainRun, KindSpec, LatticeSpec};
 use super::raw::SceneKind;
 use super::shared::{Deformation, RelaxSpec, WaveSpec};
 use crate::model::LawSpec;

@@ -4,9 +4,9 @@
 
 use serde_json::Value;
 
-use super::issue::{Issue, missing, positive, require};
-use super::raw::{Control, RawScene};
-use super::shared::{Deformation, RelaxSpec, WaveSpec, bonded, kick_speed, resolve_relax, wave_threshold};
+use crate::spec::issue::{Issue, missing, positive, require};
+use crate::spec::raw::{Control, RawScene};
+use crate::spec::shared::{Deformation, RelaxSpec, WaveSpec, bonded, kick_speed, resolve_relax, wave_threshold};
 
 /// What only a chain has.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,14 +1,20 @@
-//! A run's scene kind with the fields only that kind has (`pair.rs`, `chain.rs`,
-//! `lattice.rs`), and the dispatch to them: which YAML fields each kind takes, its part of
+//! A run's scene kind with the fields only that kind has (`kind/pair.rs`, `kind/chain.rs`,
+//! `kind/lattice.rs`, declared and re-exported here), and the dispatch to them: which YAML fields each kind takes, its part of
 //! the resolution, the facts a run spec asks of it, and its stored columns. The
 //! matches here (and in `study`) are where a new kind is added.
 
 use serde::{Deserialize, Serialize};
 
-use super::chain::ChainRun;
+pub use self::chain::ChainRun;
+pub use self::lattice::{ImpulseSpec, LatticeRun, LatticeSpec, ProbeLine};
+pub use self::pair::PairRun;
+
+mod chain;
+mod lattice;
+mod pair;
+
+use self::lattice::{Solid, derive_from_solid};
 use super::issue::{Issue, require};
-use super::lattice::{LatticeRun, LatticeSpec, Solid, derive_from_solid};
-use super::pair::PairRun;
 use super::raw::{RawMaterial, RawScene, SceneKind};
 use super::shared::{Deformation, RelaxSpec, WaveSpec};
 

@@ -5,12 +5,12 @@
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
-use super::issue::{Issue, Num, missing, positive, require};
-use super::raw::{
+use crate::sim::IntegratorKind;
+use crate::spec::issue::{Issue, Num, missing, positive, require};
+use crate::spec::raw::{
     Control, Diagonals, LoadCase, RawImpulse, RawLattice, RawMaterial, RawProbes, RawScene, RawWave, Supports,
 };
-use super::shared::{Deformation, RelaxSpec, WaveSpec, bonded, resolve_relax, wave_threshold};
-use crate::sim::IntegratorKind;
+use crate::spec::shared::{Deformation, RelaxSpec, WaveSpec, bonded, resolve_relax, wave_threshold};
 
 /// Lattice defaults: k_d/k and the load per top-row node (N).
 const DEFAULT_K_DIAG_RATIO: f64 = 0.5;
@@ -245,13 +245,13 @@ impl LatticeRun {
 
 /// Mass and stiffness of a lattice derived from the solid it stands for, and how.
 #[derive(Default)]
-pub(super) struct Solid {
+pub(in crate::spec) struct Solid {
     /// Node mass (kg).
-    pub(super) mass: Option<f64>,
+    pub(in crate::spec) mass: Option<f64>,
     /// Spring stiffness (N/m).
-    pub(super) k: Option<f64>,
+    pub(in crate::spec) k: Option<f64>,
     /// How they were derived.
-    pub(super) note: Option<String>,
+    pub(in crate::spec) note: Option<String>,
 }
 
 /// For a lattice scene with `material.density` and/or `material.youngs_modulus`: the node mass

@@ -1,9 +1,9 @@
 //! The pair's own fields (a contact pair's gap) and its part of the resolution and of what a
 //! run spec tells: its v0 rule, its default length, its particles and bonds.
 
-use super::issue::{Issue, require};
-use super::raw::RawScene;
-use super::shared::{Deformation, kick_speed};
+use crate::spec::issue::{Issue, require};
+use crate::spec::raw::RawScene;
+use crate::spec::shared::{Deformation, kick_speed};
 
 /// Default gap of a contact pair, in spacings: contact starts at a time not aligned with dt.
 const DEFAULT_GAP_PER_SPACING: f64 = 0.05;
