@@ -21,7 +21,8 @@
 //! variant to [`model::LawSpec`] with its arm in `LawSpec::dispatch` and its name, and read it in
 //! `spec/resolve.rs`; the bond loop, static solver, integrators and measurements need no
 //! change. To add a measurement: a pure function in `measure`, a field in
-//! its kind's group of [`study::Metrics`] (`study/<kind>.rs`, set by that kind's `measure`), a column in `table`.
+//! its kind's group of [`study::Metrics`] (`study/<kind>.rs`, set by that kind's `measure`), and
+//! its result column in that kind's `columns` (same file).
 
 #![warn(missing_docs)]
 

@@ -6,10 +6,9 @@ use polars::prelude::*;
 use serde_json::Value;
 use std::collections::BTreeSet;
 
-use crate::measure::relative_error;
 use crate::output::{Layout, write_atomically};
 use crate::runner::RunRecord;
-use crate::spec::Diagonals;
+use crate::study::{self, RunRow, Slot, Values};
 use crate::summary::ScalingFit;
 
 /// A column of numbers; a non-finite value (a blown-up run's measurement) becomes null, so no
@@ -22,19 +21,28 @@ fn optional_floats(records: &[RunRecord], name: &str, get: impl Fn(&RunRecord) -
     Column::new(name.into(), records.iter().map(|r| get(r).filter(|v| v.is_finite())).collect::<Vec<Option<f64>>>())
 }
 
-/// A column of one measured quantity.
-fn metric(records: &[RunRecord], name: &str, get: fn(&crate::runner::Metrics) -> Option<f64>) -> Column {
-    optional_floats(records, name, move |r| get(&r.metrics))
-}
-
 fn strings(records: &[RunRecord], name: &str, get: impl Fn(&RunRecord) -> String) -> Column {
     Column::new(name.into(), records.iter().map(get).collect::<Vec<String>>())
+}
+
+/// The columns the kinds declare at `slot` (`study::result_columns`), over `runs`; a
+/// non-finite number becomes null, as in [`floats`].
+fn kind_columns(runs: &[RunRow], slot: Slot) -> Vec<Column> {
+    let column = |(name, values): (&str, Values)| match values {
+        Values::Numbers(numbers) => {
+            Column::new(name.into(), numbers.into_iter().map(|v| v.filter(|v| v.is_finite())).collect::<Vec<_>>())
+        }
+        Values::Counts(counts) => Column::new(name.into(), counts),
+        Values::Words(words) => Column::new(name.into(), words),
+    };
+    study::result_columns(slot, runs).into_iter().map(column).collect()
 }
 
 /// The results frame of `records`: identity, status and timing, the resolved physics, the
 /// measurements with their analytical twins and relative errors, and one column per grid
 /// path (numeric where every value is a number, text otherwise).
 pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
+    let runs: Vec<RunRow> = records.iter().map(|r| (&r.spec, &r.metrics, r.steps)).collect();
     let mut columns = vec![
         strings(records, "run_id", |r| r.run_id.clone()),
         strings(records, "scene", |r| r.spec.scene.clone()),
@@ -62,23 +70,13 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         floats(records, "dt_per_tc", |r| r.spec.dt_per_tc()),
         floats(records, "t_c", |r| r.spec.t_c),
         floats(records, "duration", |r| r.spec.duration),
-        Column::new(
-            "n".into(),
-            records.iter().map(|r| r.spec.chain().map(|c| c.n as u64)).collect::<Vec<Option<u64>>>(),
-        ),
-        floats(records, "v0", |r| r.spec.v0),
-        optional_floats(records, "contact_duration", |r| r.metrics.pair.contact_duration),
-        optional_floats(records, "contact_duration_theory", |r| r.metrics.pair.contact_duration_theory),
-        optional_floats(records, "contact_duration_error", |r| {
-            relative_error(r.metrics.pair.contact_duration, r.metrics.pair.contact_duration_theory)
-        }),
-        optional_floats(records, "restitution", |r| r.metrics.pair.restitution),
-        optional_floats(records, "restitution_theory", |r| r.metrics.pair.restitution_theory),
-        optional_floats(records, "restitution_error", |r| {
-            relative_error(r.metrics.pair.restitution, r.metrics.pair.restitution_theory)
-        }),
-        optional_floats(records, "energy_error", |r| r.metrics.energy_error),
-        optional_floats(records, "chain_mode_error", |r| r.metrics.chain.chain_mode_error),
+    ];
+    columns.extend(kind_columns(&runs, Slot::Size));
+    columns.push(floats(records, "v0", |r| r.spec.v0));
+    columns.extend(kind_columns(&runs, Slot::Measured));
+    columns.push(optional_floats(records, "energy_error", |r| r.metrics.energy_error));
+    columns.extend(kind_columns(&runs, Slot::Error));
+    columns.extend([
         optional_floats(records, "error", |r| r.metrics.error),
         Column::new(
             "error_measure".into(),
@@ -98,33 +96,8 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         optional_floats(records, "dt_omega_max", |r| r.metrics.dt_omega_max),
         optional_floats(records, "mode_damping_ratio", |r| r.metrics.mode_damping_ratio),
         optional_floats(records, "stability_limit", |r| r.metrics.stability_limit),
-    ];
-    if records.iter().any(|r| r.spec.lattice().is_some()) {
-        columns.extend(lattice_columns(records));
-    }
-    let anisotropic = |l: &crate::spec::LatticeSpec| {
-        l.rotated || l.k_x != l.k_y || matches!(l.diagonals, Diagonals::Rising | Diagonals::Falling)
-    };
-    if records.iter().any(|r| r.spec.lattice().is_some_and(anisotropic)) {
-        columns.extend(directional_columns(records));
-    }
-    if records.iter().any(|r| r.spec.chain().is_some_and(|c| c.relax.is_some())) {
-        let m = |name: &str, get| metric(records, name, get);
-        columns.extend([
-            optional_floats(records, "wall_displacement", |r| {
-                r.spec.chain().and_then(|c| c.relax).map(|_| r.spec.chain_wall_extension())
-            }),
-            m("equilibrium_spacing", |m| m.chain.equilibrium_spacing),
-            m("equilibrium_spacing_theory", |m| m.chain.equilibrium_spacing_theory),
-            m("spacing_spread", |m| m.chain.spacing_spread),
-            m("wall_force", |m| m.chain.wall_force),
-            m("wall_force_theory", |m| m.chain.wall_force_theory),
-            m("secant_stiffness", |m| m.chain.secant_stiffness),
-            m("secant_stiffness_theory", |m| m.chain.secant_stiffness_theory),
-            m("tangent_stiffness", |m| m.chain.tangent_stiffness),
-            m("tangent_stiffness_theory", |m| m.chain.tangent_stiffness_theory),
-        ]);
-    }
+    ]);
+    columns.extend(kind_columns(&runs, Slot::Tail));
     if records.iter().any(|r| r.spec.wave().is_some()) {
         for criterion in crate::measure::ARRIVAL_CRITERIA {
             columns.push(optional_floats(records, &format!("sound_speed_{criterion}"), |r| {
@@ -149,88 +122,6 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         columns.push(column);
     }
     DataFrame::new_infer_height(columns)
-}
-
-/// The columns of lattice scenes (absent from campaigns without lattices): the resolved
-/// lattice, then each modulus from MD, from the static solution and from the continuum.
-fn lattice_columns(records: &[RunRecord]) -> Vec<Column> {
-    let lattice = |get: fn(&crate::spec::LatticeSpec) -> f64| move |r: &RunRecord| r.spec.lattice().map(get);
-    let sizes = |get: fn(&crate::spec::LatticeSpec) -> usize| {
-        records.iter().map(|r| r.spec.lattice().map(|l| get(l) as u64)).collect::<Vec<Option<u64>>>()
-    };
-    let words = |get: fn(&crate::spec::LatticeSpec) -> &'static str| {
-        records.iter().map(|r| r.spec.lattice().map(get)).collect::<Vec<Option<&str>>>()
-    };
-    let m = |name: &str, get| metric(records, name, get);
-    vec![
-        Column::new("nx".into(), sizes(|l| l.nx)),
-        Column::new("ny".into(), sizes(|l| l.ny)),
-        optional_floats(records, "k_diag", lattice(|l| l.k_diag)),
-        Column::new("diagonals".into(), words(|l| l.diagonals.name())),
-        optional_floats(records, "k_x", lattice(|l| l.k_x)),
-        optional_floats(records, "k_y", lattice(|l| l.k_y)),
-        optional_floats(records, "cut_fraction", lattice(|l| l.cut_fraction)),
-        optional_floats(records, "stiffness_spread", lattice(|l| l.stiffness_spread)),
-        Column::new("seed".into(), records.iter().map(|r| r.spec.lattice().map(|l| l.seed)).collect::<Vec<_>>()),
-        m("bond_fraction_kept", |m| m.lattice.bond_fraction_kept),
-        optional_floats(records, "depth", lattice(|l| l.depth)),
-        Column::new("supports".into(), words(|l| l.supports.name())),
-        Column::new(
-            "load_case".into(),
-            words(|l| if l.rotated { crate::spec::LoadCase::TensileX.name() } else { l.load_case.name() }),
-        ),
-        Column::new("load_control".into(), words(|l| l.control.name())),
-        optional_floats(records, "drive_strain", |r| {
-            r.spec.lattice().filter(|l| l.control == crate::spec::Control::Velocity).map(|l| l.drive_strain)
-        }),
-        optional_floats(records, "load_per_node", |r| r.spec.lattice().and_then(|l| l.force_per_node())),
-        m("youngs_modulus", |m| m.lattice.youngs_modulus),
-        m("youngs_modulus_fem", |m| m.lattice.youngs_modulus_fem),
-        m("youngs_modulus_theory", |m| m.lattice.youngs_modulus_theory),
-        m("poisson_ratio", |m| m.lattice.poisson_ratio),
-        m("poisson_ratio_fem", |m| m.lattice.poisson_ratio_fem),
-        m("poisson_ratio_theory", |m| m.lattice.poisson_ratio_theory),
-        m("poisson_ratio_coursework", |m| m.lattice.poisson_ratio_coursework),
-        m("shear_modulus", |m| m.lattice.shear_modulus),
-        m("shear_modulus_fem", |m| m.lattice.shear_modulus_fem),
-        m("shear_modulus_theory", |m| m.lattice.shear_modulus_theory),
-        m("youngs_modulus_tangent", |m| m.lattice.youngs_modulus_tangent),
-        m("youngs_modulus_tangent_fem", |m| m.lattice.youngs_modulus_tangent_fem),
-        m("poisson_ratio_tangent", |m| m.lattice.poisson_ratio_tangent),
-        m("poisson_ratio_tangent_fem", |m| m.lattice.poisson_ratio_tangent_fem),
-        m("shear_modulus_tangent", |m| m.lattice.shear_modulus_tangent),
-        m("shear_modulus_tangent_fem", |m| m.lattice.shear_modulus_tangent_fem),
-        m("static_nonlinearity", |m| m.lattice.static_nonlinearity),
-        m("homogeneity", |m| m.lattice.homogeneity),
-        m("dissipation_time", |m| m.dissipation_time),
-        Column::new(
-            "dissipation_criterion".into(),
-            records.iter().map(|r| r.metrics.dissipation_criterion.clone()).collect::<Vec<Option<String>>>(),
-        ),
-        Column::new(
-            "relax_steps".into(),
-            records.iter().map(|r| r.spec.lattice().map(|_| r.steps)).collect::<Vec<Option<u64>>>(),
-        ),
-    ]
-}
-
-/// Moduli by direction for anisotropic lattices: a run loaded up (`tensile`) measures E_y and
-/// ν_yx, one loaded along x (`tensile-x`, simulated turned by 90°) E_x and ν_xy; each beside
-/// its static value.
-fn directional_columns(records: &[RunRecord]) -> Vec<Column> {
-    let along = |x: bool, get: fn(&crate::runner::Metrics) -> Option<f64>| {
-        move |r: &RunRecord| r.spec.lattice().filter(|l| l.rotated == x).and_then(|_| get(&r.metrics))
-    };
-    vec![
-        optional_floats(records, "youngs_modulus_x", along(true, |m| m.lattice.youngs_modulus)),
-        optional_floats(records, "youngs_modulus_x_fem", along(true, |m| m.lattice.youngs_modulus_fem)),
-        optional_floats(records, "youngs_modulus_y", along(false, |m| m.lattice.youngs_modulus)),
-        optional_floats(records, "youngs_modulus_y_fem", along(false, |m| m.lattice.youngs_modulus_fem)),
-        optional_floats(records, "poisson_ratio_xy", along(true, |m| m.lattice.poisson_ratio)),
-        optional_floats(records, "poisson_ratio_xy_fem", along(true, |m| m.lattice.poisson_ratio_fem)),
-        optional_floats(records, "poisson_ratio_yx", along(false, |m| m.lattice.poisson_ratio)),
-        optional_floats(records, "poisson_ratio_yx_fem", along(false, |m| m.lattice.poisson_ratio_fem)),
-    ]
 }
 
 /// The campaign summary: one row per fitted scaling law (`summary.csv`).

@@ -57,7 +57,7 @@ pub fn draw_all(campaign: &Campaign, records: &[RunRecord], fits: &[ScalingFit])
                     figures.push(figure);
                 }
             }
-            SceneKind::Pair => {}
+            _ => {}
         }
         figures.extend(precision::precision_figures(records, scene)?);
         figures.extend(waves::wave_figures(records, fits, scene)?);

@@ -2,22 +2,20 @@
 //! column names, the kind's own fields beside the others (`null` where the kind has none).
 //! Run ids hash it and stored records hold it, so it never changes shape.
 
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use serde_json::Value;
 use std::collections::BTreeMap;
 
-use super::kind::{ChainRun, KindSpec, LatticeRun, PairRun};
+use super::kind::KindColumns;
 use super::raw::SceneKind;
-use super::run_spec::{LatticeSpec, MovieSpec, RelaxSpec, RunSpec, WaveSpec};
+use super::run_spec::{MovieSpec, RunSpec};
 use crate::model::LawSpec;
 use crate::sim::IntegratorKind;
 
 /// [`RunSpec`] as stored: its fields in their order, the kind as a tag with the fields of
-/// every kind beside it. Every key here is part of every run id: a new kind's own field must
-/// be skipped when null (`#[serde(default, skip_serializing_if = "Option::is_none")]`), or
-/// every stored run would get a new id.
+/// every kind beside it ([`KindColumns`]). Every key here is part of every run id.
 #[derive(Serialize, Deserialize)]
-pub(super) struct FlatRunSpec {
+struct FlatRunSpec {
     campaign: String,
     scene: String,
     kind: SceneKind,
@@ -41,102 +39,18 @@ pub(super) struct FlatRunSpec {
     steps: u64,
     samples: u64,
     v0: f64,
-    gap: Option<f64>,
-    n: Option<usize>,
-    node: Option<usize>,
-    wall_distance: Option<f64>,
-    #[serde(default)]
-    relax: Option<RelaxSpec>,
-    lattice: Option<LatticeSpec>,
-    #[serde(default)]
-    wave: Option<WaveSpec>,
+    #[serde(flatten)]
+    kind_columns: KindColumns,
     #[serde(default)]
     movie: Option<MovieSpec>,
 }
 
-/// The kind's own fields in their flat columns, `None` where the kind has no such field.
-#[derive(Default)]
-struct KindColumns {
-    gap: Option<f64>,
-    n: Option<usize>,
-    node: Option<usize>,
-    wall_distance: Option<f64>,
-    relax: Option<RelaxSpec>,
-    lattice: Option<LatticeSpec>,
-    wave: Option<WaveSpec>,
-}
-
-impl From<KindSpec> for KindColumns {
-    fn from(kind: KindSpec) -> KindColumns {
-        match kind {
-            KindSpec::Pair(PairRun { gap }) => KindColumns { gap, ..KindColumns::default() },
-            KindSpec::Chain(ChainRun { n, node, wall_distance, relax, wave }) => KindColumns {
-                n: Some(n),
-                node: Some(node),
-                wall_distance: Some(wall_distance),
-                relax,
-                wave,
-                ..KindColumns::default()
-            },
-            KindSpec::Lattice(LatticeRun { lattice, relax, wave }) => {
-                KindColumns { lattice: Some(lattice), relax, wave, ..KindColumns::default() }
-            }
-        }
-    }
-}
-
-impl KindColumns {
-    /// The kind `kind` with its fields, refusing a field another kind has or a missing one.
-    fn into_kind(self, kind: SceneKind) -> Result<KindSpec, String> {
-        let KindColumns { gap, n, node, wall_distance, relax, lattice, wave } = self;
-        let refuse = |fields: &[(bool, &str)]| match fields.iter().find(|(present, _)| *present) {
-            Some((_, field)) => Err(format!("a {} run has no `{field}`, yet it is set", kind.name())),
-            None => Ok(()),
-        };
-        let needed = |field: &str| format!("a {} run needs `{field}`, yet it is null", kind.name());
-        Ok(match kind {
-            SceneKind::Pair => {
-                refuse(&[
-                    (n.is_some(), "n"),
-                    (node.is_some(), "node"),
-                    (wall_distance.is_some(), "wall_distance"),
-                    (relax.is_some(), "relax"),
-                    (lattice.is_some(), "lattice"),
-                    (wave.is_some(), "wave"),
-                ])?;
-                KindSpec::Pair(PairRun { gap })
-            }
-            SceneKind::Chain => {
-                refuse(&[(gap.is_some(), "gap"), (lattice.is_some(), "lattice")])?;
-                KindSpec::Chain(ChainRun {
-                    n: n.ok_or_else(|| needed("n"))?,
-                    node: node.ok_or_else(|| needed("node"))?,
-                    wall_distance: wall_distance.ok_or_else(|| needed("wall_distance"))?,
-                    relax,
-                    wave,
-                })
-            }
-            SceneKind::Lattice => {
-                refuse(&[
-                    (gap.is_some(), "gap"),
-                    (n.is_some(), "n"),
-                    (node.is_some(), "node"),
-                    (wall_distance.is_some(), "wall_distance"),
-                ])?;
-                KindSpec::Lattice(LatticeRun { lattice: lattice.ok_or_else(|| needed("lattice"))?, relax, wave })
-            }
-        })
-    }
-}
-
 impl From<RunSpec> for FlatRunSpec {
     fn from(spec: RunSpec) -> FlatRunSpec {
-        let kind = spec.kind();
-        let KindColumns { gap, n, node, wall_distance, relax, lattice, wave } = spec.scene_kind.into();
         FlatRunSpec {
+            kind: spec.kind(),
             campaign: spec.campaign,
             scene: spec.scene,
-            kind,
             varied: spec.varied,
             mass: spec.mass,
             spacing: spec.spacing,
@@ -156,13 +70,7 @@ impl From<RunSpec> for FlatRunSpec {
             steps: spec.steps,
             samples: spec.samples,
             v0: spec.v0,
-            gap,
-            n,
-            node,
-            wall_distance,
-            relax,
-            lattice,
-            wave,
+            kind_columns: spec.scene_kind.into(),
             movie: spec.movie,
         }
     }
@@ -172,19 +80,10 @@ impl TryFrom<FlatRunSpec> for RunSpec {
     type Error = String;
 
     fn try_from(flat: FlatRunSpec) -> Result<RunSpec, String> {
-        let columns = KindColumns {
-            gap: flat.gap,
-            n: flat.n,
-            node: flat.node,
-            wall_distance: flat.wall_distance,
-            relax: flat.relax,
-            lattice: flat.lattice,
-            wave: flat.wave,
-        };
         Ok(RunSpec {
             campaign: flat.campaign,
             scene: flat.scene,
-            scene_kind: columns.into_kind(flat.kind)?,
+            scene_kind: flat.kind_columns.into_kind(flat.kind)?,
             varied: flat.varied,
             mass: flat.mass,
             spacing: flat.spacing,
@@ -206,6 +105,18 @@ impl TryFrom<FlatRunSpec> for RunSpec {
             v0: flat.v0,
             movie: flat.movie,
         })
+    }
+}
+
+impl Serialize for RunSpec {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        FlatRunSpec::from(self.clone()).serialize(serializer)
+    }
+}
+
+impl<'de> Deserialize<'de> for RunSpec {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<RunSpec, D::Error> {
+        RunSpec::try_from(FlatRunSpec::deserialize(deserializer)?).map_err(serde::de::Error::custom)
     }
 }
 

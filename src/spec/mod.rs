@@ -2,28 +2,35 @@
 //! The only module that knows YAML. Everything is checked before any run starts, and every
 //! error names the file, the field path, the value and what is allowed.
 
-pub use self::kind::{ChainRun, KindSpec, LatticeRun, PairRun};
+// The kind tag's enum and every kind's own types (`PairRun`, `ChainRun`, `LatticeSpec`, ...),
+// which `kind` re-exports: a new kind adds none here.
+pub use self::kind::*;
+pub use self::name::MAX_NAME_LEN;
 pub use self::raw::{Control, Diagonals, LoadCase, SceneKind, Supports};
 pub use self::run_spec::{
-    Budget, ImpulseSpec, LatticeSpec, MovieSpec, POWER_METHOD_BONDS, ProbeLine, RESULT_FORMAT, RelaxSpec, RunSpec,
-    WaveSpec, reference_extension, seconds_up_to_1e9,
+    Budget, MovieSpec, POWER_METHOD_BONDS, RESULT_FORMAT, RunSpec, reference_extension, seconds_up_to_1e9,
 };
+pub use self::shared::{RelaxSpec, WaveSpec};
 
 pub use self::resolve::DEFAULT_DT_PER_TC;
 
 mod finite;
 mod flat;
 mod grid;
+mod issue;
 mod kind;
+mod name;
 mod raw;
 mod resolve;
 mod run_spec;
+mod shared;
 
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::Path;
 
 use self::grid::{canonical, get_path, grid_points, merge, point_count, set_path};
+use self::name::is_safe_name;
 use self::raw::{Grid, RawCampaign, RawScene};
 
 /// Why a campaign file was refused.
@@ -64,17 +71,6 @@ pub struct Campaign {
     pub target_error: f64,
     /// What one run may use.
     pub budget: Budget,
-}
-
-/// Longest campaign or scene name. Names become directory and file names (`reports/<name>/`,
-/// `runs/<scene>-<hash>.json`, `plots/<scene>-side-by-side.gif`), which file systems cap at
-/// 255 bytes.
-pub const MAX_NAME_LEN: usize = 100;
-
-/// A campaign or scene name that is safe as a file name: 1 to [`MAX_NAME_LEN`] ASCII letters,
-/// digits, `-` and `_`, so never `..`, a path separator or an absolute path.
-fn is_safe_name(name: &str) -> bool {
-    (1..=MAX_NAME_LEN).contains(&name.len()) && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_')
 }
 
 /// Most runs one campaign may expand to. A grid is a cartesian product, so a few long lists

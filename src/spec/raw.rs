@@ -67,6 +67,9 @@ pub enum SceneKind {
 }
 
 impl SceneKind {
+    /// Every kind, in the order error messages list them.
+    pub const ALL: [SceneKind; 3] = [SceneKind::Pair, SceneKind::Chain, SceneKind::Lattice];
+
     /// The name used in files and tables.
     pub fn name(self) -> &'static str {
         match self {

@@ -4,9 +4,9 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::collections::BTreeMap;
 
-use super::flat::FlatRunSpec;
-use super::kind::{KindSpec, LatticeRun};
-use super::raw::{Control, Diagonals, LoadCase, Supports};
+use super::kind::{ChainRun, KindSpec, LatticeSpec};
+use super::raw::SceneKind;
+use super::shared::{Deformation, RelaxSpec, WaveSpec};
 use crate::model::LawSpec;
 use crate::sim::IntegratorKind;
 
@@ -14,10 +14,9 @@ use crate::sim::IntegratorKind;
 /// so the cache never serves results of older code.
 pub const RESULT_FORMAT: u32 = 11;
 
-/// A resolved run. Units SI. Serialised flat ([`super::flat`]): the kind as the tag `kind`
-/// with every kind's fields beside it, the keys being the results table's column names.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(into = "FlatRunSpec", try_from = "FlatRunSpec")]
+/// A resolved run. Units SI. Serialised flat (by `flat.rs`): the kind as the tag `kind` with
+/// every kind's fields beside it, the keys being the results table's column names.
+#[derive(Clone, Debug, PartialEq)]
 pub struct RunSpec {
     /// Campaign name.
     pub campaign: String,
@@ -66,19 +65,6 @@ pub struct RunSpec {
     pub v0: f64,
     /// The movie to record, if asked for.
     pub movie: Option<MovieSpec>,
-}
-
-/// When a relaxation is finished, and the small extra step that measures tangent moduli.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct RelaxSpec {
-    /// Relaxed when E_kin/E_pot stays below this ...
-    pub kinetic_ratio: f64,
-    /// ... or, when given, when the largest static force stays below this fraction of the
-    /// load per node (lattice) or of the equilibrium wall force (chain).
-    pub residual_force: Option<f64>,
-    /// After relaxing, raise the load (a chain's wall displacement) by this fraction, relax
-    /// again and measure tangent moduli (stiffness) from the increments.
-    pub tangent_step: Option<f64>,
 }
 
 /// An animated GIF of a run: `frames` frames of `width` × `height` pixels.
@@ -155,152 +141,6 @@ pub fn seconds_up_to_1e9(seconds: f64) -> std::time::Duration {
     std::time::Duration::from_secs_f64(seconds.min(1e9))
 }
 
-/// A timed wave: from the excited particle to the receivers (a chain's particle, a lattice's
-/// bottom row).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct WaveSpec {
-    /// Excited particle.
-    pub source: usize,
-    /// Receiving particles: the wave arrives when the first of them moves.
-    pub receivers: Vec<usize>,
-    /// Distance from the source to the receivers along the wave (m).
-    pub distance: f64,
-    /// Springs along that distance, N_s (for the coursework's estimate t_s = N_s t_c).
-    pub springs: usize,
-    /// Threshold of the threshold criteria, relative to the source's peak.
-    pub threshold: f64,
-}
-
-/// The impulse of a wave lattice: one node kicked at t = 0, or a force step on the top row.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct ImpulseSpec {
-    /// The kicked node, or the top-row node the wave is timed from.
-    pub node: usize,
-    /// Its initial velocity (m/s); zero under a force step.
-    pub vx: f64,
-    /// Its initial velocity (m/s).
-    pub vy: f64,
-    /// Step force (fx, fy) (N) on every top-row node, if this is a force step.
-    #[serde(default)]
-    pub top_row_force: Option<[f64; 2]>,
-}
-
-impl ImpulseSpec {
-    /// The direction of the impulse: the kick's velocity or the step's force.
-    pub fn direction(&self) -> [f64; 2] {
-        self.top_row_force.unwrap_or([self.vx, self.vy])
-    }
-}
-
-/// The resolved lattice of a lattice scene.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct LatticeSpec {
-    /// Nodes per row.
-    pub nx: usize,
-    /// Rows.
-    pub ny: usize,
-    /// Diagonal stiffness k_d (N/m); 0 without diagonals.
-    pub k_diag: f64,
-    /// Which diagonals are present (of the lattice as simulated, see `rotated`).
-    pub diagonals: Diagonals,
-    /// Horizontal springs k_x (N/m, or C for power laws).
-    pub k_x: f64,
-    /// Vertical springs k_y.
-    pub k_y: f64,
-    /// The campaign's lattice turned by 90° (counter-clockwise) so that its x direction is
-    /// loaded from the top row (`load.case: tensile-x`): nx/ny, k_x/k_y and the diagonal
-    /// families are swapped here; measured E and ν are the original's E_x and ν_xy.
-    pub rotated: bool,
-    /// Fraction of the bonds cut at random.
-    pub cut_fraction: f64,
-    /// Relative half-width w of the uniform stiffness spread 1 + w·U[−1, 1].
-    pub stiffness_spread: f64,
-    /// Seed of the random cutting and spread.
-    pub seed: u64,
-    /// Depth d (m).
-    pub depth: f64,
-    /// Supports.
-    pub supports: Supports,
-    /// Load case.
-    pub load_case: LoadCase,
-    /// Force on each top-row node (N).
-    pub load_per_node: f64,
-    /// Time over which the load rises linearly to its full value, in t_c (0: at once).
-    pub load_ramp_tc: f64,
-    /// Force or velocity control.
-    pub control: Control,
-    /// Velocity control: strain the top row is driven to.
-    pub drive_strain: f64,
-    /// Velocity control: duration of the drive, in t_c.
-    pub drive_tc: f64,
-    /// How mass and stiffness were derived from a solid, when they were.
-    pub derived_from: Option<String>,
-    /// The kicked node of an impulse scene (no load, no relaxation).
-    #[serde(default)]
-    pub impulse: Option<ImpulseSpec>,
-    /// Rows and columns whose displacement and velocity are recorded at every sample.
-    #[serde(default, skip_serializing_if = "Vec::is_empty")]
-    pub probes: Vec<ProbeLine>,
-}
-
-/// A line of lattice nodes a probe records.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ProbeLine {
-    /// Row 0..ny−1, from the bottom.
-    Row(usize),
-    /// Column 0..nx−1, from the left.
-    Column(usize),
-}
-
-impl ProbeLine {
-    /// `row 3` or `column 0`.
-    pub fn name(self) -> String {
-        match self {
-            ProbeLine::Row(r) => format!("row {r}"),
-            ProbeLine::Column(c) => format!("column {c}"),
-        }
-    }
-
-    /// Its nodes (index iy·nx + ix) of a lattice of `nx` × `ny` nodes: a row left to right, a
-    /// column bottom to top.
-    pub fn nodes(self, nx: usize, ny: usize) -> Vec<usize> {
-        match self {
-            ProbeLine::Row(r) => (0..nx).map(|ix| r * nx + ix).collect(),
-            ProbeLine::Column(c) => (0..ny).map(|iy| iy * nx + c).collect(),
-        }
-    }
-}
-
-impl LatticeSpec {
-    /// Total force on the top row under force control, load_per_node · nx (N).
-    pub fn total_load(&self) -> f64 {
-        self.load_per_node * self.nx as f64
-    }
-
-    /// The force on every top-row node (N) where there is a force load: a loaded lattice under
-    /// force control. `None` under velocity control (the drive's force is measured, not given)
-    /// and for impulse lattices, whose `load_per_node` is an unused default.
-    pub fn force_per_node(&self) -> Option<f64> {
-        (self.impulse.is_none() && self.control == Control::Force).then_some(self.load_per_node)
-    }
-
-    /// Stiffness of the rising and falling diagonals (0 where absent).
-    pub fn diagonal_stiffness(&self) -> (f64, f64) {
-        match self.diagonals {
-            Diagonals::None => (0.0, 0.0),
-            Diagonals::Both => (self.k_diag, self.k_diag),
-            Diagonals::Rising => (self.k_diag, 0.0),
-            Diagonals::Falling => (0.0, self.k_diag),
-        }
-    }
-
-    /// True when bonds are cut or their stiffness spread at random.
-    pub fn is_random(&self) -> bool {
-        self.cut_fraction > 0.0 || self.stiffness_spread > 0.0
-    }
-}
-
 /// Networks with more bonds ([`RunSpec::bonds`]) than this get their modes from a node-by-node
 /// bound in one pass (`plan::stability::node_bound`) instead of the power method, whose up to 1000
 /// passes over 250 000 bonds take about a second and grow with the network (a 2000 × 2000
@@ -317,19 +157,10 @@ pub fn reference_extension(spec: &RunSpec) -> f64 {
     let LawSpec::Power { beta } = spec.law else {
         return 0.0;
     };
-    let overlap = |speed: f64| -crate::theory::power_law_max_overlap(spec.k, beta, spec.mass, speed);
-    let carrying = |force: f64| (force.abs() / spec.k).powf(1.0 / beta);
-    match &spec.scene_kind {
-        KindSpec::Lattice(LatticeRun { lattice: l, .. }) => match l.impulse {
-            Some(ImpulseSpec { top_row_force: Some([fx, fy]), .. }) => carrying(fx.hypot(fy)),
-            Some(i) => overlap(i.vx.hypot(i.vy)),
-            None if l.control == Control::Velocity => l.drive_strain.abs() * spec.spacing,
-            None => carrying(l.load_per_node),
-        },
-        KindSpec::Chain(chain) if chain.relax.is_some() && spec.chain_wall_extension() != 0.0 => {
-            spec.chain_wall_extension() / (chain.n + 1) as f64
-        }
-        _ => overlap(spec.v0),
+    match spec.scene_kind.deformation(spec.spacing, spec.v0) {
+        Deformation::Collision(speed) => -crate::theory::power_law_max_overlap(spec.k, beta, spec.mass, speed),
+        Deformation::Carrying(force) => (force.abs() / spec.k).powf(1.0 / beta),
+        Deformation::Extension(extension) => extension,
     }
 }
 
@@ -367,50 +198,25 @@ impl RunSpec {
     /// Springs of the run's network: at most one per node and bond family in a lattice (cut
     /// bonds counted), n + 1 in a chain, one in a pair.
     pub fn bonds(&self) -> usize {
-        match &self.scene_kind {
-            KindSpec::Lattice(LatticeRun { lattice: l, .. }) => {
-                let families = match l.diagonals {
-                    Diagonals::None => 2,
-                    Diagonals::Both => 4,
-                    Diagonals::Rising | Diagonals::Falling => 3,
-                };
-                families * l.nx * l.ny
-            }
-            KindSpec::Chain(chain) => chain.n + 1,
-            KindSpec::Pair(_) => 1,
-        }
+        self.scene_kind.bonds()
     }
 
     /// Degrees of freedom of the static problem solved beside MD (a loaded lattice): two per
     /// node (held ones counted); 0 when there is none.
     fn static_dofs(&self) -> f64 {
-        match self.lattice() {
-            Some(l) if l.impulse.is_none() => 2.0 * (l.nx * l.ny) as f64,
-            _ => 0.0,
-        }
+        self.scene_kind.static_dofs() as f64
     }
 
     /// Numbers per sample of what a record stores of the trace: time and four energies, and
     /// four per particle (a chain) or per probed node (a lattice's kicked column and probes).
     fn stored_numbers_per_sample(&self) -> usize {
-        let nodes = match &self.scene_kind {
-            KindSpec::Lattice(LatticeRun { lattice: l, .. }) => {
-                let kicked = if l.impulse.is_some() { l.ny } else { 0 };
-                kicked + l.probes.iter().map(|line| line.nodes(l.nx, l.ny).len()).sum::<usize>()
-            }
-            KindSpec::Chain(_) => self.particles(),
-            KindSpec::Pair(_) => 0,
-        };
-        5 + 4 * nodes
+        5 + 4 * self.scene_kind.stored_nodes()
     }
 
     /// True when the run records every particle's displacement and velocity at every sample:
     /// chains (normal modes, space–time), reference runs, waves, impulse and probed lattices.
     pub fn records_displacements(&self) -> bool {
-        self.chain().is_some()
-            || self.reference_refinement.is_some()
-            || self.wave().is_some()
-            || self.lattice().is_some_and(|l| l.impulse.is_some() || !l.probes.is_empty())
+        self.scene_kind.records_displacements() || self.reference_refinement.is_some() || self.wave().is_some()
     }
 
     /// Estimated peak memory (bytes) of the run over all its stages, summed (an upper bound:
@@ -461,7 +267,7 @@ impl RunSpec {
 
     /// Chain: how far the walls are moved from the rest length (n + 1) a, ΔW (m); 0 otherwise.
     pub fn chain_wall_extension(&self) -> f64 {
-        self.chain().map_or(0.0, |chain| chain.wall_distance - (chain.n + 1) as f64 * self.spacing)
+        self.chain().map_or(0.0, |chain| chain.wall_extension(self.spacing))
     }
 
     /// t_c / dt, to 12 significant digits: dt = t_c / 100 divided back gives 99.99999999999999
@@ -473,11 +279,32 @@ impl RunSpec {
 
     /// Number of particles the scene simulates (walls included).
     pub fn particles(&self) -> usize {
-        match &self.scene_kind {
-            KindSpec::Pair(_) => 2,
-            KindSpec::Chain(chain) => chain.n + 2,
-            KindSpec::Lattice(LatticeRun { lattice: l, .. }) => l.nx * l.ny,
-        }
+        self.scene_kind.particles()
+    }
+
+    /// The scene kind.
+    pub fn kind(&self) -> SceneKind {
+        self.scene_kind.kind()
+    }
+
+    /// A chain's fields; `None` for other kinds.
+    pub fn chain(&self) -> Option<&ChainRun> {
+        self.scene_kind.chain()
+    }
+
+    /// A lattice scene's lattice; `None` for other kinds.
+    pub fn lattice(&self) -> Option<&LatticeSpec> {
+        self.scene_kind.lattice()
+    }
+
+    /// When the relaxation of a loaded lattice or a relaxing chain stops; `None` otherwise.
+    pub fn relax(&self) -> Option<RelaxSpec> {
+        self.scene_kind.relax()
+    }
+
+    /// The timed wave of a chain or an impulse lattice, if asked for.
+    pub fn wave(&self) -> Option<&WaveSpec> {
+        self.scene_kind.wave()
     }
 
     /// Label of the grid values whose dotted path passes `keep`, e.g.

@@ -4,7 +4,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::Metrics;
+use super::columns::{Block, Column, Slot};
+use super::common::{relaxation, row, scene, sound_speed};
 use crate::measure::normal_mode_error;
 use crate::model::{Axes, Particles};
 use crate::sim::{Network, Outcome, Scene};
@@ -61,10 +62,10 @@ pub(super) fn build(spec: &RunSpec, chain: &ChainRun) -> Scene {
         particles.push(x, 0.0, spec.mass, fixed);
     }
     particles.vx[chain.node] = spec.v0;
-    let network = Network::Lattice(super::row(n + 2, spec.spacing, spec.k));
-    let mut scene = super::scene(spec, particles, network, None);
+    let network = Network::Lattice(row(n + 2, spec.spacing, spec.k));
+    let mut scene = scene(spec, particles, network, None);
     // The residual force is relative to the equilibrium spring force s(ΔW/(n + 1)).
-    scene.sampling.relaxation = super::relaxation(spec, Some(equilibrium(spec, chain).1.abs()), n);
+    scene.sampling.relaxation = relaxation(spec, Some(equilibrium(spec, chain).1.abs()), relaxing(chain).0);
     scene
 }
 
@@ -96,21 +97,29 @@ fn wall_force(spec: &RunSpec, x: &[f64]) -> f64 {
     spec.law.elastic_force(spec.k, x[1] - x[0] - spec.spacing)
 }
 
-/// The normal-mode error, the wave's arrival (against the long-wavelength and front speed
-/// a√(k/m)) and a relaxing chain's equilibrium.
-pub(super) fn measure(spec: &RunSpec, chain: &ChainRun, outcome: &Outcome, metrics: &mut Metrics) {
-    metrics.chain.chain_mode_error = has_normal_modes(spec, chain)
+/// The normal-mode error and a relaxing chain's equilibrium.
+pub(super) fn measure(spec: &RunSpec, chain: &ChainRun, outcome: &Outcome, metrics: &mut ChainMetrics) {
+    metrics.chain_mode_error = has_normal_modes(spec, chain)
         .then(|| {
             let movable: Vec<usize> = (1..=chain.n).collect();
             let v0: Vec<f64> = movable.iter().map(|&p| if p == chain.node { spec.v0 } else { 0.0 }).collect();
             normal_mode_error(&outcome.trace, &movable, &v0, spec.k, spec.mass)
         })
         .flatten();
-    super::measure_wave(spec, outcome, super::sound_speed(spec, spec.k), metrics);
     if chain.relax.is_some() {
-        measure_equilibrium(spec, chain, outcome, &mut metrics.chain);
-        super::measure_relaxation(spec, outcome, chain.n, "the wall force", metrics);
+        measure_equilibrium(spec, chain, outcome, metrics);
     }
+}
+
+/// The speed a wave is judged against: the long-wavelength (and front) speed a√(k/m).
+pub(super) fn wave_speed(spec: &RunSpec) -> Option<f64> {
+    sound_speed(spec, spec.k)
+}
+
+/// The side N of the relaxation window (the particles) and the force the residual-force
+/// criterion is relative to.
+pub(super) fn relaxing(chain: &ChainRun) -> (usize, &'static str) {
+    (chain.n, "the wall force")
 }
 
 /// A relaxing chain's spacing, wall force and secant stiffness beside its equilibrium; the
@@ -148,4 +157,35 @@ pub(super) fn tangent_stiffness(
         let before = wall_force(spec, &start.x);
         metrics.tangent_stiffness = Some((wall_force(spec, &end.x) - before) / wall_step);
     }
+}
+
+/// The chain's result columns: its size, its normal-mode error, and a relaxing chain's
+/// equilibrium beside the exact one.
+pub(super) fn columns() -> Vec<Block<ChainMetrics>> {
+    use Column::{Count, Number};
+    let relaxing: Vec<Column<ChainMetrics>> = vec![
+        Number("wall_displacement", |r| r.spec.chain().and_then(|c| c.relax).map(|_| r.spec.chain_wall_extension())),
+        Number("equilibrium_spacing", |r| r.group.equilibrium_spacing),
+        Number("equilibrium_spacing_theory", |r| r.group.equilibrium_spacing_theory),
+        Number("spacing_spread", |r| r.group.spacing_spread),
+        Number("wall_force", |r| r.group.wall_force),
+        Number("wall_force_theory", |r| r.group.wall_force_theory),
+        Number("secant_stiffness", |r| r.group.secant_stiffness),
+        Number("secant_stiffness_theory", |r| r.group.secant_stiffness_theory),
+        Number("tangent_stiffness", |r| r.group.tangent_stiffness),
+        Number("tangent_stiffness_theory", |r| r.group.tangent_stiffness_theory),
+    ];
+    vec![
+        Block { slot: Slot::Size, shown: None, columns: vec![Count("n", |r| r.spec.chain().map(|c| c.n as u64))] },
+        Block {
+            slot: Slot::Error,
+            shown: None,
+            columns: vec![Number("chain_mode_error", |r| r.group.chain_mode_error)],
+        },
+        Block {
+            slot: Slot::Tail,
+            shown: Some(|spec| spec.chain().is_some_and(|c| c.relax.is_some())),
+            columns: relaxing,
+        },
+    ]
 }

@@ -6,7 +6,8 @@ use serde::{Deserialize, Serialize};
 
 use std::time::Instant;
 
-use super::{Metrics, Stopped};
+use super::columns::{Block, Column, Row, Slot};
+use super::common::{Stopped, relaxation, scene, sound_speed};
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
     LatticeShape, anisotropic_moduli, constrained_modulus_y, homogeneity, lattice_constants, shear_modulus,
@@ -14,7 +15,7 @@ use crate::measure::{
 };
 use crate::model::{Axes, Bonds, ForceLaw, LawVisitor, Particles, SquareLattice};
 use crate::sim::{Drive, Load, Network, Outcome, ProbeTrace, Scene, Trace};
-use crate::spec::{Control, LatticeSpec, LoadCase, ProbeLine, RunSpec, Supports, reference_extension};
+use crate::spec::{Control, Diagonals, LatticeSpec, LoadCase, ProbeLine, RunSpec, Supports, reference_extension};
 
 /// What a lattice measures, with its static and continuum twins.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -83,10 +84,10 @@ pub(super) fn build(spec: &RunSpec, l: &LatticeSpec) -> Scene {
         particles.vy[impulse.node] = impulse.vy;
     }
     let network = if l.is_random() { Network::Bonds(bonds(spec, l)) } else { Network::Lattice(springs(spec, l)) };
-    let mut scene = super::scene(spec, particles, network, None);
+    let mut scene = scene(spec, particles, network, None);
     // The residual force is relative to the load per node; a velocity-driven lattice's is
     // known only from its static answer, which sets it (`static_answer`).
-    scene.sampling.relaxation = super::relaxation(spec, l.force_per_node(), l.nx.max(l.ny));
+    scene.sampling.relaxation = relaxation(spec, l.force_per_node(), relaxing(l).0);
     let loaded = Some(l).filter(|l| l.impulse.is_none());
     scene.loads = match l.impulse.and_then(|i| i.top_row_force) {
         Some([fx, fy]) => top_row(l).into_iter().map(|particle| Load { particle, fx, fy }).collect(),
@@ -350,16 +351,15 @@ fn shape(spec: &RunSpec, l: &LatticeSpec) -> LatticeShape {
 }
 
 /// A loaded lattice's moduli and homogeneity (only when it came to rest: those of a run that
-/// never did would be snapshots of an oscillation) beside the continuum's and its relaxation;
-/// an impulse lattice's wave.
+/// never did would be snapshots of an oscillation) beside the continuum's; nothing of an
+/// impulse lattice (its wave is measured with the other kinds').
 pub(super) fn measure(
     spec: &RunSpec,
     l: &LatticeSpec,
     outcome: &Outcome,
     start: &(Vec<f64>, Vec<f64>),
-    metrics: &mut Metrics,
+    metrics: &mut LatticeMetrics,
 ) {
-    super::measure_wave(spec, outcome, sound_speed_theory(spec, l), metrics);
     if l.impulse.is_some() {
         return;
     }
@@ -373,20 +373,25 @@ pub(super) fn measure(
     };
     let md = moduli(spec, l, force, &ux, &uy);
     let keep = |value: Option<f64>| value.filter(|_| relaxed);
-    metrics.lattice.youngs_modulus = keep(md.youngs_modulus);
-    metrics.lattice.poisson_ratio = keep(md.poisson_ratio);
-    metrics.lattice.poisson_ratio_coursework = keep(md.poisson_ratio_coursework);
-    metrics.lattice.shear_modulus = keep(md.shear_modulus);
+    metrics.youngs_modulus = keep(md.youngs_modulus);
+    metrics.poisson_ratio = keep(md.poisson_ratio);
+    metrics.poisson_ratio_coursework = keep(md.poisson_ratio_coursework);
+    metrics.shear_modulus = keep(md.shear_modulus);
     let largest = ux.iter().chain(&uy).fold(0.0, |m: f64, u| m.max(u.abs()));
-    metrics.lattice.homogeneity = keep(homogeneity(&shape(spec, l), &ux, largest));
+    metrics.homogeneity = keep(homogeneity(&shape(spec, l), &ux, largest));
     if spec.law.is_linear() {
-        continuum(l, &mut metrics.lattice);
+        continuum(l, metrics);
     }
+}
+
+/// The side N of the relaxation window (the larger side) and the force the residual-force
+/// criterion is relative to.
+pub(super) fn relaxing(l: &LatticeSpec) -> (usize, &'static str) {
     let scale = match l.control {
         Control::Velocity => "the drive's static force per node",
         Control::Force => "the load per node",
     };
-    super::measure_relaxation(spec, outcome, l.nx.max(l.ny), scale, metrics);
+    (l.nx.max(l.ny), scale)
 }
 
 /// The continuum moduli of the regular linear lattice (a random one is compared with it).
@@ -409,12 +414,12 @@ fn continuum(l: &LatticeSpec, metrics: &mut LatticeMetrics) {
 /// along y (the bottom row is below) the longitudinal c_L = a√(C22/m), kicked mostly along x
 /// the transverse c_T = a√(C66/m) (C per unit depth; C22 = k + k_d, C66 = k_d with both
 /// diagonals).
-fn sound_speed_theory(spec: &RunSpec, l: &LatticeSpec) -> Option<f64> {
+pub(super) fn wave_speed(spec: &RunSpec, l: &LatticeSpec) -> Option<f64> {
     let impulse = l.impulse?;
     let (k_rising, k_falling) = l.diagonal_stiffness();
     let c = lattice_constants(l.k_x, l.k_y, k_rising, k_falling);
     let [x, y] = impulse.direction();
-    super::sound_speed(spec, if y.abs() >= x.abs() { c.c22 } else { c.c66 })
+    sound_speed(spec, if y.abs() >= x.abs() { c.c22 } else { c.c66 })
 }
 
 /// The tangent moduli of the tangent step: the increments from the relaxed particles `start`
@@ -448,4 +453,83 @@ pub(super) fn keep_probes(l: &LatticeSpec, t: &mut Trace) {
             lines.into_iter().map(|line| ProbeTrace::from_trace(line.name(), line.nodes(l.nx, l.ny), t)).collect();
     }
     (t.displacement_x, t.displacement_y, t.velocity_x, t.velocity_y) = Default::default();
+}
+
+/// The lattice's result columns (shown when the table has a lattice): the resolved lattice,
+/// each modulus from MD, from the static solution and from the continuum, and its relaxation;
+/// then, when a lattice is anisotropic, the moduli by direction.
+pub(super) fn columns() -> Vec<Block<LatticeMetrics>> {
+    use Column::{Count, Number, Word};
+    let lattice: Vec<Column<LatticeMetrics>> = vec![
+        Count("nx", |r| r.spec.lattice().map(|l| l.nx as u64)),
+        Count("ny", |r| r.spec.lattice().map(|l| l.ny as u64)),
+        Number("k_diag", |r| r.spec.lattice().map(|l| l.k_diag)),
+        Word("diagonals", |r| r.spec.lattice().map(|l| l.diagonals.name().into())),
+        Number("k_x", |r| r.spec.lattice().map(|l| l.k_x)),
+        Number("k_y", |r| r.spec.lattice().map(|l| l.k_y)),
+        Number("cut_fraction", |r| r.spec.lattice().map(|l| l.cut_fraction)),
+        Number("stiffness_spread", |r| r.spec.lattice().map(|l| l.stiffness_spread)),
+        Count("seed", |r| r.spec.lattice().map(|l| l.seed)),
+        Number("bond_fraction_kept", |r| r.group.bond_fraction_kept),
+        Number("depth", |r| r.spec.lattice().map(|l| l.depth)),
+        Word("supports", |r| r.spec.lattice().map(|l| l.supports.name().into())),
+        Word("load_case", |r| {
+            r.spec.lattice().map(|l| if l.rotated { LoadCase::TensileX.name() } else { l.load_case.name() }.into())
+        }),
+        Word("load_control", |r| r.spec.lattice().map(|l| l.control.name().into())),
+        Number("drive_strain", |r| r.spec.lattice().filter(|l| l.control == Control::Velocity).map(|l| l.drive_strain)),
+        Number("load_per_node", |r| r.spec.lattice().and_then(|l| l.force_per_node())),
+        Number("youngs_modulus", |r| r.group.youngs_modulus),
+        Number("youngs_modulus_fem", |r| r.group.youngs_modulus_fem),
+        Number("youngs_modulus_theory", |r| r.group.youngs_modulus_theory),
+        Number("poisson_ratio", |r| r.group.poisson_ratio),
+        Number("poisson_ratio_fem", |r| r.group.poisson_ratio_fem),
+        Number("poisson_ratio_theory", |r| r.group.poisson_ratio_theory),
+        Number("poisson_ratio_coursework", |r| r.group.poisson_ratio_coursework),
+        Number("shear_modulus", |r| r.group.shear_modulus),
+        Number("shear_modulus_fem", |r| r.group.shear_modulus_fem),
+        Number("shear_modulus_theory", |r| r.group.shear_modulus_theory),
+        Number("youngs_modulus_tangent", |r| r.group.youngs_modulus_tangent),
+        Number("youngs_modulus_tangent_fem", |r| r.group.youngs_modulus_tangent_fem),
+        Number("poisson_ratio_tangent", |r| r.group.poisson_ratio_tangent),
+        Number("poisson_ratio_tangent_fem", |r| r.group.poisson_ratio_tangent_fem),
+        Number("shear_modulus_tangent", |r| r.group.shear_modulus_tangent),
+        Number("shear_modulus_tangent_fem", |r| r.group.shear_modulus_tangent_fem),
+        Number("static_nonlinearity", |r| r.group.static_nonlinearity),
+        Number("homogeneity", |r| r.group.homogeneity),
+        Number("dissipation_time", |r| r.dissipation_time),
+        Word("dissipation_criterion", |r| r.dissipation_criterion.map(str::to_string)),
+        Count("relax_steps", |r| r.spec.lattice().map(|_| r.steps)),
+    ];
+    // A run loaded up (`tensile`) measures E_y and ν_yx, one loaded along x (`tensile-x`,
+    // simulated turned by 90°) E_x and ν_xy; each beside its static value.
+    let directional: Vec<Column<LatticeMetrics>> = vec![
+        Number("youngs_modulus_x", |r| along(r, true, r.group.youngs_modulus)),
+        Number("youngs_modulus_x_fem", |r| along(r, true, r.group.youngs_modulus_fem)),
+        Number("youngs_modulus_y", |r| along(r, false, r.group.youngs_modulus)),
+        Number("youngs_modulus_y_fem", |r| along(r, false, r.group.youngs_modulus_fem)),
+        Number("poisson_ratio_xy", |r| along(r, true, r.group.poisson_ratio)),
+        Number("poisson_ratio_xy_fem", |r| along(r, true, r.group.poisson_ratio_fem)),
+        Number("poisson_ratio_yx", |r| along(r, false, r.group.poisson_ratio)),
+        Number("poisson_ratio_yx_fem", |r| along(r, false, r.group.poisson_ratio_fem)),
+    ];
+    vec![
+        Block { slot: Slot::Tail, shown: Some(|spec| spec.lattice().is_some()), columns: lattice },
+        Block {
+            slot: Slot::Tail,
+            shown: Some(|spec| spec.lattice().is_some_and(is_anisotropic)),
+            columns: directional,
+        },
+    ]
+}
+
+/// True when the lattice's moduli differ by direction: turned, with unequal springs along x
+/// and y, or with one diagonal family.
+fn is_anisotropic(l: &LatticeSpec) -> bool {
+    l.rotated || l.k_x != l.k_y || matches!(l.diagonals, Diagonals::Rising | Diagonals::Falling)
+}
+
+/// `value` of a lattice run loaded along x (`x`, the `tensile-x` case) or along y (not `x`).
+fn along(r: &Row<LatticeMetrics>, x: bool, value: Option<f64>) -> Option<f64> {
+    r.spec.lattice().filter(|l| l.rotated == x).and(value)
 }

@@ -1,19 +1,26 @@
 //! One home per scene kind: `pair`, `chain` and `lattice` each build their scene from a
 //! [`RunSpec`], hold their analytical and static references and measure their runs; this file
-//! dispatches by kind and holds what the kinds share (the scene's common parts, relaxation,
-//! waves, the tangent step, the reference run and the error a run is judged by). Pure: no I/O.
+//! dispatches down to them and measures what several kinds have (the energy balance, waves,
+//! relaxation, the tangent step, the reference run and the error a run is judged by), from
+//! the facts each kind gives. What the kinds build from is in `common`. Pure: no I/O.
 
 pub mod chain;
+mod columns;
+mod common;
 pub mod lattice;
 pub mod pair;
+
+pub use self::columns::{Slot, Values};
+pub use self::common::Stopped;
 
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
+use self::columns::{Block, Row};
+use self::common::relaxation_checks;
 use crate::measure::{ARRIVAL_CRITERIA, arrival_time, energy_error};
-use crate::model::{Particles, SquareLattice};
-use crate::sim::{Network, Outcome, Relaxation, RunStatus, Sampling, Scene, Trace};
+use crate::sim::{Outcome, RunStatus, Scene, Trace};
 use crate::spec::{KindSpec, RunSpec, SceneKind};
 
 /// Measured quantities with their analytical twins; `None` where the scene has no such
@@ -75,21 +82,6 @@ impl Metrics {
     }
 }
 
-/// Why a run ended before its time loop.
-#[derive(Debug)]
-pub enum Stopped {
-    /// The static problem is singular for this load: no MD run.
-    Mechanism {
-        /// Relative residual of the unregularised equations.
-        residual: f64,
-    },
-    /// The deadline passed in this stage.
-    PastDeadline {
-        /// The stage, in words.
-        stage: &'static str,
-    },
-}
-
 /// A simulated and measured run.
 #[derive(Debug)]
 pub struct Run {
@@ -111,61 +103,6 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
         KindSpec::Chain(chain) => chain::build(spec, chain),
         KindSpec::Lattice(run) => lattice::build(spec, &run.lattice),
     }
-}
-
-/// The scene's parts every kind sets alike, around the kind's `particles` and `network`:
-/// no loads, drive, ramp or relaxation (the kinds that have them set them).
-fn scene(spec: &RunSpec, particles: Particles, network: Network, contact_clock: Option<(usize, usize, f64)>) -> Scene {
-    Scene {
-        particles,
-        network,
-        law: spec.law,
-        contact: spec.contact,
-        gamma: spec.gamma,
-        background_gamma: spec.gamma_background,
-        integrator: spec.integrator,
-        sampling: Sampling {
-            dt: spec.dt,
-            steps: spec.steps,
-            every: (spec.steps / spec.samples).max(1),
-            displacements: spec.records_displacements(),
-            deadline: None,
-            relaxation: None,
-        },
-        contact_clock,
-        // A wave is timed every step, but never more than 10⁵ entries are kept.
-        wave: spec.wave().map(|w| (w.source, w.receivers.clone(), (spec.steps / 100_000).max(1))),
-        movie_frames: spec.movie.map(|m| u64::from(m.frames)),
-        loads: Vec::new(),
-        load_ramp: 0.0,
-        drive: None,
-    }
-}
-
-/// The chain of `nodes` particles joined by springs `k` of rest length `spacing`: an
-/// `nodes × 1` lattice.
-fn row(nodes: usize, spacing: f64, k: f64) -> SquareLattice {
-    SquareLattice { nx: nodes, ny: 1, spacing, k_x: k, k_y: 0.0, k_rising: 0.0, k_falling: 0.0, periodic_x: false }
-}
-
-/// Checks (one t_c apart) that the relaxation criterion must pass in a row: 2N + 1 for the
-/// larger side N of a lattice (or the chain's n), a window of 2N t_c, longer than the slowest
-/// mode's period (≈ 4N/√(k/m) = 1.8 N t_c for a column of N springs), so no turning point
-/// of a ringing lattice passes for rest.
-fn relaxation_checks(side: usize) -> u32 {
-    (2 * side + 1) as u32
-}
-
-/// The relaxation criterion of a relaxing run (`None` for others): the residual force is
-/// relative to `scale` (N), the force the kind's relaxation is judged against; `side` is the
-/// kind's N of [`relaxation_checks`].
-fn relaxation(spec: &RunSpec, scale: Option<f64>, side: usize) -> Option<Relaxation> {
-    spec.relax().map(|relax| Relaxation {
-        kinetic_ratio: relax.kinetic_ratio,
-        residual_force: relax.residual_force.zip(scale).map(|(fraction, scale)| fraction * scale),
-        check_every: (spec.t_c / spec.dt).round().max(1.0) as u64,
-        confirmations: relaxation_checks(side),
-    })
 }
 
 /// The scene of `spec`, its time loops stopped at `deadline`.
@@ -222,14 +159,28 @@ pub fn caveat(spec: &RunSpec, metrics: &Metrics) -> Option<&'static str> {
     (spec.kind() == SceneKind::Pair).then(|| pair::caveat(&metrics.pair)).flatten()
 }
 
-/// Measures a finished run: the energy balance, then what its kind measures. `start` holds
-/// the positions (x, y) at t = 0.
+/// Measures a finished run: the energy balance, what its kind measures, then its wave and
+/// relaxation from the kind's facts (its linear sound speed, what its relaxation is judged
+/// by). `start` holds the positions (x, y) at t = 0.
 fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metrics: &mut Metrics) {
     metrics.energy_error = energy_error(&outcome.trace);
-    match &spec.scene_kind {
-        KindSpec::Pair(_) => pair::measure(spec, outcome, &mut metrics.pair),
-        KindSpec::Chain(chain) => chain::measure(spec, chain, outcome, metrics),
-        KindSpec::Lattice(run) => lattice::measure(spec, &run.lattice, outcome, start, metrics),
+    let (wave_speed, relaxing) = match &spec.scene_kind {
+        KindSpec::Pair(_) => {
+            pair::measure(spec, outcome, &mut metrics.pair);
+            (None, None)
+        }
+        KindSpec::Chain(chain) => {
+            chain::measure(spec, chain, outcome, &mut metrics.chain);
+            (chain::wave_speed(spec), Some(chain::relaxing(chain)))
+        }
+        KindSpec::Lattice(run) => {
+            lattice::measure(spec, &run.lattice, outcome, start, &mut metrics.lattice);
+            (lattice::wave_speed(spec, &run.lattice), Some(lattice::relaxing(&run.lattice)))
+        }
+    };
+    measure_wave(spec, outcome, wave_speed, metrics);
+    if let Some((side, scale)) = relaxing {
+        measure_relaxation(spec, outcome, side, scale, metrics);
     }
 }
 
@@ -249,15 +200,8 @@ fn measure_wave(spec: &RunSpec, outcome: &Outcome, sound_speed_theory: Option<f6
     }
 }
 
-/// The linear sound speed a√(C/m) (m/s) for the stiffness C (N/m) along the path (the mass
-/// per unit area is m/a²); `None` for power-law springs, which have no linear sound speed
-/// without pre-load, and for C = 0.
-fn sound_speed(spec: &RunSpec, stiffness: f64) -> Option<f64> {
-    (spec.law.is_linear() && stiffness > 0.0).then(|| spec.spacing * (stiffness / spec.mass).sqrt())
-}
-
 /// When and by which criterion a relaxing run came to rest, `side` as for the scene's
-/// [`relaxation`], `scale` naming the force its residual-force criterion is relative to.
+/// [`common::relaxation`], `scale` naming the force its residual-force criterion is relative to.
 fn measure_relaxation(spec: &RunSpec, outcome: &Outcome, side: usize, scale: &str, metrics: &mut Metrics) {
     let Some(relax) = spec.relax() else { return };
     metrics.dissipation_time = outcome.trace.relaxed_at;
@@ -319,6 +263,44 @@ fn exact_error(spec: &RunSpec, m: &Metrics) -> (Option<f64>, Option<String>) {
         _ => (None, ""),
     };
     (error, error.map(|_| measure.to_string()))
+}
+
+/// One run as the results table reads it: its spec, its metrics and the steps it took.
+pub type RunRow<'a> = (&'a RunSpec, &'a Metrics, u64);
+
+/// The kinds' result columns at `slot`, each named with its values over `runs`: the pair's,
+/// the lattice's, then the chain's (the order the table has always had).
+pub fn result_columns(slot: Slot, runs: &[RunRow]) -> Vec<(&'static str, Values)> {
+    let mut columns = kind_columns(pair::columns(), slot, runs, |m| &m.pair);
+    columns.extend(kind_columns(lattice::columns(), slot, runs, |m| &m.lattice));
+    columns.extend(kind_columns(chain::columns(), slot, runs, |m| &m.chain));
+    columns
+}
+
+/// The columns of one kind's `blocks` at `slot` that some run calls for, over `runs`, each
+/// run read through its kind's metrics `group`.
+fn kind_columns<G>(
+    blocks: Vec<Block<G>>,
+    slot: Slot,
+    runs: &[RunRow],
+    group: fn(&Metrics) -> &G,
+) -> Vec<(&'static str, Values)> {
+    let rows: Vec<Row<G>> = runs
+        .iter()
+        .map(|&(spec, m, steps)| Row {
+            spec,
+            group: group(m),
+            dissipation_time: m.dissipation_time,
+            dissipation_criterion: m.dissipation_criterion.as_deref(),
+            steps,
+        })
+        .collect();
+    blocks
+        .into_iter()
+        .filter(|b| b.slot == slot && b.shown.is_none_or(|shown| runs.iter().any(|(spec, _, _)| shown(spec))))
+        .flat_map(|b| b.columns)
+        .map(|column| (column.name(), column.values(&rows)))
+        .collect()
 }
 
 /// Largest displacement difference between the run and the same scene at dt / `refinement`,

@@ -3,7 +3,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::measure::contact_timing;
+use super::columns::{Block, Column, Slot};
+use super::common::{row, scene};
+use crate::measure::{contact_timing, relative_error};
 use crate::model::LawSpec;
 use crate::model::{Axes, Particles};
 use crate::sim::{Network, Outcome, Scene};
@@ -31,8 +33,8 @@ pub(super) fn build(spec: &RunSpec, pair: &PairRun) -> Scene {
     let right = particles.push(spec.spacing + pair.gap.unwrap_or(0.0), 0.0, spec.mass, Axes::ONLY_X_MOVES);
     particles.vx[left] = 0.5 * spec.v0;
     particles.vx[right] = -0.5 * spec.v0;
-    let network = Network::Lattice(super::row(2, spec.spacing, spec.k));
-    super::scene(spec, particles, network, Some((left, right, spec.spacing)))
+    let network = Network::Lattice(row(2, spec.spacing, spec.k));
+    scene(spec, particles, network, Some((left, right, spec.spacing)))
 }
 
 /// Analytical contact duration and restitution of a pair, where an exact answer exists:
@@ -67,7 +69,7 @@ pub(super) fn measure(spec: &RunSpec, outcome: &Outcome, metrics: &mut PairMetri
 /// The error against the exact answer: of the contact duration when `undamped`, else of the
 /// restitution; with the name of what it measures.
 pub(super) fn exact_error(undamped: bool, m: &PairMetrics) -> (Option<f64>, &'static str) {
-    let relative = |a, b| crate::measure::relative_error(a, b).map(f64::abs);
+    let relative = |a, b| relative_error(a, b).map(f64::abs);
     if undamped {
         (relative(m.contact_duration, m.contact_duration_theory), "contact_duration")
     } else {
@@ -78,4 +80,18 @@ pub(super) fn exact_error(undamped: bool, m: &PairMetrics) -> (Option<f64>, &'st
 /// Why a pair that ended well has no contact duration.
 pub(super) fn caveat(m: &PairMetrics) -> Option<&'static str> {
     m.contact_duration.is_none().then_some("the contact did not close and open again within the run")
+}
+
+/// The pair's result columns: its contact beside the exact answer, with their relative errors.
+pub(super) fn columns() -> Vec<Block<PairMetrics>> {
+    use Column::Number;
+    let columns: Vec<Column<PairMetrics>> = vec![
+        Number("contact_duration", |r| r.group.contact_duration),
+        Number("contact_duration_theory", |r| r.group.contact_duration_theory),
+        Number("contact_duration_error", |r| relative_error(r.group.contact_duration, r.group.contact_duration_theory)),
+        Number("restitution", |r| r.group.restitution),
+        Number("restitution_theory", |r| r.group.restitution_theory),
+        Number("restitution_error", |r| relative_error(r.group.restitution, r.group.restitution_theory)),
+    ];
+    vec![Block { slot: Slot::Measured, shown: None, columns }]
 }

@@ -1,0 +1,88 @@
+//! What every kind's study builds from: the scene's common parts, the relaxation criterion,
+//! the linear sound speed, and why a run stopped before its time loop.
+
+use crate::model::{Particles, SquareLattice};
+use crate::sim::{Network, Relaxation, Sampling, Scene};
+use crate::spec::RunSpec;
+
+/// Why a run ended before its time loop.
+#[derive(Debug)]
+pub enum Stopped {
+    /// The static problem is singular for this load: no MD run.
+    Mechanism {
+        /// Relative residual of the unregularised equations.
+        residual: f64,
+    },
+    /// The deadline passed in this stage.
+    PastDeadline {
+        /// The stage, in words.
+        stage: &'static str,
+    },
+}
+
+/// The scene's parts every kind sets alike, around the kind's `particles` and `network`:
+/// no loads, drive, ramp or relaxation (the kinds that have them set them).
+pub(super) fn scene(
+    spec: &RunSpec,
+    particles: Particles,
+    network: Network,
+    contact_clock: Option<(usize, usize, f64)>,
+) -> Scene {
+    Scene {
+        particles,
+        network,
+        law: spec.law,
+        contact: spec.contact,
+        gamma: spec.gamma,
+        background_gamma: spec.gamma_background,
+        integrator: spec.integrator,
+        sampling: Sampling {
+            dt: spec.dt,
+            steps: spec.steps,
+            every: (spec.steps / spec.samples).max(1),
+            displacements: spec.records_displacements(),
+            deadline: None,
+            relaxation: None,
+        },
+        contact_clock,
+        // A wave is timed every step, but never more than 10⁵ entries are kept.
+        wave: spec.wave().map(|w| (w.source, w.receivers.clone(), (spec.steps / 100_000).max(1))),
+        movie_frames: spec.movie.map(|m| u64::from(m.frames)),
+        loads: Vec::new(),
+        load_ramp: 0.0,
+        drive: None,
+    }
+}
+
+/// The chain of `nodes` particles joined by springs `k` of rest length `spacing`: an
+/// `nodes × 1` lattice.
+pub(super) fn row(nodes: usize, spacing: f64, k: f64) -> SquareLattice {
+    SquareLattice { nx: nodes, ny: 1, spacing, k_x: k, k_y: 0.0, k_rising: 0.0, k_falling: 0.0, periodic_x: false }
+}
+
+/// Checks (one t_c apart) that the relaxation criterion must pass in a row: 2N + 1 for the
+/// larger side N of a lattice (or the chain's n), a window of 2N t_c, longer than the slowest
+/// mode's period (≈ 4N/√(k/m) = 1.8 N t_c for a column of N springs), so no turning point
+/// of a ringing lattice passes for rest.
+pub(super) fn relaxation_checks(side: usize) -> u32 {
+    (2 * side + 1) as u32
+}
+
+/// The relaxation criterion of a relaxing run (`None` for others): the residual force is
+/// relative to `scale` (N), the force the kind's relaxation is judged against; `side` is the
+/// kind's N of [`relaxation_checks`].
+pub(super) fn relaxation(spec: &RunSpec, scale: Option<f64>, side: usize) -> Option<Relaxation> {
+    spec.relax().map(|relax| Relaxation {
+        kinetic_ratio: relax.kinetic_ratio,
+        residual_force: relax.residual_force.zip(scale).map(|(fraction, scale)| fraction * scale),
+        check_every: (spec.t_c / spec.dt).round().max(1.0) as u64,
+        confirmations: relaxation_checks(side),
+    })
+}
+
+/// The linear sound speed a√(C/m) (m/s) for the stiffness C (N/m) along the path (the mass
+/// per unit area is m/a²); `None` for power-law springs, which have no linear sound speed
+/// without pre-load, and for C = 0.
+pub(super) fn sound_speed(spec: &RunSpec, stiffness: f64) -> Option<f64> {
+    (spec.law.is_linear() && stiffness > 0.0).then(|| spec.spacing * (stiffness / spec.mass).sqrt())
+}
