@@ -169,10 +169,11 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
             draw_colour_bar(&bar, fastest, strained.then_some(largest_strain), height)?;
             root.present().map_err(draw_error)?;
         }
-        let mut frame = palette.frame(&pixels, previous.as_deref(), width as usize);
+        let now = palette.indices(&pixels);
+        let mut frame = gif_frame(&now, previous.as_deref(), width as usize);
         frame.delay = ((FRAME_DELAY_MS + 5) / 10) as u16; // GIF delays are in 1/100 s
         encoder.write_frame(&frame).map_err(encoding)?;
-        previous = Some(pixels.clone());
+        previous = Some(now);
     }
     let bytes = encoder.into_inner().map_err(|error| encoding(error.into()))?;
     crate::output::write_atomically(path, &bytes)
@@ -215,35 +216,38 @@ impl Palette {
         })
     }
 
-    /// RGB `pixels` (rows of `width`) as a GIF frame: after the first, only the box of pixels
-    /// that changed since `previous`, unchanged ones in it transparent over the frame kept below.
-    fn frame(&mut self, pixels: &[u8], previous: Option<&[u8]>, width: usize) -> gif::Frame<'static> {
-        let height = pixels.len() / 3 / width;
-        let changed = |i: usize| previous.is_none_or(|p| p[3 * i..3 * i + 3] != pixels[3 * i..3 * i + 3]);
-        let (mut x0, mut y0, mut x1, mut y1) = (width, height, 0, 0);
-        for i in (0..width * height).filter(|&i| changed(i)) {
-            (x0, y0, x1, y1) = (x0.min(i % width), y0.min(i / width), x1.max(i % width + 1), y1.max(i / width + 1));
-        }
-        if x1 == 0 {
-            (x0, y0, x1, y1) = (0, 0, 1, 1); // nothing changed: one transparent pixel
-        }
-        let mut buffer = Vec::with_capacity((x1 - x0) * (y1 - y0));
-        for y in y0..y1 {
-            for i in (y * width + x0)..(y * width + x1) {
-                let rgb = [pixels[3 * i], pixels[3 * i + 1], pixels[3 * i + 2]];
-                buffer.push(if changed(i) { self.index(rgb) } else { UNCHANGED });
-            }
-        }
-        gif::Frame {
-            left: x0 as u16,
-            top: y0 as u16,
-            width: (x1 - x0) as u16,
-            height: (y1 - y0) as u16,
-            buffer: buffer.into(),
-            transparent: previous.map(|_| UNCHANGED),
-            dispose: gif::DisposalMethod::Keep,
-            ..gif::Frame::default()
-        }
+    /// RGB `pixels` as palette indices.
+    fn indices(&mut self, pixels: &[u8]) -> Vec<u8> {
+        pixels.chunks_exact(3).map(|p| self.index([p[0], p[1], p[2]])).collect()
+    }
+}
+
+/// Palette indices `now` (rows of `width`) as a GIF frame: after the first, only the box of
+/// pixels whose colour changed since `previous` (indices: a shade that rounds to the same
+/// palette colour is no change), unchanged ones in it transparent over the frame kept below.
+fn gif_frame(now: &[u8], previous: Option<&[u8]>, width: usize) -> gif::Frame<'static> {
+    let height = now.len() / width;
+    let changed = |i: usize| previous.is_none_or(|p| p[i] != now[i]);
+    let (mut x0, mut y0, mut x1, mut y1) = (width, height, 0, 0);
+    for i in (0..width * height).filter(|&i| changed(i)) {
+        (x0, y0, x1, y1) = (x0.min(i % width), y0.min(i / width), x1.max(i % width + 1), y1.max(i / width + 1));
+    }
+    if x1 == 0 {
+        (x0, y0, x1, y1) = (0, 0, 1, 1); // nothing changed: one transparent pixel
+    }
+    let mut buffer = Vec::with_capacity((x1 - x0) * (y1 - y0));
+    for y in y0..y1 {
+        buffer.extend(((y * width + x0)..(y * width + x1)).map(|i| if changed(i) { now[i] } else { UNCHANGED }));
+    }
+    gif::Frame {
+        left: x0 as u16,
+        top: y0 as u16,
+        width: (x1 - x0) as u16,
+        height: (y1 - y0) as u16,
+        buffer: buffer.into(),
+        transparent: previous.map(|_| UNCHANGED),
+        dispose: gif::DisposalMethod::Keep,
+        ..gif::Frame::default()
     }
 }
 
@@ -287,20 +291,21 @@ mod tests {
         let mut palette = Palette::new();
         assert_eq!(palette.colours.len(), 3 * 32, "32 colours: LZW codes start at 6 bits");
         let white = [255u8; 3 * 4 * 3]; // 4 × 3 pixels
-        let first = palette.frame(&white, None, 4);
-        assert_eq!((first.width, first.height, first.transparent), (4, 3, None));
-        assert!(first.buffer.iter().all(|&i| i != UNCHANGED));
+        let first = palette.indices(&white);
+        let whole = gif_frame(&first, None, 4);
+        assert_eq!((whole.width, whole.height, whole.transparent), (4, 3, None));
+        assert!(whole.buffer.iter().all(|&i| i != UNCHANGED));
         let mut next = white;
-        next[3 * 5..3 * 5 + 3].copy_from_slice(&[250, 250, 250]); // (1, 1): near white
+        next[3 * 5..3 * 5 + 3].copy_from_slice(&[250, 250, 250]); // (1, 1): rounds to white, no change
+        next[3 * 6..3 * 6 + 3].copy_from_slice(&[0, 0, 0]); // (2, 1): black
         next[3 * 7..3 * 7 + 3].copy_from_slice(&[200, 30, 30]); // (3, 1): red
-        let frame = palette.frame(&next, Some(&white), 4);
-        assert_eq!((frame.left, frame.top, frame.width, frame.height), (1, 1, 3, 1));
+        let next = palette.indices(&next);
+        let frame = gif_frame(&next, Some(&first), 4);
+        assert_eq!((frame.left, frame.top, frame.width, frame.height), (2, 1, 2, 1));
         assert_eq!(frame.transparent, Some(UNCHANGED));
-        assert_eq!(frame.buffer[1], UNCHANGED);
         let rgb = |i: u8| &palette.colours[3 * usize::from(i)..3 * usize::from(i) + 3];
-        assert_eq!(rgb(frame.buffer[0]), [255, 255, 255]);
-        assert_eq!(rgb(frame.buffer[2]), [200, 30, 30]);
-        let same = palette.frame(&next, Some(&next), 4);
+        assert_eq!((rgb(frame.buffer[0]), rgb(frame.buffer[1])), ([0, 0, 0].as_slice(), [200, 30, 30].as_slice()));
+        let same = gif_frame(&next, Some(&next), 4);
         assert_eq!((same.width, same.height, same.buffer.as_ref()), (1, 1, [UNCHANGED].as_slice()));
     }
 }

@@ -1,0 +1,171 @@
+// CI: opens a report's index.html in headless Chromium at 1400 px through the DevTools protocol
+// and checks what a reader gets (issue 16, item 7). Node's standard library only: Chromium is
+// driven over --remote-debugging-pipe (JSON messages ending in NUL on file descriptors 3 and 4),
+// so nothing is installed from npm.
+//
+// usage: node .ci/browser-check.mjs <report dir> [chromium binary]
+// Prints each check with its measured value; exits 1 if any fails. Writes <report>/screenshot.png
+// (the first screen).
+import { spawn } from "node:child_process";
+import { mkdtempSync, rmSync, statSync, writeFileSync, existsSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { join, resolve } from "node:path";
+import { fileURLToPath, pathToFileURL } from "node:url";
+
+const WIDTH = 1400;
+const HEIGHT = 900;
+const MOST_BYTES = 3 * 1000 * 1000; // 3 MB: everything the page loads
+const report = resolve(process.argv[2] ?? "");
+const browser = process.argv[3] ?? "/usr/bin/chromium";
+const page = join(report, "index.html");
+if (!existsSync(page)) {
+  console.error(`no ${page}`);
+  process.exit(2);
+}
+
+const profile = mkdtempSync(join(tmpdir(), "browser-check-"));
+const chromium = spawn(
+  browser,
+  [
+    "--headless=new", "--remote-debugging-pipe", "--no-sandbox", "--disable-gpu", "--no-first-run",
+    "--disable-extensions", "--hide-scrollbars", `--user-data-dir=${profile}`, `--window-size=${WIDTH},${HEIGHT}`,
+    "about:blank",
+  ],
+  { stdio: ["ignore", "ignore", "pipe", "pipe", "pipe"] },
+);
+let chromiumLog = "";
+chromium.stderr.on("data", (d) => (chromiumLog += d));
+const watchdog = setTimeout(() => fail("timed out after 120 s"), 120_000);
+
+// The protocol: requests by id, events to listeners.
+let nextId = 1;
+const waiting = new Map();
+const listeners = [];
+let buffer = "";
+chromium.stdio[4].on("data", (chunk) => {
+  buffer += chunk.toString("utf8");
+  let end;
+  while ((end = buffer.indexOf("\0")) >= 0) {
+    const message = JSON.parse(buffer.slice(0, end));
+    buffer = buffer.slice(end + 1);
+    if (message.id && waiting.has(message.id)) {
+      const { ok, ko } = waiting.get(message.id);
+      waiting.delete(message.id);
+      message.error ? ko(new Error(`${message.error.message} ${message.error.data ?? ""}`)) : ok(message.result);
+    } else if (message.method) {
+      for (const listen of listeners) listen(message);
+    }
+  }
+});
+function send(method, params = {}, sessionId) {
+  const id = nextId++;
+  chromium.stdio[3].write(JSON.stringify({ id, method, params, sessionId }) + "\0");
+  return new Promise((ok, ko) => waiting.set(id, { ok, ko }));
+}
+function fail(why) {
+  console.error(`FAIL: ${why}`);
+  if (chromiumLog) console.error(chromiumLog.slice(-2000));
+  chromium.kill();
+  try {
+    rmSync(profile, { recursive: true, force: true, maxRetries: 3 });
+  } catch {}
+  process.exit(1);
+}
+
+async function main() {
+  const started = Date.now();
+  const { targetId } = await send("Target.createTarget", { url: "about:blank" });
+  const { sessionId } = await send("Target.attachToTarget", { targetId, flatten: true });
+  const call = (method, params) => send(method, params, sessionId);
+  // What the page loads, and what goes wrong while it does.
+  const errors = [];
+  const requested = new Map(); // requestId -> url
+  const encoded = new Map(); // requestId -> bytes as loaded
+  let loaded;
+  const load = new Promise((ok) => (loaded = ok));
+  listeners.push((m) => {
+    if (m.sessionId !== sessionId) return;
+    const p = m.params;
+    if (m.method === "Runtime.consoleAPICalled" && (p.type === "error" || p.type === "assert"))
+      errors.push(`console.${p.type}: ${p.args.map((a) => a.value ?? a.description).join(" ")}`);
+    else if (m.method === "Runtime.exceptionThrown") errors.push(`exception: ${p.exceptionDetails.text}`);
+    else if (m.method === "Log.entryAdded" && p.entry.level === "error") errors.push(`${p.entry.source}: ${p.entry.text} ${p.entry.url ?? ""}`);
+    else if (m.method === "Network.requestWillBeSent") requested.set(p.requestId, p.request.url);
+    else if (m.method === "Network.loadingFinished") encoded.set(p.requestId, p.encodedDataLength);
+    else if (m.method === "Network.loadingFailed") errors.push(`failed to load ${requested.get(p.requestId)}: ${p.errorText}`);
+    else if (m.method === "Page.loadEventFired") loaded();
+  });
+  for (const domain of ["Page", "Runtime", "Log", "Network"]) await call(`${domain}.enable`);
+  await call("Emulation.setDeviceMetricsOverride", { width: WIDTH, height: HEIGHT, deviceScaleFactor: 1, mobile: false });
+  await call("Page.navigate", { url: pathToFileURL(page).href });
+  await load;
+  const screenshot = await call("Page.captureScreenshot", { format: "png" });
+  writeFileSync(join(report, "screenshot.png"), Buffer.from(screenshot.data, "base64"));
+  // Lazy images load as they come near the window: ask for all of them, as a reader scrolling
+  // through would, and wait until each has loaded or failed.
+  const evaluate = async (expression) => {
+    const { result, exceptionDetails } = await call("Runtime.evaluate", { expression, awaitPromise: true, returnByValue: true });
+    if (exceptionDetails) throw new Error(`${expression}: ${exceptionDetails.text}`);
+    return result.value;
+  };
+  await evaluate(`Promise.all([...document.images].map((img) => { img.loading = "eager";
+    return img.complete ? null : new Promise((done) => { img.onload = img.onerror = done; }); }))`);
+  await new Promise((ok) => setTimeout(ok, 300)); // the last loadingFinished events
+  const facts = await evaluate(`(() => {
+    const images = [...document.images];
+    const ids = new Set([...document.querySelectorAll("[id]")].map((e) => e.id));
+    const headings = [...document.querySelectorAll("h1, h2, h3, h4, h5, h6")];
+    const anchors = [...document.querySelectorAll('a[href^="#"]')];
+    const local = [...document.querySelectorAll("a[href]")].map((a) => a.getAttribute("href"))
+      .filter((h) => !h.startsWith("#") && !/^[a-z]+:/i.test(h));
+    return {
+      images: images.length,
+      broken: images.filter((i) => !(i.complete && i.naturalWidth > 0)).map((i) => i.getAttribute("src")),
+      movies: images.filter((i) => /\\.gif$/i.test(i.getAttribute("src"))).length,
+      scrollWidth: document.documentElement.scrollWidth,
+      headings: headings.length,
+      withoutId: headings.filter((h) => !h.id).map((h) => h.textContent.slice(0, 60)),
+      duplicateIds: [...document.querySelectorAll("[id]")].length - ids.size,
+      contents: document.querySelectorAll("nav.contents a").length,
+      anchors: anchors.length,
+      unresolved: anchors.map((a) => decodeURIComponent(a.hash.slice(1))).filter((id) => !ids.has(id)),
+      local: [...new Set(local)],
+    };
+  })()`);
+  // Bytes: the files the page loaded (their sizes on disk, which is what a file:// page
+  // transfers; Chromium's encodedDataLength is printed beside it).
+  const files = new Set([...requested.values()].filter((u) => u.startsWith("file:")).map((u) => fileURLToPath(u.split("#")[0])));
+  const bytes = [...files].reduce((sum, f) => sum + (existsSync(f) ? statSync(f).size : 0), 0);
+  const encodedBytes = [...encoded.values()].reduce((s, b) => s + b, 0);
+  const missingLinks = facts.local.filter((h) => !existsSync(join(report, decodeURIComponent(h.split("#")[0]))));
+
+  const checks = [
+    ["every image and movie loads", facts.broken.length === 0,
+      `${facts.images - facts.broken.length}/${facts.images} (${facts.movies} movies)${facts.broken.length ? ": " + facts.broken.slice(0, 5).join(", ") : ""}`],
+    ["no console errors", errors.length === 0, errors.length ? errors.slice(0, 5).join(" | ") : "0"],
+    [`page width <= ${WIDTH} px`, facts.scrollWidth <= WIDTH, `scrollWidth ${facts.scrollWidth} px`],
+    ["every heading has an id", facts.withoutId.length === 0 && facts.duplicateIds === 0,
+      `${facts.headings - facts.withoutId.length}/${facts.headings}, ${facts.duplicateIds} duplicate ids${facts.withoutId.length ? ": " + facts.withoutId.join(" | ") : ""}`],
+    ["every contents link resolves", facts.contents > 0 && facts.unresolved.length === 0,
+      `${facts.anchors - facts.unresolved.length}/${facts.anchors} #links (${facts.contents} in the contents)${facts.unresolved.length ? ": " + facts.unresolved.slice(0, 5).join(", ") : ""}`],
+    ["every local link resolves", missingLinks.length === 0,
+      `${facts.local.length - missingLinks.length}/${facts.local.length}${missingLinks.length ? ": " + missingLinks.slice(0, 5).join(", ") : ""}`],
+    [`total bytes loaded <= ${MOST_BYTES / 1e6} MB`, bytes <= MOST_BYTES,
+      `${(bytes / 1e6).toFixed(2)} MB in ${files.size} files (Chromium's encoded length ${(encodedBytes / 1e6).toFixed(2)} MB)`],
+  ];
+  let failed = 0;
+  for (const [what, ok, value] of checks) {
+    console.log(`${ok ? "ok  " : "FAIL"} ${what}: ${value}`);
+    if (!ok) failed++;
+  }
+  console.log(`screenshot: ${join(report, "screenshot.png")} (${WIDTH}x${HEIGHT}); browser check ${((Date.now() - started) / 1000).toFixed(1)} s`);
+  clearTimeout(watchdog);
+  const exited = new Promise((ok) => chromium.once("exit", ok));
+  await send("Browser.close").catch(() => {});
+  await Promise.race([exited, new Promise((ok) => setTimeout(ok, 5000))]);
+  chromium.kill();
+  rmSync(profile, { recursive: true, force: true, maxRetries: 3 });
+  process.exit(failed ? 1 : 0);
+}
+
+main().catch((error) => fail(error.stack ?? String(error)));
