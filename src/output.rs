@@ -26,9 +26,9 @@ impl Layout {
     pub fn run_lock_file(&self, run_id: &str) -> PathBuf {
         self.root.join("runs").join(".locks").join(format!("{run_id}.lock"))
     }
-    /// The movie of run `run_id`, beside its record.
+    /// The movie of run `run_id`, beside the figures (the report shows it; `runs/` is the cache).
     pub fn movie_file(&self, run_id: &str) -> PathBuf {
-        self.root.join("runs").join(format!("{run_id}.gif"))
+        self.plot_file(&format!("{run_id}.gif"))
     }
     /// The movie of all runs of `scene` side by side.
     pub fn side_by_side_movie(&self, scene: &str) -> PathBuf {

@@ -29,17 +29,19 @@ pub struct FigureRef {
     pub caption: String,
 }
 
-/// The movies of a scene: its runs side by side, if drawn, then each run's own.
+/// The movies of a scene: its runs side by side if drawn (the same panels as the runs' own
+/// movies, so those are then left out), otherwise each run's own.
 pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> Vec<FigureRef> {
-    side_by_side
-        .iter()
-        .filter(|s| *s == scene)
-        .map(|_| FigureRef {
+    let together = side_by_side.iter().any(|s| s == scene);
+    let own = mine.iter().filter(|r| !together && r.spec.movie.is_some() && r.status != RunStatus::Panicked);
+    together
+        .then(|| FigureRef {
             file: format!("plots/{scene}-side-by-side.gif"),
             caption: format!("All runs of {scene} side by side, on one colour scale (m/s)."),
         })
-        .chain(mine.iter().filter(|r| r.spec.movie.is_some() && r.status != RunStatus::Panicked).map(|r| FigureRef {
-            file: format!("runs/{}.gif", r.run_id),
+        .into_iter()
+        .chain(own.map(|r| FigureRef {
+            file: movie_file(&r.run_id),
             caption: format!(
                 "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), {}.",
                 physics_label(r, |_| true),
@@ -50,6 +52,11 @@ pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> 
             ),
         }))
         .collect()
+}
+
+/// The movie of run `run_id`, relative to the report (`output::Layout::movie_file`).
+pub fn movie_file(run_id: &str) -> String {
+    format!("plots/{run_id}.gif")
 }
 
 /// The label of a run's grid values other than the time step: runs with the same group label

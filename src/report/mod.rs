@@ -72,8 +72,14 @@ pub fn render_with_left_out(
     let drawn: BTreeSet<String> = figures.iter().map(|f| f.file.clone()).collect();
     remove_stale(&layout.root, "plots", ".svg", &drawn)?;
     remove_stale(&layout.root, "plots", ".png", &drawn)?;
-    let movies = side_by_side.iter().map(|scene| format!("plots/{scene}-side-by-side.gif")).collect();
-    remove_stale(&layout.root, "plots", "-side-by-side.gif", &movies)?;
+    let movies: BTreeSet<String> = side_by_side
+        .iter()
+        .map(|scene| format!("plots/{scene}-side-by-side.gif"))
+        .chain(records.iter().filter(|r| r.spec.movie.is_some()).map(|r| figure::movie_file(&r.run_id)))
+        .collect();
+    remove_stale(&layout.root, "plots", ".gif", &movies)?;
+    // Movies of earlier versions sat in the cache folder.
+    remove_stale(&layout.root, "runs", ".gif", &BTreeSet::new())?;
     remove_stale(&layout.root, "probes", ".csv", &probes)?;
     let context = context::build(campaign, records, fits, left_out, &figures, &side_by_side);
     let context = tera::Context::from_serialize(&context).context("cannot build the report context")?;

@@ -76,7 +76,7 @@ fn movie_has_its_frames_and_colours_follow_the_speed() {
     assert!(hot_columns(&frames[6]).iter().all(|&x| x >= 60) || hot_columns(&frames[6]).is_empty());
     // The report shows the movie (the HTML page as an image, the Markdown as a link).
     mdsolids::report::render(campaign, &layout, &done.records).unwrap();
-    let link = format!("runs/{}.gif", record.run_id);
+    let link = format!("plots/{}.gif", record.run_id);
     assert!(std::fs::read_to_string(layout.file("report.md")).unwrap().contains(&format!("]({link})")));
     assert!(std::fs::read_to_string(layout.file("index.html")).unwrap().contains(&format!("<img src=\"{link}\"")));
 }
@@ -90,11 +90,18 @@ fn a_scene_can_show_its_runs_side_by_side() {
     let planned = plan::parse("pair.yaml", yaml).unwrap();
     let campaign = &planned.campaign;
     let layout = Layout::new(reports.path(), &campaign.name);
-    run_campaign(&planned, &layout, Some(2)).unwrap();
+    let done = run_campaign(&planned, &layout, Some(2)).unwrap();
     let (width, frames) = frames(&layout.side_by_side_movie("kick"));
     assert_eq!(frames.len(), 5);
     // Two panels of 300 − 90 pixels and one colour bar of 90.
     assert_eq!(width, 2 * (300 - 90) + 90);
+    // The report shows the side-by-side movie alone: the runs' own movies are its panels.
+    mdsolids::report::render(campaign, &layout, &done.records).unwrap();
+    let report = std::fs::read_to_string(layout.file("report.md")).unwrap();
+    assert!(report.contains("](plots/kick-side-by-side.gif)"), "{report}");
+    for r in &campaign.runs {
+        assert!(!report.contains(&format!("plots/{}.gif", r.run_id())), "the own movie of {} shown twice", r.run_id());
+    }
 }
 
 #[test]
