@@ -109,7 +109,7 @@ fn spread<T>(ranked: Vec<T>, scene: impl Fn(&T) -> &str) -> Vec<T> {
 pub(super) fn overview(scenes: &[SceneSection]) -> Overview {
     let all: Vec<Entry> = scenes.iter().flat_map(|s| s.stats.iter().map(move |st| (s, st))).collect();
     let mut differ: Vec<Entry> = all.iter().copied().filter(|(_, st)| measured(st) && st.differs).collect();
-    // Results with a ratio first, by how far they part; then the rest in scene order.
+    // The results that may headline first, then twins, errors and spreads; each by how far they part.
     differ.sort_by(|x, y| (headline(y.1), parting(y.1)).partial_cmp(&(headline(x.1), parting(x.1))).expect("finite"));
     let top = spread(differ.iter().copied().filter(|(_, st)| headline(st)).collect(), |(scene, _)| &scene.name);
     Overview {
@@ -248,7 +248,8 @@ fn differing_inputs<'a>(all: &[Entry<'a>]) -> Vec<Entry<'a>> {
 /// Which inputs differ, and which are equal on both sides and left out with the costs.
 fn inputs_sentence(all: &[Entry]) -> String {
     let differ = distinct(&differing_inputs(all));
-    let setup: Vec<Entry> = all.iter().copied().filter(|(_, st)| st.class == Class::Setup && !st.differs).collect();
+    let setup: Vec<Entry> =
+        all.iter().copied().filter(|(_, st)| st.class == Class::Setup && !st.differs && on_both_sides(st)).collect();
     let equal: Vec<String> = distinct(&setup).into_iter().filter(|n| !differ.contains(n)).collect();
     let differ = if differ.is_empty() {
         "No input differs between the two campaigns".to_string()

@@ -22,12 +22,14 @@ pub(super) fn short(x: f64) -> String {
     if x == 0.0 || !x.is_finite() {
         return format!("{x}");
     }
-    let magnitude = x.abs().log10().floor();
-    if (-3.0..5.0).contains(&magnitude) {
-        let decimals = (3.0 - magnitude).max(0.0) as usize;
+    // The exponent after rounding to 4 digits (0.099999 is 1.000e-1), so the digits stay 4.
+    let scientific = format!("{x:.3e}");
+    let magnitude: i32 = scientific.split_once('e').and_then(|(_, e)| e.parse().ok()).unwrap_or(0);
+    if (-3..5).contains(&magnitude) {
+        let decimals = (3 - magnitude).max(0) as usize;
         format!("{x:.decimals$}")
     } else {
-        format!("{x:.3e}")
+        scientific
     }
 }
 
@@ -35,4 +37,20 @@ pub(super) fn short(x: f64) -> String {
 /// ±0.0000) written 0.0000.
 pub(super) fn exponent(x: f64) -> String {
     if x.abs() < 5e-5 { "0.0000".into() } else { format!("{x:.4}") }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn four_digits_in_sentences() {
+        assert_eq!(short(2.2482), "2.248");
+        assert_eq!(short(0.099999999), "0.1000");
+        assert_eq!(short(0.004973), "0.004973");
+        assert_eq!(short(12345.6), "12346");
+        assert_eq!(short(1.4584e9), "1.458e9");
+        assert_eq!(exponent(-1.83e-14), "0.0000");
+        assert_eq!(exponent(0.19976), "0.1998");
+    }
 }
