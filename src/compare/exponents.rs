@@ -1,15 +1,73 @@
-//! The exponent table of a comparison: every fit of either side's `summary.csv`, matched on
-//! scene, group and quantity, with the difference of the exponents.
+//! The exponents of a comparison: every fit of either side's `summary.csv`, matched on scene,
+//! group and quantity, each set against the exponent its spring law predicts, in sentences, in
+//! a compact table and in full (with R²) for the appendix.
 
 use serde::Serialize;
 
-use super::table::{Side, Table, Values};
-use super::words::fixed;
+use super::table::{Side, Table};
+use super::words::{exponent, fixed};
 
 /// The columns a `summary.csv` row is identified by. `law` is not among them: comparing a linear
 /// campaign with its Hertz twin means comparing fits of different laws.
 const SUMMARY_KEYS: [&str; 3] = ["scene", "group", "quantity"];
 
+/// How far a fitted exponent may lie from its law's and still agree: 0.01, 2 % of the largest
+/// predicted exponent (1/2), and above a fit's error over 2–3 decades of clean power law (the
+/// campaigns fit within 3e-4).
+const TOLERANCE: f64 = 0.01;
+
+/// One side's fit.
+struct Fit {
+    law: String,
+    /// The springs' exponent β (1 for linear), from the results table.
+    beta: Option<f64>,
+    exponent: f64,
+    r_squared: f64,
+}
+
+/// A fitted quantity with the fits of A and B (either may be missing).
+struct Matched {
+    scene: String,
+    group: String,
+    quantity: String,
+    against: String,
+    a: Option<Fit>,
+    b: Option<Fit>,
+}
+
+/// The exponent predicted for a quantity fitted against `against` with springs s ∝ δ^β: the
+/// stiffness ds/dδ ∝ δ^(β−1) makes a chain's stiffness ∝ |ΔW|^(β−1), a lattice's moduli under
+/// a load F ∝ δ^β scale as F^((β−1)/β), and the solitary wave of a chain without pre-load
+/// travels at V ∝ v0^((β−1)/(β+1)) (Nesterenko); all 0 for linear springs (β = 1).
+fn predicted(against: &str, beta: f64) -> Option<(f64, &'static str)> {
+    match against {
+        "v0" => Some(((beta - 1.0) / (beta + 1.0), "(β−1)/(β+1)")),
+        "load_per_node" => Some(((beta - 1.0) / beta, "(β−1)/β")),
+        "wall_displacement" => Some((beta - 1.0, "β−1")),
+        _ => None,
+    }
+}
+
+/// A fit's law in words (`linear`, `β = 1.5`) and its prediction (`0.2000 = (β−1)/(β+1)`).
+fn law_words(fit: &Fit, against: &str) -> (String, String) {
+    let Some(beta) = fit.beta else { return (fit.law.clone(), "–".into()) };
+    let law = if beta == 1.0 { "linear".to_string() } else { format!("β = {beta}") };
+    let prediction = match predicted(against, beta) {
+        Some((p, _)) if beta == 1.0 => exponent(p),
+        Some((p, formula)) => format!("{} = {formula}", exponent(p)),
+        None => "–".into(),
+    };
+    (law, prediction)
+}
+
+impl Fit {
+    /// |fitted − predicted|, where the law predicts one.
+    fn miss(&self, against: &str) -> Option<f64> {
+        predicted(against, self.beta?).map(|(p, _)| (self.exponent - p).abs())
+    }
+}
+
+/// A row of the full exponent table (appendix).
 #[derive(Serialize)]
 pub(super) struct ExponentRow {
     scene: String,
@@ -24,55 +82,224 @@ pub(super) struct ExponentRow {
     r_squared_b: String,
 }
 
-/// The exponent table: every fit of either `summary.csv`, matched on [`SUMMARY_KEYS`] (a fit
-/// without a partner shows – on the other side), or the missing `summary.csv` files (the
-/// template names them; paths are data, escaped there).
-pub(super) fn exponents(a: &Side, b: &Side) -> anyhow::Result<(Vec<ExponentRow>, Vec<String>)> {
+/// A row of the compact table: each side's exponent beside its law's.
+#[derive(Serialize)]
+pub(super) struct LawRow {
+    scene: String,
+    quantity: String,
+    law_a: String,
+    exponent_a: String,
+    predicted_a: String,
+    law_b: String,
+    exponent_b: String,
+    predicted_b: String,
+}
+
+/// The exponents of a comparison, as the report shows them.
+#[derive(Serialize, Default)]
+pub(super) struct Exponents {
+    /// What they say, with their numbers.
+    pub(super) sentences: Vec<String>,
+    pub(super) laws: Vec<LawRow>,
+    /// The full table, for the appendix.
+    pub(super) rows: Vec<ExponentRow>,
+    /// The `summary.csv` files that do not exist (then no exponent is compared).
+    pub(super) missing: Vec<String>,
+}
+
+/// The exponents of both `summary.csv` files, matched on [`SUMMARY_KEYS`] (a fit without a
+/// partner shows – on the other side), or the missing `summary.csv` files (the template names
+/// them; paths are data, escaped there).
+pub(super) fn exponents(a: &Side, b: &Side) -> anyhow::Result<Exponents> {
     let (Some(sa), Some(sb)) = (&a.summary, &b.summary) else {
         let missing = [a, b]
             .iter()
             .filter(|side| side.summary.is_none())
             .map(|side| side.summary_path().display().to_string())
             .collect();
-        return Ok((Vec::new(), missing));
+        return Ok(Exponents { missing, ..Exponents::default() });
     };
-    let keys: Vec<(&Values, &Values)> =
-        SUMMARY_KEYS.iter().filter_map(|&k| Some((sa.column(k)?, sb.column(k)?))).collect();
-    let (exponent_a, exponent_b) = (sa.require("exponent")?, sb.require("exponent")?);
-    let (r_squared_a, r_squared_b) = (sa.require("r_squared")?, sb.require("r_squared")?);
-    let number = |column: &Values, row: Option<usize>| row.and_then(|r| column.number(r));
-    let text = |table: &Table, name: &str, row: Option<usize>| row.and_then(|r| table.column(name)?.key(r));
-    let row = |i: Option<usize>, j: Option<usize>| {
-        let shared = |name: &str| text(sa, name, i).or_else(|| text(sb, name, j)).unwrap_or_else(|| "–".into());
-        let (ea, eb) = (number(exponent_a, i), number(exponent_b, j));
+    let mut fb: Vec<Option<([String; 3], String, Fit)>> = fits(b, sb)?.into_iter().map(Some).collect();
+    let mut matched = Vec::new();
+    for (keys, against, fit) in fits(a, sa)? {
+        let partner = fb.iter_mut().find(|f| f.as_ref().is_some_and(|(k, _, _)| *k == keys)).and_then(Option::take);
+        matched.push(Matched::new(keys, against, Some(fit), partner.map(|p| p.2)));
+    }
+    matched.extend(fb.into_iter().flatten().map(|(keys, against, fit)| Matched::new(keys, against, None, Some(fit))));
+    Ok(Exponents {
+        sentences: sentences(&matched),
+        laws: matched.iter().map(Matched::law_row).collect(),
+        rows: matched.iter().map(Matched::row).collect(),
+        missing: Vec::new(),
+    })
+}
+
+/// The fits of one `summary.csv` that have an exponent: their keys ([`SUMMARY_KEYS`]), what
+/// they are fitted against, and the fit.
+fn fits(side: &Side, summary: &Table) -> anyhow::Result<Vec<([String; 3], String, Fit)>> {
+    let text = |name: &str, row: usize| summary.column(name).and_then(|c| c.key(row)).unwrap_or_default();
+    let (exponent, r_squared) = (summary.require("exponent")?, summary.require("r_squared")?);
+    Ok((0..summary.height)
+        .filter_map(|row| {
+            let keys = SUMMARY_KEYS.map(|k| text(k, row));
+            let fit = Fit {
+                law: text("law", row),
+                beta: beta(side, &keys[0], &keys[1]),
+                exponent: exponent.number(row)?,
+                r_squared: r_squared.number(row).unwrap_or(f64::NAN),
+            };
+            Some((keys, text("against", row), fit))
+        })
+        .collect())
+}
+
+/// The springs' β of a fit's runs: from its group's label where the grid varies β, else the one
+/// value of the scene's runs; `None` where neither settles it.
+fn beta(side: &Side, scene: &str, group: &str) -> Option<f64> {
+    if let Some(beta) = group.split(", ").find_map(|part| part.strip_prefix("beta=")) {
+        return beta.parse().ok();
+    }
+    let (scenes, betas) = (side.results.column("scene")?, side.results.column("beta")?);
+    let mut values =
+        (0..side.results.height).filter(|&r| scenes.key(r).as_deref() == Some(scene)).filter_map(|r| betas.number(r));
+    let first = values.next()?;
+    values.all(|beta| beta == first).then_some(first)
+}
+
+impl Matched {
+    fn new([scene, group, quantity]: [String; 3], against: String, a: Option<Fit>, b: Option<Fit>) -> Matched {
+        Matched { scene, group, quantity, against, a, b }
+    }
+
+    /// The scene, with the group's grid values where there are some.
+    fn scene_words(&self) -> String {
+        if self.group.is_empty() { self.scene.clone() } else { format!("{} ({})", self.scene, self.group) }
+    }
+
+    fn law_row(&self) -> LawRow {
+        let side = |fit: &Option<Fit>| match fit {
+            Some(fit) => {
+                let (law, prediction) = law_words(fit, &self.against);
+                (law, exponent(fit.exponent), prediction)
+            }
+            None => ("–".into(), "–".into(), "–".into()),
+        };
+        let ((law_a, exponent_a, predicted_a), (law_b, exponent_b, predicted_b)) = (side(&self.a), side(&self.b));
+        LawRow {
+            scene: self.scene_words(),
+            quantity: format!("{} ∝ {}^p", self.quantity, self.against),
+            law_a,
+            exponent_a,
+            predicted_a,
+            law_b,
+            exponent_b,
+            predicted_b,
+        }
+    }
+
+    fn row(&self) -> ExponentRow {
+        let (a, b) = (self.a.as_ref(), self.b.as_ref());
+        let law = |fit: Option<&Fit>| fit.map_or_else(|| "–".into(), |f| f.law.clone());
         ExponentRow {
-            scene: shared("scene"),
-            group: shared("group"),
-            quantity: shared("quantity"),
-            law_a: text(sa, "law", i).unwrap_or_else(|| "–".into()),
-            law_b: text(sb, "law", j).unwrap_or_else(|| "–".into()),
-            exponent_a: fixed(ea),
-            exponent_b: fixed(eb),
-            difference: fixed(ea.zip(eb).map(|(ea, eb)| eb - ea)),
-            r_squared_a: fixed(number(r_squared_a, i)),
-            r_squared_b: fixed(number(r_squared_b, j)),
-        }
-    };
-    let mut rows = Vec::new();
-    let mut matched = vec![false; sb.height];
-    for i in 0..sa.height {
-        let partners: Vec<usize> =
-            (0..sb.height).filter(|&j| keys.iter().all(|(ka, kb)| ka.key(i) == kb.key(j))).collect();
-        if partners.is_empty() {
-            rows.push(row(Some(i), None));
-        }
-        for j in partners {
-            matched[j] = true;
-            rows.push(row(Some(i), Some(j)));
+            scene: self.scene.clone(),
+            group: self.group.clone(),
+            quantity: self.quantity.clone(),
+            law_a: law(a),
+            law_b: law(b),
+            exponent_a: fixed(a.map(|f| f.exponent)),
+            exponent_b: fixed(b.map(|f| f.exponent)),
+            difference: fixed(a.zip(b).map(|(a, b)| b.exponent - a.exponent)),
+            r_squared_a: fixed(a.map(|f| f.r_squared)),
+            r_squared_b: fixed(b.map(|f| f.r_squared)),
         }
     }
-    for j in (0..sb.height).filter(|&j| !matched[j]) {
-        rows.push(row(None, Some(j)));
+
+    /// One side's fit in words: `p = 0.2000 (β = 1.5, predicted 0.2000 = (β−1)/(β+1))`.
+    fn fit_words(&self, fit: &Fit) -> String {
+        let (law, prediction) = law_words(fit, &self.against);
+        format!("p = {} ({law}, predicted {prediction})", exponent(fit.exponent))
     }
-    Ok((rows, Vec::new()))
+}
+
+/// What the exponents say: whether they follow their laws, each quantity fitted on both sides
+/// with its two exponents, and those fitted on one side only.
+fn sentences(matched: &[Matched]) -> Vec<String> {
+    let mut sentences = vec![verdict(matched)];
+    for m in matched {
+        if let (Some(a), Some(b)) = (&m.a, &m.b) {
+            sentences.push(format!(
+                "{}: {} ∝ {}^p with {} in A and {} in B.",
+                m.scene_words(),
+                m.quantity,
+                m.against,
+                m.fit_words(a),
+                m.fit_words(b)
+            ));
+        }
+    }
+    for side in ["A", "B"] {
+        let words: Vec<String> = matched
+            .iter()
+            .filter_map(|m| {
+                let (own, other) = if side == "A" { (&m.a, &m.b) } else { (&m.b, &m.a) };
+                let fit = own.as_ref().filter(|_| other.is_none())?;
+                Some(format!("{} ∝ {}^p in {}, {}", m.quantity, m.against, m.scene_words(), m.fit_words(fit)))
+            })
+            .collect();
+        if !words.is_empty() {
+            sentences.push(format!("Fitted in {side} only: {}.", words.join("; ")));
+        }
+    }
+    sentences
+}
+
+/// Whether the fitted exponents follow their spring laws within [`TOLERANCE`], naming those
+/// that do not.
+fn verdict(matched: &[Matched]) -> String {
+    let misses: Vec<(&Matched, &str, f64)> = matched
+        .iter()
+        .flat_map(|m| [("A", &m.a), ("B", &m.b)].map(|(side, fit)| (m, side, fit)))
+        .filter_map(|(m, side, fit)| Some((m, side, fit.as_ref()?.miss(&m.against)?)))
+        .collect();
+    let outside: Vec<String> = misses
+        .iter()
+        .filter(|(_, _, miss)| *miss > TOLERANCE)
+        .map(|(m, side, miss)| format!("{} {} in {side} (off by {})", m.scene_words(), m.quantity, exponent(*miss)))
+        .collect();
+    let largest = misses.iter().map(|(_, _, miss)| *miss).fold(0.0, f64::max);
+    match (misses.len(), outside.len()) {
+        (0, _) => "No fitted exponent has a spring law to be held against.".to_string(),
+        (n, 0) => {
+            let all = match n {
+                1 => "The fitted exponent agrees with the exponent its spring law predicts".to_string(),
+                2 => "Both fitted exponents agree with the exponents their spring laws predict".to_string(),
+                _ => format!("All {n} fitted exponents agree with the exponents their spring laws predict"),
+            };
+            format!("{all} within {TOLERANCE} (largest difference {largest:.1e}).")
+        }
+        (n, k) => format!(
+            "{} of {n} fitted exponents agree with their spring laws within {TOLERANCE}; these do not: {}.",
+            n - k,
+            outside.join("; ")
+        ),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Hertz springs (β = 3/2): sound speed ∝ v0^(1/5), moduli ∝ F^(1/3), chain stiffness
+    /// ∝ |ΔW|^(1/2); linear springs 0 throughout.
+    #[test]
+    fn laws_predict_the_hertz_exponents() {
+        let p = |against: &str, beta: f64| predicted(against, beta).unwrap().0;
+        assert!((p("v0", 1.5) - 0.2).abs() < 1e-15);
+        assert!((p("load_per_node", 1.5) - 1.0 / 3.0).abs() < 1e-15);
+        assert!((p("wall_displacement", 1.5) - 0.5).abs() < 1e-15);
+        for against in ["v0", "load_per_node", "wall_displacement"] {
+            assert_eq!(p(against, 1.0), 0.0);
+        }
+        assert!(predicted("time.dt_per_tc", 1.5).is_none());
+    }
 }

@@ -1,13 +1,17 @@
 //! `mdsolids compare A B`: two campaigns' results side by side. The rows of the two results
 //! tables are joined per scene on the grid parameters both campaigns vary there; every numeric
 //! column the tables share gets its two values and their ratio B/A; the fitted exponents of the
-//! two `summary.csv` files are set against each other; and a report (`report.md`, `index.html`,
-//! `plots/*.svg`, `*.png` where heavy) shows it all. Everything is read back from the report directories, so
+//! two `summary.csv` files are set against each other and against their spring laws; and a
+//! report (`report.md`, `index.html`, `plots/*.svg`, `*.png` where heavy) opens with what
+//! differs beyond noise, in sentences with their numbers, and keeps the full tables for its
+//! appendix. Everything is read back from the report directories, so
 //! campaigns run by different versions of mdsolids can be compared as long as their tables are.
 
 mod exponents;
 mod join;
+mod overview;
 mod plots;
+mod quantity;
 mod section;
 mod table;
 mod words;
@@ -18,8 +22,9 @@ use serde::Serialize;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
-use self::exponents::{ExponentRow, exponents};
+use self::exponents::{Exponents, exponents};
 use self::join::{join, joined_table};
+use self::overview::{Overview, overview};
 use self::section::{SceneSection, scene_section};
 use self::table::Side;
 use crate::output::write_atomically;
@@ -77,8 +82,8 @@ pub fn compare(a: &Path, b: &Path, out: Option<&Path>, reports: &Path) -> anyhow
     crate::report::remove_stale(&out, "plots", ".svg", &plots)?;
     crate::report::remove_stale(&out, "plots", ".png", &plots)?;
     let plots = plots.len();
-    let (exponent_rows, missing_summaries) = exponents(&a, &b)?;
-    let exponents = exponent_rows.len();
+    let exponents = exponents(&a, &b)?;
+    let fits = exponents.rows.len();
     let context = ReportContext {
         title: format!("{} against {}", a.name, b.name),
         version: env!("CARGO_PKG_VERSION"),
@@ -87,12 +92,12 @@ pub fn compare(a: &Path, b: &Path, out: Option<&Path>, reports: &Path) -> anyhow
         rows: joined.table.height,
         only_a: join.only_a,
         only_b: join.only_b,
+        overview: overview(&scenes),
         scenes,
-        exponent_rows,
-        missing_summaries,
+        exponents,
     };
     render(&out, &context)?;
-    Ok(Comparison { out, rows: joined.table.height, plots, exponents })
+    Ok(Comparison { out, rows: joined.table.height, plots, exponents: fits })
 }
 
 /// Writes `report.md` and `index.html` (the same Markdown as HTML inside the page shell).
@@ -111,10 +116,9 @@ struct ReportContext {
     rows: usize,
     only_a: Vec<String>,
     only_b: Vec<String>,
+    overview: Overview,
     scenes: Vec<SceneSection>,
-    exponent_rows: Vec<ExponentRow>,
-    /// The `summary.csv` files that do not exist (then no exponent is compared).
-    missing_summaries: Vec<String>,
+    exponents: Exponents,
 }
 
 #[derive(Serialize)]

@@ -119,3 +119,17 @@ fn scale(points: &[(f64, f64)]) -> Scale {
 fn file_part(name: &str) -> String {
     name.chars().map(|c| if c.is_ascii_alphanumeric() || "-_.".contains(c) { c } else { '_' }).collect()
 }
+
+impl PlotGroup {
+    /// The parameter this group's figures are drawn against.
+    pub(super) fn parameter(&self) -> &str {
+        &self.parameter
+    }
+}
+
+impl PlotLink {
+    /// The quantity this figure shows.
+    pub(super) fn metric(&self) -> &str {
+        &self.metric
+    }
+}

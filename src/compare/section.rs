@@ -1,16 +1,18 @@
 //! The comparison's section of one scene: the statuses of rows not `ok` on both sides, the
-//! medians of every metric over the rows `ok` on both, and the overlaid figures.
+//! medians of every metric over the rows `ok` on both with whether the two sides differ beyond
+//! the metric's noise, and the overlaid figures.
 
 use serde::Serialize;
 
 use super::join::{Joined, SceneJoin, SceneRows};
 use super::plots::{PlotGroup, plot_groups};
+use super::quantity::{Class, NOISE, class};
 use super::table::Side;
 use super::words::{fixed, value};
 
 #[derive(Serialize)]
 pub(super) struct SceneSection {
-    name: String,
+    pub(super) name: String,
     keys: Vec<String>,
     only_a: Vec<String>,
     only_b: Vec<String>,
@@ -22,6 +24,9 @@ pub(super) struct SceneSection {
     statuses: Vec<StatusCount>,
     metrics: Vec<MetricRow>,
     pub(super) plots: Vec<PlotGroup>,
+    /// The numbers behind `metrics`, for the opening of the report.
+    #[serde(skip)]
+    pub(super) stats: Vec<Stats>,
 }
 
 #[derive(Serialize)]
@@ -41,6 +46,40 @@ struct MetricRow {
     ratios: usize,
 }
 
+impl MetricRow {
+    fn of(stats: &Stats) -> MetricRow {
+        MetricRow {
+            metric: stats.metric.clone(),
+            a: value(stats.a),
+            b: value(stats.b),
+            ratio: fixed(stats.ratio),
+            range: stats
+                .range
+                .map_or_else(String::new, |(lo, hi)| format!("{} … {}", fixed(Some(lo)), fixed(Some(hi)))),
+            ratios: stats.ratios,
+        }
+    }
+}
+
+/// One metric of one scene in numbers, over the rows `ok` on both sides.
+pub(super) struct Stats {
+    pub(super) metric: String,
+    pub(super) class: Class,
+    /// The medians of A and of B (each run once) and of the rows' ratios B/A.
+    pub(super) a: Option<f64>,
+    pub(super) b: Option<f64>,
+    pub(super) ratio: Option<f64>,
+    /// The smallest and the largest ratio, where there are several.
+    pub(super) range: Option<(f64, f64)>,
+    pub(super) ratios: usize,
+    /// Some row's two values differ beyond that row's noise ([`row_noise`]).
+    pub(super) differs: bool,
+    /// The largest noise of the rows: relative, absolute for a [`Class::Deviation`].
+    pub(super) noise: f64,
+    /// One side's values take both signs (a wall force through ΔW = 0): their medians say little.
+    pub(super) signed: bool,
+}
+
 fn median(mut values: Vec<f64>) -> Option<f64> {
     values.sort_by(f64::total_cmp);
     let n = values.len();
@@ -53,12 +92,18 @@ fn median(mut values: Vec<f64>) -> Option<f64> {
 
 /// The report section of one scene: the statuses of rows not `ok` on both sides, the metrics
 /// table (medians over the rows `ok` on both sides, each run counted once) and the overlaid
-/// figures (each side's `ok` runs).
+/// figures (each side's `ok` runs) of the metrics that are neither costs nor inputs equal on
+/// both sides.
 pub(super) fn scene_section(a: &Side, b: &Side, joined: &Joined, scene: &SceneJoin) -> anyhow::Result<SceneSection> {
     let rows = joined.scene_rows(scene);
     let both: Vec<usize> = rows.rows.iter().copied().filter(|&r| rows.ok("a", r) && rows.ok("b", r)).collect();
-    let metrics: Vec<MetricRow> = joined.metrics.iter().filter_map(|name| metric_row(&rows, &both, name)).collect();
-    let names: Vec<&str> = metrics.iter().map(|m| m.metric.as_str()).collect();
+    let stats: Vec<Stats> = joined.metrics.iter().filter_map(|name| stats(&rows, &both, name)).collect();
+    let shown = |s: &Stats| match s.class {
+        Class::Cost => false,
+        Class::Setup => s.differs,
+        Class::Deviation | Class::Result => true,
+    };
+    let names: Vec<&str> = stats.iter().filter(|s| shown(s)).map(|s| s.metric.as_str()).collect();
     let plots = plot_groups((a, b), &rows, scene, &names)?;
     Ok(SceneSection {
         name: scene.scene.clone(),
@@ -70,8 +115,9 @@ pub(super) fn scene_section(a: &Side, b: &Side, joined: &Joined, scene: &SceneJo
         rows_b: scene.rows_b,
         ok: both.len(),
         statuses: status_counts(&rows),
-        metrics,
+        metrics: stats.iter().map(MetricRow::of).collect(),
         plots,
+        stats,
     })
 }
 
@@ -89,8 +135,8 @@ fn status_counts(rows: &SceneRows) -> Vec<StatusCount> {
 }
 
 /// The medians of metric `name` on each side and of their ratio over the rows `both` ended
-/// `ok` on; `None` when neither side has a value there.
-fn metric_row(rows: &SceneRows, both: &[usize], name: &str) -> Option<MetricRow> {
+/// `ok` on, and whether the sides differ; `None` when neither side has a value there.
+fn stats(rows: &SceneRows, both: &[usize], name: &str) -> Option<Stats> {
     let with_ratio: Vec<usize> =
         both.iter().copied().filter(|&r| rows.metric(name, "ratio").number(r).is_some()).collect();
     // A and B over the rows behind the ratios, so that the three agree; where there is no
@@ -105,12 +151,49 @@ fn metric_row(rows: &SceneRows, both: &[usize], name: &str) -> Option<MetricRow>
     }
     let ratios: Vec<f64> = with_ratio.iter().filter_map(|&r| rows.metric(name, "ratio").number(r)).collect();
     let (lo, hi) = ratios.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
-    Some(MetricRow {
+    let class = class(name);
+    let signed = [&va, &vb].iter().any(|v| v.iter().any(|&x| x < 0.0) && v.iter().any(|&x| x > 0.0));
+    let pair = |r: usize| (rows.metric(name, "a").number(r), rows.metric(name, "b").number(r));
+    let noise = both.iter().map(|&r| row_noise(rows, name, r)).fold(NOISE, f64::max);
+    Some(Stats {
         metric: name.to_string(),
-        a: value(median(va)),
-        b: value(median(vb)),
-        range: if ratios.len() > 1 { format!("{} … {}", fixed(Some(lo)), fixed(Some(hi))) } else { String::new() },
+        class,
+        a: median(va),
+        b: median(vb),
+        range: (ratios.len() > 1).then_some((lo, hi)),
         ratios: ratios.len(),
-        ratio: fixed(median(ratios)),
+        ratio: median(ratios),
+        differs: both.iter().any(|&r| {
+            let ratio = rows.metric(name, "ratio").number(r);
+            differs(class, pair(r), ratio, row_noise(rows, name, r))
+        }),
+        noise,
+        signed,
     })
+}
+
+/// The noise of metric `name` in row `r`, relative: [`NOISE`], or more where a run measures its
+/// own error: the relative error against the analytical value (`<name>_error`) and the
+/// difference of MD from the static answer of the same network (`<name>_fem`), on either side.
+fn row_noise(rows: &SceneRows, name: &str, r: usize) -> f64 {
+    let own = |side: &str| {
+        let number = |column: String| rows.column(&column).and_then(|c| c.number(r));
+        let error = number(format!("{name}_error_{side}")).map(f64::abs);
+        let fem = number(format!("{name}_fem_{side}")).filter(|&f| f != 0.0);
+        let md = rows.metric(name, side).number(r);
+        [error, md.zip(fem).map(|(md, fem)| (md / fem - 1.0).abs())]
+    };
+    own("a").into_iter().chain(own("b")).flatten().fold(NOISE, f64::max)
+}
+
+/// The values `(a, b)` of one row differ: inputs and costs when they are not the same number,
+/// a deviation by more than [`NOISE`], a result by a ratio further from 1 than `noise` (or, with
+/// no ratio, when A is 0 and B is not).
+fn differs(class: Class, (a, b): (Option<f64>, Option<f64>), ratio: Option<f64>, noise: f64) -> bool {
+    let (Some(a), Some(b)) = (a, b) else { return false };
+    match class {
+        Class::Cost | Class::Setup => a != b,
+        Class::Deviation => (b - a).abs() > NOISE,
+        Class::Result => ratio.map_or(a != b, |ratio| (ratio - 1.0).abs() > noise),
+    }
 }

@@ -86,6 +86,17 @@ fn floats(frame: &DataFrame, name: &str) -> Vec<Option<f64>> {
     frame.column(name).unwrap().f64().unwrap().iter().collect()
 }
 
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    if n % 2 == 1 { values[n / 2] } else { 0.5 * (values[n / 2 - 1] + values[n / 2]) }
+}
+
+/// The numbers of a sentence, in order (words that read as numbers once stripped of punctuation).
+fn numbers(sentence: &str) -> Vec<f64> {
+    sentence.split_whitespace().filter_map(|w| w.trim_matches(|c| ",.:;()".contains(c)).parse().ok()).collect()
+}
+
 fn texts(frame: &DataFrame, name: &str) -> Vec<String> {
     frame.column(name).unwrap().str().unwrap().iter().map(|s| s.unwrap().to_string()).collect()
 }
@@ -156,14 +167,61 @@ fn linear_against_power_law() {
     assert!(report.contains("| wave |") && report.contains("| linear | power |"), "exponent table: {report}");
     let html = std::fs::read_to_string(out.join("index.html")).unwrap();
     assert!(html.contains("<table>") && html.contains(figure));
+    opens_with_what_differs(&report, &joined);
+    assert!(report.contains(&format!("]({figure})")), "the pair's contact duration is shown, not only linked");
 
-    // Without B's summary the exponent section says which file is missing; --out moves it all.
+    other_comparisons(reports, &a, &b);
+}
+
+/// A campaign against itself: nothing differs, and the report says so. Without B's summary the
+/// exponent section says which file is missing; --out moves it all.
+fn other_comparisons(reports: &Path, a: &Path, b: &Path) {
+    let same = reports.join("same");
+    succeed(reports, &["compare", a.to_str().unwrap(), a.to_str().unwrap(), "--out", same.to_str().unwrap()]);
+    let report = std::fs::read_to_string(same.join("report.md")).unwrap();
+    assert!(report.contains("No measured quantity differs beyond its noise"), "{report}");
+    assert!(report.contains("No input differs between the two campaigns"), "{report}");
+
     std::fs::remove_file(b.join("summary.csv")).unwrap();
     let elsewhere = reports.join("elsewhere");
     succeed(reports, &["compare", a.to_str().unwrap(), b.to_str().unwrap(), "--out", elsewhere.to_str().unwrap()]);
     let report = std::fs::read_to_string(elsewhere.join("report.md")).unwrap();
     let missing = b.join("summary.csv");
     assert!(report.contains(&format!("`{}` does not exist", missing.display())), "{report}");
+}
+
+/// The report opens with what differs (issue 16, item 8): the pair's contact duration in a
+/// sentence with A, B and B/A as the joined table has them (medians over the pair's rows, each
+/// run once, and of their ratios, with the smallest and largest ratio), before the appendix;
+/// the mass, equal on both sides, and the timings only in the appendix.
+fn opens_with_what_differs(report: &str, joined: &DataFrame) {
+    let (main, appendix) = report.split_at(report.find("## Appendix").expect("an appendix"));
+    let scenes = texts(joined, "scene");
+    let pair: Vec<usize> = (0..joined.height()).filter(|&r| scenes[r] == "pair").collect();
+    let once = |side: &str| {
+        let (ids, values) =
+            (texts(joined, &format!("run_id_{side}")), floats(joined, &format!("contact_duration_{side}")));
+        let mut seen = std::collections::BTreeMap::new();
+        for &r in &pair {
+            seen.entry(ids[r].clone()).or_insert(values[r].unwrap());
+        }
+        seen.into_values().collect::<Vec<f64>>()
+    };
+    let ratios: Vec<f64> = pair.iter().map(|&r| floats(joined, "contact_duration_ratio")[r].unwrap()).collect();
+    let lo = ratios.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = ratios.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let expected = [median(once("a")), median(once("b")), median(ratios.clone()), pair.len() as f64, lo, hi];
+    let sentence = main.lines().find(|l| l.starts_with("- In pair, contact_duration (s) is ")).expect(main);
+    let stated = numbers(sentence);
+    assert_eq!(stated.len(), expected.len(), "{sentence}");
+    for (stated, expected) in stated.iter().zip(expected) {
+        // Four significant digits: within 5e-4 relative.
+        assert!((stated / expected - 1.0).abs() <= 5e-4, "{sentence}: {stated} against {expected}");
+    }
+    assert_eq!(floats(joined, "mass_a"), floats(joined, "mass_b"), "the mass is an input equal on both sides");
+    assert!(!main.contains("`mass`") && appendix.contains("| `mass` |"), "{main}");
+    assert!(!main.contains("`wall_s`") && appendix.contains("| `wall_s` |"), "{main}");
+    assert!(main.contains("predicted 0.2000 = (β−1)/(β+1)) in B"), "the wave's exponent against its law: {main}");
 }
 
 #[test]

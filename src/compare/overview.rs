@@ -1,0 +1,325 @@
+//! The opening of a comparison: what differs between the two campaigns, in sentences with
+//! their numbers, computed from the scenes' statistics at render time; the measured quantities
+//! that differ beyond their noise and the inputs that differ, in compact tables (equal inputs
+//! and costs left out); and the few figures where the two campaigns part most.
+
+use serde::Serialize;
+
+use super::quantity::{Class, NOISE, unit};
+use super::section::{SceneSection, Stats};
+use super::words::{fixed, short, value};
+
+/// At most this many sentences name a differing quantity, and at most this many figures show
+/// one; the table and the appendix hold the rest.
+const HEADLINES: usize = 6;
+
+/// At most this many entries in a sentence that lists quantities; the appendix has them all.
+const LISTED: usize = 12;
+
+/// The opening of the report.
+#[derive(Serialize)]
+pub(super) struct Overview {
+    /// How much differs, in one sentence.
+    lead: String,
+    /// The quantities where the campaigns part most, one sentence each.
+    headlines: Vec<String>,
+    /// What agrees, what one side alone measures, which inputs differ.
+    rest: Vec<String>,
+    differ: Vec<DifferRow>,
+    inputs: Vec<InputRow>,
+    figures: Vec<Figure>,
+    /// The noise floor, as the method paragraph states it.
+    noise: String,
+}
+
+/// A measured quantity of one scene whose two sides differ beyond its noise.
+#[derive(Serialize)]
+struct DifferRow {
+    scene: String,
+    quantity: String,
+    unit: &'static str,
+    a: String,
+    b: String,
+    ratio: String,
+    range: String,
+    noise: String,
+}
+
+/// An input that differs, over the scenes where it does.
+#[derive(Serialize)]
+struct InputRow {
+    quantity: String,
+    unit: &'static str,
+    scenes: String,
+    a: String,
+    b: String,
+    ratio: String,
+}
+
+/// A figure shown in the opening.
+#[derive(Serialize)]
+struct Figure {
+    file: String,
+    caption: String,
+}
+
+type Entry<'a> = (&'a SceneSection, &'a Stats);
+
+/// How far B parts from A: |ln B/A|, 0 without a ratio.
+fn parting(stats: &Stats) -> f64 {
+    stats.ratio.filter(|r| *r > 0.0).map_or(0.0, |r| r.ln().abs())
+}
+
+fn measured(stats: &Stats) -> bool {
+    matches!(stats.class, Class::Result | Class::Deviation)
+}
+
+fn on_both_sides(stats: &Stats) -> bool {
+    stats.a.is_some() && stats.b.is_some()
+}
+
+/// A result that may headline: measured by MD with a ratio, with medians that mean something
+/// (not of values of both signs), and no repeat of another: a `_fem` twin (the static answer of
+/// the same network) and `sound_speed_<criterion>` (the sound speed by each arrival criterion)
+/// would repeat the MD value and the recommended criterion's `sound_speed`.
+fn headline(stats: &Stats) -> bool {
+    let repeat = stats.metric.ends_with("_fem") || stats.metric.starts_with("sound_speed_");
+    stats.class == Class::Result && stats.ratio.is_some() && !stats.signed && !repeat
+}
+
+/// At most [`HEADLINES`] of `ranked` (best first): the best of each scene first, then the
+/// next best whatever their scene; in the order of `ranked`.
+fn spread<T>(ranked: Vec<T>, scene: impl Fn(&T) -> &str) -> Vec<T> {
+    let mut chosen: Vec<usize> = Vec::new();
+    for i in 0..ranked.len() {
+        if chosen.len() < HEADLINES && !chosen.iter().any(|&j| scene(&ranked[j]) == scene(&ranked[i])) {
+            chosen.push(i);
+        }
+    }
+    for i in 0..ranked.len() {
+        if chosen.len() < HEADLINES && !chosen.contains(&i) {
+            chosen.push(i);
+        }
+    }
+    chosen.sort_unstable();
+    ranked.into_iter().enumerate().filter(|(i, _)| chosen.contains(i)).map(|(_, x)| x).collect()
+}
+
+/// The opening of the report of `scenes`.
+pub(super) fn overview(scenes: &[SceneSection]) -> Overview {
+    let all: Vec<Entry> = scenes.iter().flat_map(|s| s.stats.iter().map(move |st| (s, st))).collect();
+    let mut differ: Vec<Entry> = all.iter().copied().filter(|(_, st)| measured(st) && st.differs).collect();
+    // The results that may headline first, then twins, errors and spreads; each by how far they part.
+    differ.sort_by(|x, y| (headline(y.1), parting(y.1)).partial_cmp(&(headline(x.1), parting(x.1))).expect("finite"));
+    let top = spread(differ.iter().copied().filter(|(_, st)| headline(st)).collect(), |(scene, _)| &scene.name);
+    Overview {
+        lead: lead(scenes, &all, &differ),
+        headlines: top.iter().map(|(scene, st)| sentence(&scene.name, st)).collect(),
+        rest: rest(&all),
+        differ: differ.iter().map(|(scene, st)| differ_row(&scene.name, st)).collect(),
+        inputs: input_rows(&all),
+        figures: figures(&differ),
+        noise: format!("{NOISE:.0e}"),
+    }
+}
+
+/// How many measured quantities differ, agree and have one side only, in how many scenes.
+fn lead(scenes: &[SceneSection], all: &[Entry], differ: &[Entry]) -> String {
+    let names: Vec<&str> = scenes.iter().map(|s| s.name.as_str()).collect();
+    let equal = all.iter().filter(|(_, st)| measured(st) && on_both_sides(st) && !st.differs).count();
+    let one_side = all.iter().filter(|(_, st)| measured(st) && !on_both_sides(st)).count();
+    let mut differing: Vec<&str> = differ.iter().map(|(s, _)| s.name.as_str()).collect();
+    differing.sort_unstable();
+    differing.dedup();
+    let shared = format!("The two campaigns share {} scene{} ({})", names.len(), plural(names.len()), names.join(", "));
+    if differ.is_empty() {
+        return format!(
+            "{shared}. No measured quantity differs beyond its noise there: the two campaigns agree in all {equal} \
+             quantities measured on both sides ({one_side} are measured on one side only)."
+        );
+    }
+    format!(
+        "{shared}. Over the runs ok on both sides, {} beyond {} noise in {} of them, {} within it and {} on \
+         one side only.",
+        count(differ.len(), "measured quantity differs", "measured quantities differ"),
+        if differ.len() == 1 { "its" } else { "their" },
+        differing.len(),
+        count(equal, "agrees", "agree"),
+        count(one_side, "is measured", "are measured")
+    )
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 { "" } else { "s" }
+}
+
+/// `n` with the words for one or for several.
+fn count(n: usize, one: &str, several: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { several })
+}
+
+/// A quantity's unit in words: none for a pure number.
+fn with_unit(metric: &str) -> String {
+    match unit(metric) {
+        "1" => format!("{metric} (dimensionless)"),
+        unit => format!("{metric} ({unit})"),
+    }
+}
+
+/// One differing quantity in a sentence with its numbers.
+fn sentence(scene: &str, st: &Stats) -> String {
+    let spread = match st.range {
+        Some((lo, hi)) => format!(" (median of {} rows, from {} to {})", st.ratios, short(lo), short(hi)),
+        None => String::new(),
+    };
+    let number = |x: Option<f64>| x.map_or_else(|| "–".into(), short);
+    format!(
+        "In {scene}, {} is {} in A and {} in B: B/A = {}{spread}.",
+        with_unit(&st.metric),
+        number(st.a),
+        number(st.b),
+        number(st.ratio)
+    )
+}
+
+fn differ_row(scene: &str, st: &Stats) -> DifferRow {
+    DifferRow {
+        scene: scene.to_string(),
+        quantity: st.metric.clone(),
+        unit: unit(&st.metric),
+        a: value(st.a),
+        b: value(st.b),
+        ratio: fixed(st.ratio),
+        range: st.range.map_or_else(String::new, |(lo, hi)| format!("{} … {}", fixed(Some(lo)), fixed(Some(hi)))),
+        noise: if st.class == Class::Deviation { format!("{NOISE:.0e} abs.") } else { format!("{:.1e}", st.noise) },
+    }
+}
+
+/// Entries as `scene: quantity` (with `extra`), at most [`LISTED`] of them.
+fn listing(entries: &[Entry], extra: impl Fn(&Stats) -> String) -> String {
+    let mut words: Vec<String> =
+        entries.iter().take(LISTED).map(|(scene, st)| format!("{}: {}{}", scene.name, st.metric, extra(st))).collect();
+    if entries.len() > LISTED {
+        words.push(format!("and {} more (appendix)", entries.len() - LISTED));
+    }
+    words.join(", ")
+}
+
+/// What agrees within noise, what one side alone measures, and which inputs differ or not.
+fn rest(all: &[Entry]) -> Vec<String> {
+    let pick =
+        |keep: &dyn Fn(&Stats) -> bool| -> Vec<Entry> { all.iter().copied().filter(|(_, st)| keep(st)).collect() };
+    let mut rest = Vec::new();
+    let equal = pick(&|st| measured(st) && on_both_sides(st) && !st.differs);
+    if !equal.is_empty() {
+        rest.push(format!(
+            "Equal within noise: {}.",
+            listing(&equal, |st| st.ratio.map_or_else(String::new, |r| format!(" (B/A = {})", fixed(Some(r)))))
+        ));
+    }
+    for (side, only) in
+        [("A", pick(&|st| measured(st) && st.b.is_none())), ("B", pick(&|st| measured(st) && st.a.is_none()))]
+    {
+        if !only.is_empty() {
+            rest.push(format!("Measured in {side} only (nothing to compare): {}.", listing(&only, |_| String::new())));
+        }
+    }
+    rest.push(inputs_sentence(all));
+    rest
+}
+
+/// The metrics of `entries`, each once, in order of first appearance.
+fn distinct(entries: &[Entry]) -> Vec<String> {
+    let mut names: Vec<String> = Vec::new();
+    for (_, st) in entries {
+        if !names.contains(&st.metric) {
+            names.push(st.metric.clone());
+        }
+    }
+    names
+}
+
+/// The set-up values (inputs and what follows from them) that differ in a scene: two values of
+/// one row that are not the same number.
+fn differing_inputs<'a>(all: &[Entry<'a>]) -> Vec<Entry<'a>> {
+    all.iter().copied().filter(|(_, st)| st.class == Class::Setup && st.differs).collect()
+}
+
+/// Which inputs differ, and which are equal on both sides and left out with the costs.
+fn inputs_sentence(all: &[Entry]) -> String {
+    let differ = distinct(&differing_inputs(all));
+    let setup: Vec<Entry> =
+        all.iter().copied().filter(|(_, st)| st.class == Class::Setup && !st.differs && on_both_sides(st)).collect();
+    let equal: Vec<String> = distinct(&setup).into_iter().filter(|n| !differ.contains(n)).collect();
+    let differ = if differ.is_empty() {
+        "No input differs between the two campaigns".to_string()
+    } else {
+        format!("The inputs that differ, and what follows from them before a run: {} (table)", differ.join(", "))
+    };
+    format!(
+        "{differ}. Equal on both sides wherever both have a value, and left out of these tables: {}; so are the costs \
+         wall_s, loop_s, steps and relax_steps, timings rather than results. The appendix has them all.",
+        if equal.is_empty() { "none".to_string() } else { equal.join(", ") }
+    )
+}
+
+/// `values` as their smallest and largest, written by `write`; one value where they agree.
+fn span(values: &[f64], write: fn(Option<f64>) -> String) -> String {
+    let (lo, hi) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| (l.min(v), h.max(v)));
+    match values.len() {
+        0 => "–".to_string(),
+        _ if lo == hi => write(Some(lo)),
+        _ => format!("{} … {}", write(Some(lo)), write(Some(hi))),
+    }
+}
+
+/// The inputs that differ, one row each over the scenes where they do: A's and B's medians and
+/// the ratios, from the smallest to the largest over those scenes.
+fn input_rows(all: &[Entry]) -> Vec<InputRow> {
+    let differ = differing_inputs(all);
+    distinct(&differ)
+        .into_iter()
+        .map(|name| {
+            let mine: Vec<&Stats> = differ.iter().filter(|(_, st)| st.metric == name).map(|(_, st)| *st).collect();
+            let values = |get: fn(&Stats) -> Vec<f64>| -> Vec<f64> { mine.iter().flat_map(|st| get(st)).collect() };
+            let scenes: Vec<&str> =
+                differ.iter().filter(|(_, st)| st.metric == name).map(|(scene, _)| scene.name.as_str()).collect();
+            InputRow {
+                unit: unit(&name),
+                scenes: scenes.join(", "),
+                a: span(&values(|st| st.a.into_iter().collect()), value),
+                b: span(&values(|st| st.b.into_iter().collect()), value),
+                ratio: span(
+                    &values(|st| st.range.map_or_else(|| st.ratio.into_iter().collect(), |(l, h)| vec![l, h])),
+                    fixed,
+                ),
+                quantity: name,
+            }
+        })
+        .collect()
+}
+
+/// The figures of the quantities that part most, spread over the scenes ([`spread`]).
+fn figures(differ: &[Entry]) -> Vec<Figure> {
+    let drawn: Vec<(Entry, &str, &str)> = differ
+        .iter()
+        .filter(|(_, st)| headline(st))
+        .filter_map(|&(scene, st)| {
+            let group = scene.plots.iter().find(|g| g.plots.iter().any(|p| p.metric() == st.metric))?;
+            let plot = group.plots.iter().find(|p| p.metric() == st.metric)?;
+            Some(((scene, st), group.parameter(), plot.file.as_str()))
+        })
+        .collect();
+    spread(drawn, |((scene, _), _, _)| &scene.name)
+        .into_iter()
+        .map(|((scene, st), parameter, file)| {
+            let caption = format!(
+                "{}: {} against {parameter}, every ok run of A and of B; B/A = {} (median).",
+                scene.name,
+                with_unit(&st.metric),
+                st.ratio.map_or_else(|| "–".into(), short)
+            );
+            Figure { file: file.to_string(), caption }
+        })
+        .collect()
+}
