@@ -191,17 +191,17 @@ fn line_chart_on<DB: DrawingBackend>(
                 draw(&mut builder()?.build_cartesian_2d(x_range, y_range).map_err(draw_error)?, chart, series)?
             }
             Scale::LogLog => draw(
-                &mut builder()?.build_cartesian_2d(x_range.log_scale(), y_range.log_scale()).map_err(draw_error)?,
+                &mut builder()?.build_cartesian_2d(log_axis(x_range), log_axis(y_range)).map_err(draw_error)?,
                 chart,
                 series,
             )?,
             Scale::LogY => draw(
-                &mut builder()?.build_cartesian_2d(x_range, y_range.log_scale()).map_err(draw_error)?,
+                &mut builder()?.build_cartesian_2d(x_range, log_axis(y_range)).map_err(draw_error)?,
                 chart,
                 series,
             )?,
             Scale::LogX => draw(
-                &mut builder()?.build_cartesian_2d(x_range.log_scale(), y_range).map_err(draw_error)?,
+                &mut builder()?.build_cartesian_2d(log_axis(x_range), y_range).map_err(draw_error)?,
                 chart,
                 series,
             )?,
@@ -210,6 +210,33 @@ fn line_chart_on<DB: DrawingBackend>(
     }
     Ok(())
 }
+
+/// A logarithmic axis over `range` with ticks a reader can use: 1, 2, 3, 5 and 7 times each
+/// power of ten where the range spans about a decade, 1, 2 and 5 over a few decades, every
+/// decade over more, every other decade beyond eight (plotters' own marks only whole decades,
+/// and none at all inside one).
+fn log_axis(range: std::ops::Range<f64>) -> plotters::coord::combinators::WithKeyPoints<LogCoord<f64>> {
+    let (lo, hi) = (range.start, range.end);
+    let span = (hi / lo).log10();
+    let (mantissas, every): (&[f64], i32) = match span {
+        s if s <= 1.3 => (&[1.0, 2.0, 3.0, 5.0, 7.0], 1),
+        s if s <= 3.0 => (&[1.0, 2.0, 5.0], 1),
+        s if s <= 8.0 => (&[1.0], 1),
+        _ => (&[1.0], 2),
+    };
+    let ticks: Vec<f64> = (lo.log10().floor() as i32..=hi.log10().ceil() as i32)
+        .filter(|decade| decade.rem_euclid(every) == 0)
+        .flat_map(|decade| mantissas.iter().map(move |m| m * 10f64.powi(decade)))
+        .filter(|t| (lo..=hi).contains(t))
+        .collect();
+    range.log_scale().with_key_points(ticks)
+}
+
+/// Text sizes (px) of a figure [`SIZE`] wide: printed 14 cm wide, 1 px is 0.48 pt, so tick
+/// labels of 17 px are 8.2 pt, the least a thesis figure should carry.
+const TICK_TEXT: u32 = 17;
+/// Axis titles and the legend (px).
+const LABEL_TEXT: u32 = 18;
 
 pub(crate) fn draw_error<E: std::fmt::Debug>(error: E) -> anyhow::Error {
     anyhow::anyhow!("cannot draw a figure: {error:?}")
@@ -220,7 +247,7 @@ fn frame<'a, 'b, DB: DrawingBackend>(
     chart: &Chart,
 ) -> anyhow::Result<ChartBuilder<'a, 'b, DB>> {
     let mut builder = ChartBuilder::on(root);
-    builder.caption(&chart.title, ("sans-serif", 20)).margin(12).x_label_area_size(45).y_label_area_size(80);
+    builder.caption(&chart.title, ("sans-serif", 22)).margin(12).x_label_area_size(58).y_label_area_size(100);
     Ok(builder)
 }
 
@@ -247,7 +274,7 @@ where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
     Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
 {
-    // Decade ticks read best as 1e-3; linear ticks keep plotters' own format where it fits.
+    // Log ticks read best as 1e-3 or 2e-3; linear ticks keep plotters' own format where it fits.
     let scientific = |v: &f64| format!("{v:.0e}");
     let (x_linear, y_linear) = (linear_labels(ctx.x_range()), linear_labels(ctx.y_range()));
     let mut mesh = ctx.configure_mesh();
@@ -256,8 +283,8 @@ where
     mesh.max_light_lines(0);
     mesh.x_desc(&chart.x_label)
         .y_desc(&chart.y_label)
-        .label_style(("sans-serif", 13))
-        .axis_desc_style(("sans-serif", 15));
+        .label_style(("sans-serif", TICK_TEXT))
+        .axis_desc_style(("sans-serif", LABEL_TEXT));
     if chart.scale.log_x() {
         mesh.x_label_formatter(&scientific);
     } else if let Some(labels) = &x_linear {
@@ -284,14 +311,55 @@ where
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
         }
     }
+    let labels = series.iter().filter(|s| !s.label.is_empty()).count();
+    let corner = emptiest_corner(ctx, series, labels);
     ctx.configure_series_labels()
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
-        .label_font(("sans-serif", 13))
-        // Errors fall towards small dt, leaving the upper left of a log–log chart empty.
-        .position(if chart.scale.log_x() { SeriesLabelPosition::UpperLeft } else { SeriesLabelPosition::UpperRight })
+        .label_font(("sans-serif", LABEL_TEXT))
+        .position(corner)
         .draw()
         .map_err(draw_error)
+}
+
+/// The corner of the plotting area where the legend of `labels` entries covers the fewest
+/// drawn points (ties: upper right), so the legend stays off the data.
+fn emptiest_corner<'a, DB: DrawingBackend + 'a, X, Y>(
+    ctx: &ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    series: &[Series],
+    labels: usize,
+) -> SeriesLabelPosition
+where
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let (x_pixels, y_pixels) = ctx.plotting_area().get_pixel_range();
+    let (width, height) = ((x_pixels.end - x_pixels.start) as f64, (y_pixels.end - y_pixels.start) as f64);
+    // The legend box: about 45 % of the width, 24 px per entry plus its frame.
+    let (box_w, box_h) = (0.45 * width, (24 * labels + 16) as f64);
+    let corners = [
+        (SeriesLabelPosition::UpperRight, true, false),
+        (SeriesLabelPosition::UpperLeft, true, true),
+        (SeriesLabelPosition::LowerRight, false, false),
+        (SeriesLabelPosition::LowerLeft, false, true),
+    ];
+    let covered = |upper: bool, left: bool| {
+        series
+            .iter()
+            .flat_map(|s| s.points.iter())
+            .map(|&p| ctx.backend_coord(&p))
+            .filter(|&(px, py)| {
+                let (x, y) = ((px - x_pixels.start) as f64, (py - y_pixels.start) as f64);
+                let in_x = if left { x <= box_w } else { x >= width - box_w };
+                let in_y = if upper { y <= box_h } else { y >= height - box_h };
+                in_x && in_y
+            })
+            .count()
+    };
+    corners
+        .into_iter()
+        .min_by_key(|(_, upper, left)| covered(*upper, *left))
+        .map_or(SeriesLabelPosition::UpperRight, |(position, _, _)| position)
 }
 
 /// Labels of a linear axis over `range` where plotters' own do not fit: they never use an
@@ -338,30 +406,61 @@ fn heatmap_on<DB: DrawingBackend>(
     let largest = values.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
     let time_stride = times.len().div_ceil(HEATMAP_CELLS.0);
     let row_stride = rows.div_ceil(HEATMAP_CELLS.1);
-    {
-        root.fill(&WHITE).map_err(draw_error)?;
-        let mut ctx = frame(&root, chart)?
-            .build_cartesian_2d(times[0]..times[times.len() - 1], 0.0..rows as f64)
-            .map_err(draw_error)?;
-        ctx.configure_mesh()
-            .disable_mesh()
-            .x_desc(&chart.x_label)
-            .y_desc(&chart.y_label)
-            .label_style(("sans-serif", 13))
-            .axis_desc_style(("sans-serif", 15))
-            .draw()
-            .map_err(draw_error)?;
-        let mut cells = Vec::new();
-        for s in (0..times.len() - 1).step_by(time_stride) {
-            let t1 = times[(s + time_stride).min(times.len() - 1)];
-            for j in (0..rows).step_by(row_stride) {
-                let color = diverging(values[s][j] / largest);
-                cells.push(Rectangle::new([(times[s], j as f64), (t1, (j + row_stride) as f64)], color.filled()));
-            }
+    root.fill(&WHITE).map_err(draw_error)?;
+    let (map, bar) = root.split_horizontally(SIZE.0 - COLOUR_BAR_WIDTH);
+    let mut ctx = frame(&map, chart)?
+        .build_cartesian_2d(times[0]..times[times.len() - 1], 0.0..rows as f64)
+        .map_err(draw_error)?;
+    ctx.configure_mesh()
+        .disable_mesh()
+        .x_desc(&chart.x_label)
+        .y_desc(&chart.y_label)
+        .label_style(("sans-serif", TICK_TEXT))
+        .axis_desc_style(("sans-serif", LABEL_TEXT))
+        .draw()
+        .map_err(draw_error)?;
+    let mut cells = Vec::new();
+    for s in (0..times.len() - 1).step_by(time_stride) {
+        let t1 = times[(s + time_stride).min(times.len() - 1)];
+        for j in (0..rows).step_by(row_stride) {
+            let color = diverging(values[s][j] / largest);
+            cells.push(Rectangle::new([(times[s], j as f64), (t1, (j + row_stride) as f64)], color.filled()));
         }
-        ctx.draw_series(cells).map_err(draw_error)?;
-        root.present().map_err(draw_error)?;
     }
+    ctx.draw_series(cells).map_err(draw_error)?;
+    colour_bar(&bar, largest)?;
+    root.present().map_err(draw_error)?;
+    Ok(())
+}
+
+/// Width (px) of a heat map's colour bar with its labels.
+const COLOUR_BAR_WIDTH: u32 = 125;
+
+/// The diverging scale of a heat map, −`largest` (blue) to +`largest` (red), with its values.
+fn colour_bar<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, largest: f64) -> anyhow::Result<()> {
+    let mut ctx = ChartBuilder::on(area)
+        .margin_top(44)
+        .margin_bottom(70)
+        .margin_right(8)
+        .y_label_area_size(82)
+        .build_cartesian_2d(0.0..1.0, -largest..largest)
+        .map_err(draw_error)?;
+    let labels = |v: &f64| format!("{v:.1e}");
+    ctx.configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .y_labels(5)
+        .y_label_formatter(&labels)
+        .label_style(("sans-serif", TICK_TEXT))
+        .draw()
+        .map_err(draw_error)?;
+    const STEPS: usize = 64;
+    let step = 2.0 * largest / STEPS as f64;
+    ctx.draw_series((0..STEPS).map(|i| {
+        let low = -largest + i as f64 * step;
+        Rectangle::new([(0.0, low), (1.0, low + step)], diverging((low + 0.5 * step) / largest).filled())
+    }))
+    .map_err(draw_error)?;
     Ok(())
 }
 

@@ -431,11 +431,15 @@ fn ctrl_c_ends_with_how_many_runs_are_stored_and_how_to_continue() {
 #[test]
 fn a_full_disk_while_a_movie_is_encoded_names_the_file_and_leaves_no_partial_file() {
     // A file-size limit (ulimit -f, SIGXFSZ ignored) fails writes beyond it with EFBIG as a
-    // full disk fails them with ENOSPC: 20 blocks (10 KB in dash, 20 KB in bash) is less than
-    // the movie (about 60 KB).
+    // full disk fails them with ENOSPC: 20 blocks (10 KB in dash, 20 KB in bash) is more than
+    // the run's record and less than the movie (20 large frames, over 30 KB even with each later
+    // frame stored as the box that changed).
     let dir = tempfile::tempdir().unwrap();
-    let movie =
-        CAMPAIGN.split("  - name: film").nth(1).unwrap().replace("width: 200, height: 100", "width: 600, height: 300");
+    let movie = CAMPAIGN
+        .split("  - name: film")
+        .nth(1)
+        .unwrap()
+        .replace("frames: 4, width: 200, height: 100", "frames: 20, width: 900, height: 450");
     let text = format!("{}  - name: film{movie}", CAMPAIGN.split("  - name: chain").next().unwrap());
     let file = campaign_file(dir.path(), &text);
     let reports = dir.path().join("reports");
@@ -448,12 +452,12 @@ fn a_full_disk_while_a_movie_is_encoded_names_the_file_and_leaves_no_partial_fil
     let out = Command::new("sh").args(["-c", &script]).output().unwrap();
     let error = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success(), "{error}");
-    let runs = reports.join("faults/runs");
+    let plots = reports.join("faults/plots");
     let campaign = mdsolids::plan::parse("faults.yaml", &text).unwrap().campaign;
     let named =
-        campaign.runs.iter().any(|r| error.contains(&format!("cannot write '{}/{}.gif'", runs.display(), r.run_id())));
+        campaign.runs.iter().any(|r| error.contains(&format!("cannot write '{}/{}.gif'", plots.display(), r.run_id())));
     assert!(named, "the error names the movie: {error}");
-    let left: Vec<String> = std::fs::read_dir(&runs)
+    let left: Vec<String> = std::fs::read_dir(&plots)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
         .filter(|name| name.ends_with(".tmp") || name.ends_with(".gif"))

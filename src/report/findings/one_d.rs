@@ -31,7 +31,7 @@ fn at_50<'a>(runs: &[&'a RunRecord]) -> Option<&'a RunRecord> {
 /// The pair's case in words.
 fn case(r: &RunRecord) -> String {
     let law = match r.spec.law {
-        LawSpec::Linear => "linear",
+        LawSpec::Linear => "Linear",
         LawSpec::Power { .. } => "Hertz",
     };
     let joint = if r.spec.contact { "contact" } else { "bonded" };
