@@ -6,7 +6,7 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use mdsolids::bench::{BenchConfig, reference_lattice, reference_scene};
+use mdsolids::bench::{BenchConfig, Workload, reference_lattice, reference_scene};
 use mdsolids::model::{Linear, NoDashpot, Spring};
 use mdsolids::sim::{ForceField, Integrator, LatticeNetwork, State, VelocityVerlet};
 
@@ -31,7 +31,7 @@ fn timed_on(pool: &rayon::ThreadPool, iterations: u64, mut work: impl FnMut() + 
 
 /// The reference lattice, strained a little so every bond carries a force.
 fn strained_state(n: usize) -> State {
-    let config = BenchConfig { n, steps: 0, dilute: 0.0, bond_list: false };
+    let config = BenchConfig { workload: Workload::Kernel, n, steps: 0, dilute: 0.0, bond_list: false };
     let mut particles = reference_scene(&config).particles;
     for (i, x) in particles.x.iter_mut().enumerate() {
         *x *= 1.0 + 1e-3 * ((i % 7) as f64);
