@@ -12,11 +12,13 @@
 //! division scalar (4× slower). Each bond's power goes into a scratch row instead (`loss[t]`,
 //! one row per family of bonds: within the row, vertical, rising, falling), and the four rows
 //! are summed afterwards, each from t = 0 up as before, the four chains side by side so their
-//! additions overlap: the same sums, bit for bit.
+//! additions overlap: the same sums, bit for bit. On one thread the background damping's power
+//! γ_g Σ v², one running sum over all particles in order, joins those loops row by row as a
+//! fifth chain instead of waiting in a pass of its own.
 
 use rayon::prelude::*;
 
-use super::field::{ForceField, add_background_damping};
+use super::field::{ForceField, add_background_damping, subtract_background_damping};
 use super::parallel::worth_splitting;
 use crate::model::{Dashpot, ForceLaw, Spring, SquareLattice};
 
@@ -190,11 +192,25 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> LatticeNetwork<L, D, CONTACT>
     /// All bonds of the rows starting at row `first` whose forces are `(fx, fy)` (these rows
     /// only): within each row, and between each row and the one below it in the block, row
     /// after row so both rows are still in cache. Returns the power dissipated, summed
-    /// row by row: within, then with the row below.
-    fn block(&self, first: usize, nodes: Nodes, fx: &mut [f64], fy: &mut [f64], scratch: &mut Scratch) -> f64 {
+    /// row by row: within, then with the row below. With `background`, the running sum of the
+    /// background power over the particles so far, adds these rows' γ_g v² to it.
+    fn block(
+        &self,
+        first: usize,
+        nodes: Nodes,
+        fx: &mut [f64],
+        fy: &mut [f64],
+        scratch: &mut Scratch,
+        background: Option<&mut f64>,
+    ) -> f64 {
         let nx = self.lattice.nx;
         let rows = fx.len() / nx;
         let row = |r: usize| nodes.range((first + r) * nx..(first + r + 1) * nx);
+        let mut spare = 0.0;
+        let (gamma, running) = match background {
+            Some(sum) => (self.background_gamma, sum),
+            None => (0.0, &mut spare),
+        };
         let mut power = 0.0;
         for r in 0..rows {
             let span = r * nx..(r + 1) * nx;
@@ -202,11 +218,13 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> LatticeNetwork<L, D, CONTACT>
             if r > 0 {
                 self.rows_pair(row(r - 1), row(r), r * nx, fx, fy, scratch.loss);
             }
-            if D::ACTIVE {
-                let [within, vertical, rising, falling] = family_sums(scratch.loss, nx);
-                power += within;
-                if r > 0 {
-                    power += (vertical + rising) + falling;
+            if D::ACTIVE || gamma > 0.0 {
+                let [within, vertical, rising, falling] = family_sums(scratch.loss, row(r), gamma, running);
+                if D::ACTIVE {
+                    power += within;
+                    if r > 0 {
+                        power += (vertical + rising) + falling;
+                    }
                 }
             }
         }
@@ -270,7 +288,7 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> LatticeNetwork<L, D, CONTACT>
             let (a, b) = (nodes.range((upper - 1) * nx..upper * nx), nodes.range(upper * nx..(upper + 1) * nx));
             self.rows_pair(a, b, upper * nx, fx, fy, loss);
             if D::ACTIVE {
-                let [_, vertical, rising, falling] = family_sums(loss, nx);
+                let [_, vertical, rising, falling] = family_sums(loss, a, 0.0, &mut 0.0);
                 *power += (vertical + rising) + falling;
             }
         }
@@ -285,15 +303,22 @@ fn family_row(loss: &mut [f64], family: Family, nx: usize) -> &mut [f64] {
 
 /// The power of each family of bonds of a row, its row of `loss` summed from t = 0 up as one
 /// running sum (exactly the sum the bond loop once kept), the [`FAMILIES`] sums side by side
-/// so their additions overlap instead of waiting on each other.
-fn family_sums(loss: &[f64], nx: usize) -> [f64; FAMILIES] {
+/// so their additions overlap instead of waiting on each other; in the same loop the row's
+/// background power γ_g (v_x² + v_y²) is added to `background`, node after node (a fifth chain;
+/// `gamma` 0 when the caller keeps it elsewhere).
+fn family_sums(loss: &[f64], row: Nodes, gamma: f64, background: &mut f64) -> [f64; FAMILIES] {
+    let nx = row.x.len();
     let rows: [&[f64]; FAMILIES] = std::array::from_fn(|family| &loss[family * nx..(family + 1) * nx]);
+    let (vx, vy) = (&row.vx[..nx], &row.vy[..nx]);
     let mut sums = [0.0; FAMILIES];
+    let mut running = *background;
     for t in 0..nx {
         for (sum, row) in sums.iter_mut().zip(rows) {
             *sum += row[t];
         }
+        running += gamma * (vx[t] * vx[t] + vy[t] * vy[t]);
     }
+    *background = running;
     sums
 }
 
@@ -313,17 +338,20 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for LatticeNetwork
         let nodes = Nodes { x, y, vx, vy };
         let block_len = BLOCK_ROWS * nx;
         let this = &*self;
-        let block = |(index, ((((fx, fy), hx), hy), loss)): BlockSlices| {
-            this.block(index * BLOCK_ROWS, nodes, fx, fy, &mut Scratch { hx, hy, loss })
+        let block = |(index, ((((fx, fy), hx), hy), loss)): BlockSlices, background: Option<&mut f64>| {
+            this.block(index * BLOCK_ROWS, nodes, fx, fy, &mut Scratch { hx, hy, loss }, background)
         };
-        let mut power: f64 = if worth_splitting(x.len()) {
+        // One thread visits the rows in order and can carry the background power's running sum.
+        let parallel = worth_splitting(x.len());
+        let mut background = 0.0;
+        let mut power: f64 = if parallel {
             fx.par_chunks_mut(block_len)
                 .zip(fy.par_chunks_mut(block_len))
                 .zip(hx.par_chunks_mut(nx))
                 .zip(hy.par_chunks_mut(nx))
                 .zip(loss.par_chunks_mut(FAMILIES * nx))
                 .enumerate()
-                .map(block)
+                .map(|slices| block(slices, None))
                 .sum()
         } else {
             fx.chunks_mut(block_len)
@@ -332,7 +360,7 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for LatticeNetwork
                 .zip(hy.chunks_mut(nx))
                 .zip(loss.chunks_mut(FAMILIES * nx))
                 .enumerate()
-                .map(block)
+                .map(|slices| block(slices, Some(&mut background)))
                 .sum()
         };
         // Bonds between the last row of one block and the first row of the next.
@@ -340,8 +368,11 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for LatticeNetwork
         if self.lattice.periodic_x {
             power += self.wrapped(nodes, fx, fy);
         }
-        if self.background_gamma > 0.0 {
+        if self.background_gamma > 0.0 && parallel {
             power += add_background_damping(self.background_gamma, vx, vy, fx, fy);
+        } else if self.background_gamma > 0.0 {
+            subtract_background_damping(self.background_gamma, vx, vy, fx, fy);
+            power += background;
         }
         (self.scratch_x, self.scratch_y, self.scratch_loss) = (hx, hy, loss);
         power
