@@ -14,7 +14,9 @@
 //! are summed afterwards, each from t = 0 up as before, the four chains side by side so their
 //! additions overlap: the same sums, bit for bit. On one thread the background damping's power
 //! γ_g Σ v², one running sum over all particles in order, joins those loops row by row as a
-//! fifth chain instead of waiting in a pass of its own.
+//! fifth chain instead of waiting in a pass of its own, and its forces −γ_g v are subtracted
+//! from each row as soon as the row's last bond is in, while it is in cache (after every bond,
+//! as before).
 
 use rayon::prelude::*;
 
@@ -193,7 +195,8 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> LatticeNetwork<L, D, CONTACT>
     /// only): within each row, and between each row and the one below it in the block, row
     /// after row so both rows are still in cache. Returns the power dissipated, summed
     /// row by row: within, then with the row below. With `background`, the running sum of the
-    /// background power over the particles so far, adds these rows' γ_g v² to it.
+    /// background power over the particles so far, adds these rows' γ_g v² to it and, unless
+    /// bonds wrap around (they come last), subtracts γ_g v from each row once it is complete.
     fn block(
         &self,
         first: usize,
@@ -211,12 +214,16 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> LatticeNetwork<L, D, CONTACT>
             Some(sum) => (self.background_gamma, sum),
             None => (0.0, &mut spare),
         };
+        let fold = gamma > 0.0 && !self.lattice.periodic_x;
         let mut power = 0.0;
         for r in 0..rows {
             let span = r * nx..(r + 1) * nx;
             self.within_row(row(r), scratch, &mut fx[span.clone()], &mut fy[span]);
             if r > 0 {
                 self.rows_pair(row(r - 1), row(r), r * nx, fx, fy, scratch.loss);
+                if fold && !self.joins_blocks(first + r - 1) {
+                    self.damp_row(nodes, first + r - 1, first, fx, fy);
+                }
             }
             if D::ACTIVE || gamma > 0.0 {
                 let [within, vertical, rising, falling] = family_sums(scratch.loss, row(r), gamma, running);
@@ -228,7 +235,24 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> LatticeNetwork<L, D, CONTACT>
                 }
             }
         }
+        if fold && !self.joins_blocks(first + rows - 1) {
+            self.damp_row(nodes, first + rows - 1, first, fx, fy);
+        }
         power
+    }
+
+    /// True when row `r`'s last bond is added after the blocks, by the bonds between blocks:
+    /// the first row of every block but the first, the last row of every block but the last.
+    fn joins_blocks(&self, r: usize) -> bool {
+        (r > 0 && r.is_multiple_of(BLOCK_ROWS)) || (r % BLOCK_ROWS == BLOCK_ROWS - 1 && r + 1 < self.lattice.ny)
+    }
+
+    /// Background damping f −= γ_g v on row `r`, whose forces are complete; `(fx, fy)` hold
+    /// the rows from row `first` on.
+    fn damp_row(&self, nodes: Nodes, r: usize, first: usize, fx: &mut [f64], fy: &mut [f64]) {
+        let nx = self.lattice.nx;
+        let (row, span) = (nodes.range(r * nx..(r + 1) * nx), (r - first) * nx..(r - first + 1) * nx);
+        subtract_background_damping(self.background_gamma, row.vx, row.vy, &mut fx[span.clone()], &mut fy[span]);
     }
 
     /// The bonds that wrap across the sides of a periodic lattice: from the last node of each
@@ -281,12 +305,26 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> LatticeNetwork<L, D, CONTACT>
     }
 
     /// The bonds between the last row of one block and the first row of the next, their power
-    /// added to `power` pair after pair; `loss` is one block's scratch.
-    fn between_blocks(&self, nodes: Nodes, fx: &mut [f64], fy: &mut [f64], loss: &mut [f64], power: &mut f64) {
+    /// added to `power` pair after pair; `loss` is one block's scratch. With `fold`, both rows'
+    /// background damping forces follow (their last bond is in).
+    #[allow(clippy::too_many_arguments)] // the forces, the scratch, the sum and the switch
+    fn between_blocks(
+        &self,
+        nodes: Nodes,
+        fx: &mut [f64],
+        fy: &mut [f64],
+        loss: &mut [f64],
+        power: &mut f64,
+        fold: bool,
+    ) {
         let nx = self.lattice.nx;
         for upper in (BLOCK_ROWS..self.lattice.ny).step_by(BLOCK_ROWS) {
             let (a, b) = (nodes.range((upper - 1) * nx..upper * nx), nodes.range(upper * nx..(upper + 1) * nx));
             self.rows_pair(a, b, upper * nx, fx, fy, loss);
+            if fold {
+                self.damp_row(nodes, upper - 1, 0, fx, fy);
+                self.damp_row(nodes, upper, 0, fx, fy);
+            }
             if D::ACTIVE {
                 let [_, vertical, rising, falling] = family_sums(loss, a, 0.0, &mut 0.0);
                 *power += (vertical + rising) + falling;
@@ -364,14 +402,17 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for LatticeNetwork
                 .sum()
         };
         // Bonds between the last row of one block and the first row of the next.
-        self.between_blocks(nodes, fx, fy, &mut loss[..FAMILIES * nx], &mut power);
+        let fold = !parallel && self.background_gamma > 0.0 && !self.lattice.periodic_x;
+        self.between_blocks(nodes, fx, fy, &mut loss[..FAMILIES * nx], &mut power, fold);
         if self.lattice.periodic_x {
             power += self.wrapped(nodes, fx, fy);
         }
         if self.background_gamma > 0.0 && parallel {
             power += add_background_damping(self.background_gamma, vx, vy, fx, fy);
         } else if self.background_gamma > 0.0 {
-            subtract_background_damping(self.background_gamma, vx, vy, fx, fy);
+            if !fold {
+                subtract_background_damping(self.background_gamma, vx, vy, fx, fy);
+            }
             power += background;
         }
         (self.scratch_x, self.scratch_y, self.scratch_loss) = (hx, hy, loss);
