@@ -1,12 +1,14 @@
 //! Criterion benchmarks of the reference workload's kernels (README, "Performance"): the force
-//! loop and one velocity-Verlet step, at N = 100, 316 and 1000, on one thread. Throughput is
-//! in particles, so criterion's "elem/s" is particle-steps per second.
+//! loop and one velocity-Verlet step, at N = 100, 316 and 1000, on one thread; then both
+//! workloads of `mdsolids bench` side by side, `kernel` and `relax` (damped, loaded, clamped,
+//! checked), through the whole time loop. Throughput is in particles, so criterion's "elem/s"
+//! is particle-steps per second.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use mdsolids::bench::{BenchConfig, reference_lattice, reference_scene};
+use mdsolids::bench::{BenchConfig, Workload, reference_lattice, reference_scene};
 use mdsolids::model::{Linear, NoDashpot, Spring};
 use mdsolids::sim::{ForceField, Integrator, LatticeNetwork, State, VelocityVerlet};
 
@@ -31,7 +33,7 @@ fn timed_on(pool: &rayon::ThreadPool, iterations: u64, mut work: impl FnMut() + 
 
 /// The reference lattice, strained a little so every bond carries a force.
 fn strained_state(n: usize) -> State {
-    let config = BenchConfig { n, steps: 0, dilute: 0.0, bond_list: false };
+    let config = BenchConfig { workload: Workload::Kernel, n, steps: 0, dilute: 0.0, bond_list: false };
     let mut particles = reference_scene(&config).particles;
     for (i, x) in particles.x.iter_mut().enumerate() {
         *x *= 1.0 + 1e-3 * ((i % 7) as f64);
@@ -78,5 +80,33 @@ fn integrator_step(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, force_loop, integrator_step);
+/// Steps per timed run of a workload: two relaxation checks (one per 50 steps) among them.
+const WORKLOAD_STEPS: u64 = 100;
+
+/// Both `mdsolids bench` workloads at N = 100 and 316, each timed by its own loop clock
+/// (`Trace::loop_s`), which leaves out building the scene and its first and last samples.
+fn workloads(c: &mut Criterion) {
+    let pool = one_thread();
+    let mut group = c.benchmark_group("workload");
+    group.sample_size(10);
+    for n in [100, 316] {
+        group.throughput(Throughput::Elements((n * n) as u64 * WORKLOAD_STEPS));
+        for workload in [Workload::Kernel, Workload::Relax] {
+            let config = BenchConfig { workload, n, steps: WORKLOAD_STEPS, dilute: 0.0, bond_list: false };
+            group.bench_function(BenchmarkId::new(workload.name(), n), |b| {
+                b.iter_custom(|iterations| {
+                    (0..iterations)
+                        .map(|_| {
+                            let scene = reference_scene(&config);
+                            Duration::from_secs_f64(pool.install(|| scene.run()).trace.loop_s)
+                        })
+                        .sum()
+                })
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, force_loop, integrator_step, workloads);
 criterion_main!(benches);

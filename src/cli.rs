@@ -4,7 +4,7 @@ use anyhow::Context;
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 
-use crate::bench::{BenchConfig, run_once};
+use crate::bench::{BenchConfig, BenchResult, Workload, run_once};
 use crate::output::Layout;
 use crate::plan::{Plan, Stability};
 use crate::runner::{
@@ -97,9 +97,15 @@ pub enum Command {
         #[arg(long)]
         force: bool,
     },
-    /// Time the reference workload (README, "Performance"): an N × N lattice with diagonals,
-    /// velocity Verlet, dt = 0.01; prints particle-steps/s, bond-updates/s and energy drift.
+    /// Time the reference workloads (README, "Performance") on an N × N lattice with diagonals:
+    /// `kernel` (undamped, free, velocity Verlet) and `relax` (a damped, loaded, clamped
+    /// coursework lattice with its relaxation checks); prints particle-steps/s, bond-updates/s
+    /// and energy drift.
     Bench {
+        /// Workloads to time, comma-separated (`kernel,relax`): their repetitions alternate,
+        /// so their ratio comes from one run.
+        #[arg(long, value_enum, value_delimiter = ',', default_value = "kernel")]
+        workload: Vec<Workload>,
         /// Lattice side N (N² particles).
         #[arg(long, default_value_t = 316)]
         n: usize,
@@ -164,9 +170,12 @@ pub fn run() -> anyhow::Result<()> {
             };
             slurm_command(&cli.reports, campaign, &request)
         }
-        Command::Bench { n, steps, threads, dilute, bond_list, repeat, json } => {
-            let config = BenchConfig { n: *n, steps: *steps, dilute: *dilute, bond_list: *bond_list };
-            bench_command(&config, *threads, *repeat, *json)
+        Command::Bench { workload, n, steps, threads, dilute, bond_list, repeat, json } => {
+            let configs: Vec<_> = workload
+                .iter()
+                .map(|&workload| BenchConfig { workload, n: *n, steps: *steps, dilute: *dilute, bond_list: *bond_list })
+                .collect();
+            bench_command(&configs, *threads, *repeat, *json)
         }
         Command::Compare { a, b, out } => compare_command(&cli.reports, a, b, out.as_deref()),
     }
@@ -622,22 +631,48 @@ fn publish(
     report::render_with_left_out(campaign, layout, records, &fits, left_out)
 }
 
-fn bench_command(config: &BenchConfig, threads: Option<usize>, repeat: usize, json: bool) -> anyhow::Result<()> {
+fn bench_command(configs: &[BenchConfig], threads: Option<usize>, repeat: usize, json: bool) -> anyhow::Result<()> {
+    anyhow::ensure!(!configs.is_empty(), "--workload: name at least one");
+    let config = &configs[0];
     // The largest lattice a campaign may hold (2000 × 2000): a larger N aborted on allocation.
     anyhow::ensure!((2..=2000).contains(&config.n), "--n {}: the lattice side must be in 2..=2000", config.n);
     anyhow::ensure!(config.steps >= 1 && repeat >= 1, "--steps and --repeat must be ≥ 1");
     anyhow::ensure!(repeat <= 100, "--repeat {repeat}: at most 100 timed repetitions");
     anyhow::ensure!((0.0..1.0).contains(&config.dilute), "--dilute {}: must be in [0, 1)", config.dilute);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build()?;
-    let mut results: Vec<_> = (0..repeat).map(|_| pool.install(|| run_once(config))).collect();
-    results.sort_by(|a, b| a.particle_steps_per_s.total_cmp(&b.particle_steps_per_s));
-    let median = &results[results.len() / 2];
+    // Repetitions alternate between the workloads, so a machine's drift touches all alike.
+    let mut results: Vec<Vec<BenchResult>> = vec![Vec::new(); configs.len()];
+    for _ in 0..repeat {
+        for (config, runs) in configs.iter().zip(&mut results) {
+            runs.push(pool.install(|| run_once(config)));
+        }
+    }
+    let medians: Vec<BenchResult> = results
+        .into_iter()
+        .map(|mut runs| {
+            runs.sort_by(|a, b| a.particle_steps_per_s.total_cmp(&b.particle_steps_per_s));
+            runs.swap_remove(runs.len() / 2)
+        })
+        .collect();
+    for median in &medians {
+        print_bench(median, repeat, json)?;
+    }
+    if !json && let [first, .., last] = &medians[..] {
+        let ratio = last.particle_steps_per_s / first.particle_steps_per_s;
+        println!("{}/{} particle-steps/s: {ratio:.3}", last.workload.name(), first.workload.name());
+    }
+    Ok(())
+}
+
+/// Prints one workload's median as text or one JSON line.
+fn print_bench(median: &BenchResult, repeat: usize, json: bool) -> anyhow::Result<()> {
     if json {
         println!("{}", serde_json::to_string(median)?);
     } else {
         println!(
-            "N = {} ({} particles, {} bonds, {} path), {} steps on {} thread(s), median of {repeat}:\n  \
+            "{}: N = {} ({} particles, {} bonds, {} path), {} steps on {} thread(s), median of {repeat}:\n  \
              {:.1} million particle-steps/s, {:.1} million bond-updates/s, {:.3} s, energy drift {:+.2e}",
+            median.workload.name(),
             median.n,
             median.particles,
             median.bonds,

@@ -33,17 +33,23 @@ pub trait ForceField: Send + Sync {
     fn for_each_bond(&self, visit: &mut dyn FnMut(usize, usize, f64, f64, f64));
 }
 
-/// Background damping f_i −= γ_g v_i on every particle; returns its power γ_g Σ v² (W).
+/// Background damping f_i −= γ_g v_i on every particle; returns its power γ_g Σ v² (W), one
+/// running sum over the particles in order.
 pub fn add_background_damping(gamma: f64, vx: &[f64], vy: &[f64], fx: &mut [f64], fy: &mut [f64]) -> f64 {
+    subtract_background_damping(gamma, vx, vy, fx, fy);
+    let n = fx.len();
+    (0..n).fold(0.0, |power, i| power + gamma * (vx[i] * vx[i] + vy[i] * vy[i]))
+}
+
+/// The forces of background damping alone, f_i −= γ_g v_i, for a caller that sums their power
+/// itself: a loop without a running sum vectorises.
+pub fn subtract_background_damping(gamma: f64, vx: &[f64], vy: &[f64], fx: &mut [f64], fy: &mut [f64]) {
     let n = fx.len();
     let (vx, vy, fy) = (&vx[..n], &vy[..n], &mut fy[..n]);
-    let mut power = 0.0;
     for i in 0..n {
         fx[i] -= gamma * vx[i];
         fy[i] -= gamma * vy[i];
-        power += gamma * (vx[i] * vx[i] + vy[i] * vy[i]);
     }
-    power
 }
 
 /// Particles per block of a bond-list network: bonds with both ends in one block are

@@ -5,8 +5,9 @@
 //! Verlet step does not know yet. Using the half-step velocity there makes damped runs first
 //! order (r off by ~1.5 % at t_c/50). Both Verlet integrators instead give the force loop the
 //! predicted velocity v(t + dt) ≈ v(t) + dt · a(t), whose error is O(dt²); the force error
-//! is then O(dt²) and the step error O(dt³), so damped bonded runs stay second order at the
-//! cost of one particle loop (only when something is damped).
+//! is then O(dt²) and the step error O(dt³), so damped bonded runs stay second order. The
+//! prediction is written by the pass that moves the particles, which reads v and f anyway
+//! (a pass of its own cost a tenth of a damped lattice step).
 //!
 //! Particle loops treat both axes in one pass over memory, are split over threads for large
 //! systems ([`for_chunks`]), and never allocate. These are the production schemes; the others
@@ -46,35 +47,37 @@ struct Prediction {
 }
 
 impl Prediction {
-    /// Fills the prediction v + dt · f/m from the state when the field is damped; returns it
-    /// for the force loop.
-    fn update<F: ForceField, M: InverseMass>(
-        &mut self,
-        state: &State,
-        field: &F,
-        im: M,
-        dt: f64,
-    ) -> Option<(&[f64], &[f64])> {
+    /// The arrays, sized for `n` particles, when `field` is damped, for the pass that moves
+    /// the particles to fill with [`predict`].
+    fn arrays<F: ForceField>(&mut self, field: &F, n: usize) -> Option<(&mut [f64], &mut [f64])> {
         if !field.uses_velocity() {
             return None;
         }
-        let p = &state.particles;
-        self.vx.resize(p.len(), 0.0);
-        self.vy.resize(p.len(), 0.0);
-        let (px, py, vx, vy, fx, fy) = (&mut self.vx, &mut self.vy, &p.vx, &p.vy, &state.fx, &state.fy);
-        let kernel = |offset: usize, px: &mut [f64], py: &mut [f64], vx: &[f64], vy: &[f64], fx: &[f64], fy: &[f64]| {
-            let n = px.len();
-            let (py, vx, vy, fx, fy, im) = (&mut py[..n], &vx[..n], &vy[..n], &fx[..n], &fy[..n], im.part(offset, n));
-            for i in 0..n {
-                px[i] = vx[i] + dt * fx[i] * im.at(i);
-                py[i] = vy[i] + dt * fy[i] * im.at(i);
-            }
-        };
-        let (px, py): (&mut [f64], &mut [f64]) = (px, py);
-        let (vx, vy, fx, fy): (&[f64], &[f64], &[f64], &[f64]) = (vx, vy, fx, fy);
-        for_chunks!(kernel, [px, py], [vx, vy, fx, fy]);
-        Some((&self.vx, &self.vy))
+        self.vx.resize(n, 0.0);
+        self.vy.resize(n, 0.0);
+        Some((&mut self.vx, &mut self.vy))
     }
+
+    /// The predicted velocities for the force loop, when `field` is damped.
+    fn velocities<F: ForceField>(&self, field: &F) -> Option<(&[f64], &[f64])> {
+        field.uses_velocity().then_some((&self.vx, &self.vy))
+    }
+}
+
+/// The velocity v + dt · f/m predicted for the end of a step from velocity `v`, force `f` and
+/// inverse mass `im` at its start.
+#[inline(always)]
+fn predict(v: f64, f: f64, im: f64, dt: f64) -> f64 {
+    v + dt * f * im
+}
+
+/// One axis of one particle in the first half of a velocity-Verlet step: v += f/m · dt/2,
+/// x += v dt, then f = 0 for the next force evaluation.
+#[inline(always)]
+fn kick_drift_clear_axis(x: &mut f64, v: &mut f64, f: &mut f64, im: f64, dt: f64) {
+    *v += 0.5 * dt * *f * im;
+    *x += dt * *v;
+    *f = 0.0;
 }
 
 /// Velocity Verlet (kick–drift–kick).
@@ -84,8 +87,7 @@ pub struct VelocityVerlet {
     uniform_inverse_mass: Option<f64>,
 }
 
-/// First half of a velocity-Verlet step in one pass over memory: v += f/m · dt/2,
-/// x += v dt, then f = 0 for the next force evaluation.
+/// First half of a velocity-Verlet step in one pass over memory ([`kick_drift_clear_axis`]).
 fn kick_drift_clear<M: InverseMass>(state: &mut State, im: M, dt: f64) {
     let p = &mut state.particles;
     let (x, y, vx, vy, fx, fy) =
@@ -101,15 +103,40 @@ fn kick_drift_clear<M: InverseMass>(state: &mut State, im: M, dt: f64) {
         let (y, vx, vy, fx, fy, im) =
             (&mut y[..n], &mut vx[..n], &mut vy[..n], &mut fx[..n], &mut fy[..n], im.part(offset, n));
         for i in 0..n {
-            vx[i] += 0.5 * dt * fx[i] * im.at(i);
-            vy[i] += 0.5 * dt * fy[i] * im.at(i);
-            x[i] += dt * vx[i];
-            y[i] += dt * vy[i];
-            fx[i] = 0.0;
-            fy[i] = 0.0;
+            kick_drift_clear_axis(&mut x[i], &mut vx[i], &mut fx[i], im.at(i), dt);
+            kick_drift_clear_axis(&mut y[i], &mut vy[i], &mut fy[i], im.at(i), dt);
         }
     };
     for_chunks!(kernel, [x, y, vx, vy, fx, fy], []);
+}
+
+/// [`kick_drift_clear`] of a damped field, which first writes the predicted velocities
+/// ([`predict`]) into `(px, py)` in the same pass.
+fn predict_kick_drift_clear<M: InverseMass>(state: &mut State, im: M, dt: f64, px: &mut [f64], py: &mut [f64]) {
+    let p = &mut state.particles;
+    let (x, y, vx, vy, fx, fy) =
+        (&mut p.x[..], &mut p.y[..], &mut p.vx[..], &mut p.vy[..], &mut state.fx[..], &mut state.fy[..]);
+    let kernel = |offset: usize,
+                  x: &mut [f64],
+                  y: &mut [f64],
+                  vx: &mut [f64],
+                  vy: &mut [f64],
+                  fx: &mut [f64],
+                  fy: &mut [f64],
+                  px: &mut [f64],
+                  py: &mut [f64]| {
+        let n = x.len();
+        let (y, vx, vy, fx, fy, im) =
+            (&mut y[..n], &mut vx[..n], &mut vy[..n], &mut fx[..n], &mut fy[..n], im.part(offset, n));
+        let (px, py) = (&mut px[..n], &mut py[..n]);
+        for i in 0..n {
+            px[i] = predict(vx[i], fx[i], im.at(i), dt);
+            py[i] = predict(vy[i], fy[i], im.at(i), dt);
+            kick_drift_clear_axis(&mut x[i], &mut vx[i], &mut fx[i], im.at(i), dt);
+            kick_drift_clear_axis(&mut y[i], &mut vy[i], &mut fy[i], im.at(i), dt);
+        }
+    };
+    for_chunks!(kernel, [x, y, vx, vy, fx, fy, px, py], []);
 }
 
 /// Second half kick v += f/m · dt/2.
@@ -132,9 +159,12 @@ impl VelocityVerlet {
     /// (Forest–Ruth's middle sub-step).
     fn substep<F: ForceField>(&mut self, state: &mut State, field: &mut F, h: f64, time: f64) {
         with_inverse_mass!(state, self.uniform_inverse_mass, |im| {
-            let velocities = self.prediction.update(state, field, im, h);
-            kick_drift_clear(state, im, h);
-            evaluate_and_account(state, field, velocities, h, time);
+            let n = state.particles.len();
+            match self.prediction.arrays(field, n) {
+                Some((px, py)) => predict_kick_drift_clear(state, im, h, px, py),
+                None => kick_drift_clear(state, im, h),
+            }
+            evaluate_and_account(state, field, self.prediction.velocities(field), h, time);
             kick(state, im, h);
         });
     }
@@ -217,6 +247,46 @@ fn drift_clear(state: &mut State, step_x: &[f64], step_y: &[f64]) {
     for_chunks!(kernel, [x, y, fx, fy], [step_x, step_y]);
 }
 
+/// [`drift_clear`] of a damped field, which first writes the predicted velocities ([`predict`],
+/// step `dt`) into `(px, py)` in the same pass; `step` is (s_x, s_y).
+fn predict_drift_clear<M: InverseMass>(
+    state: &mut State,
+    step: (&[f64], &[f64]),
+    im: M,
+    dt: f64,
+    prediction: (&mut [f64], &mut [f64]),
+) {
+    let p = &mut state.particles;
+    let (x, y, fx, fy, vx, vy) =
+        (&mut p.x[..], &mut p.y[..], &mut state.fx[..], &mut state.fy[..], &p.vx[..], &p.vy[..]);
+    let ((sx, sy), (px, py)) = (step, prediction);
+    let kernel = |offset: usize,
+                  x: &mut [f64],
+                  y: &mut [f64],
+                  fx: &mut [f64],
+                  fy: &mut [f64],
+                  px: &mut [f64],
+                  py: &mut [f64],
+                  sx: &[f64],
+                  sy: &[f64],
+                  vx: &[f64],
+                  vy: &[f64]| {
+        let n = x.len();
+        let (y, fx, fy, px, py, im) =
+            (&mut y[..n], &mut fx[..n], &mut fy[..n], &mut px[..n], &mut py[..n], im.part(offset, n));
+        let (sx, sy, vx, vy) = (&sx[..n], &sy[..n], &vx[..n], &vy[..n]);
+        for i in 0..n {
+            px[i] = predict(vx[i], fx[i], im.at(i), dt);
+            py[i] = predict(vy[i], fy[i], im.at(i), dt);
+            x[i] += sx[i];
+            y[i] += sy[i];
+            fx[i] = 0.0;
+            fy[i] = 0.0;
+        }
+    };
+    for_chunks!(kernel, [x, y, fx, fy, px, py], [sx, sy, vx, vy]);
+}
+
 impl PositionVerlet {
     /// s_new = s + f/m · dt², the central velocity v = (s + s_new)/(2 dt), s ← s_new.
     fn advance<M: InverseMass>(&mut self, state: &mut State, im: M, dt: f64) {
@@ -261,9 +331,12 @@ impl Integrator for PositionVerlet {
 
     fn step<F: ForceField>(&mut self, state: &mut State, field: &mut F, dt: f64) {
         with_inverse_mass!(state, self.uniform_inverse_mass, |im| {
-            let velocities = self.prediction.update(state, field, im, dt);
-            drift_clear(state, &self.step_x, &self.step_y);
-            evaluate_and_account(state, field, velocities, dt, (state.steps + 1) as f64 * dt);
+            let n = state.particles.len();
+            match self.prediction.arrays(field, n) {
+                Some(prediction) => predict_drift_clear(state, (&self.step_x, &self.step_y), im, dt, prediction),
+                None => drift_clear(state, &self.step_x, &self.step_y),
+            }
+            evaluate_and_account(state, field, self.prediction.velocities(field), dt, (state.steps + 1) as f64 * dt);
             self.advance(state, im, dt);
         });
         finish_step(state, dt);
