@@ -619,7 +619,8 @@ fn hostile_text_stays_text_in_the_report() {
     let html = std::fs::read_to_string(work.path().join("r/hostile/index.html")).unwrap();
     // (The report has emphasis and lists of its own: the title's `*x*` and the description's
     // `- not a list` must not become one.)
-    for live in ["<script", "<img", "<b>", "<em>x</em>", "<a href=\"javascript", "<li>not a list", "<h1>T <", "<h1>not"] {
+    for live in ["<script", "<img", "<b>", "<em>x</em>", "<a href=\"javascript", "<li>not a list", "<h1>T <", "<h1>not"]
+    {
         assert!(!html.contains(live), "{live} is live in index.html:\n{html}");
     }
     assert!(html.contains("&lt;script&gt;alert(1)&lt;/script&gt; | *x* [l](javascript:y)"), "{html}");
