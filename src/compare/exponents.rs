@@ -53,8 +53,8 @@ fn law_words(fit: &Fit, against: &str) -> (String, String) {
     let Some(beta) = fit.beta else { return (fit.law.clone(), "–".into()) };
     let law = if beta == 1.0 { "linear".to_string() } else { format!("β = {beta}") };
     let prediction = match predicted(against, beta) {
-        Some((p, _)) if beta == 1.0 => exponent(p),
-        Some((p, formula)) => format!("{} = {formula}", exponent(p)),
+        Some((p, _)) if beta == 1.0 => exponent(p, 4),
+        Some((p, formula)) => format!("{} = {formula}", exponent(p, 4)),
         None => "–".into(),
     };
     (law, prediction)
@@ -180,7 +180,7 @@ impl Matched {
         let side = |fit: &Option<Fit>| match fit {
             Some(fit) => {
                 let (law, prediction) = law_words(fit, &self.against);
-                (law, exponent(fit.exponent), prediction)
+                (law, exponent(fit.exponent, 4), prediction)
             }
             None => ("–".into(), "–".into(), "–".into()),
         };
@@ -217,7 +217,7 @@ impl Matched {
     /// One side's fit in words: `p = 0.2000 (β = 1.5, predicted 0.2000 = (β−1)/(β+1))`.
     fn fit_words(&self, fit: &Fit) -> String {
         let (law, prediction) = law_words(fit, &self.against);
-        format!("p = {} ({law}, predicted {prediction})", exponent(fit.exponent))
+        format!("p = {} ({law}, predicted {prediction})", exponent(fit.exponent, 4))
     }
 }
 
@@ -264,7 +264,7 @@ fn verdict(matched: &[Matched]) -> String {
     let outside: Vec<String> = misses
         .iter()
         .filter(|(_, _, miss)| *miss > TOLERANCE)
-        .map(|(m, side, miss)| format!("{} {} in {side} (off by {})", m.scene_words(), m.quantity, exponent(*miss)))
+        .map(|(m, side, miss)| format!("{} {} in {side} (off by {})", m.scene_words(), m.quantity, exponent(*miss, 4)))
         .collect();
     let largest = misses.iter().map(|(_, _, miss)| *miss).fold(0.0, f64::max);
     match (misses.len(), outside.len()) {

@@ -17,7 +17,7 @@ mod probes;
 mod solids;
 mod stability_map;
 mod waves;
-mod words;
+pub(crate) mod words;
 
 use anyhow::Context as _;
 use std::collections::BTreeSet;

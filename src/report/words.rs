@@ -18,6 +18,32 @@ pub(super) fn number(x: f64) -> String {
     }
 }
 
+/// A number in a sentence: 4 significant digits, plain from 1e-3 to 1e5, scientific otherwise.
+pub(crate) fn short(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    // The exponent after rounding to 4 digits (0.099999 is 1.000e-1), so the digits stay 4.
+    let scientific = format!("{x:.3e}");
+    let magnitude: i32 = scientific.split_once('e').and_then(|(_, e)| e.parse().ok()).unwrap_or(0);
+    if (-3..5).contains(&magnitude) {
+        let decimals = (3 - magnitude).max(0) as usize;
+        format!("{x:.decimals$}")
+    } else {
+        scientific
+    }
+}
+
+/// A fitted exponent with `decimals` decimals, a fit's round-off (below half the last
+/// decimal, which would print as ±0.000) written as 0.
+pub(crate) fn exponent(x: f64, decimals: usize) -> String {
+    if x.abs() < 0.5 * 10f64.powi(-(decimals as i32)) {
+        format!("{:.decimals$}", 0.0)
+    } else {
+        format!("{x:.decimals$}")
+    }
+}
+
 /// A number as [`number`] writes it, or a dash when there is none.
 pub(super) fn optional(x: Option<f64>) -> String {
     x.map(number).unwrap_or_else(|| "–".into())

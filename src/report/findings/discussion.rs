@@ -134,7 +134,7 @@ fn damping(e: &Evidence) -> Option<Paragraph> {
 
 /// A fitted exponent with three decimals, a round-off of zero written 0.000 (not −0.000).
 fn exponent(p: f64) -> String {
-    if p.abs() < 5e-4 { "0.000".into() } else { format!("{p:.3}") }
+    crate::report::words::exponent(p, 3)
 }
 
 /// One time-step recommendation for every scene.

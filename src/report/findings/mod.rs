@@ -13,6 +13,8 @@ mod two_d;
 use serde::Serialize;
 
 use super::figure::{Figure, FigureRef, movie_refs};
+// Numbers in sentences: 4 significant digits, plain or scientific as reads best.
+use super::words::short as sig;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::summary::ScalingFit;
@@ -186,20 +188,6 @@ pub fn findings(evidence: &Evidence) -> Vec<Finding> {
         .collect()
 }
 
-/// `x` with 4 significant digits, plain or scientific as reads best.
-fn sig(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return format!("{x}");
-    }
-    let magnitude = x.abs().log10().floor();
-    if (-3.0..5.0).contains(&magnitude) {
-        let decimals = (3.0 - magnitude).max(0.0) as usize;
-        format!("{x:.decimals$}")
-    } else {
-        format!("{x:.3e}")
-    }
-}
-
 /// A relative error as a signed number with 2 digits (`+1.6e-4`).
 fn rel(e: f64) -> String {
     format!("{e:+.1e}")
@@ -233,6 +221,7 @@ mod tests {
         assert_eq!(sig(2.221441469), "2.221");
         assert_eq!(sig(0.0444288), "0.04443");
         assert_eq!(sig(2.0e11), "2.000e11");
+        assert_eq!(sig(0.099999999), "0.1000");
         assert_eq!(rel(-1.6464e-4), "-1.6e-4");
     }
 }
