@@ -13,6 +13,16 @@ pub struct Layout {
     pub root: PathBuf,
 }
 
+/// The movie of run `run_id`, relative to its campaign's directory (as the report links it).
+pub fn movie_name(run_id: &str) -> String {
+    format!("plots/{run_id}.gif")
+}
+
+/// The side-by-side movie of `scene`, relative to its campaign's directory.
+pub fn side_by_side_name(scene: &str) -> String {
+    format!("plots/{scene}-side-by-side.gif")
+}
+
 impl Layout {
     /// Layout of campaign `name` under the reports directory `reports`.
     pub fn new(reports: &Path, name: &str) -> Layout {
@@ -28,11 +38,11 @@ impl Layout {
     }
     /// The movie of run `run_id`, beside the figures (the report shows it; `runs/` is the cache).
     pub fn movie_file(&self, run_id: &str) -> PathBuf {
-        self.plot_file(&format!("{run_id}.gif"))
+        self.file(&movie_name(run_id))
     }
     /// The movie of all runs of `scene` side by side.
     pub fn side_by_side_movie(&self, scene: &str) -> PathBuf {
-        self.plot_file(&format!("{scene}-side-by-side.gif"))
+        self.file(&side_by_side_name(scene))
     }
     /// The run ids (one a line) the side-by-side movie of `scene` was drawn from.
     pub fn side_by_side_runs(&self, scene: &str) -> PathBuf {

@@ -46,7 +46,7 @@ const SCALINGS: [Scaling; 7] = [
         against: "v0",
         paths: SPEED,
         x: excitation_speed,
-        y: |r| r.metrics.arrival_criterion.as_deref().and_then(|c| r.metrics.sound_speed(c)),
+        y: |r| r.metrics.recommended_sound_speed(),
     },
     Scaling {
         quantity: "youngs_modulus",

@@ -84,9 +84,7 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         ),
         optional_floats(records, "omega_max", |r| r.metrics.omega_max),
         optional_floats(records, "arrival_time", |r| r.metrics.arrival_time()),
-        optional_floats(records, "sound_speed", |r| {
-            r.metrics.arrival_criterion.as_deref().and_then(|c| r.metrics.sound_speed(c))
-        }),
+        optional_floats(records, "sound_speed", |r| r.metrics.recommended_sound_speed()),
         Column::new(
             "arrival_criterion".into(),
             records.iter().map(|r| r.metrics.arrival_criterion.clone()).collect::<Vec<Option<String>>>(),

@@ -19,19 +19,3 @@ pub(super) fn fixed(x: Option<f64>) -> String {
 
 /// Numbers in sentences and fitted exponents are written as the campaign report writes them.
 pub(super) use crate::report::words::{exponent, short};
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn four_digits_in_sentences() {
-        assert_eq!(short(2.2482), "2.248");
-        assert_eq!(short(0.099999999), "0.1000");
-        assert_eq!(short(0.004973), "0.004973");
-        assert_eq!(short(12345.6), "12346");
-        assert_eq!(short(1.4584e9), "1.458e9");
-        assert_eq!(exponent(-1.83e-14, 4), "0.0000");
-        assert_eq!(exponent(0.19976, 4), "0.1998");
-    }
-}

@@ -4,6 +4,7 @@
 
 use serde::Serialize;
 
+use crate::output::{movie_name, side_by_side_name};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 
@@ -36,12 +37,12 @@ pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> 
     let own = mine.iter().filter(|r| !together && r.spec.movie.is_some() && r.status != RunStatus::Panicked);
     together
         .then(|| FigureRef {
-            file: format!("plots/{scene}-side-by-side.gif"),
+            file: side_by_side_name(scene),
             caption: format!("All runs of {scene} side by side, on one colour scale (m/s)."),
         })
         .into_iter()
         .chain(own.map(|r| FigureRef {
-            file: movie_file(&r.run_id),
+            file: movie_name(&r.run_id),
             caption: format!(
                 "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), {}.",
                 physics_label(r, |_| true),
@@ -54,9 +55,14 @@ pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> 
         .collect()
 }
 
-/// The movie of run `run_id`, relative to the report (`output::Layout::movie_file`).
-pub fn movie_file(run_id: &str) -> String {
-    format!("plots/{run_id}.gif")
+/// A run relaxed by bond damping γ alone (no background damping).
+pub fn bond_damping_only(r: &RunRecord) -> bool {
+    r.spec.gamma > 0.0 && r.spec.gamma_background == 0.0
+}
+
+/// A run relaxed by background damping γ_g alone (no bond damping).
+pub fn background_damping_only(r: &RunRecord) -> bool {
+    r.spec.gamma == 0.0 && r.spec.gamma_background > 0.0
 }
 
 /// The label of a run's grid values other than the time step: runs with the same group label

@@ -2,7 +2,9 @@
 //! energies per scene, chain displacements, relaxation, the finite-size convergence of lattice
 //! moduli, and the convergence of the pair measurements against their analytical values.
 
-use super::figure::{Figure, group_label, groups, physics_label, representative};
+use super::figure::{
+    Figure, background_damping_only, bond_damping_only, group_label, groups, physics_label, representative,
+};
 use super::{precision, probes, solids, stability_map, waves};
 use crate::draw::chart::{Chart, Scale, Series, line_chart};
 use crate::measure::relative_error;
@@ -92,17 +94,13 @@ fn dissipation_figure(records: &[RunRecord]) -> anyhow::Result<Option<Figure>> {
     };
     let force_criterion = |r: &RunRecord| r.spec.relax().is_some_and(|x| x.residual_force.is_some());
     let series: Vec<Series> = [
-        curve("bond damping γ", &|r| r.spec.gamma > 0.0 && r.spec.gamma_background == 0.0, |r| r.spec.gamma),
-        curve(
-            "background γ_g, energy criterion",
-            &|r| r.spec.gamma == 0.0 && r.spec.gamma_background > 0.0 && !force_criterion(r),
-            |r| r.spec.gamma_background,
-        ),
-        curve(
-            "background γ_g, force criterion",
-            &|r| r.spec.gamma == 0.0 && r.spec.gamma_background > 0.0 && force_criterion(r),
-            |r| r.spec.gamma_background,
-        ),
+        curve("bond damping γ", &bond_damping_only, |r| r.spec.gamma),
+        curve("background γ_g, energy criterion", &|r| background_damping_only(r) && !force_criterion(r), |r| {
+            r.spec.gamma_background
+        }),
+        curve("background γ_g, force criterion", &|r| background_damping_only(r) && force_criterion(r), |r| {
+            r.spec.gamma_background
+        }),
     ]
     .into_iter()
     .filter(|s| !s.points.is_empty())

@@ -74,8 +74,8 @@ pub fn render_with_left_out(
     remove_stale(&layout.root, "plots", ".png", &drawn)?;
     let movies: BTreeSet<String> = side_by_side
         .iter()
-        .map(|scene| format!("plots/{scene}-side-by-side.gif"))
-        .chain(records.iter().filter(|r| r.spec.movie.is_some()).map(|r| figure::movie_file(&r.run_id)))
+        .map(|scene| crate::output::side_by_side_name(scene))
+        .chain(records.iter().filter(|r| r.spec.movie.is_some()).map(|r| crate::output::movie_name(&r.run_id)))
         .collect();
     remove_stale(&layout.root, "plots", ".gif", &movies)?;
     // Movies of earlier versions sat in the cache folder.

@@ -80,6 +80,11 @@ impl Metrics {
     pub fn sound_speed(&self, criterion: &str) -> Option<f64> {
         self.wave_distance.zip(self.arrival_times.get(criterion)).map(|(l, t)| l / t)
     }
+
+    /// Sound speed L / t_s (m/s) by the recommended criterion ([`Metrics::arrival_time`]'s).
+    pub fn recommended_sound_speed(&self) -> Option<f64> {
+        self.arrival_criterion.as_deref().and_then(|c| self.sound_speed(c))
+    }
 }
 
 /// A simulated and measured run.

@@ -4,8 +4,9 @@
 
 use serde::Serialize;
 
-use super::{Answer, Evidence, Table, Verdict, cell, noise, sig};
+use super::{Answer, Evidence, Table, Verdict, cell, fastest_relaxation, noise, sig};
 use crate::model::LawSpec;
+use crate::report::figure::{background_damping_only, bond_damping_only};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::spec::{Diagonals, LoadCase};
@@ -102,21 +103,8 @@ fn largest<'a>(runs: &[&'a RunRecord]) -> Option<&'a RunRecord> {
 
 /// Bond damping against background damping.
 fn damping(e: &Evidence) -> Option<Paragraph> {
-    let time = |bond: bool| {
-        e.ok(|r| {
-            r.spec.lattice().is_some()
-                && r.metrics.dissipation_time.is_some()
-                && if bond {
-                    r.spec.gamma > 0.0 && r.spec.gamma_background == 0.0
-                } else {
-                    r.spec.gamma == 0.0 && r.spec.gamma_background > 0.0
-                }
-        })
-        .iter()
-        .filter_map(|r| r.metrics.dissipation_time)
-        .fold(f64::INFINITY, f64::min)
-    };
-    let (bond, background) = (time(true), time(false));
+    let time = |alone: fn(&RunRecord) -> bool| fastest_relaxation(&e.ok(|r| r.spec.lattice().is_some() && alone(r)));
+    let (bond, background) = (time(bond_damping_only), time(background_damping_only));
     (bond.is_finite() && background.is_finite()).then(|| Paragraph {
         title: "Bond against background damping",
         text: format!(

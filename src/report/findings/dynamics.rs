@@ -2,26 +2,24 @@
 //! against the N_s t_c estimate, the dissipation time against bond and background damping, and
 //! the Hertz lattice kicked over decades of v0.
 
-use super::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
+use super::{Answer, Evidence, Table, Verdict, cell, fastest_relaxation, rel, relative, sig};
 use crate::model::LawSpec;
-use crate::report::figure::physics_label;
+use crate::report::figure::{background_damping_only, bond_damping_only, physics_label};
 use crate::runner::RunRecord;
 
 /// Relative tolerance of a linear chain's front speed against a√(k/m): a threshold θ = 0.01 of
 /// the source's peak catches the dispersive front a little early, by about 1 % over 200 spacings.
 const SPEED_TOLERANCE: f64 = 0.02;
 
-/// The front speed of a run by its recommended criterion.
-fn speed(r: &RunRecord) -> Option<f64> {
-    r.metrics.arrival_criterion.as_deref().and_then(|c| r.metrics.sound_speed(c))
-}
-
 /// (d): the sound speed, its criteria, and the N_s t_c estimate.
 pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
-    let linear =
-        e.ok(|r| r.metrics.sound_speed_theory.is_some() && r.spec.law == LawSpec::Linear && speed(r).is_some());
+    let linear = e.ok(|r| {
+        r.metrics.sound_speed_theory.is_some()
+            && r.spec.law == LawSpec::Linear
+            && r.metrics.recommended_sound_speed().is_some()
+    });
     let chain = linear.iter().copied().find(|r| r.spec.chain().is_some())?;
-    let error = relative(speed(chain), chain.metrics.sound_speed_theory);
+    let error = relative(chain.metrics.recommended_sound_speed(), chain.metrics.sound_speed_theory);
     let mut sentences = chain_speed_sentences(chain, error);
     let rows = lattice_speed_rows(&linear);
     if !rows.is_empty() {
@@ -37,7 +35,7 @@ pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
                    and how does it compare with t_s = N_s t_c?",
         short: format!(
             "V = {} m/s by the speed threshold, {} of a√(k/m)",
-            cell(speed(chain)),
+            cell(chain.metrics.recommended_sound_speed()),
             error.map(rel).unwrap_or_default()
         ),
         sentences,
@@ -74,7 +72,7 @@ fn chain_speed_sentences(chain: &RunRecord, error: Option<f64>) -> Vec<String> {
             chain.spec.chain().map_or(0, |c| c.n),
             sig(chain.spec.v0),
             cell(chain.metrics.wave_distance),
-            cell(speed(chain)),
+            cell(chain.metrics.recommended_sound_speed()),
             cell(chain.metrics.sound_speed_theory),
             error.map(rel).unwrap_or_default()
         ),
@@ -87,7 +85,10 @@ fn chain_speed_sentences(chain: &RunRecord, error: Option<f64>) -> Vec<String> {
             "The coursework's estimate t_s = N_s t_c gives V = {} m/s: the front travels {} × faster, because t_c is \
              half a period of one pair, not the time a signal needs to cross a spring.",
             cell(estimate),
-            estimate.zip(speed(chain)).map(|(a, b)| format!("{:.2}", b / a)).unwrap_or_else(|| "–".into())
+            estimate
+                .zip(chain.metrics.recommended_sound_speed())
+                .map(|(a, b)| format!("{:.2}", b / a))
+                .unwrap_or_else(|| "–".into())
         ),
     ]
 }
@@ -101,9 +102,11 @@ fn lattice_speed_rows(linear: &[&RunRecord]) -> Vec<Vec<String>> {
             vec![
                 r.spec.scene.clone(),
                 physics_label(r, |_| true),
-                cell(speed(r)),
+                cell(r.metrics.recommended_sound_speed()),
                 cell(r.metrics.sound_speed_theory),
-                relative(speed(r), r.metrics.sound_speed_theory).map(rel).unwrap_or_else(|| "–".into()),
+                relative(r.metrics.recommended_sound_speed(), r.metrics.sound_speed_theory)
+                    .map(rel)
+                    .unwrap_or_else(|| "–".into()),
             ]
         })
         .collect()
@@ -117,13 +120,9 @@ pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
             && r.spec.varied.keys().any(|k| k.starts_with("damping."))
     });
     let first = *relaxed.first()?;
-    let bond: Vec<&RunRecord> =
-        relaxed.iter().copied().filter(|r| r.spec.gamma > 0.0 && r.spec.gamma_background == 0.0).collect();
-    let background: Vec<&RunRecord> =
-        relaxed.iter().copied().filter(|r| r.spec.gamma == 0.0 && r.spec.gamma_background > 0.0).collect();
+    let bond: Vec<&RunRecord> = relaxed.iter().copied().filter(|r| bond_damping_only(r)).collect();
+    let background: Vec<&RunRecord> = relaxed.iter().copied().filter(|r| background_damping_only(r)).collect();
     let sentences = damping_sentences(first, &bond, &background);
-    let fastest =
-        |runs: &[&RunRecord]| runs.iter().filter_map(|r| r.metrics.dissipation_time).fold(f64::INFINITY, f64::min);
     let scenes: Vec<String> = relaxed.iter().map(|r| r.spec.scene.clone()).collect();
     let mut shown: Vec<_> = e.figure("dissipation", "damping").into_iter().collect();
     for s in scenes.iter().collect::<std::collections::BTreeSet<_>>() {
@@ -136,7 +135,10 @@ pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
         short: if bond.is_empty() || background.is_empty() {
             "dissipation times measured".into()
         } else {
-            format!("background damping relaxes {:.0}× faster than bond damping", fastest(&bond) / fastest(&background))
+            format!(
+                "background damping relaxes {:.0}× faster than bond damping",
+                fastest_relaxation(&bond) / fastest_relaxation(&background)
+            )
         },
         sentences,
         reference: "No analytical reference: the times are measured, with the stopping criterion stated.".into(),
@@ -148,8 +150,6 @@ pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
 
 /// What dissipates how fast: the criterion, bond damping, background damping, their trends.
 fn damping_sentences(first: &RunRecord, bond: &[&RunRecord], background: &[&RunRecord]) -> Vec<String> {
-    let fastest =
-        |runs: &[&RunRecord]| runs.iter().filter_map(|r| r.metrics.dissipation_time).fold(f64::INFINITY, f64::min);
     let mut sentences = vec![format!(
         "Dissipated means: {} (the stopping criterion of each run, in the table); the relaxation figures draw \
          E_kin/E_pot against time with the threshold as a line.",
@@ -170,7 +170,11 @@ fn damping_sentences(first: &RunRecord, bond: &[&RunRecord], background: &[&RunR
              too, and relaxes the block {}× faster than the fastest bond damping here.",
             background.iter().map(|r| sig(r.spec.gamma_background)).collect::<Vec<_>>().join(", "),
             background.iter().map(|r| cell(r.metrics.dissipation_time)).collect::<Vec<_>>().join(", "),
-            if bond.is_empty() { "–".into() } else { format!("{:.0}", fastest(bond) / fastest(background)) }
+            if bond.is_empty() {
+                "–".into()
+            } else {
+                format!("{:.0}", fastest_relaxation(bond) / fastest_relaxation(background))
+            }
         ));
     }
     sentences.extend(trend("bond damping", "γ", bond, |r| r.spec.gamma));

@@ -15,6 +15,8 @@ use serde::Serialize;
 use super::figure::{Figure, FigureRef, movie_refs};
 // Numbers in sentences: 4 significant digits, plain or scientific as reads best.
 use super::words::short as sig;
+// (a − b)/b when both exist and b ≠ 0.
+use crate::measure::relative_error as relative;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::summary::ScalingFit;
@@ -193,6 +195,11 @@ fn rel(e: f64) -> String {
     format!("{e:+.1e}")
 }
 
+/// The shortest dissipation time (s) among `runs`; infinite when none relaxed.
+fn fastest_relaxation(runs: &[&RunRecord]) -> f64 {
+    runs.iter().filter_map(|r| r.metrics.dissipation_time).fold(f64::INFINITY, f64::min)
+}
+
 /// `x` when present, a dash otherwise.
 fn cell(x: Option<f64>) -> String {
     x.map(sig).unwrap_or_else(|| "–".into())
@@ -207,21 +214,12 @@ fn noise(x: Option<f64>, scale: f64) -> String {
     }
 }
 
-/// (a − b)/b when both exist and b ≠ 0.
-fn relative(a: Option<f64>, b: Option<f64>) -> Option<f64> {
-    crate::measure::relative_error(a, b)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn significant_digits_read_well() {
-        assert_eq!(sig(2.221441469), "2.221");
-        assert_eq!(sig(0.0444288), "0.04443");
-        assert_eq!(sig(2.0e11), "2.000e11");
-        assert_eq!(sig(0.099999999), "0.1000");
+    fn relative_errors_read_with_their_sign() {
         assert_eq!(rel(-1.6464e-4), "-1.6e-4");
     }
 }

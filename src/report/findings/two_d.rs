@@ -150,8 +150,6 @@ pub(super) fn lattice_time_step(e: &Evidence) -> Option<Answer> {
     let points: Vec<(f64, f64)> = sweep.iter().filter_map(|r| r.metrics.energy_error.map(|x| (r.spec.dt, x))).collect();
     let order = convergence_order(&points);
     let finest = *sweep.last()?;
-    let arrival =
-        |r: &RunRecord| r.metrics.arrival_criterion.as_deref().and_then(|c| r.metrics.arrival_times.get(c).copied());
     let rows: Vec<Vec<String>> = sweep
         .iter()
         .map(|r| {
@@ -159,8 +157,10 @@ pub(super) fn lattice_time_step(e: &Evidence) -> Option<Answer> {
                 format!("{:.0}", r.spec.dt_per_tc()),
                 cell(r.metrics.dt_omega_max),
                 cell(r.metrics.energy_error),
-                cell(arrival(r)),
-                relative(arrival(r), arrival(finest)).map(rel).unwrap_or_else(|| "–".into()),
+                cell(r.metrics.arrival_time()),
+                relative(r.metrics.arrival_time(), finest.metrics.arrival_time())
+                    .map(rel)
+                    .unwrap_or_else(|| "–".into()),
             ]
         })
         .collect();
@@ -175,7 +175,7 @@ pub(super) fn lattice_time_step(e: &Evidence) -> Option<Answer> {
         order_text(order),
         cell(coarsest.metrics.energy_error),
         cell(finest.metrics.energy_error),
-        relative(arrival(coarsest), arrival(finest)).map(rel).unwrap_or_else(|| "–".into()),
+        relative(coarsest.metrics.arrival_time(), finest.metrics.arrival_time()).map(rel).unwrap_or_else(|| "–".into()),
         cell(super::super::figure::representative(&sweep).metrics.energy_error),
         cell(super::super::figure::representative(&sweep).metrics.dt_omega_max),
     )];
@@ -248,7 +248,6 @@ pub(super) fn kick(e: &Evidence) -> Option<Answer> {
             && r.spec.law == LawSpec::Linear
             && r.metrics.sound_speed_theory.is_some()
     });
-    let speed = |r: &RunRecord| r.metrics.arrival_criterion.as_deref().and_then(|c| r.metrics.sound_speed(c));
     let mut sentences = Vec::new();
     for diagonals in [Diagonals::None, Diagonals::Both] {
         let Some(r) = kicked.iter().find(|r| r.spec.lattice().is_some_and(|l| l.diagonals == diagonals)) else {
@@ -259,14 +258,14 @@ pub(super) fn kick(e: &Evidence) -> Option<Answer> {
                 "Without diagonals the kicked column is a chain of its own: the vertical kick runs down it at \
                  {} m/s against a√(k/m) = {} m/s, and a square lattice without diagonals has no shear stiffness to \
                  pass it sideways.{}",
-                cell(speed(r)),
+                cell(r.metrics.recommended_sound_speed()),
                 cell(r.metrics.sound_speed_theory),
                 share_words(r)
             ),
             _ => format!(
                 "With diagonals every node is tied to its neighbours across the cell: the kick spreads into the \
                  whole block and reaches the bottom row at {} m/s against c_L = a√((k + k_d)/m) = {} m/s.{}",
-                cell(speed(r)),
+                cell(r.metrics.recommended_sound_speed()),
                 cell(r.metrics.sound_speed_theory),
                 share_words(r)
             ),
@@ -425,7 +424,7 @@ pub(super) fn shear(e: &Evidence) -> Option<Answer> {
             cell(r.metrics.lattice.shear_modulus_theory)
         ));
     }
-    let driven = e.ok(regular_or_driven);
+    let driven = e.ok(driven);
     for r in driven.iter().take(4) {
         let Some((name, md, fem, _)) = modulus(r) else { continue };
         sentences.push(format!(
@@ -450,6 +449,6 @@ pub(super) fn shear(e: &Evidence) -> Option<Answer> {
 }
 
 /// A lattice driven at constant velocity (the coursework's velocity boundary condition).
-fn regular_or_driven(r: &RunRecord) -> bool {
+fn driven(r: &RunRecord) -> bool {
     regular(r).is_some_and(|l| l.control == Control::Velocity)
 }
