@@ -7,7 +7,7 @@ use std::collections::BTreeSet;
 
 use super::join::{SceneJoin, SceneRows, is_dotted};
 use super::table::{Side, Values};
-use crate::draw::chart::{Chart, Scale, Series, line_chart};
+use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 
 /// The figures of one scene against one parameter.
 #[derive(Serialize)]
@@ -96,8 +96,8 @@ fn plot(
 /// A side's points as one series: a line through one run per parameter value, markers where
 /// other grid values put several runs at one value.
 fn series(label: String, points: Vec<(f64, f64)>) -> Series {
-    let markers = points.windows(2).any(|w| w[0].0 == w[1].0);
-    Series { label, points, markers }
+    let several = points.windows(2).any(|w| w[0].0 == w[1].0);
+    Series { label, points, mark: if several { Mark::Markers } else { Mark::Line } }
 }
 
 /// Logarithmic along each axis whose values are positive and span more than a decade.

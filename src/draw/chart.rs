@@ -21,15 +21,28 @@ pub(crate) fn ensure_font() -> anyhow::Result<()> {
     Ok(())
 }
 
-/// One line (or marker set) of a chart.
+/// One line, marker set or set of error bars of a chart.
 #[derive(Clone, Debug)]
 pub struct Series {
     /// Legend text.
     pub label: String,
     /// (x, y) points.
     pub points: Vec<(f64, f64)>,
-    /// Draw markers instead of a line.
-    pub markers: bool,
+    /// How the points are drawn.
+    pub mark: Mark,
+}
+
+/// How a series' points are drawn.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Mark {
+    /// A line through them (thinned to [`LINE_POINTS`]).
+    Line,
+    /// A disc at each.
+    Markers,
+    /// A disc at each with a vertical error bar y ± `half_widths[i]` (a mean ± one standard
+    /// deviation of an ensemble), capped at both ends; one half-width per point (in the units of
+    /// y, ≥ 0). On a logarithmic y axis a bar reaching 0 or below is cut at the axis' bottom.
+    ErrorBars(Vec<f64>),
 }
 
 /// Titles and axis kinds of a chart.
@@ -179,8 +192,9 @@ fn line_chart_on<DB: DrawingBackend>(
     series: &[Series],
 ) -> anyhow::Result<()> {
     let scale = chart.scale;
+    // The axes hold the points and the ends of their error bars.
     let shown: Vec<(f64, f64)> =
-        series.iter().flat_map(|s| s.points.iter().copied()).filter(|&p| scale.shows(p)).collect();
+        series.iter().flat_map(|s| s.points.iter().copied().chain(bar_ends(s))).filter(|&p| scale.shows(p)).collect();
     let x_range = bounds(shown.iter().map(|p| p.0), scale.log_x());
     let y_range = bounds(shown.iter().map(|p| p.1), scale.log_y());
     {
@@ -296,19 +310,44 @@ where
         mesh.y_label_formatter(labels);
     }
     mesh.draw().map_err(draw_error)?;
+    let y_floor = ctx.y_range().start;
     for (index, s) in series.iter().enumerate() {
-        let color = Palette99::pick(index).to_rgba();
-        let points: Vec<(f64, f64)> = s.points.iter().copied().filter(|&p| chart.scale.shows(p)).collect();
-        let points = if s.markers { points } else { thin_line(points, LINE_POINTS) };
-        let legend = if s.markers {
-            ctx.draw_series(points.iter().map(|&p| Circle::new(p, 4, color.filled()))).map_err(draw_error)?
-        } else {
-            ctx.draw_series(LineSeries::new(points, color.stroke_width(2))).map_err(draw_error)?
+        let color = series_colour(index).to_rgba();
+        let shown = |p: &(f64, f64)| chart.scale.shows(*p);
+        let legend = match &s.mark {
+            Mark::Line => {
+                let points = thin_line(s.points.iter().copied().filter(shown).collect(), LINE_POINTS);
+                ctx.draw_series(LineSeries::new(points, color.stroke_width(2))).map_err(draw_error)?
+            }
+            Mark::Markers => ctx
+                .draw_series(s.points.iter().copied().filter(shown).map(|p| Circle::new(p, 4, color.filled())))
+                .map_err(draw_error)?,
+            Mark::ErrorBars(half_widths) => {
+                let bars = s.points.iter().zip(half_widths).filter(|(p, _)| shown(p)).map(|(&(x, y), &h)| {
+                    let low = if chart.scale.log_y() && y - h <= 0.0 { y_floor } else { y - h };
+                    ErrorBar::new_vertical(x, low, y, y + h, color.filled().stroke_width(2), 10)
+                });
+                ctx.draw_series(bars).map_err(draw_error)?;
+                ctx.draw_series(s.points.iter().copied().filter(shown).map(|p| Circle::new(p, 4, color.filled())))
+                    .map_err(draw_error)?
+            }
         };
         if !s.label.is_empty() {
-            legend
-                .label(s.label.clone())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], color.stroke_width(2)));
+            // The legend shows the mark: a stroke for a line, a disc for markers, a disc on a
+            // bar for error bars.
+            let (stroke, disc, bar) = match s.mark {
+                Mark::Line => (true, false, false),
+                Mark::Markers => (false, true, false),
+                Mark::ErrorBars(_) => (false, true, true),
+            };
+            legend.label(s.label.clone()).legend(move |(x, y)| {
+                let stroke = if stroke { vec![(-9, 0), (9, 0)] } else { Vec::new() };
+                let bar = if bar { vec![(0, -8), (0, 8)] } else { Vec::new() };
+                EmptyElement::at((x + 9, y))
+                    + PathElement::new(stroke, color.stroke_width(2))
+                    + PathElement::new(bar, color.stroke_width(2))
+                    + Circle::new((0, 0), if disc { 4 } else { 0 }, color.filled())
+            });
         }
     }
     let labels = series.iter().filter(|s| !s.label.is_empty()).count();
@@ -320,6 +359,34 @@ where
         .position(corner)
         .draw()
         .map_err(draw_error)
+}
+
+/// The colours of a chart's series in order, repeating: Tableau's ten, which stay apart on
+/// screen and in print (no yellow on white).
+const SERIES_COLOURS: [RGBColor; 10] = [
+    RGBColor(31, 119, 180),
+    RGBColor(255, 127, 14),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+    RGBColor(188, 189, 34),
+    RGBColor(23, 190, 207),
+];
+
+fn series_colour(index: usize) -> RGBColor {
+    SERIES_COLOURS[index % SERIES_COLOURS.len()]
+}
+
+/// The ends (x, y ± half-width) of a series' error bars; none for other marks.
+fn bar_ends(s: &Series) -> impl Iterator<Item = (f64, f64)> + '_ {
+    let half_widths = match &s.mark {
+        Mark::ErrorBars(h) => h.as_slice(),
+        _ => &[],
+    };
+    s.points.iter().zip(half_widths).flat_map(|(&(x, y), &h)| [(x, y - h), (x, y + h)])
 }
 
 /// The corner of the plotting area where the legend of `labels` entries covers the fewest
@@ -346,8 +413,8 @@ where
     let covered = |upper: bool, left: bool| {
         series
             .iter()
-            .flat_map(|s| s.points.iter())
-            .map(|&p| ctx.backend_coord(&p))
+            .flat_map(|s| s.points.iter().copied().chain(bar_ends(s)))
+            .map(|p| ctx.backend_coord(&p))
             .filter(|&(px, py)| {
                 let (x, y) = ((px - x_pixels.start) as f64, (py - y_pixels.start) as f64);
                 let in_x = if left { x <= box_w } else { x >= width - box_w };
@@ -483,8 +550,41 @@ mod tests {
         assert!(lowest < -0.9999, "the troughs are kept: {lowest}");
         assert!(thinned.windows(2).all(|w| w[0].0 < w[1].0), "in order");
         let chart = Chart { title: "t".into(), x_label: "x".into(), y_label: "y".into(), scale: Scale::Linear };
-        let image = line_chart(&chart, &[Series { label: "e".into(), points, markers: false }]).unwrap();
+        let image = line_chart(&chart, &[Series { label: "e".into(), points, mark: Mark::Line }]).unwrap();
         assert!(image.bytes().len() < SVG_MOST_BYTES, "{} bytes", image.bytes().len());
+    }
+
+    /// An ensemble's error bars: the axes hold the bar ends (a bar 10× taller than the points'
+    /// spread is not cut off), each point gets a bar with two caps beside its disc, and on a log
+    /// axis a bar reaching below zero is cut at the axis instead of vanishing.
+    #[test]
+    fn error_bars_are_drawn_whole_around_their_points() {
+        let points = vec![(1.0, 1.0), (2.0, 1.0), (3.0, 1.0)];
+        let bars =
+            Series { label: "mean ± σ".into(), points: points.clone(), mark: Mark::ErrorBars(vec![1.0, 0.5, 2.0]) };
+        assert_eq!(
+            bar_ends(&bars).collect::<Vec<_>>(),
+            [(1.0, 0.0), (1.0, 2.0), (2.0, 0.5), (2.0, 1.5), (3.0, -1.0), (3.0, 3.0)]
+        );
+        let svg = |scale: Scale, mark: Mark| {
+            let chart = Chart { title: "t".into(), x_label: "x".into(), y_label: "y".into(), scale };
+            match line_chart(&chart, &[Series { label: "s".into(), points: points.clone(), mark }]).unwrap() {
+                Image::Svg(svg) => svg,
+                Image::Png(_) => panic!("three points are an SVG"),
+            }
+        };
+        // Lines in the series' colour (the first): none for markers, a stem and two caps per bar.
+        let lines = |text: &str| text.matches("<line opacity=\"1\" stroke=\"#1F77B4\"").count();
+        let plain = svg(Scale::Linear, Mark::Markers);
+        let with_bars = svg(Scale::Linear, bars.mark.clone());
+        assert_eq!(lines(&plain), 0, "{plain}");
+        assert!(lines(&with_bars) >= 3 * 3, "{with_bars}");
+        // The y axis reaches the lowest bar end, −1, so it is labelled below 0 (the points alone
+        // span 1 … 1).
+        let below_zero = |text: &str| text.contains("\n-0.5\n");
+        assert!(below_zero(&with_bars) && !below_zero(&plain), "{with_bars}");
+        let log = svg(Scale::LogY, bars.mark.clone());
+        assert!(lines(&log) >= 3 * 3, "the bar reaching −1 is drawn, cut at the axis: {log}");
     }
 
     /// A chart of few points stays a vector drawing; one of many lines (or a heat map) passes
@@ -495,7 +595,7 @@ mod tests {
         let line = |k: usize, n: usize| Series {
             label: String::new(),
             points: (0..n).map(|i| (i as f64, k as f64 + (i as f64 * 0.1).sin())).collect(),
-            markers: false,
+            mark: Mark::Line,
         };
         let light = line_chart(&chart, &[line(0, 50)]).unwrap();
         assert!(matches!(light, Image::Svg(_)), "{} bytes", light.bytes().len());

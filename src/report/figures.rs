@@ -6,7 +6,7 @@ use super::figure::{
     Figure, background_damping_only, bond_damping_only, group_label, groups, physics_label, representative,
 };
 use super::{precision, probes, solids, stability_map, waves};
-use crate::draw::chart::{Chart, Scale, Series, line_chart};
+use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::measure::relative_error;
 use crate::runner::RunRecord;
 use crate::spec::{Campaign, SceneKind};
@@ -90,7 +90,7 @@ fn dissipation_figure(records: &[RunRecord]) -> anyhow::Result<Option<Figure>> {
             .filter(|r| keep(r))
             .filter_map(|r| Some((damping(r), r.metrics.dissipation_time?)))
             .collect(),
-        markers: true,
+        mark: Mark::Markers,
     };
     let force_criterion = |r: &RunRecord| r.spec.relax().is_some_and(|x| x.residual_force.is_some());
     let series: Vec<Series> = [
@@ -129,7 +129,7 @@ fn energy_figure(scene: &str, index: usize, label: &str, record: &RunRecord) -> 
     let series = |name: &str, values: Vec<f64>| Series {
         label: name.into(),
         points: t.time.iter().copied().zip(values).collect(),
-        markers: false,
+        mark: Mark::Line,
     };
     let total: Vec<f64> = (0..t.time.len()).map(|s| t.kinetic[s] + t.potential[s] + t.dissipated[s]).collect();
     let chart = Chart {
@@ -169,7 +169,7 @@ fn displacement_figure(scene: &str, label: &str, record: &RunRecord) -> anyhow::
                 .zip(&t.displacement_x)
                 .map(|(&time, u)| (time, p as f64 + 0.45 * u[p] / largest))
                 .collect(),
-            markers: false,
+            mark: Mark::Line,
         })
         .collect();
     let chart = Chart {
@@ -194,7 +194,7 @@ fn convergence_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyh
         let curve = |name: &str, error: &dyn Fn(&RunRecord) -> Option<f64>| Series {
             label: format!("{name} ({label})"),
             points: members.iter().filter_map(|r| error(r).map(|e| (1.0 / r.spec.dt_per_tc(), e.abs()))).collect(),
-            markers: true,
+            mark: Mark::Markers,
         };
         series.push(curve("t_c", &|r| {
             relative_error(r.metrics.pair.contact_duration, r.metrics.pair.contact_duration_theory)
@@ -235,7 +235,7 @@ fn reference_slopes(measured: &[Series]) -> Vec<Series> {
         .map(|&order: &f64| Series {
             label: format!("slope {order:.0} (order {order:.0}, reference)"),
             points: [low, high].iter().map(|&x| (x, mid_y * (x / mid_x).powf(order))).collect(),
-            markers: false,
+            mark: Mark::Line,
         })
         .collect()
 }
@@ -261,7 +261,7 @@ fn relaxation_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyho
         .map(|r| Series {
             label: group_label(r),
             points: (0..r.trace.time.len()).map(|s| (r.trace.time[s], ratio(&r.trace, s))).collect(),
-            markers: false,
+            mark: Mark::Line,
         })
         .collect();
     // The energy criterion's threshold, where the runs shown stop by it.
@@ -274,7 +274,7 @@ fn relaxation_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyho
         series.push(Series {
             label: format!("threshold E_kin/E_pot = {threshold:e}"),
             points: vec![(0.0, threshold), (end, threshold)],
-            markers: false,
+            mark: Mark::Line,
         });
     }
     let relaxed: Vec<(f64, f64)> = shown
@@ -286,7 +286,7 @@ fn relaxation_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyho
         })
         .collect();
     if !relaxed.is_empty() {
-        series.push(Series { label: "relaxed (dissipation time)".into(), points: relaxed, markers: true });
+        series.push(Series { label: "relaxed (dissipation time)".into(), points: relaxed, mark: Mark::Markers });
     }
     let chart = Chart {
         title: format!("{scene}: relaxation"),
@@ -353,8 +353,8 @@ fn size_figure(scene: &str, records: &[RunRecord]) -> anyhow::Result<Option<Figu
     for SizeCurve { label, mut fem, mut md } in curves {
         fem.sort_by(|a, b| a.0.total_cmp(&b.0));
         md.sort_by(|a, b| a.0.total_cmp(&b.0));
-        series.push(Series { label: format!("static, {label}"), points: fem, markers: false });
-        series.push(Series { label: format!("MD, {label}"), points: md, markers: true });
+        series.push(Series { label: format!("static, {label}"), points: fem, mark: Mark::Line });
+        series.push(Series { label: format!("MD, {label}"), points: md, mark: Mark::Markers });
     }
     let chart = Chart {
         title: format!("{scene}: finite-size convergence"),

@@ -5,7 +5,7 @@ use serde::Serialize;
 
 use super::figure::{Figure, groups, representative};
 use super::words::{number, optional};
-use crate::draw::chart::{Chart, Scale, Series, line_chart};
+use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::measure::{Recommendation, convergence_order, recommended_dt};
 use crate::runner::RunRecord;
 
@@ -99,7 +99,7 @@ pub fn precision_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<V
             .map(|(label, members)| Series {
                 label: label.clone(),
                 points: members.iter().filter_map(|r| r.metrics.error.map(|e| (x(r), e))).collect(),
-                markers: false,
+                mark: Mark::Line,
             })
             .collect()
     };

@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::figure::{Figure, physics_label};
 use super::words::{number, optional};
-use crate::draw::chart::{Chart, Scale, Series, line_chart};
+use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::summary::ScalingFit;
@@ -26,11 +26,11 @@ pub fn scaling_figures(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Vec<F
             let label =
                 if f.group.is_empty() { f.quantity.to_string() } else { format!("{}, {}", f.quantity, f.group) };
             let (x0, y0) = f.points[0];
-            series.push(Series { label: format!("{label}: MD"), points: f.points.clone(), markers: true });
+            series.push(Series { label: format!("{label}: MD"), points: f.points.clone(), mark: Mark::Markers });
             series.push(Series {
                 label: format!("{label}: fit x^{:.3} (R² = {:.5})", f.fit.exponent, f.fit.r_squared),
                 points: f.points.iter().map(|&(x, _)| (x, y0 * (x / x0).powf(f.fit.exponent))).collect(),
-                markers: false,
+                mark: Mark::Line,
             });
         }
         let (x_label, y_label, what) = match against {
@@ -92,8 +92,8 @@ fn ensembles<'a>(records: &'a [RunRecord], scene: &str) -> Vec<Ensemble<'a>> {
     out
 }
 
-/// Mean and sample standard deviation of the values present.
-fn mean_spread(values: impl Iterator<Item = Option<f64>>) -> (Option<f64>, Option<f64>) {
+/// Mean and sample standard deviation of the values present (no deviation of a single value).
+pub(crate) fn mean_spread(values: impl Iterator<Item = Option<f64>>) -> (Option<f64>, Option<f64>) {
     let v: Vec<f64> = values.flatten().collect();
     if v.is_empty() {
         return (None, None);
@@ -172,19 +172,14 @@ pub fn ensemble_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Opt
         let &(best_kept, best, _) = points.last().expect("not empty");
         let full = best / ((best_kept - RIGIDITY_THRESHOLD) / (1.0 - RIGIDITY_THRESHOLD)).max(f64::MIN_POSITIVE);
         series.push(Series {
-            label: format!("{name}: mean over seeds"),
+            label: format!("{name}: mean over seeds ± one standard deviation"),
             points: points.iter().map(|p| (p.0, p.1)).collect(),
-            markers: true,
-        });
-        series.push(Series {
-            label: format!("{name}: mean ± one standard deviation"),
-            points: points.iter().flat_map(|p| [(p.0, p.1 - p.2), (p.0, p.1 + p.2)]).collect(),
-            markers: true,
+            mark: Mark::ErrorBars(points.iter().map(|p| p.2).collect()),
         });
         series.push(Series {
             label: format!("{name}: effective medium, zero at p = 1/2"),
             points: vec![(RIGIDITY_THRESHOLD, 0.0), (1.0, full)],
-            markers: false,
+            mark: Mark::Line,
         });
     }
     if series.is_empty() {
@@ -200,8 +195,8 @@ pub fn ensemble_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Opt
         scene: scene.into(),
         file: format!("plots/{scene}-dilution.svg"),
         caption: format!(
-            "{scene}: Young's and shear moduli of randomly diluted lattices (mean over seeds, and mean ± one standard \
-             deviation) against the kept fraction p of the interior bonds, beside the effective-medium line for \
+            "{scene}: Young's and shear moduli of randomly diluted lattices (mean over seeds, its error bar ± one \
+             standard deviation) against the kept fraction p of the interior bonds, beside the effective-medium line for \
              central-force networks, falling linearly to zero at p = 2d/z = 1/2. Networks that lost rigidity end as \
              status mechanism and are left out of the means."
         ),

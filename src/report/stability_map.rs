@@ -5,7 +5,7 @@ use serde::Serialize;
 
 use super::figure::{Figure, physics_label};
 use super::words::{number, optional};
-use crate::draw::chart::{Chart, Scale, Series, line_chart};
+use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::spec::SceneKind;
@@ -173,9 +173,9 @@ pub fn stability_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<V
         }
         // Palette order: red for the runs that blew up, green for those that did not.
         let series = vec![
-            Series { label: "blew up (status unstable)".into(), points: points(true), markers: true },
-            Series { label: "bounded".into(), points: points(false), markers: true },
-            Series { label: format!("predicted limit of {}", integrator.name()), points: limit, markers: false },
+            Series { label: "blew up (status unstable)".into(), points: points(true), mark: Mark::Markers },
+            Series { label: "bounded".into(), points: points(false), mark: Mark::Markers },
+            Series { label: format!("predicted limit of {}", integrator.name()), points: limit, mark: Mark::Line },
         ];
         let y_label =
             if lattice { "k_d / k (0 drawn at 1e-3)" } else { "damping ratio ζ of the fastest mode (0 at 1e-3)" };

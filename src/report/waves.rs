@@ -5,7 +5,7 @@ use serde::Serialize;
 
 use super::figure::{Figure, physics_label};
 use super::words::{impulse_words, number, optional};
-use crate::draw::chart::{Chart, Scale, Series, heatmap, line_chart};
+use crate::draw::chart::{Chart, Mark, Scale, Series, heatmap, line_chart};
 use crate::measure::ARRIVAL_CRITERIA;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
@@ -71,11 +71,11 @@ fn speed_figure(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Option<Figur
         let label = if f.group.is_empty() { f.law.to_string() } else { format!("{}, {}", f.law, f.group) };
         let (x0, y0) = f.points[0];
         let line = f.points.iter().map(|&(x, _)| (x, y0 * (x / x0).powf(f.fit.exponent))).collect();
-        series.push(Series { label: format!("{label}: measured"), points: f.points.clone(), markers: true });
+        series.push(Series { label: format!("{label}: measured"), points: f.points.clone(), mark: Mark::Markers });
         series.push(Series {
             label: format!("{label}: fit v0^{:.3} (R² = {:.5})", f.fit.exponent, f.fit.r_squared),
             points: line,
-            markers: false,
+            mark: Mark::Line,
         });
     }
     let chart = Chart {

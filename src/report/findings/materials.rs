@@ -3,6 +3,7 @@
 //! truss (FEM) answer.
 
 use crate::report::figure::physics_label;
+use crate::report::solids::mean_spread;
 use std::collections::BTreeMap;
 
 use super::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
@@ -244,21 +245,20 @@ pub(super) fn random(e: &Evidence) -> Option<Answer> {
     }
     let mut rows = Vec::new();
     for ((case, cut), rs) in &by_cut {
-        let values: Vec<f64> = rs
-            .iter()
-            .filter(|r| r.status == RunStatus::Ok)
-            .filter_map(|r| r.metrics.lattice.youngs_modulus.or(r.metrics.lattice.shear_modulus))
-            .collect();
-        let mean = values.iter().sum::<f64>() / values.len().max(1) as f64;
-        let spread = (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / values.len().max(1) as f64).sqrt();
+        // The figure's error bars: the sample standard deviation over the seeds.
+        let (mean, spread) = mean_spread(
+            rs.iter()
+                .filter(|r| r.status == RunStatus::Ok)
+                .map(|r| r.metrics.lattice.youngs_modulus.or(r.metrics.lattice.shear_modulus)),
+        );
         let kept = rs.iter().filter_map(|r| r.metrics.lattice.bond_fraction_kept).sum::<f64>() / rs.len() as f64;
         rows.push(vec![
             case.clone(),
             format!("{:.2}", *cut as f64 / 1000.0),
             format!("{kept:.3}"),
             format!("{}/{}", rs.iter().filter(|r| r.status == RunStatus::Mechanism).count(), rs.len()),
-            if values.is_empty() { "–".into() } else { sig(mean) },
-            if values.is_empty() { "–".into() } else { sig(spread) },
+            cell(mean),
+            cell(spread),
         ]);
     }
     let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
@@ -285,7 +285,7 @@ pub(super) fn random(e: &Evidence) -> Option<Answer> {
         verdict: Verdict::Observed,
         figures: e.figure(&scene, "dilution").into_iter().collect(),
         table: Some(Table {
-            header: ["load", "cut fraction", "kept", "mechanisms", "modulus mean (Pa)", "spread (Pa)"]
+            header: ["load", "cut fraction", "kept", "mechanisms", "modulus mean (Pa)", "standard deviation (Pa)"]
                 .map(String::from)
                 .to_vec(),
             rows,
