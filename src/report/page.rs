@@ -2,15 +2,19 @@
 //! LaTeX math as MathML (no JavaScript, no network), an `id` on every heading and a contents
 //! list, numbered figures with their captions, tables that scroll inside their own box, images
 //! loaded lazily. `report.md` keeps the Markdown as the template wrote it (math stays `$…$`),
-//! with the contents list as links where the template asks for it.
+//! with the same figure numbers in its captions and the contents list as links where the
+//! template asks for it.
 //!
 //! What a template writes:
 //! - math in LaTeX, `$…$` inline and `$$…$$` displayed; LaTeX the renderer cannot read shows as
 //!   its code text, and the page is written all the same;
-//! - a line [`CONTENTS_MARKER`] where the contents list goes (h2 sections with their h3 nested);
-//!   without one, `index.html` gets the list before the first h2 and `report.md` none;
+//! - a line [`CONTENTS_MARKER`] where the contents list goes (h2 sections with their h3 nested,
+//!   leaving out the headings that a link above the list already leads to, such as the
+//!   sections a summary table links); without one, `index.html` gets the list before the first
+//!   h2 and `report.md` none;
 //! - a figure as a paragraph holding only an image (or a link around one) followed by an italic
-//!   paragraph, its caption: the page numbers it "Figure N." in a `<figure>`, nothing to count.
+//!   paragraph, its caption: both pages number it, the caption starting "Figure N: " (in
+//!   `index.html` inside a `<figure id="figure-N">`), nothing to count.
 
 use std::collections::HashSet;
 use std::ops::Range;
@@ -87,10 +91,11 @@ fn headings(markdown: &str) -> Vec<Heading> {
     found
 }
 
-/// The contents list of `headings` in Markdown: the h2 sections linked by id, their h3 nested.
-fn contents_list(headings: &[Heading]) -> String {
+/// The contents list of `headings` in Markdown: the h2 sections linked by id, their h3 nested,
+/// except the headings whose ids are in `listed` (linked already above the list).
+fn contents_list(headings: &[Heading], listed: &HashSet<String>) -> String {
     let mut list = String::from("**Contents**\n\n");
-    for heading in headings {
+    for heading in headings.iter().filter(|h| !listed.contains(&h.id)) {
         let indent = match heading.level {
             HeadingLevel::H2 => "",
             HeadingLevel::H3 => "  ",
@@ -101,17 +106,51 @@ fn contents_list(headings: &[Heading]) -> String {
     list
 }
 
+/// The ids that links in `markdown[..end]` lead to (`#id`, as the page's ids: percent escapes
+/// of non-ASCII letters decoded).
+fn linked_ids(markdown: &str, end: usize) -> HashSet<String> {
+    Parser::new_ext(markdown, OPTIONS)
+        .into_offset_iter()
+        .take_while(|(_, range)| range.start < end)
+        .filter_map(|(event, _)| match event {
+            Event::Start(Tag::Link { dest_url, .. }) => dest_url.strip_prefix('#').map(percent_decoded),
+            _ => None,
+        })
+        .collect()
+}
+
+/// `text` with its `%XX` escapes decoded, as a browser reads a link's fragment.
+fn percent_decoded(text: &str) -> String {
+    let bytes = text.as_bytes();
+    let mut out = Vec::with_capacity(bytes.len());
+    let mut i = 0;
+    while i < bytes.len() {
+        let escape = (bytes[i] == b'%').then(|| text.get(i + 1..i + 3)).flatten();
+        match escape.and_then(|hex| u8::from_str_radix(hex, 16).ok()) {
+            Some(byte) => {
+                out.push(byte);
+                i += 3;
+            }
+            None => {
+                out.push(bytes[i]);
+                i += 1;
+            }
+        }
+    }
+    String::from_utf8_lossy(&out).into_owned()
+}
+
 /// `markdown` with the contents list after the [`CONTENTS_MARKER`] line; without that line,
 /// unchanged, or (`before_first_section`) with the marker and list put before the first h2.
 fn place_contents(markdown: &str, before_first_section: bool) -> String {
     let headings = headings(markdown);
-    let list = contents_list(&headings);
     let marker_line = markdown.split_inclusive('\n').scan(0, |at, line| {
         let start = *at;
         *at += line.len();
         Some((start, line))
     });
     if let Some((start, line)) = marker_line.into_iter().find(|(_, line)| line.trim() == CONTENTS_MARKER) {
+        let list = contents_list(&headings, &linked_ids(markdown, start));
         let rest = &markdown[start + line.len()..];
         let gap = if rest.starts_with('\n') { "" } else { "\n" };
         return format!("{}{CONTENTS_MARKER}\n\n{list}{gap}{rest}", &markdown[..start]);
@@ -121,22 +160,25 @@ fn place_contents(markdown: &str, before_first_section: bool) -> String {
     });
     match first_section {
         Some(at) if before_first_section => {
+            let list = contents_list(&headings, &linked_ids(markdown, at));
             format!("{}{CONTENTS_MARKER}\n\n{list}\n{}", &markdown[..at], &markdown[at..])
         }
         _ => markdown.to_string(),
     }
 }
 
-/// `markdown` as written to `report.md`: the contents list (Markdown links to the headings'
-/// anchors) after the [`CONTENTS_MARKER`] line, if the template wrote one.
+/// `markdown` as written to `report.md`: its figures' captions numbered ("Figure N: "), the
+/// contents list (Markdown links to the headings' anchors) after the [`CONTENTS_MARKER`] line,
+/// if the template wrote one.
 pub fn with_contents(markdown: &str) -> String {
-    place_contents(markdown, false)
+    place_contents(&number_captions(markdown), false)
 }
 
-/// `markdown` as the HTML body of `index.html` (see the module's documentation).
+/// `markdown` as the HTML body of `index.html` (see the module's documentation): numbered as in
+/// [`with_contents`].
 pub fn to_html(markdown: &str) -> String {
-    let markdown = place_contents(markdown, true);
-    let events = number_figures(Parser::new_ext(&markdown, OPTIONS).collect());
+    let markdown = place_contents(&number_captions(markdown), true);
+    let events = figure_elements(Parser::new_ext(&markdown, OPTIONS).collect());
     let mut ids = headings(&markdown).into_iter().map(|h| h.id);
     let mut out = Vec::with_capacity(events.len());
     let mut nav: Option<usize> = None; // open lists inside the contents' <nav>
@@ -260,33 +302,75 @@ fn all_emphasis(inner: &[Event]) -> bool {
     !inner.is_empty()
 }
 
-/// `events` with each image paragraph that an italic caption paragraph follows written as a
-/// `<figure id="figure-N">` whose `<figcaption>` starts "Figure N.", N counting from 1.
-fn number_figures(events: Vec<Event>) -> Vec<Event> {
-    let mut out = Vec::with_capacity(events.len());
-    let mut figures = 0;
+/// The figures among `events`: for each image paragraph that an italic caption paragraph
+/// follows, the index of the image paragraph's start, its end and the caption's end.
+fn figures(events: &[Event]) -> Vec<(usize, usize, usize)> {
+    let mut found = Vec::new();
     let mut i = 0;
     while i < events.len() {
-        let image = paragraph_end(&events, i).filter(|&end| only_an_image(&events[i + 1..end]));
-        let caption = image.and_then(|end| paragraph_end(&events, end + 1).map(|close| (end, close)));
+        let image = paragraph_end(events, i).filter(|&end| only_an_image(&events[i + 1..end]));
+        let caption = image.and_then(|end| paragraph_end(events, end + 1).map(|close| (end, close)));
         match caption.filter(|&(end, close)| all_emphasis(&events[end + 2..close])) {
             Some((end, close)) => {
-                figures += 1;
-                out.push(Event::Html(format!("<figure id=\"figure-{figures}\">\n").into()));
-                out.extend(events[i + 1..end].iter().cloned());
-                out.push(Event::Html(
-                    format!("\n<figcaption><span class=\"figure-number\">Figure {figures}.</span> ").into(),
-                ));
-                out.extend(events[end + 3..close - 1].iter().cloned());
-                out.push(Event::Html("</figcaption>\n</figure>\n".into()));
+                found.push((i, end, close));
                 i = close + 1;
             }
-            None => {
-                out.push(events[i].clone());
-                i += 1;
-            }
+            None => i += 1,
         }
     }
+    found
+}
+
+/// "Figure N: ", the start of the N-th figure's caption (N from 1).
+fn figure_label(n: usize) -> String {
+    format!("Figure {n}: ")
+}
+
+/// `markdown` with the caption of each figure ([`figures`]) starting [`figure_label`], inside
+/// its emphasis: `*Figure 3: The speed …*`.
+fn number_captions(markdown: &str) -> String {
+    let (events, ranges): (Vec<Event>, Vec<Range<usize>>) =
+        Parser::new_ext(markdown, OPTIONS).into_offset_iter().unzip();
+    let mut out = String::with_capacity(markdown.len());
+    let mut copied = 0;
+    for (n, (_, end, _)) in figures(&events).into_iter().enumerate() {
+        // The caption paragraph starts with its emphasis' delimiter, `*` or `_`.
+        let at = ranges[end + 1].start + 1;
+        out.push_str(&markdown[copied..at]);
+        out.push_str(&figure_label(n + 1));
+        copied = at;
+    }
+    out.push_str(&markdown[copied..]);
+    out
+}
+
+/// `events` (of captions numbered by [`number_captions`]) with each figure written as a
+/// `<figure id="figure-N">` holding its image and a `<figcaption>`, its number set apart.
+fn figure_elements(events: Vec<Event>) -> Vec<Event> {
+    let mut out = Vec::with_capacity(events.len());
+    let mut copied = 0;
+    for (n, (start, end, close)) in figures(&events).into_iter().enumerate() {
+        let number = n + 1;
+        out.extend(events[copied..start].iter().cloned());
+        out.push(Event::Html(format!("<figure id=\"figure-{number}\">\n").into()));
+        out.extend(events[start + 1..end].iter().cloned());
+        out.push(Event::Html("\n<figcaption>".into()));
+        // The caption inside its emphasis; its number as a span of its own.
+        let mut caption = events[end + 3..close - 1].iter().cloned();
+        let label = figure_label(number);
+        match caption.next() {
+            Some(Event::Text(text)) if text.starts_with(&label) => {
+                out.push(Event::Html(format!("<span class=\"figure-number\">{}</span> ", label.trim_end()).into()));
+                out.push(Event::Text(text[label.len()..].to_string().into()));
+            }
+            Some(other) => out.push(other),
+            None => {}
+        }
+        out.extend(caption);
+        out.push(Event::Html("</figcaption>\n</figure>\n".into()));
+        copied = close + 1;
+    }
+    out.extend(events[copied..].iter().cloned());
     out
 }
 
@@ -303,23 +387,6 @@ mod tests {
     fn values<'a>(html: &'a str, attribute: &str) -> Vec<&'a str> {
         let key = format!("{attribute}=\"");
         html.split(&key).skip(1).map(|rest| &rest[..rest.find('"').unwrap()]).collect()
-    }
-
-    /// `text` with its `%XX` escapes decoded, as a browser reads a link's fragment.
-    fn percent_decoded(text: &str) -> String {
-        let bytes = text.as_bytes();
-        let mut out = Vec::new();
-        let mut i = 0;
-        while i < bytes.len() {
-            if bytes[i] == b'%' {
-                out.push(u8::from_str_radix(&text[i + 1..i + 3], 16).unwrap());
-                i += 3;
-            } else {
-                out.push(bytes[i]);
-                i += 1;
-            }
-        }
-        String::from_utf8(out).unwrap()
     }
 
     #[test]
@@ -351,7 +418,7 @@ mod tests {
         let page = format!("# T\n\n{CONTENTS_MARKER}\n\nIntro.\n\n## A b\n\n## C\n");
         let markdown = with_contents(&page);
         assert!(markdown.contains("- [A b](#a-b)\n- [C](#c)\n\nIntro."), "{markdown}");
-        assert_eq!(with_contents(PAGE), PAGE, "no marker: report.md unchanged");
+        assert_eq!(with_contents(PAGE), number_captions(PAGE), "no marker: no list in report.md");
         let html = to_html(&page);
         assert_eq!(html.matches("<nav").count(), 1, "{html}");
         assert!(html.find("</nav>").unwrap() < html.find("Intro.").unwrap(), "{html}");
@@ -363,7 +430,7 @@ mod tests {
         assert_eq!(html.matches("<figure").count(), 2, "{html}");
         assert!(
             html.contains(
-                "<figcaption><span class=\"figure-number\">Figure 1.</span> The speed against time.</figcaption>"
+                "<figcaption><span class=\"figure-number\">Figure 1:</span> The speed against time.</figcaption>"
             ),
             "{html}"
         );
@@ -371,7 +438,8 @@ mod tests {
             html.contains("<a href=\"plots/m.gif\"><img src=\"plots/m.gif\" alt=\"A movie\" loading=\"lazy\"></a>"),
             "{html}"
         );
-        assert!(html.contains("Figure 2.</span> A movie of it."), "{html}");
+        assert!(html.contains("Figure 2:</span> A movie of it."), "{html}");
+        assert_eq!(html.matches("Figure 1").count(), 1, "numbered once: {html}");
         assert!(
             html.contains("<p><img src=\"plots/b.svg\" alt=\"Alone\" loading=\"lazy\"></p>"),
             "no caption, no number: {html}"
@@ -379,6 +447,41 @@ mod tests {
         assert_eq!(html.matches("<img").count(), html.matches("loading=\"lazy\"").count());
         let text_after = to_html("![a](x.svg) and text\n\n*not a caption*\n");
         assert!(!text_after.contains("<figure"), "{text_after}");
+    }
+
+    /// report.md numbers its figures as index.html does, in the caption's emphasis; an image
+    /// without a caption is no figure in either.
+    #[test]
+    fn report_md_numbers_the_figures_as_the_page_does() {
+        let markdown = with_contents(PAGE);
+        assert!(markdown.contains("![A chart](plots/a.svg)\n\n*Figure 1: The speed against time.*"), "{markdown}");
+        assert!(markdown.contains("*Figure 2: A movie of it.*\n\n![Alone](plots/b.svg)\n"), "{markdown}");
+        assert_eq!(markdown.matches("Figure ").count(), 2, "{markdown}");
+        let underscores = with_contents("![a](x.svg)\n\n_Its caption._\n");
+        assert_eq!(underscores, "![a](x.svg)\n\n_Figure 1: Its caption._\n");
+    }
+
+    /// Sections a table above the contents already links (a summary of numbered items) are not
+    /// listed again; their parent section is, and every listed link still resolves.
+    #[test]
+    fn the_contents_leave_out_what_a_summary_above_links() {
+        let page = format!(
+            "# T\n\n## Summary\n\n| item |\n|---|\n| [1. A](#1-a) |\n| [2. Ü](#2-%C3%BC) |\n\n{CONTENTS_MARKER}\n\n\
+             ## Answers\n\n### 1. A\n\n### 2. Ü\n\n## Appendix\n\n### Methods\n"
+        );
+        let markdown = with_contents(&page);
+        let list = &markdown[markdown.find("**Contents**").unwrap()..markdown.find("## Answers").unwrap()];
+        assert_eq!(
+            list,
+            "**Contents**\n\n- [Summary](#summary)\n- [Answers](#answers)\n- [Appendix](#appendix)\n  - [Methods](#methods)\n\n"
+        );
+        let html = to_html(&page);
+        let ids = values(&html, "id");
+        for id in ["1-a", "2-ü", "answers", "methods"] {
+            assert!(ids.contains(&id), "{id} in {ids:?}");
+        }
+        let nav = &html[html.find("<nav").unwrap()..html.find("</nav>").unwrap()];
+        assert_eq!(nav.matches("<a href").count(), 4, "{nav}");
     }
 
     #[test]
