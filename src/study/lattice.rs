@@ -555,6 +555,9 @@ pub(super) fn columns() -> Vec<Block<LatticeMetrics>> {
         Number("relax_tolerance", |r| r.spec.lattice().and(r.spec.relax()).and_then(|m| m.tolerance)),
         Number("relax_error_bound", |r| r.group.relax_error_bound),
         Number("stiffness_min", |r| r.group.stiffness_min),
+        Number("critical_bound_steps", |r| {
+            r.group.stiffness_min.filter(|k| *k > 0.0).map(|k| critical_bound_steps(r.spec, k))
+        }),
         Number("gamma_background_critical", |r| r.group.gamma_background_critical),
     ];
     // A run loaded up (`tensile`) measures E_y and ν_yx, one loaded along x (`tensile-x`,
@@ -578,6 +581,16 @@ pub(super) fn columns() -> Vec<Block<LatticeMetrics>> {
         },
     ]
 }
+
+/// The critically damped bound (steps of dt): the slowest mode, ω_min² = k_min/m, critically
+/// damped and started from rest at x₀ from equilibrium moves as x₀ (1 + ω t) e^{−ω t}, which
+/// falls to 1e-4 of x₀ at ω_min t = 11.75 (the 9/ω_min is e^{−ω t} = 1e-4 alone).
+pub fn critical_bound_steps(spec: &RunSpec, stiffness_min: f64) -> f64 {
+    CRITICAL_DECAY_1E4 / (stiffness_min / spec.mass).sqrt() / spec.dt
+}
+
+/// ω t at which (1 + ω t) e^{−ω t} = 1e-4.
+pub const CRITICAL_DECAY_1E4: f64 = 11.75;
 
 /// True when the lattice's moduli differ by direction: turned, with unequal springs along x
 /// and y, or with one diagonal family.
