@@ -153,6 +153,7 @@ fn relax_scene(config: &BenchConfig) -> Scene {
     sampling.relaxation = Some(Relaxation {
         kinetic_ratio: 1e-6,
         residual_force: Some(0.0),
+        residual_norm: None,
         check_every: 50,
         confirmations: 2 * n as u32 + 1,
     });

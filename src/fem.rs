@@ -71,6 +71,12 @@ const NEWTON_STEP_TOLERANCE: f64 = 1e-9;
 /// Newton–Raphson gives up after this many iterations (it converges quadratically: a handful).
 const NEWTON_ITERATIONS: usize = 50;
 
+/// Inverse iteration for the softest stiffness stops once its Rayleigh quotient changes by
+/// less than this fraction ...
+const SOFTEST_TOLERANCE: f64 = 1e-6;
+/// ... or after this many solves (each a pair of triangular solves on one factor).
+const SOFTEST_ITERATIONS: usize = 200;
+
 /// Numbering of the free degrees of freedom: dof 2i is x of node i, 2i + 1 its y;
 /// `index[dof]` is its row in the reduced system, `usize::MAX` when held.
 struct Dofs {
@@ -198,6 +204,41 @@ impl Truss<'_> {
         (relative_residual(&entries, &step, &load) <= MECHANISM_RESIDUAL).then(|| self.expand(&dofs, &step))
     }
 
+    /// A lower bound (N/m) on the smallest eigenvalue k_min of the tangent stiffness K_t over
+    /// the free degrees of freedom at displacements `(ux, uy)` (the network's softest
+    /// stiffness: ‖u − u*‖₂ ≤ ‖r‖₂/k_min for any out-of-balance force r, to first order), by
+    /// inverse iteration v ← K_t⁻¹ v/‖·‖ from the uniform displacement (which overlaps the
+    /// lowest, smooth mode) until the Rayleigh quotient ρ = vᵀK_t v settles to 1e-6, then lowered
+    /// by the residual η = ‖K_t v − ρ v‖: some eigenvalue lies in [ρ − η, ρ + η]
+    /// (Krylov–Bogoliubov), the lowest one once the iteration has found it. `None` when K_t
+    /// cannot be factored, and 0 when it is singular (a floppy network: no bound).
+    pub fn softest_stiffness<L: ForceLaw>(&self, law: &L, ux: &[f64], uy: &[f64]) -> Option<f64> {
+        let dofs = self.dofs();
+        if dofs.free == 0 {
+            return None;
+        }
+        let (entries, _) = self.tangent_and_residual(law, ux, uy, &dofs);
+        let cholesky = factor(dofs.free, &entries)?;
+        let unit = |v: Vec<f64>| {
+            let length = norm(&v);
+            v.into_iter().map(|x| x / length).collect::<Vec<f64>>()
+        };
+        let mut v = unit(vec![1.0; dofs.free]);
+        let mut rayleigh = f64::INFINITY;
+        for iteration in 1..=SOFTEST_ITERATIONS {
+            v = unit(solve_with(&cholesky, &v)?);
+            let kv = multiply(&entries, &v);
+            let next: f64 = kv.iter().zip(&v).map(|(a, b)| a * b).sum();
+            let settled = (rayleigh - next).abs() <= SOFTEST_TOLERANCE * next.abs();
+            rayleigh = next;
+            if settled || iteration == SOFTEST_ITERATIONS {
+                let residual: Vec<f64> = kv.iter().zip(&v).map(|(a, b)| a - rayleigh * b).collect();
+                return Some((rayleigh - norm(&residual)).max(0.0));
+            }
+        }
+        None
+    }
+
     fn dofs(&self) -> Dofs {
         let mut index = vec![usize::MAX; 2 * self.x.len()];
         let mut free = 0;
@@ -281,6 +322,12 @@ fn factor_and_solve(size: usize, entries: &[(usize, usize, f64)], force: &[f64])
     if size == 0 {
         return Some(Vec::new());
     }
+    solve_with(&factor(size, entries)?, force)
+}
+
+/// The sparse Cholesky factor of K + εI (ε = 1e-12 of the largest diagonal entry) over `size`
+/// free degrees of freedom; `None` when the factorisation fails.
+fn factor(size: usize, entries: &[(usize, usize, f64)]) -> Option<faer::sparse::linalg::solvers::Llt<usize, f64>> {
     let mut diagonal = vec![0.0f64; size];
     for &(row, column, value) in entries {
         if row == column {
@@ -294,18 +341,28 @@ fn factor_and_solve(size: usize, entries: &[(usize, usize, f64)], force: &[f64])
         .chain((0..size).map(|d| Triplet { row: d, col: d, val: shift }))
         .collect();
     let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(size, size, &triplets).ok()?;
-    let cholesky = matrix.sp_cholesky(Side::Lower).ok()?;
-    let solution = cholesky.solve(Mat::from_fn(size, 1, |i, _| force[i]));
-    let u: Vec<f64> = (0..size).map(|i| solution[(i, 0)]).collect();
+    matrix.sp_cholesky(Side::Lower).ok()
+}
+
+/// K⁻¹ `force` from K's factor; `None` when the answer is not finite.
+fn solve_with(cholesky: &faer::sparse::linalg::solvers::Llt<usize, f64>, force: &[f64]) -> Option<Vec<f64>> {
+    let solution = cholesky.solve(Mat::from_fn(force.len(), 1, |i, _| force[i]));
+    let u: Vec<f64> = (0..force.len()).map(|i| solution[(i, 0)]).collect();
     u.iter().all(|v| v.is_finite()).then_some(u)
+}
+
+/// K v with K given by its entries.
+fn multiply(entries: &[(usize, usize, f64)], v: &[f64]) -> Vec<f64> {
+    let mut product = vec![0.0; v.len()];
+    for &(row, column, value) in entries {
+        product[row] += value * v[column];
+    }
+    product
 }
 
 /// ‖K u − f‖ / ‖f‖ with K given by its entries.
 fn relative_residual(entries: &[(usize, usize, f64)], u: &[f64], force: &[f64]) -> f64 {
-    let mut r: Vec<f64> = force.iter().map(|f| -f).collect();
-    for &(row, column, value) in entries {
-        r[row] += value * u[column];
-    }
+    let r: Vec<f64> = multiply(entries, u).iter().zip(force).map(|(ku, f)| ku - f).collect();
     norm(&r) / norm(force).max(f64::MIN_POSITIVE)
 }
 

@@ -5,7 +5,8 @@ pub use self::contact::{ContactTiming, contact_timing};
 pub use self::energy::energy_error;
 pub use self::moduli::{
     ContinuumModuli, ElasticConstants, LatticeShape, TensileModuli, anisotropic_moduli, constrained_modulus_y,
-    homogeneity, lattice_constants, shear_modulus, tensile_moduli,
+    displacement_error_allowed, homogeneity, lattice_constants, modulus_error_bound, row_extension, shear_modulus,
+    tensile_moduli,
 };
 pub use self::wave::{ARRIVAL_CRITERIA, arrival_time};
 

@@ -38,6 +38,27 @@ impl LatticeShape {
     }
 }
 
+/// ΔL (m) of a lattice's measured modulus: the mean of `u` (u_y in tension, u_x in shear)
+/// over the top row minus its mean over the bottom row.
+pub fn row_extension(shape: &LatticeShape, u: &[f64]) -> f64 {
+    shape.row_mean(u, shape.ny - 1) - shape.row_mean(u, 0)
+}
+
+/// The bound on the relative error of a modulus M ∝ 1/ΔL (E in tension, G in shear) measured
+/// at the extension `extension` = ΔL (m) from displacements within `error` (m, 2-norm over every
+/// node) of the state of rest: ΔL weighs two rows by ±1/N_x, so |δΔL| ≤ √(2/N_x) ‖δu‖₂
+/// (Cauchy–Schwarz), and with b = |δΔL|/|ΔL|, |δM/M| ≤ b/(1 − b) (∞ for b ≥ 1).
+pub fn modulus_error_bound(shape: &LatticeShape, extension: f64, error: f64) -> f64 {
+    let b = (2.0 / shape.nx as f64).sqrt() * error / extension.abs();
+    if b < 1.0 { b / (1.0 - b) } else { f64::INFINITY }
+}
+
+/// The largest displacement error (m, 2-norm) for which [`modulus_error_bound`] at `extension`
+/// is at most `tolerance`: b = tolerance/(1 + tolerance).
+pub fn displacement_error_allowed(shape: &LatticeShape, extension: f64, tolerance: f64) -> f64 {
+    tolerance / (1.0 + tolerance) * extension.abs() / (2.0 / shape.nx as f64).sqrt()
+}
+
 /// Young's modulus and Poisson ratios of a tensile test.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TensileModuli {

@@ -87,6 +87,10 @@ pub struct Relaxation {
     /// Tolerance (N) on the largest static force (springs and loads) on any free axis; when
     /// given, this criterion replaces the kinetic-energy ratio.
     pub residual_force: Option<f64>,
+    /// The displacement bound: relaxed once the static force's norm ‖r‖₂ (N, over every free
+    /// axis) is at most this, at a single check (the bound ‖u − u*‖₂ ≤ ‖r‖₂/k_min holds at
+    /// any instant, whatever the velocities); when given, it replaces both criteria above.
+    pub residual_norm: Option<f64>,
     /// Steps between checks.
     pub check_every: u64,
     /// Consecutive checks that must pass.
@@ -132,8 +136,12 @@ pub struct Trace {
     pub message: String,
     /// Relaxation: the time (s) from which the stopping criterion held.
     pub relaxed_at: Option<f64>,
-    /// Relaxation: the criterion that stopped the run, `kinetic_ratio` or `residual_force`.
+    /// Relaxation: the criterion that stopped the run, `kinetic_ratio`, `residual_force` or
+    /// `displacement_bound`.
     pub relaxed_by: Option<String>,
+    /// Relaxation: the norm ‖r‖₂ (N) of the static force (springs and loads) at the end.
+    #[serde(default)]
+    pub residual_norm: Option<f64>,
 }
 
 /// The motion of one line of nodes (a lattice row or column), one row per sample and one
@@ -238,15 +246,22 @@ pub const ENERGY_GROWTH_LIMIT: f64 = 1e3;
 pub const COLLAPSE_RATIO: f64 = 0.05;
 
 /// Positions at t = 0, for displacements and for the collapse check.
-struct Start {
+pub(super) struct Start {
     x: Vec<f64>,
     y: Vec<f64>,
+}
+
+impl Start {
+    /// The positions of `state` now.
+    pub(super) fn of(state: &State) -> Start {
+        Start { x: state.particles.x.clone(), y: state.particles.y.clone() }
+    }
 }
 
 impl Trace {
     /// Appends one sample of `state`; refuses, recording nothing, when the state has blown up
     /// (so nothing non-finite reaches a table) and says why.
-    fn sample<F: ForceField>(
+    pub(super) fn sample<F: ForceField>(
         &mut self,
         state: &State,
         field: &F,
@@ -316,7 +331,7 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
     sampling: &Sampling,
     probe: &mut P,
 ) -> Trace {
-    let start = Start { x: state.particles.x.clone(), y: state.particles.y.clone() };
+    let start = Start::of(state);
     let mut trace = Trace::with_room_for(sampling);
     integrator.start(state, field, sampling.dt);
     probe.observe(state);
@@ -358,7 +373,8 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
         }
     }
     trace.loop_s = started.elapsed().as_secs_f64();
-    if let Some(w) = watch {
+    if let Some(mut w) = watch {
+        trace.residual_norm = Some(w.residual_norm(state, field));
         w.judge(&mut trace, state.time);
     }
     trace.steps = state.steps;
@@ -431,12 +447,20 @@ impl RelaxationWatch {
         trace.relaxed_by = self.relaxed.map(|(_, by)| by.to_string());
         if trace.relaxed_at.is_none() && trace.status == RunStatus::Ok {
             trace.status = RunStatus::NoEquilibrium;
-            let criterion = match self.rule.residual_force {
-                Some(force) => format!("the largest static force did not stay below {force:e} N"),
-                None => format!("E_kin/E_pot did not stay below {:e}", self.rule.kinetic_ratio),
+            let criterion = match (self.rule.residual_norm, self.rule.residual_force) {
+                (Some(norm), _) => format!("the static force's norm did not fall below {norm:e} N"),
+                (None, Some(force)) => format!("the largest static force did not stay below {force:e} N"),
+                (None, None) => format!("E_kin/E_pot did not stay below {:e}", self.rule.kinetic_ratio),
             };
             trace.message = format!("{criterion} within {time:.6e} s");
         }
+    }
+
+    /// ‖r‖₂ (N): the norm of the static force (springs and loads) at `state`'s positions.
+    fn residual_norm<F: ForceField>(&mut self, state: &State, field: &mut F) -> f64 {
+        let (fx, fy, zeros) = &mut self.scratch;
+        static_forces(state, field, fx, fy, zeros);
+        fx.iter().chain(fy.iter()).map(|f| f * f).sum::<f64>().sqrt()
     }
 
     /// True once a criterion holds; checks only every `check_every` steps.
@@ -446,7 +470,14 @@ impl RelaxationWatch {
             return false;
         }
         let p = &state.particles;
-        // One criterion is in force: the residual static force when asked for, else E_kin/E_pot.
+        // One criterion is in force: the displacement bound when asked for, else the residual
+        // static force when asked for, else E_kin/E_pot.
+        if let Some(limit) = self.rule.residual_norm {
+            if self.residual_norm(state, field) <= limit {
+                self.relaxed = Some((state.time, "displacement_bound"));
+            }
+            return self.relaxed.is_some();
+        }
         let (calm, criterion) = if let Some(tolerance) = self.rule.residual_force {
             // The static imbalance, not the net force: a creeping, overdamped structure has a
             // small net force (drag balances springs) long before it is in equilibrium.

@@ -6,6 +6,7 @@ use super::integrate::{
     ForestRuth, Gear, IntegratorKind, PositionVerlet, RungeKutta4, SymplecticEuler, VelocityVerlet,
 };
 use super::probe::{ContactClock, Crossing, Frame, FrameProbe, StepProbe, WaveProbe, WaveRecord};
+use super::relax::{RelaxMethod, minimise};
 use super::run::{Sampling, Trace, simulate};
 use super::state::{Drive, Load, State};
 use super::stencil::LatticeNetwork;
@@ -52,6 +53,9 @@ pub struct Scene {
     pub integrator: IntegratorKind,
     /// Time step, length and what to record.
     pub sampling: Sampling,
+    /// How a relaxing scene comes to rest: damped motion in time (the integrator's), or a
+    /// minimiser, which has no time (nothing watched, no movie).
+    pub method: RelaxMethod,
     /// Bond `(i, j, rest)` whose δ = 0 crossings are timed, if any.
     pub contact_clock: Option<(usize, usize, f64)>,
     /// A wave watched from a source particle to receivers, if any: `(source, receivers,
@@ -96,6 +100,7 @@ impl Scene {
             background_gamma: 0.0,
             integrator: IntegratorKind::VelocityVerlet,
             sampling,
+            method: RelaxMethod::Damped,
             contact_clock: None,
             wave: None,
             movie_frames: None,
@@ -151,6 +156,9 @@ impl Scene {
         let mut state = State::with_loads(self.particles, self.loads, self.load_ramp);
         if let Some(drive) = self.drive {
             state = state.with_drive(drive);
+        }
+        if let Some(trace) = minimise(self.method, &mut state, &mut field, &self.sampling) {
+            return Outcome { trace, crossings: Vec::new(), wave: None, frames: Vec::new(), state };
         }
         let clock = self.contact_clock.map(|(i, j, rest)| ContactClock::new(i, j, rest));
         let wave = self.wave.map(|(source, receivers, every)| WaveProbe::new(source, receivers, every));

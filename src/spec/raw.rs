@@ -332,6 +332,13 @@ pub struct RawRelax {
     /// Stop instead when the largest static force (springs and loads, no damping) on any free
     /// axis stays below this fraction of the load per node.
     pub residual_force: Option<f64>,
+    /// Lattice: `damped` (default: damped MD in time), `fire` (FIRE 2.0) or `cg` (conjugate
+    /// gradients): how the lattice is brought to rest.
+    pub method: Option<crate::sim::RelaxMethod>,
+    /// Lattice: stop once the moduli are provably within this relative error of the state of
+    /// rest (the displacement bound ‖r‖₂/k_min); default 1e-4 for `fire` and `cg`, off for
+    /// `damped` unless given.
+    pub tolerance: Option<f64>,
     /// Give up after this many t_c (default 5000): `status = no_equilibrium`.
     pub max_tc: Option<f64>,
     /// Tangent moduli (stiffness): after relaxing, raise the load (a chain's wall displacement)
@@ -369,8 +376,27 @@ pub struct RawDamping {
     pub restitution: Option<f64>,
     /// Bond dashpot γ (N s/m), instead of `restitution`.
     pub gamma: Option<f64>,
-    /// Background damping γ_g (N s/m).
-    pub background: Option<f64>,
+    /// Background damping γ_g (N s/m), or `critical`: 2 m ω_min, critical for the slowest mode
+    /// of a relaxing lattice (ω_min² = k_min/m from its stiffness matrix).
+    pub background: Option<Background>,
+}
+
+/// `damping.background`: a value (N s/m) or the word `critical`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Background {
+    /// γ_g (N s/m).
+    Value(f64),
+    /// Critical for the slowest mode.
+    Critical(Critical),
+}
+
+/// The word `critical`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Critical {
+    /// γ_g = 2 m ω_min.
+    Critical,
 }
 
 /// `time:` section.

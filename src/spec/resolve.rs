@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use super::issue::{Issue, Num, positive, require};
 use super::kind::{self, KindSpec};
 use super::name::{MAX_NAME_LEN, is_safe_name};
-use super::raw::{RawDamping, RawGeometry, RawMaterial, RawMovie, RawScene, RawTime, SceneKind};
+use super::raw::{Background, RawDamping, RawGeometry, RawMaterial, RawMovie, RawScene, RawTime, SceneKind};
 use super::run_spec::{MovieSpec, RunSpec, reference_extension};
 use crate::model::{LawName, LawSpec};
 use crate::sim::IntegratorKind;
@@ -42,8 +42,15 @@ pub fn resolve(campaign: &str, raw: &RawScene, varied: BTreeMap<String, Value>) 
     let time = raw.time.clone().unwrap_or_default();
     let (gamma, restitution_target, gamma_background, t_c) = resolve_contact_time(&spec, raw)?;
     let integrator = spec.integrator;
+    let critical = spec.relax().is_some_and(|r| r.critical_background);
     require(
-        integrator.allows_damping() || (gamma == 0.0 && gamma_background == 0.0),
+        critical || !matches!(raw.damping.as_ref().and_then(|d| d.background), Some(Background::Critical(_))),
+        "damping.background",
+        "critical",
+        "is for loaded lattices, relaxing (`critical` is 2 m ω_min of their slowest mode); give a value (N s/m)",
+    )?;
+    require(
+        integrator.allows_damping() || (gamma == 0.0 && gamma_background == 0.0 && !critical),
         "time.integrator",
         integrator.name(),
         "an integrator that allows damping (all but forest-ruth, whose backward sub-step would run the dashpots \
@@ -232,7 +239,11 @@ fn resolve_material(material: &RawMaterial) -> Result<(f64, f64, LawSpec, bool),
 
 /// (γ, the restitution it came from, γ_g).
 fn resolve_damping(damping: &RawDamping, k: f64, mass: f64) -> Result<(f64, Option<f64>, f64), Issue> {
-    let background = damping.background.unwrap_or(0.0);
+    // `critical` is set by the lattice's study from its stiffness matrix (see `RelaxSpec`).
+    let background = match damping.background {
+        Some(Background::Value(value)) => value,
+        Some(Background::Critical(_)) | None => 0.0,
+    };
     require(background.is_finite() && background >= 0.0, "damping.background", background, "must be ≥ 0 (N s/m)")?;
     let (gamma, target) = match (damping.restitution, damping.gamma) {
         (Some(r), Some(g)) => {

@@ -5,10 +5,15 @@
 use serde::{Deserialize, Serialize};
 
 use super::issue::{Issue, missing, positive, require};
-use super::raw::{Control, RawScene, RawWave};
+use super::raw::{Background, Control, RawScene, RawWave};
+use crate::sim::RelaxMethod;
 
 /// E_kin/E_pot below which a relaxation is finished, unless `relax.kinetic_ratio` says.
 const DEFAULT_KINETIC_RATIO: f64 = 1e-8;
+
+/// Relative error of the moduli a minimiser (`fire`, `cg`) stops at, unless `relax.tolerance`
+/// says.
+pub const DEFAULT_TOLERANCE: f64 = 1e-4;
 
 /// Threshold of the wave-arrival criteria, relative to the source's peak.
 const DEFAULT_WAVE_THRESHOLD: f64 = 0.01;
@@ -24,6 +29,22 @@ pub struct RelaxSpec {
     /// After relaxing, raise the load (a chain's wall displacement) by this fraction, relax
     /// again and measure tangent moduli (stiffness) from the increments.
     pub tangent_step: Option<f64>,
+    /// Lattice: how it comes to rest (damped MD, FIRE, CG). Stored only when not `damped`, so
+    /// the run ids of earlier runs stay.
+    #[serde(default, skip_serializing_if = "is_damped")]
+    pub method: RelaxMethod,
+    /// Lattice: the relative error of the moduli the displacement bound stops at, when in force
+    /// (always for a minimiser).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tolerance: Option<f64>,
+    /// Lattice: background damping critical for the slowest mode, γ_g = 2 m ω_min
+    /// (`damping.background: critical`).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub critical_background: bool,
+}
+
+fn is_damped(method: &RelaxMethod) -> bool {
+    *method == RelaxMethod::Damped
 }
 
 /// A timed wave: from the excited particle to the receivers (a chain's particle, a lattice's
@@ -42,8 +63,10 @@ pub struct WaveSpec {
     pub threshold: f64,
 }
 
-/// When a relaxation counts as finished, and its tangent step.
-pub(super) fn resolve_relax(raw: &RawScene, control: Control) -> Result<RelaxSpec, Issue> {
+/// When a relaxation counts as finished, and its tangent step; `load_ramp_tc` is a lattice's
+/// load ramp (t_c), `None` for a chain, which has neither a static answer for the displacement
+/// bound nor a minimiser.
+pub(super) fn resolve_relax(raw: &RawScene, control: Control, load_ramp_tc: Option<f64>) -> Result<RelaxSpec, Issue> {
     let relax = raw.relax.clone().unwrap_or_default();
     let kinetic_ratio = relax.kinetic_ratio.unwrap_or(DEFAULT_KINETIC_RATIO);
     require(kinetic_ratio > 0.0 && kinetic_ratio < 1.0, "relax.kinetic_ratio", kinetic_ratio, "must be in (0, 1)")?;
@@ -59,7 +82,47 @@ pub(super) fn resolve_relax(raw: &RawScene, control: Control) -> Result<RelaxSpe
         require(step > 0.0 && step <= 0.1, "relax.tangent_step", step, "must be in (0, 0.1] (a fraction of the load)")?;
         require(control == Control::Force, "relax.tangent_step", step, "is for control: force")?;
     }
-    Ok(RelaxSpec { kinetic_ratio, residual_force: relax.residual_force, tangent_step: relax.tangent_step })
+    let damping = raw.damping.clone().unwrap_or_default();
+    let critical_background = matches!(damping.background, Some(Background::Critical(_)));
+    let method = relax.method.unwrap_or_default();
+    if load_ramp_tc.is_none() {
+        let for_lattices = "is for lattices (a chain has no static answer to bound its error by)";
+        require(method == RelaxMethod::Damped, "relax.method", method.name(), for_lattices)?;
+        require(relax.tolerance.is_none(), "relax.tolerance", relax.tolerance.unwrap_or_default(), for_lattices)?;
+        require(!critical_background, "damping.background", "critical", for_lattices)?;
+    }
+    if let Some(tolerance) = relax.tolerance {
+        require(
+            tolerance > 0.0 && tolerance <= 0.1,
+            "relax.tolerance",
+            tolerance,
+            "must be in (0, 0.1] (the relative error of the moduli)",
+        )?;
+    }
+    if method != RelaxMethod::Damped {
+        let name = method.name();
+        let minimiser = "a minimiser (fire, cg) has no time: use relax.method: damped";
+        require(control == Control::Force, "relax.method", name, &format!("needs control: force; {minimiser}"))?;
+        let ramp = load_ramp_tc.unwrap_or_default();
+        require(ramp == 0.0, "relax.method", name, &format!("needs no load.ramp_tc (it is {ramp}); {minimiser}"))?;
+        let damped = [
+            ("damping.restitution", damping.restitution.is_some()),
+            ("damping.gamma", damping.gamma.is_some()),
+            ("damping.background", damping.background.is_some()),
+        ];
+        if let Some((field, _)) = damped.iter().find(|(_, set)| *set) {
+            require(false, "relax.method", name, &format!("has no damping ({field} is set); {minimiser}"))?;
+        }
+    }
+    let tolerance = relax.tolerance.or((method != RelaxMethod::Damped).then_some(DEFAULT_TOLERANCE));
+    Ok(RelaxSpec {
+        kinetic_ratio,
+        residual_force: relax.residual_force,
+        tangent_step: relax.tangent_step,
+        method,
+        tolerance,
+        critical_background,
+    })
 }
 
 /// The threshold of a timed wave's arrival criteria.

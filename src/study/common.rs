@@ -36,6 +36,7 @@ pub(super) fn scene(
         gamma: spec.gamma,
         background_gamma: spec.gamma_background,
         integrator: spec.integrator,
+        method: spec.relax().map(|r| r.method).unwrap_or_default(),
         sampling: Sampling {
             dt: spec.dt,
             steps: spec.steps,
@@ -75,6 +76,8 @@ pub(super) fn relaxation(spec: &RunSpec, scale: Option<f64>, side: usize) -> Opt
     spec.relax().map(|relax| Relaxation {
         kinetic_ratio: relax.kinetic_ratio,
         residual_force: relax.residual_force.zip(scale).map(|(fraction, scale)| fraction * scale),
+        // Set by the kind from its static answer (the lattice's `static_answer`).
+        residual_norm: None,
         check_every: (spec.t_c / spec.dt).round().max(1.0) as u64,
         confirmations: relaxation_checks(side),
     })

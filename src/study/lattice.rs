@@ -10,8 +10,8 @@ use super::columns::{Block, Column, Row, Slot};
 use super::common::{Stopped, relaxation, scene, sound_speed};
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
-    LatticeShape, anisotropic_moduli, constrained_modulus_y, homogeneity, lattice_constants, shear_modulus,
-    tensile_moduli,
+    LatticeShape, anisotropic_moduli, constrained_modulus_y, displacement_error_allowed, homogeneity,
+    lattice_constants, modulus_error_bound, row_extension, shear_modulus, tensile_moduli,
 };
 use crate::model::{Axes, Bonds, ForceLaw, LawVisitor, Particles, SquareLattice};
 use crate::sim::{Drive, Load, Network, Outcome, ProbeTrace, Scene, Trace};
@@ -67,6 +67,23 @@ pub struct LatticeMetrics {
     /// Random lattice: fraction of the bonds kept after cutting.
     #[serde(default)]
     pub bond_fraction_kept: Option<f64>,
+    /// Loaded lattice: the softest stiffness k_min (N/m), a lower bound on the smallest
+    /// eigenvalue of the tangent stiffness at the static answer (`fem`).
+    #[serde(default)]
+    pub stiffness_min: Option<f64>,
+    /// Loaded lattice: ΔL (m) of its measured modulus in the static answer (see
+    /// [`row_extension`]).
+    #[serde(default)]
+    pub static_extension: Option<f64>,
+    /// Loaded lattice: the bound on the relative error of E (tension) or G (shear) of the MD
+    /// run against its state of rest, from the residual force at its end: b/(1 − b) with
+    /// b = √(2/N_x) ‖r‖₂/(k_min |ΔL|).
+    #[serde(default)]
+    pub relax_error_bound: Option<f64>,
+    /// Loaded lattice with `damping.background: critical`: γ_g = 2 m ω_min = 2 √(k_min m)
+    /// (N s/m), the critical damping of its slowest mode.
+    #[serde(default)]
+    pub gamma_background_critical: Option<f64>,
 }
 
 /// An nx × ny lattice at rest on its supports, node (ix, iy) at (ix a, iy a); a random
@@ -191,7 +208,23 @@ pub(super) fn static_answer(
         prescribed: &prescribed,
     };
     let top_row_force = scene.law.dispatch(StaticSolve { spec, l, truss: &truss, deadline, metrics })?;
-    let fraction = spec.relax().and_then(|r| r.residual_force);
+    let relax = spec.relax();
+    let softest = metrics.stiffness_min.filter(|k| *k > 0.0);
+    // The displacement bound ‖δu‖₂ ≤ ‖r‖₂/k_min: the moduli are within the tolerance once
+    // ‖r‖₂ ≤ k_min · (the displacement error allowed at the static ΔL).
+    if let (Some(tolerance), Some(k_min), Some(extension), Some(relaxation)) =
+        (relax.and_then(|r| r.tolerance), softest, metrics.static_extension, scene.sampling.relaxation.as_mut())
+    {
+        relaxation.residual_norm = Some(k_min * displacement_error_allowed(&shape(spec, l), extension, tolerance));
+    }
+    if relax.is_some_and(|r| r.critical_background)
+        && let Some(k_min) = softest
+    {
+        // γ_g = 2 m ω_min with ω_min² = k_min/m.
+        scene.background_gamma = 2.0 * (k_min * spec.mass).sqrt();
+        metrics.gamma_background_critical = Some(scene.background_gamma);
+    }
+    let fraction = relax.and_then(|r| r.residual_force);
     if let (Control::Velocity, Some(fraction), Some(relaxation)) =
         (l.control, fraction, scene.sampling.relaxation.as_mut())
     {
@@ -284,6 +317,11 @@ fn solve<L: ForceLaw>(
     metrics.youngs_modulus_fem = fem.youngs_modulus;
     metrics.poisson_ratio_fem = fem.poisson_ratio;
     metrics.shear_modulus_fem = fem.shear_modulus;
+    if Instant::now() > deadline {
+        return Err(past_deadline());
+    }
+    metrics.stiffness_min = truss.softest_stiffness(law, &ux, &uy);
+    metrics.static_extension = Some(extension(spec, l, &ux, &uy));
     if spec.relax().is_some_and(|r| r.tangent_step.is_some()) {
         // Δu per unit load factor: the increment of the whole load.
         if Instant::now() > deadline {
@@ -340,6 +378,15 @@ fn moduli(spec: &RunSpec, l: &LatticeSpec, force: f64, ux: &[f64], uy: &[f64]) -
     }
 }
 
+/// ΔL (m) of the modulus the load case measures: the top row's mean u_y (tension) or u_x
+/// (shear) relative to the bottom row's.
+fn extension(spec: &RunSpec, l: &LatticeSpec, ux: &[f64], uy: &[f64]) -> f64 {
+    match l.load_case {
+        LoadCase::Tensile | LoadCase::TensileX => row_extension(&shape(spec, l), uy),
+        LoadCase::Shear => row_extension(&shape(spec, l), ux),
+    }
+}
+
 fn shape(spec: &RunSpec, l: &LatticeSpec) -> LatticeShape {
     LatticeShape {
         nx: l.nx,
@@ -379,6 +426,10 @@ pub(super) fn measure(
     metrics.shear_modulus = keep(md.shear_modulus);
     let largest = ux.iter().chain(&uy).fold(0.0, |m: f64, u| m.max(u.abs()));
     metrics.homogeneity = keep(homogeneity(&shape(spec, l), &ux, largest));
+    if let (Some(k_min), Some(residual)) = (metrics.stiffness_min.filter(|k| *k > 0.0), outcome.trace.residual_norm) {
+        let bound = modulus_error_bound(&shape(spec, l), extension(spec, l, &ux, &uy), residual / k_min);
+        metrics.relax_error_bound = keep(Some(bound));
+    }
     if spec.law.is_linear() {
         continuum(l, metrics);
     }
@@ -500,6 +551,14 @@ pub(super) fn columns() -> Vec<Block<LatticeMetrics>> {
         Number("dissipation_time", |r| r.dissipation_time),
         Word("dissipation_criterion", |r| r.dissipation_criterion.map(str::to_string)),
         Count("relax_steps", |r| r.spec.lattice().map(|_| r.steps)),
+        Word("relax_method", |r| r.spec.relax().filter(|_| r.spec.lattice().is_some()).map(|m| m.method.name().into())),
+        Number("relax_tolerance", |r| r.spec.lattice().and(r.spec.relax()).and_then(|m| m.tolerance)),
+        Number("relax_error_bound", |r| r.group.relax_error_bound),
+        Number("stiffness_min", |r| r.group.stiffness_min),
+        Number("critical_bound_steps", |r| {
+            r.group.stiffness_min.filter(|k| *k > 0.0).map(|k| critical_bound_steps(r.spec, k))
+        }),
+        Number("gamma_background_critical", |r| r.group.gamma_background_critical),
     ];
     // A run loaded up (`tensile`) measures E_y and ν_yx, one loaded along x (`tensile-x`,
     // simulated turned by 90°) E_x and ν_xy; each beside its static value.
@@ -522,6 +581,16 @@ pub(super) fn columns() -> Vec<Block<LatticeMetrics>> {
         },
     ]
 }
+
+/// The critically damped bound (steps of dt): the slowest mode, ω_min² = k_min/m, critically
+/// damped and started from rest at x₀ from equilibrium moves as x₀ (1 + ω t) e^{−ω t}, which
+/// falls to 1e-4 of x₀ at ω_min t = 11.75 (the 9/ω_min is e^{−ω t} = 1e-4 alone).
+pub fn critical_bound_steps(spec: &RunSpec, stiffness_min: f64) -> f64 {
+    CRITICAL_DECAY_1E4 / (stiffness_min / spec.mass).sqrt() / spec.dt
+}
+
+/// ω t at which (1 + ω t) e^{−ω t} = 1e-4.
+pub const CRITICAL_DECAY_1E4: f64 = 11.75;
 
 /// True when the lattice's moduli differ by direction: turned, with unequal springs along x
 /// and y, or with one diagonal family.

@@ -20,7 +20,7 @@ use serde::{Deserialize, Serialize};
 use self::columns::{Block, Row};
 use self::common::relaxation_checks;
 use crate::measure::{ARRIVAL_CRITERIA, arrival_time, energy_error};
-use crate::sim::{Outcome, RunStatus, Scene, Trace};
+use crate::sim::{Outcome, RelaxMethod, RunStatus, Scene, Trace};
 use crate::spec::{KindSpec, RunSpec, SceneKind};
 
 /// Measured quantities with their analytical twins; `None` where the scene has no such
@@ -209,9 +209,19 @@ fn measure_wave(spec: &RunSpec, outcome: &Outcome, sound_speed_theory: Option<f6
 /// [`common::relaxation`], `scale` naming the force its residual-force criterion is relative to.
 fn measure_relaxation(spec: &RunSpec, outcome: &Outcome, side: usize, scale: &str, metrics: &mut Metrics) {
     let Some(relax) = spec.relax() else { return };
-    metrics.dissipation_time = outcome.trace.relaxed_at;
+    // A minimiser has no physical time: nothing dissipates over time there.
+    metrics.dissipation_time = outcome.trace.relaxed_at.filter(|_| relax.method == RelaxMethod::Damped);
     let checks = relaxation_checks(side);
+    let by_method =
+        if relax.method == RelaxMethod::Damped { String::new() } else { format!(" ({})", relax.method.name()) };
     metrics.dissipation_criterion = outcome.trace.relaxed_by.as_deref().map(|by| match (by, relax.residual_force) {
+        ("displacement_bound", _) => format!(
+            "moduli within {:e} of rest by the displacement bound ‖r‖₂/k_min{by_method}",
+            relax.tolerance.unwrap_or_default()
+        ),
+        ("residual_force", Some(fraction)) if relax.method != RelaxMethod::Damped => {
+            format!("largest static force < {fraction:e} of {scale}{by_method}")
+        }
         ("residual_force", Some(fraction)) => {
             format!("largest static force < {fraction:e} of {scale} at {checks} checks one t_c apart")
         }
@@ -357,7 +367,7 @@ mod tests {
         metrics.lattice.youngs_modulus = Some(2e11);
         let value = serde_json::to_value(&metrics).unwrap();
         let object = value.as_object().unwrap();
-        assert_eq!(object.len(), 47, "{object:?}");
+        assert_eq!(object.len(), 51, "{object:?}");
         for (key, number) in [("energy_error", 1e-3), ("contact_duration", 0.5), ("wall_force", -2.0)] {
             assert_eq!(object[key].as_f64(), Some(number), "{key}");
         }

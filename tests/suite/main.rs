@@ -15,4 +15,5 @@ mod movies;
 mod nonlinear;
 mod physics;
 mod pipeline;
+mod relax;
 mod waves;

@@ -27,7 +27,7 @@ impl ChainRun {
     /// Particles, excited node, walls, timed wave and relaxation of a chain scene.
     pub(super) fn resolve(raw: &RawScene, spacing: f64) -> Result<ChainRun, Issue> {
         let chain = resolve_chain(raw, spacing)?;
-        let relax = raw.relax.is_some().then(|| resolve_relax(raw, Control::Force)).transpose()?;
+        let relax = raw.relax.is_some().then(|| resolve_relax(raw, Control::Force, None)).transpose()?;
         Ok(ChainRun { relax, ..chain })
     }
 

@@ -167,7 +167,11 @@ impl LatticeRun {
         derived_from: Option<String>,
     ) -> Result<LatticeRun, Issue> {
         let lattice = LatticeSpec { derived_from, ..resolve_lattice(raw, k, depth)? };
-        let relax = lattice.impulse.is_none().then(|| resolve_relax(raw, lattice.control)).transpose()?;
+        let relax = lattice
+            .impulse
+            .is_none()
+            .then(|| resolve_relax(raw, lattice.control, Some(lattice.load_ramp_tc)))
+            .transpose()?;
         Ok(LatticeRun { lattice, relax, wave: None })
     }
 

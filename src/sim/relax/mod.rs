@@ -1,0 +1,186 @@
+//! Relaxation by minimisation: instead of integrating damped motion in time, walk the
+//! positions down the potential energy minus the loads' work, Π(x) = U(x) − Σ F·(x − x₀), whose
+//! gradient is minus the static force (springs and loads, holds applied) that
+//! `integrate::static_forces` gives for every force field and spring law. Two methods:
+//! FIRE 2.0 ([`fire`]) and non-linear conjugate gradients ([`cg`]). Both stop on the
+//! relaxation's static criterion (the displacement bound ‖r‖₂ ≤ `residual_norm`, else the
+//! largest force ≤ `residual_force`); neither has a physical time. Pure: no I/O.
+
+mod cg;
+mod fire;
+
+use serde::{Deserialize, Serialize};
+
+use super::field::ForceField;
+use super::integrate::static_forces;
+use super::run::{Relaxation, RunStatus, Sampling, Start, Trace};
+use super::state::State;
+
+/// How a loaded structure is brought to rest.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RelaxMethod {
+    /// Damped molecular dynamics in time (the dissipation the coursework asks about).
+    #[default]
+    Damped,
+    /// FIRE 2.0 (Guénolé et al., Comput. Mater. Sci. 175 (2020) 109584), semi-implicit Euler.
+    Fire,
+    /// Non-linear conjugate gradients, Polak–Ribière+, with a secant line search.
+    Cg,
+}
+
+impl RelaxMethod {
+    /// Every method, in the order the README lists them.
+    pub const ALL: [RelaxMethod; 3] = [RelaxMethod::Damped, RelaxMethod::Fire, RelaxMethod::Cg];
+
+    /// The word in YAML and in the results table.
+    pub fn name(self) -> &'static str {
+        match self {
+            RelaxMethod::Damped => "damped",
+            RelaxMethod::Fire => "fire",
+            RelaxMethod::Cg => "cg",
+        }
+    }
+}
+
+/// The static force (springs and loads, no damping, held axes zero) at the state's positions,
+/// −∇Π, with scratch for the zero velocities the force field is called with.
+#[derive(Default)]
+struct Gradient {
+    fx: Vec<f64>,
+    fy: Vec<f64>,
+    zeros: Vec<f64>,
+}
+
+impl Gradient {
+    /// Evaluates the static force at `state`'s positions.
+    fn evaluate<F: ForceField>(&mut self, state: &State, field: &mut F) {
+        static_forces(state, field, &mut self.fx, &mut self.fy, &mut self.zeros);
+    }
+
+    /// ‖r‖₂ (N) over every axis (held axes are zero).
+    fn norm(&self) -> f64 {
+        self.fx.iter().chain(&self.fy).map(|f| f * f).sum::<f64>().sqrt()
+    }
+
+    /// The largest |r| (N) on any axis.
+    fn largest(&self) -> f64 {
+        self.fx.iter().chain(&self.fy).fold(0.0f64, |m, f| m.max(f.abs()))
+    }
+}
+
+/// One method's iteration: from positions whose static force is `force`, a move that ends with
+/// `force` evaluated at the new positions. Returns the force evaluations it took, or why it
+/// cannot go on.
+trait Minimiser {
+    fn iterate<F: ForceField>(&mut self, state: &mut State, field: &mut F, force: &mut Gradient)
+    -> Result<u64, String>;
+}
+
+/// True when the static force `force` meets the relaxation's static criterion, with the name of
+/// that criterion: ‖r‖₂ ≤ `residual_norm` (the displacement bound) when set, else the largest
+/// |r| ≤ `residual_force`; `None` when the rule has neither (minimisers have no kinetic ratio).
+fn static_criterion(rule: &Relaxation, force: &Gradient) -> Option<(bool, &'static str)> {
+    match (rule.residual_norm, rule.residual_force) {
+        (Some(limit), _) => Some((force.norm() <= limit, "displacement_bound")),
+        (None, Some(limit)) => Some((force.largest() <= limit, "residual_force")),
+        (None, None) => None,
+    }
+}
+
+/// Relaxes `state` under `field` by `method` for at
+/// most `sampling.steps` force evaluations, until the static criterion of
+/// `sampling.relaxation` holds or `sampling.deadline` passes. The trace holds the start and the
+/// end; `steps` counts force evaluations (an MD step costs one), `time` FIRE's pseudo-time.
+/// The energy the minimiser took out is booked as dissipated, so that
+/// E_kin + E_pot + dissipated = E(0) + the loads' work holds at the end. `None` for `Damped`,
+/// which is the time loop's.
+pub fn minimise<F: ForceField>(
+    method: RelaxMethod,
+    state: &mut State,
+    field: &mut F,
+    sampling: &Sampling,
+) -> Option<Trace> {
+    match method {
+        RelaxMethod::Damped => None,
+        RelaxMethod::Fire => Some(run(&mut fire::Fire::new(sampling.dt), state, field, sampling)),
+        RelaxMethod::Cg => Some(run(&mut cg::ConjugateGradients::new(&*field), state, field, sampling)),
+    }
+}
+
+fn run<F: ForceField, M: Minimiser>(method: &mut M, state: &mut State, field: &mut F, sampling: &Sampling) -> Trace {
+    let start = Start::of(state);
+    let mut trace = Trace::default();
+    let mut force = Gradient::default();
+    force.evaluate(state, field);
+    let energy_0 = state.particles.kinetic_energy() + field.potential_energy(&state.particles.x, &state.particles.y);
+    if let Err(reason) = trace.sample(state, &*field, &start, sampling.displacements) {
+        trace.status = RunStatus::Unstable;
+        trace.message = format!("{reason} at the start");
+        return trace;
+    }
+    let started = std::time::Instant::now();
+    let mut evaluations = 1;
+    let mut relaxed_by = None;
+    loop {
+        match sampling.relaxation.as_ref().and_then(|rule| static_criterion(rule, &force)) {
+            Some((true, criterion)) => {
+                relaxed_by = Some(criterion);
+                break;
+            }
+            None => {
+                trace.status = RunStatus::NoEquilibrium;
+                trace.message = "a minimiser needs a static criterion (relax.tolerance or relax.residual_force)".into();
+                break;
+            }
+            Some((false, _)) => {}
+        }
+        if evaluations >= sampling.steps {
+            trace.status = RunStatus::NoEquilibrium;
+            trace.message = format!("the static criterion did not hold within {evaluations} force evaluations");
+            break;
+        }
+        if sampling.deadline.is_some_and(|deadline| std::time::Instant::now() > deadline) {
+            trace.status = RunStatus::Budget;
+            trace.message = format!(
+                "stopped at its deadline after {:.3} s of minimisation ({evaluations} force evaluations)",
+                started.elapsed().as_secs_f64()
+            );
+            break;
+        }
+        match method.iterate(state, field, &mut force) {
+            Ok(used) => evaluations += used,
+            Err(reason) => {
+                trace.status = RunStatus::NoEquilibrium;
+                trace.message = format!("{reason} after {evaluations} force evaluations");
+                break;
+            }
+        }
+        if !force.norm().is_finite() {
+            trace.status = RunStatus::Unstable;
+            trace.message = format!("the force became non-finite after {evaluations} force evaluations");
+            break;
+        }
+    }
+    trace.loop_s = started.elapsed().as_secs_f64();
+    state.account_load_work(1.0);
+    let p = &state.particles;
+    state.dissipated = energy_0 + state.load_work() - p.kinetic_energy() - field.potential_energy(&p.x, &p.y);
+    state.steps = evaluations;
+    if let Err(reason) = trace.sample(state, &*field, &start, sampling.displacements) {
+        trace.status = RunStatus::Unstable;
+        trace.message = format!("{reason} at the end of the minimisation");
+    }
+    if trace.status == RunStatus::Ok {
+        trace.relaxed_at = Some(state.time);
+        trace.relaxed_by = relaxed_by.map(str::to_string);
+    }
+    trace.residual_norm = Some(force.norm());
+    trace.steps = evaluations;
+    trace
+}
+
+/// Σ a·b over both axes.
+fn dot(ax: &[f64], ay: &[f64], bx: &[f64], by: &[f64]) -> f64 {
+    ax.iter().zip(bx).map(|(a, b)| a * b).sum::<f64>() + ay.iter().zip(by).map(|(a, b)| a * b).sum::<f64>()
+}
