@@ -4,8 +4,8 @@ pub use self::chain::normal_mode_error;
 pub use self::contact::{ContactTiming, contact_timing};
 pub use self::energy::energy_error;
 pub use self::moduli::{
-    ContinuumModuli, ElasticConstants, LatticeShape, TensileModuli, anisotropic_moduli, constrained_modulus_y,
-    homogeneity, lattice_constants, shear_modulus, tensile_moduli,
+    ContinuumModuli, ElasticConstants, IsotropicConstants, LatticeShape, TensileModuli, anisotropic_moduli,
+    constrained_modulus_y, homogeneity, lattice_constants, network_constants, shear_modulus, tensile_moduli,
 };
 pub use self::wave::{ARRIVAL_CRITERIA, arrival_time};
 
