@@ -9,7 +9,7 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 use mdsolids::bench::{BenchConfig, Workload, reference_lattice, reference_scene};
-use mdsolids::model::{Linear, NoDashpot, Spring};
+use mdsolids::model::{LatticeType, Linear, NoDashpot, Spring};
 use mdsolids::sim::{ForceField, Integrator, LatticeNetwork, State, VelocityVerlet};
 
 const SIZES: [usize; 3] = [100, 316, 1000];
@@ -33,7 +33,14 @@ fn timed_on(pool: &rayon::ThreadPool, iterations: u64, mut work: impl FnMut() + 
 
 /// The reference lattice, strained a little so every bond carries a force.
 fn strained_state(n: usize) -> State {
-    let config = BenchConfig { workload: Workload::Kernel, n, steps: 0, dilute: 0.0, bond_list: false };
+    let config = BenchConfig {
+        workload: Workload::Kernel,
+        n,
+        steps: 0,
+        dilute: 0.0,
+        bond_list: false,
+        lattice: LatticeType::Square,
+    };
     let mut particles = reference_scene(&config).particles;
     for (i, x) in particles.x.iter_mut().enumerate() {
         *x *= 1.0 + 1e-3 * ((i % 7) as f64);
@@ -92,7 +99,14 @@ fn workloads(c: &mut Criterion) {
     for n in [100, 316] {
         group.throughput(Throughput::Elements((n * n) as u64 * WORKLOAD_STEPS));
         for workload in [Workload::Kernel, Workload::Relax] {
-            let config = BenchConfig { workload, n, steps: WORKLOAD_STEPS, dilute: 0.0, bond_list: false };
+            let config = BenchConfig {
+                workload,
+                n,
+                steps: WORKLOAD_STEPS,
+                dilute: 0.0,
+                bond_list: false,
+                lattice: LatticeType::Square,
+            };
             group.bench_function(BenchmarkId::new(workload.name(), n), |b| {
                 b.iter_custom(|iterations| {
                     (0..iterations)

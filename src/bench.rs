@@ -8,11 +8,16 @@
 //! campaigns/coursework.yaml): steel-like, k = 2e9 N/m, k_d/k = 0.5, m = 0.785 kg, a = 0.1 m,
 //! bond dashpots for restitution 0.5, background damping 12000 N s/m, the bottom row clamped,
 //! 1 kN up on every top-row node, the residual-force check every t_c; velocity Verlet,
-//! dt = t_c/50. Pure: building and timing the scenes does no I/O.
+//! dt = t_c/50.
+//!
+//! Either workload on another `lattice` type: the same springs k (k_d has no place there) on
+//! an N-row triangular, honeycomb or kagome network of N nodes per row, through the bond-list
+//! loop (the stencil knows only the square grid). Pure: building and timing the scenes does
+//! no I/O.
 
 use serde::Serialize;
 
-use crate::model::{Axes, LawSpec, Particles, SquareLattice};
+use crate::model::{Axes, LatticeType, LawSpec, Layout, Particles, PlanarLattice, SquareLattice};
 use crate::sim::{IntegratorKind, Load, Network, Relaxation, Sampling, Scene};
 use crate::theory::{gamma_for_restitution, linear_contact_duration};
 
@@ -50,6 +55,8 @@ pub struct BenchConfig {
     pub dilute: f64,
     /// Run the full lattice through the generic bond-list loop.
     pub bond_list: bool,
+    /// The network: the square lattice (stencil or bond list) or another type (bond list).
+    pub lattice: LatticeType,
 }
 
 /// Throughput of one timed run.
@@ -57,6 +64,8 @@ pub struct BenchConfig {
 pub struct BenchResult {
     /// `kernel` or `relax`.
     pub workload: Workload,
+    /// The network's type.
+    pub lattice: LatticeType,
     /// Lattice side N.
     pub n: usize,
     /// Particles N².
@@ -86,14 +95,38 @@ pub fn reference_lattice(n: usize) -> SquareLattice {
     SquareLattice { nx: n, ny: n, spacing: 1.0, k_x: 1.0, k_y: 1.0, k_rising: 0.5, k_falling: 0.5, periodic_x: false }
 }
 
-/// The network of `lattice` as `config` asks: the stencil, the full bond list or a diluted one.
+/// The network of `lattice` as `config` asks: the stencil, the full bond list or a diluted one;
+/// of another type its bond list (springs `k`, spacing `spacing`, m), diluted if asked.
 fn network(config: &BenchConfig, lattice: SquareLattice) -> Network {
+    let bonds = match planar(config, lattice.spacing, lattice.k_x) {
+        Some(planar) => planar.bonds(),
+        None if config.dilute > 0.0 || config.bond_list => lattice.bonds(),
+        None => return Network::Lattice(lattice),
+    };
     if config.dilute > 0.0 {
-        Network::Bonds(lattice.bonds().randomised(config.dilute, 0.0, 0x5eed, |_, _| false))
-    } else if config.bond_list {
-        Network::Bonds(lattice.bonds())
+        Network::Bonds(bonds.randomised(config.dilute, 0.0, 0x5eed, |_, _| false))
     } else {
-        Network::Lattice(lattice)
+        Network::Bonds(bonds)
+    }
+}
+
+/// The network of another type than square, N × N, springs `k` of length `spacing` (m).
+fn planar(config: &BenchConfig, spacing: f64, k: f64) -> Option<PlanarLattice> {
+    (!config.lattice.is_square()).then_some(PlanarLattice {
+        kind: config.lattice,
+        nx: config.n,
+        ny: config.n,
+        spacing,
+        k,
+        periodic_x: false,
+    })
+}
+
+/// Node positions and edges of the workload's network.
+fn layout(config: &BenchConfig, spacing: f64) -> Layout {
+    match planar(config, spacing, 1.0) {
+        Some(planar) => planar.layout(),
+        None => Layout::square(config.n, config.n, spacing, false),
     }
 }
 
@@ -108,10 +141,9 @@ pub fn reference_scene(config: &BenchConfig) -> Scene {
 /// The kernel workload (module docs).
 fn kernel_scene(config: &BenchConfig) -> Scene {
     let mut particles = Particles::default();
-    for iy in 0..config.n {
-        for ix in 0..config.n {
-            particles.push(ix as f64, iy as f64, 1.0, Axes::FREE);
-        }
+    let layout = layout(config, 1.0);
+    for node in 0..layout.len() {
+        particles.push(layout.x[node], layout.y[node], 1.0, Axes::FREE);
     }
     let last = particles.len() - 1;
     particles.vx[last] = 0.1;
@@ -141,11 +173,13 @@ fn relax_scene(config: &BenchConfig) -> Scene {
         periodic_x: false,
     };
     let mut particles = Particles::default();
-    for iy in 0..n {
-        for ix in 0..n {
-            let axes = if iy == 0 { Axes::FIXED } else { Axes::FREE };
-            particles.push(ix as f64 * spacing, iy as f64 * spacing, mass, axes);
-        }
+    let layout = layout(config, spacing);
+    for node in 0..layout.len() {
+        particles.push(layout.x[node], layout.y[node], mass, Axes::FREE);
+    }
+    for &node in &layout.edges.bottom {
+        particles.hold(node, false);
+        particles.hold(node, true);
     }
     let gamma = gamma_for_restitution(0.5, k, mass);
     let t_c = linear_contact_duration(k, mass, gamma).expect("restitution 0.5 is underdamped");
@@ -160,7 +194,7 @@ fn relax_scene(config: &BenchConfig) -> Scene {
     let mut scene = Scene::new(particles, network(config, lattice), LawSpec::Linear, sampling)
         .damping(gamma, 12000.0)
         .integrator(IntegratorKind::VelocityVerlet);
-    scene.loads = (0..n).map(|ix| Load { particle: lattice.node(ix, n - 1), fx: 0.0, fy: load }).collect();
+    scene.loads = layout.edges.top.iter().map(|&particle| Load { particle, fx: 0.0, fy: load }).collect();
     scene
 }
 
@@ -179,6 +213,7 @@ pub fn run_once(config: &BenchConfig) -> BenchResult {
     let steps = trace.steps;
     BenchResult {
         workload: config.workload,
+        lattice: config.lattice,
         n: config.n,
         particles,
         bonds,

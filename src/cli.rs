@@ -5,6 +5,7 @@ use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 
 use crate::bench::{BenchConfig, BenchResult, Workload, run_once};
+use crate::model::LatticeType;
 use crate::output::Layout;
 use crate::plan::{Plan, Stability};
 use crate::runner::{
@@ -121,6 +122,11 @@ pub enum Command {
         /// Run the full lattice through the generic bond-list loop instead of the stencil.
         #[arg(long)]
         bond_list: bool,
+        /// Lattice types to time, comma-separated (`square,triangular,honeycomb,kagome`; the
+        /// others always through the bond list): each with every workload, repetitions
+        /// alternating.
+        #[arg(long, value_parser = lattice_type, value_delimiter = ',', default_value = "square")]
+        lattice: Vec<LatticeType>,
         /// Timed repetitions; the median is reported.
         #[arg(long, default_value_t = 3)]
         repeat: usize,
@@ -170,10 +176,19 @@ pub fn run() -> anyhow::Result<()> {
             };
             slurm_command(&cli.reports, campaign, &request)
         }
-        Command::Bench { workload, n, steps, threads, dilute, bond_list, repeat, json } => {
-            let configs: Vec<_> = workload
+        Command::Bench { workload, n, steps, threads, dilute, bond_list, lattice, repeat, json } => {
+            let configs: Vec<_> = lattice
                 .iter()
-                .map(|&workload| BenchConfig { workload, n: *n, steps: *steps, dilute: *dilute, bond_list: *bond_list })
+                .flat_map(|&lattice| {
+                    workload.iter().map(move |&workload| BenchConfig {
+                        workload,
+                        n: *n,
+                        steps: *steps,
+                        dilute: *dilute,
+                        bond_list: *bond_list,
+                        lattice,
+                    })
+                })
                 .collect();
             bench_command(&configs, *threads, *repeat, *json)
         }
@@ -631,6 +646,14 @@ fn publish(
     report::render_with_left_out(campaign, layout, records, &fits, left_out)
 }
 
+/// A lattice type by its name (`--lattice`).
+fn lattice_type(name: &str) -> Result<LatticeType, String> {
+    LatticeType::ALL.into_iter().find(|t| t.name() == name).ok_or_else(|| {
+        let names: Vec<&str> = LatticeType::ALL.iter().map(|t| t.name()).collect();
+        format!("`{name}`: one of {}", names.join(", "))
+    })
+}
+
 fn bench_command(configs: &[BenchConfig], threads: Option<usize>, repeat: usize, json: bool) -> anyhow::Result<()> {
     anyhow::ensure!(!configs.is_empty(), "--workload: name at least one");
     let config = &configs[0];
@@ -659,7 +682,8 @@ fn bench_command(configs: &[BenchConfig], threads: Option<usize>, repeat: usize,
     }
     if !json && let [first, .., last] = &medians[..] {
         let ratio = last.particle_steps_per_s / first.particle_steps_per_s;
-        println!("{}/{} particle-steps/s: {ratio:.3}", last.workload.name(), first.workload.name());
+        let name = |r: &BenchResult| format!("{} {}", r.lattice.name(), r.workload.name());
+        println!("{}/{} particle-steps/s: {ratio:.3}", name(last), name(first));
     }
     Ok(())
 }
@@ -670,8 +694,9 @@ fn print_bench(median: &BenchResult, repeat: usize, json: bool) -> anyhow::Resul
         println!("{}", serde_json::to_string(median)?);
     } else {
         println!(
-            "{}: N = {} ({} particles, {} bonds, {} path), {} steps on {} thread(s), median of {repeat}:\n  \
+            "{} {}: N = {} ({} particles, {} bonds, {} path), {} steps on {} thread(s), median of {repeat}:\n  \
              {:.1} million particle-steps/s, {:.1} million bond-updates/s, {:.3} s, energy drift {:+.2e}",
+            median.lattice.name(),
             median.workload.name(),
             median.n,
             median.particles,

@@ -4,9 +4,9 @@ pub use self::chain::normal_mode_error;
 pub use self::contact::{ContactTiming, contact_timing};
 pub use self::energy::energy_error;
 pub use self::moduli::{
-    ContinuumModuli, ElasticConstants, LatticeShape, TensileModuli, anisotropic_moduli, constrained_modulus_y,
-    displacement_error_allowed, homogeneity, lattice_constants, modulus_error_bound, row_extension, shear_modulus,
-    tensile_moduli,
+    ContinuumModuli, ElasticConstants, IsotropicConstants, LatticeShape, TensileModuli, anisotropic_moduli,
+    constrained_modulus_y, displacement_error_allowed, homogeneity, lattice_constants, modulus_error_bound,
+    network_constants, row_extension, shear_modulus, tensile_moduli,
 };
 pub use self::wave::{ARRIVAL_CRITERIA, arrival_time};
 

@@ -1,62 +1,56 @@
 //! Elastic moduli of a loaded lattice from its node displacements (MD after relaxation, or the
 //! static solution): the same function serves both, so they are compared like for like.
 //!
-//! Widths L_x = (N_x − 1) a, L_y = (N_y − 1) a, depth d; F is the total force on the top row.
-//! ΔL are differences of mean displacements of rows or columns.
+//! Widths L_x, L_y of the block's [`Edges`] ((N_x − 1) a, (N_y − 1) a for the square
+//! lattice), depth d; F is the total force on the top row. ΔL are differences of mean
+//! displacements of rows or columns.
 
-/// Size of a lattice: nodes per row and rows, spacing a (m), depth d (m).
+use crate::model::{Edges, LatticeType};
+
+/// A loaded lattice's rows and columns by name, its size and depth d (m).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LatticeShape {
-    /// Nodes per row.
-    pub nx: usize,
-    /// Rows.
-    pub ny: usize,
-    /// Spacing a (m).
-    pub spacing: f64,
+pub struct LatticeShape<'a> {
+    /// The bottom and top rows, the side columns, L_x and L_y.
+    pub edges: &'a Edges,
     /// Depth d (m).
     pub depth: f64,
-    /// Bonds wrap across the sides: the width carrying the load is the period nx · a.
-    pub periodic_x: bool,
 }
 
-impl LatticeShape {
-    /// L_x: (N_x − 1) a, or the period N_x a of a periodic lattice.
-    fn width(&self) -> f64 {
-        let columns = if self.periodic_x { self.nx } else { self.nx - 1 };
-        columns as f64 * self.spacing
-    }
-    fn height(&self) -> f64 {
-        (self.ny - 1) as f64 * self.spacing
-    }
-    /// Mean of `u` over row `iy`.
-    fn row_mean(&self, u: &[f64], iy: usize) -> f64 {
-        u[iy * self.nx..(iy + 1) * self.nx].iter().sum::<f64>() / self.nx as f64
-    }
-    /// Values of `u` down column `ix`.
-    fn column(&self, u: &[f64], ix: usize) -> Vec<f64> {
-        (0..self.ny).map(|iy| u[iy * self.nx + ix]).collect()
-    }
+/// Mean of `u` over `nodes`.
+fn mean(u: &[f64], nodes: &[usize]) -> f64 {
+    nodes.iter().map(|&n| u[n]).sum::<f64>() / nodes.len() as f64
+}
+
+/// Values of `u` at `nodes`, in their order.
+fn values(u: &[f64], nodes: &[usize]) -> Vec<f64> {
+    nodes.iter().map(|&n| u[n]).collect()
 }
 
 /// ΔL (m) of a lattice's measured modulus: the mean of `u` (u_y in tension, u_x in shear)
 /// over the top row minus its mean over the bottom row.
 pub fn row_extension(shape: &LatticeShape, u: &[f64]) -> f64 {
-    shape.row_mean(u, shape.ny - 1) - shape.row_mean(u, 0)
+    mean(u, &shape.edges.top) - mean(u, &shape.edges.bottom)
+}
+
+/// √(1/N_top + 1/N_bottom): ΔL weighs the top row's N_top nodes by 1/N_top and the bottom
+/// row's by −1/N_bottom, so |δΔL| ≤ this × ‖δu‖₂ (Cauchy–Schwarz); √(2/N_x) on a square block.
+fn extension_weight(shape: &LatticeShape) -> f64 {
+    (1.0 / shape.edges.top.len() as f64 + 1.0 / shape.edges.bottom.len() as f64).sqrt()
 }
 
 /// The bound on the relative error of a modulus M ∝ 1/ΔL (E in tension, G in shear) measured
 /// at the extension `extension` = ΔL (m) from displacements within `error` (m, 2-norm over every
-/// node) of the state of rest: ΔL weighs two rows by ±1/N_x, so |δΔL| ≤ √(2/N_x) ‖δu‖₂
-/// (Cauchy–Schwarz), and with b = |δΔL|/|ΔL|, |δM/M| ≤ b/(1 − b) (∞ for b ≥ 1).
+/// node) of the state of rest: |δΔL| ≤ √(1/N_top + 1/N_bottom) ‖δu‖₂ (Cauchy–Schwarz), and
+/// with b = |δΔL|/|ΔL|, |δM/M| ≤ b/(1 − b) (∞ for b ≥ 1).
 pub fn modulus_error_bound(shape: &LatticeShape, extension: f64, error: f64) -> f64 {
-    let b = (2.0 / shape.nx as f64).sqrt() * error / extension.abs();
+    let b = extension_weight(shape) * error / extension.abs();
     if b < 1.0 { b / (1.0 - b) } else { f64::INFINITY }
 }
 
 /// The largest displacement error (m, 2-norm) for which [`modulus_error_bound`] at `extension`
 /// is at most `tolerance`: b = tolerance/(1 + tolerance).
 pub fn displacement_error_allowed(shape: &LatticeShape, extension: f64, tolerance: f64) -> f64 {
-    tolerance / (1.0 + tolerance) * extension.abs() / (2.0 / shape.nx as f64).sqrt()
+    tolerance / (1.0 + tolerance) * extension.abs() / extension_weight(shape)
 }
 
 /// Young's modulus and Poisson ratios of a tensile test.
@@ -74,13 +68,13 @@ pub struct TensileModuli {
 /// `(ux, uy)` (m): ΔL_y = mean u_y(top row) − mean u_y(bottom row),
 /// ΔL_x = mean u_x(right column) − mean u_x(left column).
 pub fn tensile_moduli(shape: &LatticeShape, force: f64, ux: &[f64], uy: &[f64]) -> TensileModuli {
-    let stretch = shape.row_mean(uy, shape.ny - 1) - shape.row_mean(uy, 0);
-    let mean = |column: Vec<f64>| column.iter().sum::<f64>() / column.len() as f64;
-    let widening = mean(shape.column(ux, shape.nx - 1)) - mean(shape.column(ux, 0));
-    let strain_y = stretch / shape.height();
+    let e = shape.edges;
+    let stretch = mean(uy, &e.top) - mean(uy, &e.bottom);
+    let widening = mean(ux, &e.right) - mean(ux, &e.left);
+    let strain_y = stretch / e.height;
     TensileModuli {
-        youngs_modulus: force / shape.depth / shape.width() / strain_y,
-        poisson_ratio: -(widening / shape.width()) / strain_y,
+        youngs_modulus: force / shape.depth / e.width / strain_y,
+        poisson_ratio: -(widening / e.width) / strain_y,
         poisson_ratio_coursework: widening / stretch,
     }
 }
@@ -88,8 +82,9 @@ pub fn tensile_moduli(shape: &LatticeShape, force: f64, ux: &[f64], uy: &[f64]) 
 /// G = (F/d/L_x) / (ΔL_x,top / L_y) from a shear test, with ΔL_x,top the mean x displacement
 /// of the top row relative to the bottom row (Pa).
 pub fn shear_modulus(shape: &LatticeShape, force: f64, ux: &[f64]) -> f64 {
-    let shift = shape.row_mean(ux, shape.ny - 1) - shape.row_mean(ux, 0);
-    force / shape.depth / shape.width() / (shift / shape.height())
+    let e = shape.edges;
+    let shift = mean(ux, &e.top) - mean(ux, &e.bottom);
+    force / shape.depth / e.width / (shift / e.height)
 }
 
 /// How far the left and right columns are from straight lines: the largest deviation of a
@@ -99,8 +94,9 @@ pub fn shear_modulus(shape: &LatticeShape, force: f64, ux: &[f64]) -> f64 {
 /// largest displacement `largest` (m) is round-off (a lattice without diagonals, ν = 0), and
 /// a ratio of round-offs says nothing.
 pub fn homogeneity(shape: &LatticeShape, ux: &[f64], largest: f64) -> Option<f64> {
-    let columns = [shape.column(ux, 0), shape.column(ux, shape.nx - 1)];
-    let mean_lateral = columns.iter().flatten().map(|u| u.abs()).sum::<f64>() / (2 * shape.ny) as f64;
+    let columns = [values(ux, &shape.edges.left), values(ux, &shape.edges.right)];
+    let nodes = columns.iter().map(Vec::len).sum::<usize>();
+    let mean_lateral = columns.iter().flatten().map(|u| u.abs()).sum::<f64>() / nodes as f64;
     let deviation = columns.iter().map(|c| line_deviation(c)).fold(0.0, f64::max);
     (mean_lateral > 1e-9 * largest).then(|| deviation / mean_lateral)
 }
@@ -218,28 +214,111 @@ pub fn anisotropic_moduli(k_x: f64, k_y: f64, k_rising: f64, k_falling: f64, dep
     }
 }
 
+/// Lamé constants per unit depth (N/m) of an isotropic network of central springs k with
+/// nearest-neighbour distance a, and its area per node A (m²): the continuum of the
+/// triangular, kagome and honeycomb lattices (isotropic by their six-fold symmetry).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IsotropicConstants {
+    /// λ (N/m).
+    pub lambda: f64,
+    /// μ = C66 (N/m).
+    pub mu: f64,
+    /// Area per node A (m²): the mass per unit area is m/A.
+    pub area_per_node: f64,
+}
+
+impl IsotropicConstants {
+    /// Young's modulus under uniaxial stress, E = 4μ(λ + μ)/(λ + 2μ) / d (Pa).
+    pub fn youngs_modulus(&self, depth: f64) -> f64 {
+        4.0 * self.mu * (self.lambda + self.mu) / (self.lambda + 2.0 * self.mu) / depth
+    }
+
+    /// Poisson's ratio ν = λ/(λ + 2μ) (plane stress of a sheet: the 2D ratio).
+    pub fn poisson_ratio(&self) -> f64 {
+        self.lambda / (self.lambda + 2.0 * self.mu)
+    }
+
+    /// The constrained modulus (λ + 2μ)/d (Pa): what a periodic strip measures in tension.
+    pub fn constrained_modulus(&self, depth: f64) -> f64 {
+        (self.lambda + 2.0 * self.mu) / depth
+    }
+
+    /// Shear modulus μ/d (Pa).
+    pub fn shear_modulus(&self, depth: f64) -> f64 {
+        self.mu / depth
+    }
+
+    /// Longitudinal and transverse sound speeds (m/s), c² = C A/m with C = λ + 2μ or μ.
+    pub fn sound_speeds(&self, mass: f64) -> (f64, f64) {
+        let c = |modulus: f64| (modulus * self.area_per_node / mass).sqrt();
+        (c(self.lambda + 2.0 * self.mu), c(self.mu))
+    }
+}
+
+/// The continuum of a triangular, kagome or honeycomb lattice of central springs k (N/m),
+/// spacing a (m); `None` for the square lattice (anisotropic, [`anisotropic_moduli`]).
+///
+/// Derivation: every node of both lattices is a centre of inversion of its bonds (it sits on
+/// straight lines of bonds), so a uniform strain is in equilibrium node by node and the elastic
+/// constants are the affine sums C_ijkl = (1/A_cell) Σ_cell k a² n_i n_j n_k n_l. Over bonds at
+/// 0°, 60°, 120°: Σ n_x⁴ = 1 + 2/16 = 9/8 and Σ n_x² n_y² = 2 · (1/4)(3/4) = 3/8. The triangular
+/// cell (area √3a²/2) holds one bond of each direction: C11 = (9/8) k a²/(√3a²/2) = 3√3k/4,
+/// C12 = C66 = (3/8) k a²/(√3a²/2) = √3k/4, so λ = μ = √3k/4 (per unit depth: √3k/(4d)),
+/// E = 8μ/3 = 2k/(√3 d), ν = 1/3, and with m/A the mass per area, c_L = a√(9k/(8m)),
+/// c_T = a√(3k/(8m)). The kagome cell (2a × a√3, area 2√3a², three nodes) holds two bonds of
+/// each direction: half the bond density, λ = μ = √3k/8, c_L = a√(3k/(4m)), c_T = a√(k/(4m)).
+/// The honeycomb's nodes are not centres of inversion: under shear its three bonds at 120°
+/// turn at no cost (z = 3 < 4), so μ = 0; a dilation ε stretches every bond by εa (by the
+/// three-fold symmetry, in equilibrium), 3/2 bonds of energy ½k(εa)² per node of area
+/// 3√3a²/4, which is 2(λ + μ)ε²: λ = k/(2√3), c_L = a√(3k/(8m)), no E, G or c_T.
+///
+/// ```
+/// use mdsolids::measure::network_constants;
+/// use mdsolids::model::LatticeType;
+/// let t = network_constants(LatticeType::Triangular, 2.0, 0.1).unwrap();
+/// assert!((t.youngs_modulus(0.5) - 2.0 * 2.0 / (3.0_f64.sqrt() * 0.5)).abs() < 1e-12);
+/// assert!((t.poisson_ratio() - 1.0 / 3.0).abs() < 1e-15);
+/// let (c_l, c_t) = t.sound_speeds(3.0);
+/// assert!((c_l - 0.1 * (9.0 * 2.0 / 24.0_f64).sqrt()).abs() < 1e-12);
+/// assert!((c_t - 0.1 * (3.0 * 2.0 / 24.0_f64).sqrt()).abs() < 1e-12);
+/// let h = network_constants(LatticeType::Honeycomb, 2.0, 0.1).unwrap();
+/// assert!(h.mu == 0.0 && (h.lambda - 1.0 / 3.0_f64.sqrt()).abs() < 1e-15);
+/// assert!((h.sound_speeds(3.0).0 - 0.1 * (3.0 * 2.0 / 24.0_f64).sqrt()).abs() < 1e-12);
+/// ```
+pub fn network_constants(kind: LatticeType, k: f64, spacing: f64) -> Option<IsotropicConstants> {
+    let s3 = 3.0_f64.sqrt();
+    let (lambda, mu) = match kind {
+        LatticeType::Triangular => (s3 * k / 4.0, s3 * k / 4.0),
+        LatticeType::Kagome => (s3 * k / 8.0, s3 * k / 8.0),
+        LatticeType::Honeycomb => (k / (2.0 * s3), 0.0),
+        LatticeType::Square => return None,
+    };
+    Some(IsotropicConstants { lambda, mu, area_per_node: kind.area_per_node(spacing) })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::Layout;
 
     /// A 3 × 3 block's x displacements, row by row, with left and right columns `left`, `right`.
-    fn block(left: [f64; 3], right: [f64; 3]) -> (LatticeShape, Vec<f64>) {
-        let shape = LatticeShape { nx: 3, ny: 3, spacing: 1.0, depth: 1.0, periodic_x: false };
+    fn block(left: [f64; 3], right: [f64; 3]) -> (Edges, Vec<f64>) {
         let ux = (0..3).flat_map(|row| [left[row], 0.5 * (left[row] + right[row]), right[row]]).collect();
-        (shape, ux)
+        (Layout::square(3, 3, 1.0, false).edges, ux)
     }
 
     /// Straight edges give 0, a bowed edge its deviation over the mean sideways displacement,
     /// and edges that do not move sideways (ν = 0, round-off only) no number at all.
     #[test]
     fn homogeneity_is_defined_only_where_the_edges_move() {
-        let (shape, ux) = block([0.0, 0.0, 0.0], [-1e-3, -1e-3, -1e-3]);
-        assert_eq!(homogeneity(&shape, &ux, 1e-2), Some(0.0));
-        let (shape, ux) = block([0.0, 0.0, 0.0], [-1e-3, -2e-3, -1e-3]);
+        let shape = |edges| LatticeShape { edges, depth: 1.0 };
+        let (edges, ux) = block([0.0, 0.0, 0.0], [-1e-3, -1e-3, -1e-3]);
+        assert_eq!(homogeneity(&shape(&edges), &ux, 1e-2), Some(0.0));
+        let (edges, ux) = block([0.0, 0.0, 0.0], [-1e-3, -2e-3, -1e-3]);
         // Line through (0, −1e-3), (1, −2e-3), (2, −1e-3): −4/3e-3, deviation 2/3e-3; mean |u| 2/3e-3.
-        let h = homogeneity(&shape, &ux, 1e-2).unwrap();
+        let h = homogeneity(&shape(&edges), &ux, 1e-2).unwrap();
         assert!((h - 1.0).abs() < 1e-12, "{h}");
-        let (shape, ux) = block([1e-19, -2e-19, 0.0], [3e-19, 0.0, -1e-19]);
-        assert_eq!(homogeneity(&shape, &ux, 1e-6), None);
+        let (edges, ux) = block([1e-19, -2e-19, 0.0], [3e-19, 0.0, -1e-19]);
+        assert_eq!(homogeneity(&shape(&edges), &ux, 1e-6), None);
     }
 }

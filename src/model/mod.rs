@@ -9,8 +9,10 @@ pub use self::law::{
     BondDashpot, Dashpot, ForceLaw, LawName, LawSpec, LawVisitor, Linear, NoDashpot, PowerLaw, Spring,
 };
 pub use self::particles::{Axes, Particles};
+pub use self::planar::{Edges, LatticeType, Layout, PlanarLattice};
 
 mod bonds;
 mod lattice;
 mod law;
 mod particles;
+mod planar;

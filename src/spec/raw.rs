@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use serde_json::Value;
 use std::collections::BTreeMap;
 
-use crate::model::LawName;
+use crate::model::{LatticeType, LawName};
 use crate::sim::IntegratorKind;
 
 /// A parameter grid: dotted parameter path → the values it takes.
@@ -134,6 +134,9 @@ pub struct RawScene {
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawLattice {
+    /// The network: `square` (default), `triangular`, `honeycomb` or `kagome`.
+    #[serde(rename = "type")]
+    pub lattice_type: Option<LatticeType>,
     /// Nodes per row and rows of a square N × N lattice, instead of `nx` and `ny`.
     pub size: Option<usize>,
     /// Nodes per row (≥ 2).

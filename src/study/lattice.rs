@@ -11,9 +11,9 @@ use super::common::{Stopped, relaxation, scene, sound_speed};
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
     LatticeShape, anisotropic_moduli, constrained_modulus_y, displacement_error_allowed, homogeneity,
-    lattice_constants, modulus_error_bound, row_extension, shear_modulus, tensile_moduli,
+    lattice_constants, modulus_error_bound, network_constants, row_extension, shear_modulus, tensile_moduli,
 };
-use crate::model::{Axes, Bonds, ForceLaw, LawVisitor, Particles, SquareLattice};
+use crate::model::{Axes, Bonds, ForceLaw, LawVisitor, Layout, Particles, SquareLattice};
 use crate::sim::{Drive, Load, Network, Outcome, ProbeTrace, Scene, Trace};
 use crate::spec::{Control, Diagonals, LatticeSpec, LoadCase, ProbeLine, RunSpec, Supports, reference_extension};
 
@@ -84,31 +84,40 @@ pub struct LatticeMetrics {
     /// (N s/m), the critical damping of its slowest mode.
     #[serde(default)]
     pub gamma_background_critical: Option<f64>,
+    /// E (Pa) of the linear static answer (small displacements), kept where the non-linear
+    /// one fails to converge (floppy dangling pieces of a diluted network).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub youngs_modulus_linear: Option<f64>,
+    /// G (Pa) of the linear static answer.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shear_modulus_linear: Option<f64>,
 }
 
-/// An nx × ny lattice at rest on its supports, node (ix, iy) at (ix a, iy a); a random
-/// lattice as an irregular network (the stencil only knows whole bond families). An impulse
-/// lattice is kicked (or its top row stepped): no load case, drive or relaxation.
+/// A lattice at rest on its supports (the square one's node (ix, iy) at (ix a, iy a)); a
+/// random square lattice, and every other type, as an irregular network (the stencil only
+/// knows whole bond families of the square grid). An impulse lattice is kicked (or its top
+/// row stepped): no load case, drive or relaxation.
 pub(super) fn build(spec: &RunSpec, l: &LatticeSpec) -> Scene {
+    let layout = l.layout(spec.spacing);
     let mut particles = Particles::default();
-    for iy in 0..l.ny {
-        for ix in 0..l.nx {
-            particles.push(ix as f64 * spec.spacing, iy as f64 * spec.spacing, spec.mass, support(l.supports, ix, iy));
-        }
+    for node in 0..layout.len() {
+        particles.push(layout.x[node], layout.y[node], spec.mass, Axes::FREE);
     }
+    hold_supports(l.supports, &layout, &mut particles);
     if let Some(impulse) = l.impulse {
         particles.vx[impulse.node] = impulse.vx;
         particles.vy[impulse.node] = impulse.vy;
     }
-    let network = if l.is_random() { Network::Bonds(bonds(spec, l)) } else { Network::Lattice(springs(spec, l)) };
+    let stencil = l.lattice_type.is_square() && !l.is_random();
+    let network = if stencil { Network::Lattice(springs(spec, l)) } else { Network::Bonds(bonds(spec, l)) };
     let mut scene = scene(spec, particles, network, None);
     // The residual force is relative to the load per node; a velocity-driven lattice's is
     // known only from its static answer, which sets it (`static_answer`).
     scene.sampling.relaxation = relaxation(spec, l.force_per_node(), relaxing(l).0);
     let loaded = Some(l).filter(|l| l.impulse.is_none());
     scene.loads = match l.impulse.and_then(|i| i.top_row_force) {
-        Some([fx, fy]) => top_row(l).into_iter().map(|particle| Load { particle, fx, fy }).collect(),
-        None => loaded.filter(|l| l.control == Control::Force).map(top_row_loads).unwrap_or_default(),
+        Some([fx, fy]) => layout.edges.top.iter().map(|&particle| Load { particle, fx, fy }).collect(),
+        None => loaded.filter(|l| l.control == Control::Force).map(|l| top_row_loads(l, &layout)).unwrap_or_default(),
     };
     scene.drive = loaded.filter(|l| l.control == Control::Velocity).map(|l| top_row_drive(spec, l));
     scene.load_ramp = l.load_ramp_tc * spec.t_c;
@@ -136,44 +145,66 @@ fn springs(spec: &RunSpec, l: &LatticeSpec) -> SquareLattice {
 /// node left hanging on one bond would make almost every diluted lattice a mechanism at its
 /// edge, whatever its bulk does; rigidity is lost, or not, in the interior.
 fn bonds(spec: &RunSpec, l: &LatticeSpec) -> Bonds {
-    let edge = |node: usize| node < l.nx || node >= (l.ny - 1) * l.nx;
-    springs(spec, l).bonds().randomised(l.cut_fraction, l.stiffness_spread, l.seed, |i, j| edge(i) || edge(j))
+    let all = match l.planar(spec.spacing) {
+        Some(planar) => planar.bonds(),
+        None => springs(spec, l).bonds(),
+    };
+    if !l.is_random() {
+        return all;
+    }
+    let edges = l.layout(spec.spacing).edges;
+    let mut edge = vec![false; l.layout(spec.spacing).len()];
+    edges.bottom.iter().chain(&edges.top).for_each(|&node| edge[node] = true);
+    all.randomised(l.cut_fraction, l.stiffness_spread, l.seed, |i, j| edge[i] || edge[j])
 }
 
-/// Which axes of node (ix, iy) the supports hold.
-fn support(supports: Supports, ix: usize, iy: usize) -> Axes {
-    match (supports, ix, iy) {
-        (_, _, 1..) | (Supports::Free, _, _) => Axes::FREE,
-        (Supports::Coursework, 0, 0) | (Supports::ClampedBottom | Supports::PeriodicX, _, 0) => Axes::FIXED,
-        (Supports::Coursework, _, 0) => Axes { x: false, y: true },
+/// Holds what the supports hold of the bottom row: its first node fixed and the others
+/// vertically (`coursework`), every node fixed (`clamped-bottom`, `periodic-x`), or nothing.
+fn hold_supports(supports: Supports, layout: &Layout, particles: &mut Particles) {
+    for (at, &node) in layout.edges.bottom.iter().enumerate() {
+        let axes = match (supports, at) {
+            (Supports::Free, _) => Axes::FREE,
+            (Supports::Coursework, 0) | (Supports::ClampedBottom | Supports::PeriodicX, _) => Axes::FIXED,
+            (Supports::Coursework, _) => Axes { x: false, y: true },
+        };
+        if axes.x {
+            particles.hold(node, false);
+        }
+        if axes.y {
+            particles.hold(node, true);
+        }
     }
 }
 
 /// The load on every top-row node: up (tensile) or to the right (shear).
-fn top_row_loads(l: &LatticeSpec) -> Vec<Load> {
+fn top_row_loads(l: &LatticeSpec, layout: &Layout) -> Vec<Load> {
     let (fx, fy) = match l.load_case {
         LoadCase::Tensile | LoadCase::TensileX => (0.0, l.load_per_node),
         LoadCase::Shear => (l.load_per_node, 0.0),
     };
-    top_row(l).into_iter().map(|particle| Load { particle, fx, fy }).collect()
+    layout.edges.top.iter().map(|&particle| Load { particle, fx, fy }).collect()
 }
 
 /// The top-row nodes of a lattice.
-fn top_row(l: &LatticeSpec) -> Vec<usize> {
-    ((l.ny - 1) * l.nx..l.ny * l.nx).collect()
+fn top_row(spec: &RunSpec, l: &LatticeSpec) -> Vec<usize> {
+    l.layout(spec.spacing).edges.top
 }
 
 /// How far the top row travels under velocity control: strain · L_y (m), up (tensile) or to
 /// the right (shear).
 fn drive_travel(spec: &RunSpec, l: &LatticeSpec) -> f64 {
-    l.drive_strain * (l.ny - 1) as f64 * spec.spacing
+    if l.lattice_type.is_square() {
+        l.drive_strain * (l.ny - 1) as f64 * spec.spacing
+    } else {
+        l.drive_strain * l.layout(spec.spacing).edges.height
+    }
 }
 
 /// The velocity boundary condition: the top row driven to `drive_travel` in `drive_tc` t_c.
 fn top_row_drive(spec: &RunSpec, l: &LatticeSpec) -> Drive {
     let stop_time = l.drive_tc * spec.t_c;
     Drive {
-        particles: top_row(l),
+        particles: top_row(spec, l),
         along_y: l.load_case == LoadCase::Tensile,
         velocity: drive_travel(spec, l) / stop_time,
         stop_time,
@@ -193,7 +224,10 @@ pub(super) fn static_answer(
 ) -> Result<(), Stopped> {
     let bonds = bonds(spec, l);
     if l.is_random() {
-        let full = springs(spec, l).bond_count();
+        let full = match l.planar(spec.spacing) {
+            Some(planar) => planar.bonds().len(),
+            None => springs(spec, l).bond_count(),
+        };
         metrics.bond_fraction_kept = Some(bonds.len() as f64 / full.max(1) as f64);
     }
     let (held_x, held_y, prescribed) = static_supports(spec, l, scene);
@@ -215,7 +249,9 @@ pub(super) fn static_answer(
     if let (Some(tolerance), Some(k_min), Some(extension), Some(relaxation)) =
         (relax.and_then(|r| r.tolerance), softest, metrics.static_extension, scene.sampling.relaxation.as_mut())
     {
-        relaxation.residual_norm = Some(k_min * displacement_error_allowed(&shape(spec, l), extension, tolerance));
+        let edges = l.layout(spec.spacing).edges;
+        let shape = LatticeShape { edges: &edges, depth: l.depth };
+        relaxation.residual_norm = Some(k_min * displacement_error_allowed(&shape, extension, tolerance));
     }
     if relax.is_some_and(|r| r.critical_background)
         && let Some(k_min) = softest
@@ -243,7 +279,7 @@ fn static_supports(spec: &RunSpec, l: &LatticeSpec, scene: &Scene) -> StaticSupp
     if l.control == Control::Velocity {
         let travel = drive_travel(spec, l);
         let tensile = l.load_case == LoadCase::Tensile;
-        for node in top_row(l) {
+        for node in top_row(spec, l) {
             supported.hold(node, tensile);
             prescribed.push(if tensile { (node, 0.0, travel) } else { (node, travel, 0.0) });
         }
@@ -287,7 +323,7 @@ fn solve<L: ForceLaw>(
     let force = |ux: &[f64], uy: &[f64]| match l.control {
         Control::Force => l.total_load(),
         Control::Velocity => {
-            let (fx, fy) = truss.reaction(law, ux, uy, &top_row(l));
+            let (fx, fy) = truss.reaction(law, ux, uy, &top_row(spec, l));
             if l.load_case == LoadCase::Tensile { fy } else { fx }
         }
     };
@@ -304,6 +340,8 @@ fn solve<L: ForceLaw>(
             (moduli(spec, l, top, &ux, &uy), top)
         }
     };
+    metrics.youngs_modulus_linear = linear.youngs_modulus;
+    metrics.shear_modulus_linear = linear.shear_modulus;
     let (ux, uy) = match truss.solve_nonlinear(law, reference_extension(spec), Some(deadline)) {
         Some(StaticSolution::Displacements { ux, uy }) => (ux, uy),
         Some(StaticSolution::PastDeadline) => return Err(past_deadline()),
@@ -321,7 +359,8 @@ fn solve<L: ForceLaw>(
         return Err(past_deadline());
     }
     metrics.stiffness_min = truss.softest_stiffness(law, &ux, &uy);
-    metrics.static_extension = Some(extension(spec, l, &ux, &uy));
+    let edges = l.layout(spec.spacing).edges;
+    metrics.static_extension = Some(extension(l, &LatticeShape { edges: &edges, depth: l.depth }, &ux, &uy));
     if spec.relax().is_some_and(|r| r.tangent_step.is_some()) {
         // Δu per unit load factor: the increment of the whole load.
         if Instant::now() > deadline {
@@ -358,7 +397,8 @@ struct Moduli {
 
 /// The moduli from the total top-row force `force` (N) and the node displacements.
 fn moduli(spec: &RunSpec, l: &LatticeSpec, force: f64, ux: &[f64], uy: &[f64]) -> Moduli {
-    let shape = shape(spec, l);
+    let edges = l.layout(spec.spacing).edges;
+    let shape = LatticeShape { edges: &edges, depth: l.depth };
     match l.load_case {
         LoadCase::Tensile | LoadCase::TensileX => {
             let t = tensile_moduli(&shape, force, ux, uy);
@@ -380,20 +420,10 @@ fn moduli(spec: &RunSpec, l: &LatticeSpec, force: f64, ux: &[f64], uy: &[f64]) -
 
 /// ΔL (m) of the modulus the load case measures: the top row's mean u_y (tension) or u_x
 /// (shear) relative to the bottom row's.
-fn extension(spec: &RunSpec, l: &LatticeSpec, ux: &[f64], uy: &[f64]) -> f64 {
+fn extension(l: &LatticeSpec, shape: &LatticeShape, ux: &[f64], uy: &[f64]) -> f64 {
     match l.load_case {
-        LoadCase::Tensile | LoadCase::TensileX => row_extension(&shape(spec, l), uy),
-        LoadCase::Shear => row_extension(&shape(spec, l), ux),
-    }
-}
-
-fn shape(spec: &RunSpec, l: &LatticeSpec) -> LatticeShape {
-    LatticeShape {
-        nx: l.nx,
-        ny: l.ny,
-        spacing: spec.spacing,
-        depth: l.depth,
-        periodic_x: l.supports == Supports::PeriodicX,
+        LoadCase::Tensile | LoadCase::TensileX => row_extension(shape, uy),
+        LoadCase::Shear => row_extension(shape, ux),
     }
 }
 
@@ -425,13 +455,15 @@ pub(super) fn measure(
     metrics.poisson_ratio_coursework = keep(md.poisson_ratio_coursework);
     metrics.shear_modulus = keep(md.shear_modulus);
     let largest = ux.iter().chain(&uy).fold(0.0, |m: f64, u| m.max(u.abs()));
-    metrics.homogeneity = keep(homogeneity(&shape(spec, l), &ux, largest));
+    let edges = l.layout(spec.spacing).edges;
+    let shape = LatticeShape { edges: &edges, depth: l.depth };
+    metrics.homogeneity = keep(homogeneity(&shape, &ux, largest));
     if let (Some(k_min), Some(residual)) = (metrics.stiffness_min.filter(|k| *k > 0.0), outcome.trace.residual_norm) {
-        let bound = modulus_error_bound(&shape(spec, l), extension(spec, l, &ux, &uy), residual / k_min);
+        let bound = modulus_error_bound(&shape, extension(l, &shape, &ux, &uy), residual / k_min);
         metrics.relax_error_bound = keep(Some(bound));
     }
     if spec.law.is_linear() {
-        continuum(l, metrics);
+        continuum(spec, l, metrics);
     }
 }
 
@@ -445,8 +477,21 @@ pub(super) fn relaxing(l: &LatticeSpec) -> (usize, &'static str) {
     (l.nx.max(l.ny), scale)
 }
 
-/// The continuum moduli of the regular linear lattice (a random one is compared with it).
-fn continuum(l: &LatticeSpec, metrics: &mut LatticeMetrics) {
+/// The continuum moduli of the regular linear lattice (a random one is compared with it); of
+/// another type its isotropic constants, of which the honeycomb (μ = 0: no shear stiffness
+/// with central springs) has only the constrained modulus of a periodic strip.
+fn continuum(spec: &RunSpec, l: &LatticeSpec, metrics: &mut LatticeMetrics) {
+    if let Some(c) = network_constants(l.lattice_type, l.k_x, spec.spacing) {
+        if l.supports == Supports::PeriodicX {
+            metrics.youngs_modulus_theory = Some(c.constrained_modulus(l.depth));
+            metrics.poisson_ratio_theory = Some(0.0);
+        } else if c.mu > 0.0 {
+            metrics.youngs_modulus_theory = Some(c.youngs_modulus(l.depth));
+            metrics.poisson_ratio_theory = Some(c.poisson_ratio());
+        }
+        metrics.shear_modulus_theory = Some(c.shear_modulus(l.depth)).filter(|&g| g > 0.0);
+        return;
+    }
     let (k_rising, k_falling) = l.diagonal_stiffness();
     let continuum = anisotropic_moduli(l.k_x, l.k_y, k_rising, k_falling, l.depth);
     // A periodic strip cannot contract sideways: in tension it measures the constrained
@@ -467,9 +512,15 @@ fn continuum(l: &LatticeSpec, metrics: &mut LatticeMetrics) {
 /// diagonals).
 pub(super) fn wave_speed(spec: &RunSpec, l: &LatticeSpec) -> Option<f64> {
     let impulse = l.impulse?;
+    let [x, y] = impulse.direction();
+    if !l.lattice_type.is_square() {
+        // c_L, c_T of the isotropic continuum (`network_constants`); the honeycomb has no c_T.
+        let c = network_constants(l.lattice_type, l.k_x, spec.spacing).filter(|_| spec.law.is_linear())?;
+        let (c_l, c_t) = c.sound_speeds(spec.mass);
+        return Some(if y.abs() >= x.abs() { c_l } else { c_t }).filter(|&c| c > 0.0);
+    }
     let (k_rising, k_falling) = l.diagonal_stiffness();
     let c = lattice_constants(l.k_x, l.k_y, k_rising, k_falling);
-    let [x, y] = impulse.direction();
     sound_speed(spec, if y.abs() >= x.abs() { c.c22 } else { c.c66 })
 }
 
@@ -496,7 +547,8 @@ pub(super) fn tangent_moduli(
 /// The lines kept are an impulse lattice's kicked column (the wave's straight path down, for
 /// the space–time picture) and the user's.
 pub(super) fn keep_probes(l: &LatticeSpec, t: &mut Trace) {
-    let kicked = l.impulse.map(|impulse| ProbeLine::Column(impulse.node % l.nx));
+    // The kicked column is a column of the square grid only.
+    let kicked = l.impulse.filter(|_| l.lattice_type.is_square()).map(|impulse| ProbeLine::Column(impulse.node % l.nx));
     let mut lines: Vec<ProbeLine> = kicked.into_iter().collect();
     lines.extend(l.probes.iter().filter(|&&line| Some(line) != kicked));
     if !t.displacement_x.is_empty() {
@@ -572,8 +624,20 @@ pub(super) fn columns() -> Vec<Block<LatticeMetrics>> {
         Number("poisson_ratio_yx", |r| along(r, false, r.group.poisson_ratio)),
         Number("poisson_ratio_yx_fem", |r| along(r, false, r.group.poisson_ratio_fem)),
     ];
+    // Shown only beside another type, so the square lattices' tables keep their columns.
+    let types: Vec<Column<LatticeMetrics>> = vec![
+        Word("lattice_type", |r| r.spec.lattice().map(|l| l.lattice_type.name().into())),
+        Number("coordination", |r| r.spec.lattice().map(|l| l.lattice_type.coordination())),
+        Number("youngs_modulus_linear", |r| r.group.youngs_modulus_linear),
+        Number("shear_modulus_linear", |r| r.group.shear_modulus_linear),
+    ];
     vec![
         Block { slot: Slot::Tail, shown: Some(|spec| spec.lattice().is_some()), columns: lattice },
+        Block {
+            slot: Slot::Tail,
+            shown: Some(|spec| spec.lattice().is_some_and(|l| !l.lattice_type.is_square())),
+            columns: types,
+        },
         Block {
             slot: Slot::Tail,
             shown: Some(|spec| spec.lattice().is_some_and(is_anisotropic)),

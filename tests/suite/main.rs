@@ -11,6 +11,7 @@ mod faults;
 mod hostile;
 mod integrators;
 mod lattice;
+mod lattice_types;
 mod movies;
 mod nonlinear;
 mod physics;

@@ -237,7 +237,8 @@ fn anisotropic_rows(groups: &BTreeMap<String, Vec<&RunRecord>>) -> (Vec<Vec<Stri
 
 /// Random networks: E and G against the fraction of bonds kept, over seeds.
 pub(super) fn random(e: &Evidence) -> Option<Answer> {
-    let runs = e.all(|r| r.spec.lattice().is_some_and(|l| l.cut_fraction > 0.0));
+    // Square lattices: the other types' dilution is `types::percolation`.
+    let runs = e.all(|r| r.spec.lattice().is_some_and(|l| l.cut_fraction > 0.0 && l.lattice_type.is_square()));
     let mut by_cut: BTreeMap<(String, u64), Vec<&RunRecord>> = BTreeMap::new();
     for r in &runs {
         let l = r.spec.lattice()?;

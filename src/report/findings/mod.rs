@@ -9,6 +9,7 @@ mod dynamics;
 mod materials;
 mod one_d;
 mod two_d;
+mod types;
 
 use serde::Serialize;
 
@@ -146,7 +147,7 @@ impl<'a> Evidence<'a> {
 
 /// The coursework's items that `evidence` answers, in the coursework's order, numbered.
 pub fn findings(evidence: &Evidence) -> Vec<Finding> {
-    let questions: [fn(&Evidence) -> Option<Answer>; 20] = [
+    let questions: [fn(&Evidence) -> Option<Answer>; 24] = [
         one_d::two_particles,
         one_d::time_step,
         one_d::chain,
@@ -166,6 +167,10 @@ pub fn findings(evidence: &Evidence) -> Vec<Finding> {
         materials::anisotropic,
         materials::random,
         materials::md_and_fem,
+        types::moduli,
+        types::isotropy,
+        types::percolation,
+        types::waves,
         discussion::linear_and_hertz,
     ];
     questions

@@ -5,6 +5,8 @@
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
+use super::lattice_type::{network_wave, resolve_type, top_row};
+use crate::model::LatticeType;
 use crate::sim::IntegratorKind;
 use crate::spec::issue::{Issue, Num, missing, positive, require};
 use crate::spec::raw::{
@@ -86,6 +88,9 @@ pub struct LatticeSpec {
     /// Rows and columns whose displacement and velocity are recorded at every sample.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub probes: Vec<ProbeLine>,
+    /// The network (`lattice.type`); not stored when square, so existing run ids stay.
+    #[serde(default, rename = "type", skip_serializing_if = "LatticeType::is_square")]
+    pub lattice_type: LatticeType,
 }
 
 /// A line of lattice nodes a probe records.
@@ -199,12 +204,19 @@ impl LatticeRun {
 
     /// Its nodes.
     pub(super) fn particles(&self) -> usize {
-        self.lattice.nx * self.lattice.ny
+        match self.lattice.planar(1.0) {
+            Some(planar) => planar.layout().len(),
+            None => self.lattice.nx * self.lattice.ny,
+        }
     }
 
-    /// At most one spring per node and bond family (cut bonds counted).
+    /// At most one spring per node and bond family (cut bonds counted); of another type, at
+    /// most the triangular lattice's three per node.
     pub(super) fn bonds(&self) -> usize {
         let l = &self.lattice;
+        if !l.lattice_type.is_square() {
+            return 3 * self.particles();
+        }
         let families = match l.diagonals {
             Diagonals::None => 2,
             Diagonals::Both => 4,
@@ -213,10 +225,11 @@ impl LatticeRun {
         families * l.nx * l.ny
     }
 
-    /// Nodes whose series a record stores: an impulse lattice's kicked column and the probes.
+    /// Nodes whose series a record stores: a square impulse lattice's kicked column and the
+    /// probes.
     pub(super) fn stored_nodes(&self) -> usize {
         let l = &self.lattice;
-        let kicked = if l.impulse.is_some() { l.ny } else { 0 };
+        let kicked = if l.impulse.is_some() && l.lattice_type.is_square() { l.ny } else { 0 };
         kicked + l.probes.iter().map(|line| line.nodes(l.nx, l.ny).len()).sum::<usize>()
     }
 
@@ -229,8 +242,7 @@ impl LatticeRun {
     /// Degrees of freedom of a loaded lattice's static problem: two per node (held ones
     /// counted); none for an impulse lattice.
     pub(super) fn static_dofs(&self) -> usize {
-        let l = &self.lattice;
-        if l.impulse.is_none() { 2 * l.nx * l.ny } else { 0 }
+        if self.lattice.impulse.is_none() { 2 * self.particles() } else { 0 }
     }
 
     /// A force step carries its force, a kick collides at its speed; a loaded lattice's
@@ -272,6 +284,12 @@ pub(super) fn derive_from_solid(
         return Ok(Solid::default());
     }
     let lattice = raw.lattice.clone().unwrap_or_default();
+    require(
+        lattice.lattice_type.unwrap_or_default().is_square(),
+        "material",
+        "density/youngs_modulus",
+        "derive the square lattice's m and k only; give material.mass and material.k for another lattice.type",
+    )?;
     // Checked first: the node count divides the block's mass.
     let (nx, ny) = lattice_size(&lattice)?;
     let depth = depth.unwrap_or(1.0);
@@ -305,7 +323,12 @@ pub(super) fn derive_from_solid(
 fn resolve_lattice(raw: &RawScene, k: f64, depth: Option<f64>) -> Result<LatticeSpec, Issue> {
     let lattice = raw.lattice.clone().unwrap_or_default();
     let (nx, ny) = lattice_size(&lattice)?;
-    let (diagonals, k_diag, k_x, k_y) = lattice_springs(&lattice, k)?;
+    let supports = raw.supports.unwrap_or(Supports::Coursework);
+    let probes = resolve_probes(raw.probes.as_ref(), nx, ny)?;
+    let lattice_type = resolve_type(&lattice, (nx, ny), supports, &probes)?;
+    // Another type has one spring k between nearest neighbours and no families.
+    let (diagonals, k_diag, k_x, k_y) =
+        if lattice_type.is_square() { lattice_springs(&lattice, k)? } else { (Diagonals::None, 0.0, k, k) };
     let cut_fraction = lattice.cut_fraction.unwrap_or(0.0);
     require((0.0..1.0).contains(&cut_fraction), "lattice.cut_fraction", cut_fraction, "must be in [0, 1)")?;
     let stiffness_spread = lattice.stiffness_spread.unwrap_or(0.0);
@@ -315,7 +338,6 @@ fn resolve_lattice(raw: &RawScene, k: f64, depth: Option<f64>) -> Result<Lattice
         stiffness_spread,
         "must be in [0, 1) (every stiffness times 1 + w·U[−1, 1])",
     )?;
-    let supports = raw.supports.unwrap_or(Supports::Coursework);
     require(
         supports != Supports::PeriodicX || nx >= 3,
         "lattice.nx",
@@ -323,12 +345,12 @@ fn resolve_lattice(raw: &RawScene, k: f64, depth: Option<f64>) -> Result<Lattice
         "must be ≥ 3 with supports: periodic-x (two nodes would be bonded twice)",
     )?;
     let load = resolve_load(raw)?;
-    let impulse = raw.impulse.as_ref().map(|i| resolve_impulse(i, nx, ny)).transpose()?;
-    let probes = resolve_probes(raw.probes.as_ref(), nx, ny)?;
+    let top = top_row(lattice_type, nx, ny, supports == Supports::PeriodicX);
+    let impulse = raw.impulse.as_ref().map(|i| resolve_impulse(i, &top)).transpose()?;
     let upright = Upright { nx, ny, k_x, k_y, diagonals, load_case: raw.load.as_ref().and_then(|l| l.case) };
     let rotated = upright.load_case == Some(LoadCase::TensileX);
     let Upright { nx, ny, k_x, k_y, diagonals, load_case } =
-        if rotated { turned(upright, &probes, supports)? } else { upright };
+        if rotated { turned(upright, &probes, supports, lattice_type)? } else { upright };
     Ok(LatticeSpec {
         nx,
         ny,
@@ -351,6 +373,7 @@ fn resolve_lattice(raw: &RawScene, k: f64, depth: Option<f64>) -> Result<Lattice
         derived_from: None,
         impulse,
         probes,
+        lattice_type,
     })
 }
 
@@ -430,12 +453,13 @@ fn resolve_load(raw: &RawScene) -> Result<Load, Issue> {
     Ok(Load { per_node, ramp_tc, control, strain, drive_tc })
 }
 
-/// The impulse of a wave lattice: the node it starts at and its kick or top-row force step.
-fn resolve_impulse(i: &RawImpulse, nx: usize, ny: usize) -> Result<ImpulseSpec, Issue> {
+/// The impulse of a wave lattice: the node of its `top` row it starts at and its kick or
+/// top-row force step.
+fn resolve_impulse(i: &RawImpulse, top: &[usize]) -> Result<ImpulseSpec, Issue> {
     let node = match i.node.as_deref().unwrap_or("top-right") {
-        "top-right" => ny * nx - 1,
-        "top-left" => (ny - 1) * nx,
-        "top-centre" | "top-center" => (ny - 1) * nx + nx / 2,
+        "top-right" => top[top.len() - 1],
+        "top-left" => top[0],
+        "top-centre" | "top-center" => top[top.len() / 2],
         other => {
             return Err(Issue {
                 path: "impulse.node".into(),
@@ -479,8 +503,9 @@ struct Upright {
 
 /// The lattice of `load.case: tensile-x`, simulated turned by +90° and pulled along y: x → y,
 /// y → −x; the rising diagonal (1, 1) becomes (−1, 1), a falling one, and the falling (−1, 1)
-/// becomes (−1, −1), a rising one. Not probed, and on supports that turn with it.
-fn turned(upright: Upright, probes: &[ProbeLine], supports: Supports) -> Result<Upright, Issue> {
+/// becomes (−1, −1), a rising one. Not probed, and on supports that turn with it. A lattice
+/// of another type keeps its size here: its layout is turned (`LatticeSpec::layout`).
+fn turned(upright: Upright, probes: &[ProbeLine], supports: Supports, kind: LatticeType) -> Result<Upright, Issue> {
     require(
         probes.is_empty(),
         "probes",
@@ -494,6 +519,9 @@ fn turned(upright: Upright, probes: &[ProbeLine], supports: Supports) -> Result<
         supports.name(),
         "coursework or clamped-bottom with load.case: tensile-x (the supports turn with the lattice)",
     )?;
+    if !kind.is_square() {
+        return Ok(Upright { load_case: Some(LoadCase::Tensile), ..upright });
+    }
     let Upright { nx, ny, k_x, k_y, diagonals, .. } = upright;
     let diagonals = match diagonals {
         Diagonals::Rising => Diagonals::Falling,
@@ -559,6 +587,9 @@ fn resolve_probes(raw: Option<&RawProbes>, nx: usize, ny: usize) -> Result<Vec<P
 /// The wave of an impulse lattice: from the kicked node down to the bottom row.
 fn lattice_wave(l: &LatticeSpec, w: &RawWave, spacing: f64) -> Result<Option<WaveSpec>, Issue> {
     let Some(impulse) = l.impulse else { return Ok(None) };
+    if !l.lattice_type.is_square() {
+        return Ok(Some(network_wave(l, impulse.node, spacing, wave_threshold(w)?)));
+    }
     let row = impulse.node / l.nx;
     Ok(Some(WaveSpec {
         source: impulse.node,

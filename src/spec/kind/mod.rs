@@ -11,6 +11,7 @@ pub use self::pair::PairRun;
 
 mod chain;
 mod lattice;
+mod lattice_type;
 mod pair;
 
 use self::lattice::{Solid, derive_from_solid};

@@ -1,0 +1,435 @@
+//! The lattice types beside the square one: triangular, honeycomb and kagome networks of
+//! central springs with nearest-neighbour distance a, as explicit bond lists, and the layout
+//! every type shares (node positions; the bottom and top rows, the left and right columns the
+//! supports, loads and measurements name; the block's width and height).
+//!
+//! Nodes are numbered row by row from the bottom, left to right. Mean coordination in the
+//! bulk (Maxwell's count against 2d = 4 in two dimensions): triangular z = 6 (rigid),
+//! kagome z = 4 (isostatic), honeycomb z = 3 (floppy).
+
+use serde::{Deserialize, Serialize};
+
+use super::bonds::Bonds;
+
+/// Which network a lattice is.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum LatticeType {
+    /// nx × ny nodes on a square grid, with its diagonal families (`SquareLattice`).
+    #[default]
+    Square,
+    /// Rows of nx nodes a apart, every other row shifted by a/2, rows a√3/2 apart: six
+    /// neighbours.
+    Triangular,
+    /// Zigzag rows of nx nodes (a√3/2 apart along x, alternately a/2 up), joined to the next
+    /// row by vertical bonds at every other node: three neighbours.
+    Honeycomb,
+    /// Corner-sharing triangles: full rows of nx nodes a apart alternate with sparse rows of
+    /// nodes 2a apart, rows a√3/2 apart: four neighbours.
+    Kagome,
+}
+
+impl LatticeType {
+    /// Every type, in the order of the README.
+    pub const ALL: [LatticeType; 4] =
+        [LatticeType::Square, LatticeType::Triangular, LatticeType::Honeycomb, LatticeType::Kagome];
+
+    /// The name used in files and tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            LatticeType::Square => "square",
+            LatticeType::Triangular => "triangular",
+            LatticeType::Honeycomb => "honeycomb",
+            LatticeType::Kagome => "kagome",
+        }
+    }
+
+    /// True for the default square lattice (stored fields skip it, so run ids stay).
+    pub fn is_square(&self) -> bool {
+        *self == LatticeType::Square
+    }
+
+    /// Bulk coordination number z (bonds per node of the infinite lattice; the square
+    /// lattice's with both diagonals).
+    pub fn coordination(self) -> f64 {
+        match self {
+            LatticeType::Square => 8.0,
+            LatticeType::Triangular => 6.0,
+            LatticeType::Honeycomb => 3.0,
+            LatticeType::Kagome => 4.0,
+        }
+    }
+
+    /// Area per node of the infinite lattice with nearest-neighbour distance a (m²): a² square,
+    /// √3a²/2 triangular, 3√3a²/4 honeycomb, 2√3a²/3 kagome (cell 2a × a√3 of three nodes).
+    pub fn area_per_node(self, a: f64) -> f64 {
+        let s3 = 3.0_f64.sqrt();
+        a * a
+            * match self {
+                LatticeType::Square => 1.0,
+                LatticeType::Triangular => s3 / 2.0,
+                LatticeType::Honeycomb => 3.0 * s3 / 4.0,
+                LatticeType::Kagome => 2.0 * s3 / 3.0,
+            }
+    }
+}
+
+/// The nodes the supports, loads and measurements name, and the block's size.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Edges {
+    /// Bottom row, left to right (supported).
+    pub bottom: Vec<usize>,
+    /// Top row, left to right (loaded).
+    pub top: Vec<usize>,
+    /// Left column, bottom to top.
+    pub left: Vec<usize>,
+    /// Right column, bottom to top.
+    pub right: Vec<usize>,
+    /// Width L_x carrying the load (m): between the side columns, or the period of a
+    /// periodic lattice.
+    pub width: f64,
+    /// Height L_y between the bottom and the top row (m).
+    pub height: f64,
+}
+
+/// Node positions at rest and the edges of a lattice.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Layout {
+    /// x of every node (m).
+    pub x: Vec<f64>,
+    /// y of every node (m).
+    pub y: Vec<f64>,
+    /// Rows and columns by name.
+    pub edges: Edges,
+}
+
+impl Layout {
+    /// The nx × ny square grid of spacing a: node (ix, iy) at (ix a, iy a), index iy·nx + ix;
+    /// L_x = (nx − 1) a, or nx a when `periodic_x`.
+    pub fn square(nx: usize, ny: usize, a: f64, periodic_x: bool) -> Layout {
+        let rows: Vec<Vec<usize>> = (0..ny).map(|iy| (iy * nx..(iy + 1) * nx).collect()).collect();
+        let columns = if periodic_x { nx } else { nx - 1 };
+        let (x, y) = (0..nx * ny).map(|n| ((n % nx) as f64 * a, (n / nx) as f64 * a)).unzip();
+        Layout { x, y, edges: edges_of(&rows, columns as f64 * a, (ny - 1) as f64 * a) }
+    }
+
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.x.len()
+    }
+
+    /// True without nodes.
+    pub fn is_empty(&self) -> bool {
+        self.x.is_empty()
+    }
+
+    /// The same block turned by +90° (x → y, y → −x, moved back to x ≥ 0): pulled from its
+    /// new top row, the former right column, it is the original pulled along x. The old
+    /// left column is the new bottom row, the old top row the new left column.
+    pub fn turned(self) -> Layout {
+        let top = self.y.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let Edges { bottom, top: top_row, left, right, width, height } = self.edges;
+        Layout {
+            x: self.y.iter().map(|y| top - y).collect(),
+            y: self.x,
+            edges: Edges { bottom: left, top: right, left: top_row, right: bottom, width: height, height: width },
+        }
+    }
+}
+
+/// The edges of rows of nodes listed bottom to top, each left to right.
+fn edges_of(rows: &[Vec<usize>], width: f64, height: f64) -> Edges {
+    Edges {
+        bottom: rows[0].clone(),
+        top: rows[rows.len() - 1].clone(),
+        left: rows.iter().map(|r| r[0]).collect(),
+        right: rows.iter().map(|r| r[r.len() - 1]).collect(),
+        width,
+        height,
+    }
+}
+
+/// A triangular, honeycomb or kagome lattice of nx × ny rows and nodes (see [`LatticeType`]),
+/// central springs k of rest length a between nearest neighbours.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlanarLattice {
+    /// The network (`Square` here is the plain grid without diagonals; the square lattice
+    /// of the scenes, with its families, is [`super::SquareLattice`]).
+    pub kind: LatticeType,
+    /// Nodes per (full) row.
+    pub nx: usize,
+    /// Rows.
+    pub ny: usize,
+    /// Nearest-neighbour distance a = rest length of every spring (m).
+    pub spacing: f64,
+    /// Stiffness constant of every spring.
+    pub k: f64,
+    /// Bonds wrap across the left and right sides (period [`PlanarLattice::period`]).
+    pub periodic_x: bool,
+}
+
+/// One row of a lattice: the x of its nodes in units of the row's pitch, and its y.
+struct Row {
+    /// Column index (in units of `pitch`) of each node, increasing.
+    columns: Vec<usize>,
+    /// y of the row's base (m).
+    y: f64,
+}
+
+impl PlanarLattice {
+    /// Why nx, ny cannot make this lattice, if they cannot: the field (`nx` or `ny`) and the
+    /// rule, in words.
+    pub fn size_problem(
+        kind: LatticeType,
+        nx: usize,
+        ny: usize,
+        periodic_x: bool,
+    ) -> Option<(&'static str, &'static str)> {
+        match kind {
+            LatticeType::Honeycomb if periodic_x && nx % 2 == 1 => {
+                Some(("nx", "must be even for a periodic honeycomb (its zigzag rows repeat every two nodes)"))
+            }
+            LatticeType::Kagome if ny.is_multiple_of(2) => {
+                Some(("ny", "must be odd for a kagome lattice (its top and bottom rows are then full rows)"))
+            }
+            LatticeType::Kagome if nx < 3 || (periodic_x && nx % 2 == 1) => Some((
+                "nx",
+                "must be ≥ 3, and even when periodic, for a kagome lattice (its sparse rows repeat every 2a)",
+            )),
+            _ => None,
+        }
+    }
+
+    /// Period along x (m) of a periodic lattice: nx a (triangular, kagome), nx a√3/2
+    /// (honeycomb).
+    pub fn period(&self) -> f64 {
+        self.nx as f64 * self.pitch()
+    }
+
+    /// Distance along x between neighbouring columns of a full row (m).
+    fn pitch(&self) -> f64 {
+        match self.kind {
+            LatticeType::Honeycomb => self.spacing * 3.0_f64.sqrt() / 2.0,
+            _ => self.spacing,
+        }
+    }
+
+    /// Rows from the bottom, their nodes' columns and y.
+    fn rows(&self) -> Vec<Row> {
+        let (nx, a) = (self.nx, self.spacing);
+        let full = || (0..nx).collect::<Vec<_>>();
+        (0..self.ny)
+            .map(|iy| match self.kind {
+                LatticeType::Honeycomb => Row { columns: full(), y: iy as f64 * 1.5 * a },
+                LatticeType::Square => Row { columns: full(), y: iy as f64 * a },
+                LatticeType::Kagome if iy % 2 == 1 => {
+                    // Sparse nodes sit at half columns 2j + ½ (+1 every other sparse row), over
+                    // the bond between full columns c and c + 1 with c = 2j (+1); column c here.
+                    let offset = usize::from(iy % 4 == 3);
+                    let last = if self.periodic_x { nx - 1 } else { nx - 2 };
+                    Row { columns: (offset..=last).step_by(2).collect(), y: iy as f64 * a * 3.0_f64.sqrt() / 2.0 }
+                }
+                _ => Row { columns: full(), y: iy as f64 * a * 3.0_f64.sqrt() / 2.0 },
+            })
+            .collect()
+    }
+
+    /// Node positions and edges. Triangular: node (ix, iy) at ((ix + (iy mod 2)/2) a,
+    /// iy a√3/2). Honeycomb: (ix a√3/2, 3a iy/2 + a/2 where ix + iy is even). Kagome: full
+    /// rows at (ix a, iy a√3/2), sparse ones at ((c + ½) a, iy a√3/2). The side columns are
+    /// the first and last node of every row (of every full row for kagome); L_x = (nx − 1)
+    /// times the pitch, or the period; L_y = (ny − 1) times the row distance.
+    pub fn layout(&self) -> Layout {
+        let (a, pitch) = (self.spacing, self.pitch());
+        let mut layout = Layout::default();
+        let mut rows = Vec::new();
+        for (iy, row) in self.rows().iter().enumerate() {
+            let mut nodes = Vec::new();
+            for &c in &row.columns {
+                nodes.push(layout.x.len());
+                let (x, y) = match self.kind {
+                    LatticeType::Triangular => ((c as f64 + 0.5 * (iy % 2) as f64) * a, row.y),
+                    LatticeType::Honeycomb => (c as f64 * pitch, row.y + if (c + iy) % 2 == 0 { 0.5 * a } else { 0.0 }),
+                    LatticeType::Kagome if iy % 2 == 1 => ((c as f64 + 0.5) * a, row.y),
+                    _ => (c as f64 * a, row.y),
+                };
+                layout.x.push(x);
+                layout.y.push(y);
+            }
+            if self.kind != LatticeType::Kagome || iy % 2 == 0 {
+                rows.push(nodes);
+            } else {
+                // Sparse kagome rows are neither side column nor edge row (ny is odd).
+                rows.push(Vec::new());
+            }
+        }
+        let full: Vec<Vec<usize>> = rows.into_iter().filter(|r| !r.is_empty()).collect();
+        let width = if self.periodic_x { self.period() } else { (self.nx - 1) as f64 * pitch };
+        let height = self.rows().last().map_or(0.0, |r| r.y);
+        layout.edges = edges_of(&full, width, height);
+        layout
+    }
+
+    /// Every spring, row by row: along the row, then up to the next row; bonds across a
+    /// periodic side carry the shift ∓ period (x_i − x_j + shift is their separation).
+    pub fn bonds(&self) -> Bonds {
+        let rows = self.rows();
+        let starts: Vec<usize> = rows
+            .iter()
+            .scan(0, |start, r| {
+                let here = *start;
+                *start += r.columns.len();
+                Some(here)
+            })
+            .collect();
+        let count = self.nx as isize;
+        // Node of column `c` (possibly one period off) in row `iy`, and the shift of a bond to it.
+        let node = |iy: usize, c: isize| -> Option<(usize, f64)> {
+            let (wrapped, shift) = match c {
+                c if c < 0 => (c + count, self.period()),
+                c if c >= count => (c - count, -self.period()),
+                c => (c, 0.0),
+            };
+            if shift != 0.0 && !self.periodic_x {
+                return None;
+            }
+            let at = rows[iy].columns.binary_search(&(wrapped as usize)).ok()?;
+            Some((starts[iy] + at, shift))
+        };
+        let mut bonds = Bonds::default();
+        let mut bond = |i: usize, to: Option<(usize, f64)>| {
+            if let Some((j, shift)) = to {
+                bonds.push_shifted(i, j, self.spacing, self.k, shift);
+            }
+        };
+        for (iy, row) in rows.iter().enumerate() {
+            let up = iy + 1 < rows.len();
+            for (at, &column) in row.columns.iter().enumerate() {
+                let (here, c) = (starts[iy] + at, column as isize);
+                match self.kind {
+                    LatticeType::Triangular => {
+                        bond(here, node(iy, c + 1));
+                        if up {
+                            // Row iy + 1 is shifted by +a/2 (iy even) or −a/2 (iy odd).
+                            let other = if iy % 2 == 0 { c - 1 } else { c + 1 };
+                            bond(here, node(iy + 1, c));
+                            bond(here, node(iy + 1, other));
+                        }
+                    }
+                    LatticeType::Honeycomb => {
+                        bond(here, node(iy, c + 1));
+                        if up && (column + iy) % 2 == 0 {
+                            bond(here, node(iy + 1, c));
+                        }
+                    }
+                    LatticeType::Kagome if iy % 2 == 1 => {
+                        // A sparse node closes a triangle below and one above.
+                        for dy in [iy - 1, iy + 1] {
+                            bond(here, node(dy, c));
+                            bond(here, node(dy, c + 1));
+                        }
+                    }
+                    LatticeType::Kagome => bond(here, node(iy, c + 1)),
+                    LatticeType::Square => {
+                        bond(here, node(iy, c + 1));
+                        if up {
+                            bond(here, node(iy + 1, c));
+                        }
+                    }
+                }
+            }
+        }
+        bonds
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lattice(kind: LatticeType, nx: usize, ny: usize, periodic_x: bool) -> PlanarLattice {
+        PlanarLattice { kind, nx, ny, spacing: 0.1, k: 2.0, periodic_x }
+    }
+
+    /// Bonds per node of every node.
+    fn coordination(l: &PlanarLattice) -> Vec<usize> {
+        let mut z = vec![0; l.layout().len()];
+        l.bonds().for_each(|i, j, _, _, _| {
+            z[i] += 1;
+            z[j] += 1;
+        });
+        z
+    }
+
+    /// Every bond at rest is a nearest-neighbour pair: |x_i − x_j + shift| = a to 1e-12 of a
+    /// (round-off of √3), for every type, open and periodic.
+    #[test]
+    fn every_bond_is_a_nearest_neighbour_pair() {
+        for kind in [LatticeType::Triangular, LatticeType::Honeycomb, LatticeType::Kagome] {
+            for periodic in [false, true] {
+                let l = lattice(kind, 6, 5, periodic);
+                let layout = l.layout();
+                l.bonds().for_each(|i, j, rest, _, shift| {
+                    let r = (layout.x[i] - layout.x[j] + shift).hypot(layout.y[i] - layout.y[j]);
+                    assert!((r - rest).abs() < 1e-12 && rest == 0.1, "{kind:?} {i}–{j}: {r}");
+                });
+            }
+        }
+    }
+
+    /// A periodic strip's interior rows have the bulk coordination of their type (Maxwell's
+    /// z: 6, 3, 4), and no pair is bonded twice.
+    #[test]
+    fn periodic_interior_has_the_bulk_coordination() {
+        for (kind, z_bulk) in [(LatticeType::Triangular, 6), (LatticeType::Honeycomb, 3), (LatticeType::Kagome, 4)] {
+            let l = lattice(kind, 8, 9, true);
+            let (layout, z) = (l.layout(), coordination(&l));
+            let interior = |n: usize| layout.y[n] > 0.1 && layout.y[n] < layout.edges.height - 0.1;
+            assert!((0..z.len()).filter(|&n| interior(n)).all(|n| z[n] == z_bulk), "{kind:?}: {z:?}");
+            assert_eq!(z_bulk as f64, kind.coordination());
+            let bonds = l.bonds();
+            let mut pairs: Vec<(usize, usize)> = (0..bonds.len()).map(|b| (bonds.i[b], bonds.j[b])).collect();
+            pairs.iter_mut().for_each(|p| *p = (p.0.min(p.1), p.0.max(p.1)));
+            pairs.sort_unstable();
+            pairs.dedup();
+            assert_eq!(pairs.len(), bonds.len(), "{kind:?}");
+        }
+    }
+
+    /// The area per node is the block's area over its nodes, to O(1/n) of the edges: a
+    /// periodic strip of nx × ny nodes covers nx·pitch × (ny − 1)·row distance plus one row.
+    #[test]
+    fn area_per_node_is_the_block_area_over_its_nodes() {
+        for kind in [LatticeType::Triangular, LatticeType::Honeycomb, LatticeType::Kagome] {
+            let l = lattice(kind, 40, 41, true);
+            let layout = l.layout();
+            let area = layout.edges.width * layout.edges.height * 41.0 / 40.0;
+            let per_node = area / layout.len() as f64;
+            let expected = kind.area_per_node(0.1);
+            // Kagome's 41 rows are 21 full and 20 sparse: the extra full row is the 1/41 off.
+            let tolerance = if kind == LatticeType::Kagome { 0.03 } else { 1e-9 };
+            assert!((per_node / expected - 1.0).abs() < tolerance, "{kind:?}: {per_node} against {expected}");
+        }
+    }
+
+    /// Edges: the bottom row sits at y = 0 and the top at the height; the columns run
+    /// bottom to top; turned, the old left column is the new bottom row.
+    #[test]
+    fn edges_name_the_rows_and_columns() {
+        let layout = lattice(LatticeType::Triangular, 4, 3, false).layout();
+        assert_eq!(layout.edges.bottom, vec![0, 1, 2, 3]);
+        assert_eq!(layout.edges.top, vec![8, 9, 10, 11]);
+        assert_eq!(layout.edges.left, vec![0, 4, 8]);
+        assert_eq!(layout.edges.right, vec![3, 7, 11]);
+        assert!((layout.edges.height - 0.1 * 3.0_f64.sqrt()).abs() < 1e-15);
+        let turned = layout.clone().turned();
+        assert_eq!(turned.edges.bottom, layout.edges.left);
+        assert!(turned.edges.bottom.iter().all(|&n| turned.y[n] <= 0.05 + 1e-15));
+        assert!(turned.edges.top.iter().all(|&n| (turned.y[n] - 0.3).abs() <= 0.05 + 1e-15));
+        let kagome = lattice(LatticeType::Kagome, 5, 5, false).layout();
+        // Rows: 5 full, 2 sparse (over bonds 0–1, 2–3), 5 full, 2 sparse (1–2, 3–4), 5 full.
+        assert_eq!(kagome.len(), 19);
+        assert_eq!(kagome.edges.left, vec![0, 7, 14]);
+        assert_eq!(kagome.edges.top, (14..19).collect::<Vec<_>>());
+    }
+}

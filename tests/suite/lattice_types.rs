@@ -1,0 +1,214 @@
+//! Lattice types (`lattice.type`): the triangular lattice against its static twin and its
+//! continuum (λ = μ = √3k/(4d)), in x and in y; the honeycomb and kagome networks as the
+//! static solver sees them (Maxwell: z = 3 floppy, z = 4 marginal); the rigidity of diluted
+//! triangular networks on both sides of Maxwell's count; waves on every type.
+
+use crate::common::{execute_all, runs};
+use mdsolids::runner::RunRecord;
+use mdsolids::sim::RunStatus;
+
+/// k = 1e6 N/m, 1 N per node (strains ~1e-6: geometric non-linearity far below the
+/// tolerances), m = 0.5 kg, a = 0.1 m, d = 0.01 m.
+fn campaign(lattice: &str, extra: &str, grid: &str) -> String {
+    format!(
+        "version: 1\nname: t\ndefaults:\n  material: {{mass: 0.5, k: 1.0e6}}\n  damping: {{restitution: 0.5}}\n  geometry: {{spacing: 0.1, depth: 0.01}}\nscenes:\n  - name: l\n    kind: lattice\n    lattice: {lattice}\n{extra}    grid:\n{grid}"
+    )
+}
+
+const K: f64 = 1.0e6;
+const DEPTH: f64 = 0.01;
+
+fn relative(a: Option<f64>, b: Option<f64>) -> f64 {
+    let (a, b) = (a.expect("measured"), b.expect("reference"));
+    (a - b).abs() / b.abs()
+}
+
+fn label(r: &RunRecord) -> String {
+    format!("{} {:?}", r.run_id, r.spec.varied)
+}
+
+/// The static answers of a campaign whose MD stops after 1 t_c (`relax.max_tc: 1`): the
+/// static solve comes first and is complete; the short MD run only marks `no_equilibrium`.
+fn static_answers(yaml: &str) -> Vec<RunRecord> {
+    runs(yaml).iter().map(mdsolids::runner::execute).collect()
+}
+
+#[test]
+fn triangular_md_relaxes_to_its_static_twin() {
+    // The square lattice's bound (0.5 %); measured at most 7e-5 for E and G, 3e-5 for ν.
+    let yaml = campaign(
+        "{type: triangular, nx: 7, ny: 7}",
+        "    load: {per_node: 1.0}\n",
+        "      supports: [coursework, clamped-bottom]\n      load.case: [tensile, shear, tensile-x]\n",
+    );
+    let records = execute_all(&yaml);
+    assert_eq!(records.len(), 6);
+    for r in &records {
+        assert_eq!(r.status, RunStatus::Ok, "{}: {}", label(r), r.message);
+        let m = &r.metrics.lattice;
+        if m.youngs_modulus_fem.is_some() {
+            assert!(relative(m.youngs_modulus, m.youngs_modulus_fem) < 5e-3, "E {}", label(r));
+            assert!(relative(m.poisson_ratio, m.poisson_ratio_fem) < 5e-3, "ν {}", label(r));
+        } else {
+            assert!(relative(m.shear_modulus, m.shear_modulus_fem) < 5e-3, "G {}", label(r));
+        }
+    }
+}
+
+#[test]
+fn triangular_periodic_strip_has_the_lame_constants_at_every_size() {
+    // A uniform strain is the static answer of the periodic strip (every node is a centre of
+    // inversion of its bonds), so it measures λ + 2μ = 3√3k/(4d) in tension (ν = 0: it cannot
+    // contract) and μ = √3k/(4d) in shear at every size. Tolerances: 1e-5 in tension (the
+    // non-linear answer moves by about the strain, 1e-6; measured 2.9e-6), 1e-9 in shear
+    // (measured 2e-10), ν 0 to 1e-9 (round-off), the theory columns to 1e-15.
+    let yaml = campaign(
+        "{type: triangular}",
+        "    supports: periodic-x\n    relax: {max_tc: 1}\n    load: {per_node: 1.0}\n",
+        "      lattice.size: [4, 9, 16]\n      load.case: [tensile, shear]\n",
+    );
+    let (constrained, mu) = (3.0 * 3.0_f64.sqrt() * K / (4.0 * DEPTH), 3.0_f64.sqrt() * K / (4.0 * DEPTH));
+    for r in static_answers(&yaml) {
+        let m = &r.metrics.lattice;
+        assert!(relative(m.shear_modulus_theory, Some(mu)) < 1e-15, "{}", label(&r));
+        if m.youngs_modulus_fem.is_some() {
+            assert!(relative(m.youngs_modulus_fem, Some(constrained)) < 1e-5, "E {}", label(&r));
+            assert!(relative(m.youngs_modulus_theory, Some(constrained)) < 1e-15, "{}", label(&r));
+            assert!(m.poisson_ratio_fem.unwrap().abs() < 1e-9, "ν {}", label(&r));
+        } else {
+            assert!(relative(m.shear_modulus_fem, Some(mu)) < 1e-9, "G {}", label(&r));
+        }
+    }
+}
+
+/// E_fem and ν_fem of a free triangular block (coursework supports) loaded along y
+/// (`tensile`) and along x (`tensile-x`), by size.
+fn triangular_block(sizes: &str) -> Vec<(usize, bool, f64, f64)> {
+    let yaml = campaign(
+        "{type: triangular}",
+        "    relax: {max_tc: 1}\n    load: {per_node: 1.0}\n",
+        &format!("      lattice.size: [{sizes}]\n      load.case: [tensile, tensile-x]\n"),
+    );
+    static_answers(&yaml)
+        .iter()
+        .map(|r| {
+            let l = r.spec.lattice().unwrap();
+            let m = &r.metrics.lattice;
+            (l.nx, l.rotated, m.youngs_modulus_fem.unwrap(), m.poisson_ratio_fem.unwrap())
+        })
+        .collect()
+}
+
+#[test]
+fn triangular_block_approaches_the_isotropic_continuum_in_x_and_y() {
+    // E = 2k/(√3 d), ν = 1/3 in every direction. A block's edges stiffen it by O(1/N) (its
+    // zigzag sides more than its straight top and bottom): each error must shrink as N
+    // doubles, and at N = 33 lie within 5 % for E (measured 1.1 % along y, 3.5 % along x) and
+    // 3 % for ν (measured 2.0 %, 1.0 %); E_x/E_y → 1 (measured 1.109, 1.050, 1.024).
+    let (youngs, nu) = (2.0 * K / (3.0_f64.sqrt() * DEPTH), 1.0 / 3.0);
+    let block = triangular_block("9, 17, 33");
+    for along_x in [false, true] {
+        let runs: Vec<_> = block.iter().filter(|b| b.1 == along_x).collect();
+        let errors: Vec<f64> = runs.iter().map(|b| (b.2 / youngs - 1.0).abs()).collect();
+        assert!(errors.windows(2).all(|w| w[1] < w[0]) && errors[2] < 0.05, "E along x {along_x}: {errors:?}");
+        let errors: Vec<f64> = runs.iter().map(|b| (b.3 / nu - 1.0).abs()).collect();
+        assert!(errors.windows(2).all(|w| w[1] < w[0]) && errors[2] < 0.03, "ν along x {along_x}: {errors:?}");
+    }
+    let ratio = |n: usize| {
+        let e = |x: bool| block.iter().find(|b| b.0 == n && b.1 == x).unwrap().2;
+        e(true) / e(false) - 1.0
+    };
+    assert!(
+        ratio(17) < ratio(9) && ratio(33) < ratio(17) && ratio(33).abs() < 0.04,
+        "E_x/E_y − 1 at 33: {}",
+        ratio(33)
+    );
+}
+
+#[test]
+fn honeycomb_and_kagome_carry_only_what_maxwell_allows() {
+    // Central forces: the honeycomb (z = 3 < 4) has no shear stiffness, the kagome (z = 4)
+    // is marginal, floppy at its free edges. Both free blocks, on either support, are
+    // mechanisms in tension and shear; so is a periodic strip in shear. A periodic strip in
+    // tension is rigid: it measures λ + 2μ, the kagome's 3√3k/(8d) and the honeycomb's
+    // k/(2√3 d) (its μ = 0), to O(1/ny) of the top and bottom rows: within 10 % (honeycomb,
+    // measured 6.7 %) and 1 % (kagome, 0.8 %) at ny = 9, closer at ny = 17.
+    let yaml = campaign(
+        "{nx: 8}",
+        "    load: {per_node: 1.0}\n    relax: {max_tc: 1}\n",
+        "      lattice.type: [honeycomb, kagome]\n      lattice.ny: [9, 17]\n      supports: [coursework, clamped-bottom, periodic-x]\n      load.case: [tensile, shear]\n",
+    );
+    let s3 = 3.0_f64.sqrt();
+    for r in static_answers(&yaml) {
+        let l = r.spec.lattice().unwrap();
+        let rigid =
+            l.supports == mdsolids::spec::Supports::PeriodicX && l.load_case == mdsolids::spec::LoadCase::Tensile;
+        if !rigid {
+            assert_eq!(r.status, RunStatus::Mechanism, "{}: {}", label(&r), r.message);
+            continue;
+        }
+        let honeycomb = l.lattice_type == mdsolids::model::LatticeType::Honeycomb;
+        let constrained = if honeycomb { K / (2.0 * s3 * DEPTH) } else { 3.0 * s3 * K / (8.0 * DEPTH) };
+        let m = &r.metrics.lattice;
+        assert!(relative(m.youngs_modulus_theory, Some(constrained)) < 1e-15, "{}", label(&r));
+        let tolerance = match (honeycomb, l.ny) {
+            (true, 9) => 0.10,
+            (true, _) => 0.05,
+            (false, 9) => 0.01,
+            (false, _) => 0.005,
+        };
+        assert!(relative(m.youngs_modulus_fem, Some(constrained)) < tolerance, "E {}", label(&r));
+    }
+}
+
+#[test]
+fn diluted_triangular_network_is_floppy_below_maxwells_count() {
+    // Keeping a fraction p of the bonds leaves a mean coordination 6p; below 2/3 (z < 4)
+    // there are fewer constraints than degrees of freedom and the loaded network must be a
+    // mechanism, whatever the seed (Maxwell's count is a bound, not an estimate). Near p = 1
+    // the network is rigid. 21 × 21, four seeds each.
+    let yaml = campaign(
+        "{type: triangular, size: 21}",
+        "    load: {per_node: 1.0}\n    relax: {max_tc: 1}\n",
+        "      lattice.cut_fraction: [0.03, 0.5]\n      seed: [1, 2, 3, 4]\n",
+    );
+    for r in static_answers(&yaml) {
+        let cut = r.spec.lattice().unwrap().cut_fraction;
+        if cut > 1.0 / 3.0 {
+            assert_eq!(r.status, RunStatus::Mechanism, "{}", label(&r));
+        } else {
+            assert_ne!(r.status, RunStatus::Mechanism, "{}: {}", label(&r), r.message);
+            let p = r.metrics.lattice.bond_fraction_kept.unwrap();
+            assert!(p > 0.9, "{}: kept {p}", label(&r));
+            assert!(r.metrics.lattice.youngs_modulus_linear.unwrap() > 0.0);
+        }
+    }
+}
+
+#[test]
+fn wave_from_the_top_row_arrives_near_each_lattice_longitudinal_speed() {
+    // A force step down on the whole top row of a free 21 × 21 block: a plane longitudinal
+    // wave, timed at the bottom row from the top-centre node. Theory c_L: square a√((k + k_d)/m),
+    // triangular a√(9k/(8m)), kagome a√(3k/(4m)), honeycomb a√(3k/(8m)). The kinetic-energy
+    // criterion's speed distance/t within 20 % of c_L on every type (measured 0.87 … 0.98 of
+    // the arrival time; the front of a discrete lattice is dispersed over a few rows).
+    let yaml = campaign(
+        "{nx: 21, ny: 21}",
+        "    supports: free\n    impulse: {node: top-centre, force: [0.0, -0.001]}\n    wave: {}\n    time: {integrator: velocity-verlet}\n",
+        "      lattice.type: [square, triangular, honeycomb, kagome]\n",
+    );
+    let (a, m) = (0.1, 0.5);
+    for r in execute_all(&yaml) {
+        let l = r.spec.lattice().unwrap();
+        let c_l = a * match l.lattice_type.name() {
+            "square" => (1.5 * K / m).sqrt(),
+            "triangular" => (9.0 * K / (8.0 * m)).sqrt(),
+            "kagome" => (3.0 * K / (4.0 * m)).sqrt(),
+            _ => (3.0 * K / (8.0 * m)).sqrt(),
+        };
+        let metrics = &r.metrics;
+        assert!(relative(metrics.sound_speed_theory, Some(c_l)) < 1e-12, "{}", label(&r));
+        let speed = metrics.wave_distance.unwrap() / metrics.arrival_times["kinetic_energy"];
+        assert!((speed / c_l - 1.0).abs() < 0.2, "{}: {speed} against {c_l}", label(&r));
+    }
+}
