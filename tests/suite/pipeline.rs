@@ -455,7 +455,7 @@ fn table_differences(pinned: &str, now: &str) -> Vec<String> {
 fn pinned_results_of_the_shipped_campaigns() {
     let reports = tempfile::tempdir().unwrap();
     let mut failures = Vec::new();
-    for campaign in ["smoke", "shards", "coursework", "coursework-hertz", "stability", "dt-study"] {
+    for campaign in ["smoke", "shards", "coursework", "coursework-hertz", "stability", "dt-study", "lattice-types"] {
         let out = mdsolids(reports.path(), &["run", &format!("campaigns/{campaign}.yaml")]);
         assert!(out.status.success(), "{campaign}: {}", text(&out.stderr));
         let now = pinned_table(&std::fs::read_to_string(reports.path().join(campaign).join("results.csv")).unwrap());
