@@ -130,7 +130,11 @@ fn run<F: ForceField, M: Minimiser>(method: &mut M, state: &mut State, field: &m
             }
             None => {
                 trace.status = RunStatus::NoEquilibrium;
-                trace.message = "a minimiser needs a static criterion (relax.tolerance or relax.residual_force)".into();
+                // The displacement bound needs k_min > 0: a floppy network (a diluted one past
+                // its rigidity threshold) has none, and no bound on its error.
+                trace.message = "no static criterion to stop at: the displacement bound needs a network whose \
+                                 softest stiffness k_min is > 0 (this one is floppy); give relax.residual_force"
+                    .into();
                 break;
             }
             Some((false, _)) => {}
