@@ -403,6 +403,7 @@ fn print_plan_rows(plan: &Plan, layout: &Layout) -> PlanTally {
     );
     let mut tally = PlanTally { states: Default::default(), corrupt: Vec::new(), simulation_s: 0.0 };
     for spec in &campaign.runs {
+        let run_id = spec.run_id();
         // What `run` would do with the run's stored record: take it (`yes`), or simulate the
         // run because the record is missing, corrupt, of another build or stopped by its budget.
         let state = match read_stored(layout, spec) {
@@ -410,7 +411,7 @@ fn print_plan_rows(plan: &Plan, layout: &Layout) -> PlanTally {
             Stored::Current(_) => "yes",
             Stored::OtherBuild(_) => "stale",
             Stored::Corrupt(why) => {
-                tally.corrupt.push((spec.run_id(), why));
+                tally.corrupt.push((run_id.clone(), why));
                 "corrupt"
             }
             Stored::Missing => "missing",
@@ -425,7 +426,7 @@ fn print_plan_rows(plan: &Plan, layout: &Layout) -> PlanTally {
             |value: fn(&Stability) -> f64| stability.as_ref().map_or("-".into(), |s| format!("{:.4}", value(s)));
         println!(
             "{:<28} {:<8} {:<16} {:>11.4e} {:>11.4e} {:>8.1} {:>10} {:>8} {:>7} {:>7}  {}",
-            spec.run_id(),
+            run_id,
             spec.kind().name(),
             spec.integrator.name(),
             spec.dt,

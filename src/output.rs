@@ -18,6 +18,12 @@ pub fn movie_name(run_id: &str) -> String {
     format!("plots/{run_id}.gif")
 }
 
+/// The probe table of run `run_id` (its probed lines, `runner::record`), relative to its
+/// campaign's directory.
+pub fn probe_table_name(run_id: &str) -> String {
+    format!("probes/{run_id}.parquet")
+}
+
 /// The side-by-side movie of `scene`, relative to its campaign's directory.
 pub fn side_by_side_name(scene: &str) -> String {
     format!("plots/{scene}-side-by-side.gif")
@@ -31,6 +37,14 @@ impl Layout {
     /// Stored result of one run.
     pub fn run_file(&self, run_id: &str) -> PathBuf {
         self.root.join("runs").join(format!("{run_id}.json"))
+    }
+    /// The sampled series of one run's record (binary, `runner::record`), beside it.
+    pub fn series_file(&self, run_id: &str) -> PathBuf {
+        self.root.join("runs").join(format!("{run_id}.series"))
+    }
+    /// The probe table of run `run_id`, stored with its record.
+    pub fn probe_table_file(&self, run_id: &str) -> PathBuf {
+        self.file(&probe_table_name(run_id))
     }
     /// The lock file held while run `run_id` is simulated (hidden, beside the records).
     pub fn run_lock_file(&self, run_id: &str) -> PathBuf {

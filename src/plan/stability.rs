@@ -218,8 +218,11 @@ fn largest_eigenvalue(springs: &Springs, axes: &FreeAxes) -> (f64, Vec<f64>, Vec
 
 /// The part of `spec` its modes depend on (the network, masses, supports, dashpots and the
 /// extension springs are linearised at), as text: runs that differ only in their time step,
-/// integrator, length, sampling or outputs have the same.
+/// integrator, length, sampling, outputs or start speed v0 have the same. v0 moves no particle
+/// and sets no spring; it reaches the modes only through the extension a power law is
+/// linearised at (the collision's largest overlap), which the key holds instead.
 fn network_key(spec: &RunSpec) -> String {
+    let extension = crate::spec::reference_extension(spec);
     let network = RunSpec {
         campaign: String::new(),
         scene: String::new(),
@@ -234,9 +237,11 @@ fn network_key(spec: &RunSpec) -> String {
         samples: 0,
         scene_kind: spec.scene_kind.without_relax_and_wave(),
         movie: None,
+        v0: 0.0,
         ..spec.clone()
     };
-    serde_json::to_string(&network).expect("a RunSpec always serialises")
+    let network = serde_json::to_string(&network).expect("a RunSpec always serialises");
+    format!("{network} linearised at {:x}", extension.to_bits())
 }
 
 /// What the eigenvalue estimates of a scene give.
@@ -568,6 +573,23 @@ mod tests {
         .unwrap();
         let keys: std::collections::HashSet<String> = campaign.runs.iter().map(network_key).collect();
         assert_eq!((campaign.runs.len(), keys.len()), (32, 4));
+    }
+
+    /// Planning computes one estimate per network: a grid of pairs over v0 and mass has one per
+    /// mass with linear springs (v0 moves no spring), and one per run with Hertz contacts,
+    /// linearised at each collision's largest overlap. A shared estimate is the run's own.
+    #[test]
+    fn planning_estimates_each_network_once() {
+        let grid = "    grid:\n      v0: [0.5, 1.0, 2.0, 4.0]\n      material.mass: [1.0, 2.0, 3.0]\n";
+        for (law, networks) in [("", 3), ("    material: {law: hertz, contact: true}\n", 12)] {
+            let yaml = format!("version: 1\nname: k\nscenes:\n  - name: p\n    kind: pair\n{law}{grid}");
+            let plan = crate::plan::parse("k.yaml", &yaml).unwrap();
+            let estimated = plan.estimates.modes.lock().unwrap().len();
+            assert_eq!((plan.campaign.runs.len(), estimated), (12, networks), "{law}");
+            for spec in &plan.campaign.runs {
+                assert_eq!(plan.estimates.stability(spec), estimate(spec), "{}", spec.varied_label(|_| true));
+            }
+        }
     }
 
     /// The scenes of a one-scene campaign whose scene section (after `kind:`) is `body`.

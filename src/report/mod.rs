@@ -52,14 +52,6 @@ pub fn render_with_left_out(
         figure.file = figure.image.file_name(&figure.file);
         write_atomically(&layout.file(&figure.file), figure.image.bytes())?;
     }
-    let mut probes = BTreeSet::new();
-    for record in records {
-        if let Some(csv) = probes::probe_table(record) {
-            let file = format!("probes/{}.csv", record.run_id);
-            write_atomically(&layout.file(&file), csv.as_bytes())?;
-            probes.insert(file);
-        }
-    }
     // Only a side-by-side movie drawn from exactly the scene's current runs is shown.
     let side_by_side: Vec<String> = campaign
         .scenes
@@ -80,7 +72,17 @@ pub fn render_with_left_out(
     remove_stale(&layout.root, "plots", ".gif", &movies)?;
     // Movies of earlier versions sat in the cache folder.
     remove_stale(&layout.root, "runs", ".gif", &BTreeSet::new())?;
-    remove_stale(&layout.root, "probes", ".csv", &probes)?;
+    // Probe tables are stored with their runs: those of every run of the campaign stay (also
+    // of a run another process is storing now, which `records` may not hold yet).
+    let probes: BTreeSet<String> = campaign
+        .runs
+        .iter()
+        .filter(|spec| spec.lattice().is_some_and(|l| !l.probes.is_empty()))
+        .map(|spec| crate::output::probe_table_name(&spec.run_id()))
+        .collect();
+    remove_stale(&layout.root, "probes", ".parquet", &probes)?;
+    // Probe tables of earlier versions were CSV.
+    remove_stale(&layout.root, "probes", ".csv", &BTreeSet::new())?;
     let context = context::build(campaign, records, fits, left_out, &figures, &side_by_side);
     let context = tera::Context::from_serialize(&context).context("cannot build the report context")?;
     write_pages(&layout.root, ("report.md", MARKDOWN_TEMPLATE), context)

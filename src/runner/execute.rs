@@ -5,7 +5,7 @@
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::Instant;
 
-use super::record::{BUILD, Metrics, RunRecord};
+use super::record::{BUILD, Metrics, RunRecord, keep_what_is_stored};
 use crate::draw::Movie;
 use crate::plan::Estimates;
 use crate::sim::{RunStatus, Trace, stored_samples};
@@ -87,6 +87,8 @@ fn blank_record(spec: &RunSpec) -> RunRecord {
         steps: 0,
         metrics: Metrics::default(),
         trace: Trace::default(),
+        series: None,
+        probe_table: None,
         movie: None,
     }
 }
@@ -124,8 +126,10 @@ fn fill(record: &mut RunRecord, mut run: Run, deadline: Instant) {
     }
     record.metrics = run.metrics;
     record.trace = trace;
-    // Measured from every sample above; stored thinned, within a bounded size.
+    // Measured from every sample above; stored thinned, within a bounded size, and only what
+    // the report draws.
     record.trace.thin(stored_samples(record.trace.numbers_per_sample()));
+    keep_what_is_stored(&mut record.trace, &record.spec);
 }
 
 fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {

@@ -2,7 +2,7 @@
 //! cached by content hash, with a progress bar; a failing run becomes a record, not a crash.
 
 pub use self::execute::{execute, execute_within};
-pub use self::record::{BUILD, Metrics, RunRecord};
+pub use self::record::{BUILD, Metrics, RunRecord, StoredFile, is_asked_for};
 pub use self::shard::{Shard, shard_campaign, shard_of_each_run};
 
 mod execute;
@@ -90,17 +90,28 @@ pub enum Stored {
     Current(RunRecord),
 }
 
-/// Reads and checks the stored record of `spec` (`runs/<run_id>.json`).
+/// Reads and checks the stored record of `spec` (`runs/<run_id>.json`) and its series
+/// (`runs/<run_id>.series`, which must be the file the record names).
 pub fn read_stored(layout: &Layout, spec: &RunSpec) -> Stored {
-    let text = match std::fs::read_to_string(layout.run_file(&spec.run_id())) {
+    let run_id = spec.run_id();
+    let text = match std::fs::read_to_string(layout.run_file(&run_id)) {
         Ok(text) => text,
         Err(error) if error.kind() == std::io::ErrorKind::NotFound => return Stored::Missing,
         Err(error) => return Stored::Corrupt(format!("cannot be read: {error}")),
     };
-    let record = match serde_json::from_str::<RunRecord>(&text) {
+    let mut record = match serde_json::from_str::<RunRecord>(&text) {
         Ok(record) => record,
         Err(error) => return Stored::Corrupt(format!("is not a run record: {error}")),
     };
+    let read = record.read_series(|file| {
+        std::fs::read(match file {
+            StoredFile::Series => layout.series_file(&run_id),
+            StoredFile::ProbeTable => layout.probe_table_file(&run_id),
+        })
+    });
+    if let Err(why) = read {
+        return Stored::Corrupt(why);
+    }
     match record.check(spec) {
         Err(why) => Stored::Corrupt(why),
         Ok(()) if record.build == BUILD => Stored::Current(record),
@@ -351,8 +362,15 @@ fn run_and_store(
             *panel.lock().expect("a panel is written once") = Some(movie);
         }
     }
-    let json = serde_json::to_vec(&record).context("cannot serialise a run record")?;
-    write_atomically(&layout.run_file(&record.run_id), &json)?;
+    // The probe table and series first: a kill between them and the record leaves files and
+    // no record (the run is missing), or a record naming earlier files by their hash
+    // (corrupt): either way the run is simulated again, never read with series not its own.
+    let stored = record.to_stored().context("cannot serialise a run record")?;
+    if let Some(table) = &stored.probe_table {
+        write_atomically(&layout.probe_table_file(&record.run_id), table)?;
+    }
+    write_atomically(&layout.series_file(&record.run_id), &stored.series)?;
+    write_atomically(&layout.run_file(&record.run_id), &stored.json)?;
     Ok(Some((record, true)))
 }
 

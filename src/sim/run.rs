@@ -162,8 +162,8 @@ pub struct ProbeTrace {
     pub velocity_y: Vec<Vec<f64>>,
 }
 
-/// A stored trace (a run's record) holds at most this many numbers, ~25 bytes each as JSON
-/// text (a record of at most ~50 MB), ...
+/// A stored trace (a run's record) holds at most this many numbers, 4 or 8 bytes each before
+/// compression in its series file (`runner::record`), ...
 pub const STORED_NUMBERS: usize = 2_000_000;
 /// ... and at most this many samples: more than a figure shows (its lines are thinned to
 /// `draw::chart::LINE_POINTS`) while keeping the shape of every series.

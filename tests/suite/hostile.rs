@@ -120,6 +120,9 @@ fn the_run_limit_counts_before_expanding() {
     assert!(error.contains("scenes[0].grid: 100100 runs (material.mass: 100 values × v0: 1001 values)"), "{error}");
     assert!(error.contains(&format!("at most {} runs", mdsolids::spec::MAX_RUNS)), "{error}");
     assert_eq!(mdsolids::spec::parse("ok.yaml", &campaign(10, 10)).unwrap().runs.len(), 100);
+    // The campaign `plan` is timed on (README, Budgets): 400 × 250, exactly at the limit.
+    let at_limit = mdsolids::spec::load(Path::new("tests/campaigns/plan-100k.yaml")).unwrap();
+    assert_eq!(at_limit.runs.len() as u64, mdsolids::spec::MAX_RUNS);
 }
 
 /// Numbers equal in value give one run id however they are written (`50` or `50.0`, `0.0` or

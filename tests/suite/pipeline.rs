@@ -22,8 +22,10 @@ fn modified(path: &Path) -> std::time::SystemTime {
     std::fs::metadata(path).and_then(|m| m.modified()).expect("file exists")
 }
 
+/// The run records (`runs/*.json`) of the campaign folder `dir`, sorted.
 fn run_files(dir: &Path) -> Vec<PathBuf> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir.join("runs")).unwrap().map(|e| e.unwrap().path()).collect();
+    let entries = std::fs::read_dir(dir.join("runs")).unwrap().map(|e| e.unwrap().path());
+    let mut files: Vec<PathBuf> = entries.filter(|f| f.extension().is_some_and(|e| e == "json")).collect();
     files.sort();
     files
 }
@@ -306,18 +308,16 @@ fn corrupt_records_are_reported_left_out_and_simulated_again() {
     let runs = reports.join("store/runs");
     let complete = std::fs::read_to_string(reports.join("store/results.csv")).unwrap();
     // A record whose run_id climbs out of the reports folder (it named probes/<run_id>.csv),
-    // one whose probe series is a row short (the report indexed past its end), one holding
-    // a number beyond f64 and one that is not JSON.
+    // one whose series file is another run's (as a kill between writing the two could leave
+    // it), one holding a number beyond f64 and one that is not JSON.
     let (kick, mut record) = record_of(&runs, "kick");
     record["run_id"] = "../../../escaped".into();
     std::fs::write(&kick, record.to_string()).unwrap();
     let pairs: Vec<PathBuf> =
         run_files(&reports.join("store")).into_iter().filter(|f| f.to_string_lossy().contains("/pair-")).collect();
-    let mut short: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&pairs[0]).unwrap()).unwrap();
-    let kinetic = short["trace"]["kinetic"].as_array_mut().unwrap();
-    kinetic.pop();
-    let short_by_one = format!("trace.kinetic has {} entries for {} sample times", kinetic.len(), kinetic.len() + 1);
-    std::fs::write(&pairs[0], short.to_string()).unwrap();
+    let series = |record: &Path| record.with_extension("series");
+    std::fs::copy(series(&pairs[3]), series(&pairs[0])).unwrap();
+    let not_its_own = "its series file (";
     let huge = std::fs::read_to_string(&pairs[1]).unwrap().replacen("\"wall_s\":", "\"wall_s\":1e999,\"x\":", 1);
     std::fs::write(&pairs[1], huge).unwrap();
     std::fs::write(&pairs[2], "{\"run_id\": ").unwrap();
@@ -332,7 +332,7 @@ fn corrupt_records_are_reported_left_out_and_simulated_again() {
     assert!(!dir.path().join("escaped.csv").exists() && !reports.join("escaped.csv").exists());
     for why in [
         "its run_id \"../../../escaped\" is not its file name",
-        &short_by_one,
+        not_its_own,
         "is not a run record: number out of range",
         "is not a run record: EOF while parsing",
     ] {

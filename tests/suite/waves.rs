@@ -127,8 +127,11 @@ const PROBED: &str = "version: 1\nname: probed\nscenes:\n  - name: l\n    kind: 
 
 #[test]
 fn probes_record_chosen_rows_and_columns_and_see_momentum_conserved() {
-    let r = execute_all(PROBED).remove(0);
-    assert_eq!(r.status, RunStatus::Ok, "{}", r.message);
+    // The run's own trace, in double precision (its record keeps single precision: 1e-7).
+    let spec = &crate::common::runs(PROBED)[0];
+    let far = std::time::Instant::now() + std::time::Duration::from_secs(600);
+    let r = mdsolids::study::run(spec, far).unwrap_or_else(|_| panic!("the probed run stopped")).outcome;
+    assert_eq!(r.trace.status, RunStatus::Ok, "{}", r.trace.message);
     let probes = &r.trace.probes;
     // The kicked column (right) first, then the rows once each (row 1 was named twice, `centre`
     // is row 2), then the left column.
@@ -159,7 +162,7 @@ fn probes_record_chosen_rows_and_columns_and_see_momentum_conserved() {
 }
 
 #[test]
-fn probes_are_written_as_csv_and_drawn() {
+fn probes_are_stored_as_parquet_and_drawn() {
     use mdsolids::output::Layout;
     let reports = tempfile::tempdir().unwrap();
     let planned = mdsolids::plan::parse("probed.yaml", PROBED).unwrap();
@@ -168,11 +171,20 @@ fn probes_are_written_as_csv_and_drawn() {
     let done = mdsolids::runner::run_campaign(&planned, &layout, Some(1)).unwrap();
     mdsolids::report::render(campaign, &layout, &done.records).unwrap();
     let r = &done.records[0];
-    let csv = std::fs::read_to_string(layout.file(&format!("probes/{}.csv", r.run_id))).unwrap();
-    let mut lines = csv.lines();
-    assert_eq!(lines.next(), Some("time,probe,node,index,displacement_x,displacement_y,velocity_x,velocity_y"));
-    // One line per sample and probed node: 7 lines of 5 or 6 nodes.
-    assert_eq!(lines.count(), r.trace.time.len() * (5 * 6 + 2 * 5));
+    use polars::prelude::{ParquetReader, SerReader};
+    let table = std::fs::File::open(layout.file(&format!("probes/{}.parquet", r.run_id))).unwrap();
+    let table = ParquetReader::new(table).finish().unwrap();
+    let names: Vec<&str> = table.get_column_names().into_iter().map(|n| n.as_str()).collect();
+    assert_eq!(
+        names,
+        ["time", "probe", "node", "index", "displacement_x", "displacement_y", "velocity_x", "velocity_y"]
+    );
+    // One row per sample and probed node: the 6 lines asked for, 5 rows of 6 nodes and a
+    // column of 5 (the kicked column was not asked for).
+    assert_eq!(table.height(), r.trace.time.len() * (5 * 6 + 5));
+    // What the report reads back is what the run measured, in single precision.
+    let stored = mdsolids::runner::stored_record(&layout, &r.spec).expect("stored");
+    assert_eq!(stored.trace, r.trace);
     let report = std::fs::read_to_string(layout.file("report.md")).unwrap();
     // A heat map is an SVG, or a PNG where the SVG would be heavy (draw::chart::SVG_MOST_BYTES).
     for figure in ["l-probe-row-0-velocity", "l-probe-column-0-displacement"] {
