@@ -67,6 +67,34 @@ pub struct LatticeMetrics {
     /// Random lattice: fraction of the bonds kept after cutting.
     #[serde(default)]
     pub bond_fraction_kept: Option<f64>,
+    /// Loaded lattice, relaxed: the displacements of its edge nodes, the profiles homogeneity
+    /// is judged on (kept in the record for the report's figures; no result column).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub edge_displacements: Option<EdgeDisplacements>,
+}
+
+/// The relaxed displacements (m) of a lattice's edge nodes: 2 N_y + N_x numbers, where a
+/// homogeneous strain makes each profile a straight line (the top row flat under tension).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct EdgeDisplacements {
+    /// u_x of the left column's nodes, bottom to top.
+    pub left_x: Vec<f64>,
+    /// u_x of the right column's nodes, bottom to top.
+    pub right_x: Vec<f64>,
+    /// u_y of the top row's nodes, left to right.
+    pub top_y: Vec<f64>,
+}
+
+impl EdgeDisplacements {
+    /// The edge profiles of an `nx` × `ny` lattice's node displacements `ux`, `uy` (row by row
+    /// from the bottom, node (ix, iy) at iy · nx + ix).
+    fn of(nx: usize, ny: usize, ux: &[f64], uy: &[f64]) -> EdgeDisplacements {
+        EdgeDisplacements {
+            left_x: (0..ny).map(|iy| ux[iy * nx]).collect(),
+            right_x: (0..ny).map(|iy| ux[iy * nx + nx - 1]).collect(),
+            top_y: uy[(ny - 1) * nx..ny * nx].to_vec(),
+        }
+    }
 }
 
 /// An nx × ny lattice at rest on its supports, node (ix, iy) at (ix a, iy a); a random
@@ -379,6 +407,7 @@ pub(super) fn measure(
     metrics.shear_modulus = keep(md.shear_modulus);
     let largest = ux.iter().chain(&uy).fold(0.0, |m: f64, u| m.max(u.abs()));
     metrics.homogeneity = keep(homogeneity(&shape(spec, l), &ux, largest));
+    metrics.edge_displacements = relaxed.then(|| EdgeDisplacements::of(l.nx, l.ny, &ux, &uy));
     if spec.law.is_linear() {
         continuum(l, metrics);
     }
