@@ -35,7 +35,9 @@ pub struct Series {
 /// How a series' points are drawn.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Mark {
-    /// A line through them (thinned to [`LINE_POINTS`]).
+    /// A line through them (thinned to [`LINE_POINTS`]); a point with a NaN coordinate breaks
+    /// it, so one series (one colour, one legend entry) may be several lines, e.g. the two
+    /// edges of one lattice.
     Line,
     /// A disc at each.
     Markers,
@@ -316,8 +318,17 @@ where
         let shown = |p: &(f64, f64)| chart.scale.shows(*p);
         let legend = match &s.mark {
             Mark::Line => {
-                let points = thin_line(s.points.iter().copied().filter(shown).collect(), LINE_POINTS);
-                ctx.draw_series(LineSeries::new(points, color.stroke_width(2))).map_err(draw_error)?
+                let mut pieces: Vec<Vec<(f64, f64)>> = s
+                    .points
+                    .split(|(x, y)| x.is_nan() || y.is_nan())
+                    .map(|piece| thin_line(piece.iter().copied().filter(shown).collect(), LINE_POINTS))
+                    .collect();
+                // `split` yields at least one piece; the first carries the legend entry.
+                let first = pieces.remove(0);
+                for piece in pieces {
+                    ctx.draw_series(LineSeries::new(piece, color.stroke_width(2))).map_err(draw_error)?;
+                }
+                ctx.draw_series(LineSeries::new(first, color.stroke_width(2))).map_err(draw_error)?
             }
             Mark::Markers => ctx
                 .draw_series(s.points.iter().copied().filter(shown).map(|p| Circle::new(p, 4, color.filled())))

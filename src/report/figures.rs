@@ -5,7 +5,7 @@
 use super::figure::{
     Figure, background_damping_only, bond_damping_only, group_label, groups, physics_label, representative,
 };
-use super::{precision, probes, solids, stability_map, waves};
+use super::{edges, precision, probes, solids, stability_map, waves};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::measure::relative_error;
 use crate::runner::RunRecord;
@@ -58,6 +58,7 @@ pub fn draw_all(campaign: &Campaign, records: &[RunRecord], fits: &[ScalingFit])
                 if let Some(figure) = size_figure(scene, records)? {
                     figures.push(figure);
                 }
+                figures.extend(edges::edge_figures(records, scene)?);
             }
             _ => {}
         }

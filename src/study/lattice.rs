@@ -13,7 +13,7 @@ use crate::measure::{
     LatticeShape, anisotropic_moduli, constrained_modulus_y, displacement_error_allowed, homogeneity,
     lattice_constants, modulus_error_bound, network_constants, row_extension, shear_modulus, tensile_moduli,
 };
-use crate::model::{Axes, Bonds, ForceLaw, LawVisitor, Layout, Particles, SquareLattice};
+use crate::model::{Axes, Bonds, Edges, ForceLaw, LawVisitor, Layout, Particles, SquareLattice};
 use crate::sim::{Drive, Load, Network, Outcome, ProbeTrace, Scene, Trace};
 use crate::spec::{Control, Diagonals, LatticeSpec, LoadCase, ProbeLine, RunSpec, Supports, reference_extension};
 
@@ -91,6 +91,30 @@ pub struct LatticeMetrics {
     /// G (Pa) of the linear static answer.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shear_modulus_linear: Option<f64>,
+    /// Loaded lattice, relaxed: the displacements of its edge nodes, the profiles homogeneity
+    /// is judged on (kept in the record for the report's figures; no result column).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub edge_displacements: Option<EdgeDisplacements>,
+}
+
+/// The relaxed displacements (m) of a lattice's edge nodes: 2 N_y + N_x numbers, where a
+/// homogeneous strain makes each profile a straight line (the top row flat under tension).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct EdgeDisplacements {
+    /// u_x of the left column's nodes, bottom to top.
+    pub left_x: Vec<f64>,
+    /// u_x of the right column's nodes, bottom to top.
+    pub right_x: Vec<f64>,
+    /// u_y of the top row's nodes, left to right.
+    pub top_y: Vec<f64>,
+}
+
+impl EdgeDisplacements {
+    /// The edge profiles of a lattice with `edges` from its node displacements `ux`, `uy`.
+    fn of(edges: &Edges, ux: &[f64], uy: &[f64]) -> EdgeDisplacements {
+        let pick = |u: &[f64], nodes: &[usize]| nodes.iter().map(|&n| u[n]).collect();
+        EdgeDisplacements { left_x: pick(ux, &edges.left), right_x: pick(ux, &edges.right), top_y: pick(uy, &edges.top) }
+    }
 }
 
 /// A lattice at rest on its supports (the square one's node (ix, iy) at (ix a, iy a)); a
@@ -458,6 +482,7 @@ pub(super) fn measure(
     let edges = l.layout(spec.spacing).edges;
     let shape = LatticeShape { edges: &edges, depth: l.depth };
     metrics.homogeneity = keep(homogeneity(&shape, &ux, largest));
+    metrics.edge_displacements = relaxed.then(|| EdgeDisplacements::of(&edges, &ux, &uy));
     if let (Some(k_min), Some(residual)) = (metrics.stiffness_min.filter(|k| *k > 0.0), outcome.trace.residual_norm) {
         let bound = modulus_error_bound(&shape, extension(l, &shape, &ux, &uy), residual / k_min);
         metrics.relax_error_bound = keep(Some(bound));

@@ -140,6 +140,17 @@ fn periodic_strip_measures_the_shear_modulus_at_every_size() {
         assert!(relative(r.metrics.lattice.shear_modulus_fem, exact) < 1e-9, "static G {}", label(&r));
         assert!(relative(r.metrics.lattice.shear_modulus, exact) < 5e-3, "MD G {}", label(&r));
         assert!(relative(r.metrics.lattice.shear_modulus_theory, exact) < 1e-15);
+        // The edge profiles the report draws: both edges (the same column, periodically) shifted
+        // by γ y, γ = (F/(d L_x))/G with L_x = N a the period, within the 0.5 % of MD's G.
+        let n = r.spec.lattice().unwrap().nx;
+        let edges = r.metrics.lattice.edge_displacements.as_ref().expect("a relaxed lattice keeps its edges");
+        assert_eq!((edges.left_x.len(), edges.right_x.len(), edges.top_y.len()), (n, n, n));
+        let strain = 1.0 * n as f64 / (0.01 * n as f64 * 0.1) / k_diag_over_depth;
+        for (iy, (left, right)) in edges.left_x.iter().zip(&edges.right_x).enumerate() {
+            let exact = strain * iy as f64 * 0.1;
+            assert!((left - exact).abs() <= 5e-3 * strain * (n - 1) as f64 * 0.1, "row {iy}: {left} against {exact}");
+            assert!((right - left).abs() <= 1e-6 * exact.abs().max(1e-12), "periodic: {right} = {left}");
+        }
     }
 }
 

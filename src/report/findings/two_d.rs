@@ -15,7 +15,7 @@ use crate::spec::{Control, Diagonals, LatticeSpec, LoadCase, Supports};
 /// Largest |MD − static|/static of a relaxed lattice's modulus that counts as agreement: the
 /// relaxation stops at E_kin/E_pot < 1e-8 or a residual force of 1e-6 of the load, which leaves
 /// the slowest mode's displacement error at about 1e-4 … 1e-3 of the deformation.
-const STATIC_TOLERANCE: f64 = 2e-3;
+pub(super) const STATIC_TOLERANCE: f64 = 2e-3;
 
 /// A loaded (not kicked), regular, linear lattice: the coursework's moduli runs.
 fn regular(r: &RunRecord) -> Option<&LatticeSpec> {
