@@ -113,7 +113,11 @@ impl EdgeDisplacements {
     /// The edge profiles of a lattice with `edges` from its node displacements `ux`, `uy`.
     fn of(edges: &Edges, ux: &[f64], uy: &[f64]) -> EdgeDisplacements {
         let pick = |u: &[f64], nodes: &[usize]| nodes.iter().map(|&n| u[n]).collect();
-        EdgeDisplacements { left_x: pick(ux, &edges.left), right_x: pick(ux, &edges.right), top_y: pick(uy, &edges.top) }
+        EdgeDisplacements {
+            left_x: pick(ux, &edges.left),
+            right_x: pick(ux, &edges.right),
+            top_y: pick(uy, &edges.top),
+        }
     }
 }
 
