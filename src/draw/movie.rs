@@ -17,6 +17,8 @@ pub struct Movie {
     pub spec: crate::spec::MovieSpec,
     /// Title drawn on every frame.
     pub title: String,
+    /// The run's two-body contact time t_c (s): each frame's time is also given in t_c.
+    pub t_c: f64,
     /// The run's deadline: encoding the movie is part of the run (its time budget).
     pub deadline: Option<std::time::Instant>,
 }
@@ -145,7 +147,12 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
                 let (header, body) = area.split_vertically(30);
                 header
                     .draw(&Text::new(
-                        format!("{}   t = {:.4e} s", movie.title, frame.time),
+                        format!(
+                            "{}   t = {} s = {} t_c",
+                            movie.title,
+                            readable(frame.time),
+                            readable(frame.time / movie.t_c)
+                        ),
                         (8, 8),
                         ("sans-serif", 15).into_font().color(&BLACK),
                     ))
@@ -177,6 +184,21 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
     }
     let bytes = encoder.into_inner().map_err(|error| encoding(error.into()))?;
     crate::output::write_atomically(path, &bytes)
+}
+
+/// `value` with four significant digits, plain from 0.001 to 99 999 (`22.57`, `0.004443`),
+/// scientific beyond (`1.234e-7`): a time stamp read at a glance, not `2.2570e1`.
+fn readable(value: f64) -> String {
+    if value == 0.0 || !value.is_finite() {
+        return format!("{value}");
+    }
+    let exponent = value.abs().log10().floor() as i32;
+    if (-3..5).contains(&exponent) {
+        let decimals = (3 - exponent).max(0) as usize;
+        format!("{value:.decimals$}")
+    } else {
+        format!("{value:.3e}")
+    }
 }
 
 /// The movies' one colour table (a GIF's global palette): what the frames are drawn with,
@@ -286,6 +308,15 @@ mod tests {
 
     /// The first frame is whole; a later one is the box of pixels that changed, the unchanged
     /// ones in it transparent; colours go to the nearest of the 32 of the palette.
+    #[test]
+    fn time_stamps_read_at_a_glance() {
+        assert_eq!(readable(22.570), "22.57");
+        assert_eq!(readable(0.0044429), "0.004443");
+        assert_eq!(readable(12345.6), "12346");
+        assert_eq!(readable(1.2344e-7), "1.234e-7");
+        assert_eq!(readable(0.0), "0");
+    }
+
     #[test]
     fn later_frames_hold_only_what_changed() {
         let mut palette = Palette::new();

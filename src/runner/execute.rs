@@ -115,6 +115,7 @@ fn fill(record: &mut RunRecord, mut run: Run, deadline: Instant) {
         bonds: run.bonds,
         spec: movie,
         title: format!("{} {}", spec.scene, spec.varied_label(|_| true)),
+        t_c: spec.t_c,
         deadline: Some(deadline),
     });
     let trace = run.outcome.trace;
