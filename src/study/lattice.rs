@@ -180,9 +180,9 @@ fn bonds(spec: &RunSpec, l: &LatticeSpec) -> Bonds {
     if !l.is_random() {
         return all;
     }
-    let edges = l.layout(spec.spacing).edges;
-    let mut edge = vec![false; l.layout(spec.spacing).len()];
-    edges.bottom.iter().chain(&edges.top).for_each(|&node| edge[node] = true);
+    let layout = l.layout(spec.spacing);
+    let mut edge = vec![false; layout.len()];
+    layout.edges.bottom.iter().chain(&layout.edges.top).for_each(|&node| edge[node] = true);
     all.randomised(l.cut_fraction, l.stiffness_spread, l.seed, |i, j| edge[i] || edge[j])
 }
 
