@@ -1,5 +1,6 @@
 //! Movies: an animated GIF of a run, particles as discs coloured by speed (with a colour bar),
-//! bonds as grey lines (or coloured by strain), the time on every frame.
+//! bonds as grey lines (or coloured by strain), walls and held nodes as black marks, the time
+//! and the displacement magnification on every frame.
 
 use plotters::prelude::*;
 use std::path::Path;
@@ -13,6 +14,10 @@ pub struct Movie {
     pub frames: Vec<crate::sim::Frame>,
     /// Bonds drawn as lines (i, j, rest length in m); bonds across a periodic side are left out.
     pub bonds: Vec<(usize, usize, f64)>,
+    /// Held particles and the axes they are held along: in a 1D scene (all particles on one
+    /// line) a wall, drawn as a bar; in 2D a filled square when held along both axes, an open
+    /// one when along one.
+    pub supports: Vec<(usize, crate::model::Axes)>,
     /// Frame count and size.
     pub spec: crate::spec::MovieSpec,
     /// Title drawn on every frame.
@@ -28,6 +33,9 @@ const FRAME_DELAY_MS: u32 = 80;
 
 /// Width (pixels) kept on the right for the colour bar.
 const BAR_WIDTH: u32 = 90;
+
+/// Height (pixels) of a panel's header: the title, then the time and magnification.
+const HEADER: u32 = 42;
 
 /// Colour of a speed fraction in [0, 1] on a viridis-like scale: dark violet at rest, through
 /// blue and green, to yellow at the fastest.
@@ -73,15 +81,16 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
     let spec = panels[0].spec;
     let panel_width = spec.width - BAR_WIDTH;
     let (width, height) = (panel_width * panels.len() as u32 + BAR_WIDTH, spec.height);
-    let (plot_w, plot_h) = (f64::from(panel_width), f64::from(height - 30));
+    let (plot_w, plot_h) = (f64::from(panel_width), f64::from(height - HEADER));
+    let extent = |positions: &mut dyn Iterator<Item = f64>| {
+        positions.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)))
+    };
     let all = || panels.iter().flat_map(|m| m.frames.iter());
-    let (x0, x1) = all()
-        .flat_map(|f| f.x.iter().copied())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
-    let (y0, y1) = all()
-        .flat_map(|f| f.y.iter().copied())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    let (x0, x1) = extent(&mut all().flat_map(|f| f.x.iter().copied()));
+    let (y0, y1) = extent(&mut all().flat_map(|f| f.y.iter().copied()));
     anyhow::ensure!(x0.is_finite() && y0.is_finite(), "a movie's positions must be finite");
+    // All particles on one line (a chain or a pair): its held particles are walls.
+    let one_dimensional = y1 == y0;
     // The shortest bond at the start sets the disc size and the margin.
     let spacing = panels
         .iter()
@@ -90,6 +99,28 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
         .filter(|d| *d > 0.0)
         .fold(f64::INFINITY, f64::min);
     let spacing = if spacing.is_finite() { spacing } else { (x1 - x0).max(y1 - y0).max(1.0) / 10.0 };
+    // Displacements u = r(t) − r(0) too small to see against the spacing a (a kick of 0.1 m/s
+    // moves the nodes of a steel-like lattice by microns) are drawn magnified, at r(0) + M u:
+    // the same M for every panel and frame, stated on each frame.
+    let largest_displacement = panels
+        .iter()
+        .flat_map(|m| m.frames.iter().map(move |f| (&m.frames[0], f)))
+        .flat_map(|(first, f)| (0..f.x.len()).map(move |i| (f.x[i] - first.x[i]).hypot(f.y[i] - first.y[i])))
+        .fold(0.0f64, f64::max);
+    let magnification = magnification(largest_displacement, spacing);
+    let shown: Vec<Vec<(Vec<f64>, Vec<f64>)>> = panels
+        .iter()
+        .map(|m| {
+            let first = &m.frames[0];
+            let magnified = |now: &[f64], start: &[f64]| -> Vec<f64> {
+                now.iter().zip(start).map(|(r, r0)| r0 + magnification * (r - r0)).collect()
+            };
+            m.frames.iter().map(|f| (magnified(&f.x, &first.x), magnified(&f.y, &first.y))).collect()
+        })
+        .collect();
+    let drawn = || shown.iter().flatten();
+    let (x0, x1) = extent(&mut drawn().flat_map(|(x, _)| x.iter().copied()));
+    let (y0, y1) = extent(&mut drawn().flat_map(|(_, y)| y.iter().copied()));
     let pad = 0.6 * spacing;
     let scale = ((x1 - x0) / 2.0 + pad) / plot_w * 2.0;
     let scale = scale.max(((y1 - y0) / 2.0 + pad) / plot_h * 2.0);
@@ -142,21 +173,17 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
             root.fill(&WHITE).map_err(draw_error)?;
             let (plots, bar) = root.split_horizontally(width - BAR_WIDTH);
             let areas = plots.split_evenly((1, panels.len()));
-            for (movie, area) in panels.iter().zip(&areas) {
+            for ((movie, area), positions) in panels.iter().zip(&areas).zip(&shown) {
                 let frame = &movie.frames[k];
-                let (header, body) = area.split_vertically(30);
-                header
-                    .draw(&Text::new(
-                        format!(
-                            "{}   t = {} s = {} t_c",
-                            movie.title,
-                            readable(frame.time),
-                            readable(frame.time / movie.t_c)
-                        ),
-                        (8, 8),
-                        ("sans-serif", 15).into_font().color(&BLACK),
-                    ))
-                    .map_err(draw_error)?;
+                let (x, y) = &positions[k];
+                let (header, body) = area.split_vertically(HEADER);
+                let font = ("sans-serif", 15).into_font().color(&BLACK);
+                header.draw(&Text::new(movie.title.clone(), (8, 4), font.clone())).map_err(draw_error)?;
+                let enlarged =
+                    if magnification > 1.0 { format!("   displacements × {magnification}") } else { String::new() };
+                let time =
+                    format!("t = {} s = {} t_c{enlarged}", readable(frame.time), readable(frame.time / movie.t_c));
+                header.draw(&Text::new(time, (8, 22), font)).map_err(draw_error)?;
                 let mut ctx =
                     ChartBuilder::on(&body).build_cartesian_2d(x_range.clone(), y_range.clone()).map_err(draw_error)?;
                 ctx.draw_series(movie.bonds.iter().map(|bond @ &(i, j, _)| {
@@ -165,11 +192,26 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
                     } else {
                         RGBColor(170, 170, 170).stroke_width(1)
                     };
-                    PathElement::new(vec![(frame.x[i], frame.y[i]), (frame.x[j], frame.y[j])], style)
+                    PathElement::new(vec![(x[i], y[i]), (x[j], y[j])], style)
                 }))
                 .map_err(draw_error)?;
-                ctx.draw_series((0..frame.x.len()).map(|i| {
-                    Circle::new((frame.x[i], frame.y[i]), radius, speed_color(frame.speed[i] / fastest).filled())
+                ctx.draw_series(
+                    (0..frame.x.len())
+                        .map(|i| Circle::new((x[i], y[i]), radius, speed_color(frame.speed[i] / fastest).filled())),
+                )
+                .map_err(draw_error)?;
+                // Supports over their discs, sized in pixels (`scale` m per pixel).
+                let half = f64::from(radius) * scale;
+                ctx.draw_series(movie.supports.iter().map(|&(i, held)| {
+                    let (cx, cy) = (x[i], y[i]);
+                    let (w, h, style) = if one_dimensional {
+                        (0.4 * half, 3.0 * half, BLACK.filled())
+                    } else if held.x && held.y {
+                        (half, half, BLACK.filled())
+                    } else {
+                        (half, half, BLACK.stroke_width(2))
+                    };
+                    Rectangle::new([(cx - w, cy - h), (cx + w, cy + h)], style)
                 }))
                 .map_err(draw_error)?;
             }
@@ -184,6 +226,18 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
     }
     let bytes = encoder.into_inner().map_err(|error| encoding(error.into()))?;
     crate::output::write_atomically(path, &bytes)
+}
+
+/// The magnification M of displacements whose largest is `largest` (m) in a network of
+/// spacing `spacing` (m): the largest 1, 2 or 5 × 10^k that keeps M·largest within 0.3
+/// spacing; 1 (drawn as they are) when the displacements are already visible.
+fn magnification(largest: f64, spacing: f64) -> f64 {
+    let target = 0.3 * spacing / largest;
+    if !target.is_finite() || target < 2.0 {
+        return 1.0;
+    }
+    let decade = 10f64.powi(target.log10().floor() as i32);
+    [5.0, 2.0, 1.0].into_iter().map(|m| m * decade).find(|&m| m <= target).unwrap_or(decade)
 }
 
 /// `value` with four significant digits, plain from 0.001 to 99 999 (`22.57`, `0.004443`),
@@ -281,7 +335,7 @@ fn draw_colour_bar(
     largest_strain: Option<f64>,
     height: u32,
 ) -> anyhow::Result<()> {
-    let (top, bottom) = (30i32, height as i32 - 20);
+    let (top, bottom) = (HEADER as i32, height as i32 - 20);
     let steps = 40;
     for s in 0..steps {
         let fraction = s as f64 / (steps - 1) as f64;
@@ -306,8 +360,17 @@ fn draw_colour_bar(
 mod tests {
     use super::*;
 
-    /// The first frame is whole; a later one is the box of pixels that changed, the unchanged
-    /// ones in it transparent; colours go to the nearest of the 32 of the palette.
+    /// Sub-micron waves in a 0.1 m lattice are magnified to a third of the spacing at most, by
+    /// a round factor; visible displacements and a still picture are drawn as they are.
+    #[test]
+    fn small_displacements_are_magnified_by_a_round_factor() {
+        assert_eq!(magnification(1e-6, 0.1), 20000.0); // target 30 000
+        assert_eq!(magnification(4e-4, 0.1), 50.0); // target 75
+        assert_eq!(magnification(1e-4, 0.1), 200.0); // target 300
+        assert_eq!(magnification(0.02, 0.1), 1.0); // target 1.5: already visible
+        assert_eq!(magnification(0.0, 0.1), 1.0);
+    }
+
     #[test]
     fn time_stamps_read_at_a_glance() {
         assert_eq!(readable(22.570), "22.57");
@@ -317,6 +380,8 @@ mod tests {
         assert_eq!(readable(0.0), "0");
     }
 
+    /// The first frame is whole; a later one is the box of pixels that changed, the unchanged
+    /// ones in it transparent; colours go to the nearest of the 32 of the palette.
     #[test]
     fn later_frames_hold_only_what_changed() {
         let mut palette = Palette::new();

@@ -3,7 +3,7 @@
 use serde::Serialize;
 
 use super::exponents::{ExponentRow, exponent_rows};
-use super::figure::{Figure, FigureRef, group_label, groups, movie_refs, physics_label, representative};
+use super::figure::{Figure, FigureRef, group_label, groups, movie_refs, representative};
 use super::findings::{Evidence, Finding, Paragraph, discussion, findings};
 use super::precision::{PrecisionRow, precision_rows};
 use super::stability_map::{LimitRow, StabilityRow, is_stability_scene, stability_rows};
@@ -437,7 +437,7 @@ fn wall_row(r: &RunRecord) -> WallRow {
     let m = &r.metrics;
     WallRow {
         run_id: r.run_id.clone(),
-        label: physics_label(r, |_| true),
+        label: r.spec.varied_in_words(|_| true),
         law: r.spec.law.name(),
         wall_displacement: number(r.spec.chain_wall_extension()),
         spacing: optional(m.chain.equilibrium_spacing),
@@ -505,7 +505,7 @@ fn lattice_row(r: &RunRecord) -> Option<LatticeRow> {
     };
     Some(LatticeRow {
         run_id: r.run_id.clone(),
-        label: physics_label(r, |_| true),
+        label: r.spec.varied_in_words(|_| true),
         size: format!("{} × {}", l.nx, l.ny),
         springs: springs(r, l),
         supports: l.supports.name(),

@@ -3,7 +3,7 @@
 //! along x), one representative run per set-up of a scene that compares set-ups (with and
 //! without diagonals, or supports). A homogeneous strain makes every profile a straight line.
 
-use super::figure::{Figure, physics_label};
+use super::figure::Figure;
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
@@ -125,7 +125,7 @@ const MICROMETRE: f64 = 1e-6;
 
 /// A run's set-up in words: its grid values but the lattice's size and the time step.
 fn setup_label(r: &RunRecord) -> String {
-    let label = physics_label(r, |path| {
+    let label = r.spec.varied_in_words(|path| {
         !path.starts_with("lattice.size") && !path.starts_with("lattice.n") && !path.starts_with("time.dt")
     });
     if label.is_empty() { "all".into() } else { label }

@@ -7,6 +7,7 @@ use serde::Serialize;
 use crate::output::{movie_name, side_by_side_name};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
+use crate::spec::{RunSpec, Supports};
 
 /// A drawn figure.
 pub struct Figure {
@@ -44,15 +45,28 @@ pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> 
         .chain(own.map(|r| FigureRef {
             file: movie_name(&r.run_id),
             caption: format!(
-                "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), {}.",
-                physics_label(r, |_| true),
+                "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), {}{}; \
+                 displacements are drawn to scale unless the frame states a magnification × M.",
+                r.spec.varied_in_words(|_| true),
                 match r.spec.movie {
                     Some(movie) if movie.bond_strain => "bonds coloured by strain (red stretched, blue compressed)",
                     _ => "bonds in grey",
-                }
+                },
+                supports_in_words(&r.spec),
             ),
         }))
         .collect()
+}
+
+/// How a movie draws what holds the scene: a chain's walls, a lattice's held nodes.
+fn supports_in_words(spec: &RunSpec) -> &'static str {
+    match spec.lattice() {
+        None if spec.chain().is_some() => ", the walls at both ends as black bars",
+        Some(lattice) if lattice.supports != Supports::Free => {
+            ", held nodes as black squares (filled: held in x and y, open: held in one axis)"
+        }
+        _ => "",
+    }
 }
 
 /// A run relaxed by bond damping γ alone (no background damping).
@@ -68,48 +82,8 @@ pub fn background_damping_only(r: &RunRecord) -> bool {
 /// The label of a run's grid values other than the time step: runs with the same group label
 /// differ only in dt, so they form one convergence curve.
 pub fn group_label(record: &RunRecord) -> String {
-    let label = physics_label(record, |path| !path.starts_with("time.dt"));
+    let label = record.spec.varied_in_words(|path| !path.starts_with("time.dt"));
     if label.is_empty() { "all".into() } else { label }
-}
-
-/// The run's grid values whose path passes `keep`, in the words of physics (`r = 0.5`,
-/// `γ_g = 3000 N s/m`, `40 × 40`) rather than the campaign's YAML keys; empty when none.
-pub fn physics_label(record: &RunRecord, keep: impl Fn(&str) -> bool) -> String {
-    let parts: Vec<String> = record
-        .spec
-        .varied
-        .iter()
-        .filter(|(path, _)| keep(path))
-        .map(|(path, value)| physics_words(path, value))
-        .collect();
-    parts.join(", ")
-}
-
-/// One grid value in words: the symbol of its quantity with its unit.
-fn physics_words(path: &str, value: &serde_json::Value) -> String {
-    let text = value.as_str().map_or_else(|| value.to_string(), str::to_string);
-    let symbol = match path {
-        "damping.restitution" => "r",
-        "damping.background" => return format!("γ_g = {text} N s/m"),
-        "time.dt_per_tc" => return format!("dt = t_c/{text}"),
-        "time.integrator" | "material.law" | "load.case" => return text,
-        "lattice.diagonals" if text == "none" => return "no diagonals".into(),
-        "lattice.diagonals" => return format!("{text} diagonals"),
-        "lattice.size" => return format!("{text} × {text}"),
-        "supports" => return format!("{text} supports"),
-        "load.per_node" => return format!("F = {text} N per node"),
-        "v0" => return format!("v0 = {text} m/s"),
-        "impulse.velocity" => return format!("kick {text} m/s"),
-        "wall_distance" => return format!("W = {text} m"),
-        "relax.residual_force" if value.is_null() => return "energy criterion".into(),
-        "relax.residual_force" => return format!("force criterion {text}"),
-        "lattice.k_diag_ratio" => "k_d/k",
-        "lattice.k_y_ratio" => "k_y/k",
-        "lattice.cut_fraction" => "cut fraction",
-        "lattice.stiffness_spread" => "spread w",
-        other => other.rsplit('.').next().unwrap_or(other),
-    };
-    format!("{symbol} = {text}")
 }
 
 /// The runs of `scene` that are `ok`, grouped by [`group_label`] in campaign order.

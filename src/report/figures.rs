@@ -2,9 +2,7 @@
 //! energies per scene, chain displacements, relaxation, the finite-size convergence of lattice
 //! moduli, and the convergence of the pair measurements against their analytical values.
 
-use super::figure::{
-    Figure, background_damping_only, bond_damping_only, group_label, groups, physics_label, representative,
-};
+use super::figure::{Figure, background_damping_only, bond_damping_only, group_label, groups, representative};
 use super::{edges, precision, probes, solids, stability_map, waves};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::measure::relative_error;
@@ -337,7 +335,7 @@ fn size_figure(scene: &str, records: &[RunRecord]) -> anyhow::Result<Option<Figu
     let mut curves: Vec<SizeCurve> = Vec::new();
     for r in &mine {
         let Some((fem, md)) = modulus_ratios(r) else { continue };
-        let label = physics_label(r, |p| !p.starts_with("lattice.size") && !p.starts_with("lattice.n"));
+        let label = r.spec.varied_in_words(|p| !p.starts_with("lattice.size") && !p.starts_with("lattice.n"));
         let index = match curves.iter().position(|c| c.label == label) {
             Some(index) => index,
             None => {

@@ -1,7 +1,7 @@
 //! Probed lines of a lattice: the space–time maps of their displacement and velocity (every
 //! node's series is in `probes/<run_id>.parquet`, which the runner stores: `runner::record`).
 
-use super::figure::{Figure, physics_label};
+use super::figure::Figure;
 use crate::draw::chart::{Chart, Scale, heatmap};
 use crate::runner::{RunRecord, is_asked_for};
 use crate::sim::RunStatus;
@@ -15,7 +15,7 @@ pub fn probe_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<F
         return Ok(Vec::new());
     };
     let mut figures = Vec::new();
-    let run = physics_label(r, |_| true);
+    let run = r.spec.varied_in_words(|_| true);
     for probe in r.trace.probes.iter().filter(|p| is_asked_for(&r.spec, p)) {
         let along = if probe.name.starts_with("row") {
             "node along the row (0: left)"

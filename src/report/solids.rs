@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::figure::{Figure, physics_label};
+use super::figure::Figure;
 use super::words::{number, optional};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::runner::RunRecord;
@@ -83,7 +83,7 @@ fn ensembles<'a>(records: &'a [RunRecord], scene: &str) -> Vec<Ensemble<'a>> {
         let Some(l) = r.spec.lattice().filter(|l| l.is_random() || r.spec.varied.contains_key("seed")) else {
             continue;
         };
-        let label = physics_label(r, |path| path != "seed");
+        let label = r.spec.varied_in_words(|path| path != "seed");
         match out.iter_mut().find(|(l, _, _)| *l == label) {
             Some((_, _, members)) => members.push(r),
             None => out.push((label, 1.0 - l.cut_fraction, vec![r])),

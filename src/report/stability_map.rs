@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use super::figure::{Figure, physics_label};
+use super::figure::Figure;
 use super::words::{number, optional};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::runner::RunRecord;
@@ -90,7 +90,7 @@ fn stability_row(r: &RunRecord) -> StabilityRow {
     };
     StabilityRow {
         run_id: r.run_id.clone(),
-        label: physics_label(r, |_| true),
+        label: r.spec.varied_in_words(|_| true),
         integrator: r.spec.integrator.name(),
         dt_omega_max: optional(m.dt_omega_max),
         limit: optional(m.stability_limit),

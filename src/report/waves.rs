@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use super::figure::{Figure, physics_label};
+use super::figure::Figure;
 use super::words::{impulse_words, number, optional};
 use crate::draw::chart::{Chart, Mark, Scale, Series, heatmap, line_chart};
 use crate::measure::ARRIVAL_CRITERIA;
@@ -35,7 +35,7 @@ pub fn wave_rows(records: &[RunRecord], scene: &str) -> Vec<WaveRow> {
             let m = &r.metrics;
             WaveRow {
                 run_id: r.run_id.clone(),
-                label: physics_label(r, |_| true),
+                label: r.spec.varied_in_words(|_| true),
                 v0: match r.spec.lattice().and_then(|l| l.impulse) {
                     Some(i) => impulse_words(&i),
                     None => format!("v0 = {} m/s", number(r.spec.v0)),
@@ -131,7 +131,7 @@ fn space_time_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Optio
         values
     };
     let chart = Chart {
-        title: format!("{scene}: displacement in space and time ({})", physics_label(r, |_| true)),
+        title: format!("{scene}: displacement in space and time ({})", r.spec.varied_in_words(|_| true)),
         x_label: "time t (s)".into(),
         y_label: rows.into(),
         scale: Scale::Linear,

@@ -113,8 +113,9 @@ fn fill(record: &mut RunRecord, mut run: Run, deadline: Instant) {
     record.movie = spec.movie.map(|movie| Movie {
         frames: std::mem::take(&mut run.outcome.frames),
         bonds: run.bonds,
+        supports: run.supports,
         spec: movie,
-        title: format!("{} {}", spec.scene, spec.varied_label(|_| true)),
+        title: format!("{} {}", spec.scene, spec.varied_in_words(|_| true)),
         t_c: spec.t_c,
         deadline: Some(deadline),
     });

@@ -319,6 +319,42 @@ impl RunSpec {
             .collect();
         parts.join(", ")
     }
+
+    /// The grid values whose dotted path passes `keep`, in the words of physics (`r = 0.5`,
+    /// `γ_g = 3000 N s/m`, `40 × 40`) rather than the campaign's YAML keys: figure legends and
+    /// movie titles. Empty when none.
+    pub fn varied_in_words(&self, keep: impl Fn(&str) -> bool) -> String {
+        let parts: Vec<String> =
+            self.varied.iter().filter(|(path, _)| keep(path)).map(|(path, value)| physics_words(path, value)).collect();
+        parts.join(", ")
+    }
+}
+
+/// One grid value in words: the symbol of its quantity with its unit.
+fn physics_words(path: &str, value: &Value) -> String {
+    let text = value.as_str().map_or_else(|| value.to_string(), str::to_string);
+    let symbol = match path {
+        "damping.restitution" => "r",
+        "damping.background" => return format!("γ_g = {text} N s/m"),
+        "time.dt_per_tc" => return format!("dt = t_c/{text}"),
+        "time.integrator" | "material.law" | "load.case" => return text,
+        "lattice.diagonals" if text == "none" => return "no diagonals".into(),
+        "lattice.diagonals" => return format!("{text} diagonals"),
+        "lattice.size" => return format!("{text} × {text}"),
+        "supports" => return format!("{text} supports"),
+        "load.per_node" => return format!("F = {text} N per node"),
+        "v0" => return format!("v0 = {text} m/s"),
+        "impulse.velocity" => return format!("kick {text} m/s"),
+        "wall_distance" => return format!("W = {text} m"),
+        "relax.residual_force" if value.is_null() => return "energy criterion".into(),
+        "relax.residual_force" => return format!("force criterion {text}"),
+        "lattice.k_diag_ratio" => "k_d/k",
+        "lattice.k_y_ratio" => "k_y/k",
+        "lattice.cut_fraction" => "cut fraction",
+        "lattice.stiffness_spread" => "spread w",
+        other => other.rsplit('.').next().unwrap_or(other),
+    };
+    format!("{symbol} = {text}")
 }
 
 #[cfg(test)]

@@ -20,6 +20,7 @@ use serde::{Deserialize, Serialize};
 use self::columns::{Block, Row};
 use self::common::relaxation_checks;
 use crate::measure::{ARRIVAL_CRITERIA, arrival_time, energy_error};
+use crate::model::{Axes, Particles};
 use crate::sim::{Outcome, RelaxMethod, RunStatus, Scene, Trace};
 use crate::spec::{KindSpec, RunSpec, SceneKind};
 
@@ -99,6 +100,10 @@ pub struct Run {
     /// Bonds a movie draws (i, j, rest length in m), collected when the run asks for a movie;
     /// bonds across a periodic side are left out.
     pub bonds: Vec<(usize, usize, f64)>,
+    /// Particles a movie draws as supports (walls, clamped or rolling nodes) with the axes they
+    /// are held along, collected when the run asks for a movie. A hold along y that every
+    /// particle has is the line a 1D scene moves on, not a support, and is left out.
+    pub supports: Vec<(usize, Axes)>,
 }
 
 /// Builds the scene of `spec`.
@@ -135,6 +140,7 @@ pub fn run(spec: &RunSpec, deadline: Instant) -> Result<Run, Stopped> {
             }
         });
     }
+    let supports = if spec.movie.is_some() { supports(&scene.particles) } else { Vec::new() };
     let sample_every = scene.sampling.every;
     let mut outcome = scene.run();
     measure(spec, &outcome, &start, &mut metrics);
@@ -156,7 +162,21 @@ pub fn run(spec: &RunSpec, deadline: Instant) -> Result<Run, Stopped> {
     if let Some(l) = spec.lattice() {
         lattice::keep_probes(l, &mut outcome.trace);
     }
-    Ok(Run { outcome, metrics, reference_s, bonds })
+    Ok(Run { outcome, metrics, reference_s, bonds, supports })
+}
+
+/// The held particles of `particles` with the axes they are held along; a hold along y on
+/// every particle (a 1D scene's line of motion) does not count.
+fn supports(particles: &Particles) -> Vec<(usize, Axes)> {
+    let one_dimensional = particles.held_y.len() == particles.len();
+    (0..particles.len())
+        .map(|i| {
+            let x = particles.held_x.binary_search(&i).is_ok();
+            let y = !one_dimensional && particles.held_y.binary_search(&i).is_ok();
+            (i, Axes { x, y })
+        })
+        .filter(|(_, held)| held.x || held.y)
+        .collect()
 }
 
 /// The caveat a successful run's record carries, if any.

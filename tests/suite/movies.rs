@@ -250,3 +250,49 @@ fn a_movie_stops_at_its_runs_deadline() {
     mdsolids::draw::write_movie(&path, &movie).unwrap();
     assert_eq!(frames(&path).1.len(), 12);
 }
+
+/// The columns (left of the colour bar) and rows (below the two-line header) of the black
+/// pixels of `frame`: what a movie draws in black there is walls and held nodes.
+fn black_pixels(width: u16, frame: &[u8]) -> Vec<(usize, usize)> {
+    let width = usize::from(width);
+    frame
+        .chunks(4)
+        .enumerate()
+        .filter(|(_, p)| p[3] > 0 && p[0] < 30 && p[1] < 30 && p[2] < 30)
+        .map(|(i, _)| (i % width, i / width))
+        .filter(|&(x, y)| x + 90 < width && y > 42)
+        .collect()
+}
+
+#[test]
+fn walls_and_held_nodes_are_drawn() {
+    let reports = tempfile::tempdir().unwrap();
+    // The chain between its walls: black bars at both ends.
+    let planned = plan::parse("film.yaml", CAMPAIGN).unwrap();
+    let layout = Layout::new(reports.path(), &planned.campaign.name);
+    let done = run_campaign(&planned, &layout, Some(1)).unwrap();
+    let (width, drawn) = frames(&layout.movie_file(&done.records[0].run_id));
+    let black = black_pixels(width, &drawn[0]);
+    let plot_width = usize::from(width) - 90;
+    assert!(black.iter().filter(|(x, _)| *x < plot_width / 8).count() > 20, "a wall at the left end");
+    assert!(black.iter().filter(|(x, _)| *x > plot_width * 7 / 8).count() > 20, "a wall at the right end");
+    mdsolids::report::render(&planned.campaign, &layout, &done.records).unwrap();
+    assert!(std::fs::read_to_string(layout.file("report.md")).unwrap().contains("walls at both ends as black bars"));
+
+    // A lattice held at its bottom row: black squares there, nothing black above it.
+    let yaml = "version: 1\nname: held\nscenes:\n  - name: kick\n    kind: lattice\n    lattice: {size: 5}\n    \
+                supports: clamped-bottom\n    impulse: {velocity: [0.0, -0.01]}\n    time: {integrator: velocity-verlet}\n    \
+                movie: {frames: 4, width: 300, height: 300}\n";
+    let planned = plan::parse("held.yaml", yaml).unwrap();
+    let layout = Layout::new(reports.path(), &planned.campaign.name);
+    let done = run_campaign(&planned, &layout, Some(1)).unwrap();
+    assert_eq!(done.records[0].status, RunStatus::Ok, "{}", done.records[0].message);
+    let (width, drawn) = frames(&layout.movie_file(&done.records[0].run_id));
+    let black = black_pixels(width, &drawn[0]);
+    assert!(black.len() > 5 * 20, "five held nodes drawn in black: {} pixels", black.len());
+    let lowest = black.iter().map(|(_, y)| *y).max().unwrap();
+    let highest = black.iter().map(|(_, y)| *y).min().unwrap();
+    assert!(lowest - highest < 30, "only the bottom row is held: black from row {highest} to {lowest}");
+    mdsolids::report::render(&planned.campaign, &layout, &done.records).unwrap();
+    assert!(std::fs::read_to_string(layout.file("report.md")).unwrap().contains("held nodes as black squares"));
+}

@@ -4,7 +4,7 @@
 
 use super::{Answer, Evidence, Table, Verdict, cell, fastest_relaxation, rel, relative, sig};
 use crate::model::LawSpec;
-use crate::report::figure::{background_damping_only, bond_damping_only, physics_label};
+use crate::report::figure::{background_damping_only, bond_damping_only};
 use crate::runner::RunRecord;
 
 /// Relative tolerance of a linear chain's front speed against a√(k/m): a threshold θ = 0.01 of
@@ -101,7 +101,7 @@ fn lattice_speed_rows(linear: &[&RunRecord]) -> Vec<Vec<String>> {
         .map(|r| {
             vec![
                 r.spec.scene.clone(),
-                physics_label(r, |_| true),
+                r.spec.varied_in_words(|_| true),
                 cell(r.metrics.recommended_sound_speed()),
                 cell(r.metrics.sound_speed_theory),
                 relative(r.metrics.recommended_sound_speed(), r.metrics.sound_speed_theory)

@@ -2,7 +2,6 @@
 //! Hertz moduli against the load, anisotropic and random networks, and MD against the static
 //! truss (FEM) answer.
 
-use crate::report::figure::physics_label;
 use crate::report::solids::mean_spread;
 use std::collections::BTreeMap;
 
@@ -209,7 +208,7 @@ pub(super) fn anisotropic(e: &Evidence) -> Option<Answer> {
     });
     let mut groups: BTreeMap<String, Vec<&RunRecord>> = BTreeMap::new();
     for r in &runs {
-        let key = physics_label(r, |path| path != "load.case");
+        let key = r.spec.varied_in_words(|path| path != "load.case");
         groups.entry(key).or_default().push(r);
     }
     let (rows, mut sentences) = anisotropic_rows(&groups);
