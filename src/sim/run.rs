@@ -137,7 +137,7 @@ pub struct Trace {
     /// Relaxation: the time (s) from which the stopping criterion held.
     pub relaxed_at: Option<f64>,
     /// Relaxation: the criterion that stopped the run, `kinetic_ratio`, `residual_force` or
-    /// `displacement_bound`.
+    /// `displacement_bound`; `static_solution` for a run set to its static answer.
     pub relaxed_by: Option<String>,
     /// Relaxation: the norm ‖r‖₂ (N) of the static force (springs and loads) at the end.
     #[serde(default)]

@@ -56,6 +56,8 @@ pub struct Scene {
     /// How a relaxing scene comes to rest: damped motion in time (the integrator's), or a
     /// minimiser, which has no time (nothing watched, no movie).
     pub method: RelaxMethod,
+    /// Positions (m, x and y) of the static solution, which `RelaxMethod::Static` sets.
+    pub rest: Option<(Vec<f64>, Vec<f64>)>,
     /// Bond `(i, j, rest)` whose δ = 0 crossings are timed, if any.
     pub contact_clock: Option<(usize, usize, f64)>,
     /// A wave watched from a source particle to receivers, if any: `(source, receivers,
@@ -101,6 +103,7 @@ impl Scene {
             integrator: IntegratorKind::VelocityVerlet,
             sampling,
             method: RelaxMethod::Damped,
+            rest: None,
             contact_clock: None,
             wave: None,
             movie_frames: None,
@@ -157,7 +160,7 @@ impl Scene {
         if let Some(drive) = self.drive {
             state = state.with_drive(drive);
         }
-        if let Some(trace) = minimise(self.method, &mut state, &mut field, &self.sampling) {
+        if let Some(trace) = minimise(self.method, self.rest.as_ref(), &mut state, &mut field, &self.sampling) {
             return Outcome { trace, crossings: Vec::new(), wave: None, frames: Vec::new(), state };
         }
         let clock = self.contact_clock.map(|(i, j, rest)| ContactClock::new(i, j, rest));

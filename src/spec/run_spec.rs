@@ -302,6 +302,11 @@ impl RunSpec {
         self.scene_kind.relax()
     }
 
+    /// A loaded lattice set to its static answer, which runs no MD (`relax.method: static`).
+    pub fn static_only(&self) -> bool {
+        self.relax().is_some_and(|r| r.method == crate::sim::RelaxMethod::Static)
+    }
+
     /// The timed wave of a chain or an impulse lattice, if asked for.
     pub fn wave(&self) -> Option<&WaveSpec> {
         self.scene_kind.wave()

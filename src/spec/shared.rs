@@ -99,9 +99,20 @@ pub(super) fn resolve_relax(raw: &RawScene, control: Control, load_ramp_tc: Opti
             "must be in (0, 0.1] (the relative error of the moduli)",
         )?;
     }
+    if method == RelaxMethod::Static
+        && let Some(tolerance) = relax.tolerance
+    {
+        let exact = "has no tolerance: the static solution is solved to round-off (Newton, ‖R‖ ≤ 1e-10 ‖f‖)";
+        require(
+            false,
+            "relax.tolerance",
+            tolerance,
+            &format!("is for fire, cg and damped; relax.method: static {exact}"),
+        )?;
+    }
     if method != RelaxMethod::Damped {
         let name = method.name();
-        let minimiser = "a minimiser (fire, cg) has no time: use relax.method: damped";
+        let minimiser = "fire, cg and static have no time: use relax.method: damped";
         require(control == Control::Force, "relax.method", name, &format!("needs control: force; {minimiser}"))?;
         let ramp = load_ramp_tc.unwrap_or_default();
         require(ramp == 0.0, "relax.method", name, &format!("needs no load.ramp_tc (it is {ramp}); {minimiser}"))?;
@@ -114,7 +125,8 @@ pub(super) fn resolve_relax(raw: &RawScene, control: Control, load_ramp_tc: Opti
             require(false, "relax.method", name, &format!("has no damping ({field} is set); {minimiser}"))?;
         }
     }
-    let tolerance = relax.tolerance.or((method != RelaxMethod::Damped).then_some(DEFAULT_TOLERANCE));
+    let minimiser = matches!(method, RelaxMethod::Fire | RelaxMethod::Cg);
+    let tolerance = relax.tolerance.or(minimiser.then_some(DEFAULT_TOLERANCE));
     Ok(RelaxSpec {
         kinetic_ratio,
         residual_force: relax.residual_force,

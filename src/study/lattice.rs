@@ -269,8 +269,14 @@ pub(super) fn static_answer(
         loads: &scene.loads,
         prescribed: &prescribed,
     };
-    let top_row_force = scene.law.dispatch(StaticSolve { spec, l, truss: &truss, deadline, metrics })?;
+    let (top_row_force, solution) = scene.law.dispatch(StaticSolve { spec, l, truss: &truss, deadline, metrics })?;
     let relax = spec.relax();
+    if spec.static_only() {
+        scene.rest = solution.map(|(ux, uy)| {
+            let p = &scene.particles;
+            (p.x.iter().zip(&ux).map(|(x, u)| x + u).collect(), p.y.iter().zip(&uy).map(|(y, u)| y + u).collect())
+        });
+    }
     let softest = metrics.stiffness_min.filter(|k| *k > 0.0);
     // The displacement bound ‖δu‖₂ ≤ ‖r‖₂/k_min: the moduli are within the tolerance once
     // ‖r‖₂ ≤ k_min · (the displacement error allowed at the static ΔL).
@@ -319,7 +325,9 @@ fn static_supports(spec: &RunSpec, l: &LatticeSpec, scene: &Scene) -> StaticSupp
 /// linear springs how far that is from the linear answer; with a tangent step the tangent
 /// moduli from the tangent stiffness at the equilibrium. Returns the total force on the top
 /// row at the static equilibrium (N): the load, or what the drive must hold (non-linear
-/// answer where it exists, else linear). `Err` when the load drives a mechanism, or when
+/// answer where it exists, else linear), and the displacements (m, x and y) of that answer:
+/// the linear one stands in where Newton's iteration does not converge (a diluted network's
+/// floppy dangling parts leave its tangent singular while the linear solver skips them). `Err` when the load drives a mechanism, or when
 /// `deadline` passes (checked between factorisations).
 /// [`solve`] with the run's concrete law, from [`crate::model::LawSpec::dispatch`].
 struct StaticSolve<'a> {
@@ -330,8 +338,11 @@ struct StaticSolve<'a> {
     metrics: &'a mut LatticeMetrics,
 }
 
+/// The top row's force (N) and the non-linear static displacements (m), if any.
+type Solved = (f64, Option<(Vec<f64>, Vec<f64>)>);
+
 impl LawVisitor for StaticSolve<'_> {
-    type Output = Result<f64, Stopped>;
+    type Output = Result<Solved, Stopped>;
     fn visit<L: ForceLaw>(self, law: L) -> Self::Output {
         solve(self.spec, self.l, self.truss, &law, self.deadline, self.metrics)
     }
@@ -344,7 +355,7 @@ fn solve<L: ForceLaw>(
     law: &L,
     deadline: Instant,
     metrics: &mut LatticeMetrics,
-) -> Result<f64, Stopped> {
+) -> Result<Solved, Stopped> {
     let past_deadline = || Stopped::PastDeadline { stage: "static solve" };
     // The force on the top row: the load, or what the supports must apply to hold the
     // driven row where it is.
@@ -365,7 +376,7 @@ fn solve<L: ForceLaw>(
         StaticSolution::PastDeadline => return Err(past_deadline()),
         StaticSolution::Displacements { ux, uy } => {
             let top = force(&ux, &uy);
-            (moduli(spec, l, top, &ux, &uy), top)
+            (moduli(spec, l, top, &ux, &uy), (top, Some((ux, uy))))
         }
     };
     metrics.youngs_modulus_linear = linear.youngs_modulus;
@@ -401,7 +412,7 @@ fn solve<L: ForceLaw>(
             metrics.shear_modulus_tangent_fem = tangent.shear_modulus;
         }
     }
-    Ok(top_row_force)
+    Ok((top_row_force, Some((ux, uy))))
 }
 
 /// The largest difference between the non-linear (`fem`) and the linear static answers:
@@ -478,10 +489,13 @@ pub(super) fn measure(
     };
     let md = moduli(spec, l, force, &ux, &uy);
     let keep = |value: Option<f64>| value.filter(|_| relaxed);
-    metrics.youngs_modulus = keep(md.youngs_modulus);
-    metrics.poisson_ratio = keep(md.poisson_ratio);
-    metrics.poisson_ratio_coursework = keep(md.poisson_ratio_coursework);
-    metrics.shear_modulus = keep(md.shear_modulus);
+    // A run set to its static answer ran no MD: its moduli are the `*_fem` ones, and MD columns
+    // left empty keep every MD-against-static comparison to runs that have both.
+    let keep_md = |value: Option<f64>| keep(value).filter(|_| !spec.static_only());
+    metrics.youngs_modulus = keep_md(md.youngs_modulus);
+    metrics.poisson_ratio = keep_md(md.poisson_ratio);
+    metrics.poisson_ratio_coursework = keep_md(md.poisson_ratio_coursework);
+    metrics.shear_modulus = keep_md(md.shear_modulus);
     let largest = ux.iter().chain(&uy).fold(0.0, |m: f64, u| m.max(u.abs()));
     let edges = l.layout(spec.spacing).edges;
     let shape = LatticeShape { edges: &edges, depth: l.depth };

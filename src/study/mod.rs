@@ -239,6 +239,7 @@ fn measure_relaxation(spec: &RunSpec, outcome: &Outcome, side: usize, scale: &st
             "moduli within {:e} of rest by the displacement bound ‖r‖₂/k_min{by_method}",
             relax.tolerance.unwrap_or_default()
         ),
+        ("static_solution", _) => "none: the static solution of the same network (relax.method: static)".into(),
         ("residual_force", Some(fraction)) if relax.method != RelaxMethod::Damped => {
             format!("largest static force < {fraction:e} of {scale}{by_method}")
         }

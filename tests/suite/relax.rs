@@ -58,6 +58,38 @@ fn cg_and_fire_reach_the_static_answer_linear_and_hertz() {
 }
 
 #[test]
+fn the_static_method_sets_the_static_answer_and_runs_no_md() {
+    // A diluted block too: its floppy dangling parts leave Newton's tangent singular, and the
+    // linear answer stands in (static-only scenes are where rigidity percolation is measured).
+    let intact = steel(12, "    relax: {method: static}\n");
+    let diluted = steel(12, "    relax: {method: static}\n    grid:\n      lattice.cut_fraction: [0.2]\n");
+    let cg = &execute_all(&steel(12, "    relax: {method: cg}\n"))[0];
+    for yaml in [intact, diluted] {
+        let r = &execute_all(&yaml)[0];
+        assert_eq!(r.status, RunStatus::Ok, "{}", label(r));
+        assert_eq!(r.trace.relaxed_by.as_deref(), Some("static_solution"));
+        let l = &r.metrics.lattice;
+        // No MD ran: the MD columns stay empty, so no MD-against-static comparison sees 0.
+        assert_eq!((l.youngs_modulus, l.poisson_ratio), (None, None), "{}", label(r));
+        let e = l.youngs_modulus_fem.or(l.youngs_modulus_linear).expect("the static answer's E");
+        // The static answer is exact to ~1e-10 (Newton), CG is within its bound of 1e-4 of it.
+        if r.spec.lattice().unwrap().cut_fraction == 0.0 {
+            assert!(relative(Some(e), cg.metrics.lattice.youngs_modulus).abs() <= 1e-4, "{e} against CG");
+        } else {
+            assert!(e < cg.metrics.lattice.youngs_modulus.unwrap(), "cutting bonds softens the block");
+        }
+        // The positions are set to that answer: the residual force left is round-off of the
+        // 1 kN loads (‖r‖₂ ≤ 1e-6 N; linear answer under non-linear springs: O(strain²)·k·a).
+        assert!(r.trace.residual_norm.unwrap() < 1e-2, "residual {:?}", r.trace.residual_norm);
+    }
+    let refused = mdsolids::plan::parse("t.yaml", &steel(5, "    relax: {method: static, tolerance: 1.0e-4}\n"))
+        .map(|_| ())
+        .unwrap_err()
+        .to_string();
+    assert!(refused.contains("relax.tolerance") && refused.contains("static"), "{refused}");
+}
+
+#[test]
 fn the_displacement_bound_holds_where_the_residual_force_rule_stops_early() {
     // Damped MD as in the coursework (restitution 0.5, background 12000 N s/m) on a 40 × 40
     // block: the residual-force rule (1e-4 of the load per node) stops with E off by ~4e-4

@@ -20,8 +20,10 @@ pub struct Paragraph {
     pub text: String,
 }
 
-/// The discussion's paragraphs that `e` has the runs for.
+/// The discussion's paragraphs that `e` has the runs for: the coursework's themes, from its
+/// evidence (square lattices relaxed by MD, [`Evidence::coursework`]).
 pub fn discussion(e: &Evidence) -> Vec<Paragraph> {
+    let e = &e.coursework();
     [linear_against_hertz(e), diagonals(e), damping(e), time_step(e)].into_iter().flatten().collect()
 }
 
@@ -144,13 +146,13 @@ fn time_step(e: &Evidence) -> Option<Paragraph> {
         .iter()
         .filter_map(|r| super::relative(r.metrics.pair.contact_duration, r.metrics.pair.contact_duration_theory))
         .map(f64::abs)
-        .fold(0.0, f64::max);
+        .reduce(f64::max);
+    let on_pairs = pair_error.map_or(String::new(), |error| format!(" On two particles it keeps t_c to {error:.1e}."));
     (!linear.is_empty()).then(|| Paragraph {
         title: "The time step",
         text: format!(
-            "One rule serves every scene: dt = t_c/50 with t_c = π√(m/(2k)) of the stiffest pair of the network. On \
-             two particles it keeps t_c to {pair_error:.1e}; on the chains and lattices of this campaign it puts \
-             the fastest mode at dt·ω_max ≤ {} against the Verlet limit 2, and errors fall as dt². For Hertz \
+            "One rule serves every scene: dt = t_c/50 with t_c = π√(m/(2k)) of the stiffest pair of the \
+             network.{on_pairs} On the chains and lattices of this campaign it puts the fastest mode at dt·ω_max ≤ {} against the Verlet limit 2, and errors fall as dt². For Hertz \
              springs t_c depends on the amplitude: mdsolids takes t_c at the deformation the scene expects (the \
              impact speed, the load or the wall displacement), so the same rule holds there. The work–precision \
              figures give the largest dt for a stated error.",

@@ -212,6 +212,9 @@ pub(super) fn anisotropic(e: &Evidence) -> Option<Answer> {
         groups.entry(key).or_default().push(r);
     }
     let (rows, mut sentences) = anisotropic_rows(&groups);
+    if rows.is_empty() {
+        return None;
+    }
     let worst = runs
         .iter()
         .filter_map(|r| {

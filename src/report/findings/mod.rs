@@ -18,6 +18,7 @@ use super::figure::{Figure, FigureRef, movie_refs};
 use super::words::short as sig;
 // (a − b)/b when both exist and b ≠ 0.
 use crate::measure::relative_error as relative;
+use crate::model::LatticeType;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::summary::ScalingFit;
@@ -88,8 +89,9 @@ struct Answer {
 }
 
 /// What the questions read: the records, the scaling fits and the drawn figures.
+#[derive(Clone)]
 pub struct Evidence<'a> {
-    records: &'a [RunRecord],
+    records: Vec<&'a RunRecord>,
     fits: &'a [ScalingFit],
     figures: &'a [Figure],
     side_by_side: &'a [String],
@@ -103,7 +105,18 @@ impl<'a> Evidence<'a> {
         figures: &'a [Figure],
         side_by_side: &'a [String],
     ) -> Self {
-        Evidence { records, fits, figures, side_by_side }
+        Evidence { records: records.iter().collect(), fits, figures, side_by_side }
+    }
+
+    /// The evidence the coursework's own questions are answered from: its questions are about
+    /// the square lattice, with or without diagonals, relaxed by MD, so lattices of another
+    /// type and runs set to their static answer (`relax.method: static`) are left to the
+    /// lattice-type questions.
+    fn coursework(&self) -> Evidence<'a> {
+        let square_md = |r: &RunRecord| {
+            r.spec.lattice().is_none_or(|l| l.lattice_type == LatticeType::Square && !r.spec.static_only())
+        };
+        Evidence { records: self.records.iter().copied().filter(|r| square_md(r)).collect(), ..self.clone() }
     }
 
     /// The movies of the runs `keep` selects: per scene, its side-by-side movie if drawn, and
@@ -123,12 +136,12 @@ impl<'a> Evidence<'a> {
 
     /// The `ok` runs that `keep` selects, in campaign order.
     fn ok(&self, keep: impl Fn(&RunRecord) -> bool) -> Vec<&'a RunRecord> {
-        self.records.iter().filter(|r| r.status == RunStatus::Ok && keep(r)).collect()
+        self.records.iter().copied().filter(|r| r.status == RunStatus::Ok && keep(r)).collect()
     }
 
     /// The runs of any status that `keep` selects.
     fn all(&self, keep: impl Fn(&RunRecord) -> bool) -> Vec<&'a RunRecord> {
-        self.records.iter().filter(|r| keep(r)).collect()
+        self.records.iter().copied().filter(|r| keep(r)).collect()
     }
 
     /// The first figure of `scene` whose file name contains `part`.
@@ -145,37 +158,43 @@ impl<'a> Evidence<'a> {
     }
 }
 
+/// One item's answer from the evidence it is asked of, if that has its runs.
+type Question = fn(&Evidence) -> Option<Answer>;
+
 /// The coursework's items that `evidence` answers, in the coursework's order, numbered.
 pub fn findings(evidence: &Evidence) -> Vec<Finding> {
-    let questions: [fn(&Evidence) -> Option<Answer>; 24] = [
-        one_d::two_particles,
-        one_d::time_step,
-        one_d::chain,
-        one_d::hertz_pair_and_chain,
-        one_d::walls,
-        two_d::units_and_time_step,
-        two_d::diagonal_stiffness,
-        two_d::lattice_time_step,
-        two_d::kick,
-        two_d::youngs_and_poisson,
-        two_d::shear,
-        dynamics::sound_speed,
-        dynamics::dissipation,
-        materials::homogeneity,
-        materials::hertz_moduli,
-        dynamics::hertz_kick,
-        materials::anisotropic,
-        materials::random,
-        materials::md_and_fem,
-        types::moduli,
-        types::isotropy,
-        types::percolation,
-        types::waves,
-        discussion::linear_and_hertz,
+    // The coursework's questions see its evidence ([`Evidence::coursework`]); the lattice
+    // types' see every run.
+    let coursework = evidence.coursework();
+    let asked: [(Question, &Evidence); 24] = [
+        (one_d::two_particles, &coursework),
+        (one_d::time_step, &coursework),
+        (one_d::chain, &coursework),
+        (one_d::hertz_pair_and_chain, &coursework),
+        (one_d::walls, &coursework),
+        (two_d::units_and_time_step, &coursework),
+        (two_d::diagonal_stiffness, &coursework),
+        (two_d::lattice_time_step, &coursework),
+        (two_d::kick, &coursework),
+        (two_d::youngs_and_poisson, &coursework),
+        (two_d::shear, &coursework),
+        (dynamics::sound_speed, &coursework),
+        (dynamics::dissipation, &coursework),
+        (materials::homogeneity, &coursework),
+        (materials::hertz_moduli, &coursework),
+        (dynamics::hertz_kick, &coursework),
+        (materials::anisotropic, &coursework),
+        (materials::random, &coursework),
+        (materials::md_and_fem, &coursework),
+        (types::moduli, evidence),
+        (types::isotropy, evidence),
+        (types::percolation, evidence),
+        (types::waves, evidence),
+        (discussion::linear_and_hertz, &coursework),
     ];
-    questions
+    asked
         .iter()
-        .filter_map(|question| question(evidence))
+        .filter_map(|(question, evidence)| question(evidence))
         .enumerate()
         .map(|(i, a)| {
             let number = i + 1;

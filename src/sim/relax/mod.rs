@@ -27,11 +27,16 @@ pub enum RelaxMethod {
     Fire,
     /// Non-linear conjugate gradients, Polak–Ribière+, with a secant line search.
     Cg,
+    /// No relaxation: the positions are set to the static solution of the same network
+    /// ([`crate::fem::Truss::solve_nonlinear`], which every loaded lattice solves beside its
+    /// run) and measured there, for scenes that ask what a network does at rest (isotropy,
+    /// rigidity percolation) and gain nothing from MD.
+    Static,
 }
 
 impl RelaxMethod {
     /// Every method, in the order the README lists them.
-    pub const ALL: [RelaxMethod; 3] = [RelaxMethod::Damped, RelaxMethod::Fire, RelaxMethod::Cg];
+    pub const ALL: [RelaxMethod; 4] = [RelaxMethod::Damped, RelaxMethod::Fire, RelaxMethod::Cg, RelaxMethod::Static];
 
     /// The word in YAML and in the results table.
     pub fn name(self) -> &'static str {
@@ -39,6 +44,7 @@ impl RelaxMethod {
             RelaxMethod::Damped => "damped",
             RelaxMethod::Fire => "fire",
             RelaxMethod::Cg => "cg",
+            RelaxMethod::Static => "static",
         }
     }
 }
@@ -75,6 +81,43 @@ impl Gradient {
 trait Minimiser {
     fn iterate<F: ForceField>(&mut self, state: &mut State, field: &mut F, force: &mut Gradient)
     -> Result<u64, String>;
+
+    /// Stops on the relaxation's static criterion (false: stops when [`Minimiser::settled`]).
+    const NEEDS_CRITERION: bool = true;
+
+    /// At rest by construction, whatever the static criterion says (the static solution).
+    fn settled(&self) -> bool {
+        false
+    }
+}
+
+/// [`RelaxMethod::Static`]: one move, to the positions of the static solution.
+struct Settle<'a> {
+    /// Positions (m) of the static solution, x and y.
+    rest: &'a (Vec<f64>, Vec<f64>),
+    /// The move is made.
+    moved: bool,
+}
+
+impl Minimiser for Settle<'_> {
+    const NEEDS_CRITERION: bool = false;
+
+    fn iterate<F: ForceField>(
+        &mut self,
+        state: &mut State,
+        field: &mut F,
+        force: &mut Gradient,
+    ) -> Result<u64, String> {
+        state.particles.x.clone_from(&self.rest.0);
+        state.particles.y.clone_from(&self.rest.1);
+        force.evaluate(state, field);
+        self.moved = true;
+        Ok(1)
+    }
+
+    fn settled(&self) -> bool {
+        self.moved
+    }
 }
 
 /// True when the static force `force` meets the relaxation's static criterion, with the name of
@@ -88,7 +131,8 @@ fn static_criterion(rule: &Relaxation, force: &Gradient) -> Option<(bool, &'stat
     }
 }
 
-/// Relaxes `state` under `field` by `method` for at
+/// Relaxes `state` under `field` by `method` (to `rest`, the static solution's positions, for
+/// `Static`) for at
 /// most `sampling.steps` force evaluations, until the static criterion of
 /// `sampling.relaxation` holds or `sampling.deadline` passes. The trace holds the start and the
 /// end; `steps` counts force evaluations (an MD step costs one), `time` FIRE's pseudo-time.
@@ -97,14 +141,21 @@ fn static_criterion(rule: &Relaxation, force: &Gradient) -> Option<(bool, &'stat
 /// which is the time loop's.
 pub fn minimise<F: ForceField>(
     method: RelaxMethod,
+    rest: Option<&(Vec<f64>, Vec<f64>)>,
     state: &mut State,
     field: &mut F,
     sampling: &Sampling,
 ) -> Option<Trace> {
-    match method {
-        RelaxMethod::Damped => None,
-        RelaxMethod::Fire => Some(run(&mut fire::Fire::new(sampling.dt), state, field, sampling)),
-        RelaxMethod::Cg => Some(run(&mut cg::ConjugateGradients::new(&*field), state, field, sampling)),
+    match (method, rest) {
+        (RelaxMethod::Damped, _) => None,
+        (RelaxMethod::Fire, _) => Some(run(&mut fire::Fire::new(sampling.dt), state, field, sampling)),
+        (RelaxMethod::Cg, _) => Some(run(&mut cg::ConjugateGradients::new(&*field), state, field, sampling)),
+        (RelaxMethod::Static, Some(rest)) => Some(run(&mut Settle { rest, moved: false }, state, field, sampling)),
+        (RelaxMethod::Static, None) => Some(Trace {
+            status: RunStatus::NoEquilibrium,
+            message: "relax.method: static, but the static solver found no equilibrium to set the positions to".into(),
+            ..Trace::default()
+        }),
     }
 }
 
@@ -123,12 +174,16 @@ fn run<F: ForceField, M: Minimiser>(method: &mut M, state: &mut State, field: &m
     let mut evaluations = 1;
     let mut relaxed_by = None;
     loop {
+        if method.settled() {
+            relaxed_by = Some("static_solution");
+            break;
+        }
         match sampling.relaxation.as_ref().and_then(|rule| static_criterion(rule, &force)) {
             Some((true, criterion)) => {
                 relaxed_by = Some(criterion);
                 break;
             }
-            None => {
+            None if M::NEEDS_CRITERION => {
                 trace.status = RunStatus::NoEquilibrium;
                 // The displacement bound needs k_min > 0: a floppy network (a diluted one past
                 // its rigidity threshold) has none, and no bound on its error.
@@ -137,7 +192,7 @@ fn run<F: ForceField, M: Minimiser>(method: &mut M, state: &mut State, field: &m
                     .into();
                 break;
             }
-            Some((false, _)) => {}
+            Some((false, _)) | None => {}
         }
         if evaluations >= sampling.steps {
             trace.status = RunStatus::NoEquilibrium;
