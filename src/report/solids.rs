@@ -7,8 +7,10 @@ use serde::Serialize;
 use super::figure::Figure;
 use super::words::{number, optional};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
+use crate::model::LatticeType;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
+use crate::spec::Diagonals;
 use crate::summary::ScalingFit;
 
 /// One figure per swept quantity of `scene` (not the sound speed, which the wave study draws):
@@ -110,9 +112,13 @@ pub fn ensemble_rows(records: &[RunRecord], scene: &str) -> Vec<EnsembleRow> {
         .into_iter()
         .map(|(group, kept, members)| {
             let ok = || members.iter().filter(|r| r.status == RunStatus::Ok);
-            let (youngs_mean, youngs_spread) = mean_spread(ok().map(|r| r.metrics.lattice.youngs_modulus));
-            let (shear_mean, shear_spread) = mean_spread(ok().map(|r| r.metrics.lattice.shear_modulus));
-            let (poisson_mean, poisson_spread) = mean_spread(ok().map(|r| r.metrics.lattice.poisson_ratio));
+            let (youngs_mean, youngs_spread) = mean_spread(ok().map(|r| moduli_at_rest(r)[0]));
+            let (shear_mean, shear_spread) = mean_spread(ok().map(|r| moduli_at_rest(r)[1]));
+            let poisson = |r: &&RunRecord| {
+                let l = &r.metrics.lattice;
+                if r.spec.static_only() { l.poisson_ratio_fem } else { l.poisson_ratio }
+            };
+            let (poisson_mean, poisson_spread) = mean_spread(ok().map(poisson));
             let md_static = ok()
                 .flat_map(|r| {
                     let m = &r.metrics;
@@ -140,47 +146,96 @@ pub fn ensemble_rows(records: &[RunRecord], scene: &str) -> Vec<EnsembleRow> {
         .collect()
 }
 
-/// Kept bond fraction below which a central-force network in d dimensions with coordination
-/// z loses rigidity in effective-medium theory: 2d/z = 4/8 for the square lattice with both
-/// diagonals.
-const RIGIDITY_THRESHOLD: f64 = 0.5;
+/// Kept bond fraction below which a central-force network in d = 2 dimensions with bulk
+/// coordination z loses rigidity in effective-medium theory: p_c = 2d/z (1/2 for the square
+/// lattice with both diagonals, 2/3 triangular); `None` where the intact network is no more
+/// than isostatic (z ≤ 4: no diagonals, kagome, honeycomb).
+fn rigidity_threshold(l: &crate::spec::LatticeSpec) -> Option<f64> {
+    let z = match (l.lattice_type, l.diagonals) {
+        (LatticeType::Square, Diagonals::None) => 4.0,
+        (LatticeType::Square, Diagonals::Rising | Diagonals::Falling) => 6.0,
+        (kind, _) => kind.coordination(),
+    };
+    (z > 4.0).then(|| 4.0 / z)
+}
 
-/// Mean E and G (± one standard deviation) of a scene's ensembles against the kept fraction,
-/// with the effective-medium line M(p) = M(1) (p − p_c)/(1 − p_c), p_c = 1/2, drawn from the
-/// uncut lattice's mean (or the best-kept ensemble's, scaled, when there is no uncut one).
+/// E and G of a run at rest: MD's, or for a run set to its static answer (`relax.method:
+/// static`, no MD) the static answer's, the linear one where no non-linear one exists.
+fn moduli_at_rest(r: &RunRecord) -> [Option<f64>; 2] {
+    let l = &r.metrics.lattice;
+    if r.spec.static_only() {
+        [l.youngs_modulus_fem.or(l.youngs_modulus_linear), l.shear_modulus_fem.or(l.shear_modulus_linear)]
+    } else {
+        [l.youngs_modulus, l.shear_modulus]
+    }
+}
+
+/// Mean E and G (± one standard deviation over seeds) of a scene's ensembles against the kept
+/// fraction, one series per ensemble label (e.g. each size), with the effective-medium line
+/// M(p) = M(1) (p − p_c)/(1 − p_c), p_c = 2d/z ([`rigidity_threshold`]), drawn from the uncut
+/// network's mean (or the best-kept ensemble's, scaled, when there is no uncut one). A network
+/// that lost its rigidity (status mechanism) has no stiffness and counts as 0.
 pub fn ensemble_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Option<Figure>> {
     let ensembles = ensembles(records, scene);
     if ensembles.iter().map(|(_, kept, _)| kept.to_bits()).collect::<std::collections::BTreeSet<_>>().len() < 2 {
         return Ok(None);
     }
+    let Some(threshold) = ensembles
+        .iter()
+        .flat_map(|(_, _, members)| members.first())
+        .find_map(|r| r.spec.lattice().and_then(rigidity_threshold))
+    else {
+        return Ok(None);
+    };
+    // One series per ensemble label without its kept fraction, which is the x axis.
+    let series_label = |label: &str| {
+        let words: Vec<&str> = label.split(", ").filter(|w| !w.starts_with("cut fraction")).collect();
+        words.join(", ")
+    };
+    let mut labels: Vec<String> = ensembles.iter().map(|(label, _, _)| series_label(label)).collect();
+    labels.sort_unstable();
+    labels.dedup();
     let mut series = Vec::new();
-    for (name, get) in [
-        ("E", (|r: &RunRecord| r.metrics.lattice.youngs_modulus) as fn(&RunRecord) -> Option<f64>),
-        ("G", |r: &RunRecord| r.metrics.lattice.shear_modulus),
-    ] {
-        let mut points: Vec<(f64, f64, f64)> = ensembles
-            .iter()
-            .filter_map(|(_, kept, members)| {
-                let (mean, spread) = mean_spread(members.iter().filter(|r| r.status == RunStatus::Ok).map(|r| get(r)));
-                mean.map(|m| (*kept, m, spread.unwrap_or(0.0)))
-            })
-            .collect();
-        if points.is_empty() {
-            continue;
+    for (which, name) in ["E", "G"].into_iter().enumerate() {
+        let mut with_line = false;
+        for label in &labels {
+            let mut points: Vec<(f64, f64, f64)> = ensembles
+                .iter()
+                .filter(|(l, _, _)| series_label(l) == *label)
+                .filter_map(|(_, kept, members)| {
+                    let values = members.iter().filter_map(|r| match r.status {
+                        RunStatus::Mechanism => Some(Some(0.0)),
+                        RunStatus::Ok => Some(moduli_at_rest(r)[which]),
+                        _ => None,
+                    });
+                    let (mean, spread) = mean_spread(values);
+                    mean.map(|m| (*kept, m, spread.unwrap_or(0.0)))
+                })
+                .collect();
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            points.dedup_by(|a, b| a.0 == b.0);
+            if points.iter().all(|p| p.1 == 0.0) {
+                continue;
+            }
+            let of = if label.is_empty() { String::new() } else { format!(" ({label})") };
+            series.push(Series {
+                label: format!("{name}{of}: mean over seeds ± one standard deviation"),
+                points: points.iter().map(|p| (p.0, p.1)).collect(),
+                mark: Mark::ErrorBars(points.iter().map(|p| p.2).collect()),
+            });
+            // One line per modulus, from the first series (the sizes' uncut moduli differ by
+            // their edges' O(1/N) only).
+            if !with_line {
+                let &(best_kept, best, _) = points.last().expect("not empty");
+                let full = best / ((best_kept - threshold) / (1.0 - threshold)).max(f64::MIN_POSITIVE);
+                series.push(Series {
+                    label: format!("{name}: effective medium, zero at p = 2d/z = {threshold:.3}"),
+                    points: vec![(threshold, 0.0), (1.0, full)],
+                    mark: Mark::Line,
+                });
+                with_line = true;
+            }
         }
-        points.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let &(best_kept, best, _) = points.last().expect("not empty");
-        let full = best / ((best_kept - RIGIDITY_THRESHOLD) / (1.0 - RIGIDITY_THRESHOLD)).max(f64::MIN_POSITIVE);
-        series.push(Series {
-            label: format!("{name}: mean over seeds ± one standard deviation"),
-            points: points.iter().map(|p| (p.0, p.1)).collect(),
-            mark: Mark::ErrorBars(points.iter().map(|p| p.2).collect()),
-        });
-        series.push(Series {
-            label: format!("{name}: effective medium, zero at p = 1/2"),
-            points: vec![(RIGIDITY_THRESHOLD, 0.0), (1.0, full)],
-            mark: Mark::Line,
-        });
     }
     if series.is_empty() {
         return Ok(None);
@@ -195,10 +250,20 @@ pub fn ensemble_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Opt
         scene: scene.into(),
         file: format!("plots/{scene}-dilution.svg"),
         caption: format!(
-            "{scene}: Young's and shear moduli of randomly diluted lattices (mean over seeds, its error bar ± one \
+            "{scene}: {} of randomly diluted lattices (mean over seeds, its error bar ± one \
              standard deviation) against the kept fraction p of the interior bonds, beside the effective-medium line for \
-             central-force networks, falling linearly to zero at p = 2d/z = 1/2. Networks that lost rigidity end as \
-             status mechanism and are left out of the means."
+             central-force networks, falling linearly to zero at p = 2d/z = {threshold:.3}. Networks that lost rigidity \
+             (status mechanism) have no stiffness and count as 0; runs that did not settle are left out.{}",
+            match (series.iter().any(|s| s.label.starts_with('E')), series.iter().any(|s| s.label.starts_with('G'))) {
+                (true, true) => "Young's and shear moduli",
+                (true, false) => "Young's modulus",
+                _ => "the shear modulus",
+            },
+            if ensembles.iter().any(|(_, _, m)| m.iter().any(|r| r.spec.static_only())) {
+                " Moduli of the static answer (relax.method: static, no MD)."
+            } else {
+                ""
+            }
         ),
         image: line_chart(&chart, &series)?,
     }))

@@ -239,6 +239,14 @@ fn the_lattice_types_report_states_the_count_and_what_was_observed() {
     ] {
         assert!(report.contains(line), "missing: {line}");
     }
+    // E(p) of both diluted types with its seeds' error bars and the effective-medium line at
+    // that type's 2d/z, shown in the percolation item.
+    for (scene, threshold) in [("types-percolation", "0.667"), ("square-percolation", "0.500")] {
+        let figure = format!("](plots/{scene}-dilution.svg)");
+        let at = report.find(&figure).unwrap_or_else(|| panic!("no E(p) figure of {scene}"));
+        assert!(at < report.find("## Discussion").unwrap(), "the E(p) figure of {scene} is in its item");
+        assert!(report.contains(&format!("zero at p = 2d/z = {threshold}")), "{scene}: EMT at {threshold}");
+    }
     // The triangular thresholds of both sizes within 0.6 … 0.75 (measured 0.697 at both: the
     // networks' intact edges hold them rigid a little beyond the bulk's 0.660).
     for n in [16, 32] {

@@ -237,6 +237,12 @@ pub(super) fn percolation(e: &Evidence) -> Option<Answer> {
     if !runs.iter().any(|r| other_type(r) && r.spec.lattice().is_some_and(|l| l.cut_fraction > 0.0)) {
         return None;
     }
+    let mut diluted_scenes: Vec<&str> = runs
+        .iter()
+        .filter(|r| r.spec.lattice().is_some_and(|l| l.cut_fraction > 0.0))
+        .map(|r| r.spec.scene.as_str())
+        .collect();
+    diluted_scenes.dedup();
     let mut series: BTreeMap<(&str, usize, u64), Vec<Diluted>> = BTreeMap::new();
     for r in &runs {
         let l = r.spec.lattice()?;
@@ -330,7 +336,7 @@ pub(super) fn percolation(e: &Evidence) -> Option<Answer> {
                     Jacobs and Thorpe (1995): 0.660 for the triangular network; an observation."
             .into(),
         verdict: Verdict::Observed,
-        figures: Vec::new(),
+        figures: diluted_scenes.iter().filter_map(|scene| e.figure(scene, "-dilution")).collect(),
         table: Some(Table {
             header: ["type", "N", "seeds", "p_c (± s.e.)", "spread", "EMT", "literature"].map(String::from).to_vec(),
             rows,
