@@ -112,13 +112,9 @@ pub fn ensemble_rows(records: &[RunRecord], scene: &str) -> Vec<EnsembleRow> {
         .into_iter()
         .map(|(group, kept, members)| {
             let ok = || members.iter().filter(|r| r.status == RunStatus::Ok);
-            let (youngs_mean, youngs_spread) = mean_spread(ok().map(|r| moduli_at_rest(r)[0]));
-            let (shear_mean, shear_spread) = mean_spread(ok().map(|r| moduli_at_rest(r)[1]));
-            let poisson = |r: &&RunRecord| {
-                let l = &r.metrics.lattice;
-                if r.spec.static_only() { l.poisson_ratio_fem } else { l.poisson_ratio }
-            };
-            let (poisson_mean, poisson_spread) = mean_spread(ok().map(poisson));
+            let (youngs_mean, youngs_spread) = mean_spread(ok().map(|r| at_rest(r)[YOUNGS]));
+            let (shear_mean, shear_spread) = mean_spread(ok().map(|r| at_rest(r)[SHEAR]));
+            let (poisson_mean, poisson_spread) = mean_spread(ok().map(|r| at_rest(r)[POISSON]));
             let md_static = ok()
                 .flat_map(|r| {
                     let m = &r.metrics;
@@ -159,14 +155,23 @@ fn rigidity_threshold(l: &crate::spec::LatticeSpec) -> Option<f64> {
     (z > 4.0).then(|| 4.0 / z)
 }
 
-/// E and G of a run at rest: MD's, or for a run set to its static answer (`relax.method:
-/// static`, no MD) the static answer's, the linear one where no non-linear one exists.
-fn moduli_at_rest(r: &RunRecord) -> [Option<f64>; 2] {
+/// Where [`at_rest`] puts E (Pa), G (Pa) and ν.
+const YOUNGS: usize = 0;
+const SHEAR: usize = 1;
+const POISSON: usize = 2;
+
+/// E, G and ν of a run at rest: MD's, or for a run set to its static answer (`relax.method:
+/// static`, no MD) the static answer's, E and G the linear ones where no non-linear one exists.
+fn at_rest(r: &RunRecord) -> [Option<f64>; 3] {
     let l = &r.metrics.lattice;
     if r.spec.static_only() {
-        [l.youngs_modulus_fem.or(l.youngs_modulus_linear), l.shear_modulus_fem.or(l.shear_modulus_linear)]
+        [
+            l.youngs_modulus_fem.or(l.youngs_modulus_linear),
+            l.shear_modulus_fem.or(l.shear_modulus_linear),
+            l.poisson_ratio_fem,
+        ]
     } else {
-        [l.youngs_modulus, l.shear_modulus]
+        [l.youngs_modulus, l.shear_modulus, l.poisson_ratio]
     }
 }
 
@@ -187,25 +192,24 @@ pub fn ensemble_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Opt
     else {
         return Ok(None);
     };
-    // One series per ensemble label without its kept fraction, which is the x axis.
-    let series_label = |label: &str| {
-        let words: Vec<&str> = label.split(", ").filter(|w| !w.starts_with("cut fraction")).collect();
-        words.join(", ")
+    // One series per ensemble's grid values but its seeds and its kept fraction (the x axis).
+    let series_label = |members: &[&RunRecord]| {
+        members[0].spec.varied_in_words(|path| path != "seed" && path != "lattice.cut_fraction")
     };
-    let mut labels: Vec<String> = ensembles.iter().map(|(label, _, _)| series_label(label)).collect();
+    let mut labels: Vec<String> = ensembles.iter().map(|(_, _, members)| series_label(members)).collect();
     labels.sort_unstable();
     labels.dedup();
     let mut series = Vec::new();
-    for (which, name) in ["E", "G"].into_iter().enumerate() {
+    for (which, name) in [(YOUNGS, "E"), (SHEAR, "G")] {
         let mut with_line = false;
         for label in &labels {
             let mut points: Vec<(f64, f64, f64)> = ensembles
                 .iter()
-                .filter(|(l, _, _)| series_label(l) == *label)
+                .filter(|(_, _, members)| series_label(members) == *label)
                 .filter_map(|(_, kept, members)| {
                     let values = members.iter().filter_map(|r| match r.status {
                         RunStatus::Mechanism => Some(Some(0.0)),
-                        RunStatus::Ok => Some(moduli_at_rest(r)[which]),
+                        RunStatus::Ok => Some(at_rest(r)[which]),
                         _ => None,
                     });
                     let (mean, spread) = mean_spread(values);

@@ -327,8 +327,9 @@ fn static_supports(spec: &RunSpec, l: &LatticeSpec, scene: &Scene) -> StaticSupp
 /// row at the static equilibrium (N): the load, or what the drive must hold (non-linear
 /// answer where it exists, else linear), and the displacements (m, x and y) of that answer:
 /// the linear one stands in where Newton's iteration does not converge (a diluted network's
-/// floppy dangling parts leave its tangent singular while the linear solver skips them). `Err` when the load drives a mechanism, or when
-/// `deadline` passes (checked between factorisations).
+/// floppy dangling parts leave its tangent singular while the linear solver skips them).
+/// `Err` when the load drives a mechanism, or when `deadline` passes (checked between
+/// factorisations).
 /// [`solve`] with the run's concrete law, from [`crate::model::LawSpec::dispatch`].
 struct StaticSolve<'a> {
     spec: &'a RunSpec,
@@ -338,7 +339,7 @@ struct StaticSolve<'a> {
     metrics: &'a mut LatticeMetrics,
 }
 
-/// The top row's force (N) and the non-linear static displacements (m), if any.
+/// The top row's force (N) and the static displacements (m, x and y) it was taken at.
 type Solved = (f64, Option<(Vec<f64>, Vec<f64>)>);
 
 impl LawVisitor for StaticSolve<'_> {

@@ -82,25 +82,16 @@ trait Minimiser {
     fn iterate<F: ForceField>(&mut self, state: &mut State, field: &mut F, force: &mut Gradient)
     -> Result<u64, String>;
 
-    /// Stops on the relaxation's static criterion (false: stops when [`Minimiser::settled`]).
-    const NEEDS_CRITERION: bool = true;
-
-    /// At rest by construction, whatever the static criterion says (the static solution).
-    fn settled(&self) -> bool {
-        false
-    }
+    /// At rest after its first move by construction (the static solution), whatever the static
+    /// criterion says; otherwise it stops on that criterion.
+    const SETTLES_IN_ONE_MOVE: bool = false;
 }
 
-/// [`RelaxMethod::Static`]: one move, to the positions of the static solution.
-struct Settle<'a> {
-    /// Positions (m) of the static solution, x and y.
-    rest: &'a (Vec<f64>, Vec<f64>),
-    /// The move is made.
-    moved: bool,
-}
+/// [`RelaxMethod::Static`]: one move, to the positions (m, x and y) of the static solution.
+struct Settle<'a>(&'a (Vec<f64>, Vec<f64>));
 
 impl Minimiser for Settle<'_> {
-    const NEEDS_CRITERION: bool = false;
+    const SETTLES_IN_ONE_MOVE: bool = true;
 
     fn iterate<F: ForceField>(
         &mut self,
@@ -108,15 +99,10 @@ impl Minimiser for Settle<'_> {
         field: &mut F,
         force: &mut Gradient,
     ) -> Result<u64, String> {
-        state.particles.x.clone_from(&self.rest.0);
-        state.particles.y.clone_from(&self.rest.1);
+        state.particles.x.clone_from(&self.0.0);
+        state.particles.y.clone_from(&self.0.1);
         force.evaluate(state, field);
-        self.moved = true;
         Ok(1)
-    }
-
-    fn settled(&self) -> bool {
-        self.moved
     }
 }
 
@@ -150,7 +136,7 @@ pub fn minimise<F: ForceField>(
         (RelaxMethod::Damped, _) => None,
         (RelaxMethod::Fire, _) => Some(run(&mut fire::Fire::new(sampling.dt), state, field, sampling)),
         (RelaxMethod::Cg, _) => Some(run(&mut cg::ConjugateGradients::new(&*field), state, field, sampling)),
-        (RelaxMethod::Static, Some(rest)) => Some(run(&mut Settle { rest, moved: false }, state, field, sampling)),
+        (RelaxMethod::Static, Some(rest)) => Some(run(&mut Settle(rest), state, field, sampling)),
         (RelaxMethod::Static, None) => Some(Trace {
             status: RunStatus::NoEquilibrium,
             message: "relax.method: static, but the static solver found no equilibrium to set the positions to".into(),
@@ -174,7 +160,8 @@ fn run<F: ForceField, M: Minimiser>(method: &mut M, state: &mut State, field: &m
     let mut evaluations = 1;
     let mut relaxed_by = None;
     loop {
-        if method.settled() {
+        // The start is one evaluation; a later one is a move.
+        if M::SETTLES_IN_ONE_MOVE && evaluations > 1 {
             relaxed_by = Some("static_solution");
             break;
         }
@@ -183,7 +170,7 @@ fn run<F: ForceField, M: Minimiser>(method: &mut M, state: &mut State, field: &m
                 relaxed_by = Some(criterion);
                 break;
             }
-            None if M::NEEDS_CRITERION => {
+            None if !M::SETTLES_IN_ONE_MOVE => {
                 trace.status = RunStatus::NoEquilibrium;
                 // The displacement bound needs k_min > 0: a floppy network (a diluted one past
                 // its rigidity threshold) has none, and no bound on its error.
