@@ -11,7 +11,8 @@
 //! dt = t_c/50.
 //!
 //! Either workload on another `lattice` type: the same springs k (k_d has no place there) on
-//! an N-row triangular, honeycomb or kagome network of N nodes per row, through the bond-list
+//! an N-row triangular, honeycomb or kagome network of N nodes per row (N + 1 rows for a kagome
+//! network at even N: its top and bottom rows must be full ones), through the bond-list
 //! loop (the stencil knows only the square grid). Pure: building and timing the scenes does
 //! no I/O.
 
@@ -57,6 +58,17 @@ pub struct BenchConfig {
     pub bond_list: bool,
     /// The network: the square lattice (stencil or bond list) or another type (bond list).
     pub lattice: LatticeType,
+}
+
+impl BenchConfig {
+    /// Rows of the network: N, or N + 1 where N rows cannot make it (a kagome network needs an
+    /// odd count, so that its top and bottom rows are full).
+    pub fn rows(&self) -> usize {
+        match PlanarLattice::size_problem(self.lattice, self.n, self.n, false) {
+            Some(("ny", _)) => self.n + 1,
+            _ => self.n,
+        }
+    }
 }
 
 /// Throughput of one timed run.
@@ -115,7 +127,7 @@ fn planar(config: &BenchConfig, spacing: f64, k: f64) -> Option<PlanarLattice> {
     (!config.lattice.is_square()).then_some(PlanarLattice {
         kind: config.lattice,
         nx: config.n,
-        ny: config.n,
+        ny: config.rows(),
         spacing,
         k,
         periodic_x: false,

@@ -5,7 +5,7 @@ use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
 
 use crate::bench::{BenchConfig, BenchResult, Workload, run_once};
-use crate::model::LatticeType;
+use crate::model::{LatticeType, PlanarLattice};
 use crate::output::Layout;
 use crate::plan::{Plan, Stability};
 use crate::runner::{
@@ -663,6 +663,12 @@ fn bench_command(configs: &[BenchConfig], threads: Option<usize>, repeat: usize,
     anyhow::ensure!(config.steps >= 1 && repeat >= 1, "--steps and --repeat must be ≥ 1");
     anyhow::ensure!(repeat <= 100, "--repeat {repeat}: at most 100 timed repetitions");
     anyhow::ensure!((0.0..1.0).contains(&config.dilute), "--dilute {}: must be in [0, 1)", config.dilute);
+    for config in configs {
+        let rows = config.rows();
+        if let Some((_, rule)) = PlanarLattice::size_problem(config.lattice, config.n, rows, false) {
+            anyhow::bail!("--n {} --lattice {}: {rule}", config.n, config.lattice.name());
+        }
+    }
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build()?;
     // Repetitions alternate between the workloads, so a machine's drift touches all alike.
     let mut results: Vec<Vec<BenchResult>> = vec![Vec::new(); configs.len()];

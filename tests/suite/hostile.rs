@@ -663,5 +663,16 @@ fn unbounded_inputs_and_options_are_refused_at_once() {
     // A bench lattice beyond the campaigns' largest aborted on allocation (10^6 × 10^6 nodes).
     let (ok, _, stderr) = binary(work.path(), &["bench", "--n", "1000000"]);
     assert!(!ok && stderr.contains("--n 1000000: the lattice side must be in 2..=2000"), "{stderr}");
+    // A kagome network needs three nodes per full row; at even N it takes N + 1 rows instead
+    // of panicking on a missing top row, as it did.
+    let (ok, _, stderr) = binary(work.path(), &["bench", "--n", "2", "--lattice", "kagome"]);
+    assert!(!ok && stderr.contains("--n 2 --lattice kagome: must be ≥ 3"), "{stderr}");
+    let (ok, stdout, stderr) = binary(
+        work.path(),
+        &["bench", "--n", "4", "--steps", "2", "--lattice", "kagome", "--workload", "kernel,relax", "--json"],
+    );
+    assert!(ok, "{stderr}");
+    // 4 nodes on each of the 3 full rows, 2 + 1 on the sparse rows between them.
+    assert_eq!(stdout.matches("\"particles\":15,").count(), 2, "{stdout}");
     assert!(!work.path().join("r").exists(), "nothing is written");
 }
