@@ -162,15 +162,28 @@ impl Truss<'_> {
         if past() {
             return Some(StaticSolution::PastDeadline);
         }
-        let dofs = self.dofs();
         let mut linearised = self.bonds.clone();
         for k in &mut linearised.stiffness {
             *k = law.tangent_stiffness(*k, linearised_at);
         }
-        let (mut ux, mut uy) = match (Truss { bonds: &linearised, ..*self }).solve_linear() {
-            StaticSolution::Displacements { ux, uy } => (ux, uy),
-            mechanism => return Some(mechanism),
-        };
+        match (Truss { bonds: &linearised, ..*self }).solve_linear() {
+            StaticSolution::Displacements { ux, uy } => self.solve_nonlinear_from(law, ux, uy, deadline),
+            mechanism => Some(mechanism),
+        }
+    }
+
+    /// [`Truss::solve_nonlinear`]'s Newton–Raphson iteration from displacements `(ux, uy)`: for
+    /// linear springs, whose tangent at δ = 0 is k itself, from the linear answer the caller
+    /// already has (one factorisation fewer, the same answer to the bit).
+    pub fn solve_nonlinear_from<L: ForceLaw>(
+        &self,
+        law: &L,
+        mut ux: Vec<f64>,
+        mut uy: Vec<f64>,
+        deadline: Option<Instant>,
+    ) -> Option<StaticSolution> {
+        let past = || deadline.is_some_and(|deadline| Instant::now() > deadline);
+        let dofs = self.dofs();
         let load_norm = norm(&self.load_vector(&dofs));
         for _ in 0..NEWTON_ITERATIONS {
             let (entries, residual) = self.tangent_and_residual(law, &ux, &uy, &dofs);

@@ -58,10 +58,12 @@ pub fn plan(file: &str, mut campaign: Campaign) -> Result<Plan, SpecError> {
 /// ω_max; `time.dt` and `time.dt_per_tc` set it in the spec layer) and refuses, before
 /// anything runs, a run whose dt · ω_max exceeds its integrator's limit unless it says
 /// `time.allow_unstable: true`. A run its memory budget `refused` is not started anyway (its
-/// memory does not depend on dt): not worth an estimate. The error is the field and why.
+/// memory does not depend on dt), and a static-only run takes no step: neither is worth an
+/// estimate (a large network's is a thousand passes over its bonds). The error is the field and why.
 fn plan_run(spec: &mut RunSpec, refused: bool, estimates: &Estimates) -> Result<(), String> {
     let Some(target) = spec.dt_omega_max else {
-        return if refused {
+        // A static-only run takes no time step (relax.method: static): nothing to be stable.
+        return if refused || spec.static_only() {
             Ok(())
         } else {
             check_limit(spec, &estimates.stability(spec), "time.dt_per_tc (or time.dt)")

@@ -97,12 +97,15 @@ fn blank_record(spec: &RunSpec) -> RunRecord {
 /// before its time loop.
 fn run_and_measure(spec: &RunSpec, deadline: Instant, estimates: &Estimates) -> Result<Box<Run>, Stopped> {
     assert!(spec.is_planned(), "a run reached the runner without its time step: plan the campaign (crate::plan)");
-    let stability = estimates.stability(spec);
+    // A static-only run takes no time step: no stability to record.
+    let stability = (!spec.static_only()).then(|| estimates.stability(spec));
     let mut run = study::run(spec, deadline)?;
-    run.metrics.omega_max = Some(stability.omega_max);
-    run.metrics.dt_omega_max = Some(stability.dt_omega_max);
-    run.metrics.mode_damping_ratio = Some(stability.damping_ratio);
-    run.metrics.stability_limit = Some(stability.limit);
+    if let Some(stability) = stability {
+        run.metrics.omega_max = Some(stability.omega_max);
+        run.metrics.dt_omega_max = Some(stability.dt_omega_max);
+        run.metrics.mode_damping_ratio = Some(stability.damping_ratio);
+        run.metrics.stability_limit = Some(stability.limit);
+    }
     Ok(Box::new(run))
 }
 

@@ -382,7 +382,13 @@ fn solve<L: ForceLaw>(
     };
     metrics.youngs_modulus_linear = linear.youngs_modulus;
     metrics.shear_modulus_linear = linear.shear_modulus;
-    let (ux, uy) = match truss.solve_nonlinear(law, reference_extension(spec), Some(deadline)) {
+    let nonlinear = match (&linear_force.1, spec.law.is_linear()) {
+        // Linear springs: the linearised network is the network, so Newton starts from the
+        // linear answer just solved.
+        (Some((ux, uy)), true) => truss.solve_nonlinear_from(law, ux.clone(), uy.clone(), Some(deadline)),
+        _ => truss.solve_nonlinear(law, reference_extension(spec), Some(deadline)),
+    };
+    let (ux, uy) = match nonlinear {
         Some(StaticSolution::Displacements { ux, uy }) => (ux, uy),
         Some(StaticSolution::PastDeadline) => return Err(past_deadline()),
         _ => return Ok(linear_force),
@@ -398,7 +404,10 @@ fn solve<L: ForceLaw>(
     if Instant::now() > deadline {
         return Err(past_deadline());
     }
-    metrics.stiffness_min = truss.softest_stiffness(law, &ux, &uy);
+    // k_min bounds a relaxation's error; a static-only run has none to bound.
+    if !spec.static_only() {
+        metrics.stiffness_min = truss.softest_stiffness(law, &ux, &uy);
+    }
     let edges = l.layout(spec.spacing).edges;
     metrics.static_extension = Some(extension(l, &LatticeShape { edges: &edges, depth: l.depth }, &ux, &uy));
     if spec.relax().is_some_and(|r| r.tangent_step.is_some()) {

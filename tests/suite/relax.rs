@@ -81,7 +81,13 @@ fn the_static_method_sets_the_static_answer_and_runs_no_md() {
         // The positions are set to that answer: the residual force left is round-off of the
         // 1 kN loads (‖r‖₂ ≤ 1e-6 N; linear answer under non-linear springs: O(strain²)·k·a).
         assert!(r.trace.residual_norm.unwrap() < 1e-2, "residual {:?}", r.trace.residual_norm);
+        // What a run with no time step does not need is left out: no stability estimate (a
+        // thousand passes over the bonds at plan time) and no k_min (nothing to bound).
+        assert_eq!((r.metrics.omega_max, r.metrics.stability_limit), (None, None), "{}", label(r));
+        assert_eq!((l.stiffness_min, l.relax_error_bound), (None, None), "{}", label(r));
     }
+    // The CG run does need both.
+    assert!(cg.metrics.omega_max.is_some() && cg.metrics.lattice.stiffness_min.is_some());
     let refused = mdsolids::plan::parse("t.yaml", &steel(5, "    relax: {method: static, tolerance: 1.0e-4}\n"))
         .map(|_| ())
         .unwrap_err()
