@@ -420,10 +420,9 @@ fn print_plan_rows(plan: &Plan, layout: &Layout) -> PlanTally {
         if state != "yes" {
             tally.simulation_s += spec.estimated_seconds();
         }
-        // A run the memory budget refuses is not estimated (a large lattice's estimate takes
-        // long), nor a static-only one (it takes no step).
+        // A run the memory budget refuses is not estimated (a large lattice's estimate takes long).
         let stability =
-            (campaign.budget.refuses(spec).is_none() && !spec.static_only()).then(|| plan.estimates.stability(spec));
+            campaign.budget.refuses(spec).is_none().then(|| plan.estimates.stepped_stability(spec)).flatten();
         let shown =
             |value: fn(&Stability) -> f64| stability.as_ref().map_or("-".into(), |s| format!("{:.4}", value(s)));
         println!(

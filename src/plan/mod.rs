@@ -59,14 +59,12 @@ pub fn plan(file: &str, mut campaign: Campaign) -> Result<Plan, SpecError> {
 /// anything runs, a run whose dt · ω_max exceeds its integrator's limit unless it says
 /// `time.allow_unstable: true`. A run its memory budget `refused` is not started anyway (its
 /// memory does not depend on dt), and a static-only run takes no step: neither is worth an
-/// estimate (a large network's is a thousand passes over its bonds). The error is the field and why.
+/// estimate ([`Estimates::stepped_stability`]). The error is the field and why.
 fn plan_run(spec: &mut RunSpec, refused: bool, estimates: &Estimates) -> Result<(), String> {
     let Some(target) = spec.dt_omega_max else {
-        // A static-only run takes no time step (relax.method: static): nothing to be stable.
-        return if refused || spec.static_only() {
-            Ok(())
-        } else {
-            check_limit(spec, &estimates.stability(spec), "time.dt_per_tc (or time.dt)")
+        return match (!refused).then(|| estimates.stepped_stability(spec)).flatten() {
+            Some(stability) => check_limit(spec, &stability, "time.dt_per_tc (or time.dt)"),
+            None => Ok(()),
         };
     };
     if refused {

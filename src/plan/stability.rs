@@ -74,6 +74,13 @@ impl Estimates {
         Stability::at(self.modes(spec), spec.dt, spec.integrator, spec.steps, self)
     }
 
+    /// The stability of `spec` if it takes time steps; `None` for a static-only run
+    /// (`relax.method: static`): it has nothing to be stable, and a large network's estimate
+    /// (a thousand passes over its bonds) would be wasted.
+    pub fn stepped_stability(&self, spec: &RunSpec) -> Option<Stability> {
+        (!spec.static_only()).then(|| self.stability(spec))
+    }
+
     /// ω_max of `spec`'s network (rad/s), whatever its time step.
     pub fn omega_max(&self, spec: &RunSpec) -> f64 {
         self.modes(spec).omega_max

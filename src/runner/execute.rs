@@ -97,8 +97,7 @@ fn blank_record(spec: &RunSpec) -> RunRecord {
 /// before its time loop.
 fn run_and_measure(spec: &RunSpec, deadline: Instant, estimates: &Estimates) -> Result<Box<Run>, Stopped> {
     assert!(spec.is_planned(), "a run reached the runner without its time step: plan the campaign (crate::plan)");
-    // A static-only run takes no time step: no stability to record.
-    let stability = (!spec.static_only()).then(|| estimates.stability(spec));
+    let stability = estimates.stepped_stability(spec);
     let mut run = study::run(spec, deadline)?;
     if let Some(stability) = stability {
         run.metrics.omega_max = Some(stability.omega_max);
