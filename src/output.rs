@@ -119,7 +119,7 @@ fn create_exclusive(path: &Path) -> std::io::Result<std::fs::File> {
 }
 
 /// Numbers the temporaries of this process.
-static TEMPORARIES: AtomicU64 = AtomicU64::new(0);
+pub static TEMPORARIES: AtomicU64 = AtomicU64::new(0);
 
 /// `.<name>.<host>.<pid>.<n>.tmp`: unique among the threads and processes of all hosts that
 /// share the folder, hidden, and telling `sweep_temporaries` whose it is.
@@ -129,7 +129,7 @@ fn temporary_name(name: &str) -> String {
 }
 
 /// This machine's name with dots replaced (they separate the fields of a temporary's name).
-fn host_name() -> String {
+pub fn host_name() -> String {
     let name = std::fs::read_to_string("/proc/sys/kernel/hostname").unwrap_or_default();
     let name: String =
         name.trim().chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' }).collect();
@@ -225,53 +225,5 @@ pub fn wait_for_lock(file: &std::fs::File, path: &Path, what: &str, patience: Du
             patience.as_secs_f64(),
             path.display()
         );
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn planted_links_at_the_temporary_names_are_never_written_through() {
-        let dir = tempfile::tempdir().unwrap();
-        let victim = dir.path().join("victim");
-        std::fs::write(&victim, "precious").unwrap();
-        // Links at the next names this process would use (other tests may take some first).
-        let next = TEMPORARIES.load(Ordering::Relaxed);
-        for n in next..next + 8 {
-            let name = format!(".out.json.{}.{}.{n}.tmp", host_name(), std::process::id());
-            std::os::unix::fs::symlink(&victim, dir.path().join(name)).unwrap();
-        }
-        write_atomically(&dir.path().join("out.json"), b"new").unwrap();
-        assert_eq!(std::fs::read_to_string(&victim).unwrap(), "precious");
-        assert_eq!(std::fs::read_to_string(dir.path().join("out.json")).unwrap(), "new");
-    }
-
-    #[test]
-    fn sweeping_removes_only_the_temporaries_of_dead_processes_of_this_host() {
-        let dir = tempfile::tempdir().unwrap();
-        let layout = Layout::new(dir.path(), "c");
-        let runs = layout.root.join("runs");
-        std::fs::create_dir_all(&runs).unwrap();
-        // A pid that has ended (reaped, so /proc has no entry for it).
-        let mut child = std::process::Command::new("true").spawn().unwrap();
-        let dead = child.id();
-        child.wait().unwrap();
-        let (host, live) = (host_name(), std::process::id());
-        let names = [
-            (format!(".a.json.{host}.{dead}.0.tmp"), false),
-            (format!(".a.json.{host}.{live}.0.tmp"), true), // this process: alive
-            (format!(".a.json.other-host.{dead}.0.tmp"), true), // its pid cannot be checked here
-            ("a-0123.gif.tmp".to_string(), false),          // the fixed name of earlier versions
-            ("a-0123.json".to_string(), true),
-        ];
-        for (name, _) in &names {
-            std::fs::write(runs.join(name), "x").unwrap();
-        }
-        assert_eq!(sweep_temporaries(&layout), 2);
-        for (name, kept) in &names {
-            assert_eq!(runs.join(name).exists(), *kept, "{name}");
-        }
     }
 }

@@ -25,7 +25,7 @@ struct Owner {
 
 /// The identity of a campaign file: its canonical path, or its absolute path where it cannot be
 /// resolved (a pipe such as `/dev/stdin`).
-fn identity(file: &Path) -> anyhow::Result<String> {
+pub fn identity(file: &Path) -> anyhow::Result<String> {
     let path = std::fs::canonicalize(file)
         .or_else(|_| std::path::absolute(file))
         .with_context(|| format!("cannot resolve the campaign file '{}'", file.display()))?;
@@ -109,47 +109,5 @@ pub fn campaign_of(dir: &Path) -> Option<String> {
         Ok(Some(owner)) => Some(format!("campaign file '{}'", owner.campaign_file)),
         Ok(None) if !dir.join("runs").is_dir() => None,
         _ => Some("a campaign".into()),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_first_file_owns_the_folder_and_another_is_refused_unless_forced() {
-        let work = tempfile::tempdir().unwrap();
-        let (a, b) = (work.path().join("a.yaml"), work.path().join("b.yaml"));
-        std::fs::write(&a, "a").unwrap();
-        std::fs::write(&b, "b").unwrap();
-        let layout = Layout::new(&work.path().join("reports"), "same");
-        claim(&layout, &a, false).unwrap();
-        claim(&layout, &a, false).unwrap();
-        // The same file by another path is the same campaign.
-        claim(&layout, &work.path().join(".").join("a.yaml"), false).unwrap();
-        let error = claim(&layout, &b, false).unwrap_err().to_string();
-        for part in [&identity(&a).unwrap(), &identity(&b).unwrap(), "--force", "name:"] {
-            assert!(error.contains(part), "{part} missing from: {error}");
-        }
-        claim(&layout, &b, true).unwrap();
-        assert!(claim(&layout, &a, false).is_err(), "forced: the folder is b's now");
-        claim(&layout, &b, false).unwrap();
-        assert_eq!(campaign_of(&layout.root), Some(format!("campaign file '{}'", identity(&b).unwrap())));
-        let left: Vec<_> = std::fs::read_dir(&layout.root).unwrap().map(|e| e.unwrap().file_name()).collect();
-        assert_eq!(left, vec![std::ffi::OsString::from(MARKER)], "no staged files left behind");
-    }
-
-    #[test]
-    fn a_garbled_marker_and_a_comparison_folder_are_refused() {
-        let work = tempfile::tempdir().unwrap();
-        let file = work.path().join("a.yaml");
-        std::fs::write(&file, "a").unwrap();
-        let layout = Layout::new(work.path(), "x");
-        std::fs::create_dir_all(&layout.root).unwrap();
-        std::fs::write(layout.file("compare.parquet"), "").unwrap();
-        assert!(claim(&layout, &file, false).unwrap_err().to_string().contains("mdsolids compare"));
-        std::fs::write(layout.file(MARKER), "{").unwrap();
-        assert!(claim(&layout, &file, false).unwrap_err().to_string().contains("--force"));
-        assert_eq!(campaign_of(&layout.root).as_deref(), Some("a campaign"));
     }
 }

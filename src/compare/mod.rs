@@ -7,11 +7,11 @@
 //! appendix. Everything is read back from the report directories, so
 //! campaigns run by different versions of mdsolids can be compared as long as their tables are.
 
-mod exponents;
+pub mod exponents;
 mod join;
 mod overview;
 mod plots;
-mod quantity;
+pub mod quantity;
 mod section;
 mod table;
 mod words;

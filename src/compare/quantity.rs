@@ -10,7 +10,7 @@ pub(super) const NOISE: f64 = 1e-6;
 
 /// What kind of quantity a column holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum Class {
+pub enum Class {
     /// What a run cost: timings and step counts, machine-dependent, never a result.
     Cost,
     /// An input, or what follows from the inputs before the run (t_c, dt, ω_max, the analytical
@@ -65,7 +65,7 @@ const SETUP: [&str; 31] = [
 const DEVIATIONS: [&str; 4] = ["error", "spacing_spread", "static_nonlinearity", "homogeneity"];
 
 /// The class of column `name`.
-pub(super) fn class(name: &str) -> Class {
+pub fn class(name: &str) -> Class {
     if COSTS.contains(&name) {
         Class::Cost
     } else if SETUP.contains(&name) || name.ends_with("_theory") {
@@ -116,32 +116,10 @@ const UNITS: [(&str, &str); 32] = [
 ];
 
 /// The unit of column `name`; "1" for a pure number (a ratio, a count, a relative error).
-pub(super) fn unit(name: &str) -> &'static str {
+pub fn unit(name: &str) -> &'static str {
     if name.ends_with("_error") {
         return "1";
     }
     let matches = |start: &str| name.strip_prefix(start).is_some_and(|rest| rest.is_empty() || rest.starts_with('_'));
     UNITS.iter().find(|(start, _)| matches(start)).map_or("1", |(_, unit)| unit)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn classes_and_units() {
-        assert_eq!(class("wall_s"), Class::Cost);
-        assert_eq!(class("mass"), Class::Setup);
-        assert_eq!(class("contact_duration_theory"), Class::Setup);
-        assert_eq!(class("contact_duration_error"), Class::Deviation);
-        assert_eq!(class("homogeneity"), Class::Deviation);
-        assert_eq!(class("sound_speed_first_maximum"), Class::Result);
-        assert_eq!(unit("contact_duration_error"), "1");
-        assert_eq!(unit("sound_speed_first_maximum"), "m/s");
-        assert_eq!(unit("youngs_modulus_tangent_fem"), "Pa");
-        assert_eq!(unit("spacing_spread"), "m");
-        assert_eq!(unit("dt_per_tc"), "1");
-        assert_eq!(unit("k_diag"), "N/m^β");
-        assert_eq!(unit("poisson_ratio"), "1");
-    }
 }

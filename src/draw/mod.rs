@@ -3,6 +3,6 @@
 //! runner writes beside each run's record.
 
 pub mod chart;
-mod movie;
+pub mod movie;
 
 pub use self::movie::{Movie, PastDeadline, speed_color, write_movie, write_movie_panels};

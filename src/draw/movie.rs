@@ -160,7 +160,7 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
     let deadline = if let [movie] = panels { movie.deadline } else { None };
     let encoding = |error: gif::EncodingError| anyhow::anyhow!("cannot encode the movie '{}': {error}", path.display());
     let mut pixels = vec![0u8; width as usize * height as usize * 3];
-    let mut palette = Palette::new();
+    let mut palette = Palette::default();
     let mut previous: Option<Vec<u8>> = None;
     let mut encoder = gif::Encoder::new(Vec::new(), width as u16, height as u16, &palette.colours).map_err(encoding)?;
     encoder.set_repeat(gif::Repeat::Infinite).map_err(encoding)?;
@@ -231,7 +231,7 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
 /// The magnification M of displacements whose largest is `largest` (m) in a network of
 /// spacing `spacing` (m): the largest 1, 2 or 5 × 10^k that keeps M·largest within 0.3
 /// spacing; 1 (drawn as they are) when the displacements are already visible.
-fn magnification(largest: f64, spacing: f64) -> f64 {
+pub fn magnification(largest: f64, spacing: f64) -> f64 {
     let target = 0.3 * spacing / largest;
     if !target.is_finite() || target < 2.0 {
         return 1.0;
@@ -242,7 +242,7 @@ fn magnification(largest: f64, spacing: f64) -> f64 {
 
 /// `value` with four significant digits, plain from 0.001 to 99 999 (`22.57`, `0.004443`),
 /// scientific beyond (`1.234e-7`): a time stamp read at a glance, not `2.2570e1`.
-fn readable(value: f64) -> String {
+pub fn readable(value: f64) -> String {
     if value == 0.0 || !value.is_finite() {
         return format!("{value}");
     }
@@ -260,18 +260,19 @@ fn readable(value: f64) -> String {
 /// the strain scale), index 0 for "as in the frame before". Few colours (LZW codes start at 6
 /// bits instead of 9) and unchanged pixels left transparent compress: measured on the
 /// coursework's movies, a third to a half of the bytes of a palette fitted to each whole frame.
-struct Palette {
+pub struct Palette {
     /// RGB triples, index 0 the transparent one.
-    colours: Vec<u8>,
+    pub colours: Vec<u8>,
     /// The nearest index of every colour met so far.
     nearest: std::collections::HashMap<[u8; 3], u8>,
 }
 
 /// The transparent index: the pixel is as in the previous frame.
-const UNCHANGED: u8 = 0;
+pub const UNCHANGED: u8 = 0;
 
-impl Palette {
-    fn new() -> Palette {
+impl Default for Palette {
+    /// The 32 colours, none met yet.
+    fn default() -> Palette {
         let greys = [0, 60, 100, 140, 170, 200, 230, 255].map(|g| RGBColor(g, g, g));
         let speeds = (0..12).map(|s| speed_color(f64::from(s) / 11.0));
         let strains = (0..11).map(|s| diverging(f64::from(s) / 5.0 - 1.0));
@@ -281,7 +282,9 @@ impl Palette {
         }
         Palette { colours, nearest: std::collections::HashMap::new() }
     }
+}
 
+impl Palette {
     /// The index of the palette colour nearest to `rgb` (squared RGB distance), never 0.
     fn index(&mut self, rgb: [u8; 3]) -> u8 {
         let colours = &self.colours;
@@ -293,7 +296,7 @@ impl Palette {
     }
 
     /// RGB `pixels` as palette indices.
-    fn indices(&mut self, pixels: &[u8]) -> Vec<u8> {
+    pub fn indices(&mut self, pixels: &[u8]) -> Vec<u8> {
         pixels.chunks_exact(3).map(|p| self.index([p[0], p[1], p[2]])).collect()
     }
 }
@@ -301,7 +304,7 @@ impl Palette {
 /// Palette indices `now` (rows of `width`) as a GIF frame: after the first, only the box of
 /// pixels whose colour changed since `previous` (indices: a shade that rounds to the same
 /// palette colour is no change), unchanged ones in it transparent over the frame kept below.
-fn gif_frame(now: &[u8], previous: Option<&[u8]>, width: usize) -> gif::Frame<'static> {
+pub fn gif_frame(now: &[u8], previous: Option<&[u8]>, width: usize) -> gif::Frame<'static> {
     let height = now.len() / width;
     let changed = |i: usize| previous.is_none_or(|p| p[i] != now[i]);
     let (mut x0, mut y0, mut x1, mut y1) = (width, height, 0, 0);
@@ -354,54 +357,4 @@ fn draw_colour_bar(
             .map_err(draw_error)?;
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Sub-micron waves in a 0.1 m lattice are magnified to a third of the spacing at most, by
-    /// a round factor; visible displacements and a still picture are drawn as they are.
-    #[test]
-    fn small_displacements_are_magnified_by_a_round_factor() {
-        assert_eq!(magnification(1e-6, 0.1), 20000.0); // target 30 000
-        assert_eq!(magnification(4e-4, 0.1), 50.0); // target 75
-        assert_eq!(magnification(1e-4, 0.1), 200.0); // target 300
-        assert_eq!(magnification(0.02, 0.1), 1.0); // target 1.5: already visible
-        assert_eq!(magnification(0.0, 0.1), 1.0);
-    }
-
-    #[test]
-    fn time_stamps_read_at_a_glance() {
-        assert_eq!(readable(22.570), "22.57");
-        assert_eq!(readable(0.0044429), "0.004443");
-        assert_eq!(readable(12345.6), "12346");
-        assert_eq!(readable(1.2344e-7), "1.234e-7");
-        assert_eq!(readable(0.0), "0");
-    }
-
-    /// The first frame is whole; a later one is the box of pixels that changed, the unchanged
-    /// ones in it transparent; colours go to the nearest of the 32 of the palette.
-    #[test]
-    fn later_frames_hold_only_what_changed() {
-        let mut palette = Palette::new();
-        assert_eq!(palette.colours.len(), 3 * 32, "32 colours: LZW codes start at 6 bits");
-        let white = [255u8; 3 * 4 * 3]; // 4 × 3 pixels
-        let first = palette.indices(&white);
-        let whole = gif_frame(&first, None, 4);
-        assert_eq!((whole.width, whole.height, whole.transparent), (4, 3, None));
-        assert!(whole.buffer.iter().all(|&i| i != UNCHANGED));
-        let mut next = white;
-        next[3 * 5..3 * 5 + 3].copy_from_slice(&[250, 250, 250]); // (1, 1): rounds to white, no change
-        next[3 * 6..3 * 6 + 3].copy_from_slice(&[0, 0, 0]); // (2, 1): black
-        next[3 * 7..3 * 7 + 3].copy_from_slice(&[200, 30, 30]); // (3, 1): red
-        let next = palette.indices(&next);
-        let frame = gif_frame(&next, Some(&first), 4);
-        assert_eq!((frame.left, frame.top, frame.width, frame.height), (2, 1, 2, 1));
-        assert_eq!(frame.transparent, Some(UNCHANGED));
-        let rgb = |i: u8| &palette.colours[3 * usize::from(i)..3 * usize::from(i) + 3];
-        assert_eq!((rgb(frame.buffer[0]), rgb(frame.buffer[1])), ([0, 0, 0].as_slice(), [200, 30, 30].as_slice()));
-        let same = gif_frame(&next, Some(&next), 4);
-        assert_eq!((same.width, same.height, same.buffer.as_ref()), (1, 1, [UNCHANGED].as_slice()));
-    }
 }

@@ -63,7 +63,7 @@ pub fn estimate(spec: &RunSpec) -> Stability {
 #[derive(Debug, Default)]
 pub struct Estimates {
     /// The modes of each network, by [`network_key`].
-    modes: Mutex<HashMap<String, Modes>>,
+    pub modes: Mutex<HashMap<String, Modes>>,
     /// The stability limits measured, by integrator, test equation and run length.
     limits: Mutex<HashMap<LimitKey, f64>>,
 }
@@ -228,7 +228,7 @@ fn largest_eigenvalue(springs: &Springs, axes: &FreeAxes) -> (f64, Vec<f64>, Vec
 /// integrator, length, sampling, outputs or start speed v0 have the same. v0 moves no particle
 /// and sets no spring; it reaches the modes only through the extension a power law is
 /// linearised at (the collision's largest overlap), which the key holds instead.
-fn network_key(spec: &RunSpec) -> String {
+pub fn network_key(spec: &RunSpec) -> String {
     let extension = crate::spec::reference_extension(spec);
     let network = RunSpec {
         campaign: String::new(),
@@ -253,20 +253,20 @@ fn network_key(spec: &RunSpec) -> String {
 
 /// What the eigenvalue estimates of a scene give.
 #[derive(Clone, Copy, Debug)]
-struct Modes {
+pub struct Modes {
     /// ω_max (rad/s).
-    omega_max: f64,
+    pub omega_max: f64,
     /// ζ of the fastest mode.
-    damping_ratio: f64,
+    pub damping_ratio: f64,
     /// ν_max (1/s): the largest decay rate damping alone imposes, λ_max(M⁻¹C).
-    damping_rate: f64,
+    pub damping_rate: f64,
 }
 
 /// ω_max from K, each bond's tangent stiffness k_t = ds/dδ at `extension` along its direction
 /// (K_bond = k_t n̂ n̂ᵀ; the geometric stiffness of pre-stress is left out); the damping ratio
 /// of that mode u, ζ = uᵀCu / (2 ω uᵀMu), C from the bond dashpots γ n̂ n̂ᵀ and background
 /// damping γ_g I; and ν_max = λ_max(M^(−½) C_bonds M^(−½)) + max γ_g/m (an upper bound).
-fn modes(scene: &Scene, extension: f64) -> Modes {
+pub fn modes(scene: &Scene, extension: f64) -> Modes {
     let p = &scene.particles;
     let axes = FreeAxes::of(p);
     let mut springs = Springs::new();
@@ -329,7 +329,7 @@ fn background_rate(scene: &Scene, axes: &FreeAxes) -> f64 {
 /// for the infinite network (one family: ~7 % high at k_d = k/2). ζ is that staggered mode's,
 /// (2 eᵀG_i e + γ_g) / (2 ω_max m_i) with G_i = Σ_{b∋i} γ n̂n̂ᵀ along S_i's top direction e, and
 /// ν_max ≤ max_i 2 λ_max(G_i) / m_i + max γ_g / m by the same inequality.
-fn node_bound(scene: &Scene, extension: f64) -> Modes {
+pub fn node_bound(scene: &Scene, extension: f64) -> Modes {
     let p = &scene.particles;
     let axes = FreeAxes::of(p);
     // Per node: [xx, xy, yy] of S_i (N/m) and of G_i (N s/m).
@@ -382,9 +382,12 @@ pub const RUN_GROWTH: f64 = 2.0;
 
 /// The scalar problems whose stability limits are measured.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum TestEquation {
+pub enum TestEquation {
     /// ẍ = −ω²x − 2ζωẋ with ω = 1.
-    Oscillator { zeta: f64 },
+    Oscillator {
+        /// The damping ratio ζ.
+        zeta: f64,
+    },
     /// ẍ = −ν ẋ with ν = 1.
     Damping,
 }
@@ -479,19 +482,21 @@ fn stays_bounded(kind: IntegratorKind, test: TestEquation, h: f64) -> bool {
 }
 
 /// The moving particle of a test problem (particle 0 is fixed).
-const TEST_PARTICLE: usize = 1;
+pub const TEST_PARTICLE: usize = 1;
 
 /// The force field of a test problem: with a bond dashpot, or without anything that reads
 /// velocities (Gear's corrector weight c₀ depends on which).
-enum TestField {
+pub enum TestField {
+    /// The spring with its bond dashpot.
     Damped(LatticeNetwork<Linear, BondDashpot, false>),
+    /// The spring alone.
     Undamped(LatticeNetwork<Linear, NoDashpot, false>),
 }
 
 /// The test equation as a scene: a unit mass at rest at x = 1 on a spring of rest length 1
 /// (stiffness 1, dashpot 2ζ) to a fixed particle at 0, ω = 1; or on background damping 1
 /// alone, ν = 1.
-fn test_problem(test: TestEquation) -> (State, TestField) {
+pub fn test_problem(test: TestEquation) -> (State, TestField) {
     let (k, gamma, background) = match test {
         TestEquation::Oscillator { zeta } => (1.0, 2.0 * zeta, 0.0),
         TestEquation::Damping => (0.0, 0.0, 1.0),
@@ -520,7 +525,7 @@ fn test_problem(test: TestEquation) -> (State, TestField) {
 }
 
 /// Spectral radius of Gear's amplification matrix on the test equation at ω dt (or ν dt) = `h`.
-fn gear_spectral_radius(test: TestEquation, h: f64) -> f64 {
+pub fn gear_spectral_radius(test: TestEquation, h: f64) -> f64 {
     let (state, field) = test_problem(test);
     let matrix = match field {
         TestField::Damped(mut field) => Gear::amplification_matrix(&state, &mut field, TEST_PARTICLE, h),
@@ -561,162 +566,4 @@ fn gear_limit(test: TestEquation, steps: u64) -> f64 {
         }
     }
     low
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Runs of one network share its modes: a grid over dt, integrators and run lengths has one
-    /// key (one ω_max estimate, issue 14); a different stiffness or damping has another.
-    #[test]
-    fn runs_of_one_network_share_one_estimate() {
-        let campaign = crate::spec::parse(
-            "k.yaml",
-            "version: 1\nname: k\nscenes:\n  - name: l\n    kind: lattice\n    lattice: {size: 4}\n    \
-             load: {case: tensile}\n    grid:\n      time.dt_per_tc: [20, 50]\n      time.integrator: [velocity-verlet, rk4]\n      \
-             time.duration_tc: [10, 20]\n      material.k: [1.0, 2.0]\n      damping.restitution: [1.0, 0.5]\n",
-        )
-        .unwrap();
-        let keys: std::collections::HashSet<String> = campaign.runs.iter().map(network_key).collect();
-        assert_eq!((campaign.runs.len(), keys.len()), (32, 4));
-    }
-
-    /// Planning computes one estimate per network: a grid of pairs over v0 and mass has one per
-    /// mass with linear springs (v0 moves no spring), and one per run with Hertz contacts,
-    /// linearised at each collision's largest overlap. A shared estimate is the run's own.
-    #[test]
-    fn planning_estimates_each_network_once() {
-        let grid = "    grid:\n      v0: [0.5, 1.0, 2.0, 4.0]\n      material.mass: [1.0, 2.0, 3.0]\n";
-        for (law, networks) in [("", 3), ("    material: {law: hertz, contact: true}\n", 12)] {
-            let yaml = format!("version: 1\nname: k\nscenes:\n  - name: p\n    kind: pair\n{law}{grid}");
-            let plan = crate::plan::parse("k.yaml", &yaml).unwrap();
-            let estimated = plan.estimates.modes.lock().unwrap().len();
-            assert_eq!((plan.campaign.runs.len(), estimated), (12, networks), "{law}");
-            for spec in &plan.campaign.runs {
-                assert_eq!(plan.estimates.stability(spec), estimate(spec), "{}", spec.varied_label(|_| true));
-            }
-        }
-    }
-
-    /// The scenes of a one-scene campaign whose scene section (after `kind:`) is `body`.
-    fn runs_of(body: &str) -> Vec<RunSpec> {
-        crate::spec::parse("b.yaml", &format!("version: 1\nname: b\nscenes:\n  - name: s\n{body}")).unwrap().runs
-    }
-
-    /// The node bound is an upper bound on every kind of network (power iteration is a lower
-    /// estimate within ~0.15 %, so "≥" is the test) and tight where the top mode is staggered:
-    /// for the chain and the square lattice with both or no diagonal families the finite
-    /// network's ω_max lies below the infinite one's by (π/2(N+1))²/2 relative, ≤ 0.3 % at N = 20;
-    /// 1.5 % allows that. One diagonal family: √(6/5.24) − 1 = 7 % high in the infinite lattice
-    /// (7.4 % at 20 × 20; 8 % allowed). ζ and ν_max of the
-    /// bound within 10 % and above the power method's (ν_max) where it is an upper bound too.
-    #[test]
-    fn the_node_bound_holds_and_is_tight_on_staggered_modes() {
-        let cases = [
-            ("    kind: chain\n    n: 30\n    node: 3\n    v0: 0.1\n    damping: {restitution: 0.5}\n", 0.015),
-            (
-                "    kind: lattice\n    lattice: {size: 20, diagonals: both}\n    load: {case: tensile}\n    damping: {restitution: 0.5, background: 0.2}\n",
-                0.015,
-            ),
-            ("    kind: lattice\n    lattice: {size: 20, diagonals: none}\n    load: {case: shear}\n", 0.015),
-            (
-                "    kind: lattice\n    lattice: {size: 20, diagonals: rising, k_diag_ratio: 0.5}\n    load: {case: tensile}\n",
-                0.08,
-            ),
-            (
-                "    kind: lattice\n    lattice: {size: 20, cut_fraction: 0.2}\n    load: {case: tensile}\n    seed: 3\n",
-                0.05,
-            ),
-            (
-                "    kind: lattice\n    lattice: {size: 12}\n    material: {law: hertz}\n    load: {case: tensile}\n    damping: {restitution: 0.5}\n",
-                0.05,
-            ),
-        ];
-        for (body, tolerance) in cases {
-            let spec = &runs_of(body)[0];
-            let (scene, extension) = (build_scene(spec), crate::spec::reference_extension(spec));
-            let (power, bound) = (modes(&scene, extension), node_bound(&scene, extension));
-            let ratio = bound.omega_max / power.omega_max;
-            assert!((1.0..=1.0 + tolerance).contains(&ratio), "{body}: bound/power = {ratio}");
-            assert!(bound.damping_rate >= power.damping_rate * (1.0 - 1e-9), "{body}: ν_max {bound:?} {power:?}");
-            if power.damping_ratio > 0.0 {
-                let zeta = bound.damping_ratio / power.damping_ratio;
-                assert!((0.9..=1.1).contains(&zeta), "{body}: ζ bound/power = {zeta}");
-            }
-        }
-    }
-
-    /// A network beyond [`POWER_METHOD_BONDS`] gets the bound, which on a square lattice with
-    /// both diagonal families (k = 1 N/m, k_d = 0.5 N/m, m = 1 kg) is √(4(k + k_d)/m) = √6 rad/s
-    /// to round-off; the power method on this 251 × 251 network would give its finite ω_max,
-    /// ~2e-5 lower, and take 1000 passes.
-    #[test]
-    fn a_network_beyond_the_power_method_gets_the_staggered_bound() {
-        let spec =
-            &runs_of("    kind: lattice\n    lattice: {size: 251, k_diag_ratio: 0.5}\n    load: {case: tensile}\n")[0];
-        assert!(spec.bonds() > POWER_METHOD_BONDS);
-        let omega_max = estimate(spec).omega_max;
-        assert!((omega_max - 6f64.sqrt()).abs() < 1e-12, "{omega_max}");
-    }
-
-    #[test]
-    fn undamped_limits_match_the_known_values() {
-        // Exact limits of the test equation: Verlet and symplectic Euler |1 − h²/2| ≤ 1 → 2;
-        // RK4 on the imaginary axis 2√2; the bisection resolves 1e-4, the trial growth ~1e-5.
-        for (kind, exact) in [
-            (IntegratorKind::VelocityVerlet, 2.0),
-            (IntegratorKind::PositionVerlet, 2.0),
-            (IntegratorKind::SymplecticEuler, 2.0),
-            (IntegratorKind::Rk4, 2.0 * 2f64.sqrt()),
-        ] {
-            let limit = Estimates::default().stability_limit(kind, 0.0, 1000);
-            assert!((limit - exact).abs() < 1e-3 * exact, "{}: {limit} against {exact}", kind.name());
-        }
-    }
-
-    #[test]
-    fn gear_amplification_matrix_is_the_textbook_scheme() {
-        // Independent answer: predictor P (Pascal's triangle), then r += c Δ with
-        // Δ = (h²/2) a − r₂ᵖ and a = −x − 2ζ ẋ at the prediction: G = (I + c gᵀ) P with
-        // gᵀ = (−h²/2, −ζh, −1, 0, 0, 0), c = (c₀, 251/360, 1, 11/18, 1/6, 1/60) and
-        // c₀ = 3/20 undamped, 3/16 with a dashpot. Tolerance 1e-13: round-off of a few
-        // operations on entries up to 10.
-        for (zeta, c0) in [(0.0, 3.0 / 20.0), (0.1, 3.0 / 16.0)] {
-            let h = 0.37;
-            let (state, field) = test_problem(TestEquation::Oscillator { zeta });
-            let coded = match field {
-                TestField::Damped(mut f) => Gear::amplification_matrix(&state, &mut f, TEST_PARTICLE, h),
-                TestField::Undamped(mut f) => Gear::amplification_matrix(&state, &mut f, TEST_PARTICLE, h),
-            };
-            let pascal = |i: usize, j: usize| {
-                if j >= i { (1..=i).fold(1.0, |b, m| b * (j + 1 - m) as f64 / m as f64) } else { 0.0 }
-            };
-            let c = [c0, 251.0 / 360.0, 1.0, 11.0 / 18.0, 1.0 / 6.0, 1.0 / 60.0];
-            let g = [-h * h / 2.0, -zeta * h, -1.0, 0.0, 0.0, 0.0];
-            for (i, row) in coded.iter().enumerate() {
-                for (j, &entry) in row.iter().enumerate() {
-                    let gp: f64 = (0..6).map(|k| g[k] * pascal(k, j)).sum();
-                    let expected = pascal(i, j) + c[i] * gp;
-                    assert!((entry - expected).abs() < 1e-13, "ζ {zeta}: G[{i}][{j}] = {entry} against {expected}");
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn gear_limit_bounds_the_growth_over_the_run() {
-        // The limit is where ρ^steps reaches RUN_GROWTH: just below it the growth over the
-        // run is at most 2, just above (by 1 %) more; it falls as runs get longer, because ρ
-        // exceeds 1 (~1e-4 per step at ω dt = 0.45, where the old 4000-step trial put the
-        // limit at 0.4919 and a chain of 78 000 steps blew up at step 38 805).
-        let estimates = Estimates::default();
-        let short = estimates.stability_limit(IntegratorKind::Gear, 0.0, 1000);
-        let long = estimates.stability_limit(IntegratorKind::Gear, 0.0, 78_181);
-        assert!(long < short && long < 0.45, "limits {short} (1000 steps) and {long} (78 181 steps)");
-        let test = TestEquation::Oscillator { zeta: 0.0 };
-        let steps = 131_072.0; // 78 181 rounded up to a power of two
-        assert!(gear_spectral_radius(test, long).powf(steps) <= RUN_GROWTH);
-        assert!(gear_spectral_radius(test, 1.01 * long).powf(steps) > RUN_GROWTH);
-    }
 }

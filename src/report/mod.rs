@@ -10,15 +10,15 @@ pub use self::context::LeftOut;
 mod exponents;
 mod figure;
 mod figures;
-mod findings;
-mod markdown;
-mod page;
+pub mod findings;
+pub mod markdown;
+pub mod page;
 mod precision;
 mod probes;
 mod solids;
 mod stability_map;
 mod waves;
-pub(crate) mod words;
+pub mod words;
 
 use anyhow::Context as _;
 use std::collections::BTreeSet;
@@ -116,11 +116,7 @@ pub(crate) fn remove_stale(root: &Path, dir: &str, suffix: &str, keep: &BTreeSet
 /// Renders the Markdown template `(name, text)` with `context` into `<dir>/report.md`, and the
 /// same Markdown as HTML (pulldown-cmark) inside the page shell into `<dir>/index.html`, so
 /// the text exists once.
-pub(crate) fn write_pages(
-    dir: &std::path::Path,
-    markdown: (&str, &str),
-    mut context: tera::Context,
-) -> anyhow::Result<()> {
+pub fn write_pages(dir: &std::path::Path, markdown: (&str, &str), mut context: tera::Context) -> anyhow::Result<()> {
     let (name, text) = markdown;
     // Two instances: every value is escaped for its target, Markdown (`markdown::tera`) or HTML.
     let mut tera = markdown::tera();
@@ -132,26 +128,4 @@ pub(crate) fn write_pages(
     context.insert("body", &page::to_html(&markdown));
     let html = tera.render("index.html", &context).context("cannot render templates/index.html.tera")?;
     write_atomically(&dir.join("index.html"), html.as_bytes())
-}
-
-#[cfg(test)]
-mod tests {
-    /// Math is written once: LaTeX in `report.md`, MathML in `index.html`.
-    #[test]
-    fn write_pages_keeps_math_as_latex_in_markdown_and_mathml_in_html() {
-        let dir = tempfile::tempdir().unwrap();
-        let template =
-            "# {{ title }}\n\nInline $t_c = {{ tc | tex }}\\,\\mathrm{s}$ and\n\n$$r = e^{-\\gamma t_c / 2m}$$\n";
-        let mut context = tera::Context::new();
-        context.insert("title", "Math");
-        context.insert("tc", &"1.25e-3");
-        super::write_pages(dir.path(), ("t.md", template), context).unwrap();
-        let markdown = std::fs::read_to_string(dir.path().join("report.md")).unwrap();
-        assert!(markdown.contains("$t_c = 1.25 \\times 10^{-3}\\,\\mathrm{s}$"), "{markdown}");
-        assert!(markdown.contains("$$r = e^{-\\gamma t_c / 2m}$$"), "{markdown}");
-        let html = std::fs::read_to_string(dir.path().join("index.html")).unwrap();
-        assert!(html.contains("<math display=\"inline\"><msub><mi>t</mi><mi>c</mi></msub><mo>=</mo><mn>1.25</mn><mo>×</mo><msup><mn>10</mn>"), "{html}");
-        assert!(html.contains("<math display=\"block\">"), "{html}");
-        assert!(!html.contains('$'), "{html}");
-    }
 }

@@ -6,8 +6,8 @@ pub use self::record::{BUILD, Metrics, RunRecord, StoredFile, is_asked_for};
 pub use self::shard::{Shard, shard_campaign, shard_of_each_run};
 
 mod execute;
-mod record;
-mod shard;
+pub mod record;
+pub mod shard;
 
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};

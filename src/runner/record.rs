@@ -363,7 +363,7 @@ fn to_single(series: &mut [f64]) {
 }
 
 /// Opens every series file, before anything is decoded; the version after it.
-const SERIES_MAGIC: &[u8] = b"mdsolids-series 1\n";
+pub const SERIES_MAGIC: &[u8] = b"mdsolids-series 1\n";
 
 /// zstd level of the series files: 9 is within 2 % of the smallest (19) on the coursework's
 /// series at a fraction of its time.
@@ -372,7 +372,7 @@ const SERIES_LEVEL: i32 = 9;
 /// The most bytes a series file may decode to: a bounded trace ([`STORED_NUMBERS`], plus the
 /// sample times and energies of at most `sim::STORED_SAMPLES` samples) in double precision,
 /// with room for the headers. A file that decodes to more is refused, not read into memory.
-const SERIES_MOST_BYTES: u64 = 16 * STORED_NUMBERS as u64 + (1 << 20);
+pub const SERIES_MOST_BYTES: u64 = 16 * STORED_NUMBERS as u64 + (1 << 20);
 
 /// The series of `trace` as bytes: zstd over [`SERIES_MAGIC`] and each series in a fixed
 /// order (time, kinetic, potential, dissipated and work energy, the per-particle x and y
@@ -423,7 +423,7 @@ fn for_each_series(trace: &Trace, in_table: impl Fn(&ProbeTrace) -> bool, mut vi
 
 /// Reads the series of [`encode_series`] into `trace`, whose probed lines (names and nodes)
 /// come from the record; why not, if the bytes are not such a file or end early or late.
-fn decode_series(bytes: &[u8], trace: &mut Trace) -> Result<(), String> {
+pub fn decode_series(bytes: &[u8], trace: &mut Trace) -> Result<(), String> {
     use std::io::Read;
     let mut raw = Vec::new();
     let decoder = zstd::stream::read::Decoder::new(bytes).map_err(|e| format!("cannot be decoded: {e}"))?;
@@ -487,66 +487,5 @@ fn next_matrix(rest: &mut &[u8], name: &str) -> Result<Vec<Vec<f64>>, String> {
         0 if rows > 0 => Err(format!("gives {name} {rows} rows of no values")),
         0 => Ok(Vec::new()),
         _ => Ok(values.chunks(columns).map(<[f64]>::to_vec).collect()),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A trace with energies, per-particle rows and two probed lines (one not stored here).
-    fn trace() -> Trace {
-        let rows = |scale: f64| (0..3).map(|s| (0..4).map(|i| scale * (s * 4 + i) as f64).collect()).collect();
-        let line = |name: &str| ProbeTrace {
-            name: name.into(),
-            nodes: vec![0, 1, 2, 3],
-            displacement_x: rows(1e-3),
-            displacement_y: rows(-2e-3),
-            velocity_x: rows(0.5),
-            velocity_y: rows(1e300),
-        };
-        Trace {
-            time: vec![0.0, 0.1, 0.2],
-            kinetic: vec![1.0, 0.5, 0.25],
-            potential: vec![0.0, 0.5, 0.75],
-            dissipated: vec![0.0; 3],
-            work: vec![0.0; 3],
-            displacement_x: rows(1.0 / 3.0),
-            probes: vec![line("row 0"), line("column 1")],
-            ..Trace::default()
-        }
-    }
-
-    /// The series file gives back every number it was given, bit for bit, in single precision
-    /// where they are single-precision numbers and in double where not (1/3, 1e300), and the
-    /// lines kept in the probe table as no rows; cut short, lengthened or garbled, it is refused.
-    #[test]
-    fn series_files_read_back_exactly_and_refuse_damage() {
-        let mut original = trace();
-        original.kinetic = vec![1.0f32 as f64, 0.1f32 as f64, 3e-39];
-        let bytes = encode_series(&original, |p| p.name == "column 1");
-        let mut read = Trace { probes: original.probes.clone(), ..Trace::default() };
-        decode_series(&bytes, &mut read).unwrap();
-        let mut expected = original.clone();
-        expected.probes[1] = ProbeTrace { name: "column 1".into(), nodes: vec![0, 1, 2, 3], ..ProbeTrace::default() };
-        assert_eq!(read, expected);
-        let mut raw = zstd::bulk::decompress(&bytes, 1 << 20).unwrap();
-        for damaged in [raw[..raw.len() - 1].to_vec(), [raw.clone(), vec![0]].concat(), b"x".to_vec()] {
-            let bytes = zstd::bulk::compress(&damaged, 1).unwrap();
-            assert!(decode_series(&bytes, &mut read).is_err());
-        }
-        raw[SERIES_MAGIC.len()] = 5;
-        let error = decode_series(&zstd::bulk::compress(&raw, 1).unwrap(), &mut read).unwrap_err();
-        assert!(error.contains("5 bytes"), "{error}");
-        assert!(decode_series(b"not zstd", &mut read).is_err());
-    }
-
-    /// A file that decodes to more than any record holds is refused after reading that much,
-    /// not read whole into memory.
-    #[test]
-    fn a_series_file_that_decodes_beyond_any_record_is_refused() {
-        let bomb = zstd::bulk::compress(&vec![0u8; SERIES_MOST_BYTES as usize + 10], 3).unwrap();
-        let error = decode_series(&bomb, &mut Trace::default()).unwrap_err();
-        assert!(error.contains("more than any record"), "{error}");
     }
 }

@@ -6,7 +6,7 @@
 // which `kind` re-exports: a new kind adds none here.
 pub use self::kind::*;
 pub use self::name::MAX_NAME_LEN;
-pub use self::raw::{Control, Diagonals, LoadCase, SceneKind, Supports};
+pub use self::raw::{Control, Diagonals, Grid, LoadCase, SceneKind, Supports};
 pub use self::run_spec::{
     Budget, MovieSpec, POWER_METHOD_BONDS, RESULT_FORMAT, RunSpec, reference_extension, seconds_up_to_1e9,
 };
@@ -14,9 +14,9 @@ pub use self::shared::{RelaxSpec, WaveSpec};
 
 pub use self::resolve::DEFAULT_DT_PER_TC;
 
-mod finite;
+pub mod finite;
 mod flat;
-mod grid;
+pub mod grid;
 mod issue;
 mod kind;
 mod name;
@@ -31,7 +31,7 @@ use std::path::Path;
 
 use self::grid::{canonical, get_path, grid_points, merge, point_count, set_path};
 use self::name::is_safe_name;
-use self::raw::{Grid, RawCampaign, RawScene};
+use self::raw::{RawCampaign, RawScene};
 
 /// Why a campaign file was refused.
 #[derive(Debug, thiserror::Error)]

@@ -7,5 +7,5 @@ pub use self::two_body::{
 };
 
 mod chain;
-mod special;
+pub mod special;
 mod two_body;

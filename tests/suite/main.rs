@@ -1,7 +1,9 @@
 //! The integration tests, one module per area, in one test binary: each binary links the whole
 //! dependency tree (polars, tera, faer, ...) again, so one binary builds in a fraction of the
 //! time of one per file. A module name filters one area (`cargo test --release --test suite
-//! faults::`); the pinned snapshots: `cargo test --release --test suite pinned`.
+//! faults::`); the pinned snapshots: `cargo test --release --test suite pinned`. `unit::` holds
+//! the tests of single functions, moved out of the library so that it is not compiled twice
+//! (once more as its own test binary); one file's: `cargo test --release --test suite unit::fem`.
 
 mod cluster;
 mod common;
@@ -17,4 +19,5 @@ mod nonlinear;
 mod physics;
 mod pipeline;
 mod relax;
+mod unit;
 mod waves;

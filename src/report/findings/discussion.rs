@@ -21,7 +21,7 @@ pub struct Paragraph {
 }
 
 /// The discussion's paragraphs that `e` has the runs for: the coursework's themes, from its
-/// evidence (square lattices relaxed by MD, [`Evidence::coursework`]).
+/// evidence (square lattices relaxed by MD, `Evidence::coursework`).
 pub fn discussion(e: &Evidence) -> Vec<Paragraph> {
     let e = &e.coursework();
     [linear_against_hertz(e), diagonals(e), damping(e), time_step(e)].into_iter().flatten().collect()

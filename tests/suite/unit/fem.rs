@@ -1,0 +1,134 @@
+//! Unit tests of `src/fem.rs`, moved out of the library (one test binary).
+
+use mdsolids::fem::{StaticSolution, Truss};
+use mdsolids::model::{Bonds, Linear};
+use mdsolids::sim::Load;
+
+/// A chain of springs k between a held node and a pulled one: the pulled end moves F/k per
+/// spring, u_end = n F / k (series springs).
+#[test]
+fn chain_in_series() {
+    let mut bonds = Bonds::default();
+    let k = 3.0;
+    for i in 0..4 {
+        bonds.push(i, i + 1, 1.0, k);
+    }
+    let x: Vec<f64> = (0..5).map(|i| i as f64).collect();
+    let y = vec![0.0; 5];
+    let held_y: Vec<usize> = (0..5).collect();
+    let loads = [Load { particle: 4, fx: 2.0, fy: 0.0 }];
+    let truss = Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0], held_y: &held_y, loads: &loads, prescribed: &[] };
+    match truss.solve_linear() {
+        // Exact up to the 1e-12 regularisation and round-off.
+        StaticSolution::Displacements { ux, .. } => assert!((ux[4] - 4.0 * 2.0 / k).abs() < 1e-9, "{ux:?}"),
+        other => panic!("{other:?}"),
+    }
+}
+
+/// One square with both diagonals, bottom edge pinned, top nodes pulled up by F each. By
+/// symmetry the top nodes rise by u and move inwards by a (left node +a, right node −a).
+/// The diagonal from the opposite bottom corner stretches by (u − a)/√2 and pulls with
+/// k_d (u − a)/2 along each axis; the top spring shortens by 2a. Equilibrium of the top-left
+/// node: x: k_d (u − a)/2 = 2 k a, so a = k_d u/(4k + k_d); y: F = k u + k_d (u − a)/2, so
+/// F = u (k + 2 k k_d/(4k + k_d)).
+#[test]
+fn single_square_with_diagonals() {
+    let (k, kd, force) = (2.0, 0.8, 0.5);
+    let mut bonds = Bonds::default();
+    bonds.push(0, 1, 1.0, k); // bottom
+    bonds.push(2, 3, 1.0, k); // top
+    bonds.push(0, 2, 1.0, k); // left
+    bonds.push(1, 3, 1.0, k); // right
+    bonds.push(0, 3, 2f64.sqrt(), kd);
+    bonds.push(1, 2, 2f64.sqrt(), kd);
+    let (x, y) = ([0.0, 1.0, 0.0, 1.0], [0.0, 0.0, 1.0, 1.0]);
+    let loads = [Load { particle: 2, fx: 0.0, fy: force }, Load { particle: 3, fx: 0.0, fy: force }];
+    let truss = Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0, 1], held_y: &[0, 1], loads: &loads, prescribed: &[] };
+    match truss.solve_linear() {
+        StaticSolution::Displacements { ux, uy } => {
+            let u = force / (k + 2.0 * k * kd / (4.0 * k + kd));
+            let a = kd * u / (4.0 * k + kd);
+            // 1e-11: the 1e-12 regularisation shifts the answer by ~1e-12 relative.
+            assert!((uy[2] - u).abs() < 1e-11 && (uy[3] - u).abs() < 1e-11, "{uy:?} against {u}");
+            assert!((ux[2] - a).abs() < 1e-11 && (ux[3] + a).abs() < 1e-11, "{ux:?} against ±{a}");
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+/// A pre-stretched string of two springs (rest 0.9, length 1 each) between held ends,
+/// pushed sideways at the middle by F: it stiffens as it deflects. Exact: 2 s(r) v/r = F
+/// with r = √(1 + v²), s = k (r − 0.9). The linear answer (transverse stiffness 2 s₀/1 =
+/// 0.2) overshoots by ~20 %; Newton–Raphson must find the exact v.
+#[test]
+fn newton_raphson_follows_geometric_stiffening() {
+    let (k, force) = (1.0, 0.05);
+    let mut bonds = Bonds::default();
+    bonds.push(0, 1, 0.9, k);
+    bonds.push(1, 2, 0.9, k);
+    let (x, y) = ([0.0, 1.0, 2.0], [0.0, 0.0, 0.0]);
+    let loads = [Load { particle: 1, fx: 0.0, fy: force }];
+    let truss =
+        Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0, 1, 2], held_y: &[0, 2], loads: &loads, prescribed: &[] };
+    let out_of_balance = |v: f64| {
+        let r = (1.0 + v * v).sqrt();
+        2.0 * k * (r - 0.9) * v / r - force
+    };
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if out_of_balance(mid) > 0.0 { hi = mid } else { lo = mid }
+    }
+    let exact = 0.5 * (lo + hi);
+    let linear = match truss.solve_linear() {
+        StaticSolution::Displacements { uy, .. } => uy[1],
+        other => panic!("{other:?}"),
+    };
+    assert!((linear - force / 0.2).abs() < 1e-9 && (linear - exact).abs() > 0.01, "linear {linear}, exact {exact}");
+    match truss.solve_nonlinear(&Linear, 0.0, None) {
+        // Converged to ‖R‖ ≤ 1e-10 ‖f‖; the tangent ≈ 0.4 turns that into ~1e-11 in v.
+        Some(StaticSolution::Displacements { uy, .. }) => {
+            assert!((uy[1] - exact).abs() < 1e-9, "{} against {exact}", uy[1])
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+/// Four Hertz springs (s = C δ^{3/2}) in series pulled by F: each stretches by
+/// δ = (F/C)^{2/3}, and the tangent compliance is 4/s′(δ) with s′ = 1.5 C δ^{1/2}.
+#[test]
+fn hertz_chain_in_series_and_its_tangent() {
+    let (c, force) = (3.0, 0.02);
+    let hertz = mdsolids::model::PowerLaw { beta: 1.5 };
+    let mut bonds = Bonds::default();
+    for i in 0..4 {
+        bonds.push(i, i + 1, 1.0, c);
+    }
+    let x: Vec<f64> = (0..5).map(|i| i as f64).collect();
+    let (y, held_y) = (vec![0.0; 5], (0..5).collect::<Vec<usize>>());
+    let loads = [Load { particle: 4, fx: force, fy: 0.0 }];
+    let truss = Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0], held_y: &held_y, loads: &loads, prescribed: &[] };
+    let delta = (force / c).powf(1.0 / 1.5);
+    // Start deliberately off (at 3 δ): Newton must still converge.
+    let Some(StaticSolution::Displacements { ux, uy }) = truss.solve_nonlinear(&hertz, 3.0 * delta, None) else {
+        panic!("no static answer")
+    };
+    // Newton stops at ‖R‖ ≤ 1e-10 ‖f‖: relative 1e-9 on δ is ample.
+    assert!((ux[4] - 4.0 * delta).abs() < 1e-9 * delta, "{} against {}", ux[4], 4.0 * delta);
+    let (dx, _) = truss.tangent_response(&hertz, &ux, &uy).expect("a stretched chain has stiffness");
+    let compliance = 4.0 / (1.5 * c * delta.sqrt());
+    assert!((dx[4] / force - compliance).abs() < 1e-9 * compliance, "{} against {compliance}", dx[4] / force);
+}
+
+/// The same square without diagonals, pushed sideways at the top: it folds (a mechanism).
+#[test]
+fn square_without_diagonals_shears_freely() {
+    let mut bonds = Bonds::default();
+    for (i, j) in [(0, 1), (2, 3), (0, 2), (1, 3)] {
+        bonds.push(i, j, 1.0, 1.0);
+    }
+    let (x, y) = ([0.0, 1.0, 0.0, 1.0], [0.0, 0.0, 1.0, 1.0]);
+    let loads = [Load { particle: 2, fx: 1.0, fy: 0.0 }];
+    let truss = Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0, 1], held_y: &[0, 1], loads: &loads, prescribed: &[] };
+    assert!(matches!(truss.solve_linear(), StaticSolution::Mechanism { .. }));
+}
