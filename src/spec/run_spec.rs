@@ -178,19 +178,22 @@ impl RunSpec {
     /// probes, plus ~3 ns per particle-step (the reference lattice runs at ~330 million
     /// particle-steps/s) and force evaluation, for the run and its reference run, if any; plus
     /// the stages around the loop: the ω_max estimate (≤ 1000 power iterations at ~7 ns per
-    /// bond, twice with bond dashpots; one pass beyond [`POWER_METHOD_BONDS`]), a loaded lattice's static solve (sparse Cholesky of a
-    /// 2D network, ~O(dofs^1.5): 2.5e-7 s · dofs^1.5, ~6 s for 200 × 200 nodes) and the movie's
-    /// GIF encoding (~0.2 µs per pixel and frame; faer and the GIF encoder are built without
-    /// optimisation, see Cargo.toml).
+    /// bond, twice with bond dashpots; one pass beyond [`POWER_METHOD_BONDS`]), a loaded
+    /// lattice's static solve (sparse Cholesky of a 2D network: 3.5e-7 s · dofs^1.33, fitted to
+    /// whole `relax.method: static` runs of 160² … 1000² nodes, 0.61 s … 81 s on one core), twice
+    /// over when k_min is found as well (a second factorisation at the static answer) and the
+    /// movie's GIF encoding (~0.2 µs per pixel and frame; faer and the GIF encoder are built
+    /// without optimisation, see Cargo.toml). A static-only run has no loop and no ω_max.
     pub fn estimated_seconds(&self) -> f64 {
         let evaluations = self.integrator.evaluations_per_step() as f64;
         // A reference run at dt/R takes R times as many steps.
         let runs = 1.0 + self.reference_refinement.map_or(0.0, f64::from);
-        let time_loop = runs * self.steps as f64 * (80e-9 + 3e-9 * evaluations * self.particles() as f64);
+        let stepped = if self.static_only() { 0.0 } else { 1.0 };
+        let time_loop = stepped * runs * self.steps as f64 * (80e-9 + 3e-9 * evaluations * self.particles() as f64);
         let eigenproblems = if self.gamma > 0.0 { 2.0 } else { 1.0 };
         let passes = if self.bonds() > POWER_METHOD_BONDS { 1.0 } else { 1000.0 };
-        let omega_max = eigenproblems * passes * 7e-9 * self.bonds() as f64;
-        let static_solve = 2.5e-7 * self.static_dofs().powf(1.5);
+        let omega_max = stepped * eigenproblems * passes * 7e-9 * self.bonds() as f64;
+        let static_solve = (1.0 + stepped) * 3.5e-7 * self.static_dofs().powf(1.33);
         let movie = self.movie.map_or(0.0, |m| 0.2e-6 * f64::from(m.frames) * f64::from(m.width) * f64::from(m.height));
         time_loop + omega_max + static_solve + movie
     }
@@ -226,8 +229,8 @@ impl RunSpec {
     ///   are recorded; 3 per particle per movie frame (and one per bond with bond strain); a
     ///   wave probe's at most 10⁵ entries of 7 numbers; a reference run holds its own copy;
     /// - the ω_max estimate: two lists of 5 numbers per bond and ~8 vectors over the particles;
-    /// - a loaded lattice's static solve: ~1200 bytes per bond (the stiffness entries twice,
-    ///   16 of 24 bytes per bond, and faer's sorted copy) and the Cholesky factor, whose fill
+    /// - a loaded lattice's static solve: ~800 bytes per bond (the stiffness entries, 16 of
+    ///   24 bytes per bond, and faer's sorted copy) and the Cholesky factor, whose fill
     ///   on a 2D network grows as dofs · log dofs: ~70 bytes · dofs · log₂ dofs (measured
     ///   ~1100 bytes per dof at 200 × 200 nodes);
     /// - the record: its thinned trace ([`crate::sim::stored_samples`]) in memory and as JSON
@@ -247,7 +250,7 @@ impl RunSpec {
         let time_loop = 8.0 * copies * (particles * (40.0 + 4.0 * 5.0) + samples * per_sample + frames + wave);
         let omega_max = 8.0 * (10.0 * bonds + 8.0 * particles);
         let dofs = self.static_dofs();
-        let static_solve = if dofs > 0.0 { 1200.0 * bonds + 70.0 * dofs * dofs.log2().max(1.0) } else { 0.0 };
+        let static_solve = if dofs > 0.0 { 800.0 * bonds + 70.0 * dofs * dofs.log2().max(1.0) } else { 0.0 };
         let numbers = self.stored_numbers_per_sample();
         let stored = samples.min(crate::sim::stored_samples(numbers) as f64) * numbers as f64;
         time_loop + omega_max + static_solve + (8.0 + 50.0) * stored

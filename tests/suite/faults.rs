@@ -208,7 +208,7 @@ fn a_campaign_killed_at_random_moments_reruns_to_the_uninterrupted_table() {
     let seed = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).unwrap().as_nanos() as u64;
     println!("kill times from seed {seed}");
     let mut rng = Lcg(seed);
-    let (trials, mut in_the_middle) = (20, 0);
+    let (trials, mut in_the_middle) = (12, 0);
     for trial in 0..trials {
         let reports = dir.path().join(format!("trial-{trial}"));
         // One to three kills in a row.
