@@ -63,12 +63,17 @@ pub fn estimate(spec: &RunSpec) -> Stability {
 #[derive(Debug, Default)]
 pub struct Estimates {
     /// The modes of each network, by [`network_key`].
-    pub modes: Mutex<HashMap<String, Modes>>,
+    modes: Mutex<HashMap<String, Modes>>,
     /// The stability limits measured, by integrator, test equation and run length.
     limits: Mutex<HashMap<LimitKey, f64>>,
 }
 
 impl Estimates {
+    /// How many networks' modes have been estimated so far.
+    pub fn networks(&self) -> usize {
+        self.modes.lock().expect("the cache is never poisoned").len()
+    }
+
     /// The stability of `spec` as it stands (its dt and steps final).
     pub fn stability(&self, spec: &RunSpec) -> Stability {
         Stability::at(self.modes(spec), spec.dt, spec.integrator, spec.steps, self)

@@ -32,7 +32,7 @@ fn planning_estimates_each_network_once() {
     for (law, networks) in [("", 3), ("    material: {law: hertz, contact: true}\n", 12)] {
         let yaml = format!("version: 1\nname: k\nscenes:\n  - name: p\n    kind: pair\n{law}{grid}");
         let plan = mdsolids::plan::parse("k.yaml", &yaml).unwrap();
-        let estimated = plan.estimates.modes.lock().unwrap().len();
+        let estimated = plan.estimates.networks();
         assert_eq!((plan.campaign.runs.len(), estimated), (12, networks), "{law}");
         for spec in &plan.campaign.runs {
             assert_eq!(plan.estimates.stability(spec), estimate(spec), "{}", spec.varied_label(|_| true));
