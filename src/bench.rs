@@ -12,9 +12,10 @@
 //!
 //! Either workload on another `lattice` type: the same springs k (k_d has no place there) on
 //! an N-row triangular, honeycomb or kagome network of N nodes per row (N + 1 rows for a kagome
-//! network at even N: its top and bottom rows must be full ones), through the bond-list
-//! loop (the stencil knows only the square grid). Pure: building and timing the scenes does
-//! no I/O.
+//! network at even N: its top and bottom rows must be full ones): the triangular one on the
+//! stencil (its rows staggered), the honeycomb and kagome through the bond-list loop (their
+//! rows are not full; `--bond-list` puts the triangular one there too). Pure: building and
+//! timing the scenes does no I/O.
 
 use serde::Serialize;
 
@@ -104,16 +105,44 @@ pub struct BenchResult {
 
 /// The reference lattice's springs.
 pub fn reference_lattice(n: usize) -> SquareLattice {
-    SquareLattice { nx: n, ny: n, spacing: 1.0, k_x: 1.0, k_y: 1.0, k_rising: 0.5, k_falling: 0.5, periodic_x: false }
+    SquareLattice {
+        nx: n,
+        ny: n,
+        spacing: 1.0,
+        k_x: 1.0,
+        k_y: 1.0,
+        k_rising: 0.5,
+        k_falling: 0.5,
+        periodic_x: false,
+        staggered: false,
+    }
 }
 
 /// The network of `lattice` as `config` asks: the stencil, the full bond list or a diluted one;
-/// of another type its bond list (springs `k`, spacing `spacing`, m), diluted if asked.
+/// the triangular lattice on the stencil too (rows staggered, springs `k_x` of length
+/// `spacing`, m), the other types as their bond list, diluted if asked.
 fn network(config: &BenchConfig, lattice: SquareLattice) -> Network {
+    if !config.bond_list && config.dilute == 0.0 {
+        let k = lattice.k_x;
+        match config.lattice {
+            LatticeType::Square => return Network::Lattice(lattice),
+            LatticeType::Triangular => {
+                let ny = config.rows();
+                return Network::Lattice(SquareLattice {
+                    ny,
+                    k_y: k,
+                    k_rising: k,
+                    k_falling: k,
+                    staggered: true,
+                    ..lattice
+                });
+            }
+            LatticeType::Honeycomb | LatticeType::Kagome => {}
+        }
+    }
     let bonds = match planar(config, lattice.spacing, lattice.k_x) {
         Some(planar) => planar.bonds(),
-        None if config.dilute > 0.0 || config.bond_list => lattice.bonds(),
-        None => return Network::Lattice(lattice),
+        None => lattice.bonds(),
     };
     if config.dilute > 0.0 {
         Network::Bonds(bonds.randomised(config.dilute, 0.0, 0x5eed, |_, _| false))
@@ -183,6 +212,7 @@ fn relax_scene(config: &BenchConfig) -> Scene {
         k_rising: 0.5 * k,
         k_falling: 0.5 * k,
         periodic_x: false,
+        staggered: false,
     };
     let mut particles = Particles::default();
     let layout = layout(config, spacing);

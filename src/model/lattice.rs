@@ -1,6 +1,8 @@
 //! The square lattice as a stencil: node (ix, iy) at index iy·nx + ix, and four bond families
-//! with one stiffness each. Regular lattices keep this compact form (no bond list: the force
-//! loop walks rows), irregular networks use [`Bonds`].
+//! with one stiffness each; the triangular lattice is the same stencil with its odd rows
+//! shifted by a/2 and one diagonal family between each pair of rows (`staggered`). Regular
+//! lattices keep this compact form (no bond list: the force loop walks rows), irregular
+//! networks use [`Bonds`].
 
 use super::bonds::Bonds;
 
@@ -8,6 +10,12 @@ use super::bonds::Bonds;
 /// `k_x` to the right neighbour and `k_y` to the upper one (rest a), `k_rising` across
 /// (ix, iy)–(ix+1, iy+1) and `k_falling` across (ix+1, iy)–(ix, iy+1) (rest a√2).
 /// An n × 1 lattice is the linear chain.
+///
+/// `staggered`: the triangular lattice of spacing a, node (ix, iy) at ((ix + (iy mod 2)/2) a,
+/// iy a√3/2) as `model::planar` lays it out. Node (ix, iy) of an even row meets (ix, iy+1) and
+/// (ix−1, iy+1) above it, of an odd row (ix, iy+1) and (ix+1, iy+1): the "vertical" family and,
+/// between rows iy and iy+1, only the falling diagonals (iy even) or only the rising ones
+/// (iy odd), every bond of rest length a ([`SquareLattice::diagonals_above`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SquareLattice {
     /// Nodes per row.
@@ -27,9 +35,28 @@ pub struct SquareLattice {
     /// Bonds wrap across the left and right sides (period nx · a), as if the lattice were a
     /// strip of an infinite one; needs nx ≥ 3.
     pub periodic_x: bool,
+    /// The triangular lattice (type docs): rows shifted alternately, one diagonal family per
+    /// pair of rows, all rests a.
+    pub staggered: bool,
 }
 
 impl SquareLattice {
+    /// The chain of `nodes` particles joined by springs `k` of rest length `spacing`: an
+    /// `nodes × 1` lattice.
+    pub fn chain(nodes: usize, spacing: f64, k: f64) -> SquareLattice {
+        SquareLattice {
+            nx: nodes,
+            ny: 1,
+            spacing,
+            k_x: k,
+            k_y: 0.0,
+            k_rising: 0.0,
+            k_falling: 0.0,
+            periodic_x: false,
+            staggered: false,
+        }
+    }
+
     /// Index of node (ix, iy).
     pub fn node(&self, ix: usize, iy: usize) -> usize {
         iy * self.nx + ix
@@ -45,9 +72,20 @@ impl SquareLattice {
         self.len() == 0
     }
 
-    /// Rest length of the diagonals, a√2 (m).
+    /// Rest length of the diagonals, a√2 (m); a for the staggered (triangular) lattice.
     pub fn diagonal_rest(&self) -> f64 {
-        self.spacing * std::f64::consts::SQRT_2
+        if self.staggered { self.spacing } else { self.spacing * std::f64::consts::SQRT_2 }
+    }
+
+    /// Stiffness (rising, falling) of the diagonals between rows `iy` and `iy + 1`: both
+    /// families on the square lattice, one of them, the other 0, on the staggered one.
+    #[inline(always)]
+    pub fn diagonals_above(&self, iy: usize) -> (f64, f64) {
+        match (self.staggered, iy % 2) {
+            (false, _) => (self.k_rising, self.k_falling),
+            (true, 0) => (0.0, self.k_falling),
+            (true, _) => (self.k_rising, 0.0),
+        }
     }
 
     /// Period along x, nx · a (m), of a periodic lattice.
@@ -60,9 +98,13 @@ impl SquareLattice {
         let (nx, ny) = (self.nx, self.ny);
         let present = |k: f64| usize::from(k != 0.0);
         let columns = if self.periodic_x { nx } else { nx.saturating_sub(1) };
-        present(self.k_x) * ny * columns
-            + present(self.k_y) * nx * ny.saturating_sub(1)
-            + (present(self.k_rising) + present(self.k_falling)) * columns * ny.saturating_sub(1)
+        let diagonals: usize = (0..ny.saturating_sub(1))
+            .map(|iy| {
+                let (rising, falling) = self.diagonals_above(iy);
+                present(rising) + present(falling)
+            })
+            .sum();
+        present(self.k_x) * ny * columns + present(self.k_y) * nx * ny.saturating_sub(1) + diagonals * columns
     }
 
     /// Calls `visit(i, j, rest, k, shift_x)` for every bond, in node order; the bond's
@@ -74,6 +116,7 @@ impl SquareLattice {
             for ix in 0..self.nx {
                 let here = self.node(ix, iy);
                 let up = iy + 1 < self.ny;
+                let (k_rising, k_falling) = self.diagonals_above(iy);
                 if ix >= columns {
                     continue;
                 }
@@ -82,11 +125,11 @@ impl SquareLattice {
                 if self.k_x != 0.0 {
                     visit(here, self.node(right, iy), a, self.k_x, shift);
                 }
-                if up && self.k_rising != 0.0 {
-                    visit(here, self.node(right, iy + 1), d, self.k_rising, shift);
+                if up && k_rising != 0.0 {
+                    visit(here, self.node(right, iy + 1), d, k_rising, shift);
                 }
-                if up && self.k_falling != 0.0 {
-                    visit(self.node(right, iy), self.node(ix, iy + 1), d, self.k_falling, -shift);
+                if up && k_falling != 0.0 {
+                    visit(self.node(right, iy), self.node(ix, iy + 1), d, k_falling, -shift);
                 }
             }
             if iy + 1 < self.ny && self.k_y != 0.0 {

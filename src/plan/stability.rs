@@ -509,16 +509,7 @@ pub fn test_problem(test: TestEquation) -> (State, TestField) {
     let mut particles = Particles::default();
     particles.push(0.0, 0.0, 1.0, Axes::FIXED);
     particles.push(1.0, 0.0, 1.0, Axes::ONLY_X_MOVES);
-    let lattice = SquareLattice {
-        nx: 2,
-        ny: 1,
-        spacing: 1.0,
-        k_x: k,
-        k_y: 0.0,
-        k_rising: 0.0,
-        k_falling: 0.0,
-        periodic_x: false,
-    };
+    let lattice = SquareLattice::chain(2, 1.0, k);
     let field = if gamma > 0.0 {
         let spring = Spring::<Linear, BondDashpot, false> { law: Linear, dashpot: BondDashpot { gamma } };
         TestField::Damped(LatticeNetwork::new(spring, lattice, background))

@@ -1,4 +1,5 @@
-//! The force loop of a regular square lattice, row by row without a bond list.
+//! The force loop of a regular square (or triangular: staggered) lattice, row by row without
+//! a bond list.
 //!
 //! Bonds between two rows (vertical and both diagonals) join element t of one row slice to
 //! element t of another, so each loop writes distinct elements and vectorises (sqrt and
@@ -159,11 +160,12 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> LatticeNetwork<L, D, CONTACT>
         fy[nx - 1] -= hy[nx - 2];
     }
 
-    /// Vertical and diagonal bonds between row `a` (below) and row `b` (above); their
-    /// dissipated power into their families' rows of `loss`.
+    /// Vertical and diagonal bonds between row `a` (below, row number `lower`) and row `b`
+    /// (above); their dissipated power into their families' rows of `loss`.
     #[inline(always)]
     fn between_rows(
         &self,
+        lower: usize,
         a: Nodes,
         b: Nodes,
         fa: (&mut [f64], &mut [f64]),
@@ -174,20 +176,27 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> LatticeNetwork<L, D, CONTACT>
         let nx = l.nx;
         let (fax, fay) = fa;
         let (fbx, fby) = fb;
+        let (k_rising, k_falling) = l.diagonals_above(lower);
+        if D::ACTIVE && l.staggered {
+            // One diagonal family per pair of rows: the other one's row of `loss` still holds
+            // the power of the pair below, and every row is summed.
+            let absent = if k_rising == 0.0 { Family::Rising } else { Family::Falling };
+            family_row(loss, absent, nx).fill(0.0);
+        }
         if l.k_y != 0.0 {
             self.between(l.k_y, l.spacing, a, b, fax, fay, fbx, fby, family_row(loss, Family::Vertical, nx));
         }
-        if nx > 1 && l.k_rising != 0.0 {
+        if nx > 1 && k_rising != 0.0 {
             let (p, q) = (a.range(0..nx - 1), b.range(1..nx));
             let (fbx, fby) = (&mut fbx[1..], &mut fby[1..]);
             let loss = family_row(loss, Family::Rising, nx);
-            self.between(l.k_rising, l.diagonal_rest(), p, q, &mut fax[..nx - 1], &mut fay[..nx - 1], fbx, fby, loss);
+            self.between(k_rising, l.diagonal_rest(), p, q, &mut fax[..nx - 1], &mut fay[..nx - 1], fbx, fby, loss);
         }
-        if nx > 1 && l.k_falling != 0.0 {
+        if nx > 1 && k_falling != 0.0 {
             let (p, q) = (a.range(1..nx), b.range(0..nx - 1));
             let (fbx, fby) = (&mut fbx[..nx - 1], &mut fby[..nx - 1]);
             let loss = family_row(loss, Family::Falling, nx);
-            self.between(l.k_falling, l.diagonal_rest(), p, q, &mut fax[1..], &mut fay[1..], fbx, fby, loss);
+            self.between(k_falling, l.diagonal_rest(), p, q, &mut fax[1..], &mut fay[1..], fbx, fby, loss);
         }
     }
 
@@ -220,7 +229,7 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> LatticeNetwork<L, D, CONTACT>
             let span = r * nx..(r + 1) * nx;
             self.within_row(row(r), scratch, &mut fx[span.clone()], &mut fy[span]);
             if r > 0 {
-                self.rows_pair(row(r - 1), row(r), r * nx, fx, fy, scratch.loss);
+                self.rows_pair(first + r - 1, row(r - 1), row(r), r * nx, fx, fy, scratch.loss);
                 if fold && !self.joins_blocks(first + r - 1) {
                     self.damp_row(nodes, first + r - 1, first, fx, fy);
                 }
@@ -274,31 +283,43 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> LatticeNetwork<L, D, CONTACT>
             power += f.dissipation;
         };
         for iy in 0..l.ny {
+            let (k_rising, k_falling) = l.diagonals_above(iy);
             if l.k_x != 0.0 {
                 bond(l.node(last, iy), l.node(0, iy), l.k_x, l.spacing, -period);
             }
-            if iy + 1 < l.ny && l.k_rising != 0.0 {
-                bond(l.node(last, iy), l.node(0, iy + 1), l.k_rising, diagonal, -period);
+            if iy + 1 < l.ny && k_rising != 0.0 {
+                bond(l.node(last, iy), l.node(0, iy + 1), k_rising, diagonal, -period);
             }
-            if iy + 1 < l.ny && l.k_falling != 0.0 {
-                bond(l.node(0, iy), l.node(last, iy + 1), l.k_falling, diagonal, period);
+            if iy + 1 < l.ny && k_falling != 0.0 {
+                bond(l.node(0, iy), l.node(last, iy + 1), k_falling, diagonal, period);
             }
         }
         power
     }
 
-    /// Bonds between two consecutive rows whose forces are `fx[..split]` (last row of the
-    /// lower part) and `fx[split..]` (first row of the upper part); dissipated power into the
-    /// families' rows of `loss`.
-    fn rows_pair(&self, a: Nodes, b: Nodes, split: usize, fx: &mut [f64], fy: &mut [f64], loss: &mut [f64]) {
+    /// Bonds between two consecutive rows, `lower` and the one above, whose forces are
+    /// `fx[..split]` (last row of the lower part) and `fx[split..]` (first row of the upper
+    /// part); dissipated power into the families' rows of `loss`.
+    #[allow(clippy::too_many_arguments)] // the row number, both rows, the split and the outputs
+    fn rows_pair(
+        &self,
+        lower: usize,
+        a: Nodes,
+        b: Nodes,
+        split: usize,
+        fx: &mut [f64],
+        fy: &mut [f64],
+        loss: &mut [f64],
+    ) {
         let nx = self.lattice.nx;
         let (below_x, above_x) = fx.split_at_mut(split);
         let (below_y, above_y) = fy.split_at_mut(split);
-        let lower = split - nx..split;
+        let below = split - nx..split;
         self.between_rows(
+            lower,
             a,
             b,
-            (&mut below_x[lower.clone()], &mut below_y[lower]),
+            (&mut below_x[below.clone()], &mut below_y[below]),
             (&mut above_x[..nx], &mut above_y[..nx]),
             loss,
         );
@@ -320,7 +341,7 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> LatticeNetwork<L, D, CONTACT>
         let nx = self.lattice.nx;
         for upper in (BLOCK_ROWS..self.lattice.ny).step_by(BLOCK_ROWS) {
             let (a, b) = (nodes.range((upper - 1) * nx..upper * nx), nodes.range(upper * nx..(upper + 1) * nx));
-            self.rows_pair(a, b, upper * nx, fx, fy, loss);
+            self.rows_pair(upper - 1, a, b, upper * nx, fx, fy, loss);
             if fold {
                 self.damp_row(nodes, upper - 1, 0, fx, fy);
                 self.damp_row(nodes, upper, 0, fx, fy);

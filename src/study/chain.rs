@@ -5,9 +5,9 @@
 use serde::{Deserialize, Serialize};
 
 use super::columns::{Block, Column, Slot};
-use super::common::{relaxation, row, scene, sound_speed};
+use super::common::{relaxation, scene, sound_speed};
 use crate::measure::normal_mode_error;
-use crate::model::{Axes, Particles};
+use crate::model::{Axes, Particles, SquareLattice};
 use crate::sim::{Network, Outcome, Scene};
 use crate::spec::{ChainRun, RunSpec};
 
@@ -62,7 +62,7 @@ pub(super) fn build(spec: &RunSpec, chain: &ChainRun) -> Scene {
         particles.push(x, 0.0, spec.mass, fixed);
     }
     particles.vx[chain.node] = spec.v0;
-    let network = Network::Lattice(row(n + 2, spec.spacing, spec.k));
+    let network = Network::Lattice(SquareLattice::chain(n + 2, spec.spacing, spec.k));
     let mut scene = scene(spec, particles, network, None);
     // The residual force is relative to the equilibrium spring force s(ΔW/(n + 1)).
     scene.sampling.relaxation = relaxation(spec, Some(equilibrium(spec, chain).1.abs()), relaxing(chain).0);

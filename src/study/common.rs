@@ -1,7 +1,7 @@
 //! What every kind's study builds from: the scene's common parts, the relaxation criterion,
 //! the linear sound speed, and why a run stopped before its time loop.
 
-use crate::model::{Particles, SquareLattice};
+use crate::model::Particles;
 use crate::sim::{Network, Relaxation, Sampling, Scene};
 use crate::spec::RunSpec;
 
@@ -55,12 +55,6 @@ pub(super) fn scene(
         load_ramp: 0.0,
         drive: None,
     }
-}
-
-/// The chain of `nodes` particles joined by springs `k` of rest length `spacing`: an
-/// `nodes × 1` lattice.
-pub(super) fn row(nodes: usize, spacing: f64, k: f64) -> SquareLattice {
-    SquareLattice { nx: nodes, ny: 1, spacing, k_x: k, k_y: 0.0, k_rising: 0.0, k_falling: 0.0, periodic_x: false }
 }
 
 /// Checks (one t_c apart) that the relaxation criterion must pass in a row: 2N + 1 for the

@@ -13,7 +13,7 @@ use crate::measure::{
     LatticeShape, anisotropic_moduli, constrained_modulus_y, displacement_error_allowed, homogeneity,
     lattice_constants, modulus_error_bound, network_constants, row_extension, shear_modulus, tensile_moduli,
 };
-use crate::model::{Axes, Bonds, Edges, ForceLaw, LawVisitor, Layout, Particles, SquareLattice};
+use crate::model::{Axes, Bonds, Edges, ForceLaw, LatticeType, LawVisitor, Layout, Particles, SquareLattice};
 use crate::sim::{Drive, Load, Network, Outcome, ProbeTrace, Scene, Trace};
 use crate::spec::{Control, Diagonals, LatticeSpec, LoadCase, ProbeLine, RunSpec, Supports, reference_extension};
 
@@ -121,10 +121,11 @@ impl EdgeDisplacements {
     }
 }
 
-/// A lattice at rest on its supports (the square one's node (ix, iy) at (ix a, iy a)); a
-/// random square lattice, and every other type, as an irregular network (the stencil only
-/// knows whole bond families of the square grid). An impulse lattice is kicked (or its top
-/// row stepped): no load case, drive or relaxation.
+/// A lattice at rest on its supports (the square one's node (ix, iy) at (ix a, iy a)); the
+/// regular square and triangular lattices as a stencil, a random lattice, a turned one and
+/// the honeycomb and kagome as an irregular network (the stencil only knows whole bond
+/// families of a grid of full rows). An impulse lattice is kicked (or its top row stepped):
+/// no load case, drive or relaxation.
 pub(super) fn build(spec: &RunSpec, l: &LatticeSpec) -> Scene {
     let layout = l.layout(spec.spacing);
     let mut particles = Particles::default();
@@ -136,7 +137,8 @@ pub(super) fn build(spec: &RunSpec, l: &LatticeSpec) -> Scene {
         particles.vx[impulse.node] = impulse.vx;
         particles.vy[impulse.node] = impulse.vy;
     }
-    let stencil = l.lattice_type.is_square() && !l.is_random();
+    let stencil =
+        !l.is_random() && (l.lattice_type.is_square() || (l.lattice_type == LatticeType::Triangular && !l.rotated));
     let network = if stencil { Network::Lattice(springs(spec, l)) } else { Network::Bonds(bonds(spec, l)) };
     let mut scene = scene(spec, particles, network, None);
     // The residual force is relative to the load per node; a velocity-driven lattice's is
@@ -152,11 +154,12 @@ pub(super) fn build(spec: &RunSpec, l: &LatticeSpec) -> Scene {
     scene
 }
 
-/// The springs of a lattice scene: k_x along rows, k_y along columns, k_d across the
-/// diagonals it has.
+/// The springs of a lattice scene as a stencil: the square lattice's k_x along rows, k_y
+/// along columns, k_d across the diagonals it has; the triangular lattice's k on every bond,
+/// its rows staggered (as `model::planar` lays them out and bonds them).
 fn springs(spec: &RunSpec, l: &LatticeSpec) -> SquareLattice {
     let (k_rising, k_falling) = l.diagonal_stiffness();
-    SquareLattice {
+    let square = SquareLattice {
         nx: l.nx,
         ny: l.ny,
         spacing: spec.spacing,
@@ -165,6 +168,14 @@ fn springs(spec: &RunSpec, l: &LatticeSpec) -> SquareLattice {
         k_rising,
         k_falling,
         periodic_x: l.supports == Supports::PeriodicX,
+        staggered: false,
+    };
+    match l.lattice_type {
+        LatticeType::Triangular => {
+            let k = l.k_x;
+            SquareLattice { k_y: k, k_rising: k, k_falling: k, staggered: true, ..square }
+        }
+        _ => square,
     }
 }
 

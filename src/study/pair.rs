@@ -4,10 +4,10 @@
 use serde::{Deserialize, Serialize};
 
 use super::columns::{Block, Column, Slot};
-use super::common::{row, scene};
+use super::common::scene;
 use crate::measure::{contact_timing, relative_error};
 use crate::model::LawSpec;
-use crate::model::{Axes, Particles};
+use crate::model::{Axes, Particles, SquareLattice};
 use crate::sim::{Network, Outcome, Scene};
 use crate::spec::{PairRun, RunSpec};
 use crate::theory;
@@ -33,7 +33,7 @@ pub(super) fn build(spec: &RunSpec, pair: &PairRun) -> Scene {
     let right = particles.push(spec.spacing + pair.gap.unwrap_or(0.0), 0.0, spec.mass, Axes::ONLY_X_MOVES);
     particles.vx[left] = 0.5 * spec.v0;
     particles.vx[right] = -0.5 * spec.v0;
-    let network = Network::Lattice(row(2, spec.spacing, spec.k));
+    let network = Network::Lattice(SquareLattice::chain(2, spec.spacing, spec.k));
     scene(spec, particles, network, Some((left, right, spec.spacing)))
 }
 

@@ -64,8 +64,21 @@ fn jitter(seed: u64) -> f64 {
 /// An nx × ny lattice with diagonals, every node displaced by up to 5 % of a spacing and
 /// moving, so that every bond is stretched or compressed; `supports` holds the bottom row
 /// vertically and the bottom-left node in both directions (the coursework's supports).
-fn setup(nx: usize, ny: usize, supports: bool, periodic_x: bool) -> (Particles, SquareLattice) {
-    let lattice = SquareLattice { nx, ny, spacing: 1.0, k_x: 1.0, k_y: 1.3, k_rising: 0.5, k_falling: 0.4, periodic_x };
+/// `staggered`: the triangular lattice instead, odd rows shifted by half a spacing and rows
+/// √3/2 apart.
+fn setup(nx: usize, ny: usize, supports: bool, periodic_x: bool, staggered: bool) -> (Particles, SquareLattice) {
+    let lattice = SquareLattice {
+        nx,
+        ny,
+        spacing: 1.0,
+        k_x: 1.0,
+        k_y: 1.3,
+        k_rising: 0.5,
+        k_falling: 0.4,
+        periodic_x,
+        staggered,
+    };
+    let (shift, pitch) = if staggered { (0.5, 3.0_f64.sqrt() / 2.0) } else { (0.0, 1.0) };
     let mut particles = Particles::default();
     for iy in 0..ny {
         for ix in 0..nx {
@@ -76,7 +89,8 @@ fn setup(nx: usize, ny: usize, supports: bool, periodic_x: bool) -> (Particles, 
             };
             let p = lattice.node(ix, iy) as u64;
             let mass = 1.0 + 0.5 * jitter(4 * p + 3).abs();
-            let i = particles.push(ix as f64 + 0.05 * jitter(4 * p), iy as f64 + 0.05 * jitter(4 * p + 1), mass, fixed);
+            let (x, y) = (ix as f64 + shift * (iy % 2) as f64, iy as f64 * pitch);
+            let i = particles.push(x + 0.05 * jitter(4 * p), y + 0.05 * jitter(4 * p + 1), mass, fixed);
             particles.vx[i] = 0.02 * jitter(4 * p + 2);
             particles.vy[i] = if fixed.y { 0.0 } else { 0.02 * jitter(4 * p + 5) };
             if fixed.x {
@@ -120,6 +134,7 @@ fn compare(fast: &State, slow: &State, start: &Particles) -> (f64, f64) {
     (difference / position, difference / displacement)
 }
 
+/// One case of the table below, on the square lattice or, `staggered`, the triangular one.
 #[allow(clippy::too_many_arguments)] // one case of the table below
 fn check<L: ForceLaw, D: Dashpot, const C: bool>(
     name: &str,
@@ -130,8 +145,9 @@ fn check<L: ForceLaw, D: Dashpot, const C: bool>(
     integrator: IntegratorKind,
     (nx, ny, supports, periodic_x): (usize, usize, bool, bool),
     dilute: f64,
+    staggered: bool,
 ) {
-    let (particles, lattice) = setup(nx, ny, supports, periodic_x);
+    let (particles, lattice) = setup(nx, ny, supports, periodic_x, staggered);
     let bonds = if dilute > 0.0 { lattice.bonds().randomised(dilute, 0.0, 7, |_, _| false) } else { lattice.bonds() };
     let network = if dilute > 0.0 { Network::Bonds(bonds.clone()) } else { Network::Lattice(lattice) };
     let scene = Scene::new(particles.clone(), network, law, sampling())
@@ -148,6 +164,14 @@ fn check<L: ForceLaw, D: Dashpot, const C: bool>(
     // Störmer form gathers round-off). Against the displacements (~0.5 m) that is up to 5e-11;
     // any real difference in a force would be of the order of the displacement itself.
     let (to_position, to_displacement) = compare(&fast, &slow, &particles);
+    // The energy dissipated, summed in another order: round-off of the sum, ~1e-13 of it.
+    let dissipated = (fast.dissipated - slow.dissipated).abs() / slow.dissipated.abs().max(f64::MIN_POSITIVE);
+    assert!(
+        slow.dissipated == 0.0 && fast.dissipated == 0.0 || dissipated < 1e-9,
+        "{name}: dissipated {:e} J on the fast path, {:e} J on the reference",
+        fast.dissipated,
+        slow.dissipated
+    );
     assert!(to_position < 1e-12, "{name}: fast path differs from the reference by {to_position:e} of the positions");
     assert!(
         to_displacement < 1e-9,
@@ -166,18 +190,38 @@ const PERIODIC_LARGE: (usize, usize, bool, bool) = (120, 90, true, true);
 fn linear_lattice() {
     let spring = Spring::<Linear, NoDashpot, false> { law: Linear, dashpot: NoDashpot };
     for size in [SMALL, LARGE] {
-        check("linear", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, size, 0.0);
+        check("linear", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, size, 0.0, false);
     }
-    check("linear, position Verlet", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::PositionVerlet, LARGE, 0.0);
+    check(
+        "linear, position Verlet",
+        spring,
+        LawSpec::Linear,
+        0.0,
+        0.0,
+        IntegratorKind::PositionVerlet,
+        LARGE,
+        0.0,
+        false,
+    );
 }
 
 #[test]
 fn hertz_lattice_bonded_and_contact() {
     let law = PowerLaw { beta: 1.5 };
     let bonded = Spring::<PowerLaw, NoDashpot, false> { law, dashpot: NoDashpot };
-    check("hertz", bonded, LawSpec::Power { beta: 1.5 }, 0.0, 0.0, IntegratorKind::VelocityVerlet, LARGE, 0.0);
+    check("hertz", bonded, LawSpec::Power { beta: 1.5 }, 0.0, 0.0, IntegratorKind::VelocityVerlet, LARGE, 0.0, false);
     let contact = Spring::<PowerLaw, NoDashpot, true> { law, dashpot: NoDashpot };
-    check("hertz contact", contact, LawSpec::Power { beta: 1.5 }, 0.0, 0.0, IntegratorKind::VelocityVerlet, SMALL, 0.0);
+    check(
+        "hertz contact",
+        contact,
+        LawSpec::Power { beta: 1.5 },
+        0.0,
+        0.0,
+        IntegratorKind::VelocityVerlet,
+        SMALL,
+        0.0,
+        false,
+    );
 }
 
 #[test]
@@ -186,7 +230,7 @@ fn damped_lattice() {
     // SUPPORTED has several blocks of rows below the parallel threshold: one thread sums the
     // background power row by row and damps each row once its last bond is in.
     for size in [SMALL, SUPPORTED, LARGE] {
-        check("damped", spring, LawSpec::Linear, 0.05, 0.01, IntegratorKind::VelocityVerlet, size, 0.0);
+        check("damped", spring, LawSpec::Linear, 0.05, 0.01, IntegratorKind::VelocityVerlet, size, 0.0, false);
     }
     for size in [SMALL, SUPPORTED] {
         check(
@@ -198,6 +242,7 @@ fn damped_lattice() {
             IntegratorKind::PositionVerlet,
             size,
             0.0,
+            false,
         );
     }
 }
@@ -205,7 +250,7 @@ fn damped_lattice() {
 #[test]
 fn constrained_lattice() {
     let spring = Spring::<Linear, NoDashpot, false> { law: Linear, dashpot: NoDashpot };
-    check("supported", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, SUPPORTED, 0.0);
+    check("supported", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, SUPPORTED, 0.0, false);
     check(
         "supported, position Verlet",
         spring,
@@ -215,6 +260,7 @@ fn constrained_lattice() {
         IntegratorKind::PositionVerlet,
         SUPPORTED,
         0.0,
+        false,
     );
 }
 
@@ -222,17 +268,63 @@ fn constrained_lattice() {
 fn periodic_lattice() {
     let spring = Spring::<Linear, BondDashpot, false> { law: Linear, dashpot: BondDashpot { gamma: 0.05 } };
     for size in [PERIODIC_SMALL, PERIODIC_LARGE] {
-        check("periodic", spring, LawSpec::Linear, 0.05, 0.0, IntegratorKind::VelocityVerlet, size, 0.0);
+        check("periodic", spring, LawSpec::Linear, 0.05, 0.0, IntegratorKind::VelocityVerlet, size, 0.0, false);
     }
     // The bond-list path keeps the wrapped bonds (with their shift) in a list of their own.
-    check("periodic, diluted", spring, LawSpec::Linear, 0.05, 0.0, IntegratorKind::VelocityVerlet, PERIODIC_LARGE, 0.1);
+    check(
+        "periodic, diluted",
+        spring,
+        LawSpec::Linear,
+        0.05,
+        0.0,
+        IntegratorKind::VelocityVerlet,
+        PERIODIC_LARGE,
+        0.1,
+        false,
+    );
+}
+
+/// The triangular lattice on the stencil (rows staggered, one diagonal family between each
+/// pair of rows) against the bond list of the same springs: free, supported and periodic,
+/// linear and damped, threaded (LARGE) and not.
+#[test]
+fn triangular_lattice_stencil() {
+    let spring = Spring::<Linear, NoDashpot, false> { law: Linear, dashpot: NoDashpot };
+    let damped = Spring::<Linear, BondDashpot, false> { law: Linear, dashpot: BondDashpot { gamma: 0.05 } };
+    for size in [SMALL, LARGE, SUPPORTED] {
+        check("triangular", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, size, 0.0, true);
+        check(
+            "triangular damped",
+            damped,
+            LawSpec::Linear,
+            0.05,
+            0.01,
+            IntegratorKind::VelocityVerlet,
+            size,
+            0.0,
+            true,
+        );
+    }
+    for size in [PERIODIC_SMALL, PERIODIC_LARGE] {
+        check(
+            "triangular periodic",
+            damped,
+            LawSpec::Linear,
+            0.05,
+            0.0,
+            IntegratorKind::VelocityVerlet,
+            size,
+            0.0,
+            true,
+        );
+    }
 }
 
 #[test]
 fn diluted_network_bond_list() {
     let spring = Spring::<Linear, NoDashpot, false> { law: Linear, dashpot: NoDashpot };
     for size in [SMALL, LARGE] {
-        check("diluted", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, size, 0.15);
+        check("diluted", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, size, 0.15, false);
     }
     let damped =
         Spring::<PowerLaw, BondDashpot, false> { law: PowerLaw { beta: 1.5 }, dashpot: BondDashpot { gamma: 0.05 } };
@@ -245,5 +337,6 @@ fn diluted_network_bond_list() {
         IntegratorKind::VelocityVerlet,
         LARGE,
         0.15,
+        false,
     );
 }

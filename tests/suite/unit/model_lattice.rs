@@ -3,7 +3,17 @@
 use mdsolids::model::SquareLattice;
 
 fn lattice(nx: usize, ny: usize, k_diag: f64) -> SquareLattice {
-    SquareLattice { nx, ny, spacing: 0.1, k_x: 3.0, k_y: 3.0, k_rising: k_diag, k_falling: k_diag, periodic_x: false }
+    SquareLattice {
+        nx,
+        ny,
+        spacing: 0.1,
+        k_x: 3.0,
+        k_y: 3.0,
+        k_rising: k_diag,
+        k_falling: k_diag,
+        periodic_x: false,
+        staggered: false,
+    }
 }
 
 #[test]
@@ -38,4 +48,40 @@ fn wrapped_bonds_have_their_rest_length() {
         let r = ((xi - xj + shift).powi(2) + (yi - yj).powi(2)).sqrt();
         assert!((r - rest).abs() < 1e-12, "bond {i}–{j}: {r} against rest {rest}");
     });
+}
+
+/// The staggered stencil is the triangular lattice `model::planar` builds on its own: the same
+/// springs (ends, rest a, k, and the period across a periodic side), free and periodic, at even
+/// and odd row counts; and its count is that of its list.
+#[test]
+fn the_staggered_stencil_is_the_triangular_lattice() {
+    use mdsolids::model::{Bonds, LatticeType, PlanarLattice};
+    let springs = |bonds: &Bonds| {
+        let mut list: Vec<(usize, usize, u64, u64, i64)> = (0..bonds.len())
+            .map(|b| {
+                let (i, j, shift) = (bonds.i[b], bonds.j[b], bonds.shift_x[b]);
+                // One orientation: from the lower index, the shift turning with the bond.
+                let (low, high, shift) = if i < j { (i, j, shift) } else { (j, i, -shift) };
+                (low, high, bonds.rest[b].to_bits(), bonds.stiffness[b].to_bits(), shift.round() as i64)
+            })
+            .collect();
+        list.sort_unstable();
+        list
+    };
+    for (nx, ny, periodic_x) in [(5, 4, false), (6, 5, false), (6, 4, true), (5, 5, true)] {
+        let stencil = SquareLattice {
+            nx,
+            ny,
+            spacing: 1.0,
+            k_x: 2.0,
+            k_y: 2.0,
+            k_rising: 2.0,
+            k_falling: 2.0,
+            periodic_x,
+            staggered: true,
+        };
+        let planar = PlanarLattice { kind: LatticeType::Triangular, nx, ny, spacing: 1.0, k: 2.0, periodic_x };
+        assert_eq!(springs(&stencil.bonds()), springs(&planar.bonds()), "{nx} x {ny}, periodic {periodic_x}");
+        assert_eq!(stencil.bond_count(), stencil.bonds().len());
+    }
 }
