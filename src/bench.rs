@@ -123,19 +123,11 @@ pub fn reference_lattice(n: usize) -> SquareLattice {
 /// `spacing`, m), the other types as their bond list, diluted if asked.
 fn network(config: &BenchConfig, lattice: SquareLattice) -> Network {
     if !config.bond_list && config.dilute == 0.0 {
-        let k = lattice.k_x;
         match config.lattice {
             LatticeType::Square => return Network::Lattice(lattice),
             LatticeType::Triangular => {
-                let ny = config.rows();
-                return Network::Lattice(SquareLattice {
-                    ny,
-                    k_y: k,
-                    k_rising: k,
-                    k_falling: k,
-                    staggered: true,
-                    ..lattice
-                });
+                let (n, spacing, k) = (lattice.nx, lattice.spacing, lattice.k_x);
+                return Network::Lattice(SquareLattice::triangular(n, config.rows(), spacing, k, false));
             }
             LatticeType::Honeycomb | LatticeType::Kagome => {}
         }

@@ -57,6 +57,12 @@ impl SquareLattice {
         }
     }
 
+    /// The triangular lattice of `nx` × `ny` nodes, springs `k` of rest length `spacing` on
+    /// every bond, as the staggered stencil (type docs).
+    pub fn triangular(nx: usize, ny: usize, spacing: f64, k: f64, periodic_x: bool) -> SquareLattice {
+        SquareLattice { nx, ny, spacing, k_x: k, k_y: k, k_rising: k, k_falling: k, periodic_x, staggered: true }
+    }
+
     /// Index of node (ix, iy).
     pub fn node(&self, ix: usize, iy: usize) -> usize {
         iy * self.nx + ix
@@ -113,10 +119,10 @@ impl SquareLattice {
         let (a, d) = (self.spacing, self.diagonal_rest());
         let columns = if self.periodic_x { self.nx } else { self.nx - 1 };
         for iy in 0..self.ny {
+            let (k_rising, k_falling) = self.diagonals_above(iy);
             for ix in 0..self.nx {
                 let here = self.node(ix, iy);
                 let up = iy + 1 < self.ny;
-                let (k_rising, k_falling) = self.diagonals_above(iy);
                 if ix >= columns {
                     continue;
                 }

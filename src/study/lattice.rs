@@ -158,8 +158,12 @@ pub(super) fn build(spec: &RunSpec, l: &LatticeSpec) -> Scene {
 /// along columns, k_d across the diagonals it has; the triangular lattice's k on every bond,
 /// its rows staggered (as `model::planar` lays them out and bonds them).
 fn springs(spec: &RunSpec, l: &LatticeSpec) -> SquareLattice {
+    let periodic_x = l.supports == Supports::PeriodicX;
+    if l.lattice_type == LatticeType::Triangular {
+        return SquareLattice::triangular(l.nx, l.ny, spec.spacing, l.k_x, periodic_x);
+    }
     let (k_rising, k_falling) = l.diagonal_stiffness();
-    let square = SquareLattice {
+    SquareLattice {
         nx: l.nx,
         ny: l.ny,
         spacing: spec.spacing,
@@ -167,15 +171,8 @@ fn springs(spec: &RunSpec, l: &LatticeSpec) -> SquareLattice {
         k_y: l.k_y,
         k_rising,
         k_falling,
-        periodic_x: l.supports == Supports::PeriodicX,
+        periodic_x,
         staggered: false,
-    };
-    match l.lattice_type {
-        LatticeType::Triangular => {
-            let k = l.k_x;
-            SquareLattice { k_y: k, k_rising: k, k_falling: k, staggered: true, ..square }
-        }
-        _ => square,
     }
 }
 

@@ -69,17 +69,7 @@ fn the_staggered_stencil_is_the_triangular_lattice() {
         list
     };
     for (nx, ny, periodic_x) in [(5, 4, false), (6, 5, false), (6, 4, true), (5, 5, true)] {
-        let stencil = SquareLattice {
-            nx,
-            ny,
-            spacing: 1.0,
-            k_x: 2.0,
-            k_y: 2.0,
-            k_rising: 2.0,
-            k_falling: 2.0,
-            periodic_x,
-            staggered: true,
-        };
+        let stencil = SquareLattice::triangular(nx, ny, 1.0, 2.0, periodic_x);
         let planar = PlanarLattice { kind: LatticeType::Triangular, nx, ny, spacing: 1.0, k: 2.0, periodic_x };
         assert_eq!(springs(&stencil.bonds()), springs(&planar.bonds()), "{nx} x {ny}, periodic {periodic_x}");
         assert_eq!(stencil.bond_count(), stencil.bonds().len());
