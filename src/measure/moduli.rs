@@ -295,3 +295,27 @@ pub fn network_constants(kind: LatticeType, k: f64, spacing: f64) -> Option<Isot
     };
     Some(IsotropicConstants { lambda, mu, area_per_node: kind.area_per_node(spacing) })
 }
+
+/// Speeds (m/s) of the plane waves that run down a lattice of another type than square, along
+/// y (the normal of its rows, as from a force step on the whole top row): the slopes ω/q of
+/// its acoustic Bloch branches as q → 0, longitudinal and, where there is one, transverse.
+/// `None` for the square lattice (its c² = C A/m from `lattice_constants`).
+///
+/// The triangular lattice has one node per cell, so its branches are its continuum's:
+/// c_L = a√(9k/(8m)), c_T = a√(3k/(8m)) ([`IsotropicConstants::sound_speeds`]). The
+/// honeycomb's transverse branch along y is flat at zero (μ = 0): no transverse wave, c_L =
+/// a√(3k/(8m)). The kagome (z = 2d) has a third zero mode at q = 0 beside the two
+/// translations, its triangles twisting in turn, and at q ≠ 0 that twist joins the transverse
+/// motion at the order of the strain: along y its two x-polarised branches have the slopes 0
+/// (a line of zero modes: a periodic strip shears as a mechanism) and a√(k/(2m)) = √2 c_T, not
+/// the affine c_T = a√(k/(4m)) (its transverse slope along x); c_L = a√(3k/(4m)) holds.
+/// These slopes come from the cell's 6 × 6 dynamical matrix, which the test suite
+/// diagonalises for every type (`unit::measure_moduli`).
+pub fn plane_wave_speeds(kind: LatticeType, k: f64, spacing: f64, mass: f64) -> Option<(f64, Option<f64>)> {
+    let (c_l, c_t) = network_constants(kind, k, spacing)?.sound_speeds(mass);
+    let transverse = match kind {
+        LatticeType::Kagome => spacing * (k / (2.0 * mass)).sqrt(),
+        _ => c_t,
+    };
+    Some((c_l, Some(transverse).filter(|&c| c > 0.0)))
+}

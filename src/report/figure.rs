@@ -7,7 +7,7 @@ use serde::Serialize;
 use crate::output::{movie_name, side_by_side_name};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
-use crate::spec::{RunSpec, Supports};
+use crate::spec::RunSpec;
 
 /// A drawn figure.
 pub struct Figure {
@@ -62,7 +62,7 @@ pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> 
 fn supports_in_words(spec: &RunSpec) -> &'static str {
     match spec.lattice() {
         None if spec.chain().is_some() => ", the walls at both ends as black bars",
-        Some(lattice) if lattice.supports != Supports::Free => {
+        Some(lattice) if !lattice.supports.holds_nothing() => {
             ", held nodes as black squares (filled: held in x and y, open: held in one axis)"
         }
         _ => "",

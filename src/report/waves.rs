@@ -118,7 +118,7 @@ fn space_time_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Optio
     }
     // A free body under a step force also moves as a whole: the line's mean displacement at
     // each sample is that rigid drift, not the wave, and is taken out.
-    let free = r.spec.lattice().is_some_and(|l| l.supports == crate::spec::Supports::Free);
+    let free = r.spec.lattice().is_some_and(|l| l.supports.holds_nothing());
     let values: Vec<Vec<f64>> = if free {
         values
             .into_iter()

@@ -200,6 +200,10 @@ pub enum Supports {
     PeriodicX,
     /// Nothing held (impulse scenes: a wave reaches the bottom row unhindered).
     Free,
+    /// Bonds wrap across the left and right sides and nothing is held (impulse scenes): a
+    /// plane wave runs down an unbounded strip with no side edges to shed other waves, and
+    /// reaches a free bottom row.
+    PeriodicXFree,
 }
 
 impl Supports {
@@ -210,7 +214,18 @@ impl Supports {
             Supports::ClampedBottom => "clamped-bottom",
             Supports::PeriodicX => "periodic-x",
             Supports::Free => "free",
+            Supports::PeriodicXFree => "periodic-x-free",
         }
+    }
+
+    /// Bonds wrap across the left and right sides.
+    pub fn periodic_x(self) -> bool {
+        matches!(self, Supports::PeriodicX | Supports::PeriodicXFree)
+    }
+
+    /// Nothing is held: the body is free to move as a whole.
+    pub fn holds_nothing(self) -> bool {
+        matches!(self, Supports::Free | Supports::PeriodicXFree)
     }
 }
 

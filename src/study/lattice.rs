@@ -11,7 +11,8 @@ use super::common::{Stopped, relaxation, scene, sound_speed};
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
     LatticeShape, anisotropic_moduli, constrained_modulus_y, displacement_error_allowed, homogeneity,
-    lattice_constants, modulus_error_bound, network_constants, row_extension, shear_modulus, tensile_moduli,
+    lattice_constants, modulus_error_bound, network_constants, plane_wave_speeds, row_extension, shear_modulus,
+    tensile_moduli,
 };
 use crate::model::{Axes, Bonds, Edges, ForceLaw, LatticeType, LawVisitor, Layout, Particles, SquareLattice};
 use crate::sim::{Drive, Load, Network, Outcome, ProbeTrace, Scene, Trace};
@@ -158,7 +159,7 @@ pub(super) fn build(spec: &RunSpec, l: &LatticeSpec) -> Scene {
 /// along columns, k_d across the diagonals it has; the triangular lattice's k on every bond,
 /// its rows staggered (as `model::planar` lays them out and bonds them).
 fn springs(spec: &RunSpec, l: &LatticeSpec) -> SquareLattice {
-    let periodic_x = l.supports == Supports::PeriodicX;
+    let periodic_x = l.supports.periodic_x();
     if l.lattice_type == LatticeType::Triangular {
         return SquareLattice::triangular(l.nx, l.ny, spec.spacing, l.k_x, periodic_x);
     }
@@ -199,7 +200,7 @@ fn bonds(spec: &RunSpec, l: &LatticeSpec) -> Bonds {
 fn hold_supports(supports: Supports, layout: &Layout, particles: &mut Particles) {
     for (at, &node) in layout.edges.bottom.iter().enumerate() {
         let axes = match (supports, at) {
-            (Supports::Free, _) => Axes::FREE,
+            (Supports::Free | Supports::PeriodicXFree, _) => Axes::FREE,
             (Supports::Coursework, 0) | (Supports::ClampedBottom | Supports::PeriodicX, _) => Axes::FIXED,
             (Supports::Coursework, _) => Axes { x: false, y: true },
         };
@@ -570,15 +571,17 @@ fn continuum(spec: &RunSpec, l: &LatticeSpec, metrics: &mut LatticeMetrics) {
 /// The linear sound speed along an impulse lattice's wave (m/s): kicked or stepped mostly
 /// along y (the bottom row is below) the longitudinal c_L = a√(C22/m), kicked mostly along x
 /// the transverse c_T = a√(C66/m) (C per unit depth; C22 = k + k_d, C66 = k_d with both
-/// diagonals).
+/// diagonals); on the other types the speeds of their plane waves along y
+/// ([`plane_wave_speeds`]).
 pub(super) fn wave_speed(spec: &RunSpec, l: &LatticeSpec) -> Option<f64> {
     let impulse = l.impulse?;
     let [x, y] = impulse.direction();
     if !l.lattice_type.is_square() {
-        // c_L, c_T of the isotropic continuum (`network_constants`); the honeycomb has no c_T.
-        let c = network_constants(l.lattice_type, l.k_x, spec.spacing).filter(|_| spec.law.is_linear())?;
-        let (c_l, c_t) = c.sound_speeds(spec.mass);
-        return Some(if y.abs() >= x.abs() { c_l } else { c_t }).filter(|&c| c > 0.0);
+        // The slopes of the acoustic Bloch branches along y (`plane_wave_speeds`): the
+        // continuum's c_L and c_T but for the kagome's transverse; the honeycomb has none.
+        let (c_l, c_t) =
+            plane_wave_speeds(l.lattice_type, l.k_x, spec.spacing, spec.mass).filter(|_| spec.law.is_linear())?;
+        return if y.abs() >= x.abs() { Some(c_l) } else { c_t };
     }
     let (k_rising, k_falling) = l.diagonal_stiffness();
     let c = lattice_constants(l.k_x, l.k_y, k_rising, k_falling);

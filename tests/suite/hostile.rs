@@ -501,7 +501,7 @@ fn scene() -> impl Strategy<Value = String> {
     let lattice = (
         field(0.9, "size", count(2..6)),
         field(0.1, "nx", count(2..6)),
-        field(0.2, "supports", word(&["coursework", "clamped-bottom", "periodic-x", "free"])),
+        field(0.2, "supports", word(&["coursework", "clamped-bottom", "periodic-x", "free", "periodic-x-free"])),
         field(0.1, "relax", Just("{max_tc: 50}".to_string())),
     )
         .prop_map(|(size, nx, supports, relax)| {

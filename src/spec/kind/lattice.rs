@@ -339,14 +339,21 @@ fn resolve_lattice(raw: &RawScene, k: f64, depth: Option<f64>) -> Result<Lattice
         "must be in [0, 1) (every stiffness times 1 + w·U[−1, 1])",
     )?;
     require(
-        supports != Supports::PeriodicX || nx >= 3,
+        !supports.periodic_x() || nx >= 3,
         "lattice.nx",
         nx,
-        "must be ≥ 3 with supports: periodic-x (two nodes would be bonded twice)",
+        "must be ≥ 3 with supports: periodic-x or periodic-x-free (two nodes would be bonded twice)",
     )?;
     let load = resolve_load(raw)?;
-    let top = top_row(lattice_type, nx, ny, supports == Supports::PeriodicX);
+    let top = top_row(lattice_type, nx, ny, supports.periodic_x());
     let impulse = raw.impulse.as_ref().map(|i| resolve_impulse(i, &top)).transpose()?;
+    require(
+        impulse.is_some() || !supports.holds_nothing(),
+        "supports",
+        supports.name(),
+        "holds nothing, so it serves impulse scenes only (a load would carry the whole lattice away): give \
+         an impulse, or supports coursework, clamped-bottom or periodic-x",
+    )?;
     let upright = Upright { nx, ny, k_x, k_y, diagonals, load_case: raw.load.as_ref().and_then(|l| l.case) };
     let rotated = upright.load_case == Some(LoadCase::TensileX);
     let Upright { nx, ny, k_x, k_y, diagonals, load_case } =

@@ -38,7 +38,7 @@ pub(super) fn resolve_type(
         "(set)",
         "only for lattice.type: square (probes name the rows and columns of the square grid)",
     )?;
-    if let Some((field, rule)) = PlanarLattice::size_problem(kind, nx, ny, supports == Supports::PeriodicX) {
+    if let Some((field, rule)) = PlanarLattice::size_problem(kind, nx, ny, supports.periodic_x()) {
         let size = if field == "nx" { nx } else { ny };
         require(false, &format!("lattice.{field}"), size, rule)?;
     }
@@ -64,7 +64,7 @@ impl LatticeSpec {
             ny: self.ny,
             spacing,
             k: self.k_x,
-            periodic_x: self.supports == Supports::PeriodicX,
+            periodic_x: self.supports.periodic_x(),
         })
     }
 
@@ -73,7 +73,7 @@ impl LatticeSpec {
     /// resolution, by its families).
     pub fn layout(&self, spacing: f64) -> Layout {
         match self.planar(spacing) {
-            None => Layout::square(self.nx, self.ny, spacing, self.supports == Supports::PeriodicX),
+            None => Layout::square(self.nx, self.ny, spacing, self.supports.periodic_x()),
             Some(planar) if self.rotated => planar.layout().turned(),
             Some(planar) => planar.layout(),
         }
