@@ -196,9 +196,14 @@ pub fn ensemble_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Opt
     let series_label = |members: &[&RunRecord]| {
         members[0].spec.varied_in_words(|path| path != "seed" && path != "lattice.cut_fraction")
     };
-    let mut labels: Vec<String> = ensembles.iter().map(|(_, _, members)| series_label(members)).collect();
-    labels.sort_unstable();
-    labels.dedup();
+    // In the campaign's order (sizes 16, 32, 64, 128; not as strings, 128 before 16).
+    let mut labels: Vec<String> = Vec::new();
+    for (_, _, members) in &ensembles {
+        let label = series_label(members);
+        if !labels.contains(&label) {
+            labels.push(label);
+        }
+    }
     let mut series = Vec::new();
     for (which, name) in [(YOUNGS, "E"), (SHEAR, "G")] {
         let mut with_line = false;

@@ -318,9 +318,12 @@ pub(super) fn percolation(e: &Evidence) -> Option<Answer> {
     sentences.push(
         "The threshold is located by the static solver's rigidity test: a network is floppy when the load \
          drives a zero-stiffness motion (status mechanism); p = 1 − cut_fraction is the probability an interior \
-         bond is kept (the bonds of the loaded and the supported rows are never cut). Finite networks with \
-         intact top and bottom rows hold their rigidity a little beyond the bulk threshold, and their \
-         thresholds scatter by seed; the spread shrinks as N grows."
+         bond is kept. The loaded and the supported rows sit in rigid bands that are never cut (the bonds that \
+         touch them and those along the rows next to them): without the second row's bonds a triangular top \
+         row is a chain of triangles hinged at its loaded nodes, and one of them folds the likelier the wider \
+         the network. Per seed the threshold lies midway between the largest cut fraction still rigid and the \
+         smallest that is a mechanism (the cut sets of a seed are nested), to half the grid's step there; the \
+         thresholds scatter by seed, less as N grows."
             .into(),
     );
     Some(Answer {
