@@ -56,6 +56,19 @@ pub struct Truss<'a> {
     pub prescribed: &'a [(usize, f64, f64)],
 }
 
+/// What bounds a relaxation's error, from the tangent stiffness K_t at the static answer
+/// ([`Truss::error_bounds`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ErrorBounds {
+    /// k_min (N/m): a lower bound on the smallest eigenvalue of K_t, the softest stiffness
+    /// (ω_min² = k_min/m sets critical damping and the critically damped bound); 0 when K_t
+    /// is singular (a floppy network).
+    pub stiffness_min: f64,
+    /// ‖K_t⁻¹ g‖₂ (m/N) of the measured quantity gᵀu: its error is at most this × ‖r‖₂ for an
+    /// out-of-balance force r; `None` when k_min = 0 or every measured dof is held.
+    pub sensitivity: Option<f64>,
+}
+
 /// Residuals above this fraction of the load mean the equations have no solution.
 const MECHANISM_RESIDUAL: f64 = 1e-6;
 /// Diagonal shift, relative to the largest diagonal entry, that lets Cholesky factor a
@@ -217,39 +230,43 @@ impl Truss<'_> {
         (relative_residual(&entries, &step, &load) <= MECHANISM_RESIDUAL).then(|| self.expand(&dofs, &step))
     }
 
-    /// A lower bound (N/m) on the smallest eigenvalue k_min of the tangent stiffness K_t over
-    /// the free degrees of freedom at displacements `(ux, uy)` (the network's softest
-    /// stiffness: ‖u − u*‖₂ ≤ ‖r‖₂/k_min for any out-of-balance force r, to first order), by
-    /// inverse iteration v ← K_t⁻¹ v/‖·‖ from the uniform displacement (which overlaps the
-    /// lowest, smooth mode) until the Rayleigh quotient ρ = vᵀK_t v settles to 1e-6, then lowered
-    /// by the residual η = ‖K_t v − ρ v‖: some eigenvalue lies in [ρ − η, ρ + η]
-    /// (Krylov–Bogoliubov), the lowest one once the iteration has found it. `None` when K_t
-    /// cannot be factored, and 0 when it is singular (a floppy network: no bound).
-    pub fn softest_stiffness<L: ForceLaw>(&self, law: &L, ux: &[f64], uy: &[f64]) -> Option<f64> {
+    /// What bounds the error of a relaxation near the equilibrium `(ux, uy)`, from one factor
+    /// of the tangent stiffness K_t there over the free degrees of freedom; `None` when K_t
+    /// cannot be factored or nothing is free.
+    ///
+    /// `measured` is the measured quantity Q = gᵀu as (dof, weight) pairs (dof 2i is x of node
+    /// i, 2i + 1 its y; held dofs drop out, they do not move): for an out-of-balance force r
+    /// the state of rest is u* = u + K_t⁻¹ r (exactly for linear springs and small rotations, to
+    /// first order in r otherwise), so δQ = gᵀK_t⁻¹ r = zᵀr with z = K_t⁻¹ g, and
+    /// |δQ| ≤ ‖z‖₂ ‖r‖₂ (Cauchy–Schwarz). This is at least as tight as ‖g‖₂ ‖r‖₂/k_min and
+    /// about √N tighter on an N × N block pulled on its top row, whose ΔL is carried by the
+    /// stiff stretching modes, not the soft sway that sets k_min.
+    pub fn error_bounds<L: ForceLaw>(
+        &self,
+        law: &L,
+        ux: &[f64],
+        uy: &[f64],
+        measured: &[(usize, f64)],
+    ) -> Option<ErrorBounds> {
         let dofs = self.dofs();
         if dofs.free == 0 {
             return None;
         }
         let (mut entries, _) = self.tangent_and_residual(law, ux, uy, &dofs);
         let cholesky = factor(dofs.free, &mut entries)?;
-        let unit = |v: Vec<f64>| {
-            let length = norm(&v);
-            v.into_iter().map(|x| x / length).collect::<Vec<f64>>()
-        };
-        let mut v = unit(vec![1.0; dofs.free]);
-        let mut rayleigh = f64::INFINITY;
-        for iteration in 1..=SOFTEST_ITERATIONS {
-            v = unit(solve_with(&cholesky, &v)?);
-            let kv = multiply(&entries, &v);
-            let next: f64 = kv.iter().zip(&v).map(|(a, b)| a * b).sum();
-            let settled = (rayleigh - next).abs() <= SOFTEST_TOLERANCE * next.abs();
-            rayleigh = next;
-            if settled || iteration == SOFTEST_ITERATIONS {
-                let residual: Vec<f64> = kv.iter().zip(&v).map(|(a, b)| a - rayleigh * b).collect();
-                return Some((rayleigh - norm(&residual)).max(0.0));
+        let stiffness_min = softest_stiffness(&cholesky, &entries, dofs.free)?;
+        let mut weights = vec![0.0; dofs.free];
+        for &(dof, weight) in measured {
+            if let Some(&free) = dofs.index.get(dof).filter(|free| **free != usize::MAX) {
+                weights[free] += weight;
             }
         }
-        None
+        // A singular K_t (k_min = 0) has no inverse to bound by, and a quantity of held dofs
+        // alone has no error.
+        let sensitivity = (stiffness_min > 0.0 && weights.iter().any(|w| *w != 0.0))
+            .then(|| solve_with(&cholesky, &weights).map(|z| norm(&z)))
+            .flatten();
+        Some(ErrorBounds { stiffness_min, sensitivity })
     }
 
     fn dofs(&self) -> Dofs {
@@ -365,6 +382,38 @@ fn solve_with(cholesky: &faer::sparse::linalg::solvers::Llt<usize, f64>, force: 
     let solution = cholesky.solve(Mat::from_fn(force.len(), 1, |i, _| force[i]));
     let u: Vec<f64> = (0..force.len()).map(|i| solution[(i, 0)]).collect();
     u.iter().all(|v| v.is_finite()).then_some(u)
+}
+
+/// A lower bound (N/m) on the smallest eigenvalue k_min of K (given by its `entries` and its
+/// `cholesky` factor, `size` free dofs), the network's softest stiffness, by inverse iteration
+/// v ← K⁻¹ v/‖·‖ from the uniform displacement (which overlaps the lowest, smooth mode) until
+/// the Rayleigh quotient ρ = vᵀK v settles to 1e-6, then lowered by the residual
+/// η = ‖K v − ρ v‖: some eigenvalue lies in [ρ − η, ρ + η] (Krylov–Bogoliubov), the lowest one
+/// once the iteration has found it. 0 when K is singular (a floppy network); `None` when a
+/// solve is not finite.
+fn softest_stiffness(
+    cholesky: &faer::sparse::linalg::solvers::Llt<usize, f64>,
+    entries: &[Entry],
+    size: usize,
+) -> Option<f64> {
+    let unit = |v: Vec<f64>| {
+        let length = norm(&v);
+        v.into_iter().map(|x| x / length).collect::<Vec<f64>>()
+    };
+    let mut v = unit(vec![1.0; size]);
+    let mut rayleigh = f64::INFINITY;
+    for iteration in 1..=SOFTEST_ITERATIONS {
+        v = unit(solve_with(cholesky, &v)?);
+        let kv = multiply(entries, &v);
+        let next: f64 = kv.iter().zip(&v).map(|(a, b)| a * b).sum();
+        let settled = (rayleigh - next).abs() <= SOFTEST_TOLERANCE * next.abs();
+        rayleigh = next;
+        if settled || iteration == SOFTEST_ITERATIONS {
+            let residual: Vec<f64> = kv.iter().zip(&v).map(|(a, b)| a - rayleigh * b).collect();
+            return Some((rayleigh - norm(&residual)).max(0.0));
+        }
+    }
+    None
 }
 
 /// K v with K given by its entries.

@@ -5,8 +5,8 @@ pub use self::contact::{ContactTiming, contact_timing};
 pub use self::energy::energy_error;
 pub use self::moduli::{
     ContinuumModuli, ElasticConstants, IsotropicConstants, LatticeShape, TensileModuli, anisotropic_moduli,
-    constrained_modulus_y, displacement_error_allowed, homogeneity, lattice_constants, modulus_error_bound,
-    network_constants, plane_wave_speeds, row_extension, shear_modulus, tensile_moduli,
+    constrained_modulus_y, extension_error_allowed, homogeneity, lattice_constants, modulus_error_bound,
+    network_constants, plane_wave_speeds, row_extension, row_extension_weights, shear_modulus, tensile_moduli,
 };
 pub use self::wave::{ARRIVAL_CRITERIA, arrival_time};
 

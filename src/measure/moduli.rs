@@ -32,25 +32,27 @@ pub fn row_extension(shape: &LatticeShape, u: &[f64]) -> f64 {
     mean(u, &shape.edges.top) - mean(u, &shape.edges.bottom)
 }
 
-/// √(1/N_top + 1/N_bottom): ΔL weighs the top row's N_top nodes by 1/N_top and the bottom
-/// row's by −1/N_bottom, so |δΔL| ≤ this × ‖δu‖₂ (Cauchy–Schwarz); √(2/N_x) on a square block.
-fn extension_weight(shape: &LatticeShape) -> f64 {
-    (1.0 / shape.edges.top.len() as f64 + 1.0 / shape.edges.bottom.len() as f64).sqrt()
+/// The weights g of ΔL = gᵀu as (node, weight) pairs, the functional [`row_extension`]
+/// computes: 1/N_top on each top-row node, −1/N_bottom on each bottom-row node (of `u`'s axis).
+pub fn row_extension_weights(shape: &LatticeShape) -> Vec<(usize, f64)> {
+    let (top, bottom) = (&shape.edges.top, &shape.edges.bottom);
+    let top_weight = 1.0 / top.len() as f64;
+    let bottom_weight = -1.0 / bottom.len() as f64;
+    top.iter().map(|&n| (n, top_weight)).chain(bottom.iter().map(|&n| (n, bottom_weight))).collect()
 }
 
 /// The bound on the relative error of a modulus M ∝ 1/ΔL (E in tension, G in shear) measured
-/// at the extension `extension` = ΔL (m) from displacements within `error` (m, 2-norm over every
-/// node) of the state of rest: |δΔL| ≤ √(1/N_top + 1/N_bottom) ‖δu‖₂ (Cauchy–Schwarz), and
-/// with b = |δΔL|/|ΔL|, |δM/M| ≤ b/(1 − b) (∞ for b ≥ 1).
-pub fn modulus_error_bound(shape: &LatticeShape, extension: f64, error: f64) -> f64 {
-    let b = extension_weight(shape) * error / extension.abs();
+/// at the extension `extension` = ΔL (m) when ΔL itself is within `extension_error` (m) of its
+/// value at rest: with b = |δΔL|/|ΔL|, |δM/M| ≤ b/(1 − b) (∞ for b ≥ 1).
+pub fn modulus_error_bound(extension: f64, extension_error: f64) -> f64 {
+    let b = extension_error / extension.abs();
     if b < 1.0 { b / (1.0 - b) } else { f64::INFINITY }
 }
 
-/// The largest displacement error (m, 2-norm) for which [`modulus_error_bound`] at `extension`
-/// is at most `tolerance`: b = tolerance/(1 + tolerance).
-pub fn displacement_error_allowed(shape: &LatticeShape, extension: f64, tolerance: f64) -> f64 {
-    tolerance / (1.0 + tolerance) * extension.abs() / extension_weight(shape)
+/// The largest error of ΔL (m) for which [`modulus_error_bound`] at `extension` is at most
+/// `tolerance`: b = tolerance/(1 + tolerance).
+pub fn extension_error_allowed(extension: f64, tolerance: f64) -> f64 {
+    tolerance / (1.0 + tolerance) * extension.abs()
 }
 
 /// Young's modulus and Poisson ratios of a tensile test.

@@ -88,8 +88,9 @@ pub struct Relaxation {
     /// given, this criterion replaces the kinetic-energy ratio.
     pub residual_force: Option<f64>,
     /// The displacement bound: relaxed once the static force's norm ‖r‖₂ (N, over every free
-    /// axis) is at most this, at a single check (the bound ‖u − u*‖₂ ≤ ‖r‖₂/k_min holds at
-    /// any instant, whatever the velocities); when given, it replaces both criteria above.
+    /// axis) is at most this, at a single check (the bound |δΔL| ≤ ‖K_t⁻¹ g‖₂ ‖r‖₂ on the
+    /// measured extension holds at any instant, whatever the velocities); when given, it
+    /// replaces both criteria above.
     pub residual_norm: Option<f64>,
     /// Steps between checks.
     pub check_every: u64,

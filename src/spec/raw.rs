@@ -354,8 +354,8 @@ pub struct RawRelax {
     /// gradients): how the lattice is brought to rest.
     pub method: Option<crate::sim::RelaxMethod>,
     /// Lattice: stop once the moduli are provably within this relative error of the state of
-    /// rest (the displacement bound ‖r‖₂/k_min); default 1e-4 for `fire` and `cg`, off for
-    /// `damped` unless given.
+    /// rest (the displacement bound: the error of the measured ΔL is at most ‖K_t⁻¹ g‖₂ ‖r‖₂);
+    /// default 1e-4 for `fire` and `cg`, off for `damped` unless given; control: force only.
     pub tolerance: Option<f64>,
     /// Give up after this many t_c (default 5000): `status = no_equilibrium`.
     pub max_tc: Option<f64>,

@@ -98,6 +98,13 @@ pub(super) fn resolve_relax(raw: &RawScene, control: Control, load_ramp_tc: Opti
             tolerance,
             "must be in (0, 0.1] (the relative error of the moduli)",
         )?;
+        require(
+            control == Control::Force,
+            "relax.tolerance",
+            tolerance,
+            "is for control: force (under control: velocity the modulus comes from the drive's force, whose error \
+             the displacement bound does not cover; give relax.residual_force)",
+        )?;
     }
     if method == RelaxMethod::Static
         && let Some(tolerance) = relax.tolerance

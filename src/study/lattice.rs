@@ -10,8 +10,8 @@ use super::columns::{Block, Column, Row, Slot};
 use super::common::{Stopped, relaxation, scene, sound_speed};
 use crate::fem::{StaticSolution, Truss};
 use crate::measure::{
-    LatticeShape, anisotropic_moduli, constrained_modulus_y, displacement_error_allowed, homogeneity,
-    lattice_constants, modulus_error_bound, network_constants, plane_wave_speeds, row_extension, shear_modulus,
+    LatticeShape, anisotropic_moduli, constrained_modulus_y, extension_error_allowed, homogeneity, lattice_constants,
+    modulus_error_bound, network_constants, plane_wave_speeds, row_extension, row_extension_weights, shear_modulus,
     tensile_moduli,
 };
 use crate::model::{Axes, Bonds, Edges, ForceLaw, LatticeType, LawVisitor, Layout, Particles, SquareLattice};
@@ -72,13 +72,18 @@ pub struct LatticeMetrics {
     /// eigenvalue of the tangent stiffness at the static answer (`fem`).
     #[serde(default)]
     pub stiffness_min: Option<f64>,
+    /// Loaded lattice under force control: ‖K_t⁻¹ g‖₂ (m/N), where ΔL = gᵀu (see
+    /// [`row_extension_weights`]) and K_t is the tangent stiffness at the static answer: an
+    /// out-of-balance force r leaves ΔL within this × ‖r‖₂ of its value at rest.
+    #[serde(default)]
+    pub extension_sensitivity: Option<f64>,
     /// Loaded lattice: ΔL (m) of its measured modulus in the static answer (see
     /// [`row_extension`]).
     #[serde(default)]
     pub static_extension: Option<f64>,
-    /// Loaded lattice: the bound on the relative error of E (tension) or G (shear) of the MD
-    /// run against its state of rest, from the residual force at its end: b/(1 − b) with
-    /// b = √(2/N_x) ‖r‖₂/(k_min |ΔL|).
+    /// Loaded lattice under force control: the bound on the relative error of E (tension) or
+    /// G (shear) of the MD run against its state of rest, from the residual force at its end:
+    /// b/(1 − b) with b = ‖K_t⁻¹ g‖₂ ‖r‖₂/|ΔL|.
     #[serde(default)]
     pub relax_error_bound: Option<f64>,
     /// Loaded lattice with `damping.background: critical`: γ_g = 2 m ω_min = 2 √(k_min m)
@@ -300,14 +305,15 @@ pub(super) fn static_answer(
         });
     }
     let softest = metrics.stiffness_min.filter(|k| *k > 0.0);
-    // The displacement bound ‖δu‖₂ ≤ ‖r‖₂/k_min: the moduli are within the tolerance once
-    // ‖r‖₂ ≤ k_min · (the displacement error allowed at the static ΔL).
-    if let (Some(tolerance), Some(k_min), Some(extension), Some(relaxation)) =
-        (relax.and_then(|r| r.tolerance), softest, metrics.static_extension, scene.sampling.relaxation.as_mut())
-    {
-        let edges = l.layout(spec.spacing).edges;
-        let shape = LatticeShape { edges: &edges, depth: l.depth };
-        relaxation.residual_norm = Some(k_min * displacement_error_allowed(&shape, extension, tolerance));
+    // The displacement bound |δΔL| ≤ ‖K_t⁻¹ g‖₂ ‖r‖₂: the modulus is within the tolerance once
+    // ‖r‖₂ ≤ (the error of ΔL allowed at the static ΔL)/‖K_t⁻¹ g‖₂.
+    if let (Some(tolerance), Some(sensitivity), Some(extension), Some(relaxation)) = (
+        relax.and_then(|r| r.tolerance),
+        metrics.extension_sensitivity,
+        metrics.static_extension,
+        scene.sampling.relaxation.as_mut(),
+    ) {
+        relaxation.residual_norm = Some(extension_error_allowed(extension, tolerance) / sensitivity);
     }
     if relax.is_some_and(|r| r.critical_background)
         && let Some(k_min) = softest
@@ -426,12 +432,18 @@ fn solve<L: ForceLaw>(
     if Instant::now() > deadline {
         return Err(past_deadline());
     }
-    // k_min bounds a relaxation's error; a static-only run has none to bound.
-    if !spec.static_only() {
-        metrics.stiffness_min = truss.softest_stiffness(law, &ux, &uy);
-    }
     let edges = l.layout(spec.spacing).edges;
-    metrics.static_extension = Some(extension(l, &LatticeShape { edges: &edges, depth: l.depth }, &ux, &uy));
+    let shape = LatticeShape { edges: &edges, depth: l.depth };
+    // k_min and ΔL's sensitivity bound a relaxation's error; a static-only run has none to bound.
+    if !spec.static_only()
+        && let Some(bounds) = truss.error_bounds(law, &ux, &uy, &extension_dofs(l, &shape))
+    {
+        metrics.stiffness_min = Some(bounds.stiffness_min);
+        // Under velocity control the modulus comes from the drive's force, whose error this
+        // bound does not cover.
+        metrics.extension_sensitivity = bounds.sensitivity.filter(|_| l.control == Control::Force);
+    }
+    metrics.static_extension = Some(extension(l, &shape, &ux, &uy));
     if spec.relax().is_some_and(|r| r.tangent_step.is_some()) {
         // Δu per unit load factor: the increment of the whole load.
         if Instant::now() > deadline {
@@ -498,6 +510,15 @@ fn extension(l: &LatticeSpec, shape: &LatticeShape, ux: &[f64], uy: &[f64]) -> f
     }
 }
 
+/// ΔL of [`extension`] as weights of degrees of freedom (dof 2i is x of node i, 2i + 1 its y).
+fn extension_dofs(l: &LatticeSpec, shape: &LatticeShape) -> Vec<(usize, f64)> {
+    let axis = match l.load_case {
+        LoadCase::Tensile | LoadCase::TensileX => 1,
+        LoadCase::Shear => 0,
+    };
+    row_extension_weights(shape).into_iter().map(|(node, weight)| (2 * node + axis, weight)).collect()
+}
+
 /// A loaded lattice's moduli and homogeneity (only when it came to rest: those of a run that
 /// never did would be snapshots of an oscillation) beside the continuum's; nothing of an
 /// impulse lattice (its wave is measured with the other kinds').
@@ -533,8 +554,8 @@ pub(super) fn measure(
     let shape = LatticeShape { edges: &edges, depth: l.depth };
     metrics.homogeneity = keep(homogeneity(&shape, &ux, largest));
     metrics.edge_displacements = relaxed.then(|| EdgeDisplacements::of(&edges, &ux, &uy));
-    if let (Some(k_min), Some(residual)) = (metrics.stiffness_min.filter(|k| *k > 0.0), outcome.trace.residual_norm) {
-        let bound = modulus_error_bound(&shape, extension(l, &shape, &ux, &uy), residual / k_min);
+    if let (Some(sensitivity), Some(residual)) = (metrics.extension_sensitivity, outcome.trace.residual_norm) {
+        let bound = modulus_error_bound(extension(l, &shape, &ux, &uy), sensitivity * residual);
         metrics.relax_error_bound = keep(Some(bound));
     }
     if spec.law.is_linear() {
@@ -684,6 +705,7 @@ pub(super) fn columns() -> Vec<Block<LatticeMetrics>> {
         Number("relax_tolerance", |r| r.spec.lattice().and(r.spec.relax()).and_then(|m| m.tolerance)),
         Number("relax_error_bound", |r| r.group.relax_error_bound),
         Number("stiffness_min", |r| r.group.stiffness_min),
+        Number("extension_sensitivity", |r| r.group.extension_sensitivity),
         Number("critical_bound_steps", |r| {
             r.group.stiffness_min.filter(|k| *k > 0.0).map(|k| critical_bound_steps(r.spec, k))
         }),

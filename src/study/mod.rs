@@ -236,7 +236,7 @@ fn measure_relaxation(spec: &RunSpec, outcome: &Outcome, side: usize, scale: &st
         if relax.method == RelaxMethod::Damped { String::new() } else { format!(" ({})", relax.method.name()) };
     metrics.dissipation_criterion = outcome.trace.relaxed_by.as_deref().map(|by| match (by, relax.residual_force) {
         ("displacement_bound", _) => format!(
-            "moduli within {:e} of rest by the displacement bound ‖r‖₂/k_min{by_method}",
+            "moduli within {:e} of rest by the displacement bound ‖K⁻¹g‖₂‖r‖₂{by_method}",
             relax.tolerance.unwrap_or_default()
         ),
         ("static_solution", _) => "none: the static solution of the same network (relax.method: static)".into(),

@@ -169,3 +169,54 @@ fn a_minimiser_refuses_what_it_cannot_run() {
     let error = mdsolids::plan::parse("t.yaml", chain).map(|_| ()).unwrap_err().to_string();
     assert!(error.contains("damping.background") && error.contains("critical"), "{error}");
 }
+
+#[test]
+fn the_report_answers_time_to_a_modulus_with_each_method_against_its_bound() {
+    // Critical damping and both minimisers on 12² and 24² steel blocks, and a floppy diluted one
+    // (cut 0.45 of a 12² block: k_min = 0, no bound) where the minimisers must stall by name.
+    let yaml = format!(
+        "{}    grid:\n      lattice.size: [12, 24]\n  - name: minimisers\n    kind: lattice\n    material: {STEEL}\n    geometry: {{spacing: 0.1, depth: 0.01}}\n    lattice: {{k_diag_ratio: 0.5, diagonals: both}}\n    supports: clamped-bottom\n    load: {TENSILE}\n    grid:\n      relax.method: [fire, cg]\n      lattice.size: [12, 24]\n  - name: floppy\n    kind: lattice\n    material: {STEEL}\n    geometry: {{spacing: 0.1, depth: 0.01}}\n    lattice: {{size: 12, k_diag_ratio: 0.5, diagonals: both, cut_fraction: 0.45}}\n    supports: clamped-bottom\n    load: {TENSILE}\n    relax: {{method: fire}}\n",
+        steel(12, "    damping: {background: critical}\n    relax: {tolerance: 1.0e-4}\n").replace("size: 12, ", "")
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("t.yaml");
+    std::fs::write(&file, yaml).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+        .arg("--reports")
+        .arg(dir.path())
+        .arg("run")
+        .arg(&file)
+        .output()
+        .expect("the binary runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let report = std::fs::read_to_string(dir.path().join("t/report.md")).unwrap();
+    let at = report.find(". Relaxation: time to a modulus\n").expect("the section");
+    let section = &report[at..report[at..].find("\n## ").map_or(report.len(), |end| at + end)];
+    for words in [
+        "Every relaxed run's modulus lies within its recorded bound of the static answer of the same network (6 of 6)",
+        "Critical background damping (γ_g = 2√(k_min m)) certifies the tolerance in",
+        "FIRE needs",
+        "CG needs",
+        "Where a method stalls:",
+        "no_equilibrium",
+        "**Verdict: ✓ within.**",
+    ] {
+        assert!(section.contains(words), "missing {words:?} in:\n{section}");
+    }
+}
+
+#[test]
+fn the_displacement_bound_is_refused_under_velocity_control() {
+    // The modulus of a driven lattice comes from the drive's force, which the bound on ΔL
+    // does not cover.
+    let yaml = block(
+        5,
+        STEEL,
+        "{control: velocity, strain: 1.0e-4}",
+        "    time: {integrator: velocity-verlet}\n    relax: {tolerance: 1.0e-4}\n",
+    );
+    let error = mdsolids::plan::parse("t.yaml", &yaml).map(|_| ()).unwrap_err().to_string();
+    for word in ["relax.tolerance", "control: force"] {
+        assert!(error.contains(word), "{error:?} does not say {word:?}");
+    }
+}

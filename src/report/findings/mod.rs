@@ -8,6 +8,7 @@ mod discussion;
 mod dynamics;
 mod materials;
 mod one_d;
+mod relaxation;
 mod two_d;
 mod types;
 
@@ -166,7 +167,7 @@ pub fn findings(evidence: &Evidence) -> Vec<Finding> {
     // The coursework's questions see its evidence ([`Evidence::coursework`]); the lattice
     // types' see every run.
     let coursework = evidence.coursework();
-    let asked: [(Question, &Evidence); 24] = [
+    let asked: [(Question, &Evidence); 25] = [
         (one_d::two_particles, &coursework),
         (one_d::time_step, &coursework),
         (one_d::chain, &coursework),
@@ -186,6 +187,7 @@ pub fn findings(evidence: &Evidence) -> Vec<Finding> {
         (materials::anisotropic, &coursework),
         (materials::random, &coursework),
         (materials::md_and_fem, &coursework),
+        (relaxation::time_to_modulus, evidence),
         (types::moduli, evidence),
         (types::isotropy, evidence),
         (types::percolation, evidence),

@@ -172,8 +172,8 @@ fn run<F: ForceField, M: Minimiser>(method: &mut M, state: &mut State, field: &m
             }
             None if !M::SETTLES_IN_ONE_MOVE => {
                 trace.status = RunStatus::NoEquilibrium;
-                // The displacement bound needs k_min > 0: a floppy network (a diluted one past
-                // its rigidity threshold) has none, and no bound on its error.
+                // The displacement bound needs K_t⁻¹, so k_min > 0: a floppy network (a diluted
+                // one past its rigidity threshold) has none, and no bound on its error.
                 trace.message = "no static criterion to stop at: the displacement bound needs a network whose \
                                  softest stiffness k_min is > 0 (this one is floppy); give relax.residual_force"
                     .into();

@@ -25,6 +25,49 @@ fn chain_in_series() {
     }
 }
 
+/// The bounds of a relaxation on a fixed–free chain of n springs k along x (node 0 held): K is
+/// tridiagonal with K⁻¹_ij = min(i, j)/k, so for the end's displacement Q = u_n the
+/// sensitivity is ‖K⁻¹ e_n‖₂ = √(Σ i²)/k = √(n(n + 1)(2n + 1)/6)/k, and the lowest eigenvalue
+/// is k_min = 2k(1 − cos(π/(2n + 1))). For any displacement error δu and its out-of-balance
+/// force r = K δu the bound |δQ| ≤ ‖K⁻¹ e_n‖₂ ‖r‖₂ holds, and it is tighter than ‖r‖₂/k_min.
+#[test]
+fn error_bounds_of_a_fixed_free_chain() {
+    let (n, k) = (12usize, 3.0);
+    let mut bonds = Bonds::default();
+    for i in 0..n {
+        bonds.push(i, i + 1, 1.0, k);
+    }
+    let x: Vec<f64> = (0..=n).map(|i| i as f64).collect();
+    let y = vec![0.0; n + 1];
+    let held_y: Vec<usize> = (0..=n).collect();
+    let truss = Truss { x: &x, y: &y, bonds: &bonds, held_x: &[0], held_y: &held_y, loads: &[], prescribed: &[] };
+    let zero = vec![0.0; n + 1];
+    let bounds = truss.error_bounds(&Linear, &zero, &zero, &[(2 * n, 1.0)]).expect("a chain held at one end factors");
+    let sensitivity = bounds.sensitivity.expect("k_min > 0 and a free measured dof");
+    let exact = ((n * (n + 1) * (2 * n + 1)) as f64 / 6.0).sqrt() / k;
+    // 1e-9: the 1e-12 regularisation and round-off of the triangular solves.
+    assert!((sensitivity / exact - 1.0).abs() < 1e-9, "{sensitivity} against {exact}");
+    let k_min = 2.0 * k * (1.0 - (std::f64::consts::PI / (2.0 * n as f64 + 1.0)).cos());
+    // k_min is a lower bound, within 1e-3 (the Rayleigh quotient settled to 1e-6, lowered by its
+    // residual).
+    assert!(bounds.stiffness_min <= k_min * (1.0 + 1e-12) && bounds.stiffness_min > k_min * (1.0 - 1e-3));
+    assert!(sensitivity < 1.0 / bounds.stiffness_min, "tighter than ‖g‖₂/k_min with ‖g‖₂ = 1");
+    // A few displacement errors, smooth and rough: r = K δu of the chain.
+    for shape in [
+        |i: f64| i.sin(),
+        |i: f64| (0.3 * i).cos() - 1.0,
+        |i: f64| if (i as usize).is_multiple_of(2) { 1.0 } else { -1.0 },
+    ] {
+        let du: Vec<f64> = (0..=n).map(|i| if i == 0 { 0.0 } else { shape(i as f64) }).collect();
+        let r: Vec<f64> =
+            (1..=n).map(|i| k * (2.0 * du[i] - du[i - 1] - if i < n { du[i + 1] } else { du[i] })).collect();
+        let norm = r.iter().map(|v| v * v).sum::<f64>().sqrt();
+        assert!(du[n].abs() <= sensitivity * norm * (1.0 + 1e-12), "{} above {}", du[n], sensitivity * norm);
+    }
+    // A quantity of held dofs alone has no error to bound.
+    assert_eq!(truss.error_bounds(&Linear, &zero, &zero, &[(1, 1.0)]).unwrap().sensitivity, None);
+}
+
 /// One square with both diagonals, bottom edge pinned, top nodes pulled up by F each. By
 /// symmetry the top nodes rise by u and move inwards by a (left node +a, right node −a).
 /// The diagonal from the opposite bottom corner stretches by (u − a)/√2 and pulls with
