@@ -336,10 +336,22 @@ fn physics_words(s: &RunSpec) -> String {
     };
     match s.lattice() {
         Some(l) => {
+            // Another type than square has one spring to every nearest neighbour, no diagonals.
+            let network = if l.lattice_type.is_square() {
+                format!(
+                    "{law} along rows and columns, diagonals k_d = {} N/m (k_d/k = {})",
+                    number(l.k_diag),
+                    number(l.k_diag / s.k)
+                )
+            } else {
+                format!(
+                    "a {} network (z = {}), {law} to every nearest neighbour",
+                    l.lattice_type.name(),
+                    l.lattice_type.coordination()
+                )
+            };
             format!(
-                "{law} along rows and columns, diagonals k_d = {} N/m (k_d/k = {}), m = {} kg, a = {} m, depth d = {} m, {} supports, {}, {}",
-                number(l.k_diag),
-                number(l.k_diag / s.k),
+                "{network}, m = {} kg, a = {} m, depth d = {} m, {} supports, {}, {}",
                 number(s.mass),
                 number(s.spacing),
                 number(l.depth),
@@ -456,7 +468,11 @@ fn wall_row(r: &RunRecord) -> WallRow {
 
 /// The springs of a lattice in words: k_d/k, and what makes it anisotropic or random.
 fn springs(r: &RunRecord, l: &crate::spec::LatticeSpec) -> String {
-    let mut words = vec![format!("k_d/k = {}", number(l.k_diag / r.spec.k))];
+    let mut words = vec![if l.lattice_type.is_square() {
+        format!("k_d/k = {}", number(l.k_diag / r.spec.k))
+    } else {
+        l.lattice_type.name().to_string()
+    }];
     if !matches!(l.diagonals, crate::spec::Diagonals::Both | crate::spec::Diagonals::None) {
         words.push(format!("{} diagonals only", l.diagonals.name()));
     }

@@ -7,6 +7,7 @@ use super::{edges, precision, probes, solids, stability_map, waves};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::measure::relative_error;
 use crate::runner::RunRecord;
+use crate::sim::RelaxMethod;
 use crate::spec::{Campaign, SceneKind};
 use crate::summary::ScalingFit;
 
@@ -52,7 +53,12 @@ pub fn draw_all(campaign: &Campaign, records: &[RunRecord], fits: &[ScalingFit])
                 }
             }
             SceneKind::Lattice => {
-                figures.push(relaxation_figure(scene, &groups)?);
+                // Energies against time only where something moved in time: not for a scene
+                // set to its static answer or brought to rest by a minimiser.
+                let in_time = |r: &RunRecord| r.spec.relax().is_none_or(|relax| relax.method == RelaxMethod::Damped);
+                if records.iter().filter(|r| r.spec.scene == *scene).any(in_time) {
+                    figures.push(relaxation_figure(scene, &groups)?);
+                }
                 if let Some(figure) = size_figure(scene, records)? {
                     figures.push(figure);
                 }

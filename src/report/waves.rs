@@ -104,11 +104,18 @@ fn space_time_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Optio
     let Some(r) = first_ok else { return Ok(None) };
     let t = &r.trace;
     let (values, rows, what): (Vec<Vec<f64>>, &str, &str) = match r.spec.kind() {
-        SceneKind::Lattice => (
-            t.probes.first().map(|p| p.displacement_y.clone()).unwrap_or_default(),
-            "node of the kicked column (0: bottom)",
-            "y",
-        ),
+        SceneKind::Lattice => {
+            // The displacement along the impulse: a sideways step sends a transverse wave, whose
+            // u_y is round-off.
+            let sideways = r.spec.lattice().and_then(|l| l.impulse).is_some_and(|i| i.is_sideways());
+            let probe = t.probes.first();
+            let values = if sideways { probe.map(|p| &p.displacement_x) } else { probe.map(|p| &p.displacement_y) };
+            (
+                values.cloned().unwrap_or_default(),
+                "node of the kicked column (0: bottom)",
+                if sideways { "x" } else { "y" },
+            )
+        }
         _ => {
             (t.displacement_x.iter().map(|row| row[1..row.len().saturating_sub(1)].to_vec()).collect(), "particle", "x")
         }
@@ -131,7 +138,7 @@ fn space_time_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Optio
         values
     };
     let chart = Chart {
-        title: format!("{scene}: displacement in space and time ({})", r.spec.varied_in_words(|_| true)),
+        title: format!("{scene}: u_{what} in space and time ({})", r.spec.varied_in_words(|_| true)),
         x_label: "time t (s)".into(),
         y_label: rows.into(),
         scale: Scale::Linear,

@@ -331,14 +331,18 @@ fn read_probe_table(bytes: &[u8], spec: &RunSpec, trace: &mut Trace) -> Result<(
 /// displacements (its waterfall and space–time figures) and every series of the probed lines
 /// a campaign asked for (figures and `probes/<run_id>.parquet`) in single precision (7
 /// digits: figures show 3 or 4) wherever they fit its range; of an impulse lattice's kicked
-/// column, when not asked for, only the y displacement (the space–time figure). Not kept: the
-/// y displacements and velocities of a chain's particles and the kicked column's other
-/// series, which nothing draws. Done to the record in memory, so a report rendered at the end
+/// column, when not asked for, only the displacement along the impulse (the space–time figure).
+/// Not kept: the y displacements and velocities of a chain's particles and the kicked column's
+/// other series, which nothing draws. Done to the record in memory, so a report rendered at the end
 /// of `run` and one by `report` from the store draw the same numbers.
 pub fn keep_what_is_stored(trace: &mut Trace, spec: &RunSpec) {
     (trace.displacement_y, trace.velocity_x, trace.velocity_y) = Default::default();
+    // The kicked column's displacement along the impulse: x under a sideways step (a transverse
+    // wave, whose u_y is round-off), else y.
+    let sideways = spec.lattice().and_then(|l| l.impulse).is_some_and(|i| i.is_sideways());
     for probe in trace.probes.iter_mut().filter(|p| !is_asked_for(spec, p)) {
-        (probe.displacement_x, probe.velocity_x, probe.velocity_y) = Default::default();
+        let across = if sideways { &mut probe.displacement_y } else { &mut probe.displacement_x };
+        (*across, probe.velocity_x, probe.velocity_y) = Default::default();
     }
     for series in [&mut trace.kinetic, &mut trace.potential, &mut trace.dissipated, &mut trace.work] {
         to_single(series);

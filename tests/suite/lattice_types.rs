@@ -262,7 +262,7 @@ fn a_sideways_step_on_a_periodic_strip_sends_a_transverse_wave_at_each_lattice_s
 
 #[test]
 fn the_lattice_types_report_states_the_count_and_what_was_observed() {
-    // The shipped campaign (392 runs, ~2.5 s) rendered: each type's finding from its records.
+    // The shipped campaign (408 runs, ~2.5 s) rendered: each type's finding from its records.
     let reports = tempfile::tempdir().unwrap();
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_mdsolids"))
         .arg("--reports")
@@ -288,6 +288,26 @@ fn the_lattice_types_report_states_the_count_and_what_was_observed() {
         "The honeycomb's strip carried no transverse front under a 1 N step or a 1000 N step",
     ] {
         assert!(report.contains(line), "missing: {line}");
+    }
+    // A sideways step sends a transverse wave: its space–time picture draws u_x (u_y is round-off).
+    assert!(
+        report.contains(
+            "Displacement along x of every node of the kicked column (0: bottom) against time, types-shear-wave"
+        ),
+        "the transverse wave's space–time figure draws u_x"
+    );
+    // Direction: E(45°)/E(0°) from the measured E, ν and G, against the continuum within 5 %:
+    // 1.6 for the square lattice at k_d = k, 0.625 at k_d = k/4, 1 for the triangular network.
+    assert!(report.contains(". Lattice types: direction\n"), "no section on direction");
+    let ratio = |prefix: &str| -> f64 {
+        let row = report.lines().find(|l| l.starts_with(prefix)).unwrap_or_else(|| panic!("no row {prefix}"));
+        row.split('|').nth(7).unwrap().trim().parse().unwrap()
+    };
+    for (prefix, continuum) in
+        [("| square | 1.000 | 33 |", 1.6), ("| square | 0.2500 | 33 |", 0.625), ("| triangular | – | 33 |", 1.0)]
+    {
+        let measured = ratio(prefix);
+        assert!((measured / continuum - 1.0).abs() < 0.05, "{prefix} E(45°)/E(0°) = {measured} against {continuum}");
     }
     // E(p) of both diluted types with its seeds' error bars and the effective-medium line at
     // that type's 2d/z, shown in the percolation item.

@@ -11,6 +11,9 @@ use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::spec::LoadCase;
 
+/// Homogeneity by block size (N_x, N_y).
+type BySize = BTreeMap<(usize, usize), f64>;
+
 /// After relaxation: are the left and right edges straight lines?
 pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
     let regular = |r: &RunRecord| {
@@ -21,11 +24,11 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
     let undefined =
         e.ok(|r| regular(r) && r.metrics.lattice.homogeneity.is_none() && r.metrics.lattice.youngs_modulus.is_some());
     // Per (load case, supports): homogeneity by lattice size, the first run of each size.
-    let mut by_size: BTreeMap<(&'static str, &'static str), BTreeMap<usize, f64>> = BTreeMap::new();
+    let mut by_size: BTreeMap<(&'static str, &'static str), BySize> = BTreeMap::new();
     for r in &measured {
         let l = r.spec.lattice()?;
         let value = r.metrics.lattice.homogeneity?;
-        by_size.entry((l.load_case.name(), l.supports.name())).or_default().entry(l.nx).or_insert(value);
+        by_size.entry((l.load_case.name(), l.supports.name())).or_default().entry((l.nx, l.ny)).or_insert(value);
     }
     let mut sentences = vec![
         "Homogeneity is the largest distance of a left- or right-edge node's horizontal displacement from the \
@@ -37,13 +40,15 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
     for ((case, supports), sizes) in &by_size {
         sentences.extend(homogeneity_sentence(case, supports, sizes));
         rows.extend(
-            sizes.iter().map(|(n, h)| vec![case.to_string(), supports.to_string(), format!("{n} × {n}"), sig(*h)]),
+            sizes
+                .iter()
+                .map(|((nx, ny), h)| vec![case.to_string(), supports.to_string(), format!("{nx} × {ny}"), sig(*h)]),
         );
     }
     if !undefined.is_empty() {
         sentences.push(format!(
-            "In {} tensile runs without diagonals (ν = 0) the edges do not move sideways at all: homogeneity is not \
-             defined there, and the tables leave it empty.",
+            "In {} tensile runs the edges do not move sideways at all (without diagonals ν = 0; a periodic strip \
+             cannot contract): homogeneity is not defined there, and the tables leave it empty.",
             undefined.len()
         ));
     }
@@ -67,7 +72,7 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
             .find(|((case, supports), _)| *case == "tensile" && *supports == "coursework")
             .or_else(|| by_size.iter().next())
             .and_then(|((case, supports), sizes)| {
-                sizes.iter().next_back().map(|(n, h)| format!("{case}, {supports}, {n} × {n}: {}", sig(*h)))
+                sizes.iter().next_back().map(|((nx, ny), h)| format!("{case}, {supports}, {nx} × {ny}: {}", sig(*h)))
             })
             .unwrap_or_default(),
         sentences,
@@ -83,8 +88,12 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
 /// How flat the loaded top row of the largest tensile lattice rises, without and with
 /// diagonals: its spread (max − min) against its mean lift.
 fn top_row_sentence(tensile: &[&RunRecord]) -> Option<String> {
-    let size = |r: &RunRecord| r.spec.lattice().map_or(0, |l| l.nx * l.ny);
-    let largest = tensile.iter().filter(|r| r.metrics.lattice.edge_displacements.is_some()).map(|r| size(r)).max()?;
+    let size = |r: &RunRecord| r.spec.lattice().map_or((0, 0), |l| (l.nx, l.ny));
+    let largest = tensile
+        .iter()
+        .filter(|r| r.metrics.lattice.edge_displacements.is_some())
+        .map(|r| size(r))
+        .max_by_key(|(nx, ny)| nx * ny)?;
     let mut parts = Vec::new();
     for r in tensile.iter().filter(|r| size(r) == largest) {
         let (Some(l), Some(edges)) = (r.spec.lattice(), r.metrics.lattice.edge_displacements.as_ref()) else {
@@ -105,9 +114,10 @@ fn top_row_sentence(tensile: &[&RunRecord]) -> Option<String> {
         };
         parts.push(format!("{diagonals} on {} supports by {} µm, {shape}", l.supports.name(), sig(mean / 1e-6)));
     }
-    let n = (largest as f64).sqrt().round();
-    (!parts.is_empty())
-        .then(|| format!("On {n} × {n} the loaded top row rises {} (figure: the top row's profile).", parts.join("; ")))
+    let (nx, ny) = largest;
+    (!parts.is_empty()).then(|| {
+        format!("On {nx} × {ny} the loaded top row rises {} (figure: the top row's profile).", parts.join("; "))
+    })
 }
 
 /// A homogeneity below this is a straight edge: the relaxation stops with the slowest mode's
@@ -117,7 +127,7 @@ const STRAIGHT: f64 = super::two_d::STATIC_TOLERANCE;
 
 /// How far one set-up's edges depart from straight lines, smallest against largest lattice,
 /// with the trend in words.
-fn homogeneity_sentence(case: &str, supports: &str, sizes: &BTreeMap<usize, f64>) -> Option<String> {
+fn homogeneity_sentence(case: &str, supports: &str, sizes: &BySize) -> Option<String> {
     let (small, large) = (sizes.iter().next()?, sizes.iter().next_back()?);
     let trend = if sizes.values().all(|&h| h < STRAIGHT) {
         ": straight lines at every size, to within the relaxation's precision".to_string()
@@ -132,15 +142,9 @@ fn homogeneity_sentence(case: &str, supports: &str, sizes: &BTreeMap<usize, f64>
     } else {
         ", about the same at every size".to_string()
     };
-    Some(format!(
-        "{case}, {supports} supports: {} on {} × {} and {} on {} × {}{trend}.",
-        sig(*small.1),
-        small.0,
-        small.0,
-        sig(*large.1),
-        large.0,
-        large.0
-    ))
+    let at = |((nx, ny), h): (&(usize, usize), &f64)| format!("{} on {nx} × {ny}", sig(*h));
+    let measured = if sizes.len() < 2 { at(small) } else { format!("{} and {}", at(small), at(large)) };
+    Some(format!("{case}, {supports} supports: {measured}{trend}."))
 }
 
 /// Non-linear 2D: Hertz lattice moduli against the load.

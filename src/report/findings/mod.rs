@@ -167,7 +167,7 @@ pub fn findings(evidence: &Evidence) -> Vec<Finding> {
     // The coursework's questions see its evidence ([`Evidence::coursework`]); the lattice
     // types' see every run.
     let coursework = evidence.coursework();
-    let asked: [(Question, &Evidence); 25] = [
+    let asked: [(Question, &Evidence); 26] = [
         (one_d::two_particles, &coursework),
         (one_d::time_step, &coursework),
         (one_d::chain, &coursework),
@@ -190,6 +190,7 @@ pub fn findings(evidence: &Evidence) -> Vec<Finding> {
         (relaxation::time_to_modulus, evidence),
         (types::moduli, evidence),
         (types::isotropy, evidence),
+        (types::directions, evidence),
         (types::percolation, evidence),
         (types::waves, evidence),
         (discussion::linear_and_hertz, &coursework),

@@ -67,17 +67,23 @@ pub(super) fn units_and_time_step(e: &Evidence) -> Option<Answer> {
         l.ny,
         sig(s.mass * (l.nx * l.ny) as f64)
     ));
-    let margins: Vec<f64> = lattices
+    // (dt·ω_max, its stability limit) of each run at the coursework's step.
+    let margins: Vec<(f64, f64)> = lattices
         .iter()
         .filter(|r| !r.spec.allow_unstable && (r.spec.dt_per_tc() - 50.0).abs() < 1.0)
-        .filter_map(|r| Some(r.metrics.dt_omega_max? / r.metrics.stability_limit?))
+        .filter_map(|r| Some((r.metrics.dt_omega_max?, r.metrics.stability_limit?)))
         .collect();
-    let worst = margins.iter().copied().fold(0.0, f64::max);
+    let (worst_step, worst_limit) =
+        margins.iter().copied().max_by(|a, b| (a.0 / a.1).total_cmp(&(b.0 / b.1))).unwrap_or((0.0, 1.0));
+    let worst = worst_step / worst_limit;
     sentences.push(format!(
         "The lattice's fastest mode is faster than the pair's (ω_max up to 2√((k + k_d)/m) with diagonals), so the \
-         step is checked against it before every run: the largest dt·ω_max of the {} lattice runs is {} of its \
-         integrator's stability limit at dt = t_c/50.",
+         step is checked against it before every run: over the {} lattice runs at dt = t_c/50 it comes closest to \
+         its integrator's stability limit at dt·ω_max = {} against a limit of {} (2 for Verlet, lower with \
+         damping), {} of it.",
         margins.len(),
+        sig(worst_step),
+        sig(worst_limit),
         sig(worst)
     ));
     Some(Answer {
@@ -349,7 +355,7 @@ fn moduli(e: &Evidence, case: LoadCase) -> Option<Moduli> {
     let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
     let sentences = vec![format!(
         "Over the {} relaxed runs the MD modulus agrees with the static truss answer of the same network to {} at \
-         worst; the table shows the {largest} × {largest} lattices, where the static answer still differs from the \
+         worst; the table shows the lattices {largest} nodes wide, where the static answer still differs from the \
          continuum by the finite size and the supports.{}",
         ok.len(),
         rel(worst).trim_start_matches('+'),
@@ -377,18 +383,24 @@ fn moduli(e: &Evidence, case: LoadCase) -> Option<Moduli> {
 pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
     let Moduli { mut sentences, table, checks, scenes } = moduli(e, LoadCase::Tensile)?;
     let both = e.ok(|r| regular(r).is_some_and(|l| l.load_case == LoadCase::Tensile && l.diagonals == Diagonals::Both));
-    if let Some(r) = both.iter().max_by_key(|r| r.spec.lattice().map_or(0, |l| l.nx)) {
+    // The largest block, a free one (coursework or clamped supports) before a periodic strip.
+    let largest =
+        both.iter().max_by_key(|r| r.spec.lattice().map_or((0, false), |l| (l.nx, l.supports != Supports::PeriodicX)));
+    if let Some(r) = largest {
+        // A periodic strip cannot contract sideways: its continuum ν is 0, not k_d/(k + k_d).
+        let periodic = r.spec.lattice().is_some_and(|l| l.supports == Supports::PeriodicX);
+        let continuum_nu = if periodic { "0: the strip cannot contract sideways" } else { "k_d/(k + k_d) = " };
         sentences.insert(
             0,
             format!(
                 "1 kN up on every top-row node of the {}: E = (F/d/L_x)/(ΔL_y/L_y) = {} Pa (continuum {} Pa), \
-                 ν = −(ΔL_x/L_x)/(ΔL_y/L_y) = {} (continuum k_d/(k + k_d) = {}); without diagonals E = k/d and \
+                 ν = −(ΔL_x/L_x)/(ΔL_y/L_y) = {} (continuum {continuum_nu}{}); without diagonals E = k/d and \
                  ν = 0: nothing ties the columns to the rows.",
                 r.spec.lattice().map(lattice_words).unwrap_or_default(),
                 cell(r.metrics.lattice.youngs_modulus),
                 cell(r.metrics.lattice.youngs_modulus_theory),
-                cell(r.metrics.lattice.poisson_ratio),
-                cell(r.metrics.lattice.poisson_ratio_theory),
+                super::noise(r.metrics.lattice.poisson_ratio, 1.0),
+                if periodic { String::new() } else { cell(r.metrics.lattice.poisson_ratio_theory) },
             ),
         );
     }

@@ -37,6 +37,13 @@ impl ImpulseSpec {
     pub fn direction(&self) -> [f64; 2] {
         self.top_row_force.unwrap_or([self.vx, self.vy])
     }
+
+    /// True for an impulse mostly along x: on a lattice loaded from its top row, a transverse
+    /// wave.
+    pub fn is_sideways(&self) -> bool {
+        let [x, y] = self.direction();
+        x.abs() > y.abs()
+    }
 }
 
 /// The resolved lattice of a lattice scene.
