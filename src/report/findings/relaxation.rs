@@ -23,8 +23,8 @@ fn method(r: &RunRecord) -> String {
     match r.spec.relax() {
         Some(relax) if relax.critical_background => "critical damping".into(),
         Some(relax) if relax.method == RelaxMethod::Damped => {
-            let dashpot = if r.spec.gamma > 0.0 { " and bond dashpots" } else { "" };
-            format!("damped MD (γ_g = {} N s/m{dashpot})", sig(r.spec.gamma_background))
+            let dashpot = if r.spec.gamma > 0.0 { ", dashpots" } else { "" };
+            format!("damped MD (γ_g {} N s/m{dashpot})", sig(r.spec.gamma_background))
         }
         Some(relax) => relax.method.name().to_uppercase(),
         None => String::new(),
