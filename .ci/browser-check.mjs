@@ -130,6 +130,11 @@ async function main() {
       anchors: anchors.length,
       unresolved: anchors.map((a) => decodeURIComponent(a.hash.slice(1))).filter((id) => !ids.has(id)),
       local: [...new Set(local)],
+      // Displayed equations laid out as MathML: under plain CSS "display: block" Chromium laid
+      // each fraction out as a full-width block and lost the "=" between the terms.
+      equations: document.querySelectorAll('math[display="block"]').length,
+      fullWidthFractions: [...document.querySelectorAll('math[display="block"] mfrac')]
+        .filter((f) => f.getBoundingClientRect().width >= f.closest("math").getBoundingClientRect().width - 1).length,
     };
   })()`);
   // Bytes: the files the page loaded (their sizes on disk, which is what a file:// page
@@ -150,6 +155,8 @@ async function main() {
       `${facts.anchors - facts.unresolved.length}/${facts.anchors} #links (${facts.contents} in the contents)${facts.unresolved.length ? ": " + facts.unresolved.slice(0, 5).join(", ") : ""}`],
     ["every local link resolves", missingLinks.length === 0,
       `${facts.local.length - missingLinks.length}/${facts.local.length}${missingLinks.length ? ": " + missingLinks.slice(0, 5).join(", ") : ""}`],
+    ["displayed equations laid out as MathML", facts.equations > 0 && facts.fullWidthFractions === 0,
+      `${facts.equations} equations, ${facts.fullWidthFractions} fractions as wide as their equation`],
     [`total bytes loaded <= ${MOST_BYTES / 1e6} MB`, bytes <= MOST_BYTES,
       `${(bytes / 1e6).toFixed(2)} MB in ${files.size} files (Chromium's encoded length ${(encodedBytes / 1e6).toFixed(2)} MB)`],
   ];

@@ -34,8 +34,8 @@ const FRAME_DELAY_MS: u32 = 80;
 /// Width (pixels) kept on the right for the colour bar.
 const BAR_WIDTH: u32 = 90;
 
-/// Height (pixels) of a panel's header: the title, then the time and magnification.
-const HEADER: u32 = 42;
+/// Height (pixels) of a panel's header: the title, the time, and the magnification (if any).
+pub const HEADER: u32 = 60;
 
 /// Colour of a speed fraction in [0, 1] on a viridis-like scale: dark violet at rest, through
 /// blue and green, to yellow at the fastest.
@@ -179,11 +179,14 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
                 let (header, body) = area.split_vertically(HEADER);
                 let font = ("sans-serif", 15).into_font().color(&BLACK);
                 header.draw(&Text::new(movie.title.clone(), (8, 4), font.clone())).map_err(draw_error)?;
-                let enlarged =
-                    if magnification > 1.0 { format!("   displacements × {magnification}") } else { String::new() };
-                let time =
-                    format!("t = {} s = {} t_c{enlarged}", readable(frame.time), readable(frame.time / movie.t_c));
-                header.draw(&Text::new(time, (8, 22), font)).map_err(draw_error)?;
+                let time = format!("t = {} s = {} t_c", readable(frame.time), readable(frame.time / movie.t_c));
+                header.draw(&Text::new(time, (8, 22), font.clone())).map_err(draw_error)?;
+                // A line of its own: beside the time, which grows frame by frame, it ran off a
+                // narrow frame.
+                if magnification > 1.0 {
+                    let enlarged = format!("displacements × {magnification}");
+                    header.draw(&Text::new(enlarged, (8, 40), font)).map_err(draw_error)?;
+                }
                 let mut ctx =
                     ChartBuilder::on(&body).build_cartesian_2d(x_range.clone(), y_range.clone()).map_err(draw_error)?;
                 ctx.draw_series(movie.bonds.iter().map(|bond @ &(i, j, _)| {

@@ -251,8 +251,9 @@ fn a_movie_stops_at_its_runs_deadline() {
     assert_eq!(frames(&path).1.len(), 12);
 }
 
-/// The columns (left of the colour bar) and rows (below the two-line header) of the black
-/// pixels of `frame`: what a movie draws in black there is walls and held nodes.
+/// The columns (left of the colour bar) and rows (below the header: title, time,
+/// magnification) of the black pixels of `frame`: what a movie draws in black there is walls
+/// and held nodes.
 fn black_pixels(width: u16, frame: &[u8]) -> Vec<(usize, usize)> {
     let width = usize::from(width);
     frame
@@ -260,7 +261,7 @@ fn black_pixels(width: u16, frame: &[u8]) -> Vec<(usize, usize)> {
         .enumerate()
         .filter(|(_, p)| p[3] > 0 && p[0] < 30 && p[1] < 30 && p[2] < 30)
         .map(|(i, _)| (i % width, i / width))
-        .filter(|&(x, y)| x + 90 < width && y > 42)
+        .filter(|&(x, y)| x + 90 < width && y > mdsolids::draw::movie::HEADER as usize)
         .collect()
 }
 
