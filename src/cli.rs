@@ -9,7 +9,7 @@ use crate::model::{LatticeType, PlanarLattice};
 use crate::output::Layout;
 use crate::plan::{Plan, Stability};
 use crate::runner::{
-    BUILD, CampaignRun, INTERRUPTED, Interrupted, OtherBuilds, RunRecord, Shard, Stored, read_stored,
+    BUILD, CampaignRun, INTERRUPTED, Interrupted, OtherBuilds, RunRecord, Shard, Stored, read_stored, read_stored_as,
     run_campaign_with, shard_campaign, shard_of_each_run, stored_count, write_missing_movies,
 };
 use crate::sim::RunStatus;
@@ -406,7 +406,7 @@ fn print_plan_rows(plan: &Plan, layout: &Layout) -> PlanTally {
         let run_id = spec.run_id();
         // What `run` would do with the run's stored record: take it (`yes`), or simulate the
         // run because the record is missing, corrupt, of another build or stopped by its budget.
-        let state = match read_stored(layout, spec) {
+        let state = match read_stored_as(layout, spec, &run_id) {
             Stored::Current(record) | Stored::OtherBuild(record) if record.status == RunStatus::Budget => "budget",
             Stored::Current(_) => "yes",
             Stored::OtherBuild(_) => "stale",
