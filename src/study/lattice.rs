@@ -435,13 +435,14 @@ fn solve<L: ForceLaw>(
     let edges = l.layout(spec.spacing).edges;
     let shape = LatticeShape { edges: &edges, depth: l.depth };
     // k_min and ΔL's sensitivity bound a relaxation's error; a static-only run has none to bound.
+    // Under velocity control the modulus comes from the drive's force, whose error the bound on
+    // ΔL does not cover: nothing is measured, so no sensitivity is solved for.
+    let measured = if l.control == Control::Force { extension_dofs(l, &shape) } else { Vec::new() };
     if !spec.static_only()
-        && let Some(bounds) = truss.error_bounds(law, &ux, &uy, &extension_dofs(l, &shape))
+        && let Some(bounds) = truss.error_bounds(law, &ux, &uy, &measured)
     {
         metrics.stiffness_min = Some(bounds.stiffness_min);
-        // Under velocity control the modulus comes from the drive's force, whose error this
-        // bound does not cover.
-        metrics.extension_sensitivity = bounds.sensitivity.filter(|_| l.control == Control::Force);
+        metrics.extension_sensitivity = bounds.sensitivity;
     }
     metrics.static_extension = Some(extension(l, &shape, &ux, &uy));
     if spec.relax().is_some_and(|r| r.tangent_step.is_some()) {

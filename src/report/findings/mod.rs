@@ -227,6 +227,11 @@ fn fastest_relaxation(runs: &[&RunRecord]) -> f64 {
     runs.iter().filter_map(|r| r.metrics.dissipation_time).fold(f64::INFINITY, f64::min)
 }
 
+/// The smallest and largest of `values` (∞ and −∞ when there are none).
+fn extremes(values: &[f64]) -> (f64, f64) {
+    values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), &x| (low.min(x), high.max(x)))
+}
+
 /// `x` when present, a dash otherwise.
 fn cell(x: Option<f64>) -> String {
     x.map(sig).unwrap_or_else(|| "–".into())

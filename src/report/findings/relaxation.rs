@@ -3,7 +3,7 @@
 //! FIRE and CG, each against the critically damped bound in steps and the static answer of the
 //! same network.
 
-use super::{Answer, Evidence, Table, Verdict, cell, relative, sig};
+use super::{Answer, Evidence, Table, Verdict, cell, extremes, relative, sig};
 use crate::runner::RunRecord;
 use crate::sim::{RelaxMethod, RunStatus};
 use crate::study::lattice::critical_bound_steps;
@@ -95,7 +95,7 @@ pub(super) fn time_to_modulus(e: &Evidence) -> Option<Answer> {
     let critical = e.ok(|r| bounded(r) && r.spec.relax().is_some_and(|relax| relax.critical_background));
     let critical_ratios: Vec<f64> = critical.iter().filter_map(|r| over_bound(r)).collect();
     if !critical_ratios.is_empty() {
-        let (low, high) = span(&critical_ratios);
+        let (low, high) = extremes(&critical_ratios);
         sentences.push(format!(
             "Critical background damping (γ_g = 2√(k_min m)) certifies the tolerance in {}–{} × the critically \
              damped bound 11.75/(ω_min dt) over N = {} (goal: within {CRITICAL_STEPS_ALLOWED}×): the slowest \
@@ -129,7 +129,7 @@ pub(super) fn time_to_modulus(e: &Evidence) -> Option<Answer> {
         if ratios.is_empty() {
             continue;
         }
-        let (low, high) = span(&ratios);
+        let (low, high) = extremes(&ratios);
         sentences.push(format!(
             "{} needs {}–{} of the bound's steps in force evaluations over N = {}.",
             minimiser.name().to_uppercase(),
@@ -203,11 +203,6 @@ fn block(r: &RunRecord) -> String {
         Some(l) => format!("{} × {}", l.nx, l.ny),
         None => String::new(),
     }
-}
-
-/// The smallest and largest of `values`.
-fn span(values: &[f64]) -> (f64, f64) {
-    values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), v| (low.min(*v), high.max(*v)))
 }
 
 /// The block sizes N of `runs`, in order, without repeats: "20, 40, 80".

@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use super::{Answer, Evidence, Table, Verdict, cell, relative, sig};
+use super::{Answer, Evidence, Table, Verdict, cell, extremes, relative, sig};
 use crate::measure::lattice_constants;
 use crate::model::LatticeType;
 use crate::runner::RunRecord;
@@ -209,25 +209,30 @@ pub(super) fn isotropy(e: &Evidence) -> Option<Answer> {
     })
 }
 
-/// E(45°)/E(0°) of a square lattice's continuum: C per unit depth C11 = k + k_d, C12 = C66 = k_d
-/// (both diagonals), and 1/E(θ) = S11(c⁴ + s⁴) + (2 S12 + S66) c² s² at θ = 45°; `None` for
-/// another type.
+/// E(45°)/E(0°) of a solid with the square symmetry of its elastic constants, from E, ν and G
+/// along its axes: 1/E(θ) = S11(c⁴ + s⁴) + (2 S12 + S66) c² s² with S11 = 1/E, S12 = −ν/E,
+/// S66 = 1/G, so at θ = 45° E(45°)/E = 1/((1 − ν)/2 + E/(4G)). 1 for an isotropic solid
+/// (G = E/(2(1 + ν))).
+fn diagonal_stiffening(youngs: f64, poisson: f64, shear: f64) -> f64 {
+    1.0 / ((1.0 - poisson) / 2.0 + youngs / (4.0 * shear))
+}
+
+/// [`diagonal_stiffening`] of a square lattice's continuum: C per unit depth C11 = k + k_d,
+/// C12 = C66 = k_d (both diagonals), so E = C11 − C12²/C11, ν = C12/C11, G = C66 (all per unit
+/// depth: the depth cancels); `None` for another type.
 fn square_diagonal_stiffening(l: &LatticeSpec) -> Option<f64> {
     if !l.lattice_type.is_square() {
         return None;
     }
     let (kr, kf) = l.diagonal_stiffness();
     let c = lattice_constants(l.k_x, l.k_y, kr, kf);
-    let det = c.c11 * c.c11 - c.c12 * c.c12;
-    let (s11, s12, s66) = (c.c11 / det, -c.c12 / det, 1.0 / c.c66);
-    Some(s11 / (0.5 * s11 + 0.25 * (2.0 * s12 + s66)))
+    Some(diagonal_stiffening(c.c11 - c.c12 * c.c12 / c.c11, c.c12 / c.c11, c.c66))
 }
 
 /// The measured direction dependence: E(0°) and ν of a free block pulled along y and G of a
 /// periodic strip in shear (its exact C66/d), all from the static answer of the same network,
-/// give E(45°) by the square symmetry of the elastic constants,
-/// 1/E(45°) = (1 − ν)/(2E) + 1/(4G) (S11 = 1/E, S12 = −ν/E, S66 = 1/G); the triangular
-/// network (isotropic: G = E/(2(1 + ν)), so E(45°) = E) beside square ones at several k_d/k.
+/// give E(45°) by the square symmetry of the elastic constants ([`diagonal_stiffening`]); the
+/// triangular network (isotropic: E(45°) = E) beside square ones at several k_d/k.
 pub(super) fn directions(e: &Evidence) -> Option<Answer> {
     let fixed = |r: &RunRecord| {
         r.spec.static_only() && r.spec.lattice().is_some_and(|l| !l.is_random() && !l.rotated && l.impulse.is_none())
@@ -259,7 +264,7 @@ pub(super) fn directions(e: &Evidence) -> Option<Answer> {
     let mut triangular = None;
     for Network { key: (_, kind, ratio, n), lattice, youngs, poisson, shear } in &networks {
         let (Some(youngs), Some(poisson), Some(shear)) = (*youngs, *poisson, *shear) else { continue };
-        let stiffening = 1.0 / ((1.0 - poisson) / 2.0 + youngs / (4.0 * shear));
+        let stiffening = diagonal_stiffening(youngs, poisson, shear);
         let continuum = if kind.is_square() { square_diagonal_stiffening(lattice) } else { Some(1.0) };
         if let Some(continuum) = continuum {
             checks.push((stiffening / continuum - 1.0).abs() <= DIRECTION_TOLERANCE);
@@ -531,7 +536,7 @@ fn impulse_in_words(r: &RunRecord) -> String {
 /// The lowest and highest of `values` in words, "a … b" (one number when they agree to
 /// four digits).
 fn span(values: &[f64]) -> String {
-    let (low, high) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+    let (low, high) = extremes(values);
     if sig(low) == sig(high) { sig(low) } else { format!("{} … {}", sig(low), sig(high)) }
 }
 
