@@ -15,7 +15,7 @@ use faer::{Mat, Side};
 use std::time::Instant;
 
 use crate::model::{Bonds, ForceLaw, Linear};
-use crate::sim::Load;
+use crate::sim::{Load, euclidean_norm};
 
 /// What the static solver found.
 #[derive(Clone, Debug, PartialEq)]
@@ -75,12 +75,16 @@ const MECHANISM_RESIDUAL: f64 = 1e-6;
 /// semi-definite K (zero-energy motions the load does not drive).
 const REGULARISATION: f64 = 1e-12;
 
+/// Iterative refinements of a solve with the shifted K, at most (each one more solve with the
+/// same factor; two are usually all the shift needs).
+const REFINEMENTS: usize = 3;
+
 /// Out-of-balance force below this fraction of the load ends the Newton–Raphson iteration ...
-const NEWTON_TOLERANCE: f64 = 1e-10;
+const NEWTON_TOLERANCE: f64 = 1e-12;
 /// ... and so does a correction below this fraction of the displacement: the residual has then
 /// reached round-off (k · ε · r per spring), which for stiff springs and small loads can sit
 /// above the force tolerance.
-const NEWTON_STEP_TOLERANCE: f64 = 1e-9;
+const NEWTON_STEP_TOLERANCE: f64 = 1e-14;
 /// Newton–Raphson gives up after this many iterations (it converges quadratically: a handful).
 const NEWTON_ITERATIONS: usize = 50;
 
@@ -148,12 +152,23 @@ impl Truss<'_> {
     }
 
     /// Unit vector n̂ from j to i, length r, tension s and tangent s′ of bond `b` at `(ux, uy)`.
+    ///
+    /// The extension is taken from the displacements, not from the displaced positions: with
+    /// d₀ = xᵢ − xⱼ the bond at rest and Δu = uᵢ − uⱼ, δ = |d₀ + Δu| − |d₀| + δ₀ is computed as
+    /// (2 d₀·Δu + |Δu|²)/(|d₀ + Δu| + |d₀|) + δ₀, exact to ε of δ. Summing x + u first would
+    /// round u to ε·|x| (7e-15 m at 32 m), and the spring would carry that ulp times k: a
+    /// steel block (k = 2e9 N/m) at 10 N per node then never meets Newton's 1e-10 of the load.
+    /// δ₀ = |d₀| − rest is a spring's pre-stretch ([`pre_stretch`]).
     fn bond_state<L: ForceLaw>(&self, law: &L, b: usize, ux: &[f64], uy: &[f64]) -> ([f64; 2], f64, f64, f64) {
         let (i, j, k, rest) = (self.bonds.i[b], self.bonds.j[b], self.bonds.stiffness[b], self.bonds.rest[b]);
-        let dx = self.x[i] + ux[i] - self.x[j] - ux[j] + self.bonds.shift_x[b];
-        let dy = self.y[i] + uy[i] - self.y[j] - uy[j];
-        let r = (dx * dx + dy * dy).sqrt();
-        ([dx / r, dy / r], r, law.elastic_force(k, r - rest), law.tangent_stiffness(k, r - rest))
+        let (rest_x, rest_y) = (self.x[i] - self.x[j] + self.bonds.shift_x[b], self.y[i] - self.y[j]);
+        let (move_x, move_y) = (ux[i] - ux[j], uy[i] - uy[j]);
+        let (dx, dy) = (rest_x + move_x, rest_y + move_y);
+        let (r, r0) = (dx.hypot(dy), rest_x.hypot(rest_y));
+        let stretch = (2.0 * (rest_x * move_x + rest_y * move_y) + move_x * move_x + move_y * move_y) / (r + r0);
+        let resolution = f64::EPSILON * (self.x[i].abs() + self.x[j].abs() + self.y[i].abs() + self.y[j].abs());
+        let extension = stretch + pre_stretch(r0, rest, resolution);
+        ([dx / r, dy / r], r, law.elastic_force(k, extension), law.tangent_stiffness(k, extension))
     }
 
     /// Solves the full non-linear problem (large rotations, any force law) by Newton–Raphson
@@ -197,10 +212,10 @@ impl Truss<'_> {
     ) -> Option<StaticSolution> {
         let past = || deadline.is_some_and(|deadline| Instant::now() > deadline);
         let dofs = self.dofs();
-        let load_norm = norm(&self.load_vector(&dofs));
+        let load_norm = euclidean_norm(self.load_vector(&dofs).iter());
         for _ in 0..NEWTON_ITERATIONS {
             let (mut entries, residual) = self.tangent_and_residual(law, &ux, &uy, &dofs);
-            if norm(&residual) <= NEWTON_TOLERANCE * load_norm {
+            if euclidean_norm(residual.iter()) <= NEWTON_TOLERANCE * load_norm {
                 return Some(StaticSolution::Displacements { ux, uy });
             }
             if past() {
@@ -212,7 +227,9 @@ impl Truss<'_> {
                 ux[i] += dx[i];
                 uy[i] += dy[i];
             }
-            if norm(&step) <= NEWTON_STEP_TOLERANCE * (norm(&ux) + norm(&uy)) {
+            if euclidean_norm(step.iter())
+                <= NEWTON_STEP_TOLERANCE * (euclidean_norm(ux.iter()) + euclidean_norm(uy.iter()))
+            {
                 return Some(StaticSolution::Displacements { ux, uy });
             }
         }
@@ -253,8 +270,8 @@ impl Truss<'_> {
             return None;
         }
         let (mut entries, _) = self.tangent_and_residual(law, ux, uy, &dofs);
-        let cholesky = factor(dofs.free, &mut entries)?;
-        let stiffness_min = softest_stiffness(&cholesky, &entries, dofs.free)?;
+        let factor = Factor::of(dofs.free, &mut entries)?;
+        let stiffness_min = softest_stiffness(&factor, &entries, dofs.free)?;
         let mut weights = vec![0.0; dofs.free];
         for &(dof, weight) in measured {
             if let Some(&free) = dofs.index.get(dof).filter(|free| **free != usize::MAX) {
@@ -264,7 +281,7 @@ impl Truss<'_> {
         // A singular K_t (k_min = 0) has no inverse to bound by, and a quantity of held dofs
         // alone has no error.
         let sensitivity = (stiffness_min > 0.0 && weights.iter().any(|w| *w != 0.0))
-            .then(|| solve_with(&cholesky, &weights).map(|z| norm(&z)))
+            .then(|| factor.solve(&weights).map(|z| euclidean_norm(z.iter())))
             .flatten();
         Some(ErrorBounds { stiffness_min, sensitivity })
     }
@@ -344,44 +361,83 @@ impl Truss<'_> {
     }
 }
 
+/// A spring's stretch at the reference positions, |d₀| − rest (m), or 0 where that is below
+/// the resolution of the positions, `resolution` = ε(|xᵢ| + |xⱼ| + |yᵢ| + |yⱼ|) (m): a lattice's
+/// springs are at rest there by construction, and what differs is the rounding of the
+/// positions, which taken literally would pre-stress every spring by k·ε·|x| (1e14 N for
+/// k = 1e30 N/m at 1 m, against a load of 1 kN).
+fn pre_stretch(length: f64, rest: f64, resolution: f64) -> f64 {
+    let stretch = length - rest;
+    if stretch.abs() <= 4.0 * (resolution + f64::EPSILON * rest) { 0.0 } else { stretch }
+}
+
 /// One entry (row, column, value) of a stiffness matrix over the free degrees of freedom.
 type Entry = Triplet<usize, usize, f64>;
 
-fn norm(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
-}
-
-/// Factors K + εI (ε = 1e-12 of the largest diagonal entry) and solves for `force`; `None`
-/// when the factorisation fails.
+/// Factors K + εI (ε = 1e-12 of the largest diagonal entry) and solves K u = `force`; `None`
+/// when the factorisation fails. The shift leaves u off by about ε‖K⁻¹‖ (6e-11 of E on a
+/// 10 × 10 steel block), which iterative refinement with the unshifted K takes off:
+/// u ← u + (K + εI)⁻¹(f − K u), while the residual falls at least twofold, at most
+/// [`REFINEMENTS`] times (a load on a mechanism's zero mode never lets it fall).
 fn factor_and_solve(size: usize, entries: &mut Vec<Entry>, force: &[f64]) -> Option<Vec<f64>> {
     if size == 0 {
         return Some(Vec::new());
     }
-    solve_with(&factor(size, entries)?, force)
-}
-
-/// The sparse Cholesky factor of K + εI (ε = 1e-12 of the largest diagonal entry) over `size`
-/// free degrees of freedom; `None` when the factorisation fails. The shift is appended to K's
-/// `entries` for the assembly and taken off again, instead of assembling from a copy: at 10⁶
-/// nodes the entries alone are 1.5 GB (16 per bond, 24 bytes each).
-fn factor(size: usize, entries: &mut Vec<Entry>) -> Option<faer::sparse::linalg::solvers::Llt<usize, f64>> {
-    let mut diagonal = vec![0.0f64; size];
-    for entry in entries.iter().filter(|e| e.row == e.col) {
-        diagonal[entry.row] += entry.val;
+    let factor = Factor::of(size, entries)?;
+    let mut u = factor.solve(force)?;
+    let mut residual = out_of_balance(entries, &u, force);
+    for _ in 0..REFINEMENTS {
+        let correction = factor.solve(&residual)?;
+        let refined: Vec<f64> = u.iter().zip(&correction).map(|(a, b)| a + b).collect();
+        let left = out_of_balance(entries, &refined, force);
+        if euclidean_norm(left.iter()) >= 0.5 * euclidean_norm(residual.iter()) {
+            break;
+        }
+        (u, residual) = (refined, left);
     }
-    let shift = REGULARISATION * diagonal.iter().fold(0.0f64, |m, d| m.max(*d));
-    let stiffness_entries = entries.len();
-    entries.extend((0..size).map(|d| Triplet { row: d, col: d, val: shift }));
-    let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(size, size, entries);
-    entries.truncate(stiffness_entries);
-    matrix.ok()?.sp_cholesky(Side::Lower).ok()
+    Some(u)
 }
 
-/// K⁻¹ `force` from K's factor; `None` when the answer is not finite.
-fn solve_with(cholesky: &faer::sparse::linalg::solvers::Llt<usize, f64>, force: &[f64]) -> Option<Vec<f64>> {
-    let solution = cholesky.solve(Mat::from_fn(force.len(), 1, |i, _| force[i]));
-    let u: Vec<f64> = (0..force.len()).map(|i| solution[(i, 0)]).collect();
-    u.iter().all(|v| v.is_finite()).then_some(u)
+/// The sparse Cholesky factor of (K + εI)/s, s the power of two nearest K's largest diagonal
+/// entry: factored at unit scale, so that stiffnesses near the ends of the floating-point range
+/// (1e±300 N/m) neither overflow nor underflow inside the factorisation, and scaled by a power
+/// of two, which is exact both ways.
+struct Factor {
+    cholesky: faer::sparse::linalg::solvers::Llt<usize, f64>,
+    /// s (N/m).
+    scale: f64,
+}
+
+impl Factor {
+    /// The factor over `size` free degrees of freedom; `None` when the factorisation fails.
+    /// The shift ε = 1e-12 of the largest diagonal entry is appended to K's `entries`, and
+    /// every entry divided by s, for the assembly, then both undone, instead of assembling from
+    /// a copy: at 10⁶ nodes the entries alone are 1.5 GB (16 per bond, 24 bytes each).
+    fn of(size: usize, entries: &mut Vec<Entry>) -> Option<Factor> {
+        let mut diagonal = vec![0.0f64; size];
+        for entry in entries.iter().filter(|e| e.row == e.col) {
+            diagonal[entry.row] += entry.val;
+        }
+        let largest = diagonal.iter().fold(0.0f64, |m, d| m.max(*d));
+        if !(largest > 0.0 && largest.is_finite()) {
+            return None;
+        }
+        let scale = 2.0f64.powi(largest.log2().round() as i32);
+        let stiffness_entries = entries.len();
+        entries.extend((0..size).map(|d| Triplet { row: d, col: d, val: REGULARISATION * largest }));
+        entries.iter_mut().for_each(|e| e.val /= scale);
+        let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(size, size, entries);
+        entries.truncate(stiffness_entries);
+        entries.iter_mut().for_each(|e| e.val *= scale);
+        Some(Factor { cholesky: matrix.ok()?.sp_cholesky(Side::Lower).ok()?, scale })
+    }
+
+    /// K⁻¹ `force` = ((K + εI)/s)⁻¹ (force/s); `None` when the answer is not finite.
+    fn solve(&self, force: &[f64]) -> Option<Vec<f64>> {
+        let solution = self.cholesky.solve(Mat::from_fn(force.len(), 1, |i, _| force[i] / self.scale));
+        let u: Vec<f64> = (0..force.len()).map(|i| solution[(i, 0)]).collect();
+        u.iter().all(|v| v.is_finite()).then_some(u)
+    }
 }
 
 /// A lower bound (N/m) on the smallest eigenvalue k_min of K (given by its `entries` and its
@@ -391,26 +447,22 @@ fn solve_with(cholesky: &faer::sparse::linalg::solvers::Llt<usize, f64>, force: 
 /// η = ‖K v − ρ v‖: some eigenvalue lies in [ρ − η, ρ + η] (Krylov–Bogoliubov), the lowest one
 /// once the iteration has found it. 0 when K is singular (a floppy network); `None` when a
 /// solve is not finite.
-fn softest_stiffness(
-    cholesky: &faer::sparse::linalg::solvers::Llt<usize, f64>,
-    entries: &[Entry],
-    size: usize,
-) -> Option<f64> {
+fn softest_stiffness(factor: &Factor, entries: &[Entry], size: usize) -> Option<f64> {
     let unit = |v: Vec<f64>| {
-        let length = norm(&v);
+        let length = euclidean_norm(v.iter());
         v.into_iter().map(|x| x / length).collect::<Vec<f64>>()
     };
     let mut v = unit(vec![1.0; size]);
     let mut rayleigh = f64::INFINITY;
     for iteration in 1..=SOFTEST_ITERATIONS {
-        v = unit(solve_with(cholesky, &v)?);
+        v = unit(factor.solve(&v)?);
         let kv = multiply(entries, &v);
         let next: f64 = kv.iter().zip(&v).map(|(a, b)| a * b).sum();
         let settled = (rayleigh - next).abs() <= SOFTEST_TOLERANCE * next.abs();
         rayleigh = next;
         if settled || iteration == SOFTEST_ITERATIONS {
             let residual: Vec<f64> = kv.iter().zip(&v).map(|(a, b)| a - rayleigh * b).collect();
-            return Some((rayleigh - norm(&residual)).max(0.0));
+            return Some((rayleigh - euclidean_norm(residual.iter())).max(0.0));
         }
     }
     None
@@ -425,8 +477,12 @@ fn multiply(entries: &[Entry], v: &[f64]) -> Vec<f64> {
     product
 }
 
+/// f − K u with K given by its entries.
+fn out_of_balance(entries: &[Entry], u: &[f64], force: &[f64]) -> Vec<f64> {
+    multiply(entries, u).iter().zip(force).map(|(ku, f)| f - ku).collect()
+}
+
 /// ‖K u − f‖ / ‖f‖ with K given by its entries.
 fn relative_residual(entries: &[Entry], u: &[f64], force: &[f64]) -> f64 {
-    let r: Vec<f64> = multiply(entries, u).iter().zip(force).map(|(ku, f)| ku - f).collect();
-    norm(&r) / norm(force).max(f64::MIN_POSITIVE)
+    euclidean_norm(out_of_balance(entries, u, force).iter()) / euclidean_norm(force.iter()).max(f64::MIN_POSITIVE)
 }

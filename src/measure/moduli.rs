@@ -41,16 +41,17 @@ pub fn row_extension_weights(shape: &LatticeShape) -> Vec<(usize, f64)> {
     top.iter().map(|&n| (n, top_weight)).chain(bottom.iter().map(|&n| (n, bottom_weight))).collect()
 }
 
-/// The bound on the relative error of a modulus M ∝ 1/ΔL (E in tension, G in shear) measured
-/// at the extension `extension` = ΔL (m) when ΔL itself is within `extension_error` (m) of its
-/// value at rest: with b = |δΔL|/|ΔL|, |δM/M| ≤ b/(1 − b) (∞ for b ≥ 1).
-pub fn modulus_error_bound(extension: f64, extension_error: f64) -> f64 {
-    let b = extension_error / extension.abs();
-    if b < 1.0 { b / (1.0 - b) } else { f64::INFINITY }
+/// The bound on the relative error |M/M* − 1| of a modulus M ∝ 1/ΔL (E in tension, G in shear,
+/// under force control) measured at the extension `measured` = ΔL (m) when ΔL is within
+/// `extension_error` (m) of its value at rest ΔL*: M/M* = ΔL*/ΔL, so |M/M* − 1| =
+/// |ΔL* − ΔL|/|ΔL| ≤ `extension_error`/|ΔL| (∞ at ΔL = 0).
+pub fn modulus_error_bound(measured: f64, extension_error: f64) -> f64 {
+    extension_error / measured.abs()
 }
 
-/// The largest error of ΔL (m) for which [`modulus_error_bound`] at `extension` is at most
-/// `tolerance`: b = tolerance/(1 + tolerance).
+/// The largest error of ΔL (m) allowed at the extension at rest `extension` = ΔL* (m) for
+/// [`modulus_error_bound`] to be at most `tolerance`: tolerance/(1 + tolerance) |ΔL*|. Then
+/// |ΔL| ≥ |ΔL*|/(1 + tolerance), and the bound at ΔL is at most the tolerance.
 pub fn extension_error_allowed(extension: f64, tolerance: f64) -> f64 {
     tolerance / (1.0 + tolerance) * extension.abs()
 }

@@ -11,7 +11,7 @@ pub use self::stability::{Estimates, RUN_GROWTH, Stability, estimate};
 use rayon::prelude::*;
 use std::path::Path;
 
-use crate::spec::{Campaign, DEFAULT_DT_PER_TC, RunSpec, SpecError};
+use crate::spec::{Campaign, DEFAULT_DT_PER_TC, RESIDUAL_OVER_ROUND_OFF, RunSpec, SpecError, force_resolution};
 
 /// A campaign ready to run: every run's dt and steps final, each within its integrator's
 /// stability limit unless it says `time.allow_unstable: true`.
@@ -61,6 +61,7 @@ pub fn plan(file: &str, mut campaign: Campaign) -> Result<Plan, SpecError> {
 /// memory does not depend on dt), and a static-only run takes no step: neither is worth an
 /// estimate ([`Estimates::stepped_stability`]). The error is the field and why.
 fn plan_run(spec: &mut RunSpec, refused: bool, estimates: &Estimates) -> Result<(), String> {
+    check_round_off(spec)?;
     let Some(target) = spec.dt_omega_max else {
         return match (!refused).then(|| estimates.stepped_stability(spec)).flatten() {
             Some(stability) => check_limit(spec, &stability, "time.dt_per_tc (or time.dt)"),
@@ -86,6 +87,43 @@ fn plan_run(spec: &mut RunSpec, refused: bool, estimates: &Estimates) -> Result<
     // Exactly the value asked for (ω_max · dt may differ in the last digit).
     let stability = Stability { dt_omega_max: target, ..estimates.stability(spec) };
     check_limit(spec, &stability, "time.dt_omega_max")
+}
+
+/// A load per node below this many times the round-off of the static force ([`force_resolution`])
+/// is refused: MD would resolve the moduli to no better than 1e-3.
+const LOAD_OVER_ROUND_OFF: f64 = 1e3;
+
+/// Refuses a loaded lattice under force control whose load, or whose `relax.residual_force`,
+/// lies near or below the round-off floor of its positions (a load of 10 N on a 1e30 N/m
+/// network; 1e-8 of a load that is 2e-15 N): no relaxation stops there, and the moduli would be
+/// round-off. Velocity control's force is known only from the static answer, and the
+/// displacement bound's floor needs its sensitivity: both are checked before the run starts
+/// (`study::lattice`).
+fn check_round_off(spec: &RunSpec) -> Result<(), String> {
+    let (Some(floor), Some(force)) = (force_resolution(spec), spec.lattice().and_then(|l| l.force_per_node())) else {
+        return Ok(());
+    };
+    let extent = spec.lattice().map_or(0.0, |l| l.extent(spec.spacing));
+    let why = format!(
+        "the positions, up to X = {extent:.3e} m, are held to ε X, which leaves every static force uncertain by \
+         about {floor:.2e} N (ε X times the stiffest spring's tangent stiffness)"
+    );
+    if force.abs() < LOAD_OVER_ROUND_OFF * floor {
+        return Err(format!(
+            "load.per_node = {force:e}: below {LOAD_OVER_ROUND_OFF:e} times the round-off floor: {why}; allowed: \
+             load.per_node ≥ {:.2e} N, or relax.method: static (solved in displacements)",
+            LOAD_OVER_ROUND_OFF * floor
+        ));
+    }
+    match spec.relax().and_then(|r| r.residual_force) {
+        Some(fraction) if fraction * force.abs() < RESIDUAL_OVER_ROUND_OFF * floor => Err(format!(
+            "relax.residual_force = {fraction:e}: {:.2e} N, below {RESIDUAL_OVER_ROUND_OFF} times the round-off \
+             floor: {why}; allowed: relax.residual_force ≥ {:.2e}",
+            fraction * force.abs(),
+            RESIDUAL_OVER_ROUND_OFF * floor / force.abs()
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// Refuses `spec` when its dt · ω_max passes the limit of its integrator, unless it allows that;

@@ -8,7 +8,8 @@ pub use self::kind::*;
 pub use self::name::MAX_NAME_LEN;
 pub use self::raw::{Control, Diagonals, Grid, LoadCase, SceneKind, Supports};
 pub use self::run_spec::{
-    Budget, MovieSpec, POWER_METHOD_BONDS, RESULT_FORMAT, RunSpec, reference_extension, seconds_up_to_1e9,
+    Budget, MovieSpec, POWER_METHOD_BONDS, RESIDUAL_OVER_ROUND_OFF, RESULT_FORMAT, RunSpec, force_resolution,
+    reference_extension, seconds_up_to_1e9,
 };
 pub use self::shared::{RelaxSpec, WaveSpec};
 

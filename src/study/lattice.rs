@@ -15,8 +15,11 @@ use crate::measure::{
     tensile_moduli,
 };
 use crate::model::{Axes, Bonds, Edges, ForceLaw, LatticeType, LawVisitor, Layout, Particles, SquareLattice};
-use crate::sim::{Drive, Load, Network, Outcome, ProbeTrace, Scene, Trace};
-use crate::spec::{Control, Diagonals, LatticeSpec, LoadCase, ProbeLine, RunSpec, Supports, reference_extension};
+use crate::sim::{Drive, Load, Network, Outcome, ProbeTrace, Relaxation, Scene, Trace};
+use crate::spec::{
+    Control, Diagonals, LatticeSpec, LoadCase, ProbeLine, RESIDUAL_OVER_ROUND_OFF, RunSpec, Supports, force_resolution,
+    reference_extension,
+};
 
 /// What a lattice measures, with its static and continuum twins.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -81,9 +84,13 @@ pub struct LatticeMetrics {
     /// [`row_extension`]).
     #[serde(default)]
     pub static_extension: Option<f64>,
+    /// Loaded lattice with a tangent step: the increment of ΔL (m) in the static answer when
+    /// the load rises by the step (the tangent response K_t Δu = step · f).
+    #[serde(default)]
+    pub static_tangent_extension: Option<f64>,
     /// Loaded lattice under force control: the bound on the relative error of E (tension) or
     /// G (shear) of the MD run against its state of rest, from the residual force at its end:
-    /// b/(1 − b) with b = ‖K_t⁻¹ g‖₂ ‖r‖₂/|ΔL|.
+    /// ‖K_t⁻¹ g‖₂ ‖r‖₂/|ΔL| (see [`modulus_error_bound`]).
     #[serde(default)]
     pub relax_error_bound: Option<f64>,
     /// Loaded lattice with `damping.background: critical`: γ_g = 2 m ω_min = 2 √(k_min m)
@@ -267,16 +274,16 @@ fn top_row_drive(spec: &RunSpec, l: &LatticeSpec) -> Drive {
 }
 
 /// The static answer of a loaded lattice, before its MD run: the fraction of bonds a random
-/// lattice kept, the moduli of the static solution (see [`solve`]); under velocity control the
-/// residual force of `scene`'s relaxation judged against the force the drive holds at
-/// equilibrium (per top-row node), not the unused load_per_node.
+/// lattice kept, the moduli of the static solution (see [`solve`]), and what the scene's
+/// relaxation needs from it ([`relaxation_from_static`]). Returns why the run has no
+/// criterion to stop at, if it has none (it is then not run).
 pub(super) fn static_answer(
     spec: &RunSpec,
     l: &LatticeSpec,
     scene: &mut Scene,
     deadline: Instant,
     metrics: &mut LatticeMetrics,
-) -> Result<(), Stopped> {
+) -> Result<Option<String>, Stopped> {
     let bonds = bonds(spec, l);
     if l.is_random() {
         let full = match l.planar(spec.spacing) {
@@ -297,38 +304,102 @@ pub(super) fn static_answer(
         prescribed: &prescribed,
     };
     let (top_row_force, solution) = scene.law.dispatch(StaticSolve { spec, l, truss: &truss, deadline, metrics })?;
-    let relax = spec.relax();
     if spec.static_only() {
         scene.rest = solution.map(|(ux, uy)| {
             let p = &scene.particles;
             (p.x.iter().zip(&ux).map(|(x, u)| x + u).collect(), p.y.iter().zip(&uy).map(|(y, u)| y + u).collect())
         });
     }
+    Ok(relaxation_from_static(spec, l, scene, top_row_force, metrics))
+}
+
+/// What a relaxation takes from the static answer: the displacement bound's residual
+/// (`relax.tolerance`), critical background damping from k_min, and under velocity control the
+/// residual force judged against the force the drive holds at equilibrium (per top-row node),
+/// not the unused load_per_node. Returns why the run has no criterion to stop at: a floppy
+/// network (k_min = 0) has neither a displacement bound nor a critical γ_g, and a run that asks
+/// for either is not quietly judged by E_kin/E_pot instead.
+fn relaxation_from_static(
+    spec: &RunSpec,
+    l: &LatticeSpec,
+    scene: &mut Scene,
+    top_row_force: f64,
+    metrics: &mut LatticeMetrics,
+) -> Option<String> {
+    let (Some(relax), Some(relaxation)) = (spec.relax(), scene.sampling.relaxation.as_mut()) else { return None };
     let softest = metrics.stiffness_min.filter(|k| *k > 0.0);
-    // The displacement bound |δΔL| ≤ ‖K_t⁻¹ g‖₂ ‖r‖₂: the modulus is within the tolerance once
-    // ‖r‖₂ ≤ (the error of ΔL allowed at the static ΔL)/‖K_t⁻¹ g‖₂.
-    if let (Some(tolerance), Some(sensitivity), Some(extension), Some(relaxation)) = (
-        relax.and_then(|r| r.tolerance),
-        metrics.extension_sensitivity,
-        metrics.static_extension,
-        scene.sampling.relaxation.as_mut(),
-    ) {
-        relaxation.residual_norm = Some(extension_error_allowed(extension, tolerance) / sensitivity);
-    }
-    if relax.is_some_and(|r| r.critical_background)
-        && let Some(k_min) = softest
+    if let (Some(tolerance), Some(sensitivity), Some(extension)) =
+        (relax.tolerance, metrics.extension_sensitivity, metrics.static_extension)
     {
+        relaxation.residual_norm = Some(extension_error_allowed_at(extension, metrics, tolerance) / sensitivity);
+    }
+    if let (Control::Velocity, Some(fraction)) = (l.control, relax.residual_force) {
+        relaxation.residual_force = Some(fraction * (top_row_force / l.top_row_len() as f64).abs());
+    }
+    let floppy = "this network is floppy (k_min = 0: zero-energy modes the load does not drive)";
+    if relax.critical_background {
+        let Some(k_min) = softest else {
+            return Some(format!(
+                "damping.background: critical needs the softest stiffness k_min > 0 (γ_g = 2√(k_min m)); {floppy}; \
+                 give damping.background in N s/m"
+            ));
+        };
         // γ_g = 2 m ω_min with ω_min² = k_min/m.
         scene.background_gamma = 2.0 * (k_min * spec.mass).sqrt();
         metrics.gamma_background_critical = Some(scene.background_gamma);
     }
-    let fraction = relax.and_then(|r| r.residual_force);
-    if let (Control::Velocity, Some(fraction), Some(relaxation)) =
-        (l.control, fraction, scene.sampling.relaxation.as_mut())
-    {
-        relaxation.residual_force = Some(fraction * (top_row_force / l.nx as f64).abs());
+    let unbounded =
+        relax.tolerance.is_some() && relaxation.residual_norm.is_none() && relaxation.residual_force.is_none();
+    if unbounded {
+        return Some(format!(
+            "relax.tolerance (1e-4 by default for fire and cg) needs the displacement bound ‖K⁻¹g‖₂‖r‖₂, which needs \
+             the softest stiffness k_min > 0; {floppy}; give relax.residual_force"
+        ));
     }
-    Ok(())
+    below_round_off(spec, &scene.particles, relaxation)
+}
+
+/// The displacement bound's residual below this many times σ √n (σ the round-off of one
+/// static force, n the free degrees of freedom) is never reached: on 20 × 20 and 80 × 80 steel
+/// blocks FIRE and CG stopped at 0.31 times and ran to `max_tc` at 0.19 times.
+const NORM_OVER_ROUND_OFF: f64 = 0.25;
+
+/// Why a relaxation's criterion lies below the round-off floor of the positions, if it does
+/// (known only from the static answer: the displacement bound's residual, and under velocity
+/// control the drive's force): σ = [`force_resolution`] on every static force, and about
+/// σ √n on the norm over the n free degrees of freedom.
+fn below_round_off(spec: &RunSpec, particles: &Particles, relaxation: &Relaxation) -> Option<String> {
+    let floor = force_resolution(spec)?;
+    let free = 2 * particles.len() - particles.held_x.len() - particles.held_y.len();
+    let why = format!(
+        "the positions are held to ε X (X = {:.3e} m), which leaves every static force uncertain by about {floor:.2e} N",
+        spec.lattice().map_or(0.0, |l| l.extent(spec.spacing))
+    );
+    let norm_floor = NORM_OVER_ROUND_OFF * floor * (free as f64).sqrt();
+    if let Some(target) = relaxation.residual_norm.filter(|target| *target < norm_floor) {
+        let reachable = spec.relax().and_then(|r| r.tolerance).unwrap_or_default() * norm_floor / target;
+        return Some(format!(
+            "relax.tolerance: its displacement bound needs ‖r‖₂ ≤ {target:.2e} N, below the round-off floor \
+             {norm_floor:.2e} N: {why}; reachable: relax.tolerance ≥ {reachable:.1e}, or a larger load"
+        ));
+    }
+    let limit = relaxation.residual_force.filter(|limit| *limit < RESIDUAL_OVER_ROUND_OFF * floor)?;
+    Some(format!(
+        "relax.residual_force: {limit:.2e} N, below {RESIDUAL_OVER_ROUND_OFF} times the round-off floor: {why}; give a \
+         larger relax.residual_force or load"
+    ))
+}
+
+/// The error of ΔL (m) a relaxation may leave, by the displacement bound |δΔL| ≤ ‖K_t⁻¹ g‖₂ ‖r‖₂:
+/// the modulus is within `tolerance` once ‖r‖₂ ≤ this/‖K_t⁻¹ g‖₂. With a tangent step both
+/// relaxed states (before and after the step) are held to half the error the increment
+/// Δ(ΔL) allows, so that the tangent modulus, ∝ 1/Δ(ΔL), is within the tolerance too.
+fn extension_error_allowed_at(extension: f64, metrics: &LatticeMetrics, tolerance: f64) -> f64 {
+    let allowed = extension_error_allowed(extension, tolerance);
+    match metrics.static_tangent_extension {
+        Some(increment) => allowed.min(extension_error_allowed(increment, tolerance) / 2.0),
+        None => allowed,
+    }
 }
 
 /// Held axes of the static problem and the displacements imposed on them: the scene's
@@ -452,6 +523,8 @@ fn solve<L: ForceLaw>(
         }
         if let Some((dx, dy)) = truss.tangent_response(law, &ux, &uy) {
             let tangent = moduli(spec, l, l.total_load(), &dx, &dy);
+            let step = spec.relax().and_then(|r| r.tangent_step).unwrap_or_default();
+            metrics.static_tangent_extension = Some(step * extension(l, &shape, &dx, &dy));
             metrics.youngs_modulus_tangent_fem = tangent.youngs_modulus;
             metrics.poisson_ratio_tangent_fem = tangent.poisson_ratio;
             metrics.shear_modulus_tangent_fem = tangent.shear_modulus;

@@ -128,8 +128,13 @@ fn build_scene_until(spec: &RunSpec, deadline: Instant) -> Scene {
 pub fn run(spec: &RunSpec, deadline: Instant) -> Result<Run, Stopped> {
     let mut scene = build_scene_until(spec, deadline);
     let mut metrics = Metrics::default();
+    let mut no_criterion = None;
     if let Some(l) = spec.lattice().filter(|l| l.impulse.is_none()) {
-        lattice::static_answer(spec, l, &mut scene, deadline, &mut metrics.lattice)?;
+        no_criterion = lattice::static_answer(spec, l, &mut scene, deadline, &mut metrics.lattice)?;
+    }
+    if no_criterion.is_some() {
+        // Nothing could say when it is relaxed: not run, its static answer kept.
+        scene.sampling.steps = 0;
     }
     let start = (scene.particles.x.clone(), scene.particles.y.clone());
     let mut bonds = Vec::new();
@@ -142,10 +147,19 @@ pub fn run(spec: &RunSpec, deadline: Instant) -> Result<Run, Stopped> {
     }
     let supports = if spec.movie.is_some() { supports(&scene.particles) } else { Vec::new() };
     let sample_every = scene.sampling.every;
+    // The tangent step relaxes the same scene again, its static set-up (critical γ_g, the
+    // displacement bound) included; a static-only run has no MD tangent to measure (its
+    // tangent moduli are the static answer's, `*_tangent_fem`).
+    let tangent =
+        spec.relax().and_then(|r| r.tangent_step).filter(|_| !spec.static_only()).map(|step| (step, scene.clone()));
     let mut outcome = scene.run();
+    if let Some(reason) = no_criterion {
+        (outcome.trace.status, outcome.trace.message) = (RunStatus::NoEquilibrium, reason);
+        (outcome.trace.relaxed_at, outcome.trace.relaxed_by) = (None, None);
+    }
     measure(spec, &outcome, &start, &mut metrics);
-    if let Some(step) = spec.relax().and_then(|r| r.tangent_step).filter(|_| outcome.trace.relaxed_at.is_some()) {
-        tangent_step(spec, &outcome, step, deadline, &mut metrics);
+    if let Some((step, again)) = tangent.filter(|_| outcome.trace.relaxed_at.is_some()) {
+        tangent_step(spec, again, &outcome, step, &mut metrics);
     }
     let started = Instant::now();
     let reference = spec
@@ -250,12 +264,12 @@ fn measure_relaxation(spec: &RunSpec, outcome: &Outcome, side: usize, scale: &st
     });
 }
 
-/// The small extra step after a relaxation: from the relaxed state (at rest), the load
-/// (a chain's wall displacement) raised by the fraction `step`, relaxed again; tangent moduli
-/// (a chain's tangent stiffness) are the increments' ratios. Nothing is set when the second
-/// relaxation does not finish.
-fn tangent_step(spec: &RunSpec, relaxed: &Outcome, step: f64, deadline: Instant, metrics: &mut Metrics) {
-    let mut scene = build_scene_until(spec, deadline);
+/// The small extra step after a relaxation: `scene` (the run's own, as set up before it ran)
+/// from the relaxed state (at rest) with the load (a chain's wall displacement) raised by the
+/// fraction `step`, relaxed again by the same method and criteria; tangent moduli (a chain's
+/// tangent stiffness) are the increments' ratios. Nothing is set when the second relaxation
+/// does not finish.
+fn tangent_step(spec: &RunSpec, mut scene: Scene, relaxed: &Outcome, step: f64, metrics: &mut Metrics) {
     let start = &relaxed.state.particles;
     scene.particles.x.clone_from(&start.x);
     scene.particles.y.clone_from(&start.y);

@@ -6,8 +6,10 @@
 //! (once more as its own test binary); one file's: `cargo test --release --test suite unit::fem`.
 
 mod cluster;
+mod combinations;
 mod common;
 mod compare;
+mod dense;
 mod fast_paths;
 mod faults;
 mod hostile;

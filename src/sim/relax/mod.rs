@@ -66,7 +66,7 @@ impl Gradient {
 
     /// ‖r‖₂ (N) over every axis (held axes are zero).
     fn norm(&self) -> f64 {
-        self.fx.iter().chain(&self.fy).map(|f| f * f).sum::<f64>().sqrt()
+        euclidean_norm(self.fx.iter().chain(&self.fy))
     }
 
     /// The largest |r| (N) on any axis.
@@ -224,6 +224,20 @@ fn run<F: ForceField, M: Minimiser>(method: &mut M, state: &mut State, field: &m
     trace.residual_norm = Some(force.norm());
     trace.steps = evaluations;
     trace
+}
+
+/// ‖v‖₂: the plain sum of squares, or, where that overflows (forces of springs up to 1e300
+/// N/m), the same scaled by the largest |vᵢ|.
+pub fn euclidean_norm<'a>(v: impl Iterator<Item = &'a f64> + Clone) -> f64 {
+    let plain = v.clone().map(|x| x * x).sum::<f64>().sqrt();
+    if plain.is_finite() {
+        return plain;
+    }
+    let largest = v.clone().fold(0.0f64, |m, x| m.max(x.abs()));
+    if !largest.is_finite() {
+        return plain;
+    }
+    largest * v.map(|x| (x / largest).powi(2)).sum::<f64>().sqrt()
 }
 
 /// Σ a·b over both axes.

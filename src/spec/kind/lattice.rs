@@ -130,9 +130,25 @@ impl ProbeLine {
 }
 
 impl LatticeSpec {
-    /// Total force on the top row under force control, load_per_node · nx (N).
+    /// Total force on the top row under force control, load_per_node times its nodes (N).
     pub fn total_load(&self) -> f64 {
-        self.load_per_node * self.nx as f64
+        self.load_per_node * self.top_row_len() as f64
+    }
+
+    /// The largest coordinate (m) of a node, springs `spacing` (m) long, to within a factor
+    /// of order one: the larger of nx and ny times the spacing (nodes start at the origin).
+    pub fn extent(&self, spacing: f64) -> f64 {
+        self.nx.max(self.ny) as f64 * spacing
+    }
+
+    /// Nodes in the loaded top row as simulated: nx (the square lattice's nx is already the
+    /// turned block's), or the turned network's side column under `tensile-x`: ny nodes of a
+    /// triangular block, (ny + 1)/2 of a kagome one (its sparse rows have no end node there).
+    pub fn top_row_len(&self) -> usize {
+        match self.planar(1.0) {
+            Some(_) if self.rotated => self.layout(1.0).edges.top.len(),
+            _ => self.nx,
+        }
     }
 
     /// The force on every top-row node (N) where there is a force load: a loaded lattice under

@@ -12,7 +12,7 @@ fn metrics_serialise_flat() {
     metrics.lattice.youngs_modulus = Some(2e11);
     let value = serde_json::to_value(&metrics).unwrap();
     let object = value.as_object().unwrap();
-    assert_eq!(object.len(), 52, "{object:?}");
+    assert_eq!(object.len(), 53, "{object:?}");
     for (key, number) in [("energy_error", 1e-3), ("contact_duration", 0.5), ("wall_force", -2.0)] {
         assert_eq!(object[key].as_f64(), Some(number), "{key}");
     }
