@@ -561,3 +561,33 @@ fn report_sentences_follow_the_results() {
     }
     assert_ne!(stated[0], stated[1], "the two campaigns state different numbers");
 }
+
+/// The summary line of item 2 judges the order of the pair's time-step error only where the
+/// campaign sweeps dt: one dt gives an observation ("no dt sweep", •), not ✗ with no order; a
+/// sweep gives the order and ✓. A scene shows only the tables it has rows for: a chain between
+/// walls no normal-mode table, an impulse lattice no moduli table.
+#[test]
+fn the_time_step_is_judged_only_over_a_sweep_and_empty_tables_are_left_out() {
+    let mut lines = Vec::new();
+    for sweep in ["[50]", "[10, 50, 200]"] {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("sweep.yaml");
+        let yaml = format!(
+            "version: 1\nname: sweep\nscenes:\n  - name: pair\n    kind: pair\n    v0: 1.0\n    grid:\n      \
+             time.dt_per_tc: {sweep}\n  - name: walls\n    kind: chain\n    n: 5\n    damping: {{restitution: 0.5}}\n    \
+             relax: {{residual_force: 1.0e-6}}\n    wall_distance: 5.5\n  - name: kick\n    kind: lattice\n    \
+             lattice: {{size: 6}}\n    supports: free\n    impulse: {{node: top-right, velocity: [0.0, -0.1]}}\n"
+        );
+        std::fs::write(&file, yaml).unwrap();
+        let out = mdsolids(dir.path(), &["run", file.to_str().unwrap()]);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        let report = std::fs::read_to_string(dir.path().join("sweep").join("report.md")).unwrap();
+        let line = report.lines().find(|l| l.starts_with("| 2 | [The time step]")).unwrap().to_string();
+        for header in ["| run | grid values | N | excited |", "| run | grid values | size | springs |"] {
+            assert!(!report.contains(header), "a table without rows: {header}");
+        }
+        lines.push(line);
+    }
+    assert!(lines[0].contains("no dt sweep") && lines[0].contains('•') && !lines[0].contains('✗'), "{}", lines[0]);
+    assert!(lines[1].contains("error ∝ dt^2.0") && lines[1].contains('✓'), "{}", lines[1]);
+}

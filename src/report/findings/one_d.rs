@@ -192,12 +192,51 @@ fn energy_gain(e: &Evidence) -> Option<String> {
     ))
 }
 
-/// The time step: t_c of the pair, the coursework's t_c/50, larger and smaller steps.
+/// The time step: t_c of the pair, the coursework's t_c/50, larger and smaller steps. Without a
+/// sweep of dt there is no order to judge: the item then says so and gives no verdict.
 pub(super) fn time_step(e: &Evidence) -> Option<Answer> {
     let bonded = e.ok(|r| is_pair(r) && r.spec.law == LawSpec::Linear && !r.spec.contact && r.spec.gamma == 0.0);
     let reference = at_50(&bonded)?;
+    let order = order_of(e, reference, |r: &RunRecord| pair_errors(r).0);
+    let s = &reference.spec;
+    let mut sentences = vec![format!(
+        "For two particles of mass m = {} kg and stiffness k = {} N/m, t_c = π√(m/(2k)) = {} s, so the coursework's \
+         dt = t_c/50 = {} s; choosing m and k so that t_c is a round number makes every time a simple multiple of it.",
+        sig(s.mass),
+        sig(s.k),
+        sig(s.t_c),
+        sig(s.t_c / 50.0)
+    )];
+    sentences.push(match order {
+        Some(p) => sweep_sentence(&bonded, reference, p)?,
+        None => "This campaign runs the pair at one time step only, so no order of convergence is measured: sweep \
+                 time.dt_per_tc (say 10 to 500) to confirm the choice with larger and smaller steps."
+            .into(),
+    });
+    let dt = format!("dt = t_c/50 = {} s", sig(s.t_c / 50.0));
+    Some(Answer {
+        title: "The time step",
+        question: "What is a good time step for two particles of mass m and stiffness k? Confirm with larger and \
+                   smaller steps.",
+        short: match order {
+            Some(p) => format!("{dt}; error ∝ dt^{p:.2}"),
+            None => format!("{dt}; no dt sweep"),
+        },
+        sentences,
+        reference: "Verlet's second order: the fitted order must lie within 0.1 of 2.".into(),
+        verdict: order.map_or(Verdict::Observed, |p| Verdict::of([(p - 2.0).abs() <= 0.1])),
+        figures: [("pair-bonded", "error-dt"), ("pair-bonded", "work-precision"), ("integrators", "work-precision")]
+            .iter()
+            .filter_map(|(scene, part)| e.figure(scene, part))
+            .collect(),
+        table: None,
+    })
+}
+
+/// The time step's sweep in words: the fitted `order` of the error of t_c and its values at
+/// the coarsest, the `reference` (t_c/50) and the finest step of the `bonded` pairs swept with it.
+fn sweep_sentence(bonded: &[&RunRecord], reference: &RunRecord, order: f64) -> Option<String> {
     let t_error = |r: &RunRecord| pair_errors(r).0;
-    let order = order_of(e, reference, t_error);
     let sweep: Vec<&RunRecord> = bonded
         .iter()
         .copied()
@@ -208,49 +247,18 @@ pub(super) fn time_step(e: &Evidence) -> Option<Answer> {
         .collect();
     let coarsest = sweep.iter().max_by(|a, b| a.spec.dt.total_cmp(&b.spec.dt))?;
     let finest = sweep.iter().min_by(|a, b| a.spec.dt.total_cmp(&b.spec.dt))?;
-    let s = &reference.spec;
-    let sentences = vec![
-        format!(
-            "For two particles of mass m = {} kg and stiffness k = {} N/m, t_c = π√(m/(2k)) = {} s, so the \
-             coursework's dt = t_c/50 = {} s; choosing m and k so that t_c is a round number makes every time a \
-             simple multiple of it.",
-            sig(s.mass),
-            sig(s.k),
-            sig(s.t_c),
-            sig(s.t_c / 50.0)
-        ),
-        format!(
-            "Over the sweep the error of t_c falls as dt^{} ({}): {} at t_c/{:.0}, {} at t_c/{:.0} and {} at \
-             t_c/{:.0}. A larger step than t_c/10 loses the contact's shape; a smaller one than t_c/500 buys \
-             digits nobody needs.",
-            order.map(|p| format!("{p:.2}")).unwrap_or_else(|| "–".into()),
-            s.integrator.name(),
-            t_error(coarsest).map(rel).unwrap_or_default(),
-            coarsest.spec.dt_per_tc(),
-            t_error(reference).map(rel).unwrap_or_default(),
-            reference.spec.dt_per_tc(),
-            t_error(finest).map(rel).unwrap_or_default(),
-            finest.spec.dt_per_tc(),
-        ),
-    ];
-    Some(Answer {
-        title: "The time step",
-        question: "What is a good time step for two particles of mass m and stiffness k? Confirm with larger and \
-                   smaller steps.",
-        short: format!(
-            "dt = t_c/50 = {} s; error ∝ dt^{}",
-            sig(s.t_c / 50.0),
-            order.map(|p| format!("{p:.2}")).unwrap_or_default()
-        ),
-        sentences,
-        reference: "Verlet's second order: the fitted order must lie within 0.1 of 2.".into(),
-        verdict: Verdict::of([order.is_some_and(|p| (p - 2.0).abs() <= 0.1)]),
-        figures: [("pair-bonded", "error-dt"), ("pair-bonded", "work-precision"), ("integrators", "work-precision")]
-            .iter()
-            .filter_map(|(scene, part)| e.figure(scene, part))
-            .collect(),
-        table: None,
-    })
+    Some(format!(
+        "Over the sweep the error of t_c falls as dt^{order:.2} ({}): {} at t_c/{:.0}, {} at t_c/{:.0} and {} at \
+         t_c/{:.0}. A larger step than t_c/10 loses the contact's shape; a smaller one than t_c/500 buys digits \
+         nobody needs.",
+        reference.spec.integrator.name(),
+        t_error(coarsest).map(rel).unwrap_or_default(),
+        coarsest.spec.dt_per_tc(),
+        t_error(reference).map(rel).unwrap_or_default(),
+        reference.spec.dt_per_tc(),
+        t_error(finest).map(rel).unwrap_or_default(),
+        finest.spec.dt_per_tc(),
+    ))
 }
 
 /// The chain of N kicked at its centre against its exact normal-mode solution.
