@@ -5,4 +5,4 @@
 pub mod chart;
 pub mod movie;
 
-pub use self::movie::{Movie, PastDeadline, speed_color, write_movie, write_movie_panels};
+pub use self::movie::{Movie, PastDeadline, encode_movie_panels, speed_color, write_movie};

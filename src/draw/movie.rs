@@ -1,17 +1,25 @@
 //! Movies: an animated GIF of a run, particles as discs coloured by speed (with a colour bar),
 //! bonds as grey lines (or coloured by strain), walls and held nodes as black marks, the time
-//! and the displacement magnification on every frame.
+//! (or, for a run with no time, what the frame shows) and the displacement magnification on
+//! every frame.
 
+use anyhow::Context;
+use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
 
 use super::chart::{diverging, draw_error, ensure_font};
+use crate::sim::Frame;
 
 /// What a movie shows: the frames, the bonds between the particles, the size.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Movie {
     /// Frames in time order.
-    pub frames: Vec<crate::sim::Frame>,
+    pub frames: Vec<Frame>,
+    /// What each frame shows, in place of its time, when the run has no time (a minimiser or
+    /// the static solve: "start", then the state it ended in); empty for a run in time, whose
+    /// frames show t in s and in t_c.
+    pub captions: Vec<String>,
     /// Bonds drawn as lines (i, j, rest length in m); bonds across a periodic side are left out.
     pub bonds: Vec<(usize, usize, f64)>,
     /// Held particles and the axes they are held along: in a 1D scene (all particles on one
@@ -62,103 +70,33 @@ impl std::fmt::Display for PastDeadline {
 
 impl std::error::Error for PastDeadline {}
 
-/// Writes `movie` as an animated GIF at `path`, atomically (`output::write_atomically`). The
-/// view is fixed over all frames with equal scales on both axes; colours are scaled to the
-/// fastest speed after the first frame. Fails with [`PastDeadline`] once the movie's deadline
-/// passes (looked at between frames), writing nothing.
+/// Writes `movie` as an animated GIF at `path`, atomically (`output::write_atomically`): the
+/// GIF of [`encode_movie_panels`]. The view is fixed over all frames with equal scales on both
+/// axes; colours are scaled to the fastest speed after the first frame. Fails with
+/// [`PastDeadline`] once the movie's deadline passes (looked at between frames), writing nothing.
 pub fn write_movie(path: &Path, movie: &Movie) -> anyhow::Result<()> {
-    write_movie_panels(path, &[movie])
+    let bytes = encode_movie_panels(&[movie]).with_context(|| format!("cannot draw the movie '{}'", path.display()))?;
+    crate::output::write_atomically(path, &bytes)
 }
 
-/// Writes `panels` side by side in one animated GIF at `path` (each `width` of the first
-/// panel's size, one colour bar), atomically: the same view and the same colour scale for all,
-/// so the runs compare frame by frame (e.g. a lattice with and without diagonals). As many
-/// frames as the shortest panel has.
-pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> {
+/// `panels` side by side as the bytes of one animated GIF (each `width` of the first panel's
+/// size, one colour bar): the same view and the same colour scale for all, so the runs compare
+/// frame by frame (e.g. a lattice with and without diagonals). As many frames as the shortest
+/// panel has. Drawing and encoding only: an error here is the movie's own (no frames, positions
+/// not finite, past the deadline), which the runner records on the run; writing the bytes is
+/// the caller's, and a file that cannot be written (a full disk) stops a campaign.
+pub fn encode_movie_panels(panels: &[&Movie]) -> anyhow::Result<Vec<u8>> {
     ensure_font()?;
     let frames = panels.iter().map(|m| m.frames.len()).min().unwrap_or(0);
     anyhow::ensure!(frames > 0, "a movie needs at least one frame");
-    let spec = panels[0].spec;
-    let panel_width = spec.width - BAR_WIDTH;
-    let (width, height) = (panel_width * panels.len() as u32 + BAR_WIDTH, spec.height);
-    let (plot_w, plot_h) = (f64::from(panel_width), f64::from(height - HEADER));
-    let extent = |positions: &mut dyn Iterator<Item = f64>| {
-        positions.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)))
-    };
-    let all = || panels.iter().flat_map(|m| m.frames.iter());
-    let (x0, x1) = extent(&mut all().flat_map(|f| f.x.iter().copied()));
-    let (y0, y1) = extent(&mut all().flat_map(|f| f.y.iter().copied()));
-    anyhow::ensure!(x0.is_finite() && y0.is_finite(), "a movie's positions must be finite");
-    // All particles on one line (a chain or a pair): its held particles are walls.
-    let one_dimensional = y1 == y0;
-    // The shortest bond at the start sets the disc size and the margin.
-    let spacing = panels
-        .iter()
-        .flat_map(|m| m.bonds.iter().map(move |&(i, j, _)| (&m.frames[0], i, j)))
-        .map(|(first, i, j)| (first.x[i] - first.x[j]).hypot(first.y[i] - first.y[j]))
-        .filter(|d| *d > 0.0)
-        .fold(f64::INFINITY, f64::min);
-    let spacing = if spacing.is_finite() { spacing } else { (x1 - x0).max(y1 - y0).max(1.0) / 10.0 };
-    // Displacements u = r(t) − r(0) too small to see against the spacing a (a kick of 0.1 m/s
-    // moves the nodes of a steel-like lattice by microns) are drawn magnified, at r(0) + M u:
-    // the same M for every panel and frame, stated on each frame.
-    let largest_displacement = panels
-        .iter()
-        .flat_map(|m| m.frames.iter().map(move |f| (&m.frames[0], f)))
-        .flat_map(|(first, f)| (0..f.x.len()).map(move |i| (f.x[i] - first.x[i]).hypot(f.y[i] - first.y[i])))
-        .fold(0.0f64, f64::max);
-    let magnification = magnification(largest_displacement, spacing);
-    let shown: Vec<Vec<(Vec<f64>, Vec<f64>)>> = panels
-        .iter()
-        .map(|m| {
-            let first = &m.frames[0];
-            let magnified = |now: &[f64], start: &[f64]| -> Vec<f64> {
-                now.iter().zip(start).map(|(r, r0)| r0 + magnification * (r - r0)).collect()
-            };
-            m.frames.iter().map(|f| (magnified(&f.x, &first.x), magnified(&f.y, &first.y))).collect()
-        })
-        .collect();
-    let drawn = || shown.iter().flatten();
-    let (x0, x1) = extent(&mut drawn().flat_map(|(x, _)| x.iter().copied()));
-    let (y0, y1) = extent(&mut drawn().flat_map(|(_, y)| y.iter().copied()));
-    let pad = 0.6 * spacing;
-    let scale = ((x1 - x0) / 2.0 + pad) / plot_w * 2.0;
-    let scale = scale.max(((y1 - y0) / 2.0 + pad) / plot_h * 2.0);
-    let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
-    let x_range = (cx - scale * plot_w / 2.0)..(cx + scale * plot_w / 2.0);
-    let y_range = (cy - scale * plot_h / 2.0)..(cy + scale * plot_h / 2.0);
-    // Smaller discs when the bonds carry colour, so the bonds show between them.
-    let disc = if panels.iter().any(|m| m.spec.bond_strain) { 0.2 } else { 0.35 };
-    let radius = (disc * spacing / scale).clamp(2.0, 14.0) as i32;
-    // Colours span the speeds after the first frame: a kicked node's start speed would leave a
-    // spreading 2D wave too dark to see; it is drawn at the top colour (clamped) instead.
-    let skip = usize::from(frames > 1);
-    let fastest = panels
-        .iter()
-        .flat_map(|m| m.frames[skip..].iter())
-        .flat_map(|f| f.speed.iter().copied())
-        .fold(0.0f64, f64::max);
-    let fastest = if fastest > 0.0 { fastest } else { 1.0 };
-    // Bond strain ε = (|r_ij| − rest)/rest on a diverging scale that saturates at the 99th
-    // percentile of |ε| over the run: a kick strains its first bonds far more than the wave
-    // it sends, which would otherwise fade to white.
-    let strain = |frame: &crate::sim::Frame, &(i, j, rest): &(usize, usize, f64)| {
-        (frame.x[i] - frame.x[j]).hypot(frame.y[i] - frame.y[j]) / rest - 1.0
-    };
-    let mut strains: Vec<f64> = panels
-        .iter()
-        .filter(|m| m.spec.bond_strain)
-        .flat_map(|m| m.frames.iter().flat_map(move |f| m.bonds.iter().map(move |b| strain(f, b).abs())))
-        .filter(|e| *e > 0.0)
-        .collect();
-    strains.sort_by(f64::total_cmp);
-    let largest_strain = strains.get(strains.len() * 99 / 100).copied().unwrap_or(0.0);
-    let strained = largest_strain > 0.0;
+    let view = View::of(panels)?;
+    let scales = Scales::of(panels, frames);
     // Frames are drawn into one RGB buffer and encoded into memory (as plotters' GIF backend
     // does, but that one writes to a fixed path itself); the file is then written atomically.
     // One run's movie is part of the run, and within its deadline; side-by-side panels are not.
     let deadline = if let [movie] = panels { movie.deadline } else { None };
-    let encoding = |error: gif::EncodingError| anyhow::anyhow!("cannot encode the movie '{}': {error}", path.display());
+    let encoding = |error: gif::EncodingError| anyhow::anyhow!("cannot encode the movie: {error}");
+    let (width, height) = (view.width, view.height);
     let mut pixels = vec![0u8; width as usize * height as usize * 3];
     let mut palette = Palette::default();
     let mut previous: Option<Vec<u8>> = None;
@@ -168,67 +106,229 @@ pub fn write_movie_panels(path: &Path, panels: &[&Movie]) -> anyhow::Result<()> 
         if deadline.is_some_and(|deadline| std::time::Instant::now() > deadline) {
             return Err(PastDeadline.into());
         }
-        {
-            let root = BitMapBackend::with_buffer(&mut pixels, (width, height)).into_drawing_area();
-            root.fill(&WHITE).map_err(draw_error)?;
-            let (plots, bar) = root.split_horizontally(width - BAR_WIDTH);
-            let areas = plots.split_evenly((1, panels.len()));
-            for ((movie, area), positions) in panels.iter().zip(&areas).zip(&shown) {
-                let frame = &movie.frames[k];
-                let (x, y) = &positions[k];
-                let (header, body) = area.split_vertically(HEADER);
-                let font = ("sans-serif", 15).into_font().color(&BLACK);
-                header.draw(&Text::new(movie.title.clone(), (8, 4), font.clone())).map_err(draw_error)?;
-                let time = format!("t = {} s = {} t_c", readable(frame.time), readable(frame.time / movie.t_c));
-                header.draw(&Text::new(time, (8, 22), font.clone())).map_err(draw_error)?;
-                // A line of its own: beside the time, which grows frame by frame, it ran off a
-                // narrow frame.
-                if magnification > 1.0 {
-                    let enlarged = format!("displacements × {magnification}");
-                    header.draw(&Text::new(enlarged, (8, 40), font)).map_err(draw_error)?;
-                }
-                let mut ctx =
-                    ChartBuilder::on(&body).build_cartesian_2d(x_range.clone(), y_range.clone()).map_err(draw_error)?;
-                ctx.draw_series(movie.bonds.iter().map(|bond @ &(i, j, _)| {
-                    let style = if movie.spec.bond_strain && strained {
-                        diverging(strain(frame, bond) / largest_strain).stroke_width(2)
-                    } else {
-                        RGBColor(170, 170, 170).stroke_width(1)
-                    };
-                    PathElement::new(vec![(x[i], y[i]), (x[j], y[j])], style)
-                }))
-                .map_err(draw_error)?;
-                ctx.draw_series(
-                    (0..frame.x.len())
-                        .map(|i| Circle::new((x[i], y[i]), radius, speed_color(frame.speed[i] / fastest).filled())),
-                )
-                .map_err(draw_error)?;
-                // Supports over their discs, sized in pixels (`scale` m per pixel).
-                let half = f64::from(radius) * scale;
-                ctx.draw_series(movie.supports.iter().map(|&(i, held)| {
-                    let (cx, cy) = (x[i], y[i]);
-                    let (w, h, style) = if one_dimensional {
-                        (0.4 * half, 3.0 * half, BLACK.filled())
-                    } else if held.x && held.y {
-                        (half, half, BLACK.filled())
-                    } else {
-                        (half, half, BLACK.stroke_width(2))
-                    };
-                    Rectangle::new([(cx - w, cy - h), (cx + w, cy + h)], style)
-                }))
-                .map_err(draw_error)?;
-            }
-            draw_colour_bar(&bar, fastest, strained.then_some(largest_strain), height)?;
-            root.present().map_err(draw_error)?;
-        }
+        draw_frame(&mut pixels, panels, &view, &scales, k)?;
         let now = palette.indices(&pixels);
         let mut frame = gif_frame(&now, previous.as_deref(), width as usize);
         frame.delay = ((FRAME_DELAY_MS + 5) / 10) as u16; // GIF delays are in 1/100 s
         encoder.write_frame(&frame).map_err(encoding)?;
         previous = Some(now);
     }
-    let bytes = encoder.into_inner().map_err(|error| encoding(error.into()))?;
-    crate::output::write_atomically(path, &bytes)
+    encoder.into_inner().map_err(|error| encoding(error.into()))
+}
+
+/// Where the panels are drawn, fixed over all frames: the picture's size, the positions as
+/// drawn (displacements magnified), the data ranges of a panel with equal scales on both axes,
+/// the disc size.
+struct View {
+    /// The whole picture (pixels): the panels side by side and the colour bar.
+    width: u32,
+    height: u32,
+    /// Each panel's positions (x, y) (m) as drawn, frame by frame.
+    shown: Vec<Vec<(Vec<f64>, Vec<f64>)>>,
+    x_range: std::ops::Range<f64>,
+    y_range: std::ops::Range<f64>,
+    /// Metres per pixel.
+    scale: f64,
+    /// Disc radius (pixels).
+    radius: i32,
+    /// The factor M displacements are drawn magnified by (1: as they are).
+    magnification: f64,
+    /// All particles on one line (a chain or a pair): its held particles are walls.
+    one_dimensional: bool,
+}
+
+impl View {
+    fn of(panels: &[&Movie]) -> anyhow::Result<View> {
+        let spec = panels[0].spec;
+        let panel_width = spec.width - BAR_WIDTH;
+        let (width, height) = (panel_width * panels.len() as u32 + BAR_WIDTH, spec.height);
+        let (plot_w, plot_h) = (f64::from(panel_width), f64::from(height - HEADER));
+        let all = || panels.iter().flat_map(|m| m.frames.iter());
+        let (x0, x1) = extent(all().flat_map(|f| f.x.iter().copied()));
+        let (y0, y1) = extent(all().flat_map(|f| f.y.iter().copied()));
+        anyhow::ensure!(x0.is_finite() && y0.is_finite(), "a movie's positions must be finite");
+        // All particles on one line (a chain or a pair): its held particles are walls.
+        let one_dimensional = y1 == y0;
+        let spacing = shortest_bond(panels).unwrap_or((x1 - x0).max(y1 - y0).max(1.0) / 10.0);
+        // Displacements u = r(t) − r(0) too small to see against the spacing a (a kick of 0.1
+        // m/s moves the nodes of a steel-like lattice by microns) are drawn magnified, at
+        // r(0) + M u: the same M for every panel and frame, stated on each frame.
+        let largest_displacement = panels
+            .iter()
+            .flat_map(|m| m.frames.iter().map(move |f| (&m.frames[0], f)))
+            .flat_map(|(first, f)| (0..f.x.len()).map(move |i| (f.x[i] - first.x[i]).hypot(f.y[i] - first.y[i])))
+            .fold(0.0f64, f64::max);
+        let magnification = magnification(largest_displacement, spacing);
+        let magnified = |now: &[f64], start: &[f64]| -> Vec<f64> {
+            now.iter().zip(start).map(|(r, r0)| r0 + magnification * (r - r0)).collect()
+        };
+        let shown: Vec<Vec<(Vec<f64>, Vec<f64>)>> = panels
+            .iter()
+            .map(|m| {
+                m.frames.iter().map(|f| (magnified(&f.x, &m.frames[0].x), magnified(&f.y, &m.frames[0].y))).collect()
+            })
+            .collect();
+        let drawn = || shown.iter().flatten();
+        let (x0, x1) = extent(drawn().flat_map(|(x, _)| x.iter().copied()));
+        let (y0, y1) = extent(drawn().flat_map(|(_, y)| y.iter().copied()));
+        let pad = 0.6 * spacing;
+        let scale = (((x1 - x0) / 2.0 + pad) / plot_w * 2.0).max(((y1 - y0) / 2.0 + pad) / plot_h * 2.0);
+        let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+        // Smaller discs when the bonds carry colour, so the bonds show between them.
+        let disc = if panels.iter().any(|m| m.spec.bond_strain) { 0.2 } else { 0.35 };
+        Ok(View {
+            width,
+            height,
+            shown,
+            x_range: (cx - scale * plot_w / 2.0)..(cx + scale * plot_w / 2.0),
+            y_range: (cy - scale * plot_h / 2.0)..(cy + scale * plot_h / 2.0),
+            scale,
+            radius: (disc * spacing / scale).clamp(2.0, 14.0) as i32,
+            magnification,
+            one_dimensional,
+        })
+    }
+}
+
+/// The smallest and largest of `values` (∞, −∞ when there are none).
+fn extent(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)))
+}
+
+/// The shortest bond (m) at the start of any panel, which sets the disc size and the margin;
+/// `None` without bonds of non-zero length.
+fn shortest_bond(panels: &[&Movie]) -> Option<f64> {
+    let shortest = panels
+        .iter()
+        .flat_map(|m| m.bonds.iter().map(move |&(i, j, _)| (&m.frames[0], i, j)))
+        .map(|(first, i, j)| (first.x[i] - first.x[j]).hypot(first.y[i] - first.y[j]))
+        .filter(|d| *d > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    shortest.is_finite().then_some(shortest)
+}
+
+/// The colour scales, shared by every panel and frame: the fastest speed (m/s) and, when bonds
+/// are coloured, the strain of full colour (0: no bond strained).
+struct Scales {
+    fastest: f64,
+    largest_strain: f64,
+}
+
+impl Scales {
+    fn of(panels: &[&Movie], frames: usize) -> Scales {
+        // Colours span the speeds after the first frame: a kicked node's start speed would leave
+        // a spreading 2D wave too dark to see; it is drawn at the top colour (clamped) instead.
+        let skip = usize::from(frames > 1);
+        let fastest = panels
+            .iter()
+            .flat_map(|m| m.frames[skip..].iter())
+            .flat_map(|f| f.speed.iter().copied())
+            .fold(0.0f64, f64::max);
+        // Bond strain on a diverging scale that saturates at the 99th percentile of |ε| over the
+        // run: a kick strains its first bonds far more than the wave it sends, which would
+        // otherwise fade to white.
+        let mut strains: Vec<f64> = panels
+            .iter()
+            .filter(|m| m.spec.bond_strain)
+            .flat_map(|m| m.frames.iter().flat_map(move |f| m.bonds.iter().map(move |b| strain(f, b).abs())))
+            .filter(|e| *e > 0.0)
+            .collect();
+        strains.sort_by(f64::total_cmp);
+        Scales {
+            fastest: if fastest > 0.0 { fastest } else { 1.0 },
+            largest_strain: strains.get(strains.len() * 99 / 100).copied().unwrap_or(0.0),
+        }
+    }
+}
+
+/// A bond's strain ε = (|r_ij| − rest)/rest in `frame`.
+fn strain(frame: &Frame, &(i, j, rest): &(usize, usize, f64)) -> f64 {
+    (frame.x[i] - frame.x[j]).hypot(frame.y[i] - frame.y[j]) / rest - 1.0
+}
+
+/// Draws frame `k` of every panel and the colour bar into `pixels` (RGB rows of `view.width`).
+fn draw_frame(pixels: &mut [u8], panels: &[&Movie], view: &View, scales: &Scales, k: usize) -> anyhow::Result<()> {
+    let root = BitMapBackend::with_buffer(pixels, (view.width, view.height)).into_drawing_area();
+    root.fill(&WHITE).map_err(draw_error)?;
+    let (plots, bar) = root.split_horizontally(view.width - BAR_WIDTH);
+    let areas = plots.split_evenly((1, panels.len()));
+    for ((movie, area), positions) in panels.iter().zip(&areas).zip(&view.shown) {
+        let (header, body) = area.split_vertically(HEADER);
+        draw_header(&header, movie, k, view.magnification)?;
+        draw_particles(&body, movie, &positions[k], &movie.frames[k], view, scales)?;
+    }
+    let strained = scales.largest_strain > 0.0;
+    draw_colour_bar(&bar, scales.fastest, strained.then_some(scales.largest_strain), view.height)?;
+    root.present().map_err(draw_error)
+}
+
+/// A panel's header at frame `k`: the title, the time (or the frame's caption) and the
+/// magnification, if any.
+fn draw_header(
+    header: &DrawingArea<BitMapBackend<'_>, Shift>,
+    movie: &Movie,
+    k: usize,
+    magnification: f64,
+) -> anyhow::Result<()> {
+    let font = ("sans-serif", 15).into_font().color(&BLACK);
+    header.draw(&Text::new(movie.title.clone(), (8, 4), font.clone())).map_err(draw_error)?;
+    let time = movie.frames[k].time;
+    let when = movie
+        .captions
+        .get(k)
+        .cloned()
+        .unwrap_or_else(|| format!("t = {} s = {} t_c", readable(time), readable(time / movie.t_c)));
+    header.draw(&Text::new(when, (8, 22), font.clone())).map_err(draw_error)?;
+    // A line of its own: beside the time, which grows frame by frame, it ran off a narrow frame.
+    if magnification > 1.0 {
+        let enlarged = format!("displacements × {magnification}");
+        header.draw(&Text::new(enlarged, (8, 40), font)).map_err(draw_error)?;
+    }
+    Ok(())
+}
+
+/// A panel's bonds, discs and supports at the positions `(x, y)` drawn for `frame`.
+fn draw_particles(
+    body: &DrawingArea<BitMapBackend<'_>, Shift>,
+    movie: &Movie,
+    (x, y): &(Vec<f64>, Vec<f64>),
+    frame: &Frame,
+    view: &View,
+    scales: &Scales,
+) -> anyhow::Result<()> {
+    let mut ctx =
+        ChartBuilder::on(body).build_cartesian_2d(view.x_range.clone(), view.y_range.clone()).map_err(draw_error)?;
+    let coloured = movie.spec.bond_strain && scales.largest_strain > 0.0;
+    ctx.draw_series(movie.bonds.iter().map(|bond @ &(i, j, _)| {
+        let style = if coloured {
+            diverging(strain(frame, bond) / scales.largest_strain).stroke_width(2)
+        } else {
+            RGBColor(170, 170, 170).stroke_width(1)
+        };
+        PathElement::new(vec![(x[i], y[i]), (x[j], y[j])], style)
+    }))
+    .map_err(draw_error)?;
+    let radius = view.radius;
+    ctx.draw_series(
+        (0..frame.x.len())
+            .map(|i| Circle::new((x[i], y[i]), radius, speed_color(frame.speed[i] / scales.fastest).filled())),
+    )
+    .map_err(draw_error)?;
+    // Supports over their discs, sized in pixels (`scale` m per pixel).
+    let half = f64::from(radius) * view.scale;
+    ctx.draw_series(movie.supports.iter().map(|&(i, held)| {
+        let (cx, cy) = (x[i], y[i]);
+        let (w, h, style) = if view.one_dimensional {
+            (0.4 * half, 3.0 * half, BLACK.filled())
+        } else if held.x && held.y {
+            (half, half, BLACK.filled())
+        } else {
+            (half, half, BLACK.stroke_width(2))
+        };
+        Rectangle::new([(cx - w, cy - h), (cx + w, cy + h)], style)
+    }))
+    .map_err(draw_error)?;
+    Ok(())
 }
 
 /// The magnification M of displacements whose largest is `largest` (m) in a network of

@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use crate::output::{movie_name, side_by_side_name};
 use crate::runner::RunRecord;
-use crate::sim::RunStatus;
+use crate::sim::{RelaxMethod, RunStatus};
 use crate::spec::RunSpec;
 
 /// A drawn figure.
@@ -35,7 +35,7 @@ pub struct FigureRef {
 /// movies, so those are then left out), otherwise each run's own.
 pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> Vec<FigureRef> {
     let together = side_by_side.iter().any(|s| s == scene);
-    let own = mine.iter().filter(|r| !together && r.spec.movie.is_some() && r.status != RunStatus::Panicked);
+    let own = mine.iter().filter(|r| !together && r.has_movie());
     together
         .then(|| FigureRef {
             file: side_by_side_name(scene),
@@ -46,16 +46,29 @@ pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> 
             file: movie_name(&r.run_id),
             caption: format!(
                 "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), {}{}; \
-                 displacements are drawn to scale unless the frame states a magnification × M.",
+                 displacements are drawn to scale unless the frame states a magnification × M.{}",
                 r.spec.varied_in_words(|_| true),
                 match r.spec.movie {
                     Some(movie) if movie.bond_strain => "bonds coloured by strain (red stretched, blue compressed)",
                     _ => "bonds in grey",
                 },
                 supports_in_words(&r.spec),
+                untimed_in_words(&r.spec),
             ),
         }))
         .collect()
+}
+
+/// What the frames of a run with no time show (a minimiser or the static solve): two states,
+/// not a motion.
+fn untimed_in_words(spec: &RunSpec) -> &'static str {
+    match spec.relax().map(|r| r.method) {
+        Some(RelaxMethod::Fire | RelaxMethod::Cg) => {
+            " The minimiser has no time: two frames, the start and the state it stopped at (captioned)."
+        }
+        Some(RelaxMethod::Static) => " The static solve has no time: two frames, the start and the static answer.",
+        _ => "",
+    }
 }
 
 /// How a movie draws what holds the scene: a chain's walls, a lattice's held nodes.

@@ -8,7 +8,7 @@ use std::time::Instant;
 use super::record::{BUILD, Metrics, RunRecord, keep_what_is_stored};
 use crate::draw::Movie;
 use crate::plan::Estimates;
-use crate::sim::{RunStatus, Trace, stored_samples};
+use crate::sim::{RelaxMethod, RunStatus, Trace, stored_samples};
 use crate::spec::{Budget, RunSpec};
 use crate::study::{self, Run, Stopped};
 
@@ -114,6 +114,7 @@ fn fill(record: &mut RunRecord, mut run: Run, deadline: Instant) {
     let spec = &record.spec;
     record.movie = spec.movie.map(|movie| Movie {
         frames: std::mem::take(&mut run.outcome.frames),
+        captions: untimed_captions(spec, &run.outcome.trace),
         bonds: run.bonds,
         supports: run.supports,
         spec: movie,
@@ -134,6 +135,22 @@ fn fill(record: &mut RunRecord, mut run: Run, deadline: Instant) {
     // the report draws.
     record.trace.thin(stored_samples(record.trace.numbers_per_sample()));
     keep_what_is_stored(&mut record.trace, &record.spec);
+}
+
+/// What the frames of a run with no time show (a minimiser's or the static solve's two frames,
+/// `relax.method: fire | cg | static`): the start, then the state it ended in, with the method
+/// and its force evaluations; none for a run in time, whose frames show their time.
+fn untimed_captions(spec: &RunSpec, trace: &Trace) -> Vec<String> {
+    let Some(method) = spec.relax().map(|r| r.method).filter(|m| *m != RelaxMethod::Damped) else {
+        return Vec::new();
+    };
+    let (name, evaluations) = (method.name(), trace.steps);
+    let end = match (method, trace.status) {
+        (RelaxMethod::Static, RunStatus::Ok) => "static answer (relax.method: static)".to_string(),
+        (_, RunStatus::Ok) => format!("relaxed ({name}, {evaluations} force evaluations)"),
+        (_, status) => format!("stopped ({name}, {evaluations} force evaluations): {status}"),
+    };
+    vec!["start".into(), end]
 }
 
 fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {

@@ -2,7 +2,7 @@
 //! cached by content hash, with a progress bar; a failing run becomes a record, not a crash.
 
 pub use self::execute::{execute, execute_within};
-pub use self::record::{BUILD, Metrics, RunRecord, StoredFile, is_asked_for};
+pub use self::record::{BUILD, Metrics, NO_MOVIE, RunRecord, StoredFile, is_asked_for};
 pub use self::shard::{Shard, shard_campaign, shard_of_each_run};
 
 mod execute;
@@ -348,23 +348,8 @@ fn run_and_store(
     let campaign = &plan.campaign;
     let mut record = execute_within(spec, &campaign.budget, &plan.estimates);
     if let Some(movie) = record.movie.take() {
-        match crate::draw::write_movie(&layout.movie_file(&record.run_id), &movie) {
-            // A run already stopped by its budget keeps its own reason.
-            Err(error) if error.is::<crate::draw::PastDeadline>() && record.status == RunStatus::Budget => {}
-            Err(error) if error.is::<crate::draw::PastDeadline>() => {
-                record.status = RunStatus::Budget;
-                record.message = format!(
-                    "passed its time budget of {} s per run (budget.seconds_per_run) while encoding its movie of {} \
-                     frames of {} × {} pixels; the measurements are kept, the movie is not written",
-                    campaign.budget.seconds_per_run,
-                    movie.frames.len(),
-                    movie.spec.width,
-                    movie.spec.height
-                );
-            }
-            written => written?,
-        }
-        if movie.spec.side_by_side && record.status != RunStatus::Budget {
+        write_run_movie(layout, &mut record, &movie, campaign.budget.seconds_per_run)?;
+        if movie.spec.side_by_side && record.has_movie() {
             *panel.lock().expect("a panel is written once") = Some(movie);
         }
     }
@@ -380,13 +365,46 @@ fn run_and_store(
     Ok(Some((record, true)))
 }
 
+/// Draws the movie of `record`'s run and writes it beside the record. A movie that cannot be
+/// drawn never stops the campaign: the run is recorded with why, as any failing run is. Past
+/// the run's deadline (`seconds_per_run`) it becomes `status = budget` (a run already stopped
+/// by its budget keeps its own reason); otherwise its status stays and its message says that
+/// [`NO_MOVIE`] and why, so that no later `run` or `report` simulates it again for the movie.
+/// Only a file that cannot be written (a full disk) is an error, as for the record itself.
+pub fn write_run_movie(
+    layout: &Layout,
+    record: &mut RunRecord,
+    movie: &Movie,
+    seconds_per_run: f64,
+) -> anyhow::Result<()> {
+    let error = match crate::draw::encode_movie_panels(&[movie]) {
+        Ok(bytes) => return write_atomically(&layout.movie_file(&record.run_id), &bytes),
+        Err(error) => error,
+    };
+    if !error.is::<crate::draw::PastDeadline>() {
+        let why = format!("{NO_MOVIE}: {error:#}");
+        record.message = if record.message.is_empty() { why } else { format!("{}; {why}", record.message) };
+    } else if record.status != RunStatus::Budget {
+        record.status = RunStatus::Budget;
+        record.message = format!(
+            "passed its time budget of {seconds_per_run} s per run (budget.seconds_per_run) while encoding its movie of \
+             {} frames of {} × {} pixels; the measurements are kept, the movie is not written",
+            movie.frames.len(),
+            movie.spec.width,
+            movie.spec.height
+        );
+    }
+    Ok(())
+}
+
 /// Writes the movies of `records` that are missing: each run's GIF, and for each scene that
 /// shows its runs side by side, that movie unless it exists for exactly the scene's current
 /// runs (the ids listed in `plots/<scene>-side-by-side.runs`). Frames are not stored (they would
 /// make the records many times heavier), so the frames not in `frames` (the movies of the runs
 /// simulated now) come from simulating the run again: runs are deterministic, so the frames
 /// are the same, and scenes with movies are small. A side-by-side movie whose runs are not all
-/// stored yet (or left no frames) is removed rather than shown stale.
+/// stored yet (or left no frames) is removed rather than shown stale. A movie that cannot be
+/// drawn is said on stderr and left out ([`write_movie_or_say`]).
 pub fn write_missing_movies(
     plan: &Plan,
     layout: &Layout,
@@ -394,16 +412,13 @@ pub fn write_missing_movies(
     mut frames: BTreeMap<String, Movie>,
 ) -> anyhow::Result<()> {
     let campaign = &plan.campaign;
-    let has_movie = |r: &RunRecord| {
-        r.spec.movie.is_some() && !matches!(r.status, RunStatus::Panicked | RunStatus::Budget | RunStatus::Mechanism)
-    };
     let mut movie_of = |spec: &RunSpec| {
         frames.remove(&spec.run_id()).or_else(|| execute_within(spec, &campaign.budget, &plan.estimates).movie)
     };
     let mut redrawn: BTreeMap<String, Movie> = BTreeMap::new();
-    for record in records.iter().filter(|r| has_movie(r) && !layout.movie_file(&r.run_id).is_file()) {
+    for record in records.iter().filter(|r| r.has_movie() && !layout.movie_file(&r.run_id).is_file()) {
         if let Some(movie) = movie_of(&record.spec) {
-            crate::draw::write_movie(&layout.movie_file(&record.run_id), &movie)?;
+            write_movie_or_say(&layout.movie_file(&record.run_id), &[&movie])?;
             redrawn.insert(record.run_id.clone(), movie);
         }
     }
@@ -420,17 +435,31 @@ pub fn write_missing_movies(
             }
         }
         let stored: Vec<&RunRecord> = ids.iter().filter_map(|id| records.iter().find(|r| r.run_id == *id)).collect();
-        if stored.len() < ids.len() || !stored.iter().all(|r| has_movie(r)) {
+        if stored.len() < ids.len() || !stored.iter().all(|r| r.has_movie()) {
             continue;
         }
         let movies: Option<Vec<Movie>> =
             stored.iter().map(|r| redrawn.remove(&r.run_id).or_else(|| movie_of(&r.spec))).collect();
-        if let Some(movies) = movies {
-            crate::draw::write_movie_panels(&movie_path, &movies.iter().collect::<Vec<_>>())?;
+        if let Some(movies) = movies
+            && write_movie_or_say(&movie_path, &movies.iter().collect::<Vec<_>>())?
+        {
             write_atomically(&runs_path, (ids.join("\n") + "\n").as_bytes())?;
         }
     }
     Ok(())
+}
+
+/// Writes `panels` as one movie at `path` and returns true; a movie that cannot be drawn (the
+/// movie's own error: past its run's deadline, positions not finite) is said on stderr and left
+/// out (false), for it never stops a campaign. A file that cannot be written is an error.
+fn write_movie_or_say(path: &std::path::Path, panels: &[&Movie]) -> anyhow::Result<bool> {
+    match crate::draw::encode_movie_panels(panels) {
+        Ok(bytes) => write_atomically(path, &bytes).map(|()| true),
+        Err(error) => {
+            eprintln!("warning: the movie '{}' is not drawn: {error:#}", path.display());
+            Ok(false)
+        }
+    }
 }
 
 /// The runs of `scene` shown side by side, in campaign order.

@@ -48,7 +48,20 @@ pub struct RunRecord {
     pub movie: Option<Movie>,
 }
 
+/// What a record's message says (followed by why) when its run's movie could not be drawn:
+/// the run is recorded, and its movie is not tried again.
+pub const NO_MOVIE: &str = "its movie could not be drawn";
+
 impl RunRecord {
+    /// Whether the run has a movie beside its record (`runs/<run_id>.gif`): it asked for one,
+    /// ran to an end (not panicked, not stopped by its budget, not a mechanism) and its movie
+    /// could be drawn ([`NO_MOVIE`]).
+    pub fn has_movie(&self) -> bool {
+        self.spec.movie.is_some()
+            && !matches!(self.status, RunStatus::Panicked | RunStatus::Budget | RunStatus::Mechanism)
+            && !self.message.contains(NO_MOVIE)
+    }
+
     /// Checks a record read from the store as the record of `spec` (whose id names its file):
     /// its own `run_id` is that id and the id of its own spec, its spec is `spec`, and its
     /// sampled series have the lengths the report indexes them by. Why not, if it is not.

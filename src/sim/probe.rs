@@ -165,6 +165,19 @@ pub struct Frame {
     pub speed: Vec<f64>,
 }
 
+impl Frame {
+    /// The frame of `state`: its time, positions and speeds.
+    pub fn of(state: &State) -> Frame {
+        let p = &state.particles;
+        Frame {
+            time: state.time,
+            x: p.x.clone(),
+            y: p.y.clone(),
+            speed: p.vx.iter().zip(&p.vy).map(|(vx, vy)| vx.hypot(*vy)).collect(),
+        }
+    }
+}
+
 /// Records `frames` [`Frame`]s evenly spread over a run of `steps` steps (the first at the
 /// start, the last at the end), for a movie; fewer when the run stops early.
 #[derive(Clone, Debug, Default)]
@@ -196,12 +209,6 @@ impl StepProbe for FrameProbe {
         if k >= self.wanted || step != self.step_of(k) {
             return;
         }
-        let p = &state.particles;
-        self.frames.push(Frame {
-            time: state.time,
-            x: p.x.clone(),
-            y: p.y.clone(),
-            speed: p.vx.iter().zip(&p.vy).map(|(vx, vy)| vx.hypot(*vy)).collect(),
-        });
+        self.frames.push(Frame::of(state));
     }
 }

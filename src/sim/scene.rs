@@ -54,7 +54,8 @@ pub struct Scene {
     /// Time step, length and what to record.
     pub sampling: Sampling,
     /// How a relaxing scene comes to rest: damped motion in time (the integrator's), or a
-    /// minimiser, which has no time (nothing watched, no movie).
+    /// minimiser, which has no time (nothing watched; a movie has two frames, the start and
+    /// the end).
     pub method: RelaxMethod,
     /// Positions (m, x and y) of the static solution, which `RelaxMethod::Static` sets.
     pub rest: Option<(Vec<f64>, Vec<f64>)>,
@@ -63,7 +64,7 @@ pub struct Scene {
     /// A wave watched from a source particle to receivers, if any: `(source, receivers,
     /// record every this many steps)`.
     pub wave: Option<(usize, Vec<usize>, u64)>,
-    /// Movie frames to keep over the run, if any.
+    /// Movie frames to keep over the run, if any (a minimiser keeps two: start and end).
     pub movie_frames: Option<u64>,
     /// External forces.
     pub loads: Vec<Load>,
@@ -82,7 +83,7 @@ pub struct Outcome {
     pub crossings: Vec<Crossing>,
     /// The watched wave, every step.
     pub wave: Option<WaveRecord>,
-    /// Movie frames (empty unless asked for).
+    /// Movie frames (empty unless asked for; a minimiser's: the start and the end).
     pub frames: Vec<Frame>,
     /// State at the end.
     pub state: State,
@@ -160,8 +161,12 @@ impl Scene {
         if let Some(drive) = self.drive {
             state = state.with_drive(drive);
         }
+        // A minimiser has no time to spread frames over: its movie is the start and the state
+        // it stopped at (relaxed, or where it gave up).
+        let start = (self.movie_frames.is_some() && self.method != RelaxMethod::Damped).then(|| Frame::of(&state));
         if let Some(trace) = minimise(self.method, self.rest.as_ref(), &mut state, &mut field, &self.sampling) {
-            return Outcome { trace, crossings: Vec::new(), wave: None, frames: Vec::new(), state };
+            let frames = start.map(|start| vec![start, Frame::of(&state)]).unwrap_or_default();
+            return Outcome { trace, crossings: Vec::new(), wave: None, frames, state };
         }
         let clock = self.contact_clock.map(|(i, j, rest)| ContactClock::new(i, j, rest));
         let wave = self.wave.map(|(source, receivers, every)| WaveProbe::new(source, receivers, every));

@@ -205,7 +205,10 @@ impl RunSpec {
     /// Cost model of the run in a release build (s), from `mdsolids bench` and the coursework
     /// campaign on the project machine: ~80 ns per step for the loop itself and the per-step
     /// probes, plus ~3 ns per particle-step (the reference lattice runs at ~330 million
-    /// particle-steps/s) and force evaluation, for the run and its reference run, if any; plus
+    /// particle-steps/s) and force evaluation, for the run and its reference run, if any; a
+    /// minimiser (`relax.method: fire | cg`) takes [`RunSpec::minimiser_evaluations`] of ~8 ns
+    /// per particle instead (2.7 × an MD step: the power, mixing and norms of FIRE, CG's line
+    /// search, each one more pass over the particles), not its cap `steps`; plus
     /// the stages around the loop: the ω_max estimate (≤ 1000 power iterations at ~7 ns per
     /// bond, twice with bond dashpots; one pass beyond [`POWER_METHOD_BONDS`]), a loaded
     /// lattice's static solve (sparse Cholesky of a 2D network: 3.5e-7 s · dofs^1.33, fitted to
@@ -215,16 +218,55 @@ impl RunSpec {
     /// without optimisation, see Cargo.toml). A static-only run has no loop and no ω_max.
     pub fn estimated_seconds(&self) -> f64 {
         let evaluations = self.integrator.evaluations_per_step() as f64;
+        let particles = self.particles() as f64;
         // A reference run at dt/R takes R times as many steps.
         let runs = 1.0 + self.reference_refinement.map_or(0.0, f64::from);
         let stepped = if self.static_only() { 0.0 } else { 1.0 };
-        let time_loop = stepped * runs * self.steps as f64 * (80e-9 + 3e-9 * evaluations * self.particles() as f64);
+        let time_loop = match self.minimiser_evaluations() {
+            Some(minimiser) => runs * minimiser * (80e-9 + 8e-9 * particles),
+            None => stepped * runs * self.steps as f64 * (80e-9 + 3e-9 * evaluations * particles),
+        };
         let eigenproblems = if self.gamma > 0.0 { 2.0 } else { 1.0 };
         let passes = if self.bonds() > POWER_METHOD_BONDS { 1.0 } else { 1000.0 };
         let omega_max = stepped * eigenproblems * passes * 7e-9 * self.bonds() as f64;
         let static_solve = (1.0 + stepped) * 3.5e-7 * self.static_dofs().powf(1.33);
         let movie = self.movie.map_or(0.0, |m| 0.2e-6 * f64::from(m.frames) * f64::from(m.width) * f64::from(m.height));
         time_loop + omega_max + static_solve + movie
+    }
+
+    /// Force evaluations a minimiser (`relax.method: fire | cg`) is expected to take to its
+    /// displacement bound, capped at `steps` (`relax.max_tc`); `None` for any other run, and
+    /// for a network that may be floppy (bonds cut) with `relax.residual_force` given: that
+    /// fallback took 10–300 × as many, erratically (14 000 – 630 000 at 20 … 160 rows), so the
+    /// cap stands. Fitted to runs of `campaigns/relax-methods.yaml`'s steel block (README,
+    /// *Performance*), n rows along the load:
+    /// - at tolerance 1e-4 under tension, FIRE 8.5 · n^1.04 (n = 20 … 1000) but at least 250
+    ///   (319 at n = 10, 232 at 20: it first spends ~45 steps growing its step from dt to
+    ///   Δt_max), and CG 4.7 · n^1.25 (n = 10 … 320), each within 1.4 × of every measured count;
+    /// - times ln(1/tol)/ln(1e4): both converge linearly, so each decade of tolerance costs the
+    ///   same (1e-6 took 1.2–1.9 × the evaluations of 1e-4; this says 1.5);
+    /// - times 2.5 in shear (FIRE 2.0 ×, CG 3.1 ×);
+    /// - FIRE times max(1, (t_c/dt)/100): its largest step Δt_max = 10 dt sets its count, which
+    ///   grows as t_c/dt once Δt_max is well inside the stability limit 2/ω_max (2.2 × from
+    ///   t_c/100 to t_c/200); at coarser dt it restarts near that limit and takes as many as at
+    ///   t_c/100. Below t_c/50 it thrashes (t_c/25: 28 × t_c/50's); not modelled.
+    pub fn minimiser_evaluations(&self) -> Option<f64> {
+        let (relax, lattice) = (self.relax()?, self.lattice()?);
+        let (scale, exponent, floor) = match relax.method {
+            crate::sim::RelaxMethod::Fire => (8.5, 1.04, 250.0),
+            crate::sim::RelaxMethod::Cg => (4.7, 1.25, 0.0),
+            _ => return None,
+        };
+        if lattice.cut_fraction > 0.0 && relax.residual_force.is_some() {
+            return None;
+        }
+        let tolerance = relax.tolerance.unwrap_or(super::shared::DEFAULT_TOLERANCE);
+        let decades = tolerance.recip().ln() / 1e4f64.ln();
+        let shear = if lattice.load_case == super::raw::LoadCase::Shear { 2.5 } else { 1.0 };
+        let coarse_steps =
+            if relax.method == crate::sim::RelaxMethod::Fire { (self.dt_per_tc() / 100.0).max(1.0) } else { 1.0 };
+        let evaluations = scale * (lattice.ny as f64).powf(exponent) * decades * shear * coarse_steps;
+        Some(evaluations.max(floor).min(self.steps as f64))
     }
 
     /// Springs of the run's network: at most one per node and bond family in a lattice (cut

@@ -297,3 +297,38 @@ fn walls_and_held_nodes_are_drawn() {
     mdsolids::report::render(&planned.campaign, &layout, &done.records).unwrap();
     assert!(std::fs::read_to_string(layout.file("report.md")).unwrap().contains("held nodes as black squares"));
 }
+
+/// Issue 31, item 6: a minimiser (`relax.method: fire | cg`) or the static solve has no time,
+/// so its movie is two frames, the start and the state it ended in, captioned with what they
+/// show. Before, `run` stopped the whole campaign at such a movie ("a movie needs at least one
+/// frame"), storing nothing and naming no scene, and every rerun stopped the same way.
+#[test]
+fn runs_with_no_time_draw_their_start_and_end() {
+    let reports = tempfile::tempdir().unwrap();
+    let yaml = "version: 1\nname: still\nscenes:\n  - name: pair\n    kind: pair\n    v0: 1.0\n  - name: block\n    \
+                kind: lattice\n    lattice: {size: 5}\n    supports: clamped-bottom\n    load: {per_node: 0.01}\n    \
+                time: {integrator: velocity-verlet}\n    movie: {frames: 12, width: 300, height: 240}\n    grid:\n      \
+                relax.method: [fire, cg, static]\n";
+    let planned = plan::parse("still.yaml", yaml).unwrap();
+    let campaign = &planned.campaign;
+    let layout = Layout::new(reports.path(), &campaign.name);
+    let done = run_campaign(&planned, &layout, Some(2)).expect("movies of runs with no time stop no campaign");
+    for (record, method) in done.records[1..].iter().zip(["fire", "cg", "static"]) {
+        assert_eq!(record.status, RunStatus::Ok, "{method}: {}", record.message);
+        let (_, drawn) = frames(&layout.movie_file(&record.run_id));
+        assert_eq!(drawn.len(), 2, "{method}: the start and the end, whatever movie.frames asks");
+        assert_ne!(drawn[0], drawn[1], "{method}: the end is not the start (the load moved the top row)");
+        let captions = mdsolids::runner::execute(&record.spec).movie.unwrap().captions;
+        let end = match method {
+            "static" => "static answer (relax.method: static)".to_string(),
+            _ => format!("relaxed ({method}, {} force evaluations)", record.steps),
+        };
+        assert_eq!(captions, ["start".to_string(), end]);
+    }
+    mdsolids::report::render(campaign, &layout, &done.records).unwrap();
+    let report = std::fs::read_to_string(layout.file("report.md")).unwrap();
+    for record in &done.records[1..] {
+        assert!(report.contains(&format!("](plots/{}.gif)", record.run_id)), "{report}");
+    }
+    assert!(report.contains("the start and the state it stopped at"), "{report}");
+}

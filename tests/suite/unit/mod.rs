@@ -21,6 +21,7 @@ mod report_findings;
 mod report_markdown;
 mod report_page;
 mod report_words;
+mod runner;
 mod runner_record;
 mod runner_shard;
 mod slurm;
