@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use crate::bench::{BenchConfig, BenchResult, Workload, run_once};
 use crate::model::{LatticeType, PlanarLattice};
-use crate::output::Layout;
+use crate::output::{Layout, escape_for_terminal};
 use crate::plan::{Plan, Stability};
 use crate::runner::{
     BUILD, CampaignRun, INTERRUPTED, Interrupted, OtherBuilds, RunRecord, Shard, Stored, read_stored, read_stored_as,
@@ -344,12 +344,19 @@ fn run_shard_command(reports: &Path, file: &Path, shard: Shard, options: &RunOpt
 /// simulated again.
 fn warn_about_store(layout: &Layout, done: &CampaignRun, other_builds: OtherBuilds) {
     for (run_id, why) in &done.corrupt {
-        eprintln!("warning: {} is corrupt ({why}); simulated again", layout.run_file(run_id).display());
+        eprintln!(
+            "warning: {} is corrupt ({}); simulated again",
+            layout.run_file(run_id).display(),
+            escape_for_terminal(why)
+        );
     }
     match other_builds {
         OtherBuilds::Reuse => {
             for (run_id, build) in &done.other_build {
-                eprintln!("warning: reusing {run_id}, made by build {build}, not by this build {BUILD}");
+                eprintln!(
+                    "warning: reusing {run_id}, made by build {}, not by this build {BUILD}",
+                    escape_for_terminal(build)
+                );
             }
         }
         OtherBuilds::Simulate if !done.other_build.is_empty() => eprintln!(
@@ -447,7 +454,11 @@ fn print_plan_rows(plan: &Plan, layout: &Layout) -> PlanTally {
 fn print_plan_summary(campaign: &Campaign, layout: &Layout, tally: &PlanTally) {
     let states = &tally.states;
     for (run_id, why) in &tally.corrupt {
-        println!("corrupt: {} ({why}); `run` simulates it again", layout.run_file(run_id).display());
+        println!(
+            "corrupt: {} ({}); `run` simulates it again",
+            layout.run_file(run_id).display(),
+            escape_for_terminal(why)
+        );
     }
     let to_simulate: Vec<String> = [
         ("missing", "without a stored result"),
@@ -503,7 +514,11 @@ fn report_command(reports: &Path, file: &Path, force: bool, lock_wait: Option<f6
     // A shard that has not run yet, or an array task that died (time limit, node failure):
     // rerunning `run` (or its shard) fills these in, and simulates corrupt records again.
     for (run_id, why) in &left_out.corrupt {
-        eprintln!("warning: {} is corrupt ({why}); left out of the report", layout.run_file(run_id).display());
+        eprintln!(
+            "warning: {} is corrupt ({}); left out of the report",
+            layout.run_file(run_id).display(),
+            escape_for_terminal(why)
+        );
     }
     if records.is_empty() {
         anyhow::bail!(

@@ -113,6 +113,83 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Reads `reader` to its end, refusing more than `most` bytes with an error saying that this is
+/// the most `what` (e.g. "a campaign file") may hold. One byte past the limit is read and no
+/// more, so `/dev/zero` or a runaway generator is refused at once instead of filling the memory.
+pub fn read_at_most(reader: impl std::io::Read, most: u64, what: &str) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    reader.take(most + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > most {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::FileTooLarge,
+            format!("larger than {}, the most {what} may hold", binary_size(most)),
+        ));
+    }
+    Ok(bytes)
+}
+
+/// Reads the regular file at `path` (a link to one is followed) whole, at most `most` bytes
+/// ([`read_at_most`]): every read of the store and the report folders goes through here, since
+/// another user of a shared folder may plant anything there. A FIFO, a device, a socket or a
+/// directory, or a link to one, is refused without being read: opening a FIFO for reading
+/// blocks until a writer comes, and a device may never end. Its type is checked before it is
+/// opened (so no device is opened at all), and again on the opened handle, which was opened
+/// with `O_NONBLOCK` (POSIX: an open of a FIFO for reading then returns at once) in case the
+/// name was swapped in between; on a regular file `O_NONBLOCK` changes nothing.
+pub fn read_regular(path: &Path, most: u64, what: &str) -> std::io::Result<Vec<u8>> {
+    refuse_unless_regular(&std::fs::metadata(path)?)?;
+    let file = std::fs::OpenOptions::new().read(true).custom_flags(libc::O_NONBLOCK).open(path)?;
+    refuse_unless_regular(&file.metadata()?)?;
+    read_at_most(file, most, what)
+}
+
+/// An error naming what `metadata` describes unless it is a regular file.
+fn refuse_unless_regular(metadata: &std::fs::Metadata) -> std::io::Result<()> {
+    use std::os::unix::fs::FileTypeExt;
+    let kind = metadata.file_type();
+    let what = match () {
+        _ if kind.is_file() => return Ok(()),
+        _ if kind.is_fifo() => "a FIFO",
+        _ if kind.is_char_device() => "a character device",
+        _ if kind.is_block_device() => "a block device",
+        _ if kind.is_socket() => "a socket",
+        _ if kind.is_dir() => "a directory",
+        _ => "not a file",
+    };
+    Err(std::io::Error::new(std::io::ErrorKind::InvalidInput, format!("{what}, not a regular file")))
+}
+
+/// `bytes`, and in MiB or KiB when it is a whole number of them.
+fn binary_size(bytes: u64) -> String {
+    match bytes {
+        b if b >= 1 << 20 && b % (1 << 20) == 0 => format!("{b} bytes ({} MiB)", b >> 20),
+        b if b >= 1 << 10 && b % (1 << 10) == 0 => format!("{b} bytes ({} KiB)", b >> 10),
+        b => format!("{b} bytes"),
+    }
+}
+
+/// `text` as it may be printed to a terminal: control characters (escape, bell, line breaks,
+/// the C1 set) and the bidirectional overrides shown escaped (`\u{1b}`, `\n`). Text read from
+/// the store or a shared folder (a record's build, why a record is corrupt, a folder's owner)
+/// could otherwise retitle the window, move the cursor, clear the screen or reorder what it
+/// shows. Every such text printed to stdout or stderr goes through here.
+pub fn escape_for_terminal(text: &str) -> std::borrow::Cow<'_, str> {
+    let hostile = |c: char| c.is_control() || matches!(c, '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}');
+    if !text.chars().any(hostile) {
+        return text.into();
+    }
+    let mut shown = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if hostile(c) {
+            shown.extend(c.escape_default());
+        } else {
+            shown.push(c);
+        }
+    }
+    shown.into()
+}
+
 /// Creates `path`, failing if anything (a symbolic link included) is there already.
 fn create_exclusive(path: &Path) -> std::io::Result<std::fs::File> {
     std::fs::OpenOptions::new().write(true).create_new(true).custom_flags(libc::O_NOFOLLOW).open(path)

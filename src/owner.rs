@@ -9,10 +9,13 @@ use anyhow::Context;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 
-use crate::output::{Layout, write_atomically};
+use crate::output::{Layout, escape_for_terminal, read_regular, write_atomically};
 
 /// The marker in a campaign's folder naming the campaign file that owns it.
 pub const MARKER: &str = "campaign.json";
+
+/// The most bytes of [`MARKER`] read: a name and a path (at most 4096 bytes on Linux) in JSON.
+const MARKER_MOST_BYTES: u64 = 64 << 10;
 
 /// What [`MARKER`] holds.
 #[derive(Debug, Serialize, Deserialize)]
@@ -51,7 +54,7 @@ pub fn claim(layout: &Layout, file: &Path, force: bool) -> anyhow::Result<()> {
                  '{}' and would overwrite each other's tables, reports and figures. Give this campaign another \
                  `name:`, or pass --force to make the folder this file's (after moving the campaign file, say)",
                 layout.root.display(),
-                owner.campaign_file,
+                escape_for_terminal(&owner.campaign_file),
                 marker.display(),
                 me.campaign_file,
                 me.name
@@ -74,7 +77,7 @@ pub fn claim(layout: &Layout, file: &Path, force: bool) -> anyhow::Result<()> {
 
 /// The owner recorded in `marker`, or `None` when there is no marker.
 fn read_owner(marker: &Path) -> anyhow::Result<Option<Owner>> {
-    let text = match std::fs::read(marker) {
+    let text = match read_regular(marker, MARKER_MOST_BYTES, "a folder's owner file") {
         Ok(text) => text,
         Err(error) if error.kind() == std::io::ErrorKind::NotFound => return Ok(None),
         Err(error) => return Err(error).with_context(|| format!("cannot read '{}'", marker.display())),
@@ -106,7 +109,7 @@ fn create_new(path: &Path, bytes: &[u8]) -> anyhow::Result<bool> {
 /// marker, or "a campaign" for a folder with a run store but no marker (written before markers).
 pub fn campaign_of(dir: &Path) -> Option<String> {
     match read_owner(&dir.join(MARKER)) {
-        Ok(Some(owner)) => Some(format!("campaign file '{}'", owner.campaign_file)),
+        Ok(Some(owner)) => Some(format!("campaign file '{}'", escape_for_terminal(&owner.campaign_file))),
         Ok(None) if !dir.join("runs").is_dir() => None,
         _ => Some("a campaign".into()),
     }

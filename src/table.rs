@@ -6,7 +6,7 @@ use polars::prelude::*;
 use serde_json::Value;
 use std::collections::BTreeSet;
 
-use crate::output::{Layout, write_atomically};
+use crate::output::{Layout, read_regular, write_atomically};
 use crate::runner::RunRecord;
 use crate::study::{self, RunRow, Slot, Values};
 use crate::summary::ScalingFit;
@@ -122,6 +122,11 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
     DataFrame::new_infer_height(columns)
 }
 
+/// The most bytes a results table is read back up to (`report` before it writes a partial one,
+/// `compare`): 2.6 kB a row for the most runs a campaign may have (100 000; a coursework row
+/// takes 690 bytes as CSV).
+pub const TABLE_MOST_BYTES: u64 = 256 << 20;
+
 /// The campaign summary: one row per fitted scaling law (`summary.csv`).
 pub fn summary_frame(fits: &[ScalingFit]) -> PolarsResult<DataFrame> {
     DataFrame::new_infer_height(vec![
@@ -154,8 +159,8 @@ pub fn write_tables(layout: &Layout, frame: &mut DataFrame) -> anyhow::Result<()
 /// partial report, if there is one.
 pub fn keep_larger_table_aside(layout: &Layout, rows: usize) -> anyhow::Result<Option<usize>> {
     let count = |name: &str| {
-        let file = std::fs::File::open(layout.file(name)).ok()?;
-        ParquetReader::new(file).num_rows().ok()
+        let bytes = read_regular(&layout.file(name), TABLE_MOST_BYTES, "a results table").ok()?;
+        ParquetReader::new(std::io::Cursor::new(bytes)).num_rows().ok()
     };
     if count("results.parquet").is_some_and(|previous| previous > rows) {
         for (name, aside) in [("results.csv", "results.previous.csv"), ("results.parquet", "results.previous.parquet")]

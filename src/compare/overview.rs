@@ -158,12 +158,18 @@ fn count(n: usize, one: &str, several: &str) -> String {
     format!("{n} {}", if n == 1 { one } else { several })
 }
 
-/// A quantity's unit in words: none for a pure number.
+/// A quantity with its unit in words, or alone when its unit is not known.
 fn with_unit(metric: &str) -> String {
     match unit(metric) {
-        "1" => format!("{metric} (dimensionless)"),
-        unit => format!("{metric} ({unit})"),
+        Some("1") => format!("{metric} (dimensionless)"),
+        Some(unit) => format!("{metric} ({unit})"),
+        None => metric.to_string(),
     }
+}
+
+/// A quantity's unit in a table cell: "–" when it is not known.
+fn unit_cell(metric: &str) -> &'static str {
+    unit(metric).unwrap_or("–")
 }
 
 /// One differing quantity in a sentence with its numbers.
@@ -186,7 +192,7 @@ fn differ_row(scene: &str, st: &Stats) -> DifferRow {
     DifferRow {
         scene: scene.to_string(),
         quantity: st.metric.clone(),
-        unit: unit(&st.metric),
+        unit: unit_cell(&st.metric),
         a: value(st.a),
         b: value(st.b),
         ratio: fixed(st.ratio),
@@ -285,7 +291,7 @@ fn input_rows(all: &[Entry]) -> Vec<InputRow> {
             let scenes: Vec<&str> =
                 differ.iter().filter(|(_, st)| st.metric == name).map(|(scene, _)| scene.name.as_str()).collect();
             InputRow {
-                unit: unit(&name),
+                unit: unit_cell(&name),
                 scenes: scenes.join(", "),
                 a: span(&values(|st| st.a.into_iter().collect()), value),
                 b: span(&values(|st| st.b.into_iter().collect()), value),

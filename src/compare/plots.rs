@@ -8,6 +8,7 @@ use std::collections::BTreeSet;
 use super::join::{SceneJoin, SceneRows, is_dotted};
 use super::table::{Side, Values};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
+use crate::output::escape_for_terminal;
 
 /// The figures of one scene against one parameter.
 #[derive(Serialize)]
@@ -86,8 +87,10 @@ fn plot(
         scale: scale(&all),
     };
     let series = [series(format!("A: {}", a.name), pa), series(format!("B: {}", b.name), pb)];
-    let image = line_chart(&chart, &series)
-        .with_context(|| format!("cannot draw {metric} against {parameter} for scene {scene}"))?;
+    let image = line_chart(&chart, &series).with_context(|| {
+        let [metric, parameter, scene] = [metric, parameter, scene].map(escape_for_terminal);
+        format!("cannot draw {metric} against {parameter} for scene {scene}")
+    })?;
     let file =
         image.file_name(&format!("plots/{}-{}-vs-{}.svg", file_part(scene), file_part(metric), file_part(parameter)));
     Ok(Some(PlotLink { metric: metric.to_string(), file, image }))

@@ -78,48 +78,95 @@ pub fn class(name: &str) -> Class {
 }
 
 /// Units by column name, or by its first words for families (`sound_speed_<criterion>`,
-/// `youngs_modulus_tangent_fem`); the first match counts, so longer names come first. k and
-/// its kin are C in N/m^β for power-law springs: written N/m^β for both.
-const UNITS: [(&str, &str); 32] = [
+/// `youngs_modulus_tangent_fem`), a grid path (`damping.background`) by its last field; the
+/// first match counts, so longer names come first. k and its kin are C in N/m^β for power-law
+/// springs: written N/m^β for both. Pure numbers (ratios, counts, relative errors) are listed
+/// as "1" like any other unit: a column not listed has no unit shown, never a wrong one.
+const UNITS: [(&str, &str); 72] = [
+    // Costs and counts.
     ("wall_s", "s"),
     ("loop_s", "s"),
+    ("relax_steps", "1"),
+    ("critical_bound_steps", "1"),
+    ("steps", "1"),
+    ("seed", "1"),
+    ("nx", "1"),
+    ("ny", "1"),
+    ("n", "1"),
+    ("size", "1"),
+    ("samples", "1"),
+    ("coordination", "1"),
+    // Inputs.
     ("mass", "kg"),
+    ("density", "kg/m³"),
     ("spacing_spread", "m"),
     ("spacing", "m"),
+    ("k_diag_ratio", "1"),
+    ("k_y_ratio", "1"),
     ("k_diag", "N/m^β"),
     ("k_x", "N/m^β"),
     ("k_y", "N/m^β"),
     ("k", "N/m^β"),
+    ("beta", "1"),
     ("gamma", "N s/m"),
+    ("background", "N s/m"),
+    ("restitution", "1"),
     ("dt_omega_max", "1"),
     ("dt_per_tc", "1"),
     ("dt", "s"),
     ("t_c", "s"),
+    ("duration_tc", "1"),
+    ("max_tc", "1"),
+    ("ramp_tc", "1"),
     ("duration", "s"),
     ("v0", "m/s"),
+    ("velocity", "m/s"),
     ("gap", "m"),
     ("wall_distance", "m"),
-    ("depth", "m"),
-    ("load_per_node", "N"),
     ("wall_displacement", "m"),
+    ("depth", "m"),
+    ("cut_fraction", "1"),
+    ("stiffness_spread", "1"),
+    ("bond_fraction_kept", "1"),
+    ("drive_strain", "1"),
+    ("load_per_node", "N"),
+    ("per_node", "N"),
+    ("force", "N"),
+    ("kinetic_ratio", "1"),
+    ("residual_force", "1"),
+    ("relax_tolerance", "1"),
+    ("tolerance", "1"),
+    ("relax_error_bound", "1"),
+    // Stability and measurements.
     ("omega_max", "rad/s"),
+    ("mode_damping_ratio", "1"),
+    ("stability_limit", "1"),
     ("arrival_time", "s"),
     ("contact_duration", "s"),
     ("sound_speed", "m/s"),
     ("youngs_modulus", "Pa"),
     ("shear_modulus", "Pa"),
+    ("poisson_ratio", "1"),
     ("dissipation_time", "s"),
     ("equilibrium_spacing", "m"),
     ("wall_force", "N"),
     ("secant_stiffness", "N/m"),
     ("tangent_stiffness", "N/m"),
+    ("stiffness_min", "N/m"),
+    ("extension_sensitivity", "m/N"),
+    ("error", "1"),
+    ("homogeneity", "1"),
+    ("static_nonlinearity", "1"),
+    ("threshold", "1"),
 ];
 
-/// The unit of column `name`; "1" for a pure number (a ratio, a count, a relative error).
-pub fn unit(name: &str) -> &'static str {
+/// The unit of column `name`, "1" for a pure number (a ratio, a count, a relative error);
+/// `None` for a column whose unit is not known here.
+pub fn unit(name: &str) -> Option<&'static str> {
     if name.ends_with("_error") {
-        return "1";
+        return Some("1");
     }
+    let name = name.rsplit('.').next().unwrap_or(name);
     let matches = |start: &str| name.strip_prefix(start).is_some_and(|rest| rest.is_empty() || rest.starts_with('_'));
-    UNITS.iter().find(|(start, _)| matches(start)).map_or("1", |(_, unit)| unit)
+    UNITS.iter().find(|(start, _)| matches(start)).map(|(_, unit)| *unit)
 }

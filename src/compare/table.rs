@@ -5,6 +5,9 @@ use anyhow::Context as _;
 use polars::prelude::{Column, CsvReadOptions, DataFrame, DataType, ParquetReader, PolarsResult, SerReader};
 use std::path::{Path, PathBuf};
 
+use crate::output::read_regular;
+use crate::table::TABLE_MOST_BYTES;
+
 /// One column of a table read back: numbers (any numeric type, as f64) or text.
 #[derive(Clone, Debug)]
 pub(super) enum Values {
@@ -66,11 +69,11 @@ impl Table {
     /// Reads a `.csv` or a Parquet file.
     pub(super) fn read(path: &Path) -> anyhow::Result<Table> {
         let cannot = || format!("cannot read the table '{}'", path.display());
-        let file = std::fs::File::open(path).with_context(cannot)?;
+        let bytes = std::io::Cursor::new(read_regular(path, TABLE_MOST_BYTES, "a table").with_context(cannot)?);
         let frame = if path.extension().is_some_and(|e| e == "csv") {
-            CsvReadOptions::default().with_has_header(true).into_reader_with_file_handle(file).finish()
+            CsvReadOptions::default().with_has_header(true).into_reader_with_file_handle(bytes).finish()
         } else {
-            ParquetReader::new(file).finish()
+            ParquetReader::new(bytes).finish()
         }
         .with_context(cannot)?;
         let columns = frame

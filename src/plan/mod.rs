@@ -11,7 +11,7 @@ pub use self::stability::{Estimates, RUN_GROWTH, Stability, estimate};
 use rayon::prelude::*;
 use std::path::Path;
 
-use crate::spec::{Campaign, DEFAULT_DT_PER_TC, RESIDUAL_OVER_ROUND_OFF, RunSpec, SpecError, force_resolution};
+use crate::spec::{Campaign, DEFAULT_DT_PER_TC, Num, RESIDUAL_OVER_ROUND_OFF, RunSpec, SpecError, force_resolution};
 
 /// A campaign ready to run: every run's dt and steps final, each within its integrator's
 /// stability limit unless it says `time.allow_unstable: true`.
@@ -138,12 +138,12 @@ fn check_limit(spec: &RunSpec, stability: &Stability, field: &str) -> Result<(),
          stability limit {:.4} of {}; allowed: dt ≤ {:.4e} s (dt_per_tc ≥ {:.3}), or time.allow_unstable: true to \
          run it anyway and watch it blow up",
         spec.dt,
-        stability.dt_omega_max,
+        Num(stability.dt_omega_max),
         stability.omega_max,
-        stability.damping_ratio,
-        stability.limit,
+        Num(stability.damping_ratio),
+        Num(stability.limit),
         spec.integrator.name(),
         stability.limit / stability.omega_max,
-        spec.t_c * stability.omega_max / stability.limit,
+        Num(spec.t_c * stability.omega_max / stability.limit),
     ))
 }

@@ -18,7 +18,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use crate::draw::Movie;
-use crate::output::{Layout, open_lock_file, try_lock, wait_for_lock, write_atomically};
+use crate::output::{Layout, open_lock_file, read_regular, try_lock, wait_for_lock, write_atomically};
 use crate::plan::Plan;
 use crate::sim::RunStatus;
 use crate::spec::{Campaign, RunSpec};
@@ -90,6 +90,13 @@ pub enum Stored {
     Current(RunRecord),
 }
 
+/// The most bytes a file of the store (a record, its series file or probe table, a movie's list
+/// of runs) is read up to: room for the largest record of earlier builds, which held their
+/// series in the JSON (`sim::STORED_NUMBERS`, 2 million numbers of up to 25 characters: ~50 MB);
+/// a series file holds at most `record::SERIES_MOST_BYTES` (33 MB) before compression. A larger
+/// file (a record of a build before records were bounded) counts as corrupt: simulated again.
+pub const STORED_FILE_MOST_BYTES: u64 = 64 << 20;
+
 /// Reads and checks the stored record of `spec` (`runs/<run_id>.json`) and its series
 /// (`runs/<run_id>.series`, which must be the file the record names).
 pub fn read_stored(layout: &Layout, spec: &RunSpec) -> Stored {
@@ -100,20 +107,21 @@ pub fn read_stored(layout: &Layout, spec: &RunSpec) -> Stored {
 /// the id hashes the whole spec, half of `plan`'s time on a 100 000-run campaign when it was
 /// computed twice per run.
 pub fn read_stored_as(layout: &Layout, spec: &RunSpec, run_id: &str) -> Stored {
-    let text = match std::fs::read_to_string(layout.run_file(run_id)) {
+    let text = match read_regular(&layout.run_file(run_id), STORED_FILE_MOST_BYTES, "a stored file") {
         Ok(text) => text,
         Err(error) if error.kind() == std::io::ErrorKind::NotFound => return Stored::Missing,
         Err(error) => return Stored::Corrupt(format!("cannot be read: {error}")),
     };
-    let mut record = match serde_json::from_str::<RunRecord>(&text) {
+    let mut record = match serde_json::from_slice::<RunRecord>(&text) {
         Ok(record) => record,
         Err(error) => return Stored::Corrupt(format!("is not a run record: {error}")),
     };
     let read = record.read_series(|file| {
-        std::fs::read(match file {
+        let path = match file {
             StoredFile::Series => layout.series_file(run_id),
             StoredFile::ProbeTable => layout.probe_table_file(run_id),
-        })
+        };
+        read_regular(&path, STORED_FILE_MOST_BYTES, "a stored file")
     });
     if let Err(why) = read {
         return Stored::Corrupt(why);
@@ -471,7 +479,9 @@ fn side_by_side_ids(campaign: &Campaign, scene: &str) -> Vec<String> {
 /// Whether the side-by-side movie of `scene` exists and was drawn from exactly the scene's runs.
 pub fn side_by_side_is_current(campaign: &Campaign, layout: &Layout, scene: &str) -> bool {
     let ids = side_by_side_ids(campaign, scene);
-    let listed = std::fs::read_to_string(layout.side_by_side_runs(scene)).unwrap_or_default();
+    let listed = read_regular(&layout.side_by_side_runs(scene), STORED_FILE_MOST_BYTES, "a stored file")
+        .map(|bytes| String::from_utf8_lossy(&bytes).into_owned())
+        .unwrap_or_default();
     ids.len() >= 2 && listed == ids.join("\n") + "\n" && layout.side_by_side_movie(scene).is_file()
 }
 

@@ -14,25 +14,54 @@ pub struct Issue {
     pub allowed: String,
 }
 
-pub(super) fn require(ok: bool, path: &str, value: impl Display, allowed: &str) -> Result<(), Issue> {
-    if ok {
-        Ok(())
-    } else {
-        Err(Issue { path: path.to_string(), value: value.to_string(), allowed: allowed.to_string() })
+pub(super) fn require(ok: bool, path: &str, value: impl Shown, allowed: &str) -> Result<(), Issue> {
+    if ok { Ok(()) } else { Err(Issue { path: path.to_string(), value: value.shown(), allowed: allowed.to_string() }) }
+}
+
+/// A value as a message shows it: a number as [`Num`] shows it (so that `1e300` is never
+/// printed as 301 digits), anything else as it displays.
+pub(super) trait Shown {
+    fn shown(&self) -> String;
+}
+
+impl Shown for f64 {
+    fn shown(&self) -> String {
+        Num(*self).to_string()
+    }
+}
+
+/// Values whose display is already short: words and whole numbers.
+macro_rules! shown_as_displayed {
+    ($($t:ty),*) => {$(
+        impl Shown for $t {
+            fn shown(&self) -> String {
+                self.to_string()
+            }
+        }
+    )*};
+}
+shown_as_displayed!(Num, str, String, bool, u32, u64, usize);
+
+impl<T: Shown + ?Sized> Shown for &T {
+    fn shown(&self) -> String {
+        (**self).shown()
     }
 }
 
 /// A number shown in a message: in full when it is short that way, else in exponent form
-/// (`1e-300`, not three hundred zeros).
-pub(super) struct Num(pub(super) f64);
+/// (`1e-300`, not three hundred zeros). A precision (`{:.3}`) gives that many decimals, in
+/// either form.
+pub struct Num(pub f64);
 
 impl Display for Num {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let size = self.0.abs();
-        if size == 0.0 || (1e-4..1e15).contains(&size) || !size.is_finite() {
-            write!(f, "{}", self.0)
-        } else {
-            write!(f, "{:e}", self.0)
+        let plain = size == 0.0 || (1e-4..1e15).contains(&size) || !size.is_finite();
+        match (plain, f.precision()) {
+            (true, None) => write!(f, "{}", self.0),
+            (true, Some(digits)) => write!(f, "{:.*}", digits, self.0),
+            (false, None) => write!(f, "{:e}", self.0),
+            (false, Some(digits)) => write!(f, "{:.*e}", digits, self.0),
         }
     }
 }

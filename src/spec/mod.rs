@@ -4,6 +4,7 @@
 
 // The kind tag's enum and every kind's own types (`PairRun`, `ChainRun`, `LatticeSpec`, ...),
 // which `kind` re-exports: a new kind adds none here.
+pub use self::issue::Num;
 pub use self::kind::*;
 pub use self::name::MAX_NAME_LEN;
 pub use self::raw::{Control, Diagonals, Grid, LoadCase, SceneKind, Supports};
@@ -29,6 +30,8 @@ mod shared;
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::Path;
+
+use crate::output::read_at_most;
 
 use self::grid::{canonical, get_path, grid_points, merge, point_count, set_path};
 use self::name::is_safe_name;
@@ -96,24 +99,20 @@ pub fn load(path: &Path) -> Result<Campaign, SpecError> {
     parse(&file, &text)
 }
 
-/// The text of `path`, refused past [`MAX_CAMPAIGN_BYTES`] or when it is not UTF-8.
+/// The text of `path`, refused past [`MAX_CAMPAIGN_BYTES`] or when it is not UTF-8. Not only
+/// regular files: a campaign named on the command line may be a pipe (`run <(generate)`).
 fn read_bounded(path: &Path) -> std::io::Result<String> {
-    use std::io::Read;
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)?.take(MAX_CAMPAIGN_BYTES + 1).read_to_end(&mut bytes)?;
-    if bytes.len() as u64 > MAX_CAMPAIGN_BYTES {
-        return Err(std::io::Error::new(
-            std::io::ErrorKind::FileTooLarge,
-            format!("larger than {MAX_CAMPAIGN_BYTES} bytes (1 MiB), the most a campaign file may hold"),
-        ));
-    }
+    let bytes = read_at_most(std::fs::File::open(path)?, MAX_CAMPAIGN_BYTES, "a campaign file")?;
     String::from_utf8(bytes).map_err(|_| std::io::Error::new(std::io::ErrorKind::InvalidData, "not UTF-8 text"))
 }
 
 /// Validates and expands campaign text; `file` names it in errors.
 pub fn parse(file: &str, text: &str) -> Result<Campaign, SpecError> {
     let invalid = |detail: String| SpecError::Invalid { file: file.to_string(), detail };
-    let raw: RawCampaign = serde_saphyr::from_str(text).map_err(|e| invalid(describe_yaml_error(text, &e)))?;
+    let raw = read_raw(text).map_err(invalid)?;
+    if let Some(issue) = name::read_as_boolean(text, &raw) {
+        return Err(invalid(issue));
+    }
     if let Some((path, value)) = finite::first_non_finite(text) {
         return Err(invalid(format!("{path} = {value}: must be a finite number (not NaN or an infinity)")));
     }
@@ -154,7 +153,7 @@ pub fn parse(file: &str, text: &str) -> Result<Campaign, SpecError> {
     }
     let target_error = raw.target_error.unwrap_or(DEFAULT_TARGET_ERROR);
     if !(target_error > 0.0 && target_error < 1.0) {
-        return Err(invalid(format!("target_error = {target_error}: must be in (0, 1) (a relative error)")));
+        return Err(invalid(format!("target_error = {}: must be in (0, 1) (a relative error)", Num(target_error))));
     }
     let budget = resolve_budget(raw.budget.as_ref()).map_err(invalid)?;
     Ok(Campaign {
@@ -174,13 +173,13 @@ fn resolve_budget(raw: Option<&raw::RawBudget>) -> Result<Budget, String> {
     let Some(raw) = raw else { return Ok(budget) };
     if let Some(seconds) = raw.seconds_per_run {
         if !(seconds.is_finite() && seconds > 0.0) {
-            return Err(format!("budget.seconds_per_run = {seconds}: must be a finite number of seconds > 0"));
+            return Err(format!("budget.seconds_per_run = {}: must be a finite number of seconds > 0", Num(seconds)));
         }
         budget.seconds_per_run = seconds;
     }
     if let Some(megabytes) = raw.memory_per_run_mb {
         if !(megabytes.is_finite() && megabytes > 0.0) {
-            return Err(format!("budget.memory_per_run_mb = {megabytes}: must be a finite number of MB > 0"));
+            return Err(format!("budget.memory_per_run_mb = {}: must be a finite number of MB > 0", Num(megabytes)));
         }
         budget.memory_per_run = megabytes * 1e6;
     }
@@ -191,26 +190,43 @@ fn to_value(scene: &RawScene) -> Value {
     serde_json::to_value(scene).expect("raw scenes always serialise")
 }
 
-/// Names the field path of a YAML error (serde-saphyr gives line and column, serde_path_to_error
-/// the path), followed by saphyr's message with its source snippet.
-fn describe_yaml_error(text: &str, error: &serde_saphyr::Error) -> String {
-    let path = serde_saphyr::from_str::<Value>(text)
-        .ok()
-        .and_then(|value| serde_path_to_error::deserialize::<_, RawCampaign>(value).err())
-        .map(|e| (e.path().to_string(), e.inner().to_string()));
+/// The campaign as written, or why not. serde_path_to_error wraps serde-saphyr's own reader,
+/// so the field path named is the one saphyr failed at.
+fn read_raw(text: &str) -> Result<RawCampaign, String> {
+    let mut path = None;
+    serde_saphyr::with_deserializer_from_str(text, |deserializer| {
+        serde_path_to_error::deserialize(deserializer).map_err(|error| {
+            path = Some(error.path().to_string());
+            error.into_inner()
+        })
+    })
+    .map_err(|error| describe_yaml_error(text, path, &error))
+}
+
+/// Names the field path of a YAML error, followed by saphyr's message with its source snippet.
+fn describe_yaml_error(text: &str, path: Option<String>, error: &serde_saphyr::Error) -> String {
     let shown = error.to_string();
-    match path {
-        // "." is the whole document: not a field worth naming.
-        Some((path, message)) if path != "." => format!("{path}: {message}\n{shown}"),
-        _ if shown.contains("budget breached") || shown.contains("recursion limit") => format!(
+    if shown.contains("budget breached") || shown.contains("recursion limit") {
+        return format!(
             "the YAML exceeds the reader's limits (nesting depth 64, 250 000 values, 50 000 aliases; anchors and \
              aliases may not expand further)\n{shown}"
-        ),
-        _ if shown.contains("unexpected end of input") => {
-            format!("the file holds no campaign; give version, name and scenes\n{shown}")
-        }
-        _ => shown,
+        );
     }
+    if shown.contains("unexpected end of input") {
+        return format!("the file holds no campaign; give version, name and scenes\n{shown}");
+    }
+    // "." is the whole document: not a field worth naming.
+    let Some(path) = path.filter(|path| path != ".") else { return shown };
+    // serde's wording through a JSON value says more (`invalid type: string "fast", expected
+    // f64`, where saphyr says "invalid floating point"), but a value reads an unquoted `y` or
+    // `123` as a boolean or a number where saphyr gives a string field its text: it is used
+    // only when it fails at the same field, else `name: y` would head every later error.
+    let worded = serde_saphyr::from_str::<Value>(text)
+        .ok()
+        .and_then(|value| serde_path_to_error::deserialize::<_, RawCampaign>(value).err())
+        .filter(|e| e.path().to_string() == path)
+        .map_or_else(|| error.without_snippet().to_string(), |e| e.inner().to_string());
+    format!("{path}: {worded}\n{shown}")
 }
 
 /// Where the value of a field path of scene `index` came from, for error messages.

@@ -400,7 +400,7 @@ pub struct RawDamping {
 }
 
 /// `damping.background`: a value (N s/m) or the word `critical`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(untagged)]
 pub enum Background {
     /// γ_g (N s/m).
@@ -410,11 +410,44 @@ pub enum Background {
 }
 
 /// The word `critical`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Critical {
     /// γ_g = 2 m ω_min.
     Critical,
+}
+
+/// Read by hand, not as serde's untagged enum: that one refuses a typo with "data did not
+/// match any variant of untagged enum Background", naming neither the value nor `critical`.
+impl<'de> Deserialize<'de> for Background {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Background, D::Error> {
+        deserializer.deserialize_any(BackgroundVisitor)
+    }
+}
+
+struct BackgroundVisitor;
+
+impl serde::de::Visitor<'_> for BackgroundVisitor {
+    type Value = Background;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a number (γ_g ≥ 0, N s/m) or the word `critical`")
+    }
+    fn visit_f64<E: serde::de::Error>(self, v: f64) -> Result<Background, E> {
+        Ok(Background::Value(v))
+    }
+    fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<Background, E> {
+        Ok(Background::Value(v as f64))
+    }
+    fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<Background, E> {
+        Ok(Background::Value(v as f64))
+    }
+    fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Background, E> {
+        match v {
+            "critical" => Ok(Background::Critical(Critical::Critical)),
+            _ => Err(E::invalid_value(serde::de::Unexpected::Str(v), &self)),
+        }
+    }
 }
 
 /// `time:` section.

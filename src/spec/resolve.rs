@@ -170,7 +170,14 @@ fn resolve_contact_time(spec: &RunSpec, raw: &RawScene) -> Result<(f64, Option<f
             .map(|_| theory::power_law_contact_duration(k, beta, mass, v0)),
         _ => theory::linear_contact_duration(stiffness_for_damping, mass, gamma),
     }
-    .map_err(|e| Issue { path: "damping".into(), value: format!("γ = {gamma}"), allowed: e.to_string() })?;
+    .map_err(|e| Issue {
+        path: "damping.gamma".into(),
+        value: Num(gamma).to_string(),
+        allowed: format!(
+            "must be below the critical value √(2km) = {} N s/m (overdamped: no contact duration)",
+            Num(e.critical)
+        ),
+    })?;
     // Extreme but finite inputs (m = 1e-300 with k = 1e300) can still over- or underflow here.
     require(
         t_c.is_finite() && t_c > 0.0,
@@ -249,7 +256,7 @@ fn resolve_damping(damping: &RawDamping, k: f64, mass: f64) -> Result<(f64, Opti
         (Some(r), Some(g)) => {
             return Err(Issue {
                 path: "damping".into(),
-                value: format!("restitution = {r}, gamma = {g}"),
+                value: format!("restitution = {}, gamma = {}", Num(r), Num(g)),
                 allowed: "give either restitution or gamma, not both".into(),
             });
         }
@@ -293,7 +300,7 @@ fn resolve_dt(time: &RawTime, t_c: f64) -> Result<f64, Issue> {
         }
         (Some(dt), Some(per_tc)) => Err(Issue {
             path: "time".into(),
-            value: format!("dt = {dt}, dt_per_tc = {per_tc}"),
+            value: format!("dt = {}, dt_per_tc = {}", Num(dt), Num(per_tc)),
             allowed: "give either dt or dt_per_tc, not both".into(),
         }),
     }

@@ -4,7 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::issue::{Issue, missing, positive, require};
+use super::issue::{Issue, Num, missing, positive, require};
 use super::raw::{Background, Control, RawScene, RawWave};
 use crate::sim::RelaxMethod;
 
@@ -122,7 +122,12 @@ pub(super) fn resolve_relax(raw: &RawScene, control: Control, load_ramp_tc: Opti
         let minimiser = "fire, cg and static have no time: use relax.method: damped";
         require(control == Control::Force, "relax.method", name, &format!("needs control: force; {minimiser}"))?;
         let ramp = load_ramp_tc.unwrap_or_default();
-        require(ramp == 0.0, "relax.method", name, &format!("needs no load.ramp_tc (it is {ramp}); {minimiser}"))?;
+        require(
+            ramp == 0.0,
+            "relax.method",
+            name,
+            &format!("needs no load.ramp_tc (it is {}); {minimiser}", Num(ramp)),
+        )?;
         let damped = [
             ("damping.restitution", damping.restitution.is_some()),
             ("damping.gamma", damping.gamma.is_some()),

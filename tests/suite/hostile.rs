@@ -76,6 +76,15 @@ fn every_bad_fixture_is_refused_naming_the_file_and_the_field() {
     assert!(failures.is_empty(), "{} of {} fixtures:\n{}", failures.len(), fixtures.len(), failures.join("\n"));
 }
 
+/// Guards issue 31, item 12: the refusal of `name: y` (fixtures `name-boolean`,
+/// `scene-name-boolean`) is of the unquoted word only; quoted, the same words are names.
+#[test]
+fn quoted_boolean_words_are_names() {
+    let yaml = "version: 1\nname: \"y\"\nscenes:\n  - name: 'off'\n    kind: pair\n    v0: 1.0\n";
+    let campaign = mdsolids::spec::parse("quoted.yaml", yaml).unwrap();
+    assert_eq!((campaign.name.as_str(), campaign.scenes[0].0.as_str()), ("y", "off"));
+}
+
 /// The binary refuses a campaign whose name climbs out of `--reports` before it writes
 /// anything, in `plan` and in `run`.
 #[test]
@@ -565,9 +574,21 @@ fn the_guard_reports_a_panic() {
 /// Runs the binary in `dir` with `args`, killing it after [`HANG_GUARD`]: (success, stdout,
 /// stderr), or a panic naming the command if it had to be killed.
 fn binary(dir: &Path, args: &[&str]) -> (bool, String, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+    guarded_binary(Command::new(env!("CARGO_BIN_EXE_mdsolids")).args(args), dir, args)
+}
+
+/// [`binary`] with the process's address space limited to 4 GB (`ulimit -v`): where a file
+/// could be read without bound, the test fails by a failed allocation, not by taking the
+/// machine's memory.
+fn binary_in_4_gb(dir: &Path, args: &[&str]) -> (bool, String, String) {
+    let limited = r#"ulimit -v 4000000 && exec "$0" "$@""#;
+    guarded_binary(Command::new("sh").args(["-c", limited, env!("CARGO_BIN_EXE_mdsolids")]).args(args), dir, args)
+}
+
+/// Runs `command` in `dir` as [`binary`] does; `args` name it in a panic.
+fn guarded_binary(command: &mut Command, dir: &Path, args: &[&str]) -> (bool, String, String) {
+    let mut child = command
         .current_dir(dir)
-        .args(args)
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())
         .spawn()
@@ -679,4 +700,95 @@ fn unbounded_inputs_and_options_are_refused_at_once() {
     // 4 nodes on each of the 3 full rows, 2 + 1 on the sparse rows between them.
     assert_eq!(stdout.matches("\"particles\":15,").count(), 2, "{stdout}");
     assert!(!work.path().join("r").exists(), "nothing is written");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Hostile files in the store, stored text on the terminal (issue 31, items 7 and 8).
+
+/// The smoke campaign run into `work/r`; returns its store `work/r/smoke/runs`.
+fn stored_smoke(work: &Path) -> PathBuf {
+    let smoke = Path::new(SHIPPED).join("smoke.yaml");
+    let (ok, _, stderr) = binary(work, &["--reports", "r", "run", smoke.to_str().unwrap()]);
+    assert!(ok, "{stderr}");
+    work.join("r/smoke/runs")
+}
+
+/// The path of the first stored record (`runs/<kind>-<hash>.json`) of `kind`.
+fn stored_record(runs: &Path, kind: &str) -> PathBuf {
+    let mut records: Vec<PathBuf> = std::fs::read_dir(runs).unwrap().map(|e| e.unwrap().path()).collect();
+    records.sort();
+    let name = |p: &PathBuf| p.file_name().unwrap().to_string_lossy().into_owned();
+    records.into_iter().find(|p| name(p).starts_with(kind) && name(p).ends_with(".json")).expect("a stored record")
+}
+
+/// Guards issue 31, item 7: files of the store were read whole, whatever they were. A series
+/// file linked to `/dev/zero` ate memory, a record that is a FIFO blocked `plan`, `report` and
+/// `run` forever (`run` even past SIGTERM), and so did a FIFO as the folder's `campaign.json`.
+/// Now each is a corrupt record, at once: `plan` and `report` list it with why, `run`
+/// simulates it again and stores regular files in its place; the owner file is refused by name.
+#[test]
+fn store_files_that_are_not_regular_files_are_corrupt_at_once() {
+    let work = tempfile::tempdir().unwrap();
+    let runs = stored_smoke(work.path());
+    let fifo = stored_record(&runs, "pair-");
+    let chain = stored_record(&runs, "chain-");
+    let zero = chain.with_extension("series");
+    let make_fifo = |path: &Path| {
+        std::fs::remove_file(path).unwrap();
+        let name = std::ffi::CString::new(path.to_str().unwrap()).unwrap();
+        assert_eq!(unsafe { libc::mkfifo(name.as_ptr(), 0o644) }, 0);
+    };
+    make_fifo(&fifo);
+    std::fs::remove_file(&zero).unwrap();
+    std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
+    let smoke = Path::new(SHIPPED).join("smoke.yaml");
+    let smoke = smoke.to_str().unwrap();
+    // As the binary names them: under `--reports r`.
+    let shown = |path: &Path| path.strip_prefix(work.path()).unwrap().display().to_string();
+    let reasons = [
+        (shown(&fifo), "cannot be read: a FIFO, not a regular file"),
+        (shown(&chain), "its series file cannot be read: a character device, not a regular file"),
+    ];
+    let (ok, stdout, stderr) = binary_in_4_gb(work.path(), &["--reports", "r", "plan", smoke]);
+    assert!(ok && reasons.iter().all(|(f, why)| stdout.contains(&format!("corrupt: {f} ({why})"))), "{stdout}{stderr}");
+    for (command, then) in [("report", "left out of the report"), ("run", "simulated again")] {
+        let (ok, _, stderr) = binary_in_4_gb(work.path(), &["--reports", "r", command, smoke]);
+        let said = |(file, why): &(String, &str)| stderr.contains(&format!("{file} is corrupt ({why}); {then}"));
+        assert!(ok && reasons.iter().all(said), "{command}: {stderr}");
+    }
+    for file in [&fifo, &chain, &zero] {
+        assert!(std::fs::symlink_metadata(file).unwrap().is_file(), "{} is stored again", file.display());
+    }
+
+    let owner = work.path().join("r/smoke/campaign.json");
+    make_fifo(&owner);
+    let (ok, _, stderr) = binary_in_4_gb(work.path(), &["--reports", "r", "report", smoke]);
+    let refused = format!("cannot read '{}': a FIFO, not a regular file", shown(&owner));
+    assert!(!ok && stderr.contains(&refused), "{stderr}");
+}
+
+/// Guards issue 31, item 8: `run --reuse-other-builds` printed a record's `build` as stored,
+/// and `plan` the reason a record is corrupt, which quotes the record's text: a shared store
+/// could send terminal escape codes (retitle the window, clear the screen). Both are printed
+/// with their control characters escaped.
+#[test]
+fn stored_text_reaches_the_terminal_escaped() {
+    let work = tempfile::tempdir().unwrap();
+    let runs = stored_smoke(work.path());
+    let edit = |record: &Path, key: &str, value: &str| {
+        let mut json: serde_json::Value = serde_json::from_slice(&std::fs::read(record).unwrap()).unwrap();
+        json[key] = value.into();
+        std::fs::write(record, serde_json::to_vec(&json).unwrap()).unwrap();
+    };
+    edit(&stored_record(&runs, "chain-"), "build", "0.1.0+x\u{1b}]0;owned\u{7}\u{1b}[2J");
+    edit(&stored_record(&runs, "pair-"), "status", "\u{1b}[31mok");
+    let smoke = Path::new(SHIPPED).join("smoke.yaml");
+    let smoke = smoke.to_str().unwrap();
+    let (ok, stdout, stderr) = binary(work.path(), &["--reports", "r", "plan", smoke]);
+    assert!(ok && stdout.contains("unknown variant `\\u{1b}[31mok`"), "{stdout}{stderr}");
+    let (ok, _, stderr) = binary(work.path(), &["--reports", "r", "run", "--reuse-other-builds", smoke]);
+    assert!(ok && stderr.contains("made by build 0.1.0+x\\u{1b}]0;owned\\u{7}\\u{1b}[2J, not by"), "{stderr}");
+    for output in [&stdout, &stderr] {
+        assert!(!output.contains(['\u{1b}', '\u{7}']), "a raw control character: {output:?}");
+    }
 }

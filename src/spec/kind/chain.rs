@@ -4,7 +4,7 @@
 
 use serde_json::Value;
 
-use crate::spec::issue::{Issue, missing, positive, require};
+use crate::spec::issue::{Issue, Num, missing, positive, require};
 use crate::spec::raw::{Control, RawScene};
 use crate::spec::shared::{Deformation, RelaxSpec, WaveSpec, bonded, kick_speed, resolve_relax, wave_threshold};
 
@@ -94,8 +94,9 @@ impl ChainRun {
             "wall_distance",
             walls,
             &format!(
-                "more than (n + 0.1) · spacing = {least}: a relaxing chain starts at rest spacing from the left \
-                 wall, so the last spring takes the whole wall displacement at first and must not collapse"
+                "more than (n + 0.1) · spacing = {}: a relaxing chain starts at rest spacing from the left \
+                 wall, so the last spring takes the whole wall displacement at first and must not collapse",
+                Num(least)
             ),
         )?;
         let extension = self.wall_extension(spacing);

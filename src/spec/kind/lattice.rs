@@ -512,7 +512,7 @@ fn resolve_impulse(i: &RawImpulse, top: &[usize]) -> Result<ImpulseSpec, Issue> 
     require(
         a.is_finite() && b.is_finite() && (a != 0.0 || b != 0.0),
         path,
-        format!("[{a}, {b}]"),
+        format!("[{}, {}]", Num(a), Num(b)),
         "two finite numbers, not both zero",
     )?;
     Ok(match i.force {
