@@ -76,13 +76,19 @@ fn every_bad_fixture_is_refused_naming_the_file_and_the_field() {
     assert!(failures.is_empty(), "{} of {} fixtures:\n{}", failures.len(), fixtures.len(), failures.join("\n"));
 }
 
-/// Guards issue 31, item 12: the refusal of `name: y` (fixtures `name-boolean`,
-/// `scene-name-boolean`) is of the unquoted word only; quoted, the same words are names.
+/// Guards issue 31, item 12: `name: y` (or n, yes, no, on, off) was accepted, though YAML
+/// 1.1 readers see a boolean there; unquoted it is now refused naming the field and suggesting
+/// quotes (as in the fixtures `name-boolean`, `scene-name-boolean`), and quoted it is a name.
 #[test]
-fn quoted_boolean_words_are_names() {
-    let yaml = "version: 1\nname: \"y\"\nscenes:\n  - name: 'off'\n    kind: pair\n    v0: 1.0\n";
-    let campaign = mdsolids::spec::parse("quoted.yaml", yaml).unwrap();
-    assert_eq!((campaign.name.as_str(), campaign.scenes[0].0.as_str()), ("y", "off"));
+fn boolean_words_are_names_only_when_quoted() {
+    let yaml = |name: &str, scene: &str| {
+        format!("version: 1\nname: {name}\nscenes:\n  - name: {scene}\n    kind: pair\n    v0: 1.0\n")
+    };
+    let refused = mdsolids::spec::parse("b.yaml", &yaml("yes", "s")).unwrap_err().to_string();
+    assert!(refused.starts_with("b.yaml: name = yes: YAML reads an unquoted yes as the boolean true"), "{refused}");
+    assert!(refused.ends_with("quote it: name: \"yes\""), "{refused}");
+    let campaign = mdsolids::spec::parse("b.yaml", &yaml("\"yes\"", "'off'")).unwrap();
+    assert_eq!((campaign.name.as_str(), campaign.scenes[0].0.as_str()), ("yes", "off"));
 }
 
 /// The binary refuses a campaign whose name climbs out of `--reports` before it writes
