@@ -13,7 +13,7 @@ use mdsolids::model::{LatticeType, Linear, NoDashpot, Spring};
 use mdsolids::sim::{ForceField, Integrator, LatticeNetwork, State, VelocityVerlet};
 
 const SIZES: [usize; 3] = [100, 316, 1000];
-const SPRING: Spring<Linear, NoDashpot, false> = Spring { law: Linear, dashpot: NoDashpot };
+const SPRING: Spring<Linear, NoDashpot, false> = Spring::new(Linear, NoDashpot);
 
 fn one_thread() -> rayon::ThreadPool {
     rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("a one-thread pool")

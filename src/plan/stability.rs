@@ -511,10 +511,10 @@ pub fn test_problem(test: TestEquation) -> (State, TestField) {
     particles.push(1.0, 0.0, 1.0, Axes::ONLY_X_MOVES);
     let lattice = SquareLattice::chain(2, 1.0, k);
     let field = if gamma > 0.0 {
-        let spring = Spring::<Linear, BondDashpot, false> { law: Linear, dashpot: BondDashpot { gamma } };
+        let spring = Spring::<Linear, BondDashpot, false>::new(Linear, BondDashpot { gamma });
         TestField::Damped(LatticeNetwork::new(spring, lattice, background))
     } else {
-        let spring = Spring::<Linear, NoDashpot, false> { law: Linear, dashpot: NoDashpot };
+        let spring = Spring::<Linear, NoDashpot, false>::new(Linear, NoDashpot);
         TestField::Undamped(LatticeNetwork::new(spring, lattice, background))
     };
     (State::new(particles), field)

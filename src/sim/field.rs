@@ -8,6 +8,16 @@ use crate::model::{Bonds, Dashpot, ForceLaw, Spring};
 
 /// Something that adds forces to particles: the integrators know only this.
 pub trait ForceField: Send + Sync {
+    /// True when forces jump where a contact switches: a damped contact, whose dashpot force
+    /// γ δ̇ appears and vanishes with it at δ = 0. The time loop then splits a step at every
+    /// switch. An undamped contact switches without a jump (s(0) = 0) and bonded springs never
+    /// switch: for them the split is compiled away.
+    const SWITCH_JUMPS: bool = false;
+
+    /// Judges damped contacts at δ + lookahead·δ̇ (`lookahead` in s; `Spring::lookahead`) in
+    /// the evaluations from now on; nothing for a field without them.
+    fn judge_contacts_ahead(&mut self, _lookahead: f64) {}
+
     /// True when forces depend on velocities (a dashpot or background damping), so the
     /// integrators must supply predicted velocities.
     fn uses_velocity(&self) -> bool;
@@ -29,7 +39,7 @@ pub trait ForceField: Send + Sync {
     fn bond_energy(&self, k: f64, rest: f64, dx: f64, dy: f64) -> f64;
 
     /// Calls `visit(i, j, rest, k, shift_x)` for every bond, whose separation is
-    /// x_i − x_j + shift_x; for checks, not on the hot path.
+    /// x_i − x_j + shift_x; for checks and the prediction of contact switches, not for forces.
     fn for_each_bond(&self, visit: &mut dyn FnMut(usize, usize, f64, f64, f64));
 }
 
@@ -127,6 +137,12 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> BondNetwork<L, D, CONTACT> {
 }
 
 impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for BondNetwork<L, D, CONTACT> {
+    const SWITCH_JUMPS: bool = CONTACT && D::ACTIVE;
+
+    fn judge_contacts_ahead(&mut self, lookahead: f64) {
+        self.spring.lookahead = lookahead;
+    }
+
     fn uses_velocity(&self) -> bool {
         D::ACTIVE || self.background_gamma > 0.0
     }

@@ -1,7 +1,7 @@
 //! The time loop: start, step, probe every step, sample every few steps, stop on blow-up.
 
 use super::field::ForceField;
-use super::integrate::{Integrator, static_forces};
+use super::integrate::{Integrator, static_forces, take_step};
 use super::probe::StepProbe;
 use super::state::State;
 
@@ -322,9 +322,10 @@ fn collapsed_bond<F: ForceField>(field: &F, x: &[f64], y: &[f64], start: &Start)
     worst
 }
 
-/// Runs `sampling.steps` steps of `integrator` on `state` under `field`, showing every step to
-/// `probe`; stops early with [`RunStatus::Unstable`] when a sample finds the run blown up
-/// (non-finite energy, energy grown beyond what loads allow, a collapsed bond).
+/// Runs `sampling.steps` steps of `integrator` on `state` under `field` (split where a damped
+/// contact switches), showing every step and every switch to `probe`; stops early with
+/// [`RunStatus::Unstable`] when a sample finds the run blown up (non-finite energy, energy
+/// grown beyond what loads allow, a collapsed bond).
 pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
     state: &mut State,
     field: &mut F,
@@ -345,7 +346,7 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
     let mut watch = sampling.relaxation.map(RelaxationWatch::new);
     let started = std::time::Instant::now();
     for n in 1..=sampling.steps {
-        integrator.step(state, field, sampling.dt);
+        take_step(integrator, state, field, sampling.dt, probe);
         state.advance_drive();
         probe.observe(state);
         let relaxed = watch.as_mut().is_some_and(|w| w.relaxed(n, state, field));

@@ -137,9 +137,9 @@ impl Scene {
 
     fn with_contact<L: ForceLaw, D: Dashpot>(self, law: L, dashpot: D) -> Outcome {
         if self.contact {
-            self.with_spring(Spring::<L, D, true> { law, dashpot })
+            self.with_spring(Spring::<L, D, true>::new(law, dashpot))
         } else {
-            self.with_spring(Spring::<L, D, false> { law, dashpot })
+            self.with_spring(Spring::<L, D, false>::new(law, dashpot))
         }
     }
 

@@ -61,6 +61,10 @@ pub struct State {
     pub drive_force: f64,
     drive_start: Vec<f64>,
     drive_stopped: bool,
+    /// In a step split at contact switches, when (s) the current sub-step judges its damped
+    /// contacts: its middle, where none switches, so each sub-step keeps one side of every
+    /// switch. `None`: every evaluation judges them at its own time.
+    pub contacts_judged_at: Option<f64>,
 }
 
 impl State {
@@ -160,6 +164,7 @@ impl State {
             drive_force: 0.0,
             drive_start: Vec::new(),
             drive_stopped: false,
+            contacts_judged_at: None,
         }
     }
 }

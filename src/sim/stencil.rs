@@ -407,6 +407,12 @@ fn family_sums(loss: &[f64], row: Nodes, gamma: f64, background: &mut f64) -> [f
 }
 
 impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for LatticeNetwork<L, D, CONTACT> {
+    const SWITCH_JUMPS: bool = CONTACT && D::ACTIVE;
+
+    fn judge_contacts_ahead(&mut self, lookahead: f64) {
+        self.spring.lookahead = lookahead;
+    }
+
     fn uses_velocity(&self) -> bool {
         D::ACTIVE || self.background_gamma > 0.0
     }

@@ -188,7 +188,7 @@ const PERIODIC_LARGE: (usize, usize, bool, bool) = (120, 90, true, true);
 
 #[test]
 fn linear_lattice() {
-    let spring = Spring::<Linear, NoDashpot, false> { law: Linear, dashpot: NoDashpot };
+    let spring = Spring::<Linear, NoDashpot, false>::new(Linear, NoDashpot);
     for size in [SMALL, LARGE] {
         check("linear", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, size, 0.0, false);
     }
@@ -208,9 +208,9 @@ fn linear_lattice() {
 #[test]
 fn hertz_lattice_bonded_and_contact() {
     let law = PowerLaw { beta: 1.5 };
-    let bonded = Spring::<PowerLaw, NoDashpot, false> { law, dashpot: NoDashpot };
+    let bonded = Spring::<PowerLaw, NoDashpot, false>::new(law, NoDashpot);
     check("hertz", bonded, LawSpec::Power { beta: 1.5 }, 0.0, 0.0, IntegratorKind::VelocityVerlet, LARGE, 0.0, false);
-    let contact = Spring::<PowerLaw, NoDashpot, true> { law, dashpot: NoDashpot };
+    let contact = Spring::<PowerLaw, NoDashpot, true>::new(law, NoDashpot);
     check(
         "hertz contact",
         contact,
@@ -226,7 +226,7 @@ fn hertz_lattice_bonded_and_contact() {
 
 #[test]
 fn damped_lattice() {
-    let spring = Spring::<Linear, BondDashpot, false> { law: Linear, dashpot: BondDashpot { gamma: 0.05 } };
+    let spring = Spring::<Linear, BondDashpot, false>::new(Linear, BondDashpot { gamma: 0.05 });
     // SUPPORTED has several blocks of rows below the parallel threshold: one thread sums the
     // background power row by row and damps each row once its last bond is in.
     for size in [SMALL, SUPPORTED, LARGE] {
@@ -249,7 +249,7 @@ fn damped_lattice() {
 
 #[test]
 fn constrained_lattice() {
-    let spring = Spring::<Linear, NoDashpot, false> { law: Linear, dashpot: NoDashpot };
+    let spring = Spring::<Linear, NoDashpot, false>::new(Linear, NoDashpot);
     check("supported", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, SUPPORTED, 0.0, false);
     check(
         "supported, position Verlet",
@@ -266,7 +266,7 @@ fn constrained_lattice() {
 
 #[test]
 fn periodic_lattice() {
-    let spring = Spring::<Linear, BondDashpot, false> { law: Linear, dashpot: BondDashpot { gamma: 0.05 } };
+    let spring = Spring::<Linear, BondDashpot, false>::new(Linear, BondDashpot { gamma: 0.05 });
     for size in [PERIODIC_SMALL, PERIODIC_LARGE] {
         check("periodic", spring, LawSpec::Linear, 0.05, 0.0, IntegratorKind::VelocityVerlet, size, 0.0, false);
     }
@@ -289,8 +289,8 @@ fn periodic_lattice() {
 /// linear and damped, threaded (LARGE) and not.
 #[test]
 fn triangular_lattice_stencil() {
-    let spring = Spring::<Linear, NoDashpot, false> { law: Linear, dashpot: NoDashpot };
-    let damped = Spring::<Linear, BondDashpot, false> { law: Linear, dashpot: BondDashpot { gamma: 0.05 } };
+    let spring = Spring::<Linear, NoDashpot, false>::new(Linear, NoDashpot);
+    let damped = Spring::<Linear, BondDashpot, false>::new(Linear, BondDashpot { gamma: 0.05 });
     for size in [SMALL, LARGE, SUPPORTED] {
         check("triangular", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, size, 0.0, true);
         check(
@@ -322,12 +322,11 @@ fn triangular_lattice_stencil() {
 
 #[test]
 fn diluted_network_bond_list() {
-    let spring = Spring::<Linear, NoDashpot, false> { law: Linear, dashpot: NoDashpot };
+    let spring = Spring::<Linear, NoDashpot, false>::new(Linear, NoDashpot);
     for size in [SMALL, LARGE] {
         check("diluted", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, size, 0.15, false);
     }
-    let damped =
-        Spring::<PowerLaw, BondDashpot, false> { law: PowerLaw { beta: 1.5 }, dashpot: BondDashpot { gamma: 0.05 } };
+    let damped = Spring::<PowerLaw, BondDashpot, false>::new(PowerLaw { beta: 1.5 }, BondDashpot { gamma: 0.05 });
     check(
         "diluted hertz damped",
         damped,

@@ -142,9 +142,7 @@ fn pair_case(e: &Evidence, r: &RunRecord) -> (String, bool) {
     if !within {
         let order = order_of(e, r, |x| pair_errors(x).1);
         sentence += &format!(
-            ": outside {PAIR_TOLERANCE:e}, because the contact spring switches on and off inside a step, where \
-             its damped force jumps by γv; the error falls only at order {} with dt (the bonded pair's at \
-             order 2)",
+            ": outside {PAIR_TOLERANCE:e}; the error falls at order {} with dt",
             order.map(|p| format!("{p:.2}")).unwrap_or_else(|| "–".into())
         );
     }

@@ -16,15 +16,24 @@ impl Integrator for SymplecticEuler {
     }
 
     fn step<F: ForceField>(&mut self, state: &mut State, field: &mut F, dt: f64) {
-        let p = &mut state.particles;
-        for i in 0..p.len() {
-            p.vx[i] += dt * state.fx[i] * p.inv_mass[i];
-            p.vy[i] += dt * state.fy[i] * p.inv_mass[i];
-            p.x[i] += dt * p.vx[i];
-            p.y[i] += dt * p.vy[i];
-        }
-        clear_forces(state);
-        evaluate_and_account(state, field, None, dt, (state.steps + 1) as f64 * dt);
+        advance(state, field, dt, (state.steps + 1) as f64 * dt);
         finish_step(state, dt);
     }
+
+    fn substep<F: ForceField>(&mut self, state: &mut State, field: &mut F, h: f64, _dt: f64) {
+        advance(state, field, h, state.time + h);
+    }
+}
+
+/// v += (f/m) h, x += v h, then the forces at `time`, the end of the step of length `h` (s).
+fn advance<F: ForceField>(state: &mut State, field: &mut F, h: f64, time: f64) {
+    let p = &mut state.particles;
+    for i in 0..p.len() {
+        p.vx[i] += h * state.fx[i] * p.inv_mass[i];
+        p.vy[i] += h * state.fy[i] * p.inv_mass[i];
+        p.x[i] += h * p.vx[i];
+        p.y[i] += h * p.vy[i];
+    }
+    clear_forces(state);
+    evaluate_and_account(state, field, None, h, time);
 }

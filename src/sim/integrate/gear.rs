@@ -41,13 +41,43 @@ fn predict(r0: &mut f64, r1: &mut f64, r: [&mut f64; 4]) {
 const SCOUT_SUBSTEPS: u64 = 4;
 
 impl Integrator for Gear {
-    /// Starts from accurate derivatives: r₂…r₅ from a cubic through the accelerations at t = 0,
-    /// dt, 2 dt, 3 dt, found by RK4 (dt/4 sub-steps) on a copy of the state. Zero higher
-    /// derivatives, the usual start, cost the scheme its order: an O(dt³) error in r₃ alone
-    /// makes the run second order (measured on the chain).
+    /// Starts from accurate derivatives ([`Gear::scout`]). Zero higher derivatives, the usual
+    /// start, cost the scheme its order: an O(dt³) error in r₃ alone makes the run second order
+    /// (measured on the chain).
     fn start<F: ForceField>(&mut self, state: &mut State, field: &mut F, dt: f64) {
         start_forces(state, field);
         self.c0 = if field.uses_velocity() { 3.0 / 16.0 } else { 3.0 / 20.0 };
+        self.scout(state, field, dt);
+    }
+
+    fn step<F: ForceField>(&mut self, state: &mut State, field: &mut F, dt: f64) {
+        self.advance(state, field, dt, (state.steps + 1) as f64 * dt, 4);
+        finish_step(state, dt);
+    }
+
+    /// The scaled derivatives rescaled to `h` (r_k by (h/dt)^k) and back after it. A sub-step
+    /// that starts at a switch (inside the step: the first starts at steps · dt) starts afresh,
+    /// as at t = 0, on its side of the switch: the derivatives jump with the force there, and
+    /// the near side's r₃…r₅ made Gear second order. The corrector leaves r₃…r₅ alone: its
+    /// change c_k Δ, Δ = O(h³), would move x⁽ᵏ⁾ by O(h^(3−k)) and, scaled back by (dt/h)^k
+    /// after a short sub-step, blow up (a sub-step of 10⁻⁶ dt: r₅ × 10³⁰).
+    fn substep<F: ForceField>(&mut self, state: &mut State, field: &mut F, h: f64, dt: f64) {
+        if state.time != state.steps as f64 * dt {
+            self.scout(state, field, dt);
+        }
+        self.rescale(h / dt);
+        self.advance(state, field, h, state.time + h, 1);
+        self.rescale(dt / h);
+    }
+}
+
+impl Gear {
+    /// r₂…r₅ for steps of `dt` from the motion ahead of `state`: a cubic through the
+    /// accelerations now and dt, 2 dt, 3 dt on, found by RK4 (dt/4 sub-steps) on a copy of the
+    /// state from the forces it holds. The copy judges damped contacts as the state does now:
+    /// the derivatives are those of the smooth motion Gear is on, not of a cubic through the
+    /// jump of a contact switching within 3 dt (which gave free flight nonzero r₃…r₅).
+    fn scout<F: ForceField>(&mut self, state: &State, field: &mut F, dt: f64) {
         let n = state.particles.len();
         let acceleration = |s: &State| -> (Vec<f64>, Vec<f64>) {
             let p = &s.particles;
@@ -55,14 +85,15 @@ impl Integrator for Gear {
         };
         let mut samples = vec![acceleration(state)];
         let mut scout = state.clone();
+        scout.contacts_judged_at = Some(state.contacts_judged_at.unwrap_or(state.time));
         let mut runge_kutta = RungeKutta4::default();
         let h = dt / SCOUT_SUBSTEPS as f64;
-        runge_kutta.start(&mut scout, field, h);
-        for _ in 0..3 {
-            for _ in 0..SCOUT_SUBSTEPS {
-                runge_kutta.step(&mut scout, field, h);
+        for k in 1..=3 * SCOUT_SUBSTEPS {
+            runge_kutta.substep(&mut scout, field, h, h);
+            scout.time = state.time + k as f64 * h;
+            if k % SCOUT_SUBSTEPS == 0 {
+                samples.push(acceleration(&scout));
             }
-            samples.push(acceleration(&scout));
         }
         // Newton forward differences Δᵏ of a at 0, dt, 2dt, 3dt give dt a' = Δ − Δ²/2 + Δ³/3,
         // dt² a'' = Δ² − Δ³ and dt³ a''' = Δ³; then r_k = dt^k/k! x^(k) with x'' = a.
@@ -85,7 +116,17 @@ impl Integrator for Gear {
         }
     }
 
-    fn step<F: ForceField>(&mut self, state: &mut State, field: &mut F, dt: f64) {
+    /// r_k ← ratio^k r_k for k = 2…5: the scaled derivatives of a step `ratio` times as long.
+    fn rescale(&mut self, ratio: f64) {
+        for (k, (x, y)) in self.higher_x.iter_mut().zip(&mut self.higher_y).enumerate() {
+            let factor = ratio.powi(k as i32 + 2);
+            x.iter_mut().chain(y.iter_mut()).for_each(|r| *r *= factor);
+        }
+    }
+
+    /// One predict–evaluate–correct step of length `dt` (s) ending at `time`, whose corrector
+    /// updates r₀, r₁ and the first `corrected` of r₂…r₅; time and step count are left alone.
+    fn advance<F: ForceField>(&mut self, state: &mut State, field: &mut F, dt: f64, time: f64, corrected: usize) {
         let p = &mut state.particles;
         let [a2, a3, a4, a5] = &mut self.higher_x;
         let [b2, b3, b4, b5] = &mut self.higher_y;
@@ -98,7 +139,6 @@ impl Integrator for Gear {
             p.vy[i] = r1 / dt;
         }
         clear_forces(state);
-        let time = (state.steps + 1) as f64 * dt;
         let end = evaluate(state, field, None, time);
         let p = &mut state.particles;
         let c = Self::C;
@@ -109,17 +149,14 @@ impl Integrator for Gear {
                 let delta = 0.5 * dt * dt * force[i] * p.inv_mass[i] - higher[0][i];
                 position[i] += self.c0 * delta;
                 velocity[i] += c[0] * delta / dt;
-                for k in 0..4 {
+                for k in 0..corrected {
                     higher[k][i] += c[k + 1] * delta;
                 }
             }
         }
         account(state, dt, time, trapezoid(state, end), end);
-        finish_step(state, dt);
     }
-}
 
-impl Gear {
     /// The amplification matrix G of one step on a linear test problem, in the scaled
     /// derivatives r = (r₀ … r₅) of the particle `moving` along x: r after a step = G r.
     /// `state` holds that particle at its equilibrium at rest; `field` is linear in its

@@ -7,6 +7,9 @@
 //! books the step's load work, drive work and dissipated energy through [`account`], so the
 //! energy balance of a run means the same thing whatever integrates it.
 //!
+//! A step in which a damped contact switches is split there ([`take_step`]): every scheme can
+//! take a sub-step of any length ([`Integrator::substep`]).
+//!
 //! Held axes (supports and the velocity drive) work with every scheme: their force is zeroed
 //! after each evaluation, so they keep their velocity. Velocity-dependent forces (dashpots,
 //! background damping) work with every scheme except Forest–Ruth, whose backward sub-step
@@ -16,11 +19,13 @@
 mod euler;
 mod gear;
 mod runge_kutta;
+mod switch;
 mod verlet;
 
 pub use self::euler::SymplecticEuler;
 pub use self::gear::Gear;
 pub use self::runge_kutta::RungeKutta4;
+pub use self::switch::take_step;
 pub use self::verlet::{ForestRuth, PositionVerlet, VelocityVerlet};
 
 use super::field::ForceField;
@@ -81,6 +86,10 @@ pub trait Integrator {
     /// Advances by one step `dt` (s); afterwards positions and velocities refer to the new
     /// `state.time`, and so do the forces, except for Gear's, which belong to its prediction.
     fn step<F: ForceField>(&mut self, state: &mut State, field: &mut F, dt: f64);
+    /// Advances by `h` (s), a part of a step of `dt` split where a contact switches, from
+    /// `state.time` to `state.time + h`, starting from the forces the state holds (those of
+    /// the sub-step's side of the switch); leaves time and step count to the caller.
+    fn substep<F: ForceField>(&mut self, state: &mut State, field: &mut F, h: f64, dt: f64);
 }
 
 /// Adds the loads times `factor` to `(fx, fy)` and zeroes every held axis, so held particles
@@ -152,6 +161,9 @@ fn evaluate<F: ForceField>(
     velocities: Option<(&[f64], &[f64])>,
     time: f64,
 ) -> Evaluation {
+    if F::SWITCH_JUMPS {
+        field.judge_contacts_ahead(state.contacts_judged_at.map_or(0.0, |at| at - time));
+    }
     let p = &state.particles;
     let (vx, vy) = velocities.unwrap_or((&p.vx, &p.vy));
     let (mut fx, mut fy) = (std::mem::take(&mut state.fx), std::mem::take(&mut state.fy));
@@ -195,10 +207,16 @@ fn evaluate_and_account<F: ForceField>(
 
 /// The start of every scheme: forces at t = 0 (zeroed first), nothing dissipated yet.
 fn start_forces<F: ForceField>(state: &mut State, field: &mut F) {
+    forces_at(state, field, 0.0);
+}
+
+/// The forces (zeroed first) at the current positions and velocities, which belong to `time`,
+/// with the dissipated power and the drive's force there; books nothing.
+fn forces_at<F: ForceField>(state: &mut State, field: &mut F, time: f64) {
     clear_forces(state);
-    let first = evaluate(state, field, None, 0.0);
-    state.dissipation_power = first.power;
-    state.drive_force = first.drive_force;
+    let now = evaluate(state, field, None, time);
+    state.dissipation_power = now.power;
+    state.drive_force = now.drive_force;
 }
 
 /// Zeroes the forces before an evaluation.

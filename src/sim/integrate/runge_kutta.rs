@@ -26,7 +26,22 @@ pub struct RungeKutta4 {
 impl Integrator for RungeKutta4 {
     fn start<F: ForceField>(&mut self, state: &mut State, field: &mut F, _dt: f64) {
         start_forces(state, field);
-        let n = state.particles.len();
+    }
+
+    fn step<F: ForceField>(&mut self, state: &mut State, field: &mut F, dt: f64) {
+        self.advance(state, field, dt);
+        finish_step(state, dt);
+    }
+
+    fn substep<F: ForceField>(&mut self, state: &mut State, field: &mut F, h: f64, _dt: f64) {
+        self.advance(state, field, h);
+    }
+}
+
+impl RungeKutta4 {
+    /// Sizes the buffers for `n` particles (a scheme made by `default`, as Gear's scout is, has
+    /// none).
+    fn size_for(&mut self, n: usize) {
         for buffer in [
             &mut self.x0,
             &mut self.y0,
@@ -37,12 +52,15 @@ impl Integrator for RungeKutta4 {
             &mut self.sum_ax,
             &mut self.sum_ay,
         ] {
-            *buffer = vec![0.0; n];
+            buffer.resize(n, 0.0);
         }
     }
 
-    fn step<F: ForceField>(&mut self, state: &mut State, field: &mut F, dt: f64) {
+    /// One step of length `dt` (s) from `state.time`, from the forces the state holds; time and
+    /// step count are left alone.
+    fn advance<F: ForceField>(&mut self, state: &mut State, field: &mut F, dt: f64) {
         let t = state.time;
+        self.size_for(state.particles.len());
         let p = &state.particles;
         self.x0.copy_from_slice(&p.x);
         self.y0.copy_from_slice(&p.y);
@@ -87,6 +105,5 @@ impl Integrator for RungeKutta4 {
         clear_forces(state);
         let end = evaluate(state, field, None, t + dt);
         account(state, dt, t + dt, Evaluation::weighted(&evaluations), end);
-        finish_step(state, dt);
     }
 }
