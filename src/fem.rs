@@ -80,7 +80,7 @@ const REGULARISATION: f64 = 1e-12;
 const REFINEMENTS: usize = 3;
 
 /// Out-of-balance force below this fraction of the load ends the Newton–Raphson iteration ...
-const NEWTON_TOLERANCE: f64 = 1e-12;
+pub const NEWTON_TOLERANCE: f64 = 1e-12;
 /// ... and so does a correction below this fraction of the displacement: the residual has then
 /// reached round-off (k · ε · r per spring), which for stiff springs and small loads can sit
 /// above the force tolerance.
@@ -157,7 +157,7 @@ impl Truss<'_> {
     /// d₀ = xᵢ − xⱼ the bond at rest and Δu = uᵢ − uⱼ, δ = |d₀ + Δu| − |d₀| + δ₀ is computed as
     /// (2 d₀·Δu + |Δu|²)/(|d₀ + Δu| + |d₀|) + δ₀, exact to ε of δ. Summing x + u first would
     /// round u to ε·|x| (7e-15 m at 32 m), and the spring would carry that ulp times k: a
-    /// steel block (k = 2e9 N/m) at 10 N per node then never meets Newton's 1e-10 of the load.
+    /// steel block (k = 2e9 N/m) at 10 N per node then never met Newton's 1e-10 of the load.
     /// δ₀ = |d₀| − rest is a spring's pre-stretch ([`pre_stretch`]).
     fn bond_state<L: ForceLaw>(&self, law: &L, b: usize, ux: &[f64], uy: &[f64]) -> ([f64; 2], f64, f64, f64) {
         let (i, j, k, rest) = (self.bonds.i[b], self.bonds.j[b], self.bonds.stiffness[b], self.bonds.rest[b]);
@@ -175,8 +175,8 @@ impl Truss<'_> {
     /// from the linear answer of the same network with every spring at its tangent stiffness
     /// at extension `linearised_at` (m; 0 for linear springs; a power law, which has no
     /// stiffness at δ = 0, is linearised at the deformation the load is expected to cause):
-    /// R(u) = f + Σ spring forces at x + u, K_t Δu = R, until ‖R‖ ≤ 1e-10 ‖f‖ or
-    /// ‖Δu‖ ≤ 1e-9 ‖u‖. The tangent of a spring with tension s along n̂ at length r is
+    /// R(u) = f + Σ spring forces at x + u, K_t Δu = R, until ‖R‖ ≤ 1e-12 ‖f‖ or
+    /// ‖Δu‖ ≤ 1e-14 ‖u‖. The tangent of a spring with tension s along n̂ at length r is
     /// s′(δ) n̂ n̂ᵀ + (s/r)(I − n̂ n̂ᵀ). A mechanism of the linear problem is reported as one;
     /// an iteration that does not converge returns `None`; once the wall clock passes
     /// `deadline` (looked at before every factorisation) it stops with `PastDeadline`.

@@ -11,7 +11,9 @@ pub use self::stability::{Estimates, RUN_GROWTH, Stability, estimate};
 use rayon::prelude::*;
 use std::path::Path;
 
-use crate::spec::{Campaign, DEFAULT_DT_PER_TC, Num, RESIDUAL_OVER_ROUND_OFF, RunSpec, SpecError, force_resolution};
+use crate::spec::{
+    Campaign, DEFAULT_DT_PER_TC, Num, RESIDUAL_OVER_ROUND_OFF, RunSpec, SpecError, force_resolution, round_off_words,
+};
 
 /// A campaign ready to run: every run's dt and steps final, each within its integrator's
 /// stability limit unless it says `time.allow_unstable: true`.
@@ -103,11 +105,7 @@ fn check_round_off(spec: &RunSpec) -> Result<(), String> {
     let (Some(floor), Some(force)) = (force_resolution(spec), spec.lattice().and_then(|l| l.force_per_node())) else {
         return Ok(());
     };
-    let extent = spec.lattice().map_or(0.0, |l| l.extent(spec.spacing));
-    let why = format!(
-        "the positions, up to X = {extent:.3e} m, are held to ε X, which leaves every static force uncertain by \
-         about {floor:.2e} N (ε X times the stiffest spring's tangent stiffness)"
-    );
+    let why = round_off_words(spec, floor);
     if force.abs() < LOAD_OVER_ROUND_OFF * floor {
         return Err(format!(
             "load.per_node = {force:e}: below {LOAD_OVER_ROUND_OFF:e} times the round-off floor: {why}; allowed: \

@@ -193,6 +193,16 @@ pub fn force_resolution(spec: &RunSpec) -> Option<f64> {
     Some(f64::EPSILON * extent * tangent)
 }
 
+/// Why the static forces of `spec` carry the round-off `floor` (N, [`force_resolution`]), in
+/// words for the messages that name it.
+pub fn round_off_words(spec: &RunSpec, floor: f64) -> String {
+    format!(
+        "the positions, up to X = {:.3e} m, are held to ε X, which leaves every static force uncertain by about \
+         {floor:.2e} N (ε X times the stiffest spring's tangent stiffness)",
+        spec.lattice().map_or(0.0, |l| l.extent(spec.spacing))
+    )
+}
+
 impl RunSpec {
     /// Stable identifier: the scene name and a content hash of the resolved run, its numbers in
     /// one form (`-0.0` as `0`, `50.0` as `50`), so runs with the same physics share one id.

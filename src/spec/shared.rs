@@ -109,7 +109,7 @@ pub(super) fn resolve_relax(raw: &RawScene, control: Control, load_ramp_tc: Opti
     if method == RelaxMethod::Static
         && let Some(tolerance) = relax.tolerance
     {
-        let exact = "has no tolerance: the static solution is solved to round-off (Newton, ‖R‖ ≤ 1e-10 ‖f‖)";
+        let exact = "has no tolerance: the static solution is solved to round-off (Newton, ‖R‖ ≤ 1e-12 ‖f‖)";
         require(
             false,
             "relax.tolerance",

@@ -18,7 +18,7 @@ use crate::model::{Axes, Bonds, Edges, ForceLaw, LatticeType, LawVisitor, Layout
 use crate::sim::{Drive, Load, Network, Outcome, ProbeTrace, Relaxation, Scene, Trace};
 use crate::spec::{
     Control, Diagonals, LatticeSpec, LoadCase, ProbeLine, RESIDUAL_OVER_ROUND_OFF, RunSpec, Supports, force_resolution,
-    reference_extension,
+    reference_extension, round_off_words,
 };
 
 /// What a lattice measures, with its static and continuum twins.
@@ -371,10 +371,7 @@ const NORM_OVER_ROUND_OFF: f64 = 0.25;
 fn below_round_off(spec: &RunSpec, particles: &Particles, relaxation: &Relaxation) -> Option<String> {
     let floor = force_resolution(spec)?;
     let free = 2 * particles.len() - particles.held_x.len() - particles.held_y.len();
-    let why = format!(
-        "the positions are held to ε X (X = {:.3e} m), which leaves every static force uncertain by about {floor:.2e} N",
-        spec.lattice().map_or(0.0, |l| l.extent(spec.spacing))
-    );
+    let why = round_off_words(spec, floor);
     let norm_floor = NORM_OVER_ROUND_OFF * floor * (free as f64).sqrt();
     if let Some(target) = relaxation.residual_norm.filter(|target| *target < norm_floor) {
         let reachable = spec.relax().and_then(|r| r.tolerance).unwrap_or_default() * norm_floor / target;

@@ -170,9 +170,10 @@ pub(super) fn time_to_modulus(e: &Evidence) -> Option<Answer> {
         },
         sentences,
         reference: format!(
-            "The static answer of the same network (Newton to ‖R‖ ≤ 1e-10 ‖f‖): each relaxed run's |E − E_fem| \
+            "The static answer of the same network (Newton to ‖R‖ ≤ {:e} ‖f‖): each relaxed run's |E − E_fem| \
              must lie below its recorded bound; critical damping within {CRITICAL_STEPS_ALLOWED} × the critically \
-             damped bound in steps."
+             damped bound in steps.",
+            crate::fem::NEWTON_TOLERANCE
         ),
         verdict,
         figures: Vec::new(),
