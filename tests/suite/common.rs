@@ -36,3 +36,19 @@ pub fn assert_table_finite(records: &[RunRecord]) {
         }
     }
 }
+
+/// The `report.md` the binary renders for an inline campaign named `name` (run in a temporary
+/// reports folder); panics with the binary's error output if the run fails.
+pub fn report_of(name: &str, yaml: &str) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join(format!("{name}.yaml"));
+    std::fs::write(&file, yaml).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+        .arg("--reports")
+        .arg(dir.path())
+        .args(["run", file.to_str().unwrap()])
+        .output()
+        .expect("the binary runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    std::fs::read_to_string(dir.path().join(name).join("report.md")).unwrap()
+}

@@ -151,8 +151,8 @@ fn time_step(e: &Evidence) -> Option<Paragraph> {
     (!linear.is_empty()).then(|| Paragraph {
         title: "The time step",
         text: format!(
-            "One rule serves every scene: dt = t_c/50 with t_c = π√(m/(2k)) of the stiffest pair of the \
-             network.{on_pairs} On the chains and lattices of this campaign it puts the fastest mode at \
+            "One rule serves every scene: dt = t_c/50 with t_c the contact time of the stiffest pair of the \
+             network (π√(m/(2k)) undamped, π/√(2k/m − (γ/m)²) with its bond dashpot).{on_pairs} On the chains and lattices of this campaign it puts the fastest mode at \
              dt·ω_max ≤ {} against the Verlet limit 2, and errors fall as dt². For Hertz springs t_c depends \
              on the amplitude: mdsolids takes t_c at the deformation the scene expects (the impact speed, the \
              load or the wall displacement), so the same rule holds there. The work–precision figures give the \

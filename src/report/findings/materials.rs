@@ -294,29 +294,7 @@ fn anisotropic_rows(groups: &BTreeMap<String, Vec<&RunRecord>>) -> (Vec<Vec<Stri
 pub(super) fn random(e: &Evidence) -> Option<Answer> {
     // Square lattices: the other types' dilution is `types::percolation`.
     let runs = e.all(|r| r.spec.lattice().is_some_and(|l| l.cut_fraction > 0.0 && l.lattice_type.is_square()));
-    let mut by_cut: BTreeMap<(String, u64), Vec<&RunRecord>> = BTreeMap::new();
-    for r in &runs {
-        let l = r.spec.lattice()?;
-        by_cut.entry((l.load_case.name().to_string(), (l.cut_fraction * 1000.0).round() as u64)).or_default().push(r);
-    }
-    let mut rows = Vec::new();
-    for ((case, cut), rs) in &by_cut {
-        // The figure's error bars: the sample standard deviation over the seeds.
-        let (mean, spread) = mean_spread(
-            rs.iter()
-                .filter(|r| r.status == RunStatus::Ok)
-                .map(|r| r.metrics.lattice.youngs_modulus.or(r.metrics.lattice.shear_modulus)),
-        );
-        let kept = rs.iter().filter_map(|r| r.metrics.lattice.bond_fraction_kept).sum::<f64>() / rs.len() as f64;
-        rows.push(vec![
-            case.clone(),
-            format!("{:.2}", *cut as f64 / 1000.0),
-            format!("{kept:.3}"),
-            format!("{}/{}", rs.iter().filter(|r| r.status == RunStatus::Mechanism).count(), rs.len()),
-            cell(mean),
-            cell(spread),
-        ]);
-    }
+    let rows = random_rows(&runs)?;
     let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
     let sentences = vec![
         format!(
@@ -325,11 +303,7 @@ pub(super) fn random(e: &Evidence) -> Option<Answer> {
             mechanisms,
             runs.len()
         ),
-        "Effective-medium theory for central-force networks puts the loss of rigidity where the mean coordination \
-         reaches 2d = 4, a kept fraction 4/8 = 1/2 of the square lattice with both diagonals; finite networks with \
-         intact edges keep some rigidity a little beyond it. A cut network must relax first: its soft, slow modes \
-         take longest."
-            .into(),
+        rigidity_sentence(&runs),
     ];
     let scene = runs.first()?.spec.scene.clone();
     Some(Answer {
@@ -341,12 +315,81 @@ pub(super) fn random(e: &Evidence) -> Option<Answer> {
         verdict: Verdict::Observed,
         figures: e.figure(&scene, "dilution").into_iter().collect(),
         table: Some(Table {
-            header: ["load", "cut fraction", "kept", "mechanisms", "modulus mean (Pa)", "standard deviation (Pa)"]
-                .map(String::from)
-                .to_vec(),
+            header: [
+                "load",
+                "cut fraction",
+                "rigid seeds",
+                "kept (rigid seeds)",
+                "modulus mean (Pa)",
+                "standard deviation (Pa)",
+            ]
+            .map(String::from)
+            .to_vec(),
             rows,
         }),
     })
+}
+
+/// One row per load case and cut fraction: how many seeds stayed rigid, their kept fraction and
+/// the moduli's mean and sample standard deviation over them only (a floppy seed has no modulus,
+/// and one seed no deviation: a dash).
+fn random_rows(runs: &[&RunRecord]) -> Option<Vec<Vec<String>>> {
+    let mut by_cut: BTreeMap<(String, u64), Vec<&RunRecord>> = BTreeMap::new();
+    for r in runs {
+        let l = r.spec.lattice()?;
+        by_cut.entry((l.load_case.name().to_string(), (l.cut_fraction * 1000.0).round() as u64)).or_default().push(r);
+    }
+    let kept = |rs: &[&&RunRecord]| {
+        let fractions: Vec<f64> = rs.iter().filter_map(|r| r.metrics.lattice.bond_fraction_kept).collect();
+        (!fractions.is_empty()).then(|| fractions.iter().sum::<f64>() / fractions.len() as f64)
+    };
+    let rows = by_cut
+        .iter()
+        .map(|((case, cut), rs)| {
+            // A mechanism stops before its bonds are counted: only rigid seeds know their kept fraction.
+            let rigid: Vec<&&RunRecord> = rs.iter().filter(|r| r.status != RunStatus::Mechanism).collect();
+            let (mean, spread) = mean_spread(
+                rigid
+                    .iter()
+                    .filter(|r| r.status == RunStatus::Ok)
+                    .map(|r| r.metrics.lattice.youngs_modulus.or(r.metrics.lattice.shear_modulus)),
+            );
+            vec![
+                case.clone(),
+                format!("{:.2}", *cut as f64 / 1000.0),
+                format!("{}/{}", rigid.len(), rs.len()),
+                kept(&rigid).map_or_else(|| "–".into(), |k| format!("{k:.3}")),
+                cell(mean),
+                cell(spread),
+            ]
+        })
+        .collect();
+    Some(rows)
+}
+
+/// Where the cut networks lost rigidity against effective-medium theory's threshold: a
+/// central-force network is rigid while its mean coordination is above 2d = 4, half the 8 bonds
+/// per node of the square lattice with both diagonals. The sparsest network still rigid says on
+/// which side of 1/2 this campaign's networks held.
+fn rigidity_sentence(runs: &[&RunRecord]) -> String {
+    let sparsest_rigid = runs
+        .iter()
+        .filter(|r| r.status == RunStatus::Ok)
+        .filter_map(|r| r.metrics.lattice.bond_fraction_kept)
+        .reduce(f64::min);
+    let theory = "Effective-medium theory for central-force networks puts the loss of rigidity where the mean \
+                  coordination reaches 2d = 4, a kept fraction 4/8 = 1/2 of the square lattice with both diagonals.";
+    let rigid = match sparsest_rigid {
+        Some(k) if k < 0.5 => format!(
+            " The sparsest network still rigid here keeps {k:.3} of its bonds, below 1/2: a finite network whose \
+             edges are not cut keeps some rigidity beyond the threshold."
+        ),
+        Some(k) => format!(
+            " No network keeping fewer than half its bonds stayed rigid here: the sparsest rigid one keeps {k:.3}."
+        ),
+        None => " No cut network stayed rigid here.".into(),
+    };
+    format!("{theory}{rigid} A cut network must relax first: its soft, slow modes take longest.")
 }
 
 /// MD against the static truss (FEM) answer, and how k_FEM relates to k_MD.

@@ -6,6 +6,7 @@ use super::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
 use crate::measure::convergence_order;
 use crate::model::LawSpec;
 use crate::report::figure::representative;
+use crate::report::words::contact_time_words;
 use crate::runner::RunRecord;
 use crate::sim::IntegratorKind;
 use crate::spec::SceneKind;
@@ -198,11 +199,11 @@ pub(super) fn time_step(e: &Evidence) -> Option<Answer> {
     let order = order_of(e, reference, |r: &RunRecord| pair_errors(r).0);
     let s = &reference.spec;
     let mut sentences = vec![format!(
-        "For two particles of mass m = {} kg and stiffness k = {} N/m, t_c = π√(m/(2k)) = {} s, so the coursework's \
-         dt = t_c/50 = {} s; choosing m and k so that t_c is a round number makes every time a simple multiple of it.",
+        "For two particles of mass m = {} kg and stiffness k = {} N/m, {}, so the coursework's dt = t_c/50 = {} s; \
+         choosing m and k so that t_c is a round number makes every time a simple multiple of it.",
         sig(s.mass),
         sig(s.k),
-        sig(s.t_c),
+        contact_time_words(s),
         sig(s.t_c / 50.0)
     )];
     sentences.push(match order {

@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 
 use super::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
 use crate::measure::convergence_order;
+use crate::report::words::contact_time_words;
 use crate::model::LawSpec;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
@@ -57,11 +58,11 @@ pub(super) fn units_and_time_step(e: &Evidence) -> Option<Answer> {
         sentences.push(format!("The masses and springs are derived from the solid: {note}."));
     }
     sentences.push(format!(
-        "A node of m = {} kg on springs k = {} N/m gives the pair's t_c = π√(m/(2k)) = {} s, so dt = t_c/50 = {} s; \
-         the whole {} × {} block weighs {} kg.",
+        "A node of m = {} kg on springs k = {} N/m gives the pair's {}, so dt = t_c/50 = {} s; the whole {} × {} \
+         block weighs {} kg.",
         sig(s.mass),
         sig(s.k),
-        sig(s.t_c),
+        contact_time_words(s),
         sig(s.t_c / 50.0),
         l.nx,
         l.ny,
