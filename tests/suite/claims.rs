@@ -128,3 +128,33 @@ fn random_networks_average_the_rigid_seeds_and_say_where_rigidity_held() {
     let row = line_with(&heavy, "| tensile | 0.60 |");
     assert_eq!(row, "| tensile | 0.60 | 0/6 | – | – | – |");
 }
+
+/// A free 20 × 20 lattice kicked down at its upper-right node with speed `v0` (m/s, c = 1 m/s
+/// without diagonals), its bottom row probed.
+fn kicked_block(v0: f64) -> String {
+    format!(
+        "version: 1\nname: kick\nscenes:\n  - name: kick\n    kind: lattice\n    lattice: {{size: 20}}\n    supports: free\n    \
+         impulse: {{node: top-right, velocity: [0.0, -{v0}]}}\n    wave: {{}}\n    probes: {{rows: [bottom]}}\n    \
+         time: {{integrator: velocity-verlet}}\n    grid:\n      lattice.diagonals: [none, both]\n"
+    )
+}
+
+#[test]
+fn the_kicked_column_keeps_its_front_only_while_the_strain_is_small() {
+    // Without diagonals the kicked column is a chain of its own: at a strain of 1e-3 its front
+    // reaches the bottom row in that column alone (share ≥ 99.9 %: the linear lattice has no
+    // coupling between columns); at 0.1 the column's rotations pass a share sideways. With
+    // diagonals the front spreads (share < 50 %).
+    let share = |report: &str, which: &str| {
+        let line = line_with(report, which);
+        number_after(line, "s), ")
+    };
+    let small = report_of("kick", &kicked_block(0.001));
+    let without = share(&small, "Without diagonals the kicked column");
+    assert!(without >= 99.9, "{without}");
+    assert!(share(&small, "With diagonals every node") < 50.0);
+    assert!(line_with(&small, "Without diagonals the kicked column").contains("v0/c = 0.001000"));
+    let large = report_of("kick", &kicked_block(0.1));
+    let without = share(&large, "Without diagonals the kicked column");
+    assert!(without < 99.0, "{without}");
+}

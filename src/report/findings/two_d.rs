@@ -201,15 +201,25 @@ pub(super) fn lattice_time_step(e: &Evidence) -> Option<Answer> {
     })
 }
 
-/// The share of the kinetic energy reaching the bottom row (Σ over samples of v², from its
-/// probe) that arrives at the kicked node's column: 1 when the kick stays in its column.
+/// The front's first passage through the bottom row: up to twice its arrival time (s) by the
+/// speed threshold. The wave reflected at the bottom comes back to it only after three transits,
+/// and a column left sliding by the kick fills the row's later samples: neither is the front.
+fn first_passage(r: &RunRecord) -> Option<f64> {
+    r.metrics.arrival_times.get("speed_threshold").map(|t| 2.0 * t)
+}
+
+/// The share of the kinetic energy reaching the bottom row during the front's first passage
+/// (Σ over those samples of v², from its probe) that arrives at the kicked node's column: 1 when
+/// the kick stays in its column.
 fn column_share(r: &RunRecord) -> Option<f64> {
     let l = r.spec.lattice()?;
     let column = l.impulse?.node % l.nx;
     let bottom = r.trace.probes.iter().find(|p| p.name == "row 0")?;
     let at = bottom.nodes.iter().position(|&n| n % l.nx == column)?;
+    let passage = first_passage(r)?;
+    let samples = r.trace.time.iter().take_while(|&&t| t <= passage).count();
     let (mut kicked, mut all) = (0.0, 0.0);
-    for (vx, vy) in bottom.velocity_x.iter().zip(&bottom.velocity_y) {
+    for (vx, vy) in bottom.velocity_x.iter().zip(&bottom.velocity_y).take(samples) {
         for (i, (x, y)) in vx.iter().zip(vy).enumerate() {
             let energy = x * x + y * y;
             all += energy;
@@ -221,13 +231,20 @@ fn column_share(r: &RunRecord) -> Option<f64> {
     (all > 0.0).then(|| kicked / all)
 }
 
-/// The share in words, when the run recorded its bottom row.
+/// The share in words, when the run recorded its bottom row, with the kick's strain v0/c: the
+/// linear picture holds while it is small.
 fn share_words(r: &RunRecord) -> String {
+    let kick = r.spec.lattice().and_then(|l| l.impulse).map_or(0.0, |i| i.vx.hypot(i.vy));
+    let strain = r.metrics.sound_speed_theory.map(|c| kick / c);
     column_share(r)
-        .map(|share| {
+        .zip(first_passage(r))
+        .map(|(share, passage)| {
             format!(
-                " {:.1} % of the kinetic energy reaching the bottom row arrives in the kicked column.",
-                100.0 * share
+                " During the front's first passage through the bottom row (t ≤ 2 t_arrival = {} s), {:.2} % of \
+                 the kinetic energy reaching it arrives in the kicked column; the kick's strain is v0/c = {}.",
+                sig(passage),
+                100.0 * share,
+                cell(strain)
             )
         })
         .unwrap_or_default()
@@ -240,7 +257,7 @@ fn kick_short(kicked: &[&RunRecord]) -> String {
     };
     match (share(Diagonals::None), share(Diagonals::Both)) {
         (Some(none), Some(both)) => format!(
-            "{:.0} % of the energy stays in the kicked column without diagonals, {:.0} % with them",
+            "{:.1} % of the front's energy stays in the kicked column without diagonals, {:.1} % with them",
             100.0 * none,
             100.0 * both
         ),
