@@ -58,7 +58,9 @@ fn background_damping_is_judged_against_its_critical_value() {
 
 /// A linear chain of `n` hit at one end, timed at the far end.
 fn wave_chain(n: usize) -> String {
-    format!("version: 1\nname: ch\nscenes:\n  - name: wave\n    kind: chain\n    n: {n}\n    v0: 0.01\n    wave: {{}}\n")
+    format!(
+        "version: 1\nname: ch\nscenes:\n  - name: wave\n    kind: chain\n    n: {n}\n    v0: 0.01\n    wave: {{}}\n"
+    )
 }
 
 #[test]

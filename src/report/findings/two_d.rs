@@ -7,8 +7,8 @@ use std::collections::BTreeMap;
 
 use super::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
 use crate::measure::convergence_order;
-use crate::report::words::contact_time_words;
 use crate::model::LawSpec;
+use crate::report::words::contact_time_words;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::spec::{Control, Diagonals, LatticeSpec, LoadCase, Supports};
@@ -425,7 +425,17 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
     Some(Answer {
         title: "Young's modulus and Poisson's ratio",
         question: "(a, b) Measure E and ν under 1 kN up on every top-row node.",
-        short: format!("MD = static truss within {}", STATIC_TOLERANCE),
+        short: largest.map_or_else(
+            || format!("MD = static truss within {STATIC_TOLERANCE}"),
+            |r| {
+                format!(
+                    "E = {} Pa, ν = {} ({}); MD = static truss within {STATIC_TOLERANCE}",
+                    cell(r.metrics.lattice.youngs_modulus),
+                    super::noise(r.metrics.lattice.poisson_ratio, 1.0),
+                    r.spec.lattice().map(|l| format!("{} × {}", l.nx, l.ny)).unwrap_or_default()
+                )
+            },
+        ),
         sentences,
         reference: format!(
             "The static truss answer of the same network (tolerance {STATIC_TOLERANCE:e}: the relaxation's stopping \
@@ -469,7 +479,16 @@ pub(super) fn shear(e: &Evidence) -> Option<Answer> {
     Some(Answer {
         title: "The shear modulus",
         question: "(c) Measure G under a horizontal load on every top-row node.",
-        short: "G = k_d/d on the periodic strip; no shear stiffness without diagonals".into(),
+        short: periodic.first().map_or_else(
+            || "G measured; no shear stiffness without diagonals".into(),
+            |r| {
+                format!(
+                    "G = {} Pa on the periodic strip against k_d/d = {} Pa; none without diagonals",
+                    cell(r.metrics.lattice.shear_modulus),
+                    cell(r.metrics.lattice.shear_modulus_theory)
+                )
+            },
+        ),
         sentences,
         reference: format!("The static truss answer (tolerance {STATIC_TOLERANCE:e}) and G = k_d/d."),
         verdict: Verdict::of(checks),
