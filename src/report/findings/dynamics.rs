@@ -171,14 +171,14 @@ pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
 fn dissipation_short(bond: &[&RunRecord], background: &[&RunRecord]) -> String {
     let energy: Vec<&RunRecord> =
         background.iter().copied().filter(|r| r.spec.relax().is_some_and(|x| x.residual_force.is_none())).collect();
-    let optimum = BackgroundSweep::of(&energy).and_then(|sweep| {
+    let optimum = BackgroundSweep::of(&energy).map(|sweep| {
         let (r, time) = sweep.fastest();
-        Some(format!(
+        format!(
             "fastest, {} s, at γ_g = {} N s/m = {:.2} γ_crit",
             sig(time),
             sig(r.spec.gamma_background),
             sweep.ratio(r)
-        ))
+        )
     });
     let against_bond = (!bond.is_empty() && !background.is_empty()).then(|| {
         format!(
