@@ -47,6 +47,17 @@ impl RelaxMethod {
             RelaxMethod::Static => "static",
         }
     }
+
+    /// True for the minimisers, FIRE and CG: with no time and no static answer to stop at, they
+    /// stop only on the static criterion, so a relaxation by one needs a tolerance (the spec
+    /// gives it one by default). Every method is named here, so that a new one must say
+    /// whether it is a minimiser.
+    pub fn is_minimiser(self) -> bool {
+        match self {
+            RelaxMethod::Fire | RelaxMethod::Cg => true,
+            RelaxMethod::Damped | RelaxMethod::Static => false,
+        }
+    }
 }
 
 /// The static force (springs and loads, no damping, held axes zero) at the state's positions,
