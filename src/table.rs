@@ -40,10 +40,33 @@ fn kind_columns(runs: &[RunRow], slot: Slot) -> Vec<Column> {
 
 /// The results frame of `records`: identity, status and timing, the resolved physics, the
 /// measurements with their analytical twins and relative errors, and one column per grid
-/// path (numeric where every value is a number, text otherwise).
+/// path (numeric where every value is a number, text otherwise). The kinds' columns sit at
+/// their slots among the common ones.
 pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
     let runs: Vec<RunRow> = records.iter().map(|r| (&r.spec, &r.metrics, r.steps)).collect();
-    let mut columns = vec![
+    let mut columns = run_columns(records);
+    columns.extend(kind_columns(&runs, Slot::Size));
+    columns.push(floats(records, "v0", |r| r.spec.v0));
+    columns.extend(kind_columns(&runs, Slot::Measured));
+    columns.push(optional_floats(records, "energy_error", |r| r.metrics.energy_error));
+    columns.extend(kind_columns(&runs, Slot::Error));
+    columns.extend(measurement_columns(records));
+    columns.extend(kind_columns(&runs, Slot::Tail));
+    if records.iter().any(|r| r.spec.wave().is_some()) {
+        for criterion in crate::measure::ARRIVAL_CRITERIA {
+            columns.push(optional_floats(records, &format!("sound_speed_{criterion}"), |r| {
+                r.metrics.sound_speed(criterion)
+            }));
+        }
+    }
+    let grid = grid_columns(records, &columns);
+    columns.extend(grid);
+    DataFrame::new_infer_height(columns)
+}
+
+/// A run's identity, status and timing, and the resolved physics every kind has.
+fn run_columns(records: &[RunRecord]) -> Vec<Column> {
+    vec![
         strings(records, "run_id", |r| r.run_id.clone()),
         strings(records, "scene", |r| r.spec.scene.clone()),
         strings(records, "kind", |r| r.spec.kind().name().into()),
@@ -70,13 +93,13 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         floats(records, "dt_per_tc", |r| r.spec.dt_per_tc()),
         floats(records, "t_c", |r| r.spec.t_c),
         floats(records, "duration", |r| r.spec.duration),
-    ];
-    columns.extend(kind_columns(&runs, Slot::Size));
-    columns.push(floats(records, "v0", |r| r.spec.v0));
-    columns.extend(kind_columns(&runs, Slot::Measured));
-    columns.push(optional_floats(records, "energy_error", |r| r.metrics.energy_error));
-    columns.extend(kind_columns(&runs, Slot::Error));
-    columns.extend([
+    ]
+}
+
+/// The measurements every kind may have: the error against a reference, the wave's arrival
+/// and speed, and the stability estimates.
+fn measurement_columns(records: &[RunRecord]) -> Vec<Column> {
+    vec![
         optional_floats(records, "error", |r| r.metrics.error),
         Column::new(
             "error_measure".into(),
@@ -94,21 +117,18 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         optional_floats(records, "dt_omega_max", |r| r.metrics.dt_omega_max),
         optional_floats(records, "mode_damping_ratio", |r| r.metrics.mode_damping_ratio),
         optional_floats(records, "stability_limit", |r| r.metrics.stability_limit),
-    ]);
-    columns.extend(kind_columns(&runs, Slot::Tail));
-    if records.iter().any(|r| r.spec.wave().is_some()) {
-        for criterion in crate::measure::ARRIVAL_CRITERIA {
-            columns.push(optional_floats(records, &format!("sound_speed_{criterion}"), |r| {
-                r.metrics.sound_speed(criterion)
-            }));
-        }
-    }
+    ]
+}
+
+/// One column per grid path the runs vary, in name order: numeric where every value is a
+/// number, text otherwise. A path named like one of the `resolved` columns (`supports`) is
+/// already there.
+fn grid_columns(records: &[RunRecord], resolved: &[Column]) -> Vec<Column> {
     let paths: BTreeSet<&String> = records.iter().flat_map(|r| r.spec.varied.keys()).collect();
-    // A grid path named like a resolved column (`supports`) is already there.
-    let resolved: BTreeSet<String> = columns.iter().map(|c| c.name().to_string()).collect();
-    for path in paths.into_iter().filter(|p| !resolved.contains(p.as_str())) {
+    let resolved: BTreeSet<&str> = resolved.iter().map(|c| c.name().as_str()).collect();
+    let column = |path: &String| {
         let values: Vec<Option<&Value>> = records.iter().map(|r| r.spec.varied.get(path)).collect();
-        let column = if values.iter().flatten().all(|v| v.is_number()) {
+        if values.iter().flatten().all(|v| v.is_number()) {
             Column::new(
                 path.as_str().into(),
                 values.iter().map(|v| v.and_then(Value::as_f64)).collect::<Vec<Option<f64>>>(),
@@ -116,10 +136,9 @@ pub fn results_frame(records: &[RunRecord]) -> PolarsResult<DataFrame> {
         } else {
             let text = |v: &Value| v.as_str().map(str::to_string).unwrap_or_else(|| v.to_string());
             Column::new(path.as_str().into(), values.iter().map(|v| v.map(text)).collect::<Vec<Option<String>>>())
-        };
-        columns.push(column);
-    }
-    DataFrame::new_infer_height(columns)
+        }
+    };
+    paths.into_iter().filter(|p| !resolved.contains(p.as_str())).map(column).collect()
 }
 
 /// The most bytes a results table is read back up to (`report` before it writes a partial one,

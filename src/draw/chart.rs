@@ -2,6 +2,7 @@
 //! every figure of the report and of the comparison is drawn, as SVG, or as PNG where the SVG
 //! would be heavy ([`Image`]).
 
+use plotters::chart::SeriesAnno;
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
 use plotters::prelude::*;
@@ -281,10 +282,40 @@ fn bounds(values: impl Iterator<Item = f64>, log: bool) -> std::ops::Range<f64> 
     }
 }
 
+/// Draws the axes, `series` and their legend (in the corner where it covers the fewest points).
 fn draw<'a, DB: DrawingBackend + 'a, X, Y>(
     ctx: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
     chart: &Chart,
     series: &[Series],
+) -> anyhow::Result<()>
+where
+    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+{
+    draw_axes(ctx, chart)?;
+    let y_floor = ctx.y_range().start;
+    for (index, s) in series.iter().enumerate() {
+        let color = series_colour(index).to_rgba();
+        let drawn = draw_marks(ctx, s, color, chart.scale, y_floor)?;
+        if !s.label.is_empty() {
+            legend_entry(drawn, s, color);
+        }
+    }
+    let labels = series.iter().filter(|s| !s.label.is_empty()).count();
+    let corner = emptiest_corner(ctx, series, labels);
+    ctx.configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font(("sans-serif", LABEL_TEXT))
+        .position(corner)
+        .draw()
+        .map_err(draw_error)
+}
+
+/// The axes with their titles and tick labels, and the grid at the labelled ticks.
+fn draw_axes<'a, DB: DrawingBackend + 'a, X, Y>(
+    ctx: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    chart: &Chart,
 ) -> anyhow::Result<()>
 where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
@@ -311,65 +342,69 @@ where
     } else if let Some(labels) = &y_linear {
         mesh.y_label_formatter(labels);
     }
-    mesh.draw().map_err(draw_error)?;
-    let y_floor = ctx.y_range().start;
-    for (index, s) in series.iter().enumerate() {
-        let color = series_colour(index).to_rgba();
-        let shown = |p: &(f64, f64)| chart.scale.shows(*p);
-        let legend = match &s.mark {
-            Mark::Line => {
-                let mut pieces: Vec<Vec<(f64, f64)>> = s
-                    .points
-                    .split(|(x, y)| x.is_nan() || y.is_nan())
-                    .map(|piece| thin_line(piece.iter().copied().filter(shown).collect(), LINE_POINTS))
-                    .collect();
-                // `split` yields at least one piece; the first carries the legend entry.
-                let first = pieces.remove(0);
-                for piece in pieces {
-                    ctx.draw_series(LineSeries::new(piece, color.stroke_width(2))).map_err(draw_error)?;
-                }
-                ctx.draw_series(LineSeries::new(first, color.stroke_width(2))).map_err(draw_error)?
+    mesh.draw().map_err(draw_error)
+}
+
+/// Draws the points of `s` that the axes of `scale` show, by its mark, in `color` (an error bar
+/// reaching 0 or below on a logarithmic y axis cut at `y_floor`, the axis' bottom); returns the
+/// drawn series, for its legend entry.
+fn draw_marks<'a, 'b, DB: DrawingBackend + 'a, X, Y>(
+    ctx: &'b mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    s: &Series,
+    color: RGBAColor,
+    scale: Scale,
+    y_floor: f64,
+) -> anyhow::Result<&'b mut SeriesAnno<'a, DB>>
+where
+    X: Ranged<ValueType = f64>,
+    Y: Ranged<ValueType = f64>,
+{
+    let shown = |p: &(f64, f64)| scale.shows(*p);
+    match &s.mark {
+        Mark::Line => {
+            let mut pieces: Vec<Vec<(f64, f64)>> = s
+                .points
+                .split(|(x, y)| x.is_nan() || y.is_nan())
+                .map(|piece| thin_line(piece.iter().copied().filter(shown).collect(), LINE_POINTS))
+                .collect();
+            // `split` yields at least one piece; the first carries the legend entry.
+            let first = pieces.remove(0);
+            for piece in pieces {
+                ctx.draw_series(LineSeries::new(piece, color.stroke_width(2))).map_err(draw_error)?;
             }
-            Mark::Markers => ctx
-                .draw_series(s.points.iter().copied().filter(shown).map(|p| Circle::new(p, 4, color.filled())))
-                .map_err(draw_error)?,
-            Mark::ErrorBars(half_widths) => {
-                let bars = s.points.iter().zip(half_widths).filter(|(p, _)| shown(p)).map(|(&(x, y), &h)| {
-                    let low = if chart.scale.log_y() && y - h <= 0.0 { y_floor } else { y - h };
-                    ErrorBar::new_vertical(x, low, y, y + h, color.filled().stroke_width(2), 10)
-                });
-                ctx.draw_series(bars).map_err(draw_error)?;
-                ctx.draw_series(s.points.iter().copied().filter(shown).map(|p| Circle::new(p, 4, color.filled())))
-                    .map_err(draw_error)?
-            }
-        };
-        if !s.label.is_empty() {
-            // The legend shows the mark: a stroke for a line, a disc for markers, a disc on a
-            // bar for error bars.
-            let (stroke, disc, bar) = match s.mark {
-                Mark::Line => (true, false, false),
-                Mark::Markers => (false, true, false),
-                Mark::ErrorBars(_) => (false, true, true),
-            };
-            legend.label(s.label.clone()).legend(move |(x, y)| {
-                let stroke = if stroke { vec![(-9, 0), (9, 0)] } else { Vec::new() };
-                let bar = if bar { vec![(0, -8), (0, 8)] } else { Vec::new() };
-                EmptyElement::at((x + 9, y))
-                    + PathElement::new(stroke, color.stroke_width(2))
-                    + PathElement::new(bar, color.stroke_width(2))
-                    + Circle::new((0, 0), if disc { 4 } else { 0 }, color.filled())
+            ctx.draw_series(LineSeries::new(first, color.stroke_width(2))).map_err(draw_error)
+        }
+        Mark::Markers => ctx
+            .draw_series(s.points.iter().copied().filter(shown).map(|p| Circle::new(p, 4, color.filled())))
+            .map_err(draw_error),
+        Mark::ErrorBars(half_widths) => {
+            let bars = s.points.iter().zip(half_widths).filter(|(p, _)| shown(p)).map(|(&(x, y), &h)| {
+                let low = if scale.log_y() && y - h <= 0.0 { y_floor } else { y - h };
+                ErrorBar::new_vertical(x, low, y, y + h, color.filled().stroke_width(2), 10)
             });
+            ctx.draw_series(bars).map_err(draw_error)?;
+            ctx.draw_series(s.points.iter().copied().filter(shown).map(|p| Circle::new(p, 4, color.filled())))
+                .map_err(draw_error)
         }
     }
-    let labels = series.iter().filter(|s| !s.label.is_empty()).count();
-    let corner = emptiest_corner(ctx, series, labels);
-    ctx.configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font(("sans-serif", LABEL_TEXT))
-        .position(corner)
-        .draw()
-        .map_err(draw_error)
+}
+
+/// The legend entry of the drawn series `s`: its label beside its mark, a stroke for a line, a
+/// disc for markers, a disc on a bar for error bars.
+fn legend_entry<'a, DB: DrawingBackend + 'a>(drawn: &mut SeriesAnno<'a, DB>, s: &Series, color: RGBAColor) {
+    let (stroke, disc, bar) = match s.mark {
+        Mark::Line => (true, false, false),
+        Mark::Markers => (false, true, false),
+        Mark::ErrorBars(_) => (false, true, true),
+    };
+    drawn.label(s.label.clone()).legend(move |(x, y)| {
+        let stroke = if stroke { vec![(-9, 0), (9, 0)] } else { Vec::new() };
+        let bar = if bar { vec![(0, -8), (0, 8)] } else { Vec::new() };
+        EmptyElement::at((x + 9, y))
+            + PathElement::new(stroke, color.stroke_width(2))
+            + PathElement::new(bar, color.stroke_width(2))
+            + Circle::new((0, 0), if disc { 4 } else { 0 }, color.filled())
+    });
 }
 
 /// The colours of a chart's series in order, repeating: Tableau's ten, which stay apart on

@@ -273,7 +273,61 @@ impl PlanarLattice {
     /// Every spring, row by row: along the row, then up to the next row; bonds across a
     /// periodic side carry the shift ∓ period (x_i − x_j + shift is their separation).
     pub fn bonds(&self) -> Bonds {
-        let rows = self.rows();
+        let grid = NodeGrid::of(self);
+        let mut bonds = Bonds::default();
+        for (iy, row) in grid.rows.iter().enumerate() {
+            for (at, &column) in row.columns.iter().enumerate() {
+                for (j, shift) in self.bonds_up_and_along(&grid, iy, column).into_iter().flatten() {
+                    bonds.push_shifted(grid.starts[iy] + at, j, self.spacing, self.k, shift);
+                }
+            }
+        }
+        bonds
+    }
+
+    /// The nodes the node in `column` of row `iy` is bonded to further along its row or in the
+    /// next, in the order the bond list keeps them (each with its shift, see [`NodeGrid::node`]);
+    /// `None` where the lattice has no such node.
+    fn bonds_up_and_along(&self, grid: &NodeGrid, iy: usize, column: usize) -> [Option<(usize, f64)>; 4] {
+        let c = column as isize;
+        let up = iy + 1 < grid.rows.len();
+        // Row iy + 1 only where there is one.
+        let above = |c: isize| if up { grid.node(iy + 1, c) } else { None };
+        match self.kind {
+            LatticeType::Triangular => {
+                // Row iy + 1 is shifted by +a/2 (iy even) or −a/2 (iy odd).
+                let other = if iy.is_multiple_of(2) { c - 1 } else { c + 1 };
+                [grid.node(iy, c + 1), above(c), above(other), None]
+            }
+            LatticeType::Honeycomb => {
+                let vertical = if (column + iy).is_multiple_of(2) { above(c) } else { None };
+                [grid.node(iy, c + 1), vertical, None, None]
+            }
+            // A sparse node closes a triangle below and one above.
+            LatticeType::Kagome if iy % 2 == 1 => {
+                [grid.node(iy - 1, c), grid.node(iy - 1, c + 1), grid.node(iy + 1, c), grid.node(iy + 1, c + 1)]
+            }
+            LatticeType::Kagome => [grid.node(iy, c + 1), None, None, None],
+            LatticeType::Square => [grid.node(iy, c + 1), above(c), None, None],
+        }
+    }
+}
+
+/// A lattice's rows with the index of each row's first node, to find the node at a column.
+struct NodeGrid {
+    /// Rows from the bottom ([`PlanarLattice::rows`]).
+    rows: Vec<Row>,
+    /// Index of the first node of each row.
+    starts: Vec<usize>,
+    /// Nodes per full row.
+    count: isize,
+    /// The period along x where bonds wrap across the sides, else `None`.
+    period: Option<f64>,
+}
+
+impl NodeGrid {
+    fn of(lattice: &PlanarLattice) -> NodeGrid {
+        let rows = lattice.rows();
         let starts: Vec<usize> = rows
             .iter()
             .scan(0, |start, r| {
@@ -282,63 +336,18 @@ impl PlanarLattice {
                 Some(here)
             })
             .collect();
-        let count = self.nx as isize;
-        // Node of column `c` (possibly one period off) in row `iy`, and the shift of a bond to it.
-        let node = |iy: usize, c: isize| -> Option<(usize, f64)> {
-            let (wrapped, shift) = match c {
-                c if c < 0 => (c + count, self.period()),
-                c if c >= count => (c - count, -self.period()),
-                c => (c, 0.0),
-            };
-            if shift != 0.0 && !self.periodic_x {
-                return None;
-            }
-            let at = rows[iy].columns.binary_search(&(wrapped as usize)).ok()?;
-            Some((starts[iy] + at, shift))
+        NodeGrid { rows, starts, count: lattice.nx as isize, period: lattice.periodic_x.then(|| lattice.period()) }
+    }
+
+    /// Node of column `c` (possibly one period off) in row `iy`, and the shift of a bond to it.
+    fn node(&self, iy: usize, c: isize) -> Option<(usize, f64)> {
+        let (wrapped, shift) = match (c, self.period) {
+            (c, _) if (0..self.count).contains(&c) => (c, 0.0),
+            (_, None) => return None,
+            (c, Some(period)) if c < 0 => (c + self.count, period),
+            (c, Some(period)) => (c - self.count, -period),
         };
-        let mut bonds = Bonds::default();
-        let mut bond = |i: usize, to: Option<(usize, f64)>| {
-            if let Some((j, shift)) = to {
-                bonds.push_shifted(i, j, self.spacing, self.k, shift);
-            }
-        };
-        for (iy, row) in rows.iter().enumerate() {
-            let up = iy + 1 < rows.len();
-            for (at, &column) in row.columns.iter().enumerate() {
-                let (here, c) = (starts[iy] + at, column as isize);
-                match self.kind {
-                    LatticeType::Triangular => {
-                        bond(here, node(iy, c + 1));
-                        if up {
-                            // Row iy + 1 is shifted by +a/2 (iy even) or −a/2 (iy odd).
-                            let other = if iy % 2 == 0 { c - 1 } else { c + 1 };
-                            bond(here, node(iy + 1, c));
-                            bond(here, node(iy + 1, other));
-                        }
-                    }
-                    LatticeType::Honeycomb => {
-                        bond(here, node(iy, c + 1));
-                        if up && (column + iy) % 2 == 0 {
-                            bond(here, node(iy + 1, c));
-                        }
-                    }
-                    LatticeType::Kagome if iy % 2 == 1 => {
-                        // A sparse node closes a triangle below and one above.
-                        for dy in [iy - 1, iy + 1] {
-                            bond(here, node(dy, c));
-                            bond(here, node(dy, c + 1));
-                        }
-                    }
-                    LatticeType::Kagome => bond(here, node(iy, c + 1)),
-                    LatticeType::Square => {
-                        bond(here, node(iy, c + 1));
-                        if up {
-                            bond(here, node(iy + 1, c));
-                        }
-                    }
-                }
-            }
-        }
-        bonds
+        let at = self.rows[iy].columns.binary_search(&(wrapped as usize)).ok()?;
+        Some((self.starts[iy] + at, shift))
     }
 }

@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::issue::{Issue, Num, missing, positive, require};
-use super::raw::{Background, Control, RawScene, RawWave};
+use super::raw::{Background, Control, RawDamping, RawRelax, RawScene, RawWave};
 use crate::sim::RelaxMethod;
 
 /// E_kin/E_pot below which a relaxation is finished, unless `relax.kinetic_ratio` says.
@@ -70,6 +70,35 @@ pub(super) fn resolve_relax(raw: &RawScene, control: Control, load_ramp_tc: Opti
     let relax = raw.relax.clone().unwrap_or_default();
     let kinetic_ratio = relax.kinetic_ratio.unwrap_or(DEFAULT_KINETIC_RATIO);
     require(kinetic_ratio > 0.0 && kinetic_ratio < 1.0, "relax.kinetic_ratio", kinetic_ratio, "must be in (0, 1)")?;
+    check_residual_and_step(&relax, control)?;
+    let damping = raw.damping.clone().unwrap_or_default();
+    let critical_background = matches!(damping.background, Some(Background::Critical(_)));
+    let method = relax.method.unwrap_or_default();
+    if load_ramp_tc.is_none() {
+        check_chain_relaxation(method, relax.tolerance, critical_background)?;
+    }
+    if let Some(tolerance) = relax.tolerance {
+        check_tolerance(tolerance, control, method)?;
+    }
+    if method != RelaxMethod::Damped {
+        check_untimed(method, control, load_ramp_tc.unwrap_or_default(), &damping)?;
+    }
+    // A minimiser stops only on the displacement bound (or the residual force): it needs a
+    // tolerance even where none is given.
+    let tolerance = relax.tolerance.or(method.is_minimiser().then_some(DEFAULT_TOLERANCE));
+    Ok(RelaxSpec {
+        kinetic_ratio,
+        residual_force: relax.residual_force,
+        tangent_step: relax.tangent_step,
+        method,
+        tolerance,
+        critical_background,
+    })
+}
+
+/// `relax.residual_force`, a fraction, and `relax.tangent_step`, a small one under force
+/// control.
+fn check_residual_and_step(relax: &RawRelax, control: Control) -> Result<(), Issue> {
     if let Some(fraction) = relax.residual_force {
         require(
             fraction > 0.0 && fraction < 1.0,
@@ -82,71 +111,79 @@ pub(super) fn resolve_relax(raw: &RawScene, control: Control, load_ramp_tc: Opti
         require(step > 0.0 && step <= 0.1, "relax.tangent_step", step, "must be in (0, 0.1] (a fraction of the load)")?;
         require(control == Control::Force, "relax.tangent_step", step, "is for control: force")?;
     }
-    let damping = raw.damping.clone().unwrap_or_default();
-    let critical_background = matches!(damping.background, Some(Background::Critical(_)));
-    let method = relax.method.unwrap_or_default();
-    if load_ramp_tc.is_none() {
-        let for_lattices = "is for lattices (a chain has no static answer to bound its error by)";
-        require(method == RelaxMethod::Damped, "relax.method", method.name(), for_lattices)?;
-        require(relax.tolerance.is_none(), "relax.tolerance", relax.tolerance.unwrap_or_default(), for_lattices)?;
-        require(!critical_background, "damping.background", "critical", for_lattices)?;
-    }
-    if let Some(tolerance) = relax.tolerance {
-        require(
-            tolerance > 0.0 && tolerance <= 0.1,
-            "relax.tolerance",
-            tolerance,
-            "must be in (0, 0.1] (the relative error of the moduli)",
-        )?;
-        require(
-            control == Control::Force,
-            "relax.tolerance",
-            tolerance,
-            "is for control: force (under control: velocity the modulus comes from the drive's force, whose error \
-             the displacement bound does not cover; give relax.residual_force)",
-        )?;
-    }
-    if method == RelaxMethod::Static
-        && let Some(tolerance) = relax.tolerance
-    {
-        let exact = "has no tolerance: the static solution is solved to round-off (Newton, ‖R‖ ≤ 1e-12 ‖f‖)";
-        require(
-            false,
-            "relax.tolerance",
-            tolerance,
-            &format!("is for fire, cg and damped; relax.method: static {exact}"),
-        )?;
-    }
-    if method != RelaxMethod::Damped {
-        let name = method.name();
-        let minimiser = "fire, cg and static have no time: use relax.method: damped";
-        require(control == Control::Force, "relax.method", name, &format!("needs control: force; {minimiser}"))?;
-        let ramp = load_ramp_tc.unwrap_or_default();
-        require(
-            ramp == 0.0,
-            "relax.method",
-            name,
-            &format!("needs no load.ramp_tc (it is {}); {minimiser}", Num(ramp)),
-        )?;
-        let damped = [
-            ("damping.restitution", damping.restitution.is_some()),
-            ("damping.gamma", damping.gamma.is_some()),
-            ("damping.background", damping.background.is_some()),
-        ];
-        if let Some((field, _)) = damped.iter().find(|(_, set)| *set) {
-            require(false, "relax.method", name, &format!("has no damping ({field} is set); {minimiser}"))?;
-        }
-    }
-    let minimiser = matches!(method, RelaxMethod::Fire | RelaxMethod::Cg);
-    let tolerance = relax.tolerance.or(minimiser.then_some(DEFAULT_TOLERANCE));
-    Ok(RelaxSpec {
-        kinetic_ratio,
-        residual_force: relax.residual_force,
-        tangent_step: relax.tangent_step,
-        method,
+    Ok(())
+}
+
+/// A chain relaxes by damped MD only, judged without a tolerance or critical background
+/// damping: all three need the static answer a chain does not have.
+fn check_chain_relaxation(method: RelaxMethod, tolerance: Option<f64>, critical_background: bool) -> Result<(), Issue> {
+    let for_lattices = "is for lattices (a chain has no static answer to bound its error by)";
+    require(method == RelaxMethod::Damped, "relax.method", method.name(), for_lattices)?;
+    require(tolerance.is_none(), "relax.tolerance", tolerance.unwrap_or_default(), for_lattices)?;
+    require(!critical_background, "damping.background", "critical", for_lattices)
+}
+
+/// `relax.tolerance`: a relative error of the moduli, under force control, for a method that
+/// stops short of the static answer (not `static`, which is that answer).
+fn check_tolerance(tolerance: f64, control: Control, method: RelaxMethod) -> Result<(), Issue> {
+    require(
+        tolerance > 0.0 && tolerance <= 0.1,
+        "relax.tolerance",
         tolerance,
-        critical_background,
-    })
+        "must be in (0, 0.1] (the relative error of the moduli)",
+    )?;
+    require(
+        control == Control::Force,
+        "relax.tolerance",
+        tolerance,
+        "is for control: force (under control: velocity the modulus comes from the drive's force, whose error \
+         the displacement bound does not cover; give relax.residual_force)",
+    )?;
+    let exact = "has no tolerance: the static solution is solved to round-off (Newton, ‖R‖ ≤ 1e-12 ‖f‖)";
+    let bounded = methods_in_words(|m| m != RelaxMethod::Static);
+    require(
+        method != RelaxMethod::Static,
+        "relax.tolerance",
+        tolerance,
+        &format!("is for {bounded}; relax.method: static {exact}"),
+    )
+}
+
+/// A method with no time (a minimiser, or the static answer) has no load ramp, drive or
+/// damping to follow in time: force control, the whole load at once, no dashpots.
+fn check_untimed(method: RelaxMethod, control: Control, ramp_tc: f64, damping: &RawDamping) -> Result<(), Issue> {
+    let name = method.name();
+    let untimed = format!("{} have no time: use relax.method: damped", methods_in_words(|m| m != RelaxMethod::Damped));
+    require(control == Control::Force, "relax.method", name, &format!("needs control: force; {untimed}"))?;
+    require(
+        ramp_tc == 0.0,
+        "relax.method",
+        name,
+        &format!("needs no load.ramp_tc (it is {}); {untimed}", Num(ramp_tc)),
+    )?;
+    let damped = [
+        ("damping.restitution", damping.restitution.is_some()),
+        ("damping.gamma", damping.gamma.is_some()),
+        ("damping.background", damping.background.is_some()),
+    ];
+    match damped.iter().find(|(_, set)| *set) {
+        Some((field, _)) => {
+            require(false, "relax.method", name, &format!("has no damping ({field} is set); {untimed}"))
+        }
+        None => Ok(()),
+    }
+}
+
+/// The YAML names of the relaxation methods `which` picks, in the order of
+/// [`RelaxMethod::ALL`], as words ("fire, cg and static"), so that a message names a new
+/// method without being edited.
+fn methods_in_words(which: impl Fn(RelaxMethod) -> bool) -> String {
+    let names: Vec<&str> = RelaxMethod::ALL.into_iter().filter(|m| which(*m)).map(RelaxMethod::name).collect();
+    match names.split_last() {
+        Some((last, [])) => (*last).to_string(),
+        Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+        None => String::new(),
+    }
 }
 
 /// The threshold of a timed wave's arrival criteria.

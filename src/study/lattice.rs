@@ -417,16 +417,8 @@ fn static_supports(spec: &RunSpec, l: &LatticeSpec, scene: &Scene) -> StaticSupp
     (supported.held_x, supported.held_y, prescribed)
 }
 
-/// The static solution beside MD: its moduli (`*_fem`), solved non-linearly like MD; for
-/// linear springs how far that is from the linear answer; with a tangent step the tangent
-/// moduli from the tangent stiffness at the equilibrium. Returns the total force on the top
-/// row at the static equilibrium (N): the load, or what the drive must hold (non-linear
-/// answer where it exists, else linear), and the displacements (m, x and y) of that answer:
-/// the linear one stands in where Newton's iteration does not converge (a diluted network's
-/// floppy dangling parts leave its tangent singular while the linear solver skips them).
-/// `Err` when the load drives a mechanism, or when `deadline` passes (checked between
-/// factorisations).
-/// [`solve`] with the run's concrete law, from [`crate::model::LawSpec::dispatch`].
+/// The static answer of [`static_answer`], solved with the run's concrete law (from
+/// [`crate::model::LawSpec::dispatch`]), by [`StaticSolve::solve`].
 struct StaticSolve<'a> {
     spec: &'a RunSpec,
     l: &'a LatticeSpec,
@@ -440,94 +432,122 @@ type Solved = (f64, Option<(Vec<f64>, Vec<f64>)>);
 
 impl LawVisitor for StaticSolve<'_> {
     type Output = Result<Solved, Stopped>;
-    fn visit<L: ForceLaw>(self, law: L) -> Self::Output {
-        solve(self.spec, self.l, self.truss, &law, self.deadline, self.metrics)
+    fn visit<L: ForceLaw>(mut self, law: L) -> Self::Output {
+        self.solve(&law)
     }
 }
 
-fn solve<L: ForceLaw>(
-    spec: &RunSpec,
-    l: &LatticeSpec,
-    truss: &Truss,
-    law: &L,
-    deadline: Instant,
-    metrics: &mut LatticeMetrics,
-) -> Result<Solved, Stopped> {
-    let past_deadline = || Stopped::PastDeadline { stage: "static solve" };
-    // The force on the top row: the load, or what the supports must apply to hold the
-    // driven row where it is.
-    let force = |ux: &[f64], uy: &[f64]| match l.control {
-        Control::Force => l.total_load(),
-        Control::Velocity => {
-            let (fx, fy) = truss.reaction(law, ux, uy, &top_row(spec, l));
-            if l.load_case == LoadCase::Tensile { fy } else { fx }
+/// Where the static solve stops when its deadline passes.
+fn past_deadline() -> Stopped {
+    Stopped::PastDeadline { stage: "static solve" }
+}
+
+impl StaticSolve<'_> {
+    /// The static solution beside MD: its moduli (`*_fem`), solved non-linearly like MD; for
+    /// linear springs how far that is from the linear answer; the bounds on a relaxation's
+    /// error ([`StaticSolve::bound_errors`]). Returns the total force on the top row at the
+    /// static equilibrium (N): the load, or what the drive must hold (non-linear answer where
+    /// it exists, else linear), and the displacements (m, x and y) of that answer: the linear
+    /// one stands in where Newton's iteration does not converge (a diluted network's floppy
+    /// dangling parts leave its tangent singular while the linear solver skips them). `Err`
+    /// when the load drives a mechanism, or when the deadline passes (checked between
+    /// factorisations).
+    fn solve<L: ForceLaw>(&mut self, law: &L) -> Result<Solved, Stopped> {
+        let (linear, linear_answer) = self.solve_linear(law)?;
+        let nonlinear = match (&linear_answer.1, self.spec.law.is_linear()) {
+            // Linear springs: the linearised network is the network, so Newton starts from the
+            // linear answer just solved.
+            (Some((ux, uy)), true) => self.truss.solve_nonlinear_from(law, ux.clone(), uy.clone(), Some(self.deadline)),
+            _ => self.truss.solve_nonlinear(law, reference_extension(self.spec), Some(self.deadline)),
+        };
+        let (ux, uy) = match nonlinear {
+            Some(StaticSolution::Displacements { ux, uy }) => (ux, uy),
+            Some(StaticSolution::PastDeadline) => return Err(past_deadline()),
+            _ => return Ok(linear_answer),
+        };
+        let top_row_force = self.top_row_force(law, &ux, &uy);
+        let fem = moduli(self.spec, self.l, top_row_force, &ux, &uy);
+        if self.spec.law.is_linear() {
+            self.metrics.static_nonlinearity = nonlinearity(&fem, &linear);
         }
-    };
-    // The linear problem decides whether the network carries the load at all (a power law's
-    // linear answer means nothing else).
-    if Instant::now() > deadline {
-        return Err(past_deadline());
+        self.metrics.youngs_modulus_fem = fem.youngs_modulus;
+        self.metrics.poisson_ratio_fem = fem.poisson_ratio;
+        self.metrics.shear_modulus_fem = fem.shear_modulus;
+        self.check_deadline()?;
+        self.bound_errors(law, &ux, &uy)?;
+        Ok((top_row_force, Some((ux, uy))))
     }
-    let (linear, linear_force) = match truss.solve_linear() {
-        StaticSolution::Mechanism { residual } => return Err(Stopped::Mechanism { residual }),
-        StaticSolution::PastDeadline => return Err(past_deadline()),
-        StaticSolution::Displacements { ux, uy } => {
-            let top = force(&ux, &uy);
-            (moduli(spec, l, top, &ux, &uy), (top, Some((ux, uy))))
-        }
-    };
-    metrics.youngs_modulus_linear = linear.youngs_modulus;
-    metrics.shear_modulus_linear = linear.shear_modulus;
-    let nonlinear = match (&linear_force.1, spec.law.is_linear()) {
-        // Linear springs: the linearised network is the network, so Newton starts from the
-        // linear answer just solved.
-        (Some((ux, uy)), true) => truss.solve_nonlinear_from(law, ux.clone(), uy.clone(), Some(deadline)),
-        _ => truss.solve_nonlinear(law, reference_extension(spec), Some(deadline)),
-    };
-    let (ux, uy) = match nonlinear {
-        Some(StaticSolution::Displacements { ux, uy }) => (ux, uy),
-        Some(StaticSolution::PastDeadline) => return Err(past_deadline()),
-        _ => return Ok(linear_force),
-    };
-    let top_row_force = force(&ux, &uy);
-    let fem = moduli(spec, l, top_row_force, &ux, &uy);
-    if spec.law.is_linear() {
-        metrics.static_nonlinearity = nonlinearity(&fem, &linear);
+
+    /// The linear answer, which decides whether the network carries the load at all (a power
+    /// law's linear answer means nothing else): its moduli, kept as `*_linear`, and its top
+    /// row's force and displacements.
+    fn solve_linear<L: ForceLaw>(&mut self, law: &L) -> Result<(Moduli, Solved), Stopped> {
+        self.check_deadline()?;
+        let (linear, answer) = match self.truss.solve_linear() {
+            StaticSolution::Mechanism { residual } => return Err(Stopped::Mechanism { residual }),
+            StaticSolution::PastDeadline => return Err(past_deadline()),
+            StaticSolution::Displacements { ux, uy } => {
+                let top = self.top_row_force(law, &ux, &uy);
+                (moduli(self.spec, self.l, top, &ux, &uy), (top, Some((ux, uy))))
+            }
+        };
+        self.metrics.youngs_modulus_linear = linear.youngs_modulus;
+        self.metrics.shear_modulus_linear = linear.shear_modulus;
+        Ok((linear, answer))
     }
-    metrics.youngs_modulus_fem = fem.youngs_modulus;
-    metrics.poisson_ratio_fem = fem.poisson_ratio;
-    metrics.shear_modulus_fem = fem.shear_modulus;
-    if Instant::now() > deadline {
-        return Err(past_deadline());
-    }
-    let edges = l.layout(spec.spacing).edges;
-    let shape = LatticeShape { edges: &edges, depth: l.depth };
-    // k_min and ΔL's sensitivity bound a relaxation's error; a static-only run has none to bound.
-    // Under velocity control the modulus comes from the drive's force, whose error the bound on
-    // ΔL does not cover: nothing is measured, so no sensitivity is solved for.
-    let measured = if l.control == Control::Force { extension_dofs(l, &shape) } else { Vec::new() };
-    if !spec.static_only()
-        && let Some(bounds) = truss.error_bounds(law, &ux, &uy, &measured)
-    {
-        metrics.stiffness_min = Some(bounds.stiffness_min);
-        metrics.extension_sensitivity = bounds.sensitivity;
-    }
-    metrics.static_extension = Some(extension(l, &shape, &ux, &uy));
-    if spec.relax().is_some_and(|r| r.tangent_step.is_some()) {
-        // Δu per unit load factor: the increment of the whole load.
-        if Instant::now() > deadline {
-            return Err(past_deadline());
-        }
-        if let Some((dx, dy)) = truss.tangent_response(law, &ux, &uy) {
-            let tangent = moduli(spec, l, l.total_load(), &dx, &dy);
-            let step = spec.relax().and_then(|r| r.tangent_step).unwrap_or_default();
-            metrics.static_tangent_extension = Some(step * extension(l, &shape, &dx, &dy));
-            metrics.youngs_modulus_tangent_fem = tangent.youngs_modulus;
-            metrics.poisson_ratio_tangent_fem = tangent.poisson_ratio;
-            metrics.shear_modulus_tangent_fem = tangent.shear_modulus;
+
+    /// The force on the top row (N) at the displacements `ux`, `uy`: the load, or what the
+    /// supports must apply to hold the driven row where it is.
+    fn top_row_force<L: ForceLaw>(&self, law: &L, ux: &[f64], uy: &[f64]) -> f64 {
+        match self.l.control {
+            Control::Force => self.l.total_load(),
+            Control::Velocity => {
+                let (fx, fy) = self.truss.reaction(law, ux, uy, &top_row(self.spec, self.l));
+                if self.l.load_case == LoadCase::Tensile { fy } else { fx }
+            }
         }
     }
-    Ok((top_row_force, Some((ux, uy))))
+
+    /// What bounds a relaxation's error, at the static answer `ux`, `uy`: k_min and ΔL's
+    /// sensitivity (a static-only run has no relaxation to bound), ΔL itself, and with a
+    /// tangent step its increment ([`StaticSolve::tangent`]).
+    fn bound_errors<L: ForceLaw>(&mut self, law: &L, ux: &[f64], uy: &[f64]) -> Result<(), Stopped> {
+        let (spec, l) = (self.spec, self.l);
+        let edges = l.layout(spec.spacing).edges;
+        let shape = LatticeShape { edges: &edges, depth: l.depth };
+        // Under velocity control the modulus comes from the drive's force, whose error the bound
+        // on ΔL does not cover: nothing is measured, so no sensitivity is solved for.
+        let measured = if l.control == Control::Force { extension_dofs(l, &shape) } else { Vec::new() };
+        if !spec.static_only()
+            && let Some(bounds) = self.truss.error_bounds(law, ux, uy, &measured)
+        {
+            self.metrics.stiffness_min = Some(bounds.stiffness_min);
+            self.metrics.extension_sensitivity = bounds.sensitivity;
+        }
+        self.metrics.static_extension = Some(extension(l, &shape, ux, uy));
+        if let Some(step) = spec.relax().and_then(|r| r.tangent_step) {
+            self.check_deadline()?;
+            self.tangent(law, &shape, (ux, uy), step);
+        }
+        Ok(())
+    }
+
+    /// The static answer's tangent moduli (`*_tangent_fem`) and the increment of ΔL when the
+    /// load rises by the fraction `step`, from the tangent stiffness at the displacements `at`:
+    /// K_t Δu = Δf, Δu per unit load factor being the increment of the whole load.
+    fn tangent<L: ForceLaw>(&mut self, law: &L, shape: &LatticeShape, (ux, uy): (&[f64], &[f64]), step: f64) {
+        let Some((dx, dy)) = self.truss.tangent_response(law, ux, uy) else { return };
+        let tangent = moduli(self.spec, self.l, self.l.total_load(), &dx, &dy);
+        self.metrics.static_tangent_extension = Some(step * extension(self.l, shape, &dx, &dy));
+        self.metrics.youngs_modulus_tangent_fem = tangent.youngs_modulus;
+        self.metrics.poisson_ratio_tangent_fem = tangent.poisson_ratio;
+        self.metrics.shear_modulus_tangent_fem = tangent.shear_modulus;
+    }
+
+    /// `Err` once the deadline has passed.
+    fn check_deadline(&self) -> Result<(), Stopped> {
+        if Instant::now() > self.deadline { Err(past_deadline()) } else { Ok(()) }
+    }
 }
 
 /// The largest difference between the non-linear (`fem`) and the linear static answers:
@@ -727,12 +747,29 @@ pub(super) fn keep_probes(l: &LatticeSpec, t: &mut Trace) {
     (t.displacement_x, t.displacement_y, t.velocity_x, t.velocity_y) = Default::default();
 }
 
-/// The lattice's result columns (shown when the table has a lattice): the resolved lattice,
-/// each modulus from MD, from the static solution and from the continuum, and its relaxation;
-/// then, when a lattice is anisotropic, the moduli by direction.
+/// The lattice's result columns: [`lattice_columns`] when the table has a lattice,
+/// [`type_columns`] beside another type, [`directional_columns`] when a lattice is anisotropic.
 pub(super) fn columns() -> Vec<Block<LatticeMetrics>> {
+    vec![
+        Block { slot: Slot::Tail, shown: Some(|spec| spec.lattice().is_some()), columns: lattice_columns() },
+        Block {
+            slot: Slot::Tail,
+            shown: Some(|spec| spec.lattice().is_some_and(|l| !l.lattice_type.is_square())),
+            columns: type_columns(),
+        },
+        Block {
+            slot: Slot::Tail,
+            shown: Some(|spec| spec.lattice().is_some_and(is_anisotropic)),
+            columns: directional_columns(),
+        },
+    ]
+}
+
+/// The resolved lattice, each modulus from MD, from the static solution and from the
+/// continuum, and its relaxation.
+fn lattice_columns() -> Vec<Column<LatticeMetrics>> {
     use Column::{Count, Number, Word};
-    let lattice: Vec<Column<LatticeMetrics>> = vec![
+    vec![
         Count("nx", |r| r.spec.lattice().map(|l| l.nx as u64)),
         Count("ny", |r| r.spec.lattice().map(|l| l.ny as u64)),
         Number("k_diag", |r| r.spec.lattice().map(|l| l.k_diag)),
@@ -781,10 +818,14 @@ pub(super) fn columns() -> Vec<Block<LatticeMetrics>> {
             r.group.stiffness_min.filter(|k| *k > 0.0).map(|k| critical_bound_steps(r.spec, k))
         }),
         Number("gamma_background_critical", |r| r.group.gamma_background_critical),
-    ];
-    // A run loaded up (`tensile`) measures E_y and ν_yx, one loaded along x (`tensile-x`,
-    // simulated turned by 90°) E_x and ν_xy; each beside its static value.
-    let directional: Vec<Column<LatticeMetrics>> = vec![
+    ]
+}
+
+/// The moduli by direction: a run loaded up (`tensile`) measures E_y and ν_yx, one loaded
+/// along x (`tensile-x`, simulated turned by 90°) E_x and ν_xy; each beside its static value.
+fn directional_columns() -> Vec<Column<LatticeMetrics>> {
+    use Column::Number;
+    vec![
         Number("youngs_modulus_x", |r| along(r, true, r.group.youngs_modulus)),
         Number("youngs_modulus_x_fem", |r| along(r, true, r.group.youngs_modulus_fem)),
         Number("youngs_modulus_y", |r| along(r, false, r.group.youngs_modulus)),
@@ -793,26 +834,18 @@ pub(super) fn columns() -> Vec<Block<LatticeMetrics>> {
         Number("poisson_ratio_xy_fem", |r| along(r, true, r.group.poisson_ratio_fem)),
         Number("poisson_ratio_yx", |r| along(r, false, r.group.poisson_ratio)),
         Number("poisson_ratio_yx_fem", |r| along(r, false, r.group.poisson_ratio_fem)),
-    ];
-    // Shown only beside another type, so the square lattices' tables keep their columns.
-    let types: Vec<Column<LatticeMetrics>> = vec![
+    ]
+}
+
+/// The lattice's type and what tells the types apart. Shown only beside another type than
+/// square, so the square lattices' tables keep their columns.
+fn type_columns() -> Vec<Column<LatticeMetrics>> {
+    use Column::{Number, Word};
+    vec![
         Word("lattice_type", |r| r.spec.lattice().map(|l| l.lattice_type.name().into())),
         Number("coordination", |r| r.spec.lattice().map(|l| l.lattice_type.coordination())),
         Number("youngs_modulus_linear", |r| r.group.youngs_modulus_linear),
         Number("shear_modulus_linear", |r| r.group.shear_modulus_linear),
-    ];
-    vec![
-        Block { slot: Slot::Tail, shown: Some(|spec| spec.lattice().is_some()), columns: lattice },
-        Block {
-            slot: Slot::Tail,
-            shown: Some(|spec| spec.lattice().is_some_and(|l| !l.lattice_type.is_square())),
-            columns: types,
-        },
-        Block {
-            slot: Slot::Tail,
-            shown: Some(|spec| spec.lattice().is_some_and(is_anisotropic)),
-            columns: directional,
-        },
     ]
 }
 

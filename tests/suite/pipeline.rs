@@ -30,6 +30,38 @@ fn run_files(dir: &Path) -> Vec<PathBuf> {
     files
 }
 
+/// Columns `results.csv` of the smoke campaign (a pair and a chain) must have: the common ones,
+/// the kinds' own, and the grid paths the campaign varies.
+const SMOKE_COLUMNS: &[&str] = &[
+    "run_id",
+    "scene",
+    "kind",
+    "status",
+    "message",
+    "wall_s",
+    "steps",
+    "mass",
+    "spacing",
+    "k",
+    "law",
+    "beta",
+    "contact",
+    "gamma",
+    "gamma_background",
+    "integrator",
+    "dt",
+    "t_c",
+    "n",
+    "v0",
+    "contact_duration",
+    "contact_duration_theory",
+    "restitution",
+    "restitution_theory",
+    "energy_error",
+    "time.dt_per_tc",
+    "damping.restitution",
+];
+
 #[test]
 fn small_campaign_end_to_end() {
     let reports = tempfile::tempdir().unwrap();
@@ -50,36 +82,8 @@ fn small_campaign_end_to_end() {
     }
     let csv = std::fs::read_to_string(dir.join("results.csv")).unwrap();
     let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
-    for column in [
-        "run_id",
-        "scene",
-        "kind",
-        "status",
-        "message",
-        "wall_s",
-        "steps",
-        "mass",
-        "spacing",
-        "k",
-        "law",
-        "beta",
-        "contact",
-        "gamma",
-        "gamma_background",
-        "integrator",
-        "dt",
-        "t_c",
-        "n",
-        "v0",
-        "contact_duration",
-        "contact_duration_theory",
-        "restitution",
-        "restitution_theory",
-        "energy_error",
-        "time.dt_per_tc",
-        "damping.restitution",
-    ] {
-        assert!(header.contains(&column), "results.csv lacks column {column}: {header:?}");
+    for column in SMOKE_COLUMNS {
+        assert!(header.contains(column), "results.csv lacks column {column}: {header:?}");
     }
     assert_eq!(csv.lines().count(), 6, "one header and one row per run");
     let report = std::fs::read_to_string(dir.join("report.md")).unwrap();

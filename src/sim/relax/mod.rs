@@ -10,6 +10,7 @@ mod cg;
 mod fire;
 
 use serde::{Deserialize, Serialize};
+use std::time::Instant;
 
 use super::field::ForceField;
 use super::integrate::static_forces;
@@ -45,6 +46,17 @@ impl RelaxMethod {
             RelaxMethod::Fire => "fire",
             RelaxMethod::Cg => "cg",
             RelaxMethod::Static => "static",
+        }
+    }
+
+    /// True for the minimisers, FIRE and CG: with no time and no static answer to stop at, they
+    /// stop only on the static criterion, so a relaxation by one needs a tolerance (the spec
+    /// gives it one by default). Every method is named here, so that a new one must say
+    /// whether it is a minimiser.
+    pub fn is_minimiser(self) -> bool {
+        match self {
+            RelaxMethod::Fire | RelaxMethod::Cg => true,
+            RelaxMethod::Damped | RelaxMethod::Static => false,
         }
     }
 }
@@ -156,58 +168,15 @@ fn run<F: ForceField, M: Minimiser>(method: &mut M, state: &mut State, field: &m
         trace.message = format!("{reason} at the start");
         return trace;
     }
-    let started = std::time::Instant::now();
-    let mut evaluations = 1;
-    let mut relaxed_by = None;
-    loop {
-        // The start is one evaluation; a later one is a move.
-        if M::SETTLES_IN_ONE_MOVE && evaluations > 1 {
-            relaxed_by = Some("static_solution");
-            break;
+    let started = Instant::now();
+    let (evaluations, stop) = descend(method, state, field, &mut force, sampling, started);
+    let relaxed_by = match stop {
+        Stop::Relaxed(criterion) => Some(criterion),
+        Stop::Failed(status, message) => {
+            (trace.status, trace.message) = (status, message);
+            None
         }
-        match sampling.relaxation.as_ref().and_then(|rule| static_criterion(rule, &force)) {
-            Some((true, criterion)) => {
-                relaxed_by = Some(criterion);
-                break;
-            }
-            None if !M::SETTLES_IN_ONE_MOVE => {
-                trace.status = RunStatus::NoEquilibrium;
-                // The displacement bound needs K_t⁻¹, so k_min > 0: a floppy network (a diluted
-                // one past its rigidity threshold) has none, and no bound on its error.
-                trace.message = "no static criterion to stop at: the displacement bound needs a network whose \
-                                 softest stiffness k_min is > 0 (this one is floppy); give relax.residual_force"
-                    .into();
-                break;
-            }
-            Some((false, _)) | None => {}
-        }
-        if evaluations >= sampling.steps {
-            trace.status = RunStatus::NoEquilibrium;
-            trace.message = format!("the static criterion did not hold within {evaluations} force evaluations");
-            break;
-        }
-        if sampling.deadline.is_some_and(|deadline| std::time::Instant::now() > deadline) {
-            trace.status = RunStatus::Budget;
-            trace.message = format!(
-                "stopped at its deadline after {:.3} s of minimisation ({evaluations} force evaluations)",
-                started.elapsed().as_secs_f64()
-            );
-            break;
-        }
-        match method.iterate(state, field, &mut force) {
-            Ok(used) => evaluations += used,
-            Err(reason) => {
-                trace.status = RunStatus::NoEquilibrium;
-                trace.message = format!("{reason} after {evaluations} force evaluations");
-                break;
-            }
-        }
-        if !force.norm().is_finite() {
-            trace.status = RunStatus::Unstable;
-            trace.message = format!("the force became non-finite after {evaluations} force evaluations");
-            break;
-        }
-    }
+    };
     trace.loop_s = started.elapsed().as_secs_f64();
     state.account_load_work(1.0);
     let p = &state.particles;
@@ -224,6 +193,82 @@ fn run<F: ForceField, M: Minimiser>(method: &mut M, state: &mut State, field: &m
     trace.residual_norm = Some(force.norm());
     trace.steps = evaluations;
     trace
+}
+
+/// Why a minimisation stopped.
+enum Stop {
+    /// At rest, by the criterion named.
+    Relaxed(&'static str),
+    /// Not at rest: the run's status and why.
+    Failed(RunStatus, String),
+}
+
+/// Moves `state` by `method` from positions whose static force is `force` until it is at rest
+/// or cannot go on; returns the force evaluations taken (the start's one counted) and why it
+/// stopped.
+fn descend<F: ForceField, M: Minimiser>(
+    method: &mut M,
+    state: &mut State,
+    field: &mut F,
+    force: &mut Gradient,
+    sampling: &Sampling,
+    started: Instant,
+) -> (u64, Stop) {
+    let mut evaluations = 1;
+    loop {
+        if let Some(stop) = stop_before_move::<M>(force, evaluations, sampling, started) {
+            return (evaluations, stop);
+        }
+        match method.iterate(state, field, force) {
+            Ok(used) => evaluations += used,
+            Err(reason) => {
+                let why = format!("{reason} after {evaluations} force evaluations");
+                return (evaluations, Stop::Failed(RunStatus::NoEquilibrium, why));
+            }
+        }
+        if !force.norm().is_finite() {
+            let why = format!("the force became non-finite after {evaluations} force evaluations");
+            return (evaluations, Stop::Failed(RunStatus::Unstable, why));
+        }
+    }
+}
+
+/// Why a minimisation at the static force `force` after `evaluations` force evaluations stops
+/// before its next move, if it does: at rest, with no criterion to stop at, out of evaluations
+/// or past its deadline.
+fn stop_before_move<M: Minimiser>(
+    force: &Gradient,
+    evaluations: u64,
+    sampling: &Sampling,
+    started: Instant,
+) -> Option<Stop> {
+    // The start is one evaluation; a later one is a move.
+    if M::SETTLES_IN_ONE_MOVE && evaluations > 1 {
+        return Some(Stop::Relaxed("static_solution"));
+    }
+    match sampling.relaxation.as_ref().and_then(|rule| static_criterion(rule, force)) {
+        Some((true, criterion)) => return Some(Stop::Relaxed(criterion)),
+        None if !M::SETTLES_IN_ONE_MOVE => {
+            // The displacement bound needs K_t⁻¹, so k_min > 0: a floppy network (a diluted
+            // one past its rigidity threshold) has none, and no bound on its error.
+            let why = "no static criterion to stop at: the displacement bound needs a network whose softest \
+                       stiffness k_min is > 0 (this one is floppy); give relax.residual_force";
+            return Some(Stop::Failed(RunStatus::NoEquilibrium, why.into()));
+        }
+        Some((false, _)) | None => {}
+    }
+    if evaluations >= sampling.steps {
+        let why = format!("the static criterion did not hold within {evaluations} force evaluations");
+        return Some(Stop::Failed(RunStatus::NoEquilibrium, why));
+    }
+    if sampling.deadline.is_some_and(|deadline| Instant::now() > deadline) {
+        let why = format!(
+            "stopped at its deadline after {:.3} s of minimisation ({evaluations} force evaluations)",
+            started.elapsed().as_secs_f64()
+        );
+        return Some(Stop::Failed(RunStatus::Budget, why));
+    }
+    None
 }
 
 /// ‖v‖₂: the plain sum of squares, or, where that overflows (forces of springs up to 1e300

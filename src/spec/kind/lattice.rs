@@ -1,12 +1,13 @@
 //! The lattice's own fields (size, springs, supports, load or impulse, probes, relaxation,
 //! timed wave) and its part of the resolution (a lattice derived from a solid, a lattice
-//! turned for `tensile-x`) and of what a run spec tells: its particles, bonds and stored series.
+//! turned for `tensile-x`), its layout, and its part of what a run spec tells: its particles,
+//! bonds and stored series.
 
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
 use super::lattice_type::{network_wave, resolve_type, top_row};
-use crate::model::LatticeType;
+use crate::model::{LatticeType, Layout, PlanarLattice};
 use crate::sim::IntegratorKind;
 use crate::spec::issue::{Issue, Num, missing, positive, require};
 use crate::spec::raw::{
@@ -171,6 +172,30 @@ impl LatticeSpec {
     /// True when bonds are cut or their stiffness spread at random.
     pub fn is_random(&self) -> bool {
         self.cut_fraction > 0.0 || self.stiffness_spread > 0.0
+    }
+
+    /// The network of a lattice of another type than square, its springs `spacing` (m)
+    /// long; `None` for the square lattice (`SquareLattice`, with its families).
+    pub fn planar(&self, spacing: f64) -> Option<PlanarLattice> {
+        (!self.lattice_type.is_square()).then_some(PlanarLattice {
+            kind: self.lattice_type,
+            nx: self.nx,
+            ny: self.ny,
+            spacing,
+            k: self.k_x,
+            periodic_x: self.supports.periodic_x(),
+        })
+    }
+
+    /// Node positions and edges as simulated, spacing `spacing` (m): a lattice of another
+    /// type loaded along x (`tensile-x`) turned by 90° (the square one is turned in its
+    /// resolution, by its families).
+    pub fn layout(&self, spacing: f64) -> Layout {
+        match self.planar(spacing) {
+            None => Layout::square(self.nx, self.ny, spacing, self.supports.periodic_x()),
+            Some(planar) if self.rotated => planar.layout().turned(),
+            Some(planar) => planar.layout(),
+        }
     }
 }
 
@@ -348,7 +373,7 @@ fn resolve_lattice(raw: &RawScene, k: f64, depth: Option<f64>) -> Result<Lattice
     let (nx, ny) = lattice_size(&lattice)?;
     let supports = raw.supports.unwrap_or(Supports::Coursework);
     let probes = resolve_probes(raw.probes.as_ref(), nx, ny)?;
-    let lattice_type = resolve_type(&lattice, (nx, ny), supports, &probes)?;
+    let lattice_type = resolve_type(&lattice, (nx, ny), supports, !probes.is_empty())?;
     // Another type has one spring k between nearest neighbours and no families.
     let (diagonals, k_diag, k_x, k_y) =
         if lattice_type.is_square() { lattice_springs(&lattice, k)? } else { (Diagonals::None, 0.0, k, k) };
@@ -618,7 +643,7 @@ fn resolve_probes(raw: Option<&RawProbes>, nx: usize, ny: usize) -> Result<Vec<P
 fn lattice_wave(l: &LatticeSpec, w: &RawWave, spacing: f64) -> Result<Option<WaveSpec>, Issue> {
     let Some(impulse) = l.impulse else { return Ok(None) };
     if !l.lattice_type.is_square() {
-        return Ok(Some(network_wave(l, impulse.node, spacing, wave_threshold(w)?)));
+        return Ok(Some(network_wave(l.layout(spacing), impulse.node, l.ny, wave_threshold(w)?)));
     }
     let row = impulse.node / l.nx;
     Ok(Some(WaveSpec {

@@ -1,19 +1,20 @@
 //! `lattice.type`: the fields a lattice of another type than the square takes (one spring k
 //! between nearest neighbours, no diagonal families, no probes of the square grid), the sizes
-//! each type needs, and every type's layout and wave.
+//! each type needs, every type's top row and a network's wave. It takes plain values and
+//! knows nothing of `LatticeSpec`, so that it stands below `lattice.rs`, which calls it.
 
-use super::lattice::{LatticeSpec, ProbeLine};
 use crate::model::{LatticeType, Layout, PlanarLattice};
 use crate::spec::issue::{Issue, require};
 use crate::spec::raw::{RawLattice, Supports};
 use crate::spec::shared::WaveSpec;
 
-/// The type a lattice asks for, checked against its other fields and its size.
+/// The type a lattice asks for, checked against its other fields, its size and whether it is
+/// `probed`.
 pub(super) fn resolve_type(
     lattice: &RawLattice,
     (nx, ny): (usize, usize),
     supports: Supports,
-    probes: &[ProbeLine],
+    probed: bool,
 ) -> Result<LatticeType, Issue> {
     let kind = lattice.lattice_type.unwrap_or_default();
     if kind.is_square() {
@@ -33,7 +34,7 @@ pub(super) fn resolve_type(
         require(!present, path, "(set)", &square_only)?;
     }
     require(
-        probes.is_empty(),
+        !probed,
         "probes",
         "(set)",
         "only for lattice.type: square (probes name the rows and columns of the square grid)",
@@ -54,35 +55,9 @@ pub(super) fn top_row(kind: LatticeType, nx: usize, ny: usize, periodic_x: bool)
     }
 }
 
-impl LatticeSpec {
-    /// The network of a lattice of another type than square, its springs `spacing` (m)
-    /// long; `None` for the square lattice (`SquareLattice`, with its families).
-    pub fn planar(&self, spacing: f64) -> Option<PlanarLattice> {
-        (!self.lattice_type.is_square()).then_some(PlanarLattice {
-            kind: self.lattice_type,
-            nx: self.nx,
-            ny: self.ny,
-            spacing,
-            k: self.k_x,
-            periodic_x: self.supports.periodic_x(),
-        })
-    }
-
-    /// Node positions and edges as simulated, spacing `spacing` (m): a lattice of another
-    /// type loaded along x (`tensile-x`) turned by 90° (the square one is turned in its
-    /// resolution, by its families).
-    pub fn layout(&self, spacing: f64) -> Layout {
-        match self.planar(spacing) {
-            None => Layout::square(self.nx, self.ny, spacing, self.supports.periodic_x()),
-            Some(planar) if self.rotated => planar.layout().turned(),
-            Some(planar) => planar.layout(),
-        }
-    }
-}
-
-/// The wave of an impulse lattice of another type than square: from the kicked top-row node
-/// straight down to the bottom row (its distance the node's height, m), N_s = ny − 1 rows.
-pub(super) fn network_wave(l: &LatticeSpec, source: usize, spacing: f64, threshold: f64) -> WaveSpec {
-    let layout = l.layout(spacing);
-    WaveSpec { source, distance: layout.y[source], receivers: layout.edges.bottom, springs: l.ny - 1, threshold }
+/// The wave of an impulse lattice of another type than square, of `ny` rows laid out as
+/// `layout`: from the kicked top-row node `source` straight down to the bottom row (its
+/// distance the node's height, m), N_s = ny − 1 rows.
+pub(super) fn network_wave(layout: Layout, source: usize, ny: usize, threshold: f64) -> WaveSpec {
+    WaveSpec { source, distance: layout.y[source], receivers: layout.edges.bottom, springs: ny - 1, threshold }
 }
