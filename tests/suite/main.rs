@@ -21,5 +21,6 @@ mod nonlinear;
 mod physics;
 mod pipeline;
 mod relax;
+mod series;
 mod unit;
 mod waves;
