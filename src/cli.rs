@@ -420,7 +420,8 @@ fn print_plan_rows(plan: &Plan, layout: &Layout) -> PlanTally {
     for spec in &campaign.runs {
         let run_id = spec.run_id();
         // What `run` would do with the run's stored record: take it (`yes`), or simulate the
-        // run because the record is missing, corrupt, of another build or stopped by its budget.
+        // run because the record is missing, corrupt, of another build, kept other series than
+        // `output.series` asks for or stopped by its budget.
         let state = match read_stored_as(layout, spec, &run_id) {
             Stored::Current(record) | Stored::OtherBuild(record) | Stored::OtherSeries(record)
                 if record.status == RunStatus::Budget =>
