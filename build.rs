@@ -6,9 +6,9 @@ use std::path::{Path, PathBuf};
 
 /// Everything a run's record depends on: the spec and its resolution, the scene kinds (`study`), the physics
 /// core, the measurements and their references, the plan that sets dt, the runner's
-/// `execute` and the record it fills.
+/// `execute`, the record it fills and the series it keeps.
 /// Not the table, the reports, the command line or the store's bookkeeping: they only read records.
-const RESULT_SOURCES: [&str; 10] = [
+const RESULT_SOURCES: [&str; 11] = [
     "src/spec",
     "src/study",
     "src/model",
@@ -19,6 +19,7 @@ const RESULT_SOURCES: [&str; 10] = [
     "src/plan",
     "src/runner/execute.rs",
     "src/runner/record.rs",
+    "src/runner/series.rs",
 ];
 
 fn main() {

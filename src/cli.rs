@@ -367,6 +367,14 @@ fn warn_about_store(layout: &Layout, done: &CampaignRun, other_builds: OtherBuil
         ),
         OtherBuilds::Simulate => {}
     }
+    if !done.other_series.is_empty() {
+        eprintln!(
+            "note: {} stored runs kept other series than output.series asks for and were simulated again for \
+             their tables (their results are the same): {}",
+            done.other_series.len(),
+            listed(done.other_series.iter().map(String::as_str))
+        );
+    }
 }
 
 /// At most 20 of `ids`, comma-separated, with how many more there are.
@@ -393,7 +401,7 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
 
 /// What `plan` found in the store, run by run.
 struct PlanTally {
-    /// How many runs are in each stored state (yes, missing, corrupt, stale, budget).
+    /// How many runs are in each stored state (yes, missing, corrupt, stale, series, budget).
     states: std::collections::BTreeMap<&'static str, usize>,
     /// Runs whose record is corrupt, with why.
     corrupt: Vec<(String, String)>,
@@ -412,11 +420,17 @@ fn print_plan_rows(plan: &Plan, layout: &Layout) -> PlanTally {
     for spec in &campaign.runs {
         let run_id = spec.run_id();
         // What `run` would do with the run's stored record: take it (`yes`), or simulate the
-        // run because the record is missing, corrupt, of another build or stopped by its budget.
+        // run because the record is missing, corrupt, of another build, kept other series than
+        // `output.series` asks for or stopped by its budget.
         let state = match read_stored_as(layout, spec, &run_id) {
-            Stored::Current(record) | Stored::OtherBuild(record) if record.status == RunStatus::Budget => "budget",
+            Stored::Current(record) | Stored::OtherBuild(record) | Stored::OtherSeries(record)
+                if record.status == RunStatus::Budget =>
+            {
+                "budget"
+            }
             Stored::Current(_) => "yes",
             Stored::OtherBuild(_) => "stale",
+            Stored::OtherSeries(_) => "series",
             Stored::Corrupt(why) => {
                 tally.corrupt.push((run_id.clone(), why));
                 "corrupt"
@@ -464,6 +478,7 @@ fn print_plan_summary(campaign: &Campaign, layout: &Layout, tally: &PlanTally) {
         ("missing", "without a stored result"),
         ("corrupt", "with a corrupt record"),
         ("stale", "made by another build (--reuse-other-builds keeps them)"),
+        ("series", "whose stored series are not the ones output.series asks for (default or full)"),
         ("budget", "stopped by their budget"),
     ]
     .iter()
@@ -553,7 +568,7 @@ fn stored_for_report(campaign: &Campaign, layout: &Layout) -> (Vec<RunRecord>, r
     let (mut records, mut left_out) = (Vec::new(), report::LeftOut::default());
     for spec in &campaign.runs {
         match read_stored(layout, spec) {
-            Stored::Current(record) | Stored::OtherBuild(record) => records.push(record),
+            Stored::Current(record) | Stored::OtherBuild(record) | Stored::OtherSeries(record) => records.push(record),
             Stored::Corrupt(why) => left_out.corrupt.push((spec.run_id(), why)),
             Stored::Missing => left_out.missing.push(spec.run_id()),
         }

@@ -24,6 +24,18 @@ pub fn probe_table_name(run_id: &str) -> String {
     format!("probes/{run_id}.parquet")
 }
 
+/// The series table of run `run_id` (its sample times and energies, `runner::series`),
+/// relative to its campaign's directory.
+pub fn series_table_name(run_id: &str) -> String {
+    format!("series/{run_id}.parquet")
+}
+
+/// The particle table of run `run_id` (its per-particle series, `runner::series`), relative to
+/// its campaign's directory.
+pub fn particle_table_name(run_id: &str) -> String {
+    format!("series/{run_id}.particles.parquet")
+}
+
 /// The side-by-side movie of `scene`, relative to its campaign's directory.
 pub fn side_by_side_name(scene: &str) -> String {
     format!("plots/{scene}-side-by-side.gif")
@@ -38,9 +50,13 @@ impl Layout {
     pub fn run_file(&self, run_id: &str) -> PathBuf {
         self.root.join("runs").join(format!("{run_id}.json"))
     }
-    /// The sampled series of one run's record (binary, `runner::record`), beside it.
-    pub fn series_file(&self, run_id: &str) -> PathBuf {
-        self.root.join("runs").join(format!("{run_id}.series"))
+    /// The series table of run `run_id`, stored with its record.
+    pub fn series_table_file(&self, run_id: &str) -> PathBuf {
+        self.file(&series_table_name(run_id))
+    }
+    /// The particle table of run `run_id`, stored with its record when it keeps any.
+    pub fn particle_table_file(&self, run_id: &str) -> PathBuf {
+        self.file(&particle_table_name(run_id))
     }
     /// The probe table of run `run_id`, stored with its record.
     pub fn probe_table_file(&self, run_id: &str) -> PathBuf {

@@ -249,6 +249,7 @@ pub fn network_key(spec: &RunSpec) -> String {
         samples: 0,
         scene_kind: spec.scene_kind.without_relax_and_wave(),
         movie: None,
+        series: Default::default(),
         v0: 0.0,
         ..spec.clone()
     };

@@ -5,10 +5,11 @@
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::Instant;
 
-use super::record::{BUILD, Metrics, RunRecord, keep_what_is_stored};
+use super::record::{BUILD, Metrics, RunRecord};
+use super::series;
 use crate::draw::Movie;
 use crate::plan::Estimates;
-use crate::sim::{RelaxMethod, RunStatus, Trace, stored_samples};
+use crate::sim::{RelaxMethod, RunStatus, Trace};
 use crate::spec::{Budget, RunSpec};
 use crate::study::{self, Run, Stopped};
 
@@ -88,7 +89,9 @@ fn blank_record(spec: &RunSpec) -> RunRecord {
         metrics: Metrics::default(),
         trace: Trace::default(),
         series: None,
+        particle_table: None,
         probe_table: None,
+        full_series: None,
         movie: None,
     }
 }
@@ -108,7 +111,7 @@ fn run_and_measure(spec: &RunSpec, deadline: Instant, estimates: &Estimates) -> 
     Ok(Box::new(run))
 }
 
-/// Fills `record` from a finished run: its status, message, steps, metrics, thinned trace
+/// Fills `record` from a finished run: its status, message, steps, metrics, kept trace
 /// and movie (written by the runner beside the record, its encoding bounded by `deadline`).
 fn fill(record: &mut RunRecord, mut run: Run, deadline: Instant) {
     let spec = &record.spec;
@@ -130,11 +133,9 @@ fn fill(record: &mut RunRecord, mut run: Run, deadline: Instant) {
         record.message = caveat.into();
     }
     record.metrics = run.metrics;
-    record.trace = trace;
-    // Measured from every sample above; stored thinned, within a bounded size, and only what
-    // the report draws.
-    record.trace.thin(stored_samples(record.trace.numbers_per_sample()));
-    keep_what_is_stored(&mut record.trace, &record.spec);
+    // Measured from every sample above; kept as `output.series` says: by default thinned,
+    // within a bounded size, and only what the report draws.
+    (record.trace, record.full_series) = series::kept(trace, &record.spec);
 }
 
 /// What the frames of a run with no time show (a minimiser's or the static solve's two frames,

@@ -2,11 +2,13 @@
 //! cached by content hash, with a progress bar; a failing run becomes a record, not a crash.
 
 pub use self::execute::{execute, execute_within};
-pub use self::record::{BUILD, Metrics, NO_MOVIE, RunRecord, StoredFile, is_asked_for};
+pub use self::record::{BUILD, Metrics, NO_MOVIE, RunRecord, StoredFile};
+pub use self::series::is_asked_for;
 pub use self::shard::{Shard, shard_campaign, shard_of_each_run};
 
 mod execute;
 pub mod record;
+pub mod series;
 pub mod shard;
 
 use anyhow::Context;
@@ -37,6 +39,9 @@ pub struct CampaignRun {
     /// Runs whose stored record was made by another build, with that build: simulated again,
     /// or taken as they are with [`OtherBuilds::Reuse`].
     pub other_build: Vec<(String, String)>,
+    /// Runs whose stored record kept other series than `output.series` asks now (default or
+    /// full): simulated again for the tables asked for.
+    pub other_series: Vec<String>,
 }
 
 /// Set when the user interrupts the process (Ctrl-C or SIGTERM, see `cli`): runs not started
@@ -86,19 +91,24 @@ pub enum Stored {
     Corrupt(String),
     /// A valid record made by another build ([`RunRecord::build`] is not [`BUILD`]).
     OtherBuild(RunRecord),
+    /// A valid record that kept other series than the campaign's `output.series` asks now
+    /// (`default` or `full`): the same run, whose tables are not the ones asked for. `run`
+    /// simulates it again; `report` draws from it (what the report draws is the same).
+    OtherSeries(RunRecord),
     /// A valid record made by this build.
     Current(RunRecord),
 }
 
-/// The most bytes a file of the store (a record, its series file or probe table, a movie's list
-/// of runs) is read up to: room for the largest record of earlier builds, which held their
-/// series in the JSON (`sim::STORED_NUMBERS`, 2 million numbers of up to 25 characters: ~50 MB);
-/// a series file holds at most `record::SERIES_MOST_BYTES` (33 MB) before compression. A larger
-/// file (a record of a build before records were bounded) counts as corrupt: simulated again.
+/// The most bytes a file of the store (a record, its series tables, a movie's list of runs) is
+/// read up to: room for the largest record of earlier builds, which held their series in the
+/// JSON (`sim::STORED_NUMBERS`, 2 million numbers of up to 25 characters: ~50 MB), and for the
+/// tables of a thinned trace (2 million numbers, at most 8 bytes each). A larger file (a record
+/// of a build before records were bounded) counts as corrupt: simulated again. The tables of a
+/// run with `output.series: full` may hold more (`series::most_bytes`).
 pub const STORED_FILE_MOST_BYTES: u64 = 64 << 20;
 
 /// Reads and checks the stored record of `spec` (`runs/<run_id>.json`) and its series
-/// (`runs/<run_id>.series`, which must be the file the record names).
+/// (`series/<run_id>.parquet` and the other tables it names, which must be those files).
 pub fn read_stored(layout: &Layout, spec: &RunSpec) -> Stored {
     read_stored_as(layout, spec, &spec.run_id())
 }
@@ -116,18 +126,20 @@ pub fn read_stored_as(layout: &Layout, spec: &RunSpec, run_id: &str) -> Stored {
         Ok(record) => record,
         Err(error) => return Stored::Corrupt(format!("is not a run record: {error}")),
     };
-    let read = record.read_series(|file| {
+    let read = record.read_series(|file, most| {
         let path = match file {
-            StoredFile::Series => layout.series_file(run_id),
+            StoredFile::Series => layout.series_table_file(run_id),
+            StoredFile::ParticleTable => layout.particle_table_file(run_id),
             StoredFile::ProbeTable => layout.probe_table_file(run_id),
         };
-        read_regular(&path, STORED_FILE_MOST_BYTES, "a stored file")
+        read_regular(&path, most, "a stored file")
     });
     if let Err(why) = read {
         return Stored::Corrupt(why);
     }
     match record.check(spec) {
         Err(why) => Stored::Corrupt(why),
+        Ok(()) if record.spec.series != spec.series => Stored::OtherSeries(record),
         Ok(()) if record.build == BUILD => Stored::Current(record),
         Ok(()) => Stored::OtherBuild(record),
     }
@@ -161,7 +173,7 @@ pub fn run_campaign_with(
     other_builds: OtherBuilds,
 ) -> anyhow::Result<CampaignRun> {
     let campaign = &plan.campaign;
-    let (stored, corrupt, other_build) = read_store(campaign, layout, other_builds);
+    let (stored, notes) = read_store(campaign, layout, other_builds);
     let todo: Vec<&RunSpec> = campaign.runs.iter().zip(&stored).filter(|(_, r)| r.is_none()).map(|(s, _)| s).collect();
     let (mut frames, mut simulated, mut fresh) = (BTreeMap::new(), 0, Vec::new());
     for (spec, ran) in todo.iter().zip(simulate_missing(plan, layout, &todo, jobs, lock_wait)?) {
@@ -177,19 +189,15 @@ pub fn run_campaign_with(
         .map(|r| r.unwrap_or_else(|| fresh.next().expect("one fresh record per missing run")))
         .collect();
     write_missing_movies(plan, layout, &records, frames)?;
-    Ok(CampaignRun { cached: records.len() - simulated, records, simulated, corrupt, other_build })
+    let StoreNotes { corrupt, other_build, other_series } = notes;
+    Ok(CampaignRun { cached: records.len() - simulated, records, simulated, corrupt, other_build, other_series })
 }
 
-/// Each run's usable stored record (`None`: to simulate), with the runs whose record was
-/// corrupt (and why) and those made by another build (and which). A run stopped by its
-/// budget is tried again: its outcome depends on the machine and the budget, not only on its
-/// spec.
-fn read_store(
-    campaign: &Campaign,
-    layout: &Layout,
-    other_builds: OtherBuilds,
-) -> (Vec<Option<RunRecord>>, RunNotes, RunNotes) {
-    let (mut corrupt, mut other_build) = (Vec::new(), Vec::new());
+/// Each run's usable stored record (`None`: to simulate), with what was noted of the others.
+/// A run stopped by its budget is tried again: its outcome depends on the machine and the
+/// budget, not only on its spec.
+fn read_store(campaign: &Campaign, layout: &Layout, other_builds: OtherBuilds) -> (Vec<Option<RunRecord>>, StoreNotes) {
+    let mut notes = StoreNotes::default();
     let stored = campaign
         .runs
         .iter()
@@ -197,14 +205,18 @@ fn read_store(
             let record = match read_stored(layout, spec) {
                 Stored::Current(record) => record,
                 Stored::OtherBuild(record) if record.status != RunStatus::Budget => {
-                    other_build.push((record.run_id.clone(), record.build.clone()));
+                    notes.other_build.push((record.run_id.clone(), record.build.clone()));
                     match other_builds {
                         OtherBuilds::Reuse => record,
                         OtherBuilds::Simulate => return None,
                     }
                 }
+                Stored::OtherSeries(record) => {
+                    notes.other_series.push(record.run_id);
+                    return None;
+                }
                 Stored::Corrupt(why) => {
-                    corrupt.push((spec.run_id(), why));
+                    notes.corrupt.push((spec.run_id(), why));
                     return None;
                 }
                 Stored::OtherBuild(_) | Stored::Missing => return None,
@@ -212,11 +224,17 @@ fn read_store(
             (record.status != RunStatus::Budget).then_some(record)
         })
         .collect();
-    (stored, corrupt, other_build)
+    (stored, notes)
 }
 
-/// Run ids with a note each (why a record was corrupt, which build made it).
-type RunNotes = Vec<(String, String)>;
+/// What [`read_store`] noted of the records it does not take, by run id: why a record was
+/// corrupt, which build made a record of another build, which records kept other series.
+#[derive(Default)]
+struct StoreNotes {
+    corrupt: Vec<(String, String)>,
+    other_build: Vec<(String, String)>,
+    other_series: Vec<String>,
+}
 
 /// One run of [`simulate_missing`]: its record, whether it was simulated here (not found
 /// stored by another process meanwhile), and its movie frames if its scene shows its runs side
@@ -361,14 +379,23 @@ fn run_and_store(
             *panel.lock().expect("a panel is written once") = Some(movie);
         }
     }
-    // The probe table and series first: a kill between them and the record leaves files and
-    // no record (the run is missing), or a record naming earlier files by their hash
-    // (corrupt): either way the run is simulated again, never read with series not its own.
+    // The tables first: a kill between them and the record leaves files and no record (the
+    // run is missing), or a record naming earlier files by their hash (corrupt): either way
+    // the run is simulated again, never read with series not its own.
     let stored = record.to_stored().context("cannot serialise a run record")?;
     if let Some(table) = &stored.probe_table {
         write_atomically(&layout.probe_table_file(&record.run_id), table)?;
     }
-    write_atomically(&layout.series_file(&record.run_id), &stored.series)?;
+    let particles = layout.particle_table_file(&record.run_id);
+    match &stored.particle_table {
+        Some(table) => write_atomically(&particles, table)?,
+        // An earlier record's (say with `output.series: full`) would be left behind, unnamed.
+        None if std::fs::symlink_metadata(&particles).is_ok() => {
+            std::fs::remove_file(&particles).with_context(|| format!("cannot remove '{}'", particles.display()))?
+        }
+        None => {}
+    }
+    write_atomically(&layout.series_table_file(&record.run_id), &stored.series)?;
     write_atomically(&layout.run_file(&record.run_id), &stored.json)?;
     Ok(Some((record, true)))
 }

@@ -2,8 +2,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::series;
 use crate::draw::Movie;
-use crate::sim::{ProbeTrace, RunStatus, STORED_NUMBERS, Trace};
+use crate::sim::{ProbeTrace, RunStatus, Trace};
 use crate::spec::RunSpec;
 pub use crate::study::Metrics;
 
@@ -31,17 +32,26 @@ pub struct RunRecord {
     pub steps: u64,
     /// Measurements.
     pub metrics: Metrics,
-    /// Sampled series (what the report draws: [`keep_what_is_stored`]).
+    /// Sampled series: what the report draws ([`series::keep_by_default`]).
     pub trace: Trace,
-    /// The file its sampled series are stored in (`runs/<run_id>.series`, [`encode_series`]),
-    /// by length and content hash: set when the record is stored. `None` in a record of an
-    /// earlier build, which holds its series in the JSON itself.
+    /// The table its sample times and energies are stored in (`series/<run_id>.parquet`,
+    /// [`series::series_table`]), by length and content hash: set when the record is stored.
+    /// `None` in a record of an earlier build, which holds its series in the JSON itself.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub series: Option<SeriesFile>,
-    /// The file the series of its probed lines are stored in, when the run asks for probes
-    /// (`probes/<run_id>.parquet`, [`probe_table`]), by length and content hash.
+    /// The table its per-particle series are stored in, when it keeps any
+    /// (`series/<run_id>.particles.parquet`, [`series::particle_table`]), by length and hash.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub particle_table: Option<SeriesFile>,
+    /// The table the series of its probed lines are stored in, when the run asks for probes
+    /// (`probes/<run_id>.parquet`, [`series::probe_table`]), by length and content hash.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub probe_table: Option<SeriesFile>,
+    /// With `output.series: full`, the series its tables keep beyond what the report draws
+    /// (every particle at every sample, in double precision, [`series::kept`]): written by the
+    /// runner beside the record, never held in it.
+    #[serde(skip)]
+    pub full_series: Option<Trace>,
     /// The movie's frames, when the run asked for one: written by the runner as
     /// `runs/<run_id>.gif`, never stored in the record.
     #[serde(skip)]
@@ -63,7 +73,8 @@ impl RunRecord {
     }
 
     /// Checks a record read from the store as the record of `spec` (whose id names its file):
-    /// its own `run_id` is that id and the id of its own spec, its spec is `spec`, and its
+    /// its own `run_id` is that id and the id of its own spec, its spec is `spec` (but perhaps
+    /// for `output.series`, which the id leaves out: `runner::Stored::OtherSeries`), and its
     /// sampled series have the lengths the report indexes them by. Why not, if it is not.
     /// (Its numbers are finite: JSON has no NaN or infinity, and a number beyond the range of
     /// f64 does not parse.)
@@ -76,7 +87,7 @@ impl RunRecord {
         if own != run_id {
             return Err(format!("its spec is the spec of run {own}, not of {run_id}"));
         }
-        if self.spec != *spec {
+        if (RunSpec { series: spec.series, ..self.spec.clone() }) != *spec {
             return Err("its spec differs from the campaign's run of the same id".into());
         }
         check_trace(&self.trace, spec.particles())
@@ -151,23 +162,37 @@ pub struct StoredFiles {
     /// `runs/<run_id>.json`: the record, whose trace holds the shapes (probe names and nodes)
     /// and scalars but no samples.
     pub json: Vec<u8>,
-    /// `runs/<run_id>.series` ([`encode_series`]).
+    /// `series/<run_id>.parquet` ([`series::series_table`]).
     pub series: Vec<u8>,
-    /// `probes/<run_id>.parquet` ([`probe_table`]), when the run asks for probes.
+    /// `series/<run_id>.particles.parquet` ([`series::particle_table`]), when it keeps any
+    /// particle's series.
+    pub particle_table: Option<Vec<u8>>,
+    /// `probes/<run_id>.parquet` ([`series::probe_table`]), when the run asks for probes.
     pub probe_table: Option<Vec<u8>>,
 }
 
 impl RunRecord {
-    /// The record as stored, naming its series file and probe table by [`SeriesFile`]. They
-    /// are written before the JSON, so a record is never stored before its series (see
-    /// `runner::run_and_store`).
+    /// The record as stored, naming its tables by [`SeriesFile`] (taking its full series, if
+    /// it kept them). They are written before the JSON, so a record is never stored before
+    /// its series (see `runner::run_and_store`).
     pub fn to_stored(&mut self) -> anyhow::Result<StoredFiles> {
-        let series = encode_series(&self.trace, |probe| is_asked_for(&self.spec, probe));
-        let probe_table = probe_table(self)?;
+        let full = self.full_series.take();
+        let kept = full.as_ref().unwrap_or(&self.trace);
+        let series = series::series_table(kept, &self.spec)?;
+        let particle_table = series::particle_table(kept, &self.spec)?;
+        let probe_table = series::probe_table(kept, &self.spec)?;
         self.series = Some(SeriesFile::of(&series));
+        self.particle_table = particle_table.as_deref().map(SeriesFile::of);
         self.probe_table = probe_table.as_deref().map(SeriesFile::of);
+        let json = serde_json::to_vec(&self.without_samples())?;
+        Ok(StoredFiles { json, series, particle_table, probe_table })
+    }
+
+    /// The record as its JSON holds it: its trace's shapes (probe names and nodes) and scalars,
+    /// no samples.
+    fn without_samples(&self) -> RunRecord {
         let t = &self.trace;
-        let bare = RunRecord {
+        RunRecord {
             run_id: self.run_id.clone(),
             build: self.build.clone(),
             spec: self.spec.clone(),
@@ -191,318 +216,72 @@ impl RunRecord {
                 ..Trace::default()
             },
             series: self.series.clone(),
+            particle_table: self.particle_table.clone(),
             probe_table: self.probe_table.clone(),
+            full_series: None,
             movie: None,
-        };
-        Ok(StoredFiles { json: serde_json::to_vec(&bare)?, series, probe_table })
+        }
     }
 
-    /// Fills the trace of a record read from the store from the bytes of its series file and
-    /// probe table (`read` gets them by path), each checked against the record's
-    /// [`SeriesFile`]; why not, if they do not belong together or do not decode. A record of
-    /// an earlier build, which names neither, holds its series itself.
-    pub fn read_series(&mut self, read: impl Fn(StoredFile) -> std::io::Result<Vec<u8>>) -> Result<(), String> {
-        for (which, named) in [(StoredFile::Series, &self.series), (StoredFile::ProbeTable, &self.probe_table)] {
-            let Some(named) = named.clone() else { continue };
-            let what = match which {
-                StoredFile::Series => "series file",
-                StoredFile::ProbeTable => "probe table",
-            };
-            let bytes = read(which).map_err(|error| format!("its {what} cannot be read: {error}"))?;
+    /// Fills the trace of a record read from the store from the bytes of its tables (`read`
+    /// gets them by which and the most bytes to read), each checked against the record's
+    /// [`SeriesFile`], then keeps of them what the report draws; why not, if they do not
+    /// belong together or do not decode. A record of an earlier build, which names none,
+    /// holds its series itself.
+    pub fn read_series(&mut self, read: impl Fn(StoredFile, u64) -> std::io::Result<Vec<u8>>) -> Result<(), String> {
+        let named = [
+            (StoredFile::Series, &self.series),
+            (StoredFile::ParticleTable, &self.particle_table),
+            (StoredFile::ProbeTable, &self.probe_table),
+        ];
+        if named.iter().all(|(_, file)| file.is_none()) {
+            return Ok(());
+        }
+        let mut kept = std::mem::take(&mut self.trace);
+        for (which, file) in named {
+            let Some(file) = file else { continue };
+            let bytes = read(which, file.bytes.min(series::most_bytes(&self.spec)))
+                .map_err(|error| format!("its {which} cannot be read: {error}"))?;
             let found = SeriesFile::of(&bytes);
-            if found != named {
+            if found != *file {
                 return Err(format!(
-                    "its {what} ({} bytes, blake3 {}…) is not the one it names ({} bytes, blake3 {}…)",
+                    "its {which} ({} bytes, blake3 {}…) is not the one it names ({} bytes, blake3 {}…)",
                     found.bytes,
                     &found.blake3[..12],
-                    named.bytes,
-                    named.blake3.chars().take(12).collect::<String>()
+                    file.bytes,
+                    file.blake3.chars().take(12).collect::<String>()
                 ));
             }
             match which {
-                StoredFile::Series => decode_series(&bytes, &mut self.trace),
-                StoredFile::ProbeTable => read_probe_table(&bytes, &self.spec, &mut self.trace),
+                StoredFile::Series => series::read_series_table(&bytes, &self.spec, &mut kept),
+                StoredFile::ParticleTable => series::read_particle_table(&bytes, &self.spec, &mut kept),
+                StoredFile::ProbeTable => series::read_probe_table(&bytes, &self.spec, &mut kept),
             }
-            .map_err(|why| format!("its {what} {why}"))?;
+            .map_err(|why| format!("its {which} {why}"))?;
         }
+        series::keep_by_default(&mut kept, &self.spec);
+        self.trace = kept;
         Ok(())
     }
 }
 
-/// The files beside a record's JSON that hold its series.
+/// The tables beside a record's JSON that hold its series.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum StoredFile {
-    /// `runs/<run_id>.series`.
+    /// `series/<run_id>.parquet`.
     Series,
+    /// `series/<run_id>.particles.parquet`.
+    ParticleTable,
     /// `probes/<run_id>.parquet`.
     ProbeTable,
 }
 
-/// True when `probe` is a line the run's campaign asked for (`probes:`), not only the kicked
-/// column an impulse lattice records for its space–time figure.
-pub fn is_asked_for(spec: &RunSpec, probe: &ProbeTrace) -> bool {
-    spec.lattice().is_some_and(|l| l.probes.iter().any(|line| line.name() == probe.name))
-}
-
-/// The probed lines a run asked for as a Parquet table, one row per sample and node: `time`,
-/// `probe`, `node`, `index` along the line, `displacement_x`, `displacement_y`, `velocity_x`,
-/// `velocity_y` (single precision, as the record keeps them); `None` when it asked for none.
-/// The store of those series (the series file leaves them out) and the table users read.
-pub fn probe_table(record: &RunRecord) -> anyhow::Result<Option<Vec<u8>>> {
-    use polars::prelude::{Column, DataFrame, ParquetWriter};
-    let probes: Vec<&ProbeTrace> = record.trace.probes.iter().filter(|p| is_asked_for(&record.spec, p)).collect();
-    if probes.is_empty() {
-        return Ok(None);
-    }
-    let (mut time, mut probe, mut node, mut index) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    let mut values: [Vec<f32>; 4] = Default::default();
-    for (s, &t) in record.trace.time.iter().enumerate() {
-        for line in &probes {
-            for (i, &n) in line.nodes.iter().enumerate() {
-                time.push(t);
-                probe.push(line.name.as_str());
-                node.push(n as u32);
-                index.push(i as u32);
-                let series = [&line.displacement_x, &line.displacement_y, &line.velocity_x, &line.velocity_y];
-                for (column, series) in values.iter_mut().zip(series) {
-                    column.push(series[s][i] as f32);
-                }
-            }
-        }
-    }
-    let mut columns =
-        vec![Column::new("time".into(), time), Column::new("probe".into(), probe), Column::new("node".into(), node)];
-    columns.push(Column::new("index".into(), index));
-    for (name, values) in PROBE_VALUES.iter().zip(values) {
-        columns.push(Column::new((*name).into(), values));
-    }
-    let mut parquet = Vec::new();
-    ParquetWriter::new(&mut parquet).finish(&mut DataFrame::new_infer_height(columns)?)?;
-    Ok(Some(parquet))
-}
-
-/// The value columns of a probe table, in the order of a [`ProbeTrace`]'s series.
-const PROBE_VALUES: [&str; 4] = ["displacement_x", "displacement_y", "velocity_x", "velocity_y"];
-
-/// Reads the series of the lines `spec` asked for from its [`probe_table`] into `trace`
-/// (whose sample times and lines come from the record and its series file); why not, if the
-/// table is not one, or holds other lines, nodes or samples.
-fn read_probe_table(bytes: &[u8], spec: &RunSpec, trace: &mut Trace) -> Result<(), String> {
-    use polars::prelude::{ParquetReader, SerReader};
-    let frame = ParquetReader::new(std::io::Cursor::new(bytes)).finish().map_err(|e| format!("cannot be read: {e}"))?;
-    let column = |name: &str| frame.column(name).map_err(|e| format!("has no column {name}: {e}"));
-    let names = column("probe")?.str().map_err(|e| e.to_string())?.clone();
-    let nodes = column("node")?.u32().map_err(|e| e.to_string())?.clone();
-    let values: Vec<Vec<f32>> = PROBE_VALUES
-        .iter()
-        .map(|name| Ok(column(name)?.f32().map_err(|e| e.to_string())?.into_no_null_iter().collect()))
-        .collect::<Result<_, String>>()?;
-    let samples = trace.time.len();
-    let asked: Vec<usize> = (0..trace.probes.len()).filter(|&p| is_asked_for(spec, &trace.probes[p])).collect();
-    let rows_per_sample: usize = asked.iter().map(|&p| trace.probes[p].nodes.len()).sum();
-    if frame.height() != samples * rows_per_sample || values.iter().any(|v| v.len() != frame.height()) {
-        return Err(format!("has {} rows, not {samples} samples × {rows_per_sample} probed nodes", frame.height()));
-    }
-    let mut row = 0;
-    for &p in &asked {
-        let probe = &mut trace.probes[p];
-        let width = probe.nodes.len();
-        for series in
-            [&mut probe.displacement_x, &mut probe.displacement_y, &mut probe.velocity_x, &mut probe.velocity_y]
-        {
-            *series = vec![vec![0.0; width]; samples];
-        }
-    }
-    for s in 0..samples {
-        for &p in &asked {
-            let probe = &mut trace.probes[p];
-            for i in 0..probe.nodes.len() {
-                if names.get(row) != Some(probe.name.as_str()) || nodes.get(row) != Some(probe.nodes[i] as u32) {
-                    return Err(format!("row {row} is not node {} of {} at sample {s}", probe.nodes[i], probe.name));
-                }
-                let series = [
-                    &mut probe.displacement_x,
-                    &mut probe.displacement_y,
-                    &mut probe.velocity_x,
-                    &mut probe.velocity_y,
-                ];
-                for (series, column) in series.into_iter().zip(&values) {
-                    series[s][i] = f64::from(column[row]);
-                }
-                row += 1;
-            }
-        }
-    }
-    if values.iter().flatten().any(|v| !v.is_finite()) {
-        return Err("holds a number that is not finite".into());
-    }
-    Ok(())
-}
-
-/// What a record keeps of a run's trace once it is measured: what the report draws and
-/// `report` draws again, nothing more. The sample times in full; the energies, a chain's x
-/// displacements (its waterfall and space–time figures) and every series of the probed lines
-/// a campaign asked for (figures and `probes/<run_id>.parquet`) in single precision (7
-/// digits: figures show 3 or 4) wherever they fit its range; of an impulse lattice's kicked
-/// column, when not asked for, only the displacement along the impulse (the space–time figure).
-/// Not kept: the y displacements and velocities of a chain's particles and the kicked column's
-/// other series, which nothing draws. Done to the record in memory, so a report rendered at the end
-/// of `run` and one by `report` from the store draw the same numbers.
-pub fn keep_what_is_stored(trace: &mut Trace, spec: &RunSpec) {
-    (trace.displacement_y, trace.velocity_x, trace.velocity_y) = Default::default();
-    // The kicked column's displacement along the impulse: x under a sideways step (a transverse
-    // wave, whose u_y is round-off), else y.
-    let sideways = spec.lattice().and_then(|l| l.impulse).is_some_and(|i| i.is_sideways());
-    for probe in trace.probes.iter_mut().filter(|p| !is_asked_for(spec, p)) {
-        let across = if sideways { &mut probe.displacement_y } else { &mut probe.displacement_x };
-        (*across, probe.velocity_x, probe.velocity_y) = Default::default();
-    }
-    for series in [&mut trace.kinetic, &mut trace.potential, &mut trace.dissipated, &mut trace.work] {
-        to_single(series);
-    }
-    let matrices = trace
-        .probes
-        .iter_mut()
-        .flat_map(|p| [&mut p.displacement_x, &mut p.displacement_y, &mut p.velocity_x, &mut p.velocity_y]);
-    for matrix in std::iter::once(&mut trace.displacement_x).chain(matrices) {
-        if matrix.iter().flatten().all(|v| v.abs() <= f32::MAX as f64) {
-            matrix.iter_mut().for_each(|row| to_single(row));
-        }
-    }
-}
-
-/// Rounds `series` to single precision when all of it fits (|v| ≤ f32::MAX; values below its
-/// smallest number become 0 or lose digits, 1e-38 of anything a figure shows).
-fn to_single(series: &mut [f64]) {
-    if series.iter().all(|v| v.abs() <= f32::MAX as f64) {
-        series.iter_mut().for_each(|v| *v = *v as f32 as f64);
-    }
-}
-
-/// Opens every series file, before anything is decoded; the version after it.
-pub const SERIES_MAGIC: &[u8] = b"mdsolids-series 1\n";
-
-/// zstd level of the series files: 9 is within 2 % of the smallest (19) on the coursework's
-/// series at a fraction of its time.
-const SERIES_LEVEL: i32 = 9;
-
-/// The most bytes a series file may decode to: a bounded trace ([`STORED_NUMBERS`], plus the
-/// sample times and energies of at most `sim::STORED_SAMPLES` samples) in double precision,
-/// with room for the headers. A file that decodes to more is refused, not read into memory.
-pub const SERIES_MOST_BYTES: u64 = 16 * STORED_NUMBERS as u64 + (1 << 20);
-
-/// The series of `trace` as bytes: zstd over [`SERIES_MAGIC`] and each series in a fixed
-/// order (time, kinetic, potential, dissipated and work energy, the per-particle x and y
-/// displacements and velocities, then those four of each probed line, in the trace's order of
-/// lines), each as its value width (4 where every value is a single-precision number, else 8),
-/// its rows and columns (u64, little-endian; a plain series has one row) and its values
-/// little-endian, byte planes one after another (the sign and exponent bytes of neighbouring
-/// samples are alike, which is what zstd finds: a third smaller than the values as they are).
-pub fn encode_series(trace: &Trace, in_table: impl Fn(&ProbeTrace) -> bool) -> Vec<u8> {
-    let mut raw = SERIES_MAGIC.to_vec();
-    for_each_series(trace, in_table, |values, rows, columns| {
-        let single = values.iter().all(|&v| v as f32 as f64 == v);
-        let bytes: Vec<u8> = if single {
-            values.iter().flat_map(|&v| (v as f32).to_le_bytes()).collect()
-        } else {
-            values.iter().flat_map(|&v| v.to_le_bytes()).collect()
-        };
-        let width = if single { 4 } else { 8 };
-        raw.push(width as u8);
-        raw.extend((rows as u64).to_le_bytes());
-        raw.extend((columns as u64).to_le_bytes());
-        raw.extend((0..width).flat_map(|plane| bytes.iter().skip(plane).step_by(width).copied()));
-    });
-    zstd::bulk::compress(&raw, SERIES_LEVEL).expect("zstd compresses any bytes in memory")
-}
-
-/// Calls `visit(values, rows, columns)` for each series of `trace` in the stored order; the
-/// lines `in_table` (stored in the probe table) as no rows.
-fn for_each_series(trace: &Trace, in_table: impl Fn(&ProbeTrace) -> bool, mut visit: impl FnMut(&[f64], usize, usize)) {
-    for series in [&trace.time, &trace.kinetic, &trace.potential, &trace.dissipated, &trace.work] {
-        visit(series, 1, series.len());
-    }
-    // Rows of one width (`check_trace` holds every record to it).
-    let mut matrix = |rows: &Vec<Vec<f64>>| {
-        let flat: Vec<f64> = rows.iter().flatten().copied().collect();
-        visit(&flat, rows.len(), rows.first().map_or(0, Vec::len))
-    };
-    for rows in [&trace.displacement_x, &trace.displacement_y, &trace.velocity_x, &trace.velocity_y] {
-        matrix(rows);
-    }
-    let none = Vec::new();
-    for p in &trace.probes {
-        for rows in [&p.displacement_x, &p.displacement_y, &p.velocity_x, &p.velocity_y] {
-            matrix(if in_table(p) { &none } else { rows });
-        }
-    }
-}
-
-/// Reads the series of [`encode_series`] into `trace`, whose probed lines (names and nodes)
-/// come from the record; why not, if the bytes are not such a file or end early or late.
-pub fn decode_series(bytes: &[u8], trace: &mut Trace) -> Result<(), String> {
-    use std::io::Read;
-    let mut raw = Vec::new();
-    let decoder = zstd::stream::read::Decoder::new(bytes).map_err(|e| format!("cannot be decoded: {e}"))?;
-    decoder.take(SERIES_MOST_BYTES + 1).read_to_end(&mut raw).map_err(|e| format!("cannot be decoded: {e}"))?;
-    if raw.len() as u64 > SERIES_MOST_BYTES {
-        return Err(format!("decodes to more than {SERIES_MOST_BYTES} bytes, more than any record holds"));
-    }
-    let mut rest = raw.strip_prefix(SERIES_MAGIC).ok_or("is not a series file of this version")?;
-    let rest = &mut rest;
-    trace.time = next_series(rest, "time")?.0;
-    trace.kinetic = next_series(rest, "kinetic")?.0;
-    trace.potential = next_series(rest, "potential")?.0;
-    trace.dissipated = next_series(rest, "dissipated")?.0;
-    trace.work = next_series(rest, "work")?.0;
-    trace.displacement_x = next_matrix(rest, "displacement_x")?;
-    trace.displacement_y = next_matrix(rest, "displacement_y")?;
-    trace.velocity_x = next_matrix(rest, "velocity_x")?;
-    trace.velocity_y = next_matrix(rest, "velocity_y")?;
-    for (p, probe) in trace.probes.iter_mut().enumerate() {
-        probe.displacement_x = next_matrix(rest, &format!("probes[{p}].displacement_x"))?;
-        probe.displacement_y = next_matrix(rest, &format!("probes[{p}].displacement_y"))?;
-        probe.velocity_x = next_matrix(rest, &format!("probes[{p}].velocity_x"))?;
-        probe.velocity_y = next_matrix(rest, &format!("probes[{p}].velocity_y"))?;
-    }
-    if !rest.is_empty() {
-        return Err(format!("has {} bytes after its last series", rest.len()));
-    }
-    Ok(())
-}
-
-/// The series `name` at the start of `rest` (moved past it): its values, rows and columns.
-fn next_series(rest: &mut &[u8], name: &str) -> Result<(Vec<f64>, usize, usize), String> {
-    let short = || format!("ends before the end of {name}");
-    let (&width, after) = rest.split_first().ok_or_else(short)?;
-    let number = |at: Option<&[u8]>| at.map(|b| u64::from_le_bytes(b.try_into().expect("eight bytes")));
-    let (rows, columns) = (number(after.get(..8)).ok_or_else(short)?, number(after.get(8..16)).ok_or_else(short)?);
-    if width != 4 && width != 8 {
-        return Err(format!("gives {name} values of {width} bytes (4 or 8)"));
-    }
-    let count = rows.checked_mul(columns).filter(|&n| n <= SERIES_MOST_BYTES).ok_or_else(short)? as usize;
-    let width = usize::from(width);
-    let planes = after.get(16..16 + count * width).ok_or_else(short)?;
-    let byte = |plane: usize, i: usize| planes[plane * count + i];
-    let values: Vec<f64> = (0..count)
-        .map(|i| match width {
-            4 => f32::from_le_bytes(std::array::from_fn(|plane| byte(plane, i))) as f64,
-            _ => f64::from_le_bytes(std::array::from_fn(|plane| byte(plane, i))),
+impl std::fmt::Display for StoredFile {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            StoredFile::Series => "series table",
+            StoredFile::ParticleTable => "particle table",
+            StoredFile::ProbeTable => "probe table",
         })
-        .collect();
-    if values.iter().any(|v| !v.is_finite()) {
-        return Err(format!("holds a number that is not finite in {name}"));
-    }
-    *rest = &after[16 + count * width..];
-    Ok((values, rows as usize, columns as usize))
-}
-
-/// [`next_series`] as rows: none, or `rows` of `columns` values.
-fn next_matrix(rest: &mut &[u8], name: &str) -> Result<Vec<Vec<f64>>, String> {
-    let (values, rows, columns) = next_series(rest, name)?;
-    match columns {
-        0 if rows > 0 => Err(format!("gives {name} {rows} rows of no values")),
-        0 => Ok(Vec::new()),
-        _ => Ok(values.chunks(columns).map(<[f64]>::to_vec).collect()),
     }
 }

@@ -7,13 +7,13 @@ use serde_json::Value;
 use std::collections::BTreeMap;
 
 use super::kind::KindColumns;
-use super::raw::SceneKind;
+use super::raw::{SceneKind, SeriesKept};
 use super::run_spec::{MovieSpec, RunSpec};
 use crate::model::LawSpec;
 use crate::sim::IntegratorKind;
 
 /// [`RunSpec`] as stored: its fields in their order, the kind as a tag with the fields of
-/// every kind beside it ([`KindColumns`]). Every key here is part of every run id.
+/// every kind beside it ([`KindColumns`]). Every key here but `series` is part of every run id.
 #[derive(Serialize, Deserialize)]
 struct FlatRunSpec {
     campaign: String,
@@ -43,6 +43,10 @@ struct FlatRunSpec {
     kind_columns: KindColumns,
     #[serde(default)]
     movie: Option<MovieSpec>,
+    /// Left out when `default`: the specs of runs that keep the default series, their ids
+    /// among them, are what they were before the field existed.
+    #[serde(default, skip_serializing_if = "SeriesKept::is_default")]
+    series: SeriesKept,
 }
 
 impl From<RunSpec> for FlatRunSpec {
@@ -72,6 +76,7 @@ impl From<RunSpec> for FlatRunSpec {
             v0: spec.v0,
             kind_columns: spec.scene_kind.into(),
             movie: spec.movie,
+            series: spec.series,
         }
     }
 }
@@ -104,6 +109,7 @@ impl TryFrom<FlatRunSpec> for RunSpec {
             samples: flat.samples,
             v0: flat.v0,
             movie: flat.movie,
+            series: flat.series,
         })
     }
 }

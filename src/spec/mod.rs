@@ -7,7 +7,7 @@
 pub use self::issue::Num;
 pub use self::kind::*;
 pub use self::name::MAX_NAME_LEN;
-pub use self::raw::{Control, Diagonals, Grid, LoadCase, SceneKind, Supports};
+pub use self::raw::{Control, Diagonals, Grid, LoadCase, SceneKind, SeriesKept, Supports};
 pub use self::run_spec::{
     Budget, MovieSpec, POWER_METHOD_BONDS, RESIDUAL_OVER_ROUND_OFF, RESULT_FORMAT, RunSpec, force_resolution,
     reference_extension, round_off_words, seconds_up_to_1e9,
@@ -353,6 +353,13 @@ fn check_grid_paths(base: &Value, grid: &Grid, origins: &Origins) -> Result<(), 
         }
         if matches!(path.as_str(), "name" | "kind" | "grid") {
             return Err(format!("{}: the scene's {path} cannot be varied", origins.locate(path)));
+        }
+        if path == "output" || path.starts_with("output.") {
+            return Err(format!(
+                "{}: output.series cannot be varied: it says which series a run's files keep, not which run it is \
+                 (a run has one id either way); set it in the scene or in defaults",
+                origins.locate(path)
+            ));
         }
         // Two equal values (`[50, 50]`, `[50, 50.0]`, `[0.0, -0.0]`) would give two rows of one
         // run: one id, simulated and stored once.

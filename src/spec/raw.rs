@@ -119,6 +119,8 @@ pub struct RawScene {
     pub wave: Option<RawWave>,
     /// Record a movie (animated GIF) of the run.
     pub movie: Option<RawMovie>,
+    /// Which of the run's sampled series its files keep (`output.series`).
+    pub output: Option<RawOutput>,
     /// Lattice: kick one node instead of loading the top row (a wave scene).
     pub impulse: Option<RawImpulse>,
     /// Lattice: rows and columns whose displacement and velocity are recorded at every sample.
@@ -339,6 +341,46 @@ pub struct RawMovie {
     pub side_by_side: Option<bool>,
     /// Colour the bonds by their strain (red stretched, blue compressed) instead of grey.
     pub bond_strain: Option<bool>,
+}
+
+/// `output:` section: what a run's files keep.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawOutput {
+    /// `default` (what the report draws) or `full` (every particle's displacements and
+    /// velocities at every sample, in double precision).
+    pub series: Option<SeriesKept>,
+}
+
+/// Which sampled series a run's files keep (`output.series`, `series/<run_id>.parquet` and
+/// `series/<run_id>.particles.parquet`). Not part of the run's id: it changes the files, not
+/// the results.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SeriesKept {
+    /// What the report draws: the sample times and energies, a chain's or pair's particles,
+    /// a lattice's probed lines and kicked column, thinned to a bounded size, in single
+    /// precision where the values fit.
+    #[default]
+    Default,
+    /// Every particle's displacements and velocities and the energies at every sample, in
+    /// double precision (within the run's memory budget).
+    Full,
+}
+
+impl SeriesKept {
+    /// The word in campaign files and records.
+    pub fn name(self) -> &'static str {
+        match self {
+            SeriesKept::Default => "default",
+            SeriesKept::Full => "full",
+        }
+    }
+
+    /// True for [`SeriesKept::Default`] (records leave it out, so run ids stay as they were).
+    pub fn is_default(&self) -> bool {
+        *self == SeriesKept::Default
+    }
 }
 
 /// `relax:` section.

@@ -116,6 +116,7 @@ fn resolve_body(
         samples: 0,
         v0,
         movie: None,
+        series: raw.output.as_ref().and_then(|o| o.series).unwrap_or_default(),
     };
     spec.scene_kind.check(spacing, v0)?;
     Ok(spec)

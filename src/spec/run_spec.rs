@@ -5,7 +5,7 @@ use serde_json::Value;
 use std::collections::BTreeMap;
 
 use super::kind::{ChainRun, KindSpec, LatticeSpec};
-use super::raw::SceneKind;
+use super::raw::{SceneKind, SeriesKept};
 use super::shared::{Deformation, RelaxSpec, WaveSpec};
 use crate::model::LawSpec;
 use crate::sim::IntegratorKind;
@@ -65,6 +65,9 @@ pub struct RunSpec {
     pub v0: f64,
     /// The movie to record, if asked for.
     pub movie: Option<MovieSpec>,
+    /// Which sampled series the run's files keep (`output.series`): stored with the run, not
+    /// part of its id ([`RunSpec::run_id`]).
+    pub series: SeriesKept,
 }
 
 /// An animated GIF of a run: `frames` frames of `width` × `height` pixels.
@@ -109,16 +112,27 @@ impl Budget {
         seconds_up_to_1e9(self.seconds_per_run)
     }
 
-    /// Why `spec` cannot start within this budget, if it cannot.
+    /// Why `spec` cannot start within this budget, if it cannot; naming `output.series: full`
+    /// when the run would fit with its default series.
     pub fn refuses(&self, spec: &RunSpec) -> Option<String> {
         let memory = spec.estimated_memory_bytes();
-        (memory > self.memory_per_run).then(|| {
-            format!(
-                "the run would hold about {:.0} MB, beyond the budget of {:.0} MB per run (budget.memory_per_run_mb)",
-                memory / 1e6,
-                self.memory_per_run / 1e6
-            )
-        })
+        if memory <= self.memory_per_run {
+            return None;
+        }
+        let mut why = format!(
+            "the run would hold about {:.0} MB, beyond the budget of {:.0} MB per run (budget.memory_per_run_mb)",
+            memory / 1e6,
+            self.memory_per_run / 1e6
+        );
+        let default = RunSpec { series: SeriesKept::Default, ..spec.clone() }.estimated_memory_bytes();
+        if spec.series == SeriesKept::Full && default <= self.memory_per_run {
+            why += &format!(
+                ", of which about {:.0} MB its series kept whole (output.series: full, every particle at every \
+                 sample); keep the default series, record fewer time.samples or raise the budget",
+                (memory - default) / 1e6
+            );
+        }
+        Some(why)
     }
 
     /// Why `spec` is expected to exceed this budget, if it is (the plan's warning).
@@ -206,8 +220,14 @@ pub fn round_off_words(spec: &RunSpec, floor: f64) -> String {
 impl RunSpec {
     /// Stable identifier: the scene name and a content hash of the resolved run, its numbers in
     /// one form (`-0.0` as `0`, `50.0` as `50`), so runs with the same physics share one id.
+    /// `output.series` is left out: it changes which series the run's files keep, not its
+    /// results, so switching it keeps the run's id (the runner simulates the run again for
+    /// the files asked for).
     pub fn run_id(&self) -> String {
-        let value = serde_json::to_value((RESULT_FORMAT, self)).expect("a RunSpec always serialises");
+        let mut value = serde_json::to_value((RESULT_FORMAT, self)).expect("a RunSpec always serialises");
+        if let Some(flat) = value.get_mut(1).and_then(Value::as_object_mut) {
+            flat.remove("series");
+        }
         let hash = blake3::hash(super::grid::canonical(&value).to_string().as_bytes()).to_hex();
         format!("{}-{}", self.scene, &hash[..12])
     }
@@ -298,9 +318,26 @@ impl RunSpec {
     }
 
     /// True when the run records every particle's displacement and velocity at every sample:
-    /// chains (normal modes, space–time), reference runs, waves, impulse and probed lattices.
+    /// chains (normal modes, space–time), reference runs, waves, impulse and probed lattices,
+    /// and every run that keeps its full series (`output.series: full`).
     pub fn records_displacements(&self) -> bool {
-        self.scene_kind.records_displacements() || self.reference_refinement.is_some() || self.wave().is_some()
+        self.scene_kind.records_displacements()
+            || self.reference_refinement.is_some()
+            || self.wave().is_some()
+            || self.series == SeriesKept::Full
+    }
+
+    /// Numbers the run's stored series hold over `samples` samples: thinned within
+    /// [`crate::sim::stored_samples`] by default; with `output.series: full` time, energies and
+    /// four per particle at every sample.
+    fn stored_numbers(&self, samples: f64) -> f64 {
+        match self.series {
+            SeriesKept::Default => {
+                let numbers = self.stored_numbers_per_sample();
+                samples.min(crate::sim::stored_samples(numbers) as f64) * numbers as f64
+            }
+            SeriesKept::Full => samples * (5.0 + 4.0 * self.particles() as f64),
+        }
     }
 
     /// Estimated peak memory (bytes) of the run over all its stages, summed (an upper bound:
@@ -314,9 +351,10 @@ impl RunSpec {
     ///   24 bytes per bond, and faer's sorted copy) and the Cholesky factor, whose fill
     ///   on a 2D network grows as dofs · log dofs: ~70 bytes · dofs · log₂ dofs (measured
     ///   ~1100 bytes per dof at 200 × 200 nodes);
-    /// - the record: its thinned trace ([`crate::sim::stored_samples`]) in memory and as JSON
-    ///   text (~50 bytes per number with the buffer's growth); figures draw at most
-    ///   2000 points per line, a few MB at most.
+    /// - the record: its stored series ([`RunSpec::stored_numbers`]: thinned, or every sample
+    ///   with `output.series: full`) in memory and as they are written (~50 bytes per number:
+    ///   a Parquet table's columns, pages and file, and the copy a full run's record keeps of
+    ///   what the report draws); figures draw at most 2000 points per line, a few MB at most.
     ///
     /// Numbers are 8 bytes.
     pub fn estimated_memory_bytes(&self) -> f64 {
@@ -332,9 +370,7 @@ impl RunSpec {
         let omega_max = 8.0 * (10.0 * bonds + 8.0 * particles);
         let dofs = self.static_dofs();
         let static_solve = if dofs > 0.0 { 800.0 * bonds + 70.0 * dofs * dofs.log2().max(1.0) } else { 0.0 };
-        let numbers = self.stored_numbers_per_sample();
-        let stored = samples.min(crate::sim::stored_samples(numbers) as f64) * numbers as f64;
-        time_loop + omega_max + static_solve + (8.0 + 50.0) * stored
+        time_loop + omega_max + static_solve + (8.0 + 50.0) * self.stored_numbers(samples)
     }
 
     /// True once dt and steps are decided: always, except a run whose dt `dt_omega_max` sets

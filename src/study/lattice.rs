@@ -731,10 +731,10 @@ pub(super) fn tangent_moduli(
     metrics.shear_modulus_tangent = tangent.shear_modulus;
 }
 
-/// Cuts a lattice's trace to its probed lines, once measured: the per-particle series are
-/// recorded to compare with a reference run or to follow a wave, too bulky to store whole.
-/// The lines kept are an impulse lattice's kicked column (the wave's straight path down, for
-/// the space–time picture) and the user's.
+/// Picks a lattice's probed lines out of its per-particle series, once measured: an impulse
+/// lattice's kicked column (the wave's straight path down, for the space–time picture) and the
+/// user's. The per-particle series are recorded to compare with a reference run or to follow a
+/// wave; the runner keeps them only where `output.series: full` asks (`runner::series`).
 pub(super) fn keep_probes(l: &LatticeSpec, t: &mut Trace) {
     // The kicked column is a column of the square grid only.
     let kicked = l.impulse.filter(|_| l.lattice_type.is_square()).map(|impulse| ProbeLine::Column(impulse.node % l.nx));
@@ -744,7 +744,6 @@ pub(super) fn keep_probes(l: &LatticeSpec, t: &mut Trace) {
         t.probes =
             lines.into_iter().map(|line| ProbeTrace::from_trace(line.name(), line.nodes(l.nx, l.ny), t)).collect();
     }
-    (t.displacement_x, t.displacement_y, t.velocity_x, t.velocity_y) = Default::default();
 }
 
 /// The lattice's result columns: [`lattice_columns`] when the table has a lattice,

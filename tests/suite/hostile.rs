@@ -740,6 +740,12 @@ fn stored_record(runs: &Path, kind: &str) -> PathBuf {
     records.into_iter().find(|p| name(p).starts_with(kind) && name(p).ends_with(".json")).expect("a stored record")
 }
 
+/// The series table (`series/<run_id>.parquet`) of the record at `record` (`runs/<run_id>.json`).
+fn series_table_of(record: &Path) -> PathBuf {
+    let folder = record.parent().and_then(Path::parent).expect("a record lies in <campaign>/runs/");
+    folder.join("series").join(record.with_extension("parquet").file_name().expect("a record has a name"))
+}
+
 /// Guards issue 31, item 7: files of the store were read whole, whatever they were. A series
 /// file linked to `/dev/zero` ate memory, a record that is a FIFO blocked `plan`, `report` and
 /// `run` forever (`run` even past SIGTERM), and so did a FIFO as the folder's `campaign.json`.
@@ -751,7 +757,7 @@ fn store_files_that_are_not_regular_files_are_corrupt_at_once() {
     let runs = stored_smoke(work.path());
     let fifo = stored_record(&runs, "pair-");
     let chain = stored_record(&runs, "chain-");
-    let zero = chain.with_extension("series");
+    let zero = series_table_of(&chain);
     let make_fifo = |path: &Path| {
         std::fs::remove_file(path).unwrap();
         let name = std::ffi::CString::new(path.to_str().unwrap()).unwrap();
@@ -766,7 +772,7 @@ fn store_files_that_are_not_regular_files_are_corrupt_at_once() {
     let shown = |path: &Path| path.strip_prefix(work.path()).unwrap().display().to_string();
     let reasons = [
         (shown(&fifo), "cannot be read: a FIFO, not a regular file"),
-        (shown(&chain), "its series file cannot be read: a character device, not a regular file"),
+        (shown(&chain), "its series table cannot be read: a character device, not a regular file"),
     ];
     let (ok, stdout, stderr) = binary_in_4_gb(work.path(), &["--reports", "r", "plan", smoke]);
     assert!(ok && reasons.iter().all(|(f, why)| stdout.contains(&format!("corrupt: {f} ({why})"))), "{stdout}{stderr}");

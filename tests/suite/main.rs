@@ -22,5 +22,6 @@ mod nonlinear;
 mod physics;
 mod pipeline;
 mod relax;
+mod series;
 mod unit;
 mod waves;

@@ -319,9 +319,10 @@ fn corrupt_records_are_reported_left_out_and_simulated_again() {
     std::fs::write(&kick, record.to_string()).unwrap();
     let pairs: Vec<PathBuf> =
         run_files(&reports.join("store")).into_iter().filter(|f| f.to_string_lossy().contains("/pair-")).collect();
-    let series = |record: &Path| record.with_extension("series");
+    let series =
+        |record: &Path| reports.join("store/series").join(record.with_extension("parquet").file_name().unwrap());
     std::fs::copy(series(&pairs[3]), series(&pairs[0])).unwrap();
-    let not_its_own = "its series file (";
+    let not_its_own = "its series table (";
     let huge = std::fs::read_to_string(&pairs[1]).unwrap().replacen("\"wall_s\":", "\"wall_s\":1e999,\"x\":", 1);
     std::fs::write(&pairs[1], huge).unwrap();
     std::fs::write(&pairs[2], "{\"run_id\": ").unwrap();

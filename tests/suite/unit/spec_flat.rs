@@ -39,3 +39,20 @@ fn a_field_of_another_kind_is_refused() {
     let error = serde_json::from_value::<RunSpec>(json).unwrap_err().to_string();
     assert!(error.contains("a lattice run has no `gap`"), "{error}");
 }
+
+/// `output.series` is stored with the run (a record says which series it kept) but is no part
+/// of its id: the same run keeps one id whichever series its files keep, and a run keeping the
+/// default series is written as before the field existed.
+#[test]
+fn output_series_is_stored_but_not_part_of_the_run_id() {
+    let yaml =
+        |output: &str| format!("version: 1\nname: t\nscenes:\n  - {{name: c, kind: chain, v0: 1.0, n: 5{output}}}\n");
+    let default = mdsolids::spec::parse("t.yaml", &yaml("")).unwrap().runs.remove(0);
+    let full = mdsolids::spec::parse("t.yaml", &yaml(", output: {series: full}")).unwrap().runs.remove(0);
+    assert_eq!(full.series, mdsolids::spec::SeriesKept::Full);
+    assert_eq!(full.run_id(), default.run_id());
+    let json = serde_json::to_value(&full).unwrap();
+    assert_eq!(json["series"], "full");
+    assert_eq!(serde_json::from_value::<RunSpec>(json).unwrap(), full);
+    assert!(serde_json::to_value(&default).unwrap().get("series").is_none());
+}
