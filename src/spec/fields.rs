@@ -91,12 +91,10 @@ impl<'de> Deserializer<'de> for FieldRecorder<'_> {
         {
             let mut record = self.record.borrow_mut();
             record.outermost.get_or_insert(name);
-            if let Some(path) = self.prefix.strip_suffix('.') {
-                if entered {
+            if entered {
+                if let Some(path) = self.prefix.strip_suffix('.') {
                     record.sections.insert(path.to_string());
                 }
-            }
-            if entered {
                 record.paths.extend(fields.iter().map(|field| format!("{}{field}", self.prefix)));
             }
         }
