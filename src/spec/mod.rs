@@ -4,6 +4,7 @@
 
 // The kind tag's enum and every kind's own types (`PairRun`, `ChainRun`, `LatticeSpec`, ...),
 // which `kind` re-exports: a new kind adds none here.
+pub use self::fields::{campaign_fields, scene_fields};
 pub use self::issue::Num;
 pub use self::kind::*;
 pub use self::name::MAX_NAME_LEN;
@@ -16,6 +17,7 @@ pub use self::shared::{RelaxSpec, WaveSpec};
 
 pub use self::resolve::DEFAULT_DT_PER_TC;
 
+mod fields;
 pub mod finite;
 mod flat;
 pub mod grid;

@@ -11,6 +11,7 @@ mod combinations;
 mod common;
 mod compare;
 mod dense;
+mod docs;
 mod fast_paths;
 mod faults;
 mod hostile;
