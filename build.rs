@@ -1,6 +1,6 @@
 //! Build script: fingerprints the source that computes a run's stored result, so that every
 //! record can name the build that made it (`RunRecord::build`) and a rebuilt binary with other
-//! physics never serves old numbers as its own (README, "Stale results and corrupt records").
+//! physics never serves old numbers as its own (docs/guarantees.md, "Stale results and corrupt records").
 
 use std::path::{Path, PathBuf};
 

@@ -1,4 +1,4 @@
-//! Criterion benchmarks of the reference workload's kernels (README, "Performance"): the force
+//! Criterion benchmarks of the reference workload's kernels (docs/performance.md): the force
 //! loop and one velocity-Verlet step, at N = 100, 316 and 1000, on one thread; then both
 //! workloads of `mdsolids bench` side by side, `kernel` and `relax` (damped, loaded, clamped,
 //! checked), through the whole time loop. Throughput is in particles, so criterion's "elem/s"

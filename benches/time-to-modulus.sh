@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Time to a modulus, LAMMPS against mdsolids in one session (README, "Time to a modulus"): the
+# Time to a modulus, LAMMPS against mdsolids in one session (docs/performance.md, "Time to a modulus"): the
 # network of ../shared/bench/in.minimize (square lattice with both diagonals, k = 1, k_d = 0.5,
 # a = 1, m = 1, clamped bottom row, F = 1e-3 up on every top-row node) at N x N, brought to rest
 # by LAMMPS's `minimize` (CG, then FIRE; one process, ftol 1e-8) and by mdsolids (the static

@@ -1,4 +1,4 @@
-//! The reference workloads of the performance figures (README, "Performance"), as scenes.
+//! The reference workloads of the performance figures (docs/performance.md), as scenes.
 //!
 //! `kernel`: an N × N square lattice, spacing 1 m, masses 1 kg, springs k = 1 N/m to nearest
 //! neighbours and k_d = 0.5 N/m across both diagonals, linear, undamped, all particles free, at

@@ -98,7 +98,7 @@ pub enum Command {
         #[arg(long)]
         force: bool,
     },
-    /// Time the reference workloads (README, "Performance") on an N × N lattice with diagonals:
+    /// Time the reference workloads (docs/performance.md) on an N × N lattice with diagonals:
     /// `kernel` (undamped, free, velocity Verlet) and `relax` (a damped, loaded, clamped
     /// coursework lattice with its relaxation checks); prints particle-steps/s, bond-updates/s
     /// and energy drift.

@@ -1,5 +1,5 @@
 //! The results table: one row per run, as a Polars frame, written as CSV and Parquet.
-//! Column names are a contract other tools read (README, "Results table").
+//! Column names are a contract other tools read (docs/results.md, "The results table").
 
 use anyhow::Context as _;
 use polars::prelude::*;

@@ -30,7 +30,7 @@ pub enum LatticeType {
 }
 
 impl LatticeType {
-    /// Every type, in the order of the README.
+    /// Every type, in the order docs/campaigns.md lists them (`lattice.type`).
     pub const ALL: [LatticeType; 4] =
         [LatticeType::Square, LatticeType::Triangular, LatticeType::Honeycomb, LatticeType::Kagome];
 

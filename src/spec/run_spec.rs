@@ -268,8 +268,7 @@ impl RunSpec {
     /// displacement bound, capped at `steps` (`relax.max_tc`); `None` for any other run, and
     /// for a network that may be floppy (bonds cut) with `relax.residual_force` given: that
     /// fallback took 10–300 × as many, erratically (14 000 – 630 000 at 20 … 160 rows), so the
-    /// cap stands. Fitted to runs of `campaigns/relax-methods.yaml`'s steel block (README,
-    /// *Performance*), n rows along the load:
+    /// cap stands. Fitted to runs of `campaigns/relax-methods.yaml`'s steel block (docs/performance.md), n rows along the load:
     /// - at tolerance 1e-4 under tension, FIRE 8.5 · n^1.04 (n = 20 … 1000) but at least 250
     ///   (319 at n = 10, 232 at 20: it first spends ~45 steps growing its step from dt to
     ///   Δt_max), and CG 4.7 · n^1.25 (n = 10 … 320), each within 1.4 × of every measured count;

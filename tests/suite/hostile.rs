@@ -135,7 +135,7 @@ fn the_run_limit_counts_before_expanding() {
     assert!(error.contains("scenes[0].grid: 100100 runs (material.mass: 100 values × v0: 1001 values)"), "{error}");
     assert!(error.contains(&format!("at most {} runs", mdsolids::spec::MAX_RUNS)), "{error}");
     assert_eq!(mdsolids::spec::parse("ok.yaml", &campaign(10, 10)).unwrap().runs.len(), 100);
-    // The campaign `plan` is timed on (README, Budgets): 400 × 250, exactly at the limit.
+    // The campaign `plan` is timed on (docs/guarantees.md, "Budgets"): 400 × 250, exactly at the limit.
     let at_limit = mdsolids::spec::load(Path::new("tests/campaigns/plan-100k.yaml")).unwrap();
     assert_eq!(at_limit.runs.len() as u64, mdsolids::spec::MAX_RUNS);
 }
@@ -160,7 +160,7 @@ fn equal_numbers_written_differently_give_one_run_id() {
 }
 // ---------------------------------------------------------------------------------------------
 // Fuzzing. Cases per test are set explicitly, 3 800 together (a few seconds: the suite is sized
-// to build and run in about 80 s on 2 cores, README "Build and test times"); proptest draws new
+// to build and run in about 80 s on 2 cores, docs/performance.md, "Build and test times"); proptest draws new
 // cases on every run. For a deeper search set proptest's own variable, which then replaces every
 // count: `PROPTEST_CASES=50000 cargo test --release --test suite hostile::`.
 

@@ -227,7 +227,7 @@ fn the_displacement_bound_is_refused_under_velocity_control() {
 /// plan's count of a minimiser's force evaluations (`RunSpec::minimiser_evaluations`, which
 /// `estimated_seconds` prices at ~8 ns per particle) must come within 3 × of the count each
 /// run reports: deterministic, where seconds would depend on the machine. The fit is within
-/// 1.4 × of the blocks it was fitted to (README, *Performance*); 3 × leaves room for what lies
+/// 1.4 × of the blocks it was fitted to (docs/performance.md); 3 × leaves room for what lies
 /// between them here: other sizes, a rectangle, shear, a finer tolerance and a finer dt.
 #[test]
 fn the_plan_counts_a_minimisers_force_evaluations_within_3x() {

@@ -36,7 +36,7 @@ pub enum RelaxMethod {
 }
 
 impl RelaxMethod {
-    /// Every method, in the order the README lists them.
+    /// Every method, in the order docs/campaigns.md lists them (`relax.method`).
     pub const ALL: [RelaxMethod; 4] = [RelaxMethod::Damped, RelaxMethod::Fire, RelaxMethod::Cg, RelaxMethod::Static];
 
     /// The word in YAML and in the results table.

@@ -1,5 +1,5 @@
 //! The tests of single functions, moved out of the library so that it is not compiled twice
-//! (README, Build and test times): one module per source file, named after its path
+//! (docs/performance.md, "Build and test times"): one module per source file, named after its path
 //! (`src/spec/grid.rs` → `spec_grid`, `src/report/findings/mod.rs` → `report_findings`).
 
 mod compare_exponents;
