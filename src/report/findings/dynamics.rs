@@ -2,7 +2,7 @@
 //! against the N_s t_c estimate, the dissipation time against bond and background damping, and
 //! the Hertz lattice kicked over decades of v0.
 
-use super::{Answer, Evidence, Table, Verdict, cell, fastest_relaxation, rel, relative, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, fastest_relaxation, rel, relative, sig};
 use crate::model::LawSpec;
 use crate::report::figure::{background_damping_only, bond_damping_only};
 use crate::runner::RunRecord;

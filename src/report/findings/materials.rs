@@ -5,7 +5,7 @@
 use crate::report::solids::mean_spread;
 use std::collections::BTreeMap;
 
-use super::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, rel, relative, sig};
 use crate::model::LawSpec;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
@@ -273,8 +273,8 @@ fn anisotropic_rows(groups: &BTreeMap<String, Vec<&RunRecord>>) -> (Vec<Vec<Stri
             sentences.push(format!(
                 "{key}: E_y/E_x = {}, ν = {} loaded along y and {} along x{}.",
                 sig(y / x),
-                super::noise(nu_y, 1.0),
-                super::noise(nu_x, 1.0),
+                noise(nu_y, 1.0),
+                noise(nu_x, 1.0),
                 if (y / x - 1.0).abs() > 1e-3 { ": the directions differ" } else { ": isotropic in E" }
             ));
         }
@@ -282,8 +282,8 @@ fn anisotropic_rows(groups: &BTreeMap<String, Vec<&RunRecord>>) -> (Vec<Vec<Stri
             key.clone(),
             cell(e_y),
             cell(e_x),
-            super::noise(nu_y, 1.0),
-            super::noise(nu_x, 1.0),
+            noise(nu_y, 1.0),
+            noise(nu_x, 1.0),
             cell(modulus(rs, LoadCase::Shear, false, |r| r.metrics.lattice.shear_modulus)),
         ]);
     }

@@ -2,7 +2,7 @@
 //! restitution, the time step, the chain of 11 against its normal modes, Hertz springs, and the
 //! chain between moved walls.
 
-use super::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
 use crate::measure::convergence_order;
 use crate::model::LawSpec;
 use crate::report::figure::representative;

@@ -3,7 +3,7 @@
 //! FIRE and CG, each against the critically damped bound in steps and the static answer of the
 //! same network.
 
-use super::{Answer, Evidence, Table, Verdict, cell, extremes, relative, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, extremes, relative, sig};
 use crate::runner::RunRecord;
 use crate::sim::{RelaxMethod, RunStatus};
 use crate::study::lattice::critical_bound_steps;

@@ -5,9 +5,10 @@
 
 use std::collections::BTreeMap;
 
-use super::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, rel, relative, sig};
 use crate::measure::convergence_order;
 use crate::model::LawSpec;
+use crate::report::figure::{FigureRef, representative};
 use crate::report::words::contact_time_words;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
@@ -31,7 +32,7 @@ fn order_text(order: Option<f64>) -> String {
 }
 
 /// The figures `(scene, part)` that exist.
-fn figures(e: &Evidence, wanted: &[(&str, &str)]) -> Vec<super::FigureRef> {
+fn figures(e: &Evidence, wanted: &[(&str, &str)]) -> Vec<FigureRef> {
     wanted.iter().filter_map(|(scene, part)| e.figure(scene, part)).collect()
 }
 
@@ -183,8 +184,8 @@ pub(super) fn lattice_time_step(e: &Evidence) -> Option<Answer> {
         cell(coarsest.metrics.energy_error),
         cell(finest.metrics.energy_error),
         relative(coarsest.metrics.arrival_time(), finest.metrics.arrival_time()).map(rel).unwrap_or_else(|| "–".into()),
-        cell(super::super::figure::representative(&sweep).metrics.energy_error),
-        cell(super::super::figure::representative(&sweep).metrics.dt_omega_max),
+        cell(representative(&sweep).metrics.energy_error),
+        cell(representative(&sweep).metrics.dt_omega_max),
     )];
     Some(Answer {
         title: "The time step on a lattice",
@@ -367,7 +368,7 @@ fn moduli(e: &Evidence, case: LoadCase) -> Option<Moduli> {
             cell(theory),
             relative(md, fem).map(rel).unwrap_or_else(|| "–".into()),
             relative(fem, theory).map(rel).unwrap_or_else(|| "–".into()),
-            super::noise(r.metrics.lattice.poisson_ratio, 1.0),
+            noise(r.metrics.lattice.poisson_ratio, 1.0),
         ]);
     }
     let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
@@ -417,7 +418,7 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
                 r.spec.lattice().map(lattice_words).unwrap_or_default(),
                 cell(r.metrics.lattice.youngs_modulus),
                 cell(r.metrics.lattice.youngs_modulus_theory),
-                super::noise(r.metrics.lattice.poisson_ratio, 1.0),
+                noise(r.metrics.lattice.poisson_ratio, 1.0),
                 if periodic { String::new() } else { cell(r.metrics.lattice.poisson_ratio_theory) },
             ),
         );
@@ -431,7 +432,7 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
                 format!(
                     "E = {} Pa, ν = {} ({}); MD = static truss within {STATIC_TOLERANCE}",
                     cell(r.metrics.lattice.youngs_modulus),
-                    super::noise(r.metrics.lattice.poisson_ratio, 1.0),
+                    noise(r.metrics.lattice.poisson_ratio, 1.0),
                     r.spec.lattice().map(|l| format!("{} × {}", l.nx, l.ny)).unwrap_or_default()
                 )
             },

@@ -4,7 +4,7 @@
 
 use std::collections::BTreeMap;
 
-use super::{Answer, Evidence, Table, Verdict, cell, extremes, relative, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, extremes, rel, relative, sig};
 use crate::measure::lattice_constants;
 use crate::model::LatticeType;
 use crate::runner::RunRecord;
@@ -347,11 +347,6 @@ struct Network<'a> {
 
 /// The measured E(45°)/E(0°) must lie within this fraction of the continuum's.
 const DIRECTION_TOLERANCE: f64 = 0.05;
-
-/// A relative difference with its sign, 2 digits.
-fn rel(x: f64) -> String {
-    super::rel(x)
-}
 
 /// One diluted network: its cut fraction, whether it carried the load, its linear static E (Pa).
 type Diluted = (f64, bool, Option<f64>);
