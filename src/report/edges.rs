@@ -3,7 +3,7 @@
 //! along x), one representative run per set-up of a scene that compares set-ups (with and
 //! without diagonals, or supports). A homogeneous strain makes every profile a straight line.
 
-use super::figure::Figure;
+use super::figure::{Figure, FigureKind};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
@@ -67,6 +67,7 @@ pub fn edge_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Fi
     };
     let mut figures = vec![Figure {
         scene: scene.into(),
+        kind: FigureKind::Edges,
         file: format!("plots/{scene}-edges.svg"),
         caption: format!(
             "{scene}: the relaxed sideways displacement u_x of the left and right edge nodes (two lines of one \
@@ -108,6 +109,7 @@ pub fn edge_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Fi
         };
         figures.push(Figure {
             scene: scene.into(),
+            kind: FigureKind::TopRow,
             file: format!("plots/{scene}-top-row.svg"),
             caption: format!(
                 "{scene}: the relaxed vertical displacement u_y of the loaded top row against x, the largest lattice \

@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::figure::Figure;
+use super::figure::{Figure, FigureKind};
 use super::words::{number, optional};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::model::LatticeType;
@@ -18,7 +18,9 @@ use crate::summary::ScalingFit;
 pub fn scaling_figures(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Vec<Figure>> {
     let fits: Vec<_> = fits.iter().filter(|f| f.scene == scene && f.quantity != "sound_speed").collect();
     let mut figures = Vec::new();
-    for against in ["load_per_node", "wall_displacement"] {
+    for (against, kind) in
+        [("load_per_node", FigureKind::AgainstLoad), ("wall_displacement", FigureKind::AgainstWallDisplacement)]
+    {
         let mine: Vec<_> = fits.iter().filter(|f| f.against == against).collect();
         if mine.is_empty() {
             continue;
@@ -47,6 +49,7 @@ pub fn scaling_figures(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Vec<F
         };
         figures.push(Figure {
             scene: scene.into(),
+            kind,
             file: format!("plots/{scene}-{against}.svg"),
             caption: format!(
                 "{scene}: {what} on log–log axes, secant (from the total deformation) and tangent (from a small \
@@ -257,6 +260,7 @@ pub fn ensemble_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Opt
     };
     Ok(Some(Figure {
         scene: scene.into(),
+        kind: FigureKind::Dilution,
         file: format!("plots/{scene}-dilution.svg"),
         caption: format!(
             "{scene}: {} of randomly diluted lattices (mean over seeds, its error bar ± one \

@@ -6,7 +6,7 @@
 use serde::Serialize;
 
 use crate::model::LatticeType;
-use crate::report::figure::{Figure, FigureRef, movie_refs};
+use crate::report::figure::{Figure, FigureKind, FigureRef, movie_refs};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::summary::ScalingFit;
@@ -154,12 +154,14 @@ impl<'a> Evidence<'a> {
         self.records.iter().copied().filter(|r| keep(r)).collect()
     }
 
-    /// The first figure of `scene` whose file name contains `part`.
-    pub(super) fn figure(&self, scene: &str, part: &str) -> Option<FigureRef> {
-        self.figures
-            .iter()
-            .find(|f| f.scene == scene && f.file.contains(part))
-            .map(|f| FigureRef { file: f.file.clone(), caption: f.caption.clone() })
+    /// The first figure of `scene` that shows `kind`.
+    pub(super) fn figure(&self, scene: &str, kind: FigureKind) -> Option<FigureRef> {
+        self.figures.iter().find(|f| f.scene == scene && f.kind == kind).map(Figure::reference)
+    }
+
+    /// The figures `(scene, kind)` that were drawn, in the order asked.
+    pub(super) fn figures(&self, wanted: &[(&str, FigureKind)]) -> Vec<FigureRef> {
+        wanted.iter().filter_map(|&(scene, kind)| self.figure(scene, kind)).collect()
     }
 
     /// The scaling fit of `quantity` in `scene`, if the scene swept its variable.

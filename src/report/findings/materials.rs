@@ -2,6 +2,7 @@
 //! Hertz moduli against the load, anisotropic and random networks, and MD against the static
 //! truss (FEM) answer.
 
+use crate::report::figure::FigureKind;
 use crate::report::solids::mean_spread;
 use std::collections::BTreeMap;
 
@@ -60,7 +61,7 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
     scenes.dedup();
     let figures: Vec<_> = scenes
         .iter()
-        .flat_map(|scene| [e.figure(scene, "-edges."), e.figure(scene, "-top-row.")])
+        .flat_map(|scene| [e.figure(scene, FigureKind::Edges), e.figure(scene, FigureKind::TopRow)])
         .flatten()
         .take(3)
         .collect();
@@ -187,6 +188,10 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
             ratios.iter().map(|x| format!("{x:.3}")).collect::<Vec<_>>().join(", ")
         ));
     }
+    // One figure per scene draws all of its moduli against the load.
+    let mut scenes: Vec<&str> = fits.iter().map(|f| f.scene.as_str()).collect();
+    scenes.dedup();
+    let load_figures = scenes.iter().map(|scene| e.figure(scene, FigureKind::AgainstLoad));
     Some(Answer {
         title: "Hertz lattices: moduli against the load",
         question: "Non-linear 2D: set the load to different values and analyse the moduli of the different \
@@ -195,7 +200,7 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
         sentences,
         reference: "The Hertz scaling F^(1/3); fitted exponents within 0.03.".into(),
         verdict: Verdict::of(checks),
-        figures: fits.iter().filter_map(|f| e.figure(&f.scene, f.quantity)).take(2).collect(),
+        figures: load_figures.into_iter().flatten().take(2).collect(),
         table: None,
     })
 }
@@ -313,7 +318,7 @@ pub(super) fn random(e: &Evidence) -> Option<Answer> {
         sentences,
         reference: "Effective-medium theory's rigidity threshold at half the bonds kept; an observation.".into(),
         verdict: Verdict::Observed,
-        figures: e.figure(&scene, "dilution").into_iter().collect(),
+        figures: e.figure(&scene, FigureKind::Dilution).into_iter().collect(),
         table: Some(Table {
             header: [
                 "load",

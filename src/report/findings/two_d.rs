@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, rel, relative, sig};
 use crate::measure::convergence_order;
 use crate::model::LawSpec;
-use crate::report::figure::{FigureRef, representative};
+use crate::report::figure::{FigureKind, representative};
 use crate::report::words::contact_time_words;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
@@ -29,11 +29,6 @@ fn regular(r: &RunRecord) -> Option<&LatticeSpec> {
 /// The fitted order, as text.
 fn order_text(order: Option<f64>) -> String {
     order.map(|p| format!("{p:.2}")).unwrap_or_else(|| "–".into())
-}
-
-/// The figures `(scene, part)` that exist.
-fn figures(e: &Evidence, wanted: &[(&str, &str)]) -> Vec<FigureRef> {
-    wanted.iter().filter_map(|(scene, part)| e.figure(scene, part)).collect()
 }
 
 /// The scenes of `runs`, each once, in order.
@@ -194,7 +189,7 @@ pub(super) fn lattice_time_step(e: &Evidence) -> Option<Answer> {
         sentences,
         reference: "Velocity Verlet's second order: fitted order within 0.2 of 2.".into(),
         verdict: Verdict::of([order.is_some_and(|p| (p - 2.0).abs() <= 0.2)]),
-        figures: figures(e, &[(&scene, "work-precision"), (&scene, "error-dt")]),
+        figures: e.figures(&[(&scene, FigureKind::WorkPrecision), (&scene, FigureKind::ErrorDt)]),
         table: Some(Table {
             header: ["t_c/dt", "dt·ω_max", "energy error", "arrival (s)", "vs finest"].map(String::from).to_vec(),
             rows,
@@ -301,7 +296,7 @@ pub(super) fn kick(e: &Evidence) -> Option<Answer> {
         r.spec.lattice().is_some_and(|l| l.impulse.is_some()) && r.spec.movie.is_some() && r.spec.law == LawSpec::Linear
     });
     shown.truncate(1);
-    shown.extend(figures(e, &[(&first.spec.scene, "space-time")]));
+    shown.extend(e.figures(&[(&first.spec.scene, FigureKind::SpaceTime)]));
     Some(Answer {
         title: "The upper-right kick, with and without diagonals",
         question: "Give the upper-right particle an initial velocity, animate the motion, and explain the \
@@ -443,7 +438,11 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
              rule) and the continuum constants (finite size explains the rest)."
         ),
         verdict: Verdict::of(checks),
-        figures: scenes.iter().take(1).flat_map(|s| figures(e, &[(s, "size"), (s, "relaxation")])).collect(),
+        figures: scenes
+            .iter()
+            .take(1)
+            .flat_map(|s| e.figures(&[(s, FigureKind::Size), (s, FigureKind::Relaxation)]))
+            .collect(),
         table: Some(table),
     })
 }
@@ -493,7 +492,7 @@ pub(super) fn shear(e: &Evidence) -> Option<Answer> {
         sentences,
         reference: format!("The static truss answer (tolerance {STATIC_TOLERANCE:e}) and G = k_d/d."),
         verdict: Verdict::of(checks),
-        figures: scenes.iter().take(1).flat_map(|s| figures(e, &[(s, "size")])).collect(),
+        figures: scenes.iter().take(1).flat_map(|s| e.figures(&[(s, FigureKind::Size)])).collect(),
         table: Some(table),
     })
 }

@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 use super::finding::{Answer, Evidence, Table, Verdict, cell, extremes, rel, relative, sig};
 use crate::measure::lattice_constants;
 use crate::model::LatticeType;
+use crate::report::figure::FigureKind;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::spec::{LatticeSpec, LoadCase, Supports};
@@ -506,7 +507,7 @@ pub(super) fn percolation(e: &Evidence) -> Option<Answer> {
                     Jacobs and Thorpe (1995): 0.660 for the triangular network; an observation."
             .into(),
         verdict: Verdict::Observed,
-        figures: diluted_scenes.iter().filter_map(|scene| e.figure(scene, "-dilution")).collect(),
+        figures: diluted_scenes.iter().filter_map(|scene| e.figure(scene, FigureKind::Dilution)).collect(),
         table: Some(Table {
             header: ["type", "N", "seeds", "p_c (± s.e.)", "spread", "EMT", "literature"].map(String::from).to_vec(),
             rows,
