@@ -24,13 +24,7 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
     let measured = e.ok(|r| regular(r) && r.metrics.lattice.homogeneity.is_some());
     let undefined =
         e.ok(|r| regular(r) && r.metrics.lattice.homogeneity.is_none() && r.metrics.lattice.youngs_modulus.is_some());
-    // Per (load case, supports): homogeneity by lattice size, the first run of each size.
-    let mut by_size: BTreeMap<(&'static str, &'static str), BySize> = BTreeMap::new();
-    for r in &measured {
-        let l = r.spec.lattice()?;
-        let value = r.metrics.lattice.homogeneity?;
-        by_size.entry((l.load_case.name(), l.supports.name())).or_default().entry((l.nx, l.ny)).or_insert(value);
-    }
+    let by_size = homogeneity_by_setup(&measured)?;
     let mut sentences = vec![
         "Homogeneity is the largest distance of a left- or right-edge node's horizontal displacement from the \
          straight line fitted through that edge, divided by the edges' mean horizontal displacement: 0 when the \
@@ -68,14 +62,7 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
     Some(Answer {
         title: "Homogeneity of the deformation",
         question: "After each relaxation, check that the left and right nodes are aligned on a line; discuss.",
-        short: by_size
-            .iter()
-            .find(|((case, supports), _)| *case == "tensile" && *supports == "coursework")
-            .or_else(|| by_size.iter().next())
-            .and_then(|((case, supports), sizes)| {
-                sizes.iter().next_back().map(|((nx, ny), h)| format!("{case}, {supports}, {nx} × {ny}: {}", sig(*h)))
-            })
-            .unwrap_or_default(),
+        short: homogeneity_short(&by_size),
         sentences,
         reference: "A homogeneous strain keeps the edges straight (0); an observation of how far each set-up departs \
                     from it."
@@ -84,6 +71,30 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
         figures,
         table: Some(Table { header: ["load", "supports", "lattice", "homogeneity"].map(String::from).to_vec(), rows }),
     })
+}
+
+/// Per (load case, supports): homogeneity by lattice size, the first run of each size.
+fn homogeneity_by_setup(measured: &[&RunRecord]) -> Option<BTreeMap<(&'static str, &'static str), BySize>> {
+    let mut by_size: BTreeMap<(&'static str, &'static str), BySize> = BTreeMap::new();
+    for r in measured {
+        let l = r.spec.lattice()?;
+        let value = r.metrics.lattice.homogeneity?;
+        by_size.entry((l.load_case.name(), l.supports.name())).or_default().entry((l.nx, l.ny)).or_insert(value);
+    }
+    Some(by_size)
+}
+
+/// The summary's homogeneity: the largest lattice of the coursework's set-up (tension on its
+/// supports), or of the first set-up when the campaign lacks it.
+fn homogeneity_short(by_size: &BTreeMap<(&'static str, &'static str), BySize>) -> String {
+    by_size
+        .iter()
+        .find(|((case, supports), _)| *case == "tensile" && *supports == "coursework")
+        .or_else(|| by_size.iter().next())
+        .and_then(|((case, supports), sizes)| {
+            sizes.iter().next_back().map(|((nx, ny), h)| format!("{case}, {supports}, {nx} × {ny}: {}", sig(*h)))
+        })
+        .unwrap_or_default()
 }
 
 /// How flat the loaded top row of the largest tensile lattice rises, without and with
