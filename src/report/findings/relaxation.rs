@@ -4,6 +4,7 @@
 //! same network.
 
 use super::finding::{Answer, Evidence, Table, Verdict, cell, extremes, relative, sig};
+use crate::report::figure::MINIMISERS;
 use crate::runner::RunRecord;
 use crate::sim::{RelaxMethod, RunStatus};
 use crate::study::lattice::critical_bound_steps;
@@ -183,7 +184,7 @@ fn fixed_damping_sentence(e: &Evidence) -> Option<String> {
 /// Per minimiser, its force evaluations over the bound's steps.
 fn minimiser_sentences(e: &Evidence) -> Vec<String> {
     let mut sentences = Vec::new();
-    for minimiser in [RelaxMethod::Fire, RelaxMethod::Cg] {
+    for minimiser in MINIMISERS {
         let mine = e.ok(|r| bounded(r) && r.spec.relax().is_some_and(|relax| relax.method == minimiser));
         let ratios: Vec<f64> = mine.iter().filter_map(|r| over_bound(r)).collect();
         if ratios.is_empty() {
