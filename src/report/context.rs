@@ -296,11 +296,7 @@ fn section(
         physics,
         t_c: number(s.t_c),
         dt_50: number(s.t_c / 50.0),
-        figures: figures
-            .iter()
-            .filter(|f| f.scene == scene)
-            .map(|f| FigureRef { file: f.file.clone(), caption: f.caption.clone() })
-            .collect(),
+        figures: figures.iter().filter(|f| f.scene == scene).map(Figure::reference).collect(),
         pair_rows: if kind == SceneKind::Pair { mine.iter().map(|r| pair_row(r)).collect() } else { Vec::new() },
         orders: if kind == SceneKind::Pair { order_rows(records, scene) } else { Vec::new() },
         chain_rows: mine

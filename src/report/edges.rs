@@ -3,7 +3,7 @@
 //! along x), one representative run per set-up of a scene that compares set-ups (with and
 //! without diagonals, or supports). A homogeneous strain makes every profile a straight line.
 
-use super::figure::Figure;
+use super::figure::{Figure, FigureKind};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
@@ -14,6 +14,22 @@ use crate::spec::{Control, Diagonals, LoadCase};
 /// the diagonals or the supports (the set-ups the homogeneity finding compares) and some run
 /// relaxed with its edges recorded.
 pub fn edge_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Figure>> {
+    let shown = profiled_setups(records, scene);
+    if shown.is_empty() {
+        return Ok(Vec::new());
+    }
+    let tensile: Vec<&RunRecord> =
+        shown.iter().copied().filter(|r| r.spec.lattice().is_some_and(|l| l.load_case == LoadCase::Tensile)).collect();
+    let mut figures = vec![sideways_figure(scene, &shown)?];
+    if !tensile.is_empty() {
+        figures.push(top_row_figure(scene, &tensile, shown[0].spec.spacing)?);
+    }
+    Ok(figures)
+}
+
+/// The largest relaxed lattice of each set-up of `scene` with its edges recorded; none unless
+/// every run of the scene is one homogeneity is judged on and its grid compares set-ups.
+fn profiled_setups<'a>(records: &'a [RunRecord], scene: &str) -> Vec<&'a RunRecord> {
     let compares = |r: &RunRecord| r.spec.varied.keys().any(|k| k == "lattice.diagonals" || k == "supports");
     // The regular, linear lattices homogeneity is judged on (a scene with anisotropic or random
     // ones compares those instead), under a force load (a driven top row is flat by construction).
@@ -29,13 +45,14 @@ pub fn edge_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Fi
     };
     let runs: Vec<&RunRecord> = records.iter().filter(|r| r.spec.scene == scene && r.status == RunStatus::Ok).collect();
     if !runs.iter().all(|r| regular(r) && compares(r)) {
-        return Ok(Vec::new());
+        return Vec::new();
     }
     let mine: Vec<&RunRecord> = runs.into_iter().filter(|r| r.metrics.lattice.edge_displacements.is_some()).collect();
-    let shown = largest_per_setup(&mine);
-    if shown.is_empty() {
-        return Ok(Vec::new());
-    }
+    largest_per_setup(&mine)
+}
+
+/// The left and right edges' sideways displacement against height, one colour per set-up.
+fn sideways_figure(scene: &str, shown: &[&RunRecord]) -> anyhow::Result<Figure> {
     let size = |r: &RunRecord| r.spec.lattice().map_or(0, |l| l.nx.max(l.ny));
     let sizes: Vec<String> = shown
         .iter()
@@ -65,8 +82,9 @@ pub fn edge_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Fi
         y_label: "height y (m)".into(),
         scale: Scale::Linear,
     };
-    let mut figures = vec![Figure {
+    Ok(Figure {
         scene: scene.into(),
+        kind: FigureKind::Edges,
         file: format!("plots/{scene}-edges.svg"),
         caption: format!(
             "{scene}: the relaxed sideways displacement u_x of the left and right edge nodes (two lines of one \
@@ -80,44 +98,40 @@ pub fn edge_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Fi
             }
         ),
         image: line_chart(&chart, &series)?,
-    }];
-    let tensile: Vec<&&RunRecord> =
-        shown.iter().filter(|r| r.spec.lattice().is_some_and(|l| l.load_case == LoadCase::Tensile)).collect();
-    if !tensile.is_empty() {
-        let series: Vec<Series> = tensile
-            .iter()
-            .map(|r| {
-                let edges = r.metrics.lattice.edge_displacements.as_ref().expect("filtered");
-                Series {
-                    label: setup_label(r),
-                    points: edges
-                        .top_y
-                        .iter()
-                        .enumerate()
-                        .map(|(ix, &u)| (ix as f64 * spacing, u / MICROMETRE))
-                        .collect(),
-                    mark: Mark::Line,
-                }
-            })
-            .collect();
-        let chart = Chart {
-            title: format!("{scene}: vertical displacement of the top row"),
-            x_label: "position x along the top row (m)".into(),
-            y_label: "vertical displacement u_y (µm)".into(),
-            scale: Scale::Linear,
-        };
-        figures.push(Figure {
-            scene: scene.into(),
-            file: format!("plots/{scene}-top-row.svg"),
-            caption: format!(
-                "{scene}: the relaxed vertical displacement u_y of the loaded top row against x, the largest lattice \
-                 of each set-up under tension. A homogeneous stretch lifts the row flat (u_y = ε L_y everywhere); a \
-                 bow is the supports' and the free sides' disturbance."
-            ),
-            image: line_chart(&chart, &series)?,
-        });
-    }
-    Ok(figures)
+    })
+}
+
+/// The loaded top row's vertical displacement along x, one line per tensile set-up, its nodes
+/// `spacing` apart.
+fn top_row_figure(scene: &str, tensile: &[&RunRecord], spacing: f64) -> anyhow::Result<Figure> {
+    let series: Vec<Series> = tensile
+        .iter()
+        .map(|r| {
+            let edges = r.metrics.lattice.edge_displacements.as_ref().expect("filtered");
+            Series {
+                label: setup_label(r),
+                points: edges.top_y.iter().enumerate().map(|(ix, &u)| (ix as f64 * spacing, u / MICROMETRE)).collect(),
+                mark: Mark::Line,
+            }
+        })
+        .collect();
+    let chart = Chart {
+        title: format!("{scene}: vertical displacement of the top row"),
+        x_label: "position x along the top row (m)".into(),
+        y_label: "vertical displacement u_y (µm)".into(),
+        scale: Scale::Linear,
+    };
+    Ok(Figure {
+        scene: scene.into(),
+        kind: FigureKind::TopRow,
+        file: format!("plots/{scene}-top-row.svg"),
+        caption: format!(
+            "{scene}: the relaxed vertical displacement u_y of the loaded top row against x, the largest lattice \
+             of each set-up under tension. A homogeneous stretch lifts the row flat (u_y = ε L_y everywhere); a \
+             bow is the supports' and the free sides' disturbance."
+        ),
+        image: line_chart(&chart, &series)?,
+    })
 }
 
 /// 1 µm in m: the edges of a loaded lattice move by micrometres, read best in their unit.

@@ -9,10 +9,52 @@ use crate::runner::RunRecord;
 use crate::sim::{RelaxMethod, RunStatus};
 use crate::spec::RunSpec;
 
+/// What a figure shows: the key a finding asks for it by, set where the figure is drawn, so a
+/// finding names the figure it wants by what it is rather than by a piece of its file name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FigureKind {
+    /// Kinetic, potential and dissipated energy against time (`figures.rs`).
+    Energy,
+    /// A chain's displacements, one line per particle (`figures.rs`).
+    Displacements,
+    /// A pair's contact duration and restitution against dt (`figures.rs`).
+    Convergence,
+    /// E_kin/E_pot against time while a lattice relaxes or a chain's wave spreads (`figures.rs`).
+    Relaxation,
+    /// Moduli over the continuum's against the lattice size (`figures.rs`).
+    Size,
+    /// The dissipation time against the damping coefficient, across scenes (`figures.rs`).
+    Damping,
+    /// The relaxed edge profiles u_x of the left and right edges (`edges.rs`).
+    Edges,
+    /// The relaxed u_y of the loaded top row (`edges.rs`).
+    TopRow,
+    /// Error against the time loop's wall time (`precision.rs`).
+    WorkPrecision,
+    /// Error against dt/t_c (`precision.rs`).
+    ErrorDt,
+    /// A probe's field against time (`probes.rs`).
+    Probe,
+    /// Moduli against the load per node, with their power laws (`solids.rs`).
+    AgainstLoad,
+    /// A chain's stiffness against the wall displacement, with its power law (`solids.rs`).
+    AgainstWallDisplacement,
+    /// Random lattices' moduli against the kept bond fraction (`solids.rs`).
+    Dilution,
+    /// The stability map of one integrator (`stability_map.rs`).
+    Stability,
+    /// The sound speed against the impact speed v0 (`waves.rs`).
+    SpeedAgainstV0,
+    /// Displacement of every row or particle against time (`waves.rs`).
+    SpaceTime,
+}
+
 /// A drawn figure.
 pub struct Figure {
     /// Scene it belongs to.
     pub scene: String,
+    /// What it shows.
+    pub kind: FigureKind,
     /// Path relative to the campaign directory (`plots/….svg`); `render` gives it the extension
     /// of the drawn image before it is written (`.png` for a heavy figure, `Image::file_name`).
     pub file: String,
@@ -20,6 +62,13 @@ pub struct Figure {
     pub caption: String,
     /// The drawing: SVG, or PNG when heavy.
     pub image: crate::draw::chart::Image,
+}
+
+impl Figure {
+    /// The figure as the report shows it.
+    pub fn reference(&self) -> FigureRef {
+        FigureRef { file: self.file.clone(), caption: self.caption.clone() }
+    }
 }
 
 /// A figure or movie as the report shows it: its file and caption.
@@ -59,11 +108,15 @@ pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> 
         .collect()
 }
 
+/// The relaxation methods that minimise the energy rather than move in time: the one list the
+/// report reads them from, so a new minimiser is described and timed without touching a finding.
+pub const MINIMISERS: [RelaxMethod; 2] = [RelaxMethod::Fire, RelaxMethod::Cg];
+
 /// What the frames of a run with no time show (a minimiser or the static solve): two states,
 /// not a motion.
 fn untimed_in_words(spec: &RunSpec) -> &'static str {
     match spec.relax().map(|r| r.method) {
-        Some(RelaxMethod::Fire | RelaxMethod::Cg) => {
+        Some(method) if MINIMISERS.contains(&method) => {
             " The minimiser has no time: two frames, the start and the state it stopped at (captioned)."
         }
         Some(RelaxMethod::Static) => " The static solve has no time: two frames, the start and the static answer.",

@@ -2,7 +2,9 @@
 //! energies per scene, chain displacements, relaxation, the finite-size convergence of lattice
 //! moduli, and the convergence of the pair measurements against their analytical values.
 
-use super::figure::{Figure, background_damping_only, bond_damping_only, group_label, groups, representative};
+use super::figure::{
+    Figure, FigureKind, background_damping_only, bond_damping_only, group_label, groups, representative,
+};
 use super::{edges, precision, probes, solids, stability_map, waves};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::measure::relative_error;
@@ -121,6 +123,7 @@ fn dissipation_figure(records: &[RunRecord]) -> anyhow::Result<Option<Figure>> {
     };
     Ok(Some(Figure {
         scene: "dissipation".into(),
+        kind: FigureKind::Damping,
         file: "plots/dissipation-damping.svg".into(),
         caption: "Time until each loaded lattice counts as relaxed, against its damping coefficient: bond damping \
                   alone, and background damping alone by either stopping criterion."
@@ -154,6 +157,7 @@ fn energy_figure(scene: &str, index: usize, label: &str, record: &RunRecord) -> 
     )?;
     Ok(Figure {
         scene: scene.into(),
+        kind: FigureKind::Energy,
         file: format!("plots/{scene}-energy-{index}.svg"),
         caption: format!("Kinetic, potential, dissipated and total energy against time, {scene} ({label})."),
         image,
@@ -185,6 +189,7 @@ fn displacement_figure(scene: &str, label: &str, record: &RunRecord) -> anyhow::
     };
     Ok(Figure {
         scene: scene.into(),
+        kind: FigureKind::Displacements,
         file: format!("plots/{scene}-displacements.svg"),
         caption: format!(
             "Displacement of every particle against time, {scene} ({label}): one line per particle, offset by its number."
@@ -215,6 +220,7 @@ fn convergence_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyh
     };
     Ok(Figure {
         scene: scene.into(),
+        kind: FigureKind::Convergence,
         file: format!("plots/{scene}-convergence.svg"),
         caption: format!(
             "Relative error of contact duration t_c and restitution r against dt/t_c, {scene}. A slope of 2 on these axes is second order."
@@ -301,6 +307,7 @@ fn relaxation_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyho
     };
     Ok(Figure {
         scene: scene.into(),
+        kind: FigureKind::Relaxation,
         file: format!("plots/{scene}-relaxation.svg"),
         caption: format!(
             "Kinetic over potential energy against time, {scene}, {} of its {} runs spread over the grid: a loaded lattice relaxing (markers: where each run counts as relaxed; line: the energy criterion's threshold), or an impulse spreading.",
@@ -369,6 +376,7 @@ fn size_figure(scene: &str, records: &[RunRecord]) -> anyhow::Result<Option<Figu
     };
     Ok(Some(Figure {
         scene: scene.into(),
+        kind: FigureKind::Size,
         file: format!("plots/{scene}-size.svg"),
         caption: format!(
             "E (tensile) or G (shear) of the {scene} lattices over the continuum value, against size: lines the static answer, markers the relaxed MD."

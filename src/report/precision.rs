@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use super::figure::{Figure, groups, representative};
+use super::figure::{Figure, FigureKind, groups, representative};
 use super::words::{number, optional};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::measure::{Recommendation, convergence_order, recommended_dt};
@@ -119,6 +119,7 @@ pub fn precision_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<V
     Ok(vec![
         Figure {
             scene: scene.into(),
+            kind: FigureKind::WorkPrecision,
             file: format!("plots/{scene}-work-precision.svg"),
             caption: format!(
                 "Error against the wall time of the time loop, one line per integrator and setting, {scene}: \
@@ -128,6 +129,7 @@ pub fn precision_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<V
         },
         Figure {
             scene: scene.into(),
+            kind: FigureKind::ErrorDt,
             file: format!("plots/{scene}-error-dt.svg"),
             caption: format!("Error against dt/t_c, {scene}: a slope of p on these axes is order p."),
             image: line_chart(&convergence, &curves(&|r| 1.0 / r.spec.dt_per_tc()))?,

@@ -1,7 +1,7 @@
 //! Probed lines of a lattice: the space–time maps of their displacement and velocity (every
 //! node's series is in `probes/<run_id>.parquet`, which the runner stores: `runner::record`).
 
-use super::figure::Figure;
+use super::figure::{Figure, FigureKind};
 use crate::draw::chart::{Chart, Scale, heatmap};
 use crate::runner::{RunRecord, is_asked_for};
 use crate::sim::RunStatus;
@@ -41,6 +41,7 @@ pub fn probe_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<F
             };
             figures.push(Figure {
                 scene: scene.into(),
+                kind: FigureKind::Probe,
                 file: format!("plots/{scene}-probe-{slug}-{what}.svg"),
                 caption: format!(
                     "Probe on {} of {scene}: {what} along {axis} of each of its nodes against time, red positive, \

@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::figure::Figure;
+use super::figure::{Figure, FigureKind};
 use super::words::{number, optional};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::model::LatticeType;
@@ -18,7 +18,9 @@ use crate::summary::ScalingFit;
 pub fn scaling_figures(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Vec<Figure>> {
     let fits: Vec<_> = fits.iter().filter(|f| f.scene == scene && f.quantity != "sound_speed").collect();
     let mut figures = Vec::new();
-    for against in ["load_per_node", "wall_displacement"] {
+    for (against, kind) in
+        [("load_per_node", FigureKind::AgainstLoad), ("wall_displacement", FigureKind::AgainstWallDisplacement)]
+    {
         let mine: Vec<_> = fits.iter().filter(|f| f.against == against).collect();
         if mine.is_empty() {
             continue;
@@ -47,6 +49,7 @@ pub fn scaling_figures(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Vec<F
         };
         figures.push(Figure {
             scene: scene.into(),
+            kind,
             file: format!("plots/{scene}-{against}.svg"),
             caption: format!(
                 "{scene}: {what} on log–log axes, secant (from the total deformation) and tangent (from a small \
@@ -192,13 +195,51 @@ pub fn ensemble_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Opt
     else {
         return Ok(None);
     };
+    let series = ensemble_series(&ensembles, threshold);
+    if series.is_empty() {
+        return Ok(None);
+    }
+    let chart = Chart {
+        title: format!("{scene}: moduli against the kept bond fraction"),
+        x_label: "kept fraction p of the interior bonds".into(),
+        y_label: "modulus (Pa)".into(),
+        scale: Scale::Linear,
+    };
+    Ok(Some(Figure {
+        scene: scene.into(),
+        kind: FigureKind::Dilution,
+        file: format!("plots/{scene}-dilution.svg"),
+        caption: format!(
+            "{scene}: {} of randomly diluted lattices (mean over seeds, its error bar ± one \
+             standard deviation) against the kept fraction p of the interior bonds, beside the effective-medium line for \
+             central-force networks, falling linearly to zero at p = 2d/z = {threshold:.3}. Networks that lost rigidity \
+             (status mechanism) have no stiffness and count as 0; runs that did not settle are left out.{}",
+            match (series.iter().any(|s| s.label.starts_with('E')), series.iter().any(|s| s.label.starts_with('G'))) {
+                (true, true) => "Young's and shear moduli",
+                (true, false) => "Young's modulus",
+                _ => "the shear modulus",
+            },
+            if ensembles.iter().any(|(_, _, m)| m.iter().any(|r| r.spec.static_only())) {
+                " Moduli of the static answer (relax.method: static, no MD)."
+            } else {
+                ""
+            }
+        ),
+        image: line_chart(&chart, &series)?,
+    }))
+}
+
+/// The series of [`ensemble_figure`]: per modulus, each ensemble label's mean over seeds against
+/// the kept fraction with its spread, and one effective-medium line through the first series
+/// that vanishes at `threshold`.
+fn ensemble_series(ensembles: &[Ensemble], threshold: f64) -> Vec<Series> {
     // One series per ensemble's grid values but its seeds and its kept fraction (the x axis).
     let series_label = |members: &[&RunRecord]| {
         members[0].spec.varied_in_words(|path| path != "seed" && path != "lattice.cut_fraction")
     };
     // In the campaign's order (sizes 16, 32, 64, 128; not as strings, 128 before 16).
     let mut labels: Vec<String> = Vec::new();
-    for (_, _, members) in &ensembles {
+    for (_, _, members) in ensembles {
         let label = series_label(members);
         if !labels.contains(&label) {
             labels.push(label);
@@ -246,34 +287,5 @@ pub fn ensemble_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Opt
             }
         }
     }
-    if series.is_empty() {
-        return Ok(None);
-    }
-    let chart = Chart {
-        title: format!("{scene}: moduli against the kept bond fraction"),
-        x_label: "kept fraction p of the interior bonds".into(),
-        y_label: "modulus (Pa)".into(),
-        scale: Scale::Linear,
-    };
-    Ok(Some(Figure {
-        scene: scene.into(),
-        file: format!("plots/{scene}-dilution.svg"),
-        caption: format!(
-            "{scene}: {} of randomly diluted lattices (mean over seeds, its error bar ± one \
-             standard deviation) against the kept fraction p of the interior bonds, beside the effective-medium line for \
-             central-force networks, falling linearly to zero at p = 2d/z = {threshold:.3}. Networks that lost rigidity \
-             (status mechanism) have no stiffness and count as 0; runs that did not settle are left out.{}",
-            match (series.iter().any(|s| s.label.starts_with('E')), series.iter().any(|s| s.label.starts_with('G'))) {
-                (true, true) => "Young's and shear moduli",
-                (true, false) => "Young's modulus",
-                _ => "the shear modulus",
-            },
-            if ensembles.iter().any(|(_, _, m)| m.iter().any(|r| r.spec.static_only())) {
-                " Moduli of the static answer (relax.method: static, no MD)."
-            } else {
-                ""
-            }
-        ),
-        image: line_chart(&chart, &series)?,
-    }))
+    series
 }

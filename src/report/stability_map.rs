@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use super::figure::Figure;
+use super::figure::{Figure, FigureKind};
 use super::words::{number, optional};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::runner::RunRecord;
@@ -187,6 +187,7 @@ pub fn stability_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<V
         };
         figures.push(Figure {
             scene: scene.into(),
+            kind: FigureKind::Stability,
             file: format!("plots/{scene}-stability-{}.svg", integrator.name()),
             caption: format!(
                 "Stability map of {scene} with {}: each run at its dt·ω_max (ω_max estimated before the run), \

@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use super::figure::Figure;
+use super::figure::{Figure, FigureKind};
 use super::words::{impulse_words, number, optional};
 use crate::draw::chart::{Chart, Mark, Scale, Series, heatmap, line_chart};
 use crate::measure::ARRIVAL_CRITERIA;
@@ -86,6 +86,7 @@ fn speed_figure(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Option<Figur
     };
     Ok(Some(Figure {
         scene: scene.into(),
+        kind: FigureKind::SpeedAgainstV0,
         file: format!("plots/{scene}-speed-v0.svg"),
         caption: format!(
             "Sound speed by the recommended criterion against the impact speed v0, {scene}, with the fitted power \
@@ -145,6 +146,7 @@ fn space_time_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Optio
     };
     Ok(Some(Figure {
         scene: scene.into(),
+        kind: FigureKind::SpaceTime,
         file: format!("plots/{scene}-space-time.svg"),
         caption: format!(
             "Displacement along {what} of every {rows} against time, {scene}: red positive, blue negative, \

@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::{Answer, Evidence, Table, Verdict, cell, fastest_relaxation, noise, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, fastest_relaxation, noise, relative, sig};
 use crate::model::LawSpec;
 use crate::report::figure::{background_damping_only, bond_damping_only};
 use crate::runner::RunRecord;
@@ -144,7 +144,7 @@ fn time_step(e: &Evidence) -> Option<Paragraph> {
                 && (r.spec.dt_per_tc() - 50.0).abs() < 1.0
         })
         .iter()
-        .filter_map(|r| super::relative(r.metrics.pair.contact_duration, r.metrics.pair.contact_duration_theory))
+        .filter_map(|r| relative(r.metrics.pair.contact_duration, r.metrics.pair.contact_duration_theory))
         .map(f64::abs)
         .reduce(f64::max);
     let on_pairs = pair_error.map_or(String::new(), |error| format!(" On two particles it keeps t_c to {error:.1e}."));

@@ -2,9 +2,9 @@
 //! against the N_s t_c estimate, the dissipation time against bond and background damping, and
 //! the Hertz lattice kicked over decades of v0.
 
-use super::{Answer, Evidence, Table, Verdict, cell, fastest_relaxation, rel, relative, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, fastest_relaxation, rel, relative, sig};
 use crate::model::LawSpec;
-use crate::report::figure::{background_damping_only, bond_damping_only};
+use crate::report::figure::{FigureKind, background_damping_only, bond_damping_only};
 use crate::runner::RunRecord;
 
 /// Relative tolerance of a linear chain's front speed against a√(k/m): a threshold θ = 0.01 of
@@ -44,10 +44,8 @@ pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
              the dispersive front early)."
         ),
         verdict: Verdict::of([error.is_some_and(|x| x.abs() <= SPEED_TOLERANCE)]),
-        figures: [(&chain.spec.scene[..], "space-time"), (&chain.spec.scene[..], "speed-v0")]
-            .iter()
-            .filter_map(|(s, p)| e.figure(s, p))
-            .collect(),
+        figures: e
+            .figures(&[(&chain.spec.scene, FigureKind::SpaceTime), (&chain.spec.scene, FigureKind::SpeedAgainstV0)]),
         table: (!rows.is_empty()).then(|| Table {
             header: ["scene", "run", "V (m/s)", "c theory (m/s)", "error"].map(String::from).to_vec(),
             rows,
@@ -149,9 +147,9 @@ pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
     let background: Vec<&RunRecord> = relaxed.iter().copied().filter(|r| background_damping_only(r)).collect();
     let sentences = damping_sentences(first, &bond, &background);
     let scenes: Vec<String> = relaxed.iter().map(|r| r.spec.scene.clone()).collect();
-    let mut shown: Vec<_> = e.figure("dissipation", "damping").into_iter().collect();
+    let mut shown: Vec<_> = e.figure("dissipation", FigureKind::Damping).into_iter().collect();
     for s in scenes.iter().collect::<std::collections::BTreeSet<_>>() {
-        shown.extend(e.figure(s, "relaxation"));
+        shown.extend(e.figure(s, FigureKind::Relaxation));
     }
     Some(Answer {
         title: "Dissipation",
@@ -386,10 +384,7 @@ pub(super) fn hertz_kick(e: &Evidence) -> Option<Answer> {
         sentences,
         reference: "Nesterenko's solitary-wave speed ∝ v0^(1/5) for Hertz contacts; within 0.05.".into(),
         verdict: Verdict::of([(fit.fit.exponent - 0.2).abs() <= 0.05]),
-        figures: [(&fit.scene[..], "speed-v0"), (&fit.scene[..], "space-time")]
-            .iter()
-            .filter_map(|(s, p)| e.figure(s, p))
-            .collect(),
+        figures: e.figures(&[(&fit.scene, FigureKind::SpeedAgainstV0), (&fit.scene, FigureKind::SpaceTime)]),
         table: None,
     })
 }

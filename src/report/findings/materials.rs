@@ -2,10 +2,11 @@
 //! Hertz moduli against the load, anisotropic and random networks, and MD against the static
 //! truss (FEM) answer.
 
+use crate::report::figure::FigureKind;
 use crate::report::solids::mean_spread;
 use std::collections::BTreeMap;
 
-use super::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, rel, relative, sig};
 use crate::model::LawSpec;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
@@ -23,13 +24,7 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
     let measured = e.ok(|r| regular(r) && r.metrics.lattice.homogeneity.is_some());
     let undefined =
         e.ok(|r| regular(r) && r.metrics.lattice.homogeneity.is_none() && r.metrics.lattice.youngs_modulus.is_some());
-    // Per (load case, supports): homogeneity by lattice size, the first run of each size.
-    let mut by_size: BTreeMap<(&'static str, &'static str), BySize> = BTreeMap::new();
-    for r in &measured {
-        let l = r.spec.lattice()?;
-        let value = r.metrics.lattice.homogeneity?;
-        by_size.entry((l.load_case.name(), l.supports.name())).or_default().entry((l.nx, l.ny)).or_insert(value);
-    }
+    let by_size = homogeneity_by_setup(&measured)?;
     let mut sentences = vec![
         "Homogeneity is the largest distance of a left- or right-edge node's horizontal displacement from the \
          straight line fitted through that edge, divided by the edges' mean horizontal displacement: 0 when the \
@@ -60,21 +55,14 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
     scenes.dedup();
     let figures: Vec<_> = scenes
         .iter()
-        .flat_map(|scene| [e.figure(scene, "-edges."), e.figure(scene, "-top-row.")])
+        .flat_map(|scene| [e.figure(scene, FigureKind::Edges), e.figure(scene, FigureKind::TopRow)])
         .flatten()
         .take(3)
         .collect();
     Some(Answer {
         title: "Homogeneity of the deformation",
         question: "After each relaxation, check that the left and right nodes are aligned on a line; discuss.",
-        short: by_size
-            .iter()
-            .find(|((case, supports), _)| *case == "tensile" && *supports == "coursework")
-            .or_else(|| by_size.iter().next())
-            .and_then(|((case, supports), sizes)| {
-                sizes.iter().next_back().map(|((nx, ny), h)| format!("{case}, {supports}, {nx} × {ny}: {}", sig(*h)))
-            })
-            .unwrap_or_default(),
+        short: homogeneity_short(&by_size),
         sentences,
         reference: "A homogeneous strain keeps the edges straight (0); an observation of how far each set-up departs \
                     from it."
@@ -83,6 +71,30 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
         figures,
         table: Some(Table { header: ["load", "supports", "lattice", "homogeneity"].map(String::from).to_vec(), rows }),
     })
+}
+
+/// Per (load case, supports): homogeneity by lattice size, the first run of each size.
+fn homogeneity_by_setup(measured: &[&RunRecord]) -> Option<BTreeMap<(&'static str, &'static str), BySize>> {
+    let mut by_size: BTreeMap<(&'static str, &'static str), BySize> = BTreeMap::new();
+    for r in measured {
+        let l = r.spec.lattice()?;
+        let value = r.metrics.lattice.homogeneity?;
+        by_size.entry((l.load_case.name(), l.supports.name())).or_default().entry((l.nx, l.ny)).or_insert(value);
+    }
+    Some(by_size)
+}
+
+/// The summary's homogeneity: the largest lattice of the coursework's set-up (tension on its
+/// supports), or of the first set-up when the campaign lacks it.
+fn homogeneity_short(by_size: &BTreeMap<(&'static str, &'static str), BySize>) -> String {
+    by_size
+        .iter()
+        .find(|((case, supports), _)| *case == "tensile" && *supports == "coursework")
+        .or_else(|| by_size.iter().next())
+        .and_then(|((case, supports), sizes)| {
+            sizes.iter().next_back().map(|((nx, ny), h)| format!("{case}, {supports}, {nx} × {ny}: {}", sig(*h)))
+        })
+        .unwrap_or_default()
 }
 
 /// How flat the loaded top row of the largest tensile lattice rises, without and with
@@ -187,6 +199,10 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
             ratios.iter().map(|x| format!("{x:.3}")).collect::<Vec<_>>().join(", ")
         ));
     }
+    // One figure per scene draws all of its moduli against the load.
+    let mut scenes: Vec<&str> = fits.iter().map(|f| f.scene.as_str()).collect();
+    scenes.dedup();
+    let load_figures = scenes.iter().map(|scene| e.figure(scene, FigureKind::AgainstLoad));
     Some(Answer {
         title: "Hertz lattices: moduli against the load",
         question: "Non-linear 2D: set the load to different values and analyse the moduli of the different \
@@ -195,7 +211,7 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
         sentences,
         reference: "The Hertz scaling F^(1/3); fitted exponents within 0.03.".into(),
         verdict: Verdict::of(checks),
-        figures: fits.iter().filter_map(|f| e.figure(&f.scene, f.quantity)).take(2).collect(),
+        figures: load_figures.into_iter().flatten().take(2).collect(),
         table: None,
     })
 }
@@ -273,8 +289,8 @@ fn anisotropic_rows(groups: &BTreeMap<String, Vec<&RunRecord>>) -> (Vec<Vec<Stri
             sentences.push(format!(
                 "{key}: E_y/E_x = {}, ν = {} loaded along y and {} along x{}.",
                 sig(y / x),
-                super::noise(nu_y, 1.0),
-                super::noise(nu_x, 1.0),
+                noise(nu_y, 1.0),
+                noise(nu_x, 1.0),
                 if (y / x - 1.0).abs() > 1e-3 { ": the directions differ" } else { ": isotropic in E" }
             ));
         }
@@ -282,8 +298,8 @@ fn anisotropic_rows(groups: &BTreeMap<String, Vec<&RunRecord>>) -> (Vec<Vec<Stri
             key.clone(),
             cell(e_y),
             cell(e_x),
-            super::noise(nu_y, 1.0),
-            super::noise(nu_x, 1.0),
+            noise(nu_y, 1.0),
+            noise(nu_x, 1.0),
             cell(modulus(rs, LoadCase::Shear, false, |r| r.metrics.lattice.shear_modulus)),
         ]);
     }
@@ -313,7 +329,7 @@ pub(super) fn random(e: &Evidence) -> Option<Answer> {
         sentences,
         reference: "Effective-medium theory's rigidity threshold at half the bonds kept; an observation.".into(),
         verdict: Verdict::Observed,
-        figures: e.figure(&scene, "dilution").into_iter().collect(),
+        figures: e.figure(&scene, FigureKind::Dilution).into_iter().collect(),
         table: Some(Table {
             header: [
                 "load",

@@ -2,10 +2,10 @@
 //! restitution, the time step, the chain of 11 against its normal modes, Hertz springs, and the
 //! chain between moved walls.
 
-use super::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
 use crate::measure::convergence_order;
 use crate::model::LawSpec;
-use crate::report::figure::representative;
+use crate::report::figure::{FigureKind, representative};
 use crate::report::words::contact_time_words;
 use crate::runner::RunRecord;
 use crate::sim::IntegratorKind;
@@ -114,10 +114,11 @@ pub(super) fn two_particles(e: &Evidence) -> Option<Answer> {
              scheme errs by about (π/50)²/24 ≈ 1.6e-4 there)."
         ),
         verdict: Verdict::of(checks),
-        figures: [("pair-bonded", "energy"), ("pair-bonded", "convergence"), ("pair-contact", "convergence")]
-            .iter()
-            .filter_map(|(scene, part)| e.figure(scene, part))
-            .collect(),
+        figures: e.figures(&[
+            ("pair-bonded", FigureKind::Energy),
+            ("pair-bonded", FigureKind::Convergence),
+            ("pair-contact", FigureKind::Convergence),
+        ]),
         table: Some(table),
     })
 }
@@ -224,10 +225,11 @@ pub(super) fn time_step(e: &Evidence) -> Option<Answer> {
         sentences,
         reference: "Verlet's second order: the fitted order must lie within 0.1 of 2.".into(),
         verdict: order.map_or(Verdict::Observed, |p| Verdict::of([(p - 2.0).abs() <= 0.1])),
-        figures: [("pair-bonded", "error-dt"), ("pair-bonded", "work-precision"), ("integrators", "work-precision")]
-            .iter()
-            .filter_map(|(scene, part)| e.figure(scene, part))
-            .collect(),
+        figures: e.figures(&[
+            ("pair-bonded", FigureKind::ErrorDt),
+            ("pair-bonded", FigureKind::WorkPrecision),
+            ("integrators", FigureKind::WorkPrecision),
+        ]),
         table: None,
     })
 }
@@ -291,10 +293,7 @@ pub(super) fn chain(e: &Evidence) -> Option<Answer> {
             order.map(|p| format!("{p:.2}")).unwrap_or_else(|| "–".into())
         ),
     ];
-    let mut figures: Vec<_> = [(&reference.spec.scene[..], "displacements")]
-        .iter()
-        .filter_map(|(scene, part)| e.figure(scene, part))
-        .collect();
+    let mut figures = e.figures(&[(&reference.spec.scene, FigureKind::Displacements)]);
     figures.extend(movies);
     Some(Answer {
         title: "The chain of 11, kicked at its centre",
@@ -355,8 +354,7 @@ pub(super) fn hertz_pair_and_chain(e: &Evidence) -> Option<Answer> {
         ));
         checks.push(c.metrics.energy_error.is_some_and(|x| x.abs() <= 1e-3));
     }
-    let mut figures: Vec<_> =
-        [(&pair.spec.scene[..], "convergence")].iter().filter_map(|(s, p)| e.figure(s, p)).collect();
+    let mut figures = e.figures(&[(&pair.spec.scene, FigureKind::Convergence)]);
     figures.extend(e.movies(|r| r.spec.chain().is_some() && r.spec.law != LawSpec::Linear).into_iter().take(1));
     Some(Answer {
         title: "Hertz springs in 1D",
@@ -404,7 +402,7 @@ pub(super) fn walls(e: &Evidence) -> Option<Answer> {
     }
     let mut figures: Vec<_> = Vec::new();
     for s in scenes.iter().collect::<std::collections::BTreeSet<_>>() {
-        figures.extend(e.figure(s, "wall_displacement"));
+        figures.extend(e.figure(s, FigureKind::AgainstWallDisplacement));
     }
     Some(Answer {
         title: "The chain between moved walls",

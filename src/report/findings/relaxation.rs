@@ -3,7 +3,8 @@
 //! FIRE and CG, each against the critically damped bound in steps and the static answer of the
 //! same network.
 
-use super::{Answer, Evidence, Table, Verdict, cell, extremes, relative, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, extremes, relative, sig};
+use crate::report::figure::MINIMISERS;
 use crate::runner::RunRecord;
 use crate::sim::{RelaxMethod, RunStatus};
 use crate::study::lattice::critical_bound_steps;
@@ -52,78 +53,138 @@ pub(super) fn time_to_modulus(e: &Evidence) -> Option<Answer> {
     if runs.is_empty() {
         return None;
     }
-    let mut rows = Vec::new();
-    let mut bound_held = Vec::new();
-    let mut worst: Option<(f64, f64, &RunRecord)> = None;
-    for r in &runs {
-        let m = &r.metrics.lattice;
-        let error = true_error(r).filter(|_| r.status == RunStatus::Ok);
-        if let (Some(error), Some(bound)) = (error, m.relax_error_bound) {
-            bound_held.push(error <= bound);
-            if worst.is_none_or(|(w, _, _)| error / bound > w) {
-                worst = Some((error / bound, error, r));
+    let bounds = BoundChecks::of(&runs);
+    let critical = e.ok(|r| bounded(r) && r.spec.relax().is_some_and(|relax| relax.critical_background));
+    let critical_ratios: Vec<f64> = critical.iter().filter_map(|r| over_bound(r)).collect();
+    let mut sentences: Vec<String> = bounds.sentence().into_iter().collect();
+    sentences.extend(critical_sentence(&critical, &critical_ratios));
+    sentences.extend(fixed_damping_sentence(e));
+    sentences.extend(minimiser_sentences(e));
+    sentences.extend(stalled_sentence(&runs));
+    let verdict = Verdict::of(
+        bounds.held.iter().copied().chain(critical_ratios.iter().map(|ratio| *ratio <= CRITICAL_STEPS_ALLOWED)),
+    );
+    Some(Answer {
+        title: "Relaxation: time to a modulus",
+        question: "How soon is a loaded lattice at rest, provably, and which method gets there first?",
+        short: bounds.short(&critical_ratios),
+        sentences,
+        reference: format!(
+            "The static answer of the same network (Newton to ‖R‖ ≤ {:e} ‖f‖): each relaxed run's |E − E_fem| \
+             must lie below its recorded bound; critical damping within {CRITICAL_STEPS_ALLOWED} × the critically \
+             damped bound in steps.",
+            crate::fem::NEWTON_TOLERANCE
+        ),
+        verdict,
+        figures: Vec::new(),
+        table: Some(time_table(&runs)),
+    })
+}
+
+/// The true error of a run that relaxed (none for a run that stalled).
+fn relaxed_error(r: &RunRecord) -> Option<f64> {
+    true_error(r).filter(|_| r.status == RunStatus::Ok)
+}
+
+/// Each relaxed run's true error held against its recorded bound.
+struct BoundChecks<'a> {
+    /// Per run with both, whether the error lies within the bound.
+    held: Vec<bool>,
+    /// The run closest to its bound: error over bound, the error, the run.
+    worst: Option<(f64, f64, &'a RunRecord)>,
+}
+
+impl<'a> BoundChecks<'a> {
+    fn of(runs: &[&'a RunRecord]) -> Self {
+        let mut checks = BoundChecks { held: Vec::new(), worst: None };
+        for r in runs {
+            if let (Some(error), Some(bound)) = (relaxed_error(r), r.metrics.lattice.relax_error_bound) {
+                checks.held.push(error <= bound);
+                if checks.worst.is_none_or(|(w, _, _)| error / bound > w) {
+                    checks.worst = Some((error / bound, error, r));
+                }
             }
         }
-        rows.push(vec![
-            r.spec.scene.clone(),
-            block(r),
-            method(r),
-            cell(r.spec.relax().and_then(|relax| relax.tolerance)),
-            r.status.as_str().into(),
-            r.steps.to_string(),
-            cell(over_bound(r)),
-            format!("{:.3}", r.wall_s),
-            cell(error),
-            cell(m.relax_error_bound),
-        ]);
+        checks
     }
-    let mut sentences = Vec::new();
-    if let Some((_, error, r)) = worst {
-        sentences.push(format!(
+
+    fn within(&self) -> usize {
+        self.held.iter().filter(|ok| **ok).count()
+    }
+
+    fn sentence(&self) -> Option<String> {
+        let (_, error, r) = self.worst?;
+        Some(format!(
             "Every relaxed run's modulus lies within its recorded bound of the static answer of the same network \
              ({} of {}): the closest, scene {} ({}, {}), is {} off against its bound {}; the bound \
              |δΔL| ≤ ‖K⁻¹g‖₂‖r‖₂ holds at any instant, whatever the velocities.",
-            bound_held.iter().filter(|ok| **ok).count(),
-            bound_held.len(),
+            self.within(),
+            self.held.len(),
             r.spec.scene,
             method(r),
             block(r),
             sig(error),
             cell(r.metrics.lattice.relax_error_bound),
-        ));
+        ))
     }
-    let critical = e.ok(|r| bounded(r) && r.spec.relax().is_some_and(|relax| relax.critical_background));
-    let critical_ratios: Vec<f64> = critical.iter().filter_map(|r| over_bound(r)).collect();
-    if !critical_ratios.is_empty() {
-        let (low, high) = extremes(&critical_ratios);
-        sentences.push(format!(
-            "Critical background damping (γ_g = 2√(k_min m)) certifies the tolerance in {}–{} × the critically \
-             damped bound 11.75/(ω_min dt) over N = {} (goal: within {CRITICAL_STEPS_ALLOWED}×): the slowest \
-             mode, critically damped, falls to 1e-4 at ω_min t = 11.75, and every faster mode is underdamped \
-             by the same γ_g and decays at least as fast.",
-            sig(low),
-            sig(high),
-            sizes(&critical),
-        ));
+
+    /// The summary's answer, with the critically damped runs' largest steps over the bound.
+    fn short(&self, critical_ratios: &[f64]) -> String {
+        match self.worst {
+            Some((_, error, _)) => format!(
+                "{} of {} within their bound (closest {}); critical damping {} × the bound",
+                self.within(),
+                self.held.len(),
+                sig(error),
+                critical_ratios.iter().copied().reduce(f64::max).map(sig).unwrap_or_else(|| "–".into()),
+            ),
+            None => "no run relaxed".into(),
+        }
     }
+}
+
+/// How many bounds critical background damping needs, over the sizes of its runs.
+fn critical_sentence(critical: &[&RunRecord], ratios: &[f64]) -> Option<String> {
+    if ratios.is_empty() {
+        return None;
+    }
+    let (low, high) = extremes(ratios);
+    Some(format!(
+        "Critical background damping (γ_g = 2√(k_min m)) certifies the tolerance in {}–{} × the critically \
+         damped bound 11.75/(ω_min dt) over N = {} (goal: within {CRITICAL_STEPS_ALLOWED}×): the slowest \
+         mode, critically damped, falls to 1e-4 at ω_min t = 11.75, and every faster mode is underdamped \
+         by the same γ_g and decays at least as fast.",
+        sig(low),
+        sig(high),
+        sizes(critical),
+    ))
+}
+
+/// How a fixed background damping falls behind the bound as the block grows.
+fn fixed_damping_sentence(e: &Evidence) -> Option<String> {
     let fixed = e.ok(|r| {
         bounded(r)
             && r.spec.relax().is_some_and(|relax| relax.method == RelaxMethod::Damped && !relax.critical_background)
     });
-    if let (Some(first), Some(last)) = (fixed.first(), fixed.last())
-        && first.run_id != last.run_id
-    {
-        sentences.push(format!(
-            "A fixed damping ({}) takes {} × the bound at N = {} and {} × at N = {}: the slowest mode's critical \
-             damping 2√(k_min m) falls as 1/N, so a fixed γ_g overdamps it ever more.",
-            method(first),
-            cell(over_bound(first)),
-            first.spec.lattice()?.nx,
-            cell(over_bound(last)),
-            last.spec.lattice()?.nx,
-        ));
+    let (first, last) = (fixed.first()?, fixed.last()?);
+    if first.run_id == last.run_id {
+        return None;
     }
-    for minimiser in [RelaxMethod::Fire, RelaxMethod::Cg] {
+    Some(format!(
+        "A fixed damping ({}) takes {} × the bound at N = {} and {} × at N = {}: the slowest mode's critical \
+         damping 2√(k_min m) falls as 1/N, so a fixed γ_g overdamps it ever more.",
+        method(first),
+        cell(over_bound(first)),
+        first.spec.lattice()?.nx,
+        cell(over_bound(last)),
+        last.spec.lattice()?.nx,
+    ))
+}
+
+/// Per minimiser, its force evaluations over the bound's steps.
+fn minimiser_sentences(e: &Evidence) -> Vec<String> {
+    let mut sentences = Vec::new();
+    for minimiser in MINIMISERS {
         let mine = e.ok(|r| bounded(r) && r.spec.relax().is_some_and(|relax| relax.method == minimiser));
         let ratios: Vec<f64> = mine.iter().filter_map(|r| over_bound(r)).collect();
         if ratios.is_empty() {
@@ -138,7 +199,11 @@ pub(super) fn time_to_modulus(e: &Evidence) -> Option<Answer> {
             sizes(&mine),
         ));
     }
-    // The runs that did not relax, grouped by how they ended (one message, many runs).
+    sentences
+}
+
+/// The runs that did not relax, grouped by how they ended (one message, many runs).
+fn stalled_sentence(runs: &[&RunRecord]) -> Option<String> {
     let mut stalled: Vec<(String, Vec<String>)> = Vec::new();
     for r in runs.iter().filter(|r| r.status != RunStatus::Ok) {
         let how = format!("{}: {}", r.status.as_str(), r.message);
@@ -148,53 +213,35 @@ pub(super) fn time_to_modulus(e: &Evidence) -> Option<Answer> {
             None => stalled.push((how, vec![which])),
         }
     }
-    if !stalled.is_empty() {
-        let said: Vec<String> = stalled.iter().map(|(how, runs)| format!("{} ended {how}", runs.join(", "))).collect();
-        sentences.push(format!("Where a method stalls: {}.", said.join("; ")));
+    if stalled.is_empty() {
+        return None;
     }
-    let verdict = Verdict::of(
-        bound_held.iter().copied().chain(critical_ratios.iter().map(|ratio| *ratio <= CRITICAL_STEPS_ALLOWED)),
-    );
-    Some(Answer {
-        title: "Relaxation: time to a modulus",
-        question: "How soon is a loaded lattice at rest, provably, and which method gets there first?",
-        short: match worst {
-            Some((_, error, _)) => format!(
-                "{} of {} within their bound (closest {}); critical damping {} × the bound",
-                bound_held.iter().filter(|ok| **ok).count(),
-                bound_held.len(),
-                sig(error),
-                critical_ratios.iter().copied().reduce(f64::max).map(sig).unwrap_or_else(|| "–".into()),
-            ),
-            None => "no run relaxed".into(),
-        },
-        sentences,
-        reference: format!(
-            "The static answer of the same network (Newton to ‖R‖ ≤ {:e} ‖f‖): each relaxed run's |E − E_fem| \
-             must lie below its recorded bound; critical damping within {CRITICAL_STEPS_ALLOWED} × the critically \
-             damped bound in steps.",
-            crate::fem::NEWTON_TOLERANCE
-        ),
-        verdict,
-        figures: Vec::new(),
-        table: Some(Table {
-            header: [
-                "scene",
-                "block",
-                "method",
-                "tolerance",
-                "status",
-                "steps",
-                "× bound",
-                "wall (s)",
-                "|E − E_fem|",
-                "bound",
+    let said: Vec<String> = stalled.iter().map(|(how, runs)| format!("{} ended {how}", runs.join(", "))).collect();
+    Some(format!("Where a method stalls: {}.", said.join("; ")))
+}
+
+/// One row per bounded run: how it came to rest, its cost and its error against its bound.
+fn time_table(runs: &[&RunRecord]) -> Table {
+    let rows = runs
+        .iter()
+        .map(|r| {
+            vec![
+                r.spec.scene.clone(),
+                block(r),
+                method(r),
+                cell(r.spec.relax().and_then(|relax| relax.tolerance)),
+                r.status.as_str().into(),
+                r.steps.to_string(),
+                cell(over_bound(r)),
+                format!("{:.3}", r.wall_s),
+                cell(relaxed_error(r)),
+                cell(r.metrics.lattice.relax_error_bound),
             ]
-            .map(String::from)
-            .to_vec(),
-            rows,
-        }),
-    })
+        })
+        .collect();
+    let header =
+        ["scene", "block", "method", "tolerance", "status", "steps", "× bound", "wall (s)", "|E − E_fem|", "bound"];
+    Table { header: header.map(String::from).to_vec(), rows }
 }
 
 /// The block in words: "40 × 40", with its cut fraction where bonds were cut.

@@ -5,9 +5,10 @@
 
 use std::collections::BTreeMap;
 
-use super::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, rel, relative, sig};
 use crate::measure::convergence_order;
 use crate::model::LawSpec;
+use crate::report::figure::{FigureKind, representative};
 use crate::report::words::contact_time_words;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
@@ -28,11 +29,6 @@ fn regular(r: &RunRecord) -> Option<&LatticeSpec> {
 /// The fitted order, as text.
 fn order_text(order: Option<f64>) -> String {
     order.map(|p| format!("{p:.2}")).unwrap_or_else(|| "–".into())
-}
-
-/// The figures `(scene, part)` that exist.
-fn figures(e: &Evidence, wanted: &[(&str, &str)]) -> Vec<super::FigureRef> {
-    wanted.iter().filter_map(|(scene, part)| e.figure(scene, part)).collect()
 }
 
 /// The scenes of `runs`, each once, in order.
@@ -183,8 +179,8 @@ pub(super) fn lattice_time_step(e: &Evidence) -> Option<Answer> {
         cell(coarsest.metrics.energy_error),
         cell(finest.metrics.energy_error),
         relative(coarsest.metrics.arrival_time(), finest.metrics.arrival_time()).map(rel).unwrap_or_else(|| "–".into()),
-        cell(super::super::figure::representative(&sweep).metrics.energy_error),
-        cell(super::super::figure::representative(&sweep).metrics.dt_omega_max),
+        cell(representative(&sweep).metrics.energy_error),
+        cell(representative(&sweep).metrics.dt_omega_max),
     )];
     Some(Answer {
         title: "The time step on a lattice",
@@ -193,7 +189,7 @@ pub(super) fn lattice_time_step(e: &Evidence) -> Option<Answer> {
         sentences,
         reference: "Velocity Verlet's second order: fitted order within 0.2 of 2.".into(),
         verdict: Verdict::of([order.is_some_and(|p| (p - 2.0).abs() <= 0.2)]),
-        figures: figures(e, &[(&scene, "work-precision"), (&scene, "error-dt")]),
+        figures: e.figures(&[(&scene, FigureKind::WorkPrecision), (&scene, FigureKind::ErrorDt)]),
         table: Some(Table {
             header: ["t_c/dt", "dt·ω_max", "energy error", "arrival (s)", "vs finest"].map(String::from).to_vec(),
             rows,
@@ -300,7 +296,7 @@ pub(super) fn kick(e: &Evidence) -> Option<Answer> {
         r.spec.lattice().is_some_and(|l| l.impulse.is_some()) && r.spec.movie.is_some() && r.spec.law == LawSpec::Linear
     });
     shown.truncate(1);
-    shown.extend(figures(e, &[(&first.spec.scene, "space-time")]));
+    shown.extend(e.figures(&[(&first.spec.scene, FigureKind::SpaceTime)]));
     Some(Answer {
         title: "The upper-right kick, with and without diagonals",
         question: "Give the upper-right particle an initial velocity, animate the motion, and explain the \
@@ -367,7 +363,7 @@ fn moduli(e: &Evidence, case: LoadCase) -> Option<Moduli> {
             cell(theory),
             relative(md, fem).map(rel).unwrap_or_else(|| "–".into()),
             relative(fem, theory).map(rel).unwrap_or_else(|| "–".into()),
-            super::noise(r.metrics.lattice.poisson_ratio, 1.0),
+            noise(r.metrics.lattice.poisson_ratio, 1.0),
         ]);
     }
     let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
@@ -417,7 +413,7 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
                 r.spec.lattice().map(lattice_words).unwrap_or_default(),
                 cell(r.metrics.lattice.youngs_modulus),
                 cell(r.metrics.lattice.youngs_modulus_theory),
-                super::noise(r.metrics.lattice.poisson_ratio, 1.0),
+                noise(r.metrics.lattice.poisson_ratio, 1.0),
                 if periodic { String::new() } else { cell(r.metrics.lattice.poisson_ratio_theory) },
             ),
         );
@@ -431,7 +427,7 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
                 format!(
                     "E = {} Pa, ν = {} ({}); MD = static truss within {STATIC_TOLERANCE}",
                     cell(r.metrics.lattice.youngs_modulus),
-                    super::noise(r.metrics.lattice.poisson_ratio, 1.0),
+                    noise(r.metrics.lattice.poisson_ratio, 1.0),
                     r.spec.lattice().map(|l| format!("{} × {}", l.nx, l.ny)).unwrap_or_default()
                 )
             },
@@ -442,7 +438,11 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
              rule) and the continuum constants (finite size explains the rest)."
         ),
         verdict: Verdict::of(checks),
-        figures: scenes.iter().take(1).flat_map(|s| figures(e, &[(s, "size"), (s, "relaxation")])).collect(),
+        figures: scenes
+            .iter()
+            .take(1)
+            .flat_map(|s| e.figures(&[(s, FigureKind::Size), (s, FigureKind::Relaxation)]))
+            .collect(),
         table: Some(table),
     })
 }
@@ -492,7 +492,7 @@ pub(super) fn shear(e: &Evidence) -> Option<Answer> {
         sentences,
         reference: format!("The static truss answer (tolerance {STATIC_TOLERANCE:e}) and G = k_d/d."),
         verdict: Verdict::of(checks),
-        figures: scenes.iter().take(1).flat_map(|s| figures(e, &[(s, "size")])).collect(),
+        figures: scenes.iter().take(1).flat_map(|s| e.figures(&[(s, FigureKind::Size)])).collect(),
         table: Some(table),
     })
 }

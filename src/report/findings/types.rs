@@ -4,9 +4,10 @@
 
 use std::collections::BTreeMap;
 
-use super::{Answer, Evidence, Table, Verdict, cell, extremes, relative, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, extremes, rel, relative, sig};
 use crate::measure::lattice_constants;
 use crate::model::LatticeType;
+use crate::report::figure::FigureKind;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::spec::{LatticeSpec, LoadCase, Supports};
@@ -45,54 +46,14 @@ pub(super) fn moduli(e: &Evidence) -> Option<Answer> {
     let mut md_static = Vec::new();
     let mut sentences = Vec::new();
     for kind in LatticeType::ALL {
-        let mine: Vec<&&RunRecord> = runs.iter().filter(|r| self::kind(r) == kind).collect();
+        let mine: Vec<&RunRecord> = runs.iter().copied().filter(|r| self::kind(r) == kind).collect();
         if mine.is_empty() {
             continue;
         }
-        let mut carried = Vec::new();
-        let mut mechanisms = Vec::new();
-        for r in &mine {
-            let l = r.spec.lattice()?;
-            let m = &r.metrics.lattice;
-            let what = format!("{} on {}", l.load_case.name(), l.supports.name());
-            if r.status == RunStatus::Mechanism {
-                mechanisms.push(what.clone());
-            } else {
-                carried.push(what.clone());
-            }
-            let (md, fem, theory) = match l.load_case {
-                LoadCase::Shear => (m.shear_modulus, m.shear_modulus_fem, m.shear_modulus_theory),
-                _ => (m.youngs_modulus, m.youngs_modulus_fem, m.youngs_modulus_theory),
-            };
-            if let Some(error) = relative(md, fem) {
-                md_static.push(error.abs());
-            }
-            rows.push(vec![
-                kind.name().into(),
-                format!("{}", kind.coordination()),
-                what,
-                r.status.as_str().into(),
-                cell(md),
-                cell(fem),
-                cell(theory),
-                relative(fem, theory).map(|x| format!("{x:+.2e}")).unwrap_or_else(|| "–".into()),
-            ]);
-        }
-        sentences.push(format!(
-            "{}: z = {}, {}. It carried {}; {}.",
-            kind.name(),
-            kind.coordination(),
-            maxwell(kind),
-            if carried.is_empty() { "no load".to_string() } else { carried.join(", ") },
-            if mechanisms.is_empty() {
-                "it was never a mechanism".to_string()
-            } else {
-                format!(
-                    "the static solver's rigidity test found a mechanism (before MD) under {}",
-                    mechanisms.join(", ")
-                )
-            }
-        ));
+        let moduli = TypeModuli::of(kind, &mine)?;
+        rows.extend(moduli.rows);
+        md_static.extend(moduli.md_static);
+        sentences.push(moduli.sentence);
     }
     let worst = md_static.iter().copied().fold(0.0, f64::max);
     sentences.push(format!(
@@ -124,22 +85,72 @@ pub(super) fn moduli(e: &Evidence) -> Option<Answer> {
     })
 }
 
+/// One lattice type's loaded runs in [`moduli`]: its table rows, its |MD − static|/static and
+/// its sentence on what it carried.
+struct TypeModuli {
+    rows: Vec<Vec<String>>,
+    md_static: Vec<f64>,
+    sentence: String,
+}
+
+impl TypeModuli {
+    fn of(kind: LatticeType, mine: &[&RunRecord]) -> Option<TypeModuli> {
+        let mut moduli = TypeModuli { rows: Vec::new(), md_static: Vec::new(), sentence: String::new() };
+        let mut carried = Vec::new();
+        let mut mechanisms = Vec::new();
+        for r in mine {
+            let l = r.spec.lattice()?;
+            let m = &r.metrics.lattice;
+            let what = format!("{} on {}", l.load_case.name(), l.supports.name());
+            if r.status == RunStatus::Mechanism {
+                mechanisms.push(what.clone());
+            } else {
+                carried.push(what.clone());
+            }
+            let (md, fem, theory) = match l.load_case {
+                LoadCase::Shear => (m.shear_modulus, m.shear_modulus_fem, m.shear_modulus_theory),
+                _ => (m.youngs_modulus, m.youngs_modulus_fem, m.youngs_modulus_theory),
+            };
+            if let Some(error) = relative(md, fem) {
+                moduli.md_static.push(error.abs());
+            }
+            moduli.rows.push(vec![
+                kind.name().into(),
+                format!("{}", kind.coordination()),
+                what,
+                r.status.as_str().into(),
+                cell(md),
+                cell(fem),
+                cell(theory),
+                relative(fem, theory).map(|x| format!("{x:+.2e}")).unwrap_or_else(|| "–".into()),
+            ]);
+        }
+        moduli.sentence = format!(
+            "{}: z = {}, {}. It carried {}; {}.",
+            kind.name(),
+            kind.coordination(),
+            maxwell(kind),
+            if carried.is_empty() { "no load".to_string() } else { carried.join(", ") },
+            if mechanisms.is_empty() {
+                "it was never a mechanism".to_string()
+            } else {
+                format!(
+                    "the static solver's rigidity test found a mechanism (before MD) under {}",
+                    mechanisms.join(", ")
+                )
+            }
+        );
+        Some(moduli)
+    }
+}
+
 /// The isotropy study: the static E and ν of free blocks pulled along y and along x, by size,
 /// against the continuum; the square lattice's in-plane anisotropy from its constants.
 pub(super) fn isotropy(e: &Evidence) -> Option<Answer> {
     let runs = e.all(|r| r.spec.lattice().is_some_and(|l| l.rotated && l.supports == Supports::Coursework));
     let scene = runs.iter().find(|r| other_type(r))?.spec.scene.clone();
     let runs = e.all(|r| r.spec.scene == scene && r.spec.lattice().is_some_and(|l| !l.is_random()));
-    // (type, N) → (E_y, ν_yx, E_x, ν_xy) from the static answer.
-    let mut by_size: BTreeMap<(&str, usize), [Option<f64>; 4]> = BTreeMap::new();
-    for r in &runs {
-        let l = r.spec.lattice()?;
-        let m = &r.metrics.lattice;
-        let n = if l.rotated { l.ny } else { l.nx };
-        let entry = by_size.entry((l.lattice_type.name(), n)).or_default();
-        let at = if l.rotated { 2 } else { 0 };
-        (entry[at], entry[at + 1]) = (m.youngs_modulus_fem, m.poisson_ratio_fem);
-    }
+    let by_size = isotropy_by_size(&runs)?;
     let first = runs.first()?;
     let (k, depth) = (first.spec.k, first.spec.lattice()?.depth);
     let triangular_e = 2.0 * k / (3.0_f64.sqrt() * depth);
@@ -178,19 +189,7 @@ pub(super) fn isotropy(e: &Evidence) -> Option<Answer> {
         ));
         checks.push((ratio - 1.0).abs() < 0.05);
     }
-    if let Some(square) = runs.iter().find(|r| kind(r).is_square()).and_then(|r| r.spec.lattice()) {
-        sentences.push(format!(
-            "The square lattice's E_x and E_y are equal by its four-fold symmetry (E_x/E_y = {} at N = {}); its \
-             anisotropy lies between the axes: with k_d/k = {} its Zener ratio 2C66/(C11 − C12) = 2k_d/k = {} and \
-             E(45°)/E(0°) = {} from its compliance, isotropic only at k_d = k/2 (measured at three k_d/k in the \
-             item on direction).",
-            last_ratio.get("square").map_or("–".into(), |&(_, r, _)| sig(r)),
-            last_ratio.get("square").map_or(0, |&(n, _, _)| n),
-            sig(square.k_diag / square.k_x),
-            sig(2.0 * square.k_diag / square.k_x),
-            cell(square_diagonal_stiffening(square)),
-        ));
-    }
+    sentences.extend(square_isotropy_sentence(&runs, last_ratio.get("square").map(|&(n, r, _)| (n, r))));
     Some(Answer {
         title: "Lattice types: isotropy",
         question: "Do E and ν measured along x and along y agree (triangular), and how does the square lattice differ?",
@@ -207,6 +206,41 @@ pub(super) fn isotropy(e: &Evidence) -> Option<Answer> {
             rows,
         }),
     })
+}
+
+/// (type, N) → (E_y, ν_yx, E_x, ν_xy) from the static answer.
+type IsotropyBySize = BTreeMap<(&'static str, usize), [Option<f64>; 4]>;
+
+/// Per (type, N): E_y, ν_yx, E_x and ν_xy of the static answer, the block pulled along y and,
+/// rotated, along x.
+fn isotropy_by_size(runs: &[&RunRecord]) -> Option<IsotropyBySize> {
+    let mut by_size = IsotropyBySize::new();
+    for r in runs {
+        let l = r.spec.lattice()?;
+        let m = &r.metrics.lattice;
+        let n = if l.rotated { l.ny } else { l.nx };
+        let entry = by_size.entry((l.lattice_type.name(), n)).or_default();
+        let at = if l.rotated { 2 } else { 0 };
+        (entry[at], entry[at + 1]) = (m.youngs_modulus_fem, m.poisson_ratio_fem);
+    }
+    Some(by_size)
+}
+
+/// The square lattice's isotropy along its axes (`largest`: its largest N with E_x/E_y there)
+/// against its anisotropy between them.
+fn square_isotropy_sentence(runs: &[&RunRecord], largest: Option<(usize, f64)>) -> Option<String> {
+    let square = runs.iter().find(|r| kind(r).is_square()).and_then(|r| r.spec.lattice())?;
+    Some(format!(
+        "The square lattice's E_x and E_y are equal by its four-fold symmetry (E_x/E_y = {} at N = {}); its \
+         anisotropy lies between the axes: with k_d/k = {} its Zener ratio 2C66/(C11 − C12) = 2k_d/k = {} and \
+         E(45°)/E(0°) = {} from its compliance, isotropic only at k_d = k/2 (measured at three k_d/k in the \
+         item on direction).",
+        largest.map_or("–".into(), |(_, r)| sig(r)),
+        largest.map_or(0, |(n, _)| n),
+        sig(square.k_diag / square.k_x),
+        sig(2.0 * square.k_diag / square.k_x),
+        cell(square_diagonal_stiffening(square)),
+    ))
 }
 
 /// E(45°)/E(0°) of a solid with the square symmetry of its elastic constants, from E, ν and G
@@ -347,11 +381,6 @@ struct Network<'a> {
 
 /// The measured E(45°)/E(0°) must lie within this fraction of the continuum's.
 const DIRECTION_TOLERANCE: f64 = 0.05;
-
-/// A relative difference with its sign, 2 digits.
-fn rel(x: f64) -> String {
-    super::rel(x)
-}
 
 /// One diluted network: its cut fraction, whether it carried the load, its linear static E (Pa).
 type Diluted = (f64, bool, Option<f64>);
@@ -511,7 +540,7 @@ pub(super) fn percolation(e: &Evidence) -> Option<Answer> {
                     Jacobs and Thorpe (1995): 0.660 for the triangular network; an observation."
             .into(),
         verdict: Verdict::Observed,
-        figures: diluted_scenes.iter().filter_map(|scene| e.figure(scene, "-dilution")).collect(),
+        figures: diluted_scenes.iter().filter_map(|scene| e.figure(scene, FigureKind::Dilution)).collect(),
         table: Some(Table {
             header: ["type", "N", "seeds", "p_c (± s.e.)", "spread", "EMT", "literature"].map(String::from).to_vec(),
             rows,

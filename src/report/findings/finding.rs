@@ -1,0 +1,200 @@
+//! The vocabulary every question's answer is written in: the [`Evidence`] it reads, the
+//! [`Answer`] it returns with its [`Verdict`] and [`Table`], the numbered [`Finding`] the report
+//! shows, and the small number helpers the sentences and tables share. It sits below the
+//! questions (`one_d.rs`, `two_d.rs`, …) so they import it rather than the list that asks them.
+
+use serde::Serialize;
+
+use crate::model::LatticeType;
+use crate::report::figure::{Figure, FigureKind, FigureRef, movie_refs};
+use crate::runner::RunRecord;
+use crate::sim::RunStatus;
+use crate::summary::ScalingFit;
+
+// Numbers in sentences: 4 significant digits, plain or scientific as reads best.
+pub(super) use crate::report::words::short as sig;
+// (a − b)/b when both exist and b ≠ 0.
+pub(super) use crate::measure::relative_error as relative;
+
+/// How a finding stands against its reference.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Verdict {
+    /// Every compared number within its tolerance.
+    Within,
+    /// At least one outside; the finding says why.
+    Outside,
+    /// Nothing to hold it against: an observation (a movie, a trend).
+    Observed,
+}
+
+impl Verdict {
+    /// Within when every check holds, outside otherwise.
+    pub(super) fn of(checks: impl IntoIterator<Item = bool>) -> Verdict {
+        if checks.into_iter().all(|ok| ok) { Verdict::Within } else { Verdict::Outside }
+    }
+}
+
+/// A compact table: a header (units in it) and rows of formatted cells.
+#[derive(Serialize)]
+pub struct Table {
+    pub(super) header: Vec<String>,
+    pub(super) rows: Vec<Vec<String>>,
+}
+
+/// One coursework item answered.
+#[derive(Serialize)]
+pub struct Finding {
+    /// Position in the report (1, 2, ...), set when the list is made.
+    pub number: usize,
+    /// The heading's anchor: the slug of its text.
+    pub id: String,
+    /// Short title.
+    pub title: &'static str,
+    /// The coursework's question in one line.
+    pub question: &'static str,
+    /// The answer in a few words with its number, for the summary.
+    pub short: String,
+    /// The answer in sentences with this campaign's numbers.
+    pub sentences: Vec<String>,
+    /// What it is held against, with the tolerance and why.
+    pub reference: String,
+    /// Within, outside or observed.
+    pub verdict: Verdict,
+    /// Figures that show it.
+    pub figures: Vec<FigureRef>,
+    /// Its numbers in one table.
+    pub table: Option<Table>,
+}
+
+/// A finding before it is numbered: what each question's function returns.
+pub(super) struct Answer {
+    pub(super) title: &'static str,
+    pub(super) question: &'static str,
+    pub(super) short: String,
+    pub(super) sentences: Vec<String>,
+    pub(super) reference: String,
+    pub(super) verdict: Verdict,
+    pub(super) figures: Vec<FigureRef>,
+    pub(super) table: Option<Table>,
+}
+
+impl Answer {
+    /// The finding this answer is at position `number` of the report, its anchor the slug of
+    /// its numbered heading.
+    pub(super) fn numbered(self, number: usize) -> Finding {
+        Finding {
+            number,
+            id: crate::report::page::slug(&format!("{number}. {}", self.title)),
+            title: self.title,
+            question: self.question,
+            short: self.short,
+            sentences: self.sentences,
+            reference: self.reference,
+            verdict: self.verdict,
+            figures: self.figures,
+            table: self.table,
+        }
+    }
+}
+
+/// What the questions read: the records, the scaling fits and the drawn figures.
+#[derive(Clone)]
+pub struct Evidence<'a> {
+    pub(super) records: Vec<&'a RunRecord>,
+    pub(super) fits: &'a [ScalingFit],
+    figures: &'a [Figure],
+    side_by_side: &'a [String],
+}
+
+impl<'a> Evidence<'a> {
+    /// The evidence of one report.
+    pub fn new(
+        records: &'a [RunRecord],
+        fits: &'a [ScalingFit],
+        figures: &'a [Figure],
+        side_by_side: &'a [String],
+    ) -> Self {
+        Evidence { records: records.iter().collect(), fits, figures, side_by_side }
+    }
+
+    /// The evidence the coursework's own questions are answered from: its questions are about
+    /// the square lattice, with or without diagonals, relaxed by MD, so lattices of another
+    /// type and runs set to their static answer (`relax.method: static`) are left to the
+    /// lattice-type questions.
+    pub(super) fn coursework(&self) -> Evidence<'a> {
+        let square_md = |r: &RunRecord| {
+            r.spec.lattice().is_none_or(|l| l.lattice_type == LatticeType::Square && !r.spec.static_only())
+        };
+        Evidence { records: self.records.iter().copied().filter(|r| square_md(r)).collect(), ..self.clone() }
+    }
+
+    /// The movies of the runs `keep` selects: per scene, its side-by-side movie if drawn, and
+    /// each run's own.
+    pub(super) fn movies(&self, keep: impl Fn(&RunRecord) -> bool) -> Vec<FigureRef> {
+        let chosen = self.all(keep);
+        let mut scenes: Vec<&str> = chosen.iter().map(|r| r.spec.scene.as_str()).collect();
+        scenes.dedup();
+        scenes
+            .into_iter()
+            .flat_map(|scene| {
+                let mine: Vec<&RunRecord> = chosen.iter().copied().filter(|r| r.spec.scene == scene).collect();
+                movie_refs(scene, &mine, self.side_by_side)
+            })
+            .collect()
+    }
+
+    /// The `ok` runs that `keep` selects, in campaign order.
+    pub(super) fn ok(&self, keep: impl Fn(&RunRecord) -> bool) -> Vec<&'a RunRecord> {
+        self.records.iter().copied().filter(|r| r.status == RunStatus::Ok && keep(r)).collect()
+    }
+
+    /// The runs of any status that `keep` selects.
+    pub(super) fn all(&self, keep: impl Fn(&RunRecord) -> bool) -> Vec<&'a RunRecord> {
+        self.records.iter().copied().filter(|r| keep(r)).collect()
+    }
+
+    /// The first figure of `scene` that shows `kind`.
+    pub(super) fn figure(&self, scene: &str, kind: FigureKind) -> Option<FigureRef> {
+        self.figures.iter().find(|f| f.scene == scene && f.kind == kind).map(Figure::reference)
+    }
+
+    /// The figures `(scene, kind)` that were drawn, in the order asked.
+    pub(super) fn figures(&self, wanted: &[(&str, FigureKind)]) -> Vec<FigureRef> {
+        wanted.iter().filter_map(|&(scene, kind)| self.figure(scene, kind)).collect()
+    }
+
+    /// The scaling fit of `quantity` in `scene`, if the scene swept its variable.
+    pub(super) fn fit(&self, scene: &str, quantity: &str) -> Option<&'a ScalingFit> {
+        self.fits.iter().find(|f| f.scene == scene && f.quantity == quantity)
+    }
+}
+
+/// A relative error as a signed number with 2 digits (`+1.6e-4`).
+pub fn rel(e: f64) -> String {
+    format!("{e:+.1e}")
+}
+
+/// The shortest dissipation time (s) among `runs`; infinite when none relaxed.
+pub(super) fn fastest_relaxation(runs: &[&RunRecord]) -> f64 {
+    runs.iter().filter_map(|r| r.metrics.dissipation_time).fold(f64::INFINITY, f64::min)
+}
+
+/// The smallest and largest of `values` (∞ and −∞ when there are none).
+pub(super) fn extremes(values: &[f64]) -> (f64, f64) {
+    values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), &x| (low.min(x), high.max(x)))
+}
+
+/// `x` when present, a dash otherwise.
+pub(super) fn cell(x: Option<f64>) -> String {
+    x.map(sig).unwrap_or_else(|| "–".into())
+}
+
+/// `x` as [`cell`] writes it, or 0 when it is below the result's precision: round-off of a
+/// quantity whose scale is `scale` (a Poisson ratio of 3e-13 is 0).
+pub(super) fn noise(x: Option<f64>, scale: f64) -> String {
+    match x {
+        Some(v) if v.abs() < 1e-9 * scale => "0".into(),
+        other => cell(other),
+    }
+}
