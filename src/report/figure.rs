@@ -108,15 +108,11 @@ pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> 
         .collect()
 }
 
-/// The relaxation methods that minimise the energy rather than move in time: the one list the
-/// report reads them from, so a new minimiser is described and timed without touching a finding.
-pub const MINIMISERS: [RelaxMethod; 2] = [RelaxMethod::Fire, RelaxMethod::Cg];
-
 /// What the frames of a run with no time show (a minimiser or the static solve): two states,
 /// not a motion.
 fn untimed_in_words(spec: &RunSpec) -> &'static str {
     match spec.relax().map(|r| r.method) {
-        Some(method) if MINIMISERS.contains(&method) => {
+        Some(method) if method.is_minimiser() => {
             " The minimiser has no time: two frames, the start and the state it stopped at (captioned)."
         }
         Some(RelaxMethod::Static) => " The static solve has no time: two frames, the start and the static answer.",

@@ -268,6 +268,38 @@ fn square_diagonal_stiffening(l: &LatticeSpec) -> Option<f64> {
 /// give E(45°) by the square symmetry of the elastic constants ([`diagonal_stiffening`]); the
 /// triangular network (isotropic: E(45°) = E) beside square ones at several k_d/k.
 pub(super) fn directions(e: &Evidence) -> Option<Answer> {
+    let networks = direction_networks(e)?;
+    let Directions { rows, checks, square, triangular } = direction_numbers(&networks);
+    if rows.is_empty() {
+        return None;
+    }
+    Some(Answer {
+        title: "Lattice types: direction",
+        question: "How does the stiffness depend on direction: the triangular network beside the square one?",
+        short: match square.iter().map(|(_, said)| said.as_str()).next_back() {
+            Some(last) => format!("square E(45°)/E(0°) up to {last}; triangular isotropic"),
+            None => "triangular isotropic".into(),
+        },
+        sentences: direction_sentences(&square, triangular),
+        reference: format!(
+            "The continuum's E(45°)/E(0°) from the lattice constants (1 for the triangular network), within {:.0} % \
+             (the free block's E and ν carry its edges' O(1/N), about 2 % at N = 33).",
+            DIRECTION_TOLERANCE * 100.0
+        ),
+        verdict: Verdict::of(checks),
+        figures: Vec::new(),
+        table: Some(Table {
+            header: ["type", "k_d/k", "N", "E(0°) (Pa)", "ν", "G (Pa)", "E(45°)/E(0°)", "continuum"]
+                .map(String::from)
+                .to_vec(),
+            rows,
+        }),
+    })
+}
+
+/// The networks of the direction study, each with E and ν of its free block pulled along y
+/// and G of its periodic strip in shear, all from the static answer.
+fn direction_networks<'a>(e: &Evidence<'a>) -> Option<Vec<Network<'a>>> {
     let fixed = |r: &RunRecord| {
         r.spec.static_only() && r.spec.lattice().is_some_and(|l| !l.is_random() && !l.rotated && l.impulse.is_none())
     };
@@ -292,24 +324,35 @@ pub(super) fn directions(e: &Evidence) -> Option<Answer> {
             _ => {}
         }
     }
-    let mut rows = Vec::new();
-    let mut checks = Vec::new();
-    let mut square = Vec::new();
-    let mut triangular = None;
-    for Network { key: (_, kind, ratio, n), lattice, youngs, poisson, shear } in &networks {
+    Some(networks)
+}
+
+/// The direction study's numbers: a table row and a check per complete network, the square
+/// lattices' E(45°)/E(0°) in words by k_d/k, and the triangular network's.
+struct Directions {
+    rows: Vec<Vec<String>>,
+    checks: Vec<bool>,
+    square: Vec<(f64, String)>,
+    triangular: Option<(LatticeType, usize, String)>,
+}
+
+/// E(45°)/E(0°) of every network with all three moduli, against its continuum value.
+fn direction_numbers(networks: &[Network]) -> Directions {
+    let mut found = Directions { rows: Vec::new(), checks: Vec::new(), square: Vec::new(), triangular: None };
+    for Network { key: (_, kind, ratio, n), lattice, youngs, poisson, shear } in networks {
         let (Some(youngs), Some(poisson), Some(shear)) = (*youngs, *poisson, *shear) else { continue };
         let stiffening = diagonal_stiffening(youngs, poisson, shear);
         let continuum = if kind.is_square() { square_diagonal_stiffening(lattice) } else { Some(1.0) };
         if let Some(continuum) = continuum {
-            checks.push((stiffening / continuum - 1.0).abs() <= DIRECTION_TOLERANCE);
+            found.checks.push((stiffening / continuum - 1.0).abs() <= DIRECTION_TOLERANCE);
         }
         let said = format!("{} (continuum {})", sig(stiffening), cell(continuum));
         if kind.is_square() {
-            square.push((*ratio, said));
+            found.square.push((*ratio, said));
         } else {
-            triangular = Some((*kind, *n, said));
+            found.triangular = Some((*kind, *n, said));
         }
-        rows.push(vec![
+        found.rows.push(vec![
             kind.name().into(),
             if kind.is_square() { sig(*ratio) } else { "–".into() },
             n.to_string(),
@@ -320,9 +363,11 @@ pub(super) fn directions(e: &Evidence) -> Option<Answer> {
             cell(continuum),
         ]);
     }
-    if rows.is_empty() {
-        return None;
-    }
+    found
+}
+
+/// How E(45°) is found, and what the triangular and square networks show.
+fn direction_sentences(square: &[(f64, String)], triangular: Option<(LatticeType, usize, String)>) -> Vec<String> {
     let mut sentences = vec![
         "E(45°) follows from three measured moduli of the same network by the square symmetry of its elastic \
          constants, 1/E(45°) = (1 − ν)/(2E) + 1/(4G): E and ν of the free block pulled along y, G of the \
@@ -345,28 +390,7 @@ pub(super) fn directions(e: &Evidence) -> Option<Answer> {
             listed.join(", ")
         ));
     }
-    Some(Answer {
-        title: "Lattice types: direction",
-        question: "How does the stiffness depend on direction: the triangular network beside the square one?",
-        short: match square.iter().map(|(_, said)| said.as_str()).next_back() {
-            Some(last) => format!("square E(45°)/E(0°) up to {last}; triangular isotropic"),
-            None => "triangular isotropic".into(),
-        },
-        sentences,
-        reference: format!(
-            "The continuum's E(45°)/E(0°) from the lattice constants (1 for the triangular network), within {:.0} % \
-             (the free block's E and ν carry its edges' O(1/N), about 2 % at N = 33).",
-            DIRECTION_TOLERANCE * 100.0
-        ),
-        verdict: Verdict::of(checks),
-        figures: Vec::new(),
-        table: Some(Table {
-            header: ["type", "k_d/k", "N", "E(0°) (Pa)", "ν", "G (Pa)", "E(45°)/E(0°)", "continuum"]
-                .map(String::from)
-                .to_vec(),
-            rows,
-        }),
-    })
+    sentences
 }
 
 /// One network of the direction study, (scene, type, k_d/k, N), with E and ν of its free block
@@ -397,13 +421,7 @@ fn over_seeds(p: &[f64]) -> (f64, f64, f64) {
 /// largest cut fraction still rigid and the smallest that is a mechanism (the cut sets of one
 /// seed are nested: a bond is cut when its own uniform number is below the fraction).
 pub(super) fn percolation(e: &Evidence) -> Option<Answer> {
-    let runs = e.all(|r| {
-        r.spec.lattice().is_some_and(|l| l.stiffness_spread == 0.0 && l.load_case == LoadCase::Tensile)
-            && (matches!(r.status, RunStatus::Mechanism | RunStatus::Ok | RunStatus::NoEquilibrium)
-                // Rigid by the linear test, but so close to a mechanism that the linear answer's
-                // displacements leave small strains behind (relax.method: static sets them).
-                || r.status == RunStatus::Unstable && r.metrics.lattice.youngs_modulus_linear.is_some())
-    });
+    let runs = percolation_runs(e);
     if !runs.iter().any(|r| other_type(r) && r.spec.lattice().is_some_and(|l| l.cut_fraction > 0.0)) {
         return None;
     }
@@ -413,120 +431,12 @@ pub(super) fn percolation(e: &Evidence) -> Option<Answer> {
         .map(|r| r.spec.scene.as_str())
         .collect();
     diluted_scenes.dedup();
-    let mut series: BTreeMap<(&str, usize, u64), Vec<Diluted>> = BTreeMap::new();
-    for r in &runs {
-        let l = r.spec.lattice()?;
-        if l.rotated || l.impulse.is_some() {
-            continue;
-        }
-        let rigid = r.status != RunStatus::Mechanism;
-        series.entry((l.lattice_type.name(), l.nx, l.seed)).or_default().push((
-            l.cut_fraction,
-            rigid,
-            r.metrics.lattice.youngs_modulus_linear,
-        ));
-    }
-    series.retain(|_, points| points.len() > 2 && points.iter().any(|p| p.0 > 0.0));
-    // (type, N) → thresholds p_c of the seeds, and E/E(p = 1) by p.
-    let mut thresholds: BTreeMap<(&str, usize), Vec<f64>> = BTreeMap::new();
-    let mut stiffness: BTreeMap<(&str, u64), Vec<f64>> = BTreeMap::new();
-    for (&(name, n, _), points) in &mut series {
-        points.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let full = points.iter().find(|p| p.0 == 0.0).and_then(|p| p.2);
-        let last_rigid = points.iter().filter(|p| p.1).map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
-        let first_floppy = points.iter().filter(|p| !p.1).map(|p| p.0).fold(f64::INFINITY, f64::min);
-        if last_rigid.is_finite() && first_floppy.is_finite() {
-            thresholds.entry((name, n)).or_default().push(1.0 - 0.5 * (last_rigid + first_floppy));
-        }
-        if let Some(full) = full {
-            for p in points.iter().filter(|p| p.0 > 0.0) {
-                let ratio = if p.1 { p.2.map_or(0.0, |e| e / full) } else { 0.0 };
-                stiffness.entry((name, (p.0 * 1000.0).round() as u64)).or_default().push(ratio);
-            }
-        }
-    }
-    let mut rows = Vec::new();
-    let mut sentences = Vec::new();
-    for ((name, n), p) in &thresholds {
-        let (mean, sd, error) = over_seeds(p);
-        let (emt, literature) = if *name == "triangular" { (2.0 / 3.0, Some(0.660)) } else { (0.5, None) };
-        rows.push(vec![
-            name.to_string(),
-            n.to_string(),
-            p.len().to_string(),
-            format!("{mean:.3} ± {error:.3}"),
-            format!("{sd:.3}"),
-            format!("{emt:.3}"),
-            literature.map_or("–".into(), |x| format!("{x:.3}")),
-        ]);
-        sentences.push(format!(
-            "{name} N = {n}: the rigidity threshold over {} seeds is p_c = {mean:.3} ± {error:.3} (standard error; \
-             seed-to-seed spread {sd:.3}), against effective-medium theory's {emt:.3}{}.",
-            p.len(),
-            literature
-                .map_or(String::new(), |x| format!(" and Jacobs and Thorpe's {x:.3} (central forces, large networks)"))
-        ));
-    }
-    // The largest triangular network against the literature (BTreeMap: sizes ascending).
-    if let Some(((_, n), p)) = thresholds.iter().rev().find(|((name, _), _)| *name == "triangular") {
-        let (mean, _, error) = over_seeds(p);
-        let error = error.max(f64::MIN_POSITIVE);
-        let off = mean - 0.660;
-        sentences.push(format!(
-            "At the largest size, N = {n}, the triangular threshold {mean:.3} lies {:.3} {} Jacobs and Thorpe's \
-             bulk 0.660 ({:.1} standard errors over the seeds, on a grid of cut fractions 0.005 apart there: a \
-             finite network between rigid edge bands need not share the bulk's value) and {:.3} below \
-             effective-medium theory's 2/3, which counts constraints on average.",
-            off.abs(),
-            if off < 0.0 { "below" } else { "above" },
-            off.abs() / error,
-            2.0 / 3.0 - mean
-        ));
-    }
-    let unstable: Vec<f64> = runs
-        .iter()
-        .filter(|r| r.status == RunStatus::Unstable)
-        .filter_map(|r| r.spec.lattice().map(|l| 1.0 - l.cut_fraction))
-        .collect();
-    if let (Some(low), Some(high)) =
-        (unstable.iter().copied().reduce(f64::min), unstable.iter().copied().reduce(f64::max))
-    {
-        sentences.push(format!(
-            "{} networks at p = {low:.3} … {high:.3} are rigid by the static solver's linear test but so near a \
-             mechanism that the linear answer's large displacements fail the energy check (status unstable): \
-             they count as rigid here, with their linear E.",
-            unstable.len()
-        ));
-    }
-    let emt_rows: Vec<String> = stiffness
-        .iter()
-        .filter(|((name, _), _)| *name == "triangular")
-        .map(|((_, cut), ratios)| {
-            let p = 1.0 - *cut as f64 / 1000.0;
-            let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
-            // Cut fractions on a grid of 0.005: three decimals where the third is not 0.
-            let p_text = if cut % 10 == 0 { format!("{p:.2}") } else { format!("{p:.3}") };
-            format!("p = {p_text}: E/E(1) = {} (EMT {})", sig(mean), sig(((p - 2.0 / 3.0) / (1.0 / 3.0)).max(0.0)))
-        })
-        .collect();
-    if !emt_rows.is_empty() {
-        sentences.push(format!(
-            "E of the triangular networks (linear static answer, mechanisms counted as 0, averaged over seeds and \
-             sizes) against the effective-medium line E(p)/E(1) = (p − 2/3)/(1 − 2/3): {}.",
-            emt_rows.join("; ")
-        ));
-    }
-    sentences.push(
-        "The threshold is located by the static solver's rigidity test: a network is floppy when the load \
-         drives a zero-stiffness motion (status mechanism); p = 1 − cut_fraction is the probability an interior \
-         bond is kept. The loaded and the supported rows sit in rigid bands that are never cut (the bonds that \
-         touch them and those along the rows next to them): without the second row's bonds a triangular top \
-         row is a chain of triangles hinged at its loaded nodes, and one of them folds the likelier the wider \
-         the network. Per seed the threshold lies midway between the largest cut fraction still rigid and the \
-         smallest that is a mechanism (the cut sets of a seed are nested), to half the grid's step there; the \
-         thresholds scatter by seed, less as N grows."
-            .into(),
-    );
+    let (thresholds, stiffness) = dilution(&runs)?;
+    let (rows, mut sentences) = threshold_rows(&thresholds);
+    sentences.extend(largest_triangular_sentence(&thresholds));
+    sentences.extend(unstable_sentence(&runs));
+    sentences.extend(effective_medium_sentence(&stiffness));
+    sentences.push(THRESHOLD_METHOD.into());
     Some(Answer {
         title: "Lattice types: rigidity percolation",
         question: "Where does a randomly diluted network lose its rigidity, against effective-medium theory?",
@@ -547,6 +457,153 @@ pub(super) fn percolation(e: &Evidence) -> Option<Answer> {
         }),
     })
 }
+
+/// The tensile runs of the dilution study that say whether their network is rigid.
+fn percolation_runs<'a>(e: &Evidence<'a>) -> Vec<&'a RunRecord> {
+    e.all(|r| {
+        r.spec.lattice().is_some_and(|l| l.stiffness_spread == 0.0 && l.load_case == LoadCase::Tensile)
+            && (matches!(r.status, RunStatus::Mechanism | RunStatus::Ok | RunStatus::NoEquilibrium)
+                // Rigid by the linear test, but so close to a mechanism that the linear answer's
+                // displacements leave small strains behind (relax.method: static sets them).
+                || r.status == RunStatus::Unstable && r.metrics.lattice.youngs_modulus_linear.is_some())
+    })
+}
+
+/// Per (type, N), the rigidity thresholds p_c of its seeds.
+type Thresholds<'a> = BTreeMap<(&'a str, usize), Vec<f64>>;
+
+/// Per (type, cut fraction in thousandths), the seeds' E/E(p = 1), mechanisms counted as 0.
+type StiffnessByCut<'a> = BTreeMap<(&'a str, u64), Vec<f64>>;
+
+/// The thresholds (per seed midway between the largest cut still rigid and the smallest that
+/// is a mechanism: the cut sets of a seed are nested) and the stiffness by cut.
+fn dilution<'a>(runs: &[&'a RunRecord]) -> Option<(Thresholds<'a>, StiffnessByCut<'a>)> {
+    let mut series: BTreeMap<(&str, usize, u64), Vec<Diluted>> = BTreeMap::new();
+    for r in runs {
+        let l = r.spec.lattice()?;
+        if l.rotated || l.impulse.is_some() {
+            continue;
+        }
+        let rigid = r.status != RunStatus::Mechanism;
+        series.entry((l.lattice_type.name(), l.nx, l.seed)).or_default().push((
+            l.cut_fraction,
+            rigid,
+            r.metrics.lattice.youngs_modulus_linear,
+        ));
+    }
+    series.retain(|_, points| points.len() > 2 && points.iter().any(|p| p.0 > 0.0));
+    let mut thresholds = Thresholds::new();
+    let mut stiffness = StiffnessByCut::new();
+    for (&(name, n, _), points) in &mut series {
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let full = points.iter().find(|p| p.0 == 0.0).and_then(|p| p.2);
+        let last_rigid = points.iter().filter(|p| p.1).map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
+        let first_floppy = points.iter().filter(|p| !p.1).map(|p| p.0).fold(f64::INFINITY, f64::min);
+        if last_rigid.is_finite() && first_floppy.is_finite() {
+            thresholds.entry((name, n)).or_default().push(1.0 - 0.5 * (last_rigid + first_floppy));
+        }
+        if let Some(full) = full {
+            for p in points.iter().filter(|p| p.0 > 0.0) {
+                let ratio = if p.1 { p.2.map_or(0.0, |e| e / full) } else { 0.0 };
+                stiffness.entry((name, (p.0 * 1000.0).round() as u64)).or_default().push(ratio);
+            }
+        }
+    }
+    Some((thresholds, stiffness))
+}
+
+/// A table row and a sentence per (type, N): the seeds' mean threshold against theory.
+fn threshold_rows(thresholds: &Thresholds) -> (Vec<Vec<String>>, Vec<String>) {
+    let mut rows = Vec::new();
+    let mut sentences = Vec::new();
+    for ((name, n), p) in thresholds {
+        let (mean, sd, error) = over_seeds(p);
+        let (emt, literature) = if *name == "triangular" { (2.0 / 3.0, Some(0.660)) } else { (0.5, None) };
+        rows.push(vec![
+            name.to_string(),
+            n.to_string(),
+            p.len().to_string(),
+            format!("{mean:.3} ± {error:.3}"),
+            format!("{sd:.3}"),
+            format!("{emt:.3}"),
+            literature.map_or("–".into(), |x| format!("{x:.3}")),
+        ]);
+        sentences.push(format!(
+            "{name} N = {n}: the rigidity threshold over {} seeds is p_c = {mean:.3} ± {error:.3} (standard error; \
+             seed-to-seed spread {sd:.3}), against effective-medium theory's {emt:.3}{}.",
+            p.len(),
+            literature
+                .map_or(String::new(), |x| format!(" and Jacobs and Thorpe's {x:.3} (central forces, large networks)"))
+        ));
+    }
+    (rows, sentences)
+}
+
+/// The largest triangular network's threshold against Jacobs and Thorpe's bulk value.
+fn largest_triangular_sentence(thresholds: &Thresholds) -> Option<String> {
+    let ((_, n), p) = thresholds.iter().rev().find(|((name, _), _)| *name == "triangular")?;
+    let (mean, _, error) = over_seeds(p);
+    let error = error.max(f64::MIN_POSITIVE);
+    let off = mean - 0.660;
+    Some(format!(
+        "At the largest size, N = {n}, the triangular threshold {mean:.3} lies {:.3} {} Jacobs and Thorpe's \
+         bulk 0.660 ({:.1} standard errors over the seeds, on a grid of cut fractions 0.005 apart there: a \
+         finite network between rigid edge bands need not share the bulk's value) and {:.3} below \
+         effective-medium theory's 2/3, which counts constraints on average.",
+        off.abs(),
+        if off < 0.0 { "below" } else { "above" },
+        off.abs() / error,
+        2.0 / 3.0 - mean
+    ))
+}
+
+/// The networks rigid by the linear test but too near a mechanism for its answer.
+fn unstable_sentence(runs: &[&RunRecord]) -> Option<String> {
+    let unstable: Vec<f64> = runs
+        .iter()
+        .filter(|r| r.status == RunStatus::Unstable)
+        .filter_map(|r| r.spec.lattice().map(|l| 1.0 - l.cut_fraction))
+        .collect();
+    let (low, high) = (unstable.iter().copied().reduce(f64::min)?, unstable.iter().copied().reduce(f64::max)?);
+    Some(format!(
+        "{} networks at p = {low:.3} … {high:.3} are rigid by the static solver's linear test but so near a \
+         mechanism that the linear answer's large displacements fail the energy check (status unstable): \
+         they count as rigid here, with their linear E.",
+        unstable.len()
+    ))
+}
+
+/// The triangular networks' E against the effective-medium line.
+fn effective_medium_sentence(stiffness: &StiffnessByCut) -> Option<String> {
+    let emt_rows: Vec<String> = stiffness
+        .iter()
+        .filter(|((name, _), _)| *name == "triangular")
+        .map(|((_, cut), ratios)| {
+            let p = 1.0 - *cut as f64 / 1000.0;
+            let mean = ratios.iter().sum::<f64>() / ratios.len() as f64;
+            // Cut fractions on a grid of 0.005: three decimals where the third is not 0.
+            let p_text = if cut % 10 == 0 { format!("{p:.2}") } else { format!("{p:.3}") };
+            format!("p = {p_text}: E/E(1) = {} (EMT {})", sig(mean), sig(((p - 2.0 / 3.0) / (1.0 / 3.0)).max(0.0)))
+        })
+        .collect();
+    (!emt_rows.is_empty()).then(|| {
+        format!(
+            "E of the triangular networks (linear static answer, mechanisms counted as 0, averaged over seeds and \
+             sizes) against the effective-medium line E(p)/E(1) = (p − 2/3)/(1 − 2/3): {}.",
+            emt_rows.join("; ")
+        )
+    })
+}
+
+/// How the threshold is located, in words.
+const THRESHOLD_METHOD: &str = "The threshold is located by the static solver's rigidity test: a network is floppy when the load \
+         drives a zero-stiffness motion (status mechanism); p = 1 − cut_fraction is the probability an interior \
+         bond is kept. The loaded and the supported rows sit in rigid bands that are never cut (the bonds that \
+         touch them and those along the rows next to them): without the second row's bonds a triangular top \
+         row is a chain of triangles hinged at its loaded nodes, and one of them folds the likelier the wider \
+         the network. Per seed the threshold lies midway between the largest cut fraction still rigid and the \
+         smallest that is a mechanism (the cut sets of a seed are nested), to half the grid's step there; the \
+         thresholds scatter by seed, less as N grows.";
 
 /// True for an impulse lattice stepped or kicked mostly sideways: its wave is transverse.
 fn transverse(r: &RunRecord) -> bool {
@@ -588,9 +645,65 @@ pub(super) fn waves(e: &Evidence) -> Option<Answer> {
     if !runs.iter().any(|r| other_type(r)) {
         return None;
     }
+    let (rows, waves) = wave_rows(&runs)?;
+    let criterion = runs.first().and_then(|r| r.metrics.arrival_criterion.clone()).unwrap_or_default();
+    let longitudinal = ratios(&waves, |w| !w.transverse);
+    let rigid = ratios(&waves, |w| w.transverse && judged(w));
+    let mut sentences = longitudinal_sentences(&longitudinal, &criterion);
+    sentences.extend(transverse_sentence(&waves, &rigid));
+    sentences.extend(kagome_sentence(&waves));
+    sentences.extend(honeycomb_sentence(&waves));
+    let short = if ratios(&waves, |w| w.transverse).is_empty() {
+        format!("v/c_L = {}", span(&longitudinal))
+    } else {
+        format!("v/c_L = {}; v/c_T = {}", span(&longitudinal), span(&rigid))
+    };
+    Some(Answer {
+        title: "Lattice types: waves",
+        question: "Does a wave on every type arrive at that lattice's longitudinal and transverse speeds?",
+        short,
+        sentences,
+        reference: "The plane-wave speed along y of each type (c_L; c_T of the square and triangular lattices; the \
+                    kagome's a√(k/(2m)), shown, not judged), within 20 % (the arrival criteria's spread on the \
+                    square lattice)."
+            .into(),
+        verdict: Verdict::of(ratios(&waves, judged).iter().map(|x| (x - 1.0).abs() < 0.2)),
+        figures: e.movies(|r| other_type(r) && r.spec.movie.is_some()),
+        table: Some(Table {
+            header: [
+                "type",
+                "wave",
+                "supports",
+                "impulse",
+                "distance (m)",
+                "arrival (s)",
+                "speed (m/s)",
+                "reference (m/s)",
+                "ratio",
+            ]
+            .map(String::from)
+            .to_vec(),
+            rows,
+        }),
+    })
+}
+
+/// The measured speeds over their references of the waves `pick` selects.
+fn ratios(waves: &[Wave], pick: impl Fn(&Wave) -> bool) -> Vec<f64> {
+    waves.iter().filter(|w| pick(w)).filter_map(|w| w.ratio).collect()
+}
+
+/// Whether a wave's speed is judged: the kagome's transverse arrival is read apart, its strip
+/// being a mechanism in shear.
+fn judged(w: &Wave) -> bool {
+    !w.transverse || w.kind != LatticeType::Kagome
+}
+
+/// A table row and a [`Wave`] per timed impulse run.
+fn wave_rows(runs: &[&RunRecord]) -> Option<(Vec<Vec<String>>, Vec<Wave>)> {
     let mut rows = Vec::new();
     let mut waves = Vec::new();
-    for r in &runs {
+    for r in runs {
         let (m, l) = (&r.metrics, r.spec.lattice()?);
         let measured = m.recommended_sound_speed();
         let wave = Wave {
@@ -613,123 +726,96 @@ pub(super) fn waves(e: &Evidence) -> Option<Answer> {
         ]);
         waves.push(wave);
     }
-    let criterion = runs.first().and_then(|r| r.metrics.arrival_criterion.clone()).unwrap_or_default();
-    let ratios = |pick: &dyn Fn(&Wave) -> bool| -> Vec<f64> {
-        waves.iter().filter(|w| pick(w)).filter_map(|w| w.ratio).collect()
-    };
-    let longitudinal = ratios(&|w| !w.transverse);
-    // The kagome's transverse arrival is read apart: its strip is a mechanism in shear.
-    let judged = |w: &Wave| !w.transverse || w.kind != LatticeType::Kagome;
-    let rigid = ratios(&|w| w.transverse && judged(w));
-    let mut sentences = Vec::new();
-    if !longitudinal.is_empty() {
-        sentences.push(format!(
+    Some((rows, waves))
+}
+
+/// The longitudinal waves' speeds against each type's c_L, and what a like ratio says.
+fn longitudinal_sentences(longitudinal: &[f64], criterion: &str) -> Vec<String> {
+    if longitudinal.is_empty() {
+        return Vec::new();
+    }
+    vec![
+        format!(
             "A force step down on the top row sends a plane longitudinal wave down every type; timed at the bottom \
              row by the {criterion} criterion, its speed is {} of that lattice's c_L = √((λ + 2μ) A/m) (A the \
              area per node): a√((k + k_d)/m) square, a√(9k/(8m)) triangular, a√(3k/(4m)) kagome, a√(3k/(8m)) \
              honeycomb.",
-            span(&longitudinal)
-        ));
-        sentences.push(
-            "A like ratio on every type says the criterion, not the network, sets the offset: a discrete \
+            span(longitudinal)
+        ),
+        "A like ratio on every type says the criterion, not the network, sets the offset: a discrete \
              lattice's front is dispersed over a few rows, and a threshold catches its leading edge."
-                .into(),
+            .into(),
+    ]
+}
+
+/// The transverse waves of the rigid types against their c_T.
+fn transverse_sentence(waves: &[Wave], rigid: &[f64]) -> Option<String> {
+    if rigid.is_empty() {
+        return None;
+    }
+    let mut steps: Vec<&str> =
+        waves.iter().filter(|w| w.transverse && judged(w) && w.ratio.is_some()).map(|w| w.impulse.as_str()).collect();
+    steps.sort_unstable();
+    steps.dedup();
+    let sizes = if steps.len() > 1 { format!(", alike under a {}", steps.join(" and a ")) } else { String::new() };
+    Some(format!(
+        "A force step sideways on the top row of a periodic strip (no side edges to shed longitudinal waves, a \
+         free bottom row) sends a plane transverse wave: by the same criterion its speed is {} of c_T = \
+         √(μ A/m), a√(k_d/m) square, a√(3k/(8m)) triangular{sizes}. On the strip every row moves as one, so \
+         both are the same chain of rows, each timed against its own c_T.",
+        span(rigid)
+    ))
+}
+
+/// The kagome's sideways wave: a mechanism's branch, and what its fronts show.
+fn kagome_sentence(waves: &[Wave]) -> Option<String> {
+    let kagome: Vec<&Wave> = waves.iter().filter(|w| w.transverse && w.kind == LatticeType::Kagome).collect();
+    if kagome.is_empty() {
+        return None;
+    }
+    let quiet: Vec<&str> = kagome.iter().filter(|w| w.no_front).map(|w| w.impulse.as_str()).collect();
+    let arrived: Vec<String> = kagome
+        .iter()
+        .filter_map(|w| {
+            w.ratio.map(|x| format!("under a {} at {} of it ({} of c_T)", w.impulse, sig(x), sig(x * 2.0_f64.sqrt())))
+        })
+        .collect();
+    let mut sentence = "The kagome's acoustic Bloch branch along y that moves sideways has the slope a√(k/(2m)) = \
+                        √2 c_T, not the affine c_T = a√(k/(4m)) (its triangles twist at no cost, z = 2d, and the \
+                        twist joins the shear at the order of the strain), and its other sideways branch is flat \
+                        at zero: its strip shears as a mechanism, and that branch takes the step."
+        .to_string();
+    if !quiet.is_empty() {
+        sentence += &format!(
+            " Under a {} no front reached the bottom row by any criterion: the top row runs away, and the \
+             receivers never reach the threshold its growing speed sets.",
+            quiet.join(" or a ")
         );
     }
-    if !rigid.is_empty() {
-        let mut steps: Vec<&str> = waves
-            .iter()
-            .filter(|w| w.transverse && judged(w) && w.ratio.is_some())
-            .map(|w| w.impulse.as_str())
-            .collect();
-        steps.sort_unstable();
-        steps.dedup();
-        let sizes = if steps.len() > 1 { format!(", alike under a {}", steps.join(" and a ")) } else { String::new() };
-        sentences.push(format!(
-            "A force step sideways on the top row of a periodic strip (no side edges to shed longitudinal waves, a \
-             free bottom row) sends a plane transverse wave: by the same criterion its speed is {} of c_T = \
-             √(μ A/m), a√(k_d/m) square, a√(3k/(8m)) triangular{sizes}. On the strip every row moves as one, so \
-             both are the same chain of rows, each timed against its own c_T.",
-            span(&rigid)
-        ));
+    if !arrived.is_empty() {
+        sentence += &format!(
+            " A front arrived {}; with linear springs only the geometry can make the arrival depend on the \
+             step's size, so that front rides on the turned bonds of a large step, and the verdict leaves \
+             it out.",
+            arrived.join(", ")
+        );
     }
-    let kagome: Vec<&Wave> = waves.iter().filter(|w| w.transverse && w.kind == LatticeType::Kagome).collect();
-    if !kagome.is_empty() {
-        let quiet: Vec<&str> = kagome.iter().filter(|w| w.no_front).map(|w| w.impulse.as_str()).collect();
-        let arrived: Vec<String> = kagome
-            .iter()
-            .filter_map(|w| {
-                w.ratio
-                    .map(|x| format!("under a {} at {} of it ({} of c_T)", w.impulse, sig(x), sig(x * 2.0_f64.sqrt())))
-            })
-            .collect();
-        let mut sentence = "The kagome's acoustic Bloch branch along y that moves sideways has the slope a√(k/(2m)) = \
-                            √2 c_T, not the affine c_T = a√(k/(4m)) (its triangles twist at no cost, z = 2d, and the \
-                            twist joins the shear at the order of the strain), and its other sideways branch is flat \
-                            at zero: its strip shears as a mechanism, and that branch takes the step."
-            .to_string();
-        if !quiet.is_empty() {
-            sentence += &format!(
-                " Under a {} no front reached the bottom row by any criterion: the top row runs away, and the \
-                 receivers never reach the threshold its growing speed sets.",
-                quiet.join(" or a ")
-            );
-        }
-        if !arrived.is_empty() {
-            sentence += &format!(
-                " A front arrived {}; with linear springs only the geometry can make the arrival depend on the \
-                 step's size, so that front rides on the turned bonds of a large step, and the verdict leaves \
-                 it out.",
-                arrived.join(", ")
-            );
-        }
-        sentences.push(sentence);
-    }
+    Some(sentence)
+}
+
+/// The honeycomb's strip, which carries no transverse front.
+fn honeycomb_sentence(waves: &[Wave]) -> Option<String> {
     let honeycomb: Vec<&str> = waves
         .iter()
         .filter(|w| w.transverse && w.kind == LatticeType::Honeycomb && w.no_front)
         .map(|w| w.impulse.as_str())
         .collect();
-    if !honeycomb.is_empty() {
-        sentences.push(format!(
-            "The honeycomb's strip carried no transverse front under a {}: its sideways branch along y is flat at \
-             zero (μ = 0), and a sideways step turns its bonds and sends nothing down.",
-            honeycomb.join(" or a ")
-        ));
+    if honeycomb.is_empty() {
+        return None;
     }
-    let judged_ratios = ratios(&judged);
-    let transverse_ratios = ratios(&|w| w.transverse);
-    let short = if transverse_ratios.is_empty() {
-        format!("v/c_L = {}", span(&longitudinal))
-    } else {
-        format!("v/c_L = {}; v/c_T = {}", span(&longitudinal), span(&rigid))
-    };
-    Some(Answer {
-        title: "Lattice types: waves",
-        question: "Does a wave on every type arrive at that lattice's longitudinal and transverse speeds?",
-        short,
-        sentences,
-        reference: "The plane-wave speed along y of each type (c_L; c_T of the square and triangular lattices; the \
-                    kagome's a√(k/(2m)), shown, not judged), within 20 % (the arrival criteria's spread on the \
-                    square lattice)."
-            .into(),
-        verdict: Verdict::of(judged_ratios.iter().map(|x| (x - 1.0).abs() < 0.2)),
-        figures: e.movies(|r| other_type(r) && r.spec.movie.is_some()),
-        table: Some(Table {
-            header: [
-                "type",
-                "wave",
-                "supports",
-                "impulse",
-                "distance (m)",
-                "arrival (s)",
-                "speed (m/s)",
-                "reference (m/s)",
-                "ratio",
-            ]
-            .map(String::from)
-            .to_vec(),
-            rows,
-        }),
-    })
+    Some(format!(
+        "The honeycomb's strip carried no transverse front under a {}: its sideways branch along y is flat at \
+         zero (μ = 0), and a sideways step turns its bonds and sends nothing down.",
+        honeycomb.join(" or a ")
+    ))
 }
