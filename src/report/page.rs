@@ -40,7 +40,7 @@ struct Heading {
 /// The id of a heading whose text is `text`, as GitHub makes it: lower case, letters, digits,
 /// `-` and `_` kept, spaces as `-`, everything else dropped (for ASCII headings the same
 /// anchors as GitHub's view of `report.md`).
-pub(crate) fn slug(text: &str) -> String {
+pub fn slug(text: &str) -> String {
     let slug: String = text
         .trim()
         .chars()

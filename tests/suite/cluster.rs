@@ -3,23 +3,9 @@
 //! skip stored runs; `report` lists what is missing; `slurm` writes the array and report jobs.
 
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Command;
 
-fn mdsolids(reports: &Path, args: &[&str]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_mdsolids"))
-        .arg("--reports")
-        .arg(reports)
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs");
-    assert!(out.status.success(), "mdsolids {args:?}: {}", text(&out.stderr));
-    out
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
+use crate::common::{mdsolids_ok, text};
 
 /// The rows of `results.csv` without the measured-time columns (`wall_s`, `loop_s`), which no
 /// two runs share. The columns compared are the header's own, so a new column is compared too.
@@ -43,22 +29,22 @@ fn results_without_timing(dir: &Path) -> Vec<Vec<String>> {
 #[test]
 fn four_shards_and_a_report_give_the_table_of_one_run() {
     let (whole, sharded) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
-    mdsolids(whole.path(), &["run", "campaigns/smoke.yaml"]);
+    mdsolids_ok(whole.path(), &["run", "campaigns/smoke.yaml"]);
 
     let mut ran = 0;
     for index in 0..4 {
         let shard = format!("{index}/4");
-        let out = text(&mdsolids(sharded.path(), &["run", "campaigns/smoke.yaml", "--shard", &shard]).stdout);
+        let out = text(&mdsolids_ok(sharded.path(), &["run", "campaigns/smoke.yaml", "--shard", &shard]).stdout);
         let runs: usize = out.split(" of 5 runs").next().and_then(|s| s.rsplit(' ').next()).unwrap().parse().unwrap();
         ran += runs;
         assert!(!sharded.path().join("smoke/results.csv").exists(), "a shard writes no table: {out}");
     }
     assert_eq!(ran, 5, "the shards cover the campaign once");
     // A second pass of a shard finds its runs stored.
-    let again = text(&mdsolids(sharded.path(), &["run", "campaigns/smoke.yaml", "--shard", "0/4"]).stdout);
+    let again = text(&mdsolids_ok(sharded.path(), &["run", "campaigns/smoke.yaml", "--shard", "0/4"]).stdout);
     assert!(again.contains("0 simulated"), "{again}");
 
-    let report = mdsolids(sharded.path(), &["report", "campaigns/smoke.yaml"]);
+    let report = mdsolids_ok(sharded.path(), &["report", "campaigns/smoke.yaml"]);
     assert!(
         text(&report.stdout).contains("from 5 stored runs (0 without results, 0 corrupt"),
         "{}",
@@ -74,13 +60,13 @@ fn four_shards_and_a_report_give_the_table_of_one_run() {
 #[test]
 fn report_merges_what_is_stored_and_lists_what_is_missing() {
     let reports = tempfile::tempdir().unwrap();
-    mdsolids(reports.path(), &["run", "campaigns/smoke.yaml", "--shard", "0/4"]);
+    mdsolids_ok(reports.path(), &["run", "campaigns/smoke.yaml", "--shard", "0/4"]);
     let stored = std::fs::read_dir(reports.path().join("smoke/runs"))
         .unwrap()
         .filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().ends_with(".json"))
         .count();
     assert!((1..5).contains(&stored), "{stored}");
-    let out = mdsolids(reports.path(), &["report", "campaigns/smoke.yaml"]);
+    let out = mdsolids_ok(reports.path(), &["report", "campaigns/smoke.yaml"]);
     let warning = text(&out.stderr);
     assert!(warning.contains(&format!("warning: {} of 5 runs have no stored result", 5 - stored)), "{warning}");
     let table = std::fs::read_to_string(reports.path().join("smoke/results.csv")).unwrap();
@@ -106,7 +92,7 @@ fn bad_shards_are_refused() {
 fn slurm_writes_an_array_and_an_afterany_report_job() {
     let reports = tempfile::tempdir().unwrap();
     let out =
-        text(&mdsolids(reports.path(), &["slurm", "campaigns/smoke.yaml", "--tasks", "4", "--time", "10"]).stdout);
+        text(&mdsolids_ok(reports.path(), &["slurm", "campaigns/smoke.yaml", "--tasks", "4", "--time", "10"]).stdout);
     assert!(out.contains("submit with: bash "), "{out}");
     let dir = reports.path().join("smoke/slurm");
     let array = std::fs::read_to_string(dir.join("array.sh")).unwrap();

@@ -43,12 +43,25 @@ pub fn report_of(name: &str, yaml: &str) -> String {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join(format!("{name}.yaml"));
     std::fs::write(&file, yaml).unwrap();
+    mdsolids_ok(dir.path(), &["run", file.to_str().unwrap()]);
+    std::fs::read_to_string(dir.path().join(name).join("report.md")).unwrap()
+}
+
+/// Runs the binary with `--reports reports` and `args` from the crate's folder, and asserts
+/// that it succeeded, with its error output if not.
+pub fn mdsolids_ok(reports: &std::path::Path, args: &[&str]) -> std::process::Output {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_mdsolids"))
         .arg("--reports")
-        .arg(dir.path())
-        .args(["run", file.to_str().unwrap()])
+        .arg(reports)
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
         .expect("the binary runs");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    std::fs::read_to_string(dir.path().join(name).join("report.md")).unwrap()
+    assert!(out.status.success(), "mdsolids {args:?}: {}", text(&out.stderr));
+    out
+}
+
+/// A command's output as text.
+pub fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
 }

@@ -87,22 +87,6 @@ fn links(text: &str) -> Vec<(usize, String)> {
     found
 }
 
-/// A heading's anchor as GitHub makes it: lower case, spaces to `-`, punctuation dropped but
-/// `-` and `_` (letters and digits of any script stay).
-fn slug(heading: &str) -> String {
-    heading
-        .trim()
-        .to_lowercase()
-        .chars()
-        .filter_map(|c| match c {
-            ' ' => Some('-'),
-            '-' | '_' => Some(c),
-            c if c.is_alphanumeric() => Some(c),
-            _ => None,
-        })
-        .collect()
-}
-
 /// The anchors of every heading of a Markdown text; a repeated one gets `-1`, `-2`, ...
 fn anchors(text: &str) -> BTreeSet<String> {
     let mut seen: BTreeMap<String, usize> = BTreeMap::new();
@@ -112,7 +96,7 @@ fn anchors(text: &str) -> BTreeSet<String> {
         if !(1..=6).contains(&hashes) || !line[hashes..].starts_with(' ') {
             continue;
         }
-        let base = slug(&line[hashes..]);
+        let base = mdsolids::report::page::slug(&line[hashes..]);
         let count = seen.entry(base.clone()).or_insert(0);
         anchors.insert(if *count == 0 { base.clone() } else { format!("{base}-{count}") });
         *count += 1;

@@ -6,22 +6,9 @@
 
 use polars::prelude::{DataFrame, DataType, ParquetReader, SerReader};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
-fn mdsolids(reports: &Path, args: &[&str]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_mdsolids"))
-        .arg("--reports")
-        .arg(reports)
-        .args(args)
-        .output()
-        .expect("the binary runs");
-    assert!(out.status.success(), "mdsolids {args:?}: {}", text(&out.stderr));
-    out
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
+use crate::common::{mdsolids_ok, text};
 
 fn table(path: &Path) -> DataFrame {
     let file = std::fs::File::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -73,7 +60,7 @@ fn full_series_keep_every_particle_and_switching_simulates_the_runs_again() {
     let (file_arg, folder) = (file.to_str().unwrap(), reports.join("kept"));
     let write = |series: &str| std::fs::write(&file, CAMPAIGN.replace("SERIES", series)).unwrap();
     write(" {}");
-    mdsolids(&reports, &["run", file_arg]);
+    mdsolids_ok(&reports, &["run", file_arg]);
     let ids = run_ids(&folder);
     let [(_, chain), (_, kick), (_, loaded)] = ids.clone().try_into().unwrap();
     let default_results = results_without_times(&folder);
@@ -91,9 +78,9 @@ fn full_series_keep_every_particle_and_switching_simulates_the_runs_again() {
     assert!(!particles_of(&folder, &loaded).exists(), "a loaded lattice keeps no particle's series");
 
     write("\n  output: {series: full}");
-    let plan = text(&mdsolids(&reports, &["plan", file_arg]).stdout);
+    let plan = text(&mdsolids_ok(&reports, &["plan", file_arg]).stdout);
     assert!(plan.contains("`run` simulates 3: 3 whose stored series are not the ones output.series asks"), "{plan}");
-    let run = mdsolids(&reports, &["run", file_arg]);
+    let run = mdsolids_ok(&reports, &["run", file_arg]);
     assert!(text(&run.stdout).contains("(3 simulated, 0 cached"), "{}", text(&run.stdout));
     assert!(text(&run.stderr).contains("3 stored runs kept other series than output.series asks"));
     assert_eq!(run_ids(&folder), ids, "the same runs, under the same ids");
@@ -108,13 +95,13 @@ fn full_series_keep_every_particle_and_switching_simulates_the_runs_again() {
     }
     // The report drawn at the end of `run` is the one `report` draws from the store.
     let drawn = std::fs::read(folder.join("report.md")).unwrap();
-    mdsolids(&reports, &["report", file_arg]);
+    mdsolids_ok(&reports, &["report", file_arg]);
     assert_eq!(std::fs::read(folder.join("report.md")).unwrap(), drawn);
-    let again = mdsolids(&reports, &["run", file_arg]);
+    let again = mdsolids_ok(&reports, &["run", file_arg]);
     assert!(text(&again.stdout).contains("(0 simulated, 3 cached"), "{}", text(&again.stdout));
 
     write(" {}");
-    let back = mdsolids(&reports, &["run", file_arg]);
+    let back = mdsolids_ok(&reports, &["run", file_arg]);
     assert!(text(&back.stdout).contains("(3 simulated, 0 cached"), "{}", text(&back.stdout));
     assert_eq!(columns(&table(&particles_of(&folder, &chain))), expected);
     assert!(!particles_of(&folder, &loaded).exists(), "the full table is removed with the record naming it");
@@ -187,7 +174,7 @@ fn the_python_snippets_of_the_data_page_run() {
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("coursework.yaml"), DOCS_CAMPAIGN).unwrap();
     let campaign = dir.path().join("coursework.yaml");
-    mdsolids(&dir.path().join("reports"), &["run", campaign.to_str().unwrap()]);
+    mdsolids_ok(&dir.path().join("reports"), &["run", campaign.to_str().unwrap()]);
     let page = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/data.md")).unwrap();
     let blocks = python_blocks(&page);
     assert!(blocks.len() >= 2, "docs/data.md has {} python blocks", blocks.len());
