@@ -84,3 +84,13 @@ pub(super) fn contact_time_words(spec: &RunSpec) -> String {
         ),
     }
 }
+
+/// A spring law's name in a sentence, capitalised: `Linear`, `Hertz` for the power law of
+/// β = 3/2 (`law: hertz`), `Power-law (β = 2)` for any other exponent.
+pub fn law_name(law: LawSpec) -> String {
+    match law {
+        LawSpec::Linear => "Linear".into(),
+        LawSpec::Power { beta: 1.5 } => "Hertz".into(),
+        LawSpec::Power { beta } => format!("Power-law (β = {})", number(beta)),
+    }
+}

@@ -6,7 +6,7 @@ use super::finding::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig}
 use crate::measure::convergence_order;
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, representative};
-use crate::report::words::contact_time_words;
+use crate::report::words::{contact_time_words, law_name};
 use crate::runner::RunRecord;
 use crate::sim::IntegratorKind;
 use crate::spec::SceneKind;
@@ -31,10 +31,7 @@ fn at_50<'a>(runs: &[&'a RunRecord]) -> Option<&'a RunRecord> {
 
 /// The pair's case in words.
 fn case(r: &RunRecord) -> String {
-    let law = match r.spec.law {
-        LawSpec::Linear => "Linear",
-        LawSpec::Power { .. } => "Hertz",
-    };
+    let law = law_name(r.spec.law);
     let joint = if r.spec.contact { "contact" } else { "bonded" };
     let damping = if r.spec.gamma > 0.0 { format!("γ = {} N s/m", sig(r.spec.gamma)) } else { "undamped".into() };
     format!("{law} {joint}, {damping}")
@@ -318,10 +315,7 @@ pub(super) fn hertz_pair_and_chain(e: &Evidence) -> Option<Answer> {
     let pairs = e.ok(|r| is_pair(r) && r.spec.law != LawSpec::Linear);
     let pair = at_50(&pairs)?;
     let (t_err, _) = pair_errors(pair);
-    let beta = match pair.spec.law {
-        LawSpec::Power { beta } => beta,
-        LawSpec::Linear => 1.0,
-    };
+    let beta = pair.spec.law.beta();
     let mut sentences = vec![format!(
         "A Hertz contact s = C δ^{} hit at v = {} m/s lasts t_c = 2 (δ_max/v) B(1/(β+1), ½)/(β+1) with \
          δ_max = ((β+1)(m/2)v²/(2C))^(1/(β+1)), i.e. 2.9432 δ_max/v for β = 3/2: MD gives {} s against {} s \
