@@ -57,10 +57,10 @@ fn order_of(e: &Evidence, reference: &RunRecord, error: impl Fn(&RunRecord) -> O
     convergence_order(&points)
 }
 
-/// Two particles: t_c and r against π/ω and exp(−γ t_c/m), undamped and damped.
-pub(super) fn two_particles(e: &Evidence) -> Option<Answer> {
-    let linear = e.ok(|r| is_pair(r) && r.spec.law == LawSpec::Linear);
-    let mut cases: Vec<&RunRecord> = Vec::new();
+/// The linear pairs' four cases at t_c/50, those the campaign has: bonded and contact, each
+/// undamped and damped.
+fn pair_cases<'a>(linear: &[&'a RunRecord]) -> Vec<&'a RunRecord> {
+    let mut cases = Vec::new();
     for contact in [false, true] {
         for damped in [false, true] {
             let runs: Vec<&RunRecord> = linear
@@ -71,6 +71,12 @@ pub(super) fn two_particles(e: &Evidence) -> Option<Answer> {
             cases.extend(at_50(&runs));
         }
     }
+    cases
+}
+
+/// Two particles: t_c and r against π/ω and exp(−γ t_c/m), undamped and damped.
+pub(super) fn two_particles(e: &Evidence) -> Option<Answer> {
+    let cases = pair_cases(&e.ok(|r| is_pair(r) && r.spec.law == LawSpec::Linear));
     let first = *cases.first()?;
     let mut sentences = vec![format!(
         "Two particles of m = {} kg joined by k = {} N/m move with the reduced mass m/2: ω = √(2k/m − (γ/m)²), \

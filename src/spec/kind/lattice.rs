@@ -377,15 +377,7 @@ fn resolve_lattice(raw: &RawScene, k: f64, depth: Option<f64>) -> Result<Lattice
     // Another type has one spring k between nearest neighbours and no families.
     let (diagonals, k_diag, k_x, k_y) =
         if lattice_type.is_square() { lattice_springs(&lattice, k)? } else { (Diagonals::None, 0.0, k, k) };
-    let cut_fraction = lattice.cut_fraction.unwrap_or(0.0);
-    require((0.0..1.0).contains(&cut_fraction), "lattice.cut_fraction", cut_fraction, "must be in [0, 1)")?;
-    let stiffness_spread = lattice.stiffness_spread.unwrap_or(0.0);
-    require(
-        (0.0..1.0).contains(&stiffness_spread),
-        "lattice.stiffness_spread",
-        stiffness_spread,
-        "must be in [0, 1) (every stiffness times 1 + w·U[−1, 1])",
-    )?;
+    let (cut_fraction, stiffness_spread) = resolve_randomness(&lattice)?;
     require(
         !supports.periodic_x() || nx >= 3,
         "lattice.nx",
@@ -430,6 +422,21 @@ fn resolve_lattice(raw: &RawScene, k: f64, depth: Option<f64>) -> Result<Lattice
         probes,
         lattice_type,
     })
+}
+
+/// The lattice's randomness: the fraction of its interior bonds cut and the spread w of its
+/// stiffnesses, each checked to lie in [0, 1).
+fn resolve_randomness(lattice: &RawLattice) -> Result<(f64, f64), Issue> {
+    let cut_fraction = lattice.cut_fraction.unwrap_or(0.0);
+    require((0.0..1.0).contains(&cut_fraction), "lattice.cut_fraction", cut_fraction, "must be in [0, 1)")?;
+    let stiffness_spread = lattice.stiffness_spread.unwrap_or(0.0);
+    require(
+        (0.0..1.0).contains(&stiffness_spread),
+        "lattice.stiffness_spread",
+        stiffness_spread,
+        "must be in [0, 1) (every stiffness times 1 + w·U[−1, 1])",
+    )?;
+    Ok((cut_fraction, stiffness_spread))
 }
 
 /// The diagonals and the stiffnesses (k_d, k_x, k_y) (N/m) of a lattice's springs, from k and
