@@ -47,16 +47,20 @@ pub fn report_of(name: &str, yaml: &str) -> String {
     std::fs::read_to_string(dir.path().join(name).join("report.md")).unwrap()
 }
 
-/// Runs the binary with `--reports reports` and `args` from the crate's folder, and asserts
-/// that it succeeded, with its error output if not.
-pub fn mdsolids_ok(reports: &std::path::Path, args: &[&str]) -> std::process::Output {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+/// Runs the binary with `--reports reports` and `args` from the crate's folder.
+pub fn mdsolids(reports: &std::path::Path, args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_mdsolids"))
         .arg("--reports")
         .arg(reports)
         .args(args)
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .output()
-        .expect("the binary runs");
+        .expect("the binary runs")
+}
+
+/// [`mdsolids`], asserting that it succeeded, with its error output if not.
+pub fn mdsolids_ok(reports: &std::path::Path, args: &[&str]) -> std::process::Output {
+    let out = mdsolids(reports, args);
     assert!(out.status.success(), "mdsolids {args:?}: {}", text(&out.stderr));
     out
 }

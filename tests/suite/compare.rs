@@ -4,7 +4,8 @@
 
 use polars::prelude::{DataFrame, ParquetReader, SerReader};
 use std::path::Path;
-use std::process::{Command, Output};
+
+use crate::common::{mdsolids, mdsolids_ok, text};
 
 /// Linear springs: a collision over two time steps and a wave chain over two impact speeds.
 const LINEAR: &str = "version: 1
@@ -53,20 +54,9 @@ scenes:
       v0: [0.01, 0.1]
 ";
 
-fn mdsolids(reports: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mdsolids"))
-        .arg("--reports")
-        .arg(reports)
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
 /// Runs the binary and returns its standard output, failing the test with its error otherwise.
 fn succeed(reports: &Path, args: &[&str]) -> String {
-    let out = mdsolids(reports, args);
-    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    String::from_utf8_lossy(&out.stdout).into_owned()
+    text(&mdsolids_ok(reports, args).stdout)
 }
 
 /// Runs the binary, expects it to refuse, and returns its error message.

@@ -2,21 +2,8 @@
 //! store, reports re-rendered without simulating, and bad input refused before anything runs.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn mdsolids(reports: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_mdsolids"))
-        .arg("--reports")
-        .arg(reports)
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("the binary runs")
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
+use crate::common::{mdsolids, text};
 
 fn modified(path: &Path) -> std::time::SystemTime {
     std::fs::metadata(path).and_then(|m| m.modified()).expect("file exists")
