@@ -3,6 +3,7 @@
 
 use serde::Serialize;
 
+use super::figure::Part;
 use super::words::number;
 use crate::summary::ScalingFit;
 
@@ -19,8 +20,13 @@ pub struct ExponentRow {
     range: String,
 }
 
+/// The exponent part of `scene`: a table only (`solids.rs` and `waves.rs` draw the fits).
+pub fn part(fits: &[ScalingFit], scene: &str) -> Part<Vec<ExponentRow>> {
+    Part { figures: Vec::new(), rows: exponent_rows(fits, scene) }
+}
+
 /// The exponent rows of `scene`: every scaling law fitted over its runs.
-pub fn exponent_rows(fits: &[ScalingFit], scene: &str) -> Vec<ExponentRow> {
+fn exponent_rows(fits: &[ScalingFit], scene: &str) -> Vec<ExponentRow> {
     fits.iter()
         .filter(|f| f.scene == scene)
         .map(|f| ExponentRow {

@@ -64,6 +64,15 @@ pub struct Figure {
     pub image: crate::draw::chart::Image,
 }
 
+/// One topic's share of a scene's section (`scene.rs` asks each topic once per scene): the
+/// figures it draws and the rows of its tables; a topic that only draws has no rows (`()`).
+pub struct Part<Rows = ()> {
+    /// The figures, in the order the scene shows them.
+    pub figures: Vec<Figure>,
+    /// The rows of the topic's tables.
+    pub rows: Rows,
+}
+
 impl Figure {
     /// The figure as the report shows it.
     pub fn reference(&self) -> FigureRef {

@@ -1,17 +1,12 @@
-//! Which figures a campaign gets (`draw_all`, the one list of them), and the plain ones:
-//! energies per scene, chain displacements, relaxation, the finite-size convergence of lattice
-//! moduli, and the convergence of the pair measurements against their analytical values.
+//! The plain figures: energies per scene, chain displacements, relaxation, the finite-size
+//! convergence of lattice moduli, the convergence of the pair measurements against their
+//! analytical values (which kind draws which: `kinds.rs`), and the dissipation time against the
+//! damping across scenes.
 
-use super::figure::{
-    Figure, FigureKind, background_damping_only, bond_damping_only, group_label, groups, representative,
-};
-use super::{edges, precision, probes, solids, stability_map, waves};
+use super::figure::{Figure, FigureKind, background_damping_only, bond_damping_only, group_label, representative};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::measure::relative_error;
 use crate::runner::RunRecord;
-use crate::sim::RelaxMethod;
-use crate::spec::{Campaign, SceneKind};
-use crate::summary::ScalingFit;
 
 /// The groups whose energies are worth a figure: an undamped one and a damped one (the first
 /// of each), in runs that move rather than relax (a relaxing run's energies are its relaxation
@@ -34,57 +29,19 @@ fn energy_groups<'a>(groups: &'a [(String, Vec<&'a RunRecord>)]) -> Vec<(usize, 
 /// Fewer samples than this do not make a time history worth drawing.
 const MIN_ENERGY_SAMPLES: usize = 20;
 
-/// Every figure of the report.
-pub fn draw_all(campaign: &Campaign, records: &[RunRecord], fits: &[ScalingFit]) -> anyhow::Result<Vec<Figure>> {
-    let mut figures = Vec::new();
-    for (scene, kind) in &campaign.scenes {
-        let groups = groups(records, scene);
-        for (index, (label, members)) in energy_groups(&groups) {
-            figures.push(energy_figure(scene, index, label, representative(members))?);
-        }
-        match kind {
-            SceneKind::Pair if groups.iter().any(|(_, m)| m.len() > 1) => {
-                figures.push(convergence_figure(scene, &groups)?)
-            }
-            SceneKind::Chain => {
-                if let Some((label, members)) = groups.first() {
-                    figures.push(displacement_figure(scene, label, representative(members))?);
-                }
-                if records.iter().any(|r| r.spec.scene == *scene && r.spec.wave().is_some()) {
-                    figures.push(relaxation_figure(scene, &groups)?);
-                }
-            }
-            SceneKind::Lattice => {
-                // Energies against time only where something moved in time: not for a scene
-                // set to its static answer or brought to rest by a minimiser.
-                let in_time = |r: &RunRecord| r.spec.relax().is_none_or(|relax| relax.method == RelaxMethod::Damped);
-                if records.iter().filter(|r| r.spec.scene == *scene).any(in_time) {
-                    figures.push(relaxation_figure(scene, &groups)?);
-                }
-                if let Some(figure) = size_figure(scene, records)? {
-                    figures.push(figure);
-                }
-                figures.extend(edges::edge_figures(records, scene)?);
-            }
-            _ => {}
-        }
-        figures.extend(precision::precision_figures(records, scene)?);
-        figures.extend(waves::wave_figures(records, fits, scene)?);
-        figures.extend(probes::probe_figures(records, scene)?);
-        figures.extend(solids::scaling_figures(fits, scene)?);
-        figures.extend(solids::ensemble_figure(records, scene)?);
-        if stability_map::is_stability_scene(records, scene) {
-            figures.extend(stability_map::stability_figures(records, scene)?);
-        }
-    }
-    figures.extend(dissipation_figure(records)?);
-    Ok(figures)
+/// The energies of a scene against time, of the groups [`energy_groups`] chooses among its
+/// `groups` (every kind draws them).
+pub(super) fn energy_figures(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyhow::Result<Vec<Figure>> {
+    energy_groups(groups)
+        .into_iter()
+        .map(|(index, (label, members))| energy_figure(scene, index, label, representative(members)))
+        .collect()
 }
 
 /// The dissipation time of the loaded lattices whose damping the grid varies, against the
 /// damping coefficient: bond damping γ and background damping γ_g (by stopping criterion) on
 /// one pair of axes, so the two kinds compare at a glance.
-fn dissipation_figure(records: &[RunRecord]) -> anyhow::Result<Option<Figure>> {
+pub(super) fn dissipation_figure(records: &[RunRecord]) -> anyhow::Result<Option<Figure>> {
     let swept = |r: &&RunRecord| {
         r.spec.lattice().is_some_and(|l| l.impulse.is_none() && !l.is_random())
             && r.spec.varied.keys().any(|k| k.starts_with("damping."))
@@ -164,7 +121,7 @@ fn energy_figure(scene: &str, index: usize, label: &str, record: &RunRecord) -> 
     })
 }
 
-fn displacement_figure(scene: &str, label: &str, record: &RunRecord) -> anyhow::Result<Figure> {
+pub(super) fn displacement_figure(scene: &str, label: &str, record: &RunRecord) -> anyhow::Result<Figure> {
     let t = &record.trace;
     let particles = t.displacement_x.first().map_or(0, Vec::len);
     let largest = t.displacement_x.iter().flatten().fold(0.0f64, |m, u| m.max(u.abs())).max(f64::MIN_POSITIVE);
@@ -198,7 +155,7 @@ fn displacement_figure(scene: &str, label: &str, record: &RunRecord) -> anyhow::
     })
 }
 
-fn convergence_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyhow::Result<Figure> {
+pub(super) fn convergence_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyhow::Result<Figure> {
     let mut series = Vec::new();
     for (label, members) in groups {
         let curve = |name: &str, error: &dyn Fn(&RunRecord) -> Option<f64>| Series {
@@ -263,7 +220,7 @@ fn spread<T>(items: &[T], most: usize) -> Vec<&T> {
     (0..most).map(|i| &items[i * (items.len() - 1) / (most - 1)]).collect()
 }
 
-fn relaxation_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyhow::Result<Figure> {
+pub(super) fn relaxation_figure(scene: &str, groups: &[(String, Vec<&RunRecord>)]) -> anyhow::Result<Figure> {
     let shown: Vec<&RunRecord> =
         spread(groups, MAX_RELAXATION_CURVES).into_iter().map(|(_, m)| representative(m)).collect();
     let ratio = |t: &crate::sim::Trace, s: usize| t.kinetic[s] / t.potential[s];
@@ -338,15 +295,14 @@ fn modulus_ratios(r: &RunRecord) -> Option<(f64, Option<f64>)> {
 
 /// Static (lines) and MD (markers) moduli over their continuum value against the lattice
 /// size, one curve per combination of the other grid values; `None` with a single size.
-fn size_figure(scene: &str, records: &[RunRecord]) -> anyhow::Result<Option<Figure>> {
-    let mine: Vec<&RunRecord> = records.iter().filter(|r| r.spec.scene == scene).collect();
+pub(super) fn size_figure(scene: &str, mine: &[&RunRecord]) -> anyhow::Result<Option<Figure>> {
     let size = |r: &RunRecord| r.spec.lattice().map_or(0, |l| l.nx.max(l.ny));
     let sizes: std::collections::BTreeSet<usize> = mine.iter().map(|r| size(r)).collect();
     if sizes.len() < 2 {
         return Ok(None);
     }
     let mut curves: Vec<SizeCurve> = Vec::new();
-    for r in &mine {
+    for r in mine {
         let Some((fem, md)) = modulus_ratios(r) else { continue };
         let label = r.spec.varied_in_words(|p| !p.starts_with("lattice.size") && !p.starts_with("lattice.n"));
         let index = match curves.iter().position(|c| c.label == label) {

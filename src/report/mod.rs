@@ -11,10 +11,12 @@ mod exponents;
 mod figure;
 mod figures;
 pub mod findings;
+pub mod kinds;
 pub mod markdown;
 pub mod page;
 mod precision;
 mod probes;
+mod scene;
 mod solids;
 mod stability_map;
 mod waves;
@@ -48,8 +50,8 @@ pub fn render_with_left_out(
     fits: &[ScalingFit],
     left_out: &LeftOut,
 ) -> anyhow::Result<()> {
-    let mut figures = figures::draw_all(campaign, records, fits)?;
-    for figure in &mut figures {
+    let mut scenes = scene::ask_topics(campaign, records, fits)?;
+    for figure in &mut scenes.figures {
         figure.file = figure.image.file_name(&figure.file);
         write_atomically(&layout.file(&figure.file), figure.image.bytes())?;
     }
@@ -62,7 +64,7 @@ pub fn render_with_left_out(
         .collect();
     // What an earlier report of this folder drew and this one did not (a scene renamed or
     // removed, a campaign that took the folder over) goes.
-    let drawn: BTreeSet<String> = figures.iter().map(|f| f.file.clone()).collect();
+    let drawn: BTreeSet<String> = scenes.figures.iter().map(|f| f.file.clone()).collect();
     remove_stale(&layout.root, "plots", ".svg", &drawn)?;
     remove_stale(&layout.root, "plots", ".png", &drawn)?;
     let movies: BTreeSet<String> = side_by_side
@@ -84,7 +86,7 @@ pub fn render_with_left_out(
     remove_stale(&layout.root, "probes", ".parquet", &probes)?;
     // Probe tables of earlier versions were CSV.
     remove_stale(&layout.root, "probes", ".csv", &BTreeSet::new())?;
-    let context = context::build(campaign, records, fits, left_out, &figures, &side_by_side);
+    let context = context::build(campaign, records, fits, left_out, scenes, &side_by_side);
     let context = tera::Context::from_serialize(&context).context("cannot build the report context")?;
     write_pages(&layout.root, ("report.md", MARKDOWN_TEMPLATE), context)
 }

@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use super::figure::{Figure, FigureKind, groups, representative};
+use super::figure::{Figure, FigureKind, Part, groups, representative};
 use super::words::{number, optional};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::measure::{Recommendation, convergence_order, recommended_dt};
@@ -43,9 +43,16 @@ fn error_points(members: &[&RunRecord]) -> Vec<(f64, f64)> {
     members.iter().filter_map(|r| r.metrics.error.map(|e| (r.spec.dt, e))).collect()
 }
 
-/// The work–precision table of `scene` for the accuracy `target`.
-pub fn precision_rows(records: &[RunRecord], scene: &str, target: f64) -> Vec<PrecisionRow> {
-    sweeps(records, scene)
+/// The work–precision part of `scene`: its figures and its table for the accuracy `target`,
+/// both from the scene's dt sweeps (none without sweeps).
+pub fn part(records: &[RunRecord], scene: &str, target: f64) -> anyhow::Result<Part<Vec<PrecisionRow>>> {
+    let sweeps = sweeps(records, scene);
+    Ok(Part { figures: precision_figures(&sweeps, scene)?, rows: precision_rows(sweeps, target) })
+}
+
+/// The work–precision table of the `sweeps` for the accuracy `target`.
+fn precision_rows(sweeps: Vec<Sweep>, target: f64) -> Vec<PrecisionRow> {
+    sweeps
         .into_iter()
         .map(|(group, members)| {
             let points = error_points(&members);
@@ -87,9 +94,8 @@ pub fn precision_rows(records: &[RunRecord], scene: &str, target: f64) -> Vec<Pr
         .collect()
 }
 
-/// The error-against-wall-time and error-against-dt figures of `scene`, when it has sweeps.
-pub fn precision_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Figure>> {
-    let sweeps = sweeps(records, scene);
+/// The error-against-wall-time and error-against-dt figures of `scene`, when it has `sweeps`.
+fn precision_figures(sweeps: &[Sweep], scene: &str) -> anyhow::Result<Vec<Figure>> {
     if sweeps.is_empty() {
         return Ok(Vec::new());
     }

@@ -1,14 +1,20 @@
 //! Probed lines of a lattice: the space–time maps of their displacement and velocity (every
 //! node's series is in `probes/<run_id>.parquet`, which the runner stores: `runner::record`).
 
-use super::figure::{Figure, FigureKind};
+use super::figure::{Figure, FigureKind, Part};
 use crate::draw::chart::{Chart, Scale, heatmap};
 use crate::runner::{RunRecord, is_asked_for};
 use crate::sim::RunStatus;
 
+/// The probe part of `scene`: figures only (the probed series are tables of their own, stored
+/// by the runner).
+pub fn part(records: &[RunRecord], scene: &str) -> anyhow::Result<Part> {
+    Ok(Part { figures: probe_figures(records, scene)?, rows: () })
+}
+
 /// The probed rows and columns of the first `ok` run of `scene` that asks for probes: per line,
 /// the displacement and the velocity along its livelier axis as space–time maps.
-pub fn probe_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Figure>> {
+fn probe_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Figure>> {
     let Some(r) = records.iter().find(|r| {
         r.spec.scene == scene && r.status == RunStatus::Ok && r.spec.lattice().is_some_and(|l| !l.probes.is_empty())
     }) else {

@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::figure::{Figure, FigureKind};
+use super::figure::{Figure, FigureKind, Part};
 use super::words::{number, optional};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::model::LatticeType;
@@ -13,9 +13,18 @@ use crate::sim::RunStatus;
 use crate::spec::Diagonals;
 use crate::summary::ScalingFit;
 
+/// The solids part of `scene`: the fitted power laws of what it swept, and the dilution figure
+/// and the table of its ensembles of random lattices.
+pub fn part(records: &[RunRecord], fits: &[ScalingFit], scene: &str) -> anyhow::Result<Part<Vec<EnsembleRow>>> {
+    let ensembles = ensembles(records, scene);
+    let mut figures = scaling_figures(fits, scene)?;
+    figures.extend(ensemble_figure(&ensembles, scene)?);
+    Ok(Part { figures, rows: ensemble_rows(ensembles) })
+}
+
 /// One figure per swept quantity of `scene` (not the sound speed, which the wave study draws):
 /// measured points and the fitted power law on log–log axes.
-pub fn scaling_figures(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Vec<Figure>> {
+fn scaling_figures(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Vec<Figure>> {
     let fits: Vec<_> = fits.iter().filter(|f| f.scene == scene && f.quantity != "sound_speed").collect();
     let mut figures = Vec::new();
     for (against, kind) in
@@ -109,9 +118,9 @@ pub(crate) fn mean_spread(values: impl Iterator<Item = Option<f64>>) -> (Option<
     (Some(mean), spread)
 }
 
-/// The ensemble rows of `scene` (empty unless it is random or sweeps seeds).
-pub fn ensemble_rows(records: &[RunRecord], scene: &str) -> Vec<EnsembleRow> {
-    ensembles(records, scene)
+/// The table of a scene's `ensembles` (empty unless it is random or sweeps seeds).
+fn ensemble_rows(ensembles: Vec<Ensemble>) -> Vec<EnsembleRow> {
+    ensembles
         .into_iter()
         .map(|(group, kept, members)| {
             let ok = || members.iter().filter(|r| r.status == RunStatus::Ok);
@@ -183,8 +192,7 @@ fn at_rest(r: &RunRecord) -> [Option<f64>; 3] {
 /// M(p) = M(1) (p − p_c)/(1 − p_c), p_c = 2d/z ([`rigidity_threshold`]), drawn from the uncut
 /// network's mean (or the best-kept ensemble's, scaled, when there is no uncut one). A network
 /// that lost its rigidity (status mechanism) has no stiffness and counts as 0.
-pub fn ensemble_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Option<Figure>> {
-    let ensembles = ensembles(records, scene);
+fn ensemble_figure(ensembles: &[Ensemble], scene: &str) -> anyhow::Result<Option<Figure>> {
     if ensembles.iter().map(|(_, kept, _)| kept.to_bits()).collect::<std::collections::BTreeSet<_>>().len() < 2 {
         return Ok(None);
     }
@@ -195,7 +203,7 @@ pub fn ensemble_figure(records: &[RunRecord], scene: &str) -> anyhow::Result<Opt
     else {
         return Ok(None);
     };
-    let series = ensemble_series(&ensembles, threshold);
+    let series = ensemble_series(ensembles, threshold);
     if series.is_empty() {
         return Ok(None);
     }

@@ -3,15 +3,24 @@
 
 use serde::Serialize;
 
-use super::figure::{Figure, FigureKind};
+use super::figure::{Figure, FigureKind, Part};
 use super::words::{number, optional};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::spec::SceneKind;
 
+/// The stability part of `scene`: its maps and its tables, when it studies stability (none
+/// otherwise).
+pub fn part(records: &[RunRecord], scene: &str) -> anyhow::Result<Part<StabilityRows>> {
+    if !is_stability_scene(records, scene) {
+        return Ok(Part { figures: Vec::new(), rows: StabilityRows::default() });
+    }
+    Ok(Part { figures: stability_figures(records, scene)?, rows: stability_rows(records, scene) })
+}
+
 /// True when `scene` studies stability: some run sets dt by dt·ω_max or may blow up.
-pub fn is_stability_scene(records: &[RunRecord], scene: &str) -> bool {
+fn is_stability_scene(records: &[RunRecord], scene: &str) -> bool {
     records.iter().any(|r| r.spec.scene == scene && (r.spec.allow_unstable || r.spec.dt_omega_max.is_some()))
 }
 
@@ -62,12 +71,22 @@ pub struct LimitRow {
     agreement: String,
 }
 
+/// The two tables of a stability scene: what each run did, and where the runs put each limit.
+#[derive(Default, Serialize)]
+pub struct StabilityRows {
+    /// Each run's predicted fate beside its outcome.
+    pub stability_rows: Vec<StabilityRow>,
+    /// Predicted against observed limit, per integrator and map row (empty unless the scene
+    /// sweeps dt·ω_max).
+    pub limit_rows: Vec<LimitRow>,
+}
+
 /// The rows of a stability scene, and the predicted-against-observed summary.
-pub fn stability_rows(records: &[RunRecord], scene: &str) -> (Vec<StabilityRow>, Vec<LimitRow>) {
+fn stability_rows(records: &[RunRecord], scene: &str) -> StabilityRows {
     let mine: Vec<&RunRecord> = records.iter().filter(|r| r.spec.scene == scene).collect();
-    let rows = mine.iter().map(|r| stability_row(r)).collect();
+    let stability_rows = mine.iter().map(|r| stability_row(r)).collect();
     if !sweeps_the_limit(records, scene) {
-        return (rows, Vec::new());
+        return StabilityRows { stability_rows, limit_rows: Vec::new() };
     }
     let mut keys: Vec<(&'static str, String)> = Vec::new();
     for r in &mine {
@@ -76,8 +95,8 @@ pub fn stability_rows(records: &[RunRecord], scene: &str) -> (Vec<StabilityRow>,
             keys.push(key);
         }
     }
-    let limits = keys.into_iter().filter_map(|(integrator, y)| limit_row(&mine, integrator, y)).collect();
-    (rows, limits)
+    let limit_rows = keys.into_iter().filter_map(|(integrator, y)| limit_row(&mine, integrator, y)).collect();
+    StabilityRows { stability_rows, limit_rows }
 }
 
 /// One run of a stability scene: its predicted fate beside its outcome.
@@ -140,7 +159,7 @@ fn limit_row(mine: &[&RunRecord], integrator: &'static str, y: String) -> Option
 
 /// One stability map per integrator of a stability scene: runs that stayed bounded and runs
 /// that blew up at their dt·ω_max and map y, with the predicted limit drawn through them.
-pub fn stability_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Figure>> {
+fn stability_figures(records: &[RunRecord], scene: &str) -> anyhow::Result<Vec<Figure>> {
     if !sweeps_the_limit(records, scene) {
         return Ok(Vec::new());
     }

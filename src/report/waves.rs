@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use super::figure::{Figure, FigureKind};
+use super::figure::{Figure, FigureKind, Part};
 use super::words::{impulse_words, number, optional};
 use crate::draw::chart::{Chart, Mark, Scale, Series, heatmap, line_chart};
 use crate::measure::ARRIVAL_CRITERIA;
@@ -26,8 +26,15 @@ pub struct WaveRow {
     status: RunStatus,
 }
 
+/// The wave part of `scene`: V_s against v0 (with the fitted power law), the space–time picture
+/// of one run and the table of its waves (all empty when it times no wave and fits no speed).
+pub fn part(records: &[RunRecord], fits: &[ScalingFit], scene: &str) -> anyhow::Result<Part<Vec<WaveRow>>> {
+    let figures = speed_figure(fits, scene)?.into_iter().chain(space_time_figure(records, scene)?).collect();
+    Ok(Part { figures, rows: wave_rows(records, scene) })
+}
+
 /// The chain-wave rows of `scene` (empty when it times no wave).
-pub fn wave_rows(records: &[RunRecord], scene: &str) -> Vec<WaveRow> {
+fn wave_rows(records: &[RunRecord], scene: &str) -> Vec<WaveRow> {
     records
         .iter()
         .filter(|r| r.spec.scene == scene && r.spec.wave().is_some())
@@ -49,15 +56,6 @@ pub fn wave_rows(records: &[RunRecord], scene: &str) -> Vec<WaveRow> {
             }
         })
         .collect()
-}
-
-/// The wave figures of `scene`: V_s against v0 (with the fitted power law) and the space–time
-/// picture of one run.
-pub fn wave_figures(records: &[RunRecord], fits: &[ScalingFit], scene: &str) -> anyhow::Result<Vec<Figure>> {
-    let mut figures = Vec::new();
-    figures.extend(speed_figure(fits, scene)?);
-    figures.extend(space_time_figure(records, scene)?);
-    Ok(figures)
 }
 
 /// V_s against v0 of `scene`, measured and with its fitted power law; `None` without a fit.

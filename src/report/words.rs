@@ -1,8 +1,7 @@
 //! How the report writes numbers and specs in words: six significant digits, signed errors, a
 //! dash for a missing value, an impulse as a kick or a step force.
 
-use crate::model::LawSpec;
-use crate::spec::{ImpulseSpec, RunSpec};
+use crate::spec::ImpulseSpec;
 
 /// A number with 6 significant digits, plain where that reads well, scientific otherwise.
 pub(super) fn number(x: f64) -> String {
@@ -60,37 +59,5 @@ pub(super) fn impulse_words(i: &ImpulseSpec) -> String {
     match i.top_row_force {
         Some([fx, fy]) => format!("a step force ({}, {}) N on every top-row node", number(fx), number(fy)),
         None => format!("node {} kicked at ({}, {}) m/s", i.node, number(i.vx), number(i.vy)),
-    }
-}
-
-/// The contact time t_c (s) a scene's dt is set from, with the formula that gives it: the
-/// undamped linear pair's π√(m/(2k)), the damped one's π/√(2k/m − (γ/m)²) (the bond dashpot
-/// slows the pair) or a power law's duration at the scene's deformation. `spec.t_c` is the
-/// damped value, so a formula without γ next to it would be wrong by the damping's share.
-pub(super) fn contact_time_words(spec: &RunSpec) -> String {
-    let undamped = std::f64::consts::PI * (spec.mass / (2.0 * spec.k)).sqrt();
-    match spec.law {
-        LawSpec::Linear if spec.gamma == 0.0 => format!("t_c = π√(m/(2k)) = {} s", number(spec.t_c)),
-        LawSpec::Linear => format!(
-            "t_c = π/√(2k/m − (γ/m)²) = {} s with the bond dashpot γ = {} N s/m (π√(m/(2k)) = {} s undamped)",
-            number(spec.t_c),
-            number(spec.gamma),
-            number(undamped)
-        ),
-        LawSpec::Power { .. } => format!(
-            "t_c = {} s, the {} pair's contact time at the deformation the scene expects",
-            number(spec.t_c),
-            spec.law.name()
-        ),
-    }
-}
-
-/// A spring law's name in a sentence, capitalised: `Linear`, `Hertz` for the power law of
-/// β = 3/2 (`law: hertz`), `Power-law (β = 2)` for any other exponent.
-pub fn law_name(law: LawSpec) -> String {
-    match law {
-        LawSpec::Linear => "Linear".into(),
-        LawSpec::Power { beta: 1.5 } => "Hertz".into(),
-        LawSpec::Power { beta } => format!("Power-law (β = {})", number(beta)),
     }
 }

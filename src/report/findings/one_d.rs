@@ -6,7 +6,7 @@ use super::finding::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig}
 use crate::measure::convergence_order;
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, representative};
-use crate::report::words::{contact_time_words, law_name};
+use crate::report::kinds::{contact_time_words, law_name};
 use crate::runner::RunRecord;
 use crate::sim::IntegratorKind;
 use crate::spec::SceneKind;

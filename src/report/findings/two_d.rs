@@ -9,7 +9,7 @@ use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, rel, relativ
 use crate::measure::convergence_order;
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, representative};
-use crate::report::words::contact_time_words;
+use crate::report::kinds::contact_time_words;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::spec::{Control, Diagonals, LatticeSpec, LoadCase, Supports};

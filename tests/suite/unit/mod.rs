@@ -18,6 +18,7 @@ mod plan;
 mod plan_stability;
 mod report;
 mod report_findings;
+mod report_kinds;
 mod report_markdown;
 mod report_page;
 mod report_words;

@@ -1,7 +1,6 @@
 //! Unit tests of `src/report/words.rs`, moved out of the library (one test binary).
 
-use mdsolids::model::LawSpec;
-use mdsolids::report::words::{exponent, law_name, short};
+use mdsolids::report::words::{exponent, short};
 
 /// Numbers in sentences keep 4 significant digits after rounding; an exponent's round-off is 0.
 #[test]
@@ -17,12 +16,4 @@ fn four_digits_in_sentences() {
     assert_eq!(exponent(-1.83e-14, 4), "0.0000");
     assert_eq!(exponent(-2e-4, 3), "0.000");
     assert_eq!(exponent(0.19976, 4), "0.1998");
-}
-
-/// Only the power law of β = 3/2 is Hertz's; another exponent is named by its β.
-#[test]
-fn a_power_law_is_named_hertz_only_at_three_halves() {
-    assert_eq!(law_name(LawSpec::Linear), "Linear");
-    assert_eq!(law_name(LawSpec::Power { beta: 1.5 }), "Hertz");
-    assert_eq!(law_name(LawSpec::Power { beta: 2.0 }), "Power-law (β = 2)");
 }
