@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 /// core, the measurements and their references, the plan that sets dt, the runner's
 /// `execute`, the record it fills and the series it keeps.
 /// Not the table, the reports, the command line or the store's bookkeeping: they only read records.
-const RESULT_SOURCES: [&str; 11] = [
+const RESULT_SOURCES: [&str; 12] = [
     "src/spec",
     "src/study",
     "src/model",
@@ -16,6 +16,7 @@ const RESULT_SOURCES: [&str; 11] = [
     "src/measure",
     "src/theory",
     "src/fem.rs",
+    "src/fem",
     "src/plan",
     "src/runner/execute.rs",
     "src/runner/record.rs",

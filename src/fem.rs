@@ -9,13 +9,16 @@
 //! it satisfies the unregularised equations: ‖K u − f‖ ≤ 1e-6 ‖f‖. Otherwise the load drives a
 //! mechanism.
 
-use faer::prelude::Solve;
-use faer::sparse::{SparseColMat, Triplet};
-use faer::{Mat, Side};
-use std::time::Instant;
+mod ordering;
+mod solver;
+mod sparse;
 
-use crate::model::{Bonds, ForceLaw, Linear};
-use crate::sim::{Load, euclidean_norm};
+pub use self::solver::{Convergence, NEWTON_TOLERANCE, Solver};
+pub use self::sparse::Analyses;
+
+use self::sparse::Analysis;
+use crate::model::{Bonds, ForceLaw};
+use crate::sim::Load;
 
 /// What the static solver found.
 #[derive(Clone, Debug, PartialEq)]
@@ -69,58 +72,62 @@ pub struct ErrorBounds {
     pub sensitivity: Option<f64>,
 }
 
-/// Residuals above this fraction of the load mean the equations have no solution.
-const MECHANISM_RESIDUAL: f64 = 1e-6;
-/// Diagonal shift, relative to the largest diagonal entry, that lets Cholesky factor a
-/// semi-definite K (zero-energy motions the load does not drive).
-const REGULARISATION: f64 = 1e-12;
-
-/// Iterative refinements of a solve with the shifted K, at most (each one more solve with the
-/// same factor; two are usually all the shift needs).
-const REFINEMENTS: usize = 3;
-
-/// Out-of-balance force below this fraction of the load ends the Newton–Raphson iteration ...
-pub const NEWTON_TOLERANCE: f64 = 1e-12;
-/// ... and so does a correction below this fraction of the displacement: the residual has then
-/// reached round-off (k · ε · r per spring), which for stiff springs and small loads can sit
-/// above the force tolerance.
-const NEWTON_STEP_TOLERANCE: f64 = 1e-14;
-/// Newton–Raphson gives up after this many iterations (it converges quadratically: a handful).
-const NEWTON_ITERATIONS: usize = 50;
-
-/// Inverse iteration for the softest stiffness stops once its Rayleigh quotient changes by
-/// less than this fraction ...
-const SOFTEST_TOLERANCE: f64 = 1e-6;
-/// ... or after this many solves (each a pair of triangular solves on one factor).
-const SOFTEST_ITERATIONS: usize = 200;
-
 /// Numbering of the free degrees of freedom: dof 2i is x of node i, 2i + 1 its y;
 /// `index[dof]` is its row in the reduced system, `usize::MAX` when held.
+#[derive(Clone)]
 struct Dofs {
     index: Vec<usize>,
     free: usize,
 }
 
-impl Truss<'_> {
-    /// Solves the linear problem K u = f (springs at their rest geometry) by sparse Cholesky
-    /// and checks the answer against the equations.
-    pub fn solve_linear(&self) -> StaticSolution {
+impl<'a> Truss<'a> {
+    /// The solver of this network's static problems, its symbolic analysis (the pattern of K
+    /// and the elimination order) taken from `analyses` when a network of the same nodes,
+    /// bonds and held axes was analysed before, and added to it otherwise.
+    pub fn solver(&'a self, analyses: &Analyses) -> Solver<'a> {
         let dofs = self.dofs();
-        let (mut ux, mut uy) = self.imposed();
-        let (mut entries, force) = self.tangent_and_residual(&Linear, &ux, &uy, &dofs);
-        let solution = factor_and_solve(dofs.free, &mut entries, &force);
-        let residual = solution.as_ref().map_or(f64::INFINITY, |u| relative_residual(&entries, u, &force));
-        match solution {
-            Some(u) if residual <= MECHANISM_RESIDUAL => {
-                let (dx, dy) = self.expand(&dofs, &u);
-                for i in 0..ux.len() {
-                    ux[i] += dx[i];
-                    uy[i] += dy[i];
-                }
-                StaticSolution::Displacements { ux, uy }
-            }
-            _ => StaticSolution::Mechanism { residual },
+        let analysis = (dofs.free > 0).then(|| analyses.get(self.structure_key(), || self.analyse(&dofs)));
+        Solver::new(self, dofs, analysis)
+    }
+
+    /// A blake3 hash of what the analysis depends on: the node count, the held axes and the
+    /// bonds' ends (not their stiffness, rest length or the positions).
+    fn structure_key(&self) -> [u8; 32] {
+        let mut hasher = blake3::Hasher::new();
+        for list in [&[self.x.len()][..], self.held_x, self.held_y, &self.bonds.i, &self.bonds.j] {
+            hasher.update(&list.len().to_le_bytes());
+            list.iter().for_each(|v| {
+                hasher.update(&v.to_le_bytes());
+            });
         }
+        *hasher.finalize().as_bytes()
+    }
+
+    /// The pattern of K's lower triangle over the free dofs (a node's dofs couple with its own
+    /// and its bonded neighbours') and its analysis.
+    fn analyse(&self, dofs: &Dofs) -> Analysis {
+        let nodes = self.x.len();
+        let mut neighbours: Vec<Vec<usize>> = (0..nodes).map(|n| vec![n]).collect();
+        for (&i, &j) in self.bonds.i.iter().zip(&self.bonds.j) {
+            neighbours[i].push(j);
+            neighbours[j].push(i);
+        }
+        let mut columns = vec![Vec::new(); dofs.free];
+        let mut positions = vec![(0.0, 0.0); dofs.free];
+        for (node, near) in neighbours.iter_mut().enumerate() {
+            near.sort_unstable();
+            near.dedup();
+            for axis in 0..2 {
+                let column = dofs.index[2 * node + axis];
+                if column == usize::MAX {
+                    continue;
+                }
+                positions[column] = (self.x[node], self.y[node]);
+                let rows = near.iter().flat_map(|&other| [dofs.index[2 * other], dofs.index[2 * other + 1]]);
+                columns[column] = rows.filter(|&row| row != usize::MAX && row >= column).collect();
+            }
+        }
+        Analysis::of(columns, &positions)
     }
 
     /// The imposed displacements: zero everywhere but on the prescribed held axes.
@@ -171,121 +178,6 @@ impl Truss<'_> {
         ([dx / r, dy / r], r, law.elastic_force(k, extension), law.tangent_stiffness(k, extension))
     }
 
-    /// Solves the full non-linear problem (large rotations, any force law) by Newton–Raphson
-    /// from the linear answer of the same network with every spring at its tangent stiffness
-    /// at extension `linearised_at` (m; 0 for linear springs; a power law, which has no
-    /// stiffness at δ = 0, is linearised at the deformation the load is expected to cause):
-    /// R(u) = f + Σ spring forces at x + u, K_t Δu = R, until ‖R‖ ≤ 1e-12 ‖f‖ or
-    /// ‖Δu‖ ≤ 1e-14 ‖u‖. The tangent of a spring with tension s along n̂ at length r is
-    /// s′(δ) n̂ n̂ᵀ + (s/r)(I − n̂ n̂ᵀ). A mechanism of the linear problem is reported as one;
-    /// an iteration that does not converge returns `None`; once the wall clock passes
-    /// `deadline` (looked at before every factorisation) it stops with `PastDeadline`.
-    pub fn solve_nonlinear<L: ForceLaw>(
-        &self,
-        law: &L,
-        linearised_at: f64,
-        deadline: Option<Instant>,
-    ) -> Option<StaticSolution> {
-        let past = || deadline.is_some_and(|deadline| Instant::now() > deadline);
-        if past() {
-            return Some(StaticSolution::PastDeadline);
-        }
-        let mut linearised = self.bonds.clone();
-        for k in &mut linearised.stiffness {
-            *k = law.tangent_stiffness(*k, linearised_at);
-        }
-        match (Truss { bonds: &linearised, ..*self }).solve_linear() {
-            StaticSolution::Displacements { ux, uy } => self.solve_nonlinear_from(law, ux, uy, deadline),
-            mechanism => Some(mechanism),
-        }
-    }
-
-    /// [`Truss::solve_nonlinear`]'s Newton–Raphson iteration from displacements `(ux, uy)`: for
-    /// linear springs, whose tangent at δ = 0 is k itself, from the linear answer the caller
-    /// already has (one factorisation fewer, the same answer to the bit).
-    pub fn solve_nonlinear_from<L: ForceLaw>(
-        &self,
-        law: &L,
-        mut ux: Vec<f64>,
-        mut uy: Vec<f64>,
-        deadline: Option<Instant>,
-    ) -> Option<StaticSolution> {
-        let past = || deadline.is_some_and(|deadline| Instant::now() > deadline);
-        let dofs = self.dofs();
-        let load_norm = euclidean_norm(self.load_vector(&dofs).iter());
-        for _ in 0..NEWTON_ITERATIONS {
-            let (mut entries, residual) = self.tangent_and_residual(law, &ux, &uy, &dofs);
-            if euclidean_norm(residual.iter()) <= NEWTON_TOLERANCE * load_norm {
-                return Some(StaticSolution::Displacements { ux, uy });
-            }
-            if past() {
-                return Some(StaticSolution::PastDeadline);
-            }
-            let step = factor_and_solve(dofs.free, &mut entries, &residual)?;
-            let (dx, dy) = self.expand(&dofs, &step);
-            for i in 0..ux.len() {
-                ux[i] += dx[i];
-                uy[i] += dy[i];
-            }
-            if euclidean_norm(step.iter())
-                <= NEWTON_STEP_TOLERANCE * (euclidean_norm(ux.iter()) + euclidean_norm(uy.iter()))
-            {
-                return Some(StaticSolution::Displacements { ux, uy });
-            }
-        }
-        None
-    }
-
-    /// The displacement increment (m) per unit increase of the load factor at the equilibrium
-    /// `(ux, uy)`: K_t Δu = f with the tangent stiffness there (the tangent moduli of a
-    /// non-linear network); `None` when K_t cannot be factored.
-    pub fn tangent_response<L: ForceLaw>(&self, law: &L, ux: &[f64], uy: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
-        let dofs = self.dofs();
-        let (mut entries, _) = self.tangent_and_residual(law, ux, uy, &dofs);
-        let load = self.load_vector(&dofs);
-        let step = factor_and_solve(dofs.free, &mut entries, &load)?;
-        (relative_residual(&entries, &step, &load) <= MECHANISM_RESIDUAL).then(|| self.expand(&dofs, &step))
-    }
-
-    /// What bounds the error of a relaxation near the equilibrium `(ux, uy)`, from one factor
-    /// of the tangent stiffness K_t there over the free degrees of freedom; `None` when K_t
-    /// cannot be factored or nothing is free.
-    ///
-    /// `measured` is the measured quantity Q = gᵀu as (dof, weight) pairs (dof 2i is x of node
-    /// i, 2i + 1 its y; held dofs drop out, they do not move): for an out-of-balance force r
-    /// the state of rest is u* = u + K_t⁻¹ r (exactly for linear springs and small rotations, to
-    /// first order in r otherwise), so δQ = gᵀK_t⁻¹ r = zᵀr with z = K_t⁻¹ g, and
-    /// |δQ| ≤ ‖z‖₂ ‖r‖₂ (Cauchy–Schwarz). This is at least as tight as ‖g‖₂ ‖r‖₂/k_min and
-    /// about √N tighter on an N × N block pulled on its top row, whose ΔL is carried by the
-    /// stiff stretching modes, not the soft sway that sets k_min.
-    pub fn error_bounds<L: ForceLaw>(
-        &self,
-        law: &L,
-        ux: &[f64],
-        uy: &[f64],
-        measured: &[(usize, f64)],
-    ) -> Option<ErrorBounds> {
-        let dofs = self.dofs();
-        if dofs.free == 0 {
-            return None;
-        }
-        let (mut entries, _) = self.tangent_and_residual(law, ux, uy, &dofs);
-        let factor = Factor::of(dofs.free, &mut entries)?;
-        let stiffness_min = softest_stiffness(&factor, &entries, dofs.free)?;
-        let mut weights = vec![0.0; dofs.free];
-        for &(dof, weight) in measured {
-            if let Some(&free) = dofs.index.get(dof).filter(|free| **free != usize::MAX) {
-                weights[free] += weight;
-            }
-        }
-        // A singular K_t (k_min = 0) has no inverse to bound by, and a quantity of held dofs
-        // alone has no error.
-        let sensitivity = (stiffness_min > 0.0 && weights.iter().any(|w| *w != 0.0))
-            .then(|| factor.solve(&weights).map(|z| euclidean_norm(z.iter())))
-            .flatten();
-        Some(ErrorBounds { stiffness_min, sensitivity })
-    }
-
     fn dofs(&self) -> Dofs {
         let mut index = vec![usize::MAX; 2 * self.x.len()];
         let mut free = 0;
@@ -318,18 +210,18 @@ impl Truss<'_> {
         ((0..self.x.len()).map(|i| at(2 * i)).collect(), (0..self.x.len()).map(|i| at(2 * i + 1)).collect())
     }
 
-    /// The tangent stiffness entries (row, column, value; repeated pairs add up) over the free
-    /// degrees of freedom and the out-of-balance force R = loads + spring forces, at
-    /// displacements `(ux, uy)`. Room is kept for one more entry per degree of freedom, the
-    /// shift [`factor`] appends.
+    /// The tangent stiffness over the free degrees of freedom, written into `stiffness` (its
+    /// lower triangle on `analysis`'s pattern), and the out-of-balance force R = loads + spring
+    /// forces, at displacements `(ux, uy)`.
     fn tangent_and_residual<L: ForceLaw>(
         &self,
         law: &L,
-        ux: &[f64],
-        uy: &[f64],
+        (ux, uy): (&[f64], &[f64]),
         dofs: &Dofs,
-    ) -> (Vec<Entry>, Vec<f64>) {
-        let mut entries = Vec::with_capacity(16 * self.bonds.len() + dofs.free);
+        analysis: &Analysis,
+        stiffness: &mut [f64],
+    ) -> Vec<f64> {
+        stiffness.fill(0.0);
         let mut residual = self.load_vector(dofs);
         for b in 0..self.bonds.len() {
             let (i, j) = (self.bonds.i[b], self.bonds.j[b]);
@@ -349,15 +241,15 @@ impl Truss<'_> {
                     for (c, sign_c) in [(i, 1.0), (j, -1.0)] {
                         for q in 0..2 {
                             let column = dofs.index[2 * c + q];
-                            if column != usize::MAX {
-                                entries.push(Triplet { row, col: column, val: sign_a * sign_c * block(p, q) });
+                            if column != usize::MAX && row >= column {
+                                stiffness[analysis.slot(row, column)] += sign_a * sign_c * block(p, q);
                             }
                         }
                     }
                 }
             }
         }
-        (entries, residual)
+        residual
     }
 }
 
@@ -369,120 +261,4 @@ impl Truss<'_> {
 fn pre_stretch(length: f64, rest: f64, resolution: f64) -> f64 {
     let stretch = length - rest;
     if stretch.abs() <= 4.0 * (resolution + f64::EPSILON * rest) { 0.0 } else { stretch }
-}
-
-/// One entry (row, column, value) of a stiffness matrix over the free degrees of freedom.
-type Entry = Triplet<usize, usize, f64>;
-
-/// Factors K + εI (ε = 1e-12 of the largest diagonal entry) and solves K u = `force`; `None`
-/// when the factorisation fails. The shift leaves u off by about ε‖K⁻¹‖ (6e-11 of E on a
-/// 10 × 10 steel block), which iterative refinement with the unshifted K takes off:
-/// u ← u + (K + εI)⁻¹(f − K u), while the residual falls at least twofold, at most
-/// [`REFINEMENTS`] times (a load on a mechanism's zero mode never lets it fall).
-fn factor_and_solve(size: usize, entries: &mut Vec<Entry>, force: &[f64]) -> Option<Vec<f64>> {
-    if size == 0 {
-        return Some(Vec::new());
-    }
-    let factor = Factor::of(size, entries)?;
-    let mut u = factor.solve(force)?;
-    let mut residual = out_of_balance(entries, &u, force);
-    for _ in 0..REFINEMENTS {
-        let correction = factor.solve(&residual)?;
-        let refined: Vec<f64> = u.iter().zip(&correction).map(|(a, b)| a + b).collect();
-        let left = out_of_balance(entries, &refined, force);
-        if euclidean_norm(left.iter()) >= 0.5 * euclidean_norm(residual.iter()) {
-            break;
-        }
-        (u, residual) = (refined, left);
-    }
-    Some(u)
-}
-
-/// The sparse Cholesky factor of (K + εI)/s, s the power of two nearest K's largest diagonal
-/// entry: factored at unit scale, so that stiffnesses near the ends of the floating-point range
-/// (1e±300 N/m) neither overflow nor underflow inside the factorisation, and scaled by a power
-/// of two, which is exact both ways.
-struct Factor {
-    cholesky: faer::sparse::linalg::solvers::Llt<usize, f64>,
-    /// s (N/m).
-    scale: f64,
-}
-
-impl Factor {
-    /// The factor over `size` free degrees of freedom; `None` when the factorisation fails.
-    /// The shift ε = 1e-12 of the largest diagonal entry is appended to K's `entries`, and
-    /// every entry divided by s, for the assembly, then both undone, instead of assembling from
-    /// a copy: at 10⁶ nodes the entries alone are 1.5 GB (16 per bond, 24 bytes each).
-    fn of(size: usize, entries: &mut Vec<Entry>) -> Option<Factor> {
-        let mut diagonal = vec![0.0f64; size];
-        for entry in entries.iter().filter(|e| e.row == e.col) {
-            diagonal[entry.row] += entry.val;
-        }
-        let largest = diagonal.iter().fold(0.0f64, |m, d| m.max(*d));
-        if !(largest > 0.0 && largest.is_finite()) {
-            return None;
-        }
-        let scale = 2.0f64.powi(largest.log2().round() as i32);
-        let stiffness_entries = entries.len();
-        entries.extend((0..size).map(|d| Triplet { row: d, col: d, val: REGULARISATION * largest }));
-        entries.iter_mut().for_each(|e| e.val /= scale);
-        let matrix = SparseColMat::<usize, f64>::try_new_from_triplets(size, size, entries);
-        entries.truncate(stiffness_entries);
-        entries.iter_mut().for_each(|e| e.val *= scale);
-        Some(Factor { cholesky: matrix.ok()?.sp_cholesky(Side::Lower).ok()?, scale })
-    }
-
-    /// K⁻¹ `force` = ((K + εI)/s)⁻¹ (force/s); `None` when the answer is not finite.
-    fn solve(&self, force: &[f64]) -> Option<Vec<f64>> {
-        let solution = self.cholesky.solve(Mat::from_fn(force.len(), 1, |i, _| force[i] / self.scale));
-        let u: Vec<f64> = (0..force.len()).map(|i| solution[(i, 0)]).collect();
-        u.iter().all(|v| v.is_finite()).then_some(u)
-    }
-}
-
-/// A lower bound (N/m) on the smallest eigenvalue k_min of K (given by its `entries` and its
-/// `cholesky` factor, `size` free dofs), the network's softest stiffness, by inverse iteration
-/// v ← K⁻¹ v/‖·‖ from the uniform displacement (which overlaps the lowest, smooth mode) until
-/// the Rayleigh quotient ρ = vᵀK v settles to 1e-6, then lowered by the residual
-/// η = ‖K v − ρ v‖: some eigenvalue lies in [ρ − η, ρ + η] (Krylov–Bogoliubov), the lowest one
-/// once the iteration has found it. 0 when K is singular (a floppy network); `None` when a
-/// solve is not finite.
-fn softest_stiffness(factor: &Factor, entries: &[Entry], size: usize) -> Option<f64> {
-    let unit = |v: Vec<f64>| {
-        let length = euclidean_norm(v.iter());
-        v.into_iter().map(|x| x / length).collect::<Vec<f64>>()
-    };
-    let mut v = unit(vec![1.0; size]);
-    let mut rayleigh = f64::INFINITY;
-    for iteration in 1..=SOFTEST_ITERATIONS {
-        v = unit(factor.solve(&v)?);
-        let kv = multiply(entries, &v);
-        let next: f64 = kv.iter().zip(&v).map(|(a, b)| a * b).sum();
-        let settled = (rayleigh - next).abs() <= SOFTEST_TOLERANCE * next.abs();
-        rayleigh = next;
-        if settled || iteration == SOFTEST_ITERATIONS {
-            let residual: Vec<f64> = kv.iter().zip(&v).map(|(a, b)| a - rayleigh * b).collect();
-            return Some((rayleigh - euclidean_norm(residual.iter())).max(0.0));
-        }
-    }
-    None
-}
-
-/// K v with K given by its entries.
-fn multiply(entries: &[Entry], v: &[f64]) -> Vec<f64> {
-    let mut product = vec![0.0; v.len()];
-    for entry in entries {
-        product[entry.row] += entry.val * v[entry.col];
-    }
-    product
-}
-
-/// f − K u with K given by its entries.
-fn out_of_balance(entries: &[Entry], u: &[f64], force: &[f64]) -> Vec<f64> {
-    multiply(entries, u).iter().zip(force).map(|(ku, f)| f - ku).collect()
-}
-
-/// ‖K u − f‖ / ‖f‖ with K given by its entries.
-fn relative_residual(entries: &[Entry], u: &[f64], force: &[f64]) -> f64 {
-    euclidean_norm(out_of_balance(entries, u, force).iter()) / euclidean_norm(force.iter()).max(f64::MIN_POSITIVE)
 }

@@ -79,6 +79,7 @@ fn run_columns(records: &[RunRecord]) -> Vec<Column> {
         ),
         floats(records, "wall_s", |r| r.wall_s),
         floats(records, "loop_s", |r| r.trace.loop_s),
+        optional_floats(records, "solve_s", |r| r.metrics.solve_s),
         Column::new("steps".into(), records.iter().map(|r| r.steps).collect::<Vec<u64>>()),
         floats(records, "mass", |r| r.spec.mass),
         floats(records, "spacing", |r| r.spec.spacing),

@@ -7,6 +7,7 @@
 use std::collections::HashMap;
 use std::sync::Mutex;
 
+use crate::fem::Analyses;
 use crate::model::{Axes, BondDashpot, Linear, NoDashpot, Particles, Spring, SquareLattice};
 use crate::sim::{Gear, IntegratorKind, LatticeNetwork, Sampling, Scene, State, StepProbe, simulate_with};
 use crate::spec::{POWER_METHOD_BONDS, RunSpec};
@@ -59,16 +60,24 @@ pub fn estimate(spec: &RunSpec) -> Stability {
 
 /// The estimates made so far, so that runs of one network (a grid over dt, integrators, run
 /// lengths) compute its modes once, and runs of one integrator its limit once: the plan fills
-/// it while checking a campaign, and the runs read it again for their records.
+/// it while checking a campaign, and the runs read it again for their records. The runs also
+/// share through it their networks' symbolic analyses for the static solve.
 #[derive(Debug, Default)]
 pub struct Estimates {
     /// The modes of each network, by [`network_key`].
     modes: Mutex<HashMap<String, Modes>>,
     /// The stability limits measured, by integrator, test equation and run length.
     limits: Mutex<HashMap<LimitKey, f64>>,
+    /// The symbolic analyses of the static solve, by network.
+    analyses: Analyses,
 }
 
 impl Estimates {
+    /// The static solve's symbolic analyses of the networks solved so far.
+    pub fn analyses(&self) -> &Analyses {
+        &self.analyses
+    }
+
     /// How many networks' modes have been estimated so far.
     pub fn networks(&self) -> usize {
         self.modes.lock().expect("the cache is never poisoned").len()

@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use super::columns::{Block, Column, Row, Slot};
 use super::common::{Stopped, relaxation, scene, sound_speed};
-use crate::fem::{StaticSolution, Truss};
+use crate::fem::{Analyses, Solver, StaticSolution, Truss};
 use crate::measure::{
     LatticeShape, anisotropic_moduli, constrained_modulus_y, extension_error_allowed, homogeneity, lattice_constants,
     modulus_error_bound, network_constants, plane_wave_speeds, row_extension, row_extension_weights, shear_modulus,
@@ -38,6 +38,10 @@ pub struct LatticeMetrics {
     /// Lattice: largest difference between the non-linear and the linear static answers,
     /// relative for E and G, absolute for ν (how far the load is from the linear regime).
     pub static_nonlinearity: Option<f64>,
+    /// Lattice: ‖R‖/‖f‖ where the static solve's Newton–Raphson iteration stopped, the
+    /// out-of-balance force left over the load (at most 1e-12 unless round-off ended it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub static_residual: Option<f64>,
     /// Lattice: E of the static solution of the same network, solved non-linearly like MD (Pa).
     pub youngs_modulus_fem: Option<f64>,
     /// Lattice: ν of the static solution.
@@ -275,13 +279,14 @@ fn top_row_drive(spec: &RunSpec, l: &LatticeSpec) -> Drive {
 
 /// The static answer of a loaded lattice, before its MD run: the fraction of bonds a random
 /// lattice kept, the moduli of the static solution (see [`solve`]), and what the scene's
-/// relaxation needs from it ([`relaxation_from_static`]). Returns why the run has no
-/// criterion to stop at, if it has none (it is then not run).
+/// relaxation needs from it ([`relaxation_from_static`]), on the network's symbolic analysis in
+/// `analyses` (made there if it is new). Returns why the run has no criterion to stop at, if it
+/// has none (it is then not run).
 pub(super) fn static_answer(
     spec: &RunSpec,
     l: &LatticeSpec,
     scene: &mut Scene,
-    deadline: Instant,
+    (deadline, analyses): (Instant, &Analyses),
     metrics: &mut LatticeMetrics,
 ) -> Result<Option<String>, Stopped> {
     let bonds = bonds(spec, l);
@@ -303,7 +308,9 @@ pub(super) fn static_answer(
         loads: &scene.loads,
         prescribed: &prescribed,
     };
-    let (top_row_force, solution) = scene.law.dispatch(StaticSolve { spec, l, truss: &truss, deadline, metrics })?;
+    let solver = truss.solver(analyses);
+    let (top_row_force, solution) =
+        scene.law.dispatch(StaticSolve { spec, l, truss: &truss, solver, deadline, metrics })?;
     if spec.static_only() {
         scene.rest = solution.map(|(ux, uy)| {
             let p = &scene.particles;
@@ -423,6 +430,7 @@ struct StaticSolve<'a> {
     spec: &'a RunSpec,
     l: &'a LatticeSpec,
     truss: &'a Truss<'a>,
+    solver: Solver<'a>,
     deadline: Instant,
     metrics: &'a mut LatticeMetrics,
 }
@@ -457,9 +465,12 @@ impl StaticSolve<'_> {
         let nonlinear = match (&linear_answer.1, self.spec.law.is_linear()) {
             // Linear springs: the linearised network is the network, so Newton starts from the
             // linear answer just solved.
-            (Some((ux, uy)), true) => self.truss.solve_nonlinear_from(law, ux.clone(), uy.clone(), Some(self.deadline)),
-            _ => self.truss.solve_nonlinear(law, reference_extension(self.spec), Some(self.deadline)),
+            (Some((ux, uy)), true) => {
+                self.solver.solve_nonlinear_from(law, ux.clone(), uy.clone(), Some(self.deadline))
+            }
+            _ => self.solver.solve_nonlinear(law, reference_extension(self.spec), Some(self.deadline)),
         };
+        self.metrics.static_residual = Some(self.solver.convergence().residual).filter(|r| r.is_finite());
         let (ux, uy) = match nonlinear {
             Some(StaticSolution::Displacements { ux, uy }) => (ux, uy),
             Some(StaticSolution::PastDeadline) => return Err(past_deadline()),
@@ -483,7 +494,7 @@ impl StaticSolve<'_> {
     /// row's force and displacements.
     fn solve_linear<L: ForceLaw>(&mut self, law: &L) -> Result<(Moduli, Solved), Stopped> {
         self.check_deadline()?;
-        let (linear, answer) = match self.truss.solve_linear() {
+        let (linear, answer) = match self.solver.solve_linear() {
             StaticSolution::Mechanism { residual } => return Err(Stopped::Mechanism { residual }),
             StaticSolution::PastDeadline => return Err(past_deadline()),
             StaticSolution::Displacements { ux, uy } => {
@@ -519,7 +530,7 @@ impl StaticSolve<'_> {
         // on ΔL does not cover: nothing is measured, so no sensitivity is solved for.
         let measured = if l.control == Control::Force { extension_dofs(l, &shape) } else { Vec::new() };
         if !spec.static_only()
-            && let Some(bounds) = self.truss.error_bounds(law, ux, uy, &measured)
+            && let Some(bounds) = self.solver.error_bounds(law, ux, uy, &measured)
         {
             self.metrics.stiffness_min = Some(bounds.stiffness_min);
             self.metrics.extension_sensitivity = bounds.sensitivity;
@@ -536,7 +547,7 @@ impl StaticSolve<'_> {
     /// load rises by the fraction `step`, from the tangent stiffness at the displacements `at`:
     /// K_t Δu = Δf, Δu per unit load factor being the increment of the whole load.
     fn tangent<L: ForceLaw>(&mut self, law: &L, shape: &LatticeShape, (ux, uy): (&[f64], &[f64]), step: f64) {
-        let Some((dx, dy)) = self.truss.tangent_response(law, ux, uy) else { return };
+        let Some((dx, dy)) = self.solver.tangent_response(law, ux, uy) else { return };
         let tangent = moduli(self.spec, self.l, self.l.total_load(), &dx, &dy);
         self.metrics.static_tangent_extension = Some(step * extension(self.l, shape, &dx, &dy));
         self.metrics.youngs_modulus_tangent_fem = tangent.youngs_modulus;
@@ -804,6 +815,7 @@ fn lattice_columns() -> Vec<Column<LatticeMetrics>> {
         Number("shear_modulus_tangent", |r| r.group.shear_modulus_tangent),
         Number("shear_modulus_tangent_fem", |r| r.group.shear_modulus_tangent_fem),
         Number("static_nonlinearity", |r| r.group.static_nonlinearity),
+        Number("static_residual", |r| r.group.static_residual),
         Number("homogeneity", |r| r.group.homogeneity),
         Number("dissipation_time", |r| r.dissipation_time),
         Word("dissipation_criterion", |r| r.dissipation_criterion.map(str::to_string)),

@@ -19,6 +19,7 @@ use serde::{Deserialize, Serialize};
 
 use self::columns::{Block, Row};
 use self::common::relaxation_checks;
+use crate::fem::Analyses;
 use crate::measure::{ARRIVAL_CRITERIA, arrival_time, energy_error};
 use crate::model::{Axes, Particles};
 use crate::sim::{Outcome, RelaxMethod, RunStatus, Scene, Trace};
@@ -56,6 +57,10 @@ pub struct Metrics {
     pub mode_damping_ratio: Option<f64>,
     /// Largest dt · ω_max the integrator survives at that damping ratio.
     pub stability_limit: Option<f64>,
+    /// Loaded lattice: wall time (s) of its static answer (the solve, and for a relaxing run
+    /// k_min and the sensitivity its bound needs), part of the run's `wall_s`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub solve_s: Option<f64>,
     /// Lattice: time (s) from which the relaxation criterion held.
     pub dissipation_time: Option<f64>,
     /// Lattice: the relaxation criterion, in words.
@@ -125,12 +130,14 @@ fn build_scene_until(spec: &RunSpec, deadline: Instant) -> Scene {
 /// Builds and integrates `spec` (a loaded lattice after its static answer), its time loops
 /// stopped at `deadline`, and measures it: the kind's measurements, the tangent step of a
 /// relaxed run, the error against a reference run at a finer dt or the exact answer.
-pub fn run(spec: &RunSpec, deadline: Instant) -> Result<Run, Stopped> {
+pub fn run(spec: &RunSpec, deadline: Instant, analyses: &Analyses) -> Result<Run, Stopped> {
     let mut scene = build_scene_until(spec, deadline);
     let mut metrics = Metrics::default();
     let mut no_criterion = None;
     if let Some(l) = spec.lattice().filter(|l| l.impulse.is_none()) {
-        no_criterion = lattice::static_answer(spec, l, &mut scene, deadline, &mut metrics.lattice)?;
+        let started = Instant::now();
+        no_criterion = lattice::static_answer(spec, l, &mut scene, (deadline, analyses), &mut metrics.lattice)?;
+        metrics.solve_s = Some(started.elapsed().as_secs_f64());
     }
     if no_criterion.is_some() {
         // Nothing could say when it is relaxed: not run, its static answer kept.

@@ -153,7 +153,7 @@ fn outcome(c: &Cell, spec: &RunSpec) -> Result<(RunStatus, String, Metrics), Str
         let RunRecord { status, message, metrics, .. } = mdsolids::runner::execute(spec);
         return Ok((status, message, metrics));
     }
-    match mdsolids::study::run(spec, Instant::now() + Duration::from_secs(60)) {
+    match mdsolids::study::run(spec, Instant::now() + Duration::from_secs(60), &Default::default()) {
         Err(mdsolids::study::Stopped::Mechanism { .. }) => {
             Ok((RunStatus::Mechanism, String::new(), Metrics::default()))
         }

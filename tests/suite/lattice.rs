@@ -290,3 +290,52 @@ fn periodic_strip_in_tension_has_the_constrained_modulus_as_its_reference() {
         assert!(m.lattice.poisson_ratio_fem.unwrap().abs() < 1e-9, "static ν {}", label(&r));
     }
 }
+
+/// A static solve on a stretched lattice: 10 × 10 with both diagonals (k = 1, k_d = 0.5),
+/// clamped bottom, 0.05 N up on each top node, a strain of ~4 %, so that the tangent stiffness
+/// at the answer differs from the linear K by ~4 %. The solver reuses K's one factor for every
+/// Newton correction (conjugate gradients preconditioned with it); the answer must be that of
+/// `dense.rs`, an independent Newton–Raphson with a fresh dense factor at every step taken two
+/// steps past convergence (to round-off). Tolerance 1e-12 on E: both sides stop at
+/// ‖R‖ ≤ 1e-12 ‖f‖ or below, and E, the load over the top row's mean displacement, weighs the
+/// smooth, stiff part of the error, which this 200-dof block's condition (~1e3) does not amplify.
+#[test]
+fn factor_reusing_newton_reaches_the_fresh_factor_answer_on_a_stretched_lattice() {
+    let yaml = "version: 1\nname: t\nscenes:\n  - name: s\n    kind: lattice\n    material: {mass: 1.0, k: 1.0}\n    \
+                lattice: {size: 10, k_diag_ratio: 0.5, diagonals: both}\n    supports: clamped-bottom\n    \
+                load: {case: tensile, per_node: 0.05}\n    relax: {method: static}\n";
+    let spec = &runs(yaml)[0];
+    let record = mdsolids::runner::execute(spec);
+    assert_eq!(record.status, RunStatus::Ok, "{}", record.message);
+    let l = &record.metrics.lattice;
+    let nonlinearity = l.static_nonlinearity.expect("linear springs have a linear answer beside");
+    assert!(nonlinearity > 1e-2, "stretched far enough that the tangent is not K: {nonlinearity}");
+    let residual = l.static_residual.expect("the Newton iteration's residual is recorded");
+    assert!(residual <= 1e-12, "converged to the tolerance: {residual:e}");
+    let dense = crate::dense::Reference::of(spec, 1e-3).expect("a stretched block is no mechanism");
+    let fem = l.youngs_modulus_fem.expect("a static modulus");
+    assert!((fem / dense.modulus - 1.0).abs() <= 1e-12, "{fem} against the dense {}", dense.modulus);
+}
+
+/// The static solve's symbolic analysis is made once per network and shared by the runs of a
+/// campaign (through the plan's `Estimates`): two runs of one network with other loads and
+/// stiffnesses share one; two sizes need two.
+#[test]
+fn static_solves_share_the_analysis_of_their_network() {
+    let analysed = |grid: &str| {
+        let yaml = format!(
+            "version: 1\nname: t\nscenes:\n  - name: s\n    kind: lattice\n    material: {{mass: 1.0, k: 1.0}}\n    \
+             lattice: {{size: 6, k_diag_ratio: 0.5, diagonals: both}}\n    supports: clamped-bottom\n    \
+             load: {{case: tensile, per_node: 0.001}}\n    relax: {{method: static}}\n    grid:\n{grid}"
+        );
+        let plan = mdsolids::plan::parse("inline.yaml", &yaml).unwrap_or_else(|e| panic!("{e}"));
+        assert!(plan.estimates.analyses().is_empty(), "nothing analysed before the runs");
+        for spec in &plan.campaign.runs {
+            let record = mdsolids::runner::execute_within(spec, &plan.campaign.budget, &plan.estimates);
+            assert_eq!(record.status, RunStatus::Ok, "{}", record.message);
+        }
+        (plan.campaign.runs.len(), plan.estimates.analyses().len())
+    };
+    assert_eq!(analysed("      load.per_node: [0.001, 0.002]\n      material.k: [1.0, 2.0]\n"), (4, 1));
+    assert_eq!(analysed("      lattice.size: [6, 7]\n"), (2, 2));
+}

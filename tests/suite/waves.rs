@@ -130,7 +130,9 @@ fn probes_record_chosen_rows_and_columns_and_see_momentum_conserved() {
     // The run's own trace, in double precision (its record keeps single precision: 1e-7).
     let spec = &crate::common::runs(PROBED)[0];
     let far = std::time::Instant::now() + std::time::Duration::from_secs(600);
-    let r = mdsolids::study::run(spec, far).unwrap_or_else(|_| panic!("the probed run stopped")).outcome;
+    let r = mdsolids::study::run(spec, far, &Default::default())
+        .unwrap_or_else(|_| panic!("the probed run stopped"))
+        .outcome;
     assert_eq!(r.trace.status, RunStatus::Ok, "{}", r.trace.message);
     let probes = &r.trace.probes;
     // The kicked column (right) first, then the rows once each (row 1 was named twice, `centre`
