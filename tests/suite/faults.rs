@@ -41,13 +41,14 @@ fn campaign_file(dir: &Path, text: &str) -> PathBuf {
 fn table(reports: &Path) -> Vec<Vec<String>> {
     let text = std::fs::read_to_string(reports.join("faults/results.csv")).unwrap();
     let rows: Vec<Vec<String>> = text.lines().map(|l| l.split(',').map(str::to_string).collect()).collect();
-    let keep: Vec<bool> = rows[0].iter().map(|name| name != "wall_s" && name != "loop_s").collect();
+    let keep: Vec<bool> =
+        rows[0].iter().map(|name| !["wall_s", "loop_s", "solve_s"].contains(&name.as_str())).collect();
     rows.iter().map(|row| row.iter().zip(&keep).filter(|(_, k)| **k).map(|(v, _)| v.clone()).collect()).collect()
 }
 
 /// Every file of the campaign's folder (path relative to it) with what must be the same after
 /// an interrupted campaign is rerun as after an uninterrupted one: its bytes, but for the run
-/// times, which differ from run to run: `wall_s` and `loop_s` are taken out of the records and
+/// times, which differ from run to run: `wall_s`, `loop_s` and `solve_s` are taken out of the records and
 /// tables, and every decimal number is masked in the report's text (`report.md`, `index.html`:
 /// its words, tables, figure and movie links stay). Movies, figures, lock files, everything
 /// else: byte for byte.
@@ -72,7 +73,7 @@ fn folder(reports: &Path) -> BTreeMap<String, Vec<u8>> {
             } else if name == "results.parquet" {
                 use polars::prelude::{CsvWriter, ParquetReader, SerReader, SerWriter};
                 let frame = ParquetReader::new(std::fs::File::open(&path).unwrap()).finish().unwrap();
-                let (mut csv, mut frame) = (Vec::new(), frame.drop_many(["wall_s", "loop_s"]));
+                let (mut csv, mut frame) = (Vec::new(), frame.drop_many(["wall_s", "loop_s", "solve_s"]));
                 CsvWriter::new(&mut csv).finish(&mut frame).unwrap();
                 csv
             } else if name.ends_with(".md") || name.ends_with(".html") {
@@ -86,12 +87,13 @@ fn folder(reports: &Path) -> BTreeMap<String, Vec<u8>> {
     files
 }
 
-/// Removes the timing fields `wall_s` and `loop_s` wherever they are.
+/// Removes the timing fields `wall_s`, `loop_s` and `solve_s` wherever they are.
 fn without_times(value: &mut serde_json::Value) {
     match value {
         serde_json::Value::Object(map) => {
             map.remove("wall_s");
             map.remove("loop_s");
+            map.remove("solve_s");
             map.values_mut().for_each(without_times);
         }
         serde_json::Value::Array(items) => items.iter_mut().for_each(without_times),

@@ -39,7 +39,7 @@ fn run_ids(folder: &Path) -> Vec<(String, String)> {
 
 /// `results.parquet` without the columns that change from run to run (times, build).
 fn results_without_times(folder: &Path) -> DataFrame {
-    table(&folder.join("results.parquet")).drop_many(["wall_s", "loop_s", "build"])
+    table(&folder.join("results.parquet")).drop_many(["wall_s", "loop_s", "solve_s", "build"])
 }
 
 fn particles_of(folder: &Path, run_id: &str) -> PathBuf {
