@@ -1,7 +1,7 @@
-//! The static problems of one network, on one symbolic analysis and, where it can, one numeric
-//! factor: the linear answer (a fresh factor of K, refined), Newton–Raphson's corrections and
-//! the responses of the tangent (conjugate gradients preconditioned with the factor at hand, a
-//! fresh factor only where they stall), and what bounds a relaxation's error (k_min by inverse
+//! The static problems of one network, on one symbolic analysis and in one factor's memory: the
+//! linear answer (a fresh factor of K, refined), Newton–Raphson's corrections (a fresh factor of
+//! the tangent each), the responses of the tangent (conjugate gradients preconditioned with the
+//! factor at hand, a fresh factor only where they stall), and what bounds a relaxation's error (k_min by inverse
 //! iteration and ‖K_t⁻¹ g‖ on a fresh factor of the tangent, in the same memory). Pure: no I/O.
 
 use std::sync::Arc;
@@ -27,14 +27,7 @@ pub const NEWTON_TOLERANCE: f64 = 1e-12;
 const NEWTON_STEP_TOLERANCE: f64 = 1e-14;
 /// Newton–Raphson gives up after this many iterations (it converges quadratically: a handful).
 const NEWTON_ITERATIONS: usize = 50;
-/// Each Newton correction K_t Δu = R is solved by conjugate gradients on the factor at hand
-/// to this fraction of ‖R‖ (inexact Newton: the answer is the root R = 0 all the same, and each
-/// step gains at least 2 digits). With the factor of the linear K and a tangent at a strain of
-/// 1e-3 one solve gains ~3, so a correction is one solve, as in modified Newton, and the
-/// iteration gains ~3 digits per solve: 3 solves from the linear answer to 1e-12 on the
-/// 1000² lattice, where a tolerance of 1e-6 took 2–3 solves per correction ...
-const CORRECTION_TOLERANCE: f64 = 1e-2;
-/// ... and a response K_t Δu = f (the tangent moduli, the sensitivity) to this fraction of ‖f‖.
+/// A response K_t Δu = f (the tangent moduli, the sensitivity) is solved to this fraction of ‖f‖.
 const RESPONSE_TOLERANCE: f64 = 1e-12;
 
 /// Inverse iteration for the softest stiffness stops once its Rayleigh quotient changes by
@@ -136,10 +129,9 @@ impl<'a> Solver<'a> {
     /// Newton–Raphson from displacements `(ux, uy)`: R(u) = f + Σ spring forces at x + u,
     /// K_t Δu = R, until ‖R‖ ≤ 1e-12 ‖f‖ or ‖Δu‖ ≤ 1e-14 ‖u‖. The tangent of a spring with
     /// tension s along n̂ at length r is s′(δ) n̂ n̂ᵀ + (s/r)(I − n̂ n̂ᵀ). Each correction is
-    /// solved to 1e-2 ‖R‖ (inexact Newton) by conjugate gradients preconditioned with the factor at hand (of the
-    /// linear K: for linear springs the tangent differs from it by terms of the order of the
-    /// strain, and each iteration gains about log₁₀(1/strain) digits), a fresh factor of K_t
-    /// only where they stall. An iteration that does not converge returns `None`; once the wall
+    /// solved with a fresh factor of K_t on the network's one symbolic analysis, in the same
+    /// memory, refined (full Newton: corrections by conjugate gradients on the linear factor,
+    /// tried, stalled or stopped elsewhere on diluted, nearly floppy networks). An iteration that does not converge returns `None`; once the wall
     /// clock passes `deadline` (looked at before every correction) it stops with `PastDeadline`.
     pub fn solve_nonlinear_from<L: ForceLaw>(
         &mut self,
@@ -159,7 +151,7 @@ impl<'a> Solver<'a> {
             if deadline.is_some_and(|deadline| Instant::now() > deadline) {
                 return Some(StaticSolution::PastDeadline);
             }
-            let step = self.solve(&residual, CORRECTION_TOLERANCE)?;
+            let step = self.solve_fresh(&residual)?;
             let (dx, dy) = self.truss.expand(&self.dofs, &step);
             for i in 0..ux.len() {
                 ux[i] += dx[i];
