@@ -89,11 +89,11 @@ pub struct FigureRef {
     pub caption: String,
 }
 
-/// The movies of a scene: its runs side by side if drawn (the same panels as the runs' own
-/// movies, so those are then left out), otherwise each run's own.
+/// The movies of a scene: its runs side by side if drawn (runs shown side by side have no
+/// movie of their own), and each other run's own.
 pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> Vec<FigureRef> {
     let together = side_by_side.iter().any(|s| s == scene);
-    let own = mine.iter().filter(|r| !together && r.has_movie());
+    let own = mine.iter().filter(|r| r.has_own_movie());
     together
         .then(|| FigureRef {
             file: side_by_side_name(scene),

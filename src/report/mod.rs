@@ -70,7 +70,7 @@ pub fn render_with_left_out(
     let movies: BTreeSet<String> = side_by_side
         .iter()
         .map(|scene| crate::output::side_by_side_name(scene))
-        .chain(records.iter().filter(|r| r.spec.movie.is_some()).map(|r| crate::output::movie_name(&r.run_id)))
+        .chain(records.iter().filter(|r| r.has_own_movie()).map(|r| crate::output::movie_name(&r.run_id)))
         .collect();
     remove_stale(&layout.root, "plots", ".gif", &movies)?;
     // Movies of earlier versions sat in the cache folder.

@@ -72,6 +72,13 @@ impl RunRecord {
             && !self.message.contains(NO_MOVIE)
     }
 
+    /// Whether the run has a movie of its own (`plots/<run_id>.gif`): it has a movie
+    /// ([`RunRecord::has_movie`]) and is not shown side by side with its scene's other runs,
+    /// where it is a panel of the scene's movie instead.
+    pub fn has_own_movie(&self) -> bool {
+        self.has_movie() && self.spec.movie.is_some_and(|m| !m.side_by_side)
+    }
+
     /// Checks a record read from the store as the record of `spec` (whose id names its file):
     /// its own `run_id` is that id and the id of its own spec, its spec is `spec` (but perhaps
     /// for `output.series`, which the id leaves out: `runner::Stored::OtherSeries`), and its

@@ -101,7 +101,23 @@ fn a_scene_can_show_its_runs_side_by_side() {
     assert!(report.contains("](plots/kick-side-by-side.gif)"), "{report}");
     for r in &campaign.runs {
         assert!(!report.contains(&format!("plots/{}.gif", r.run_id())), "the own movie of {} shown twice", r.run_id());
+        assert!(!layout.movie_file(&r.run_id()).exists(), "a panel is not also written as a movie of its own");
     }
+}
+
+#[test]
+fn one_run_shown_side_by_side_is_a_movie_of_one_panel() {
+    // A scene of one run that asks to be shown side by side gets its one-panel movie, not
+    // nothing: the rule "a run shown side by side has no movie of its own" holds for any count.
+    let reports = tempfile::tempdir().unwrap();
+    let planned = plan::parse("pair.yaml", &side_by_side_campaign("both")).unwrap();
+    let layout = Layout::new(reports.path(), &planned.campaign.name);
+    let done = run_campaign(&planned, &layout, Some(1)).unwrap();
+    assert_eq!(frames(&layout.side_by_side_movie("kick")).0, 300);
+    assert!(!layout.movie_file(&done.records[0].run_id).exists());
+    mdsolids::report::render(&planned.campaign, &layout, &done.records).unwrap();
+    let report = std::fs::read_to_string(layout.file("report.md")).unwrap();
+    assert!(report.contains("](plots/kick-side-by-side.gif)"), "{report}");
 }
 
 #[test]
@@ -163,15 +179,22 @@ fn movies_lost_after_a_kill_are_drawn_again_the_same() {
     let planned = plan::parse("pair.yaml", &side_by_side_campaign("none, both")).unwrap();
     let campaign = &planned.campaign;
     let layout = Layout::new(reports.path(), &campaign.name);
-    let done = run_campaign(&planned, &layout, Some(2)).unwrap();
-    let run_movie = layout.movie_file(&done.records[1].run_id);
-    let (both, one) = (std::fs::read(layout.side_by_side_movie("kick")).unwrap(), std::fs::read(&run_movie).unwrap());
+    run_campaign(&planned, &layout, Some(2)).unwrap();
+    let both = std::fs::read(layout.side_by_side_movie("kick")).unwrap();
     std::fs::remove_file(layout.side_by_side_movie("kick")).unwrap();
-    std::fs::remove_file(&run_movie).unwrap();
     let again = run_campaign(&planned, &layout, Some(2)).unwrap();
     assert_eq!(again.simulated, 0, "the records are stored");
-    assert_eq!(std::fs::read(&run_movie).unwrap(), one, "the run's movie is back");
     assert_eq!(std::fs::read(layout.side_by_side_movie("kick")).unwrap(), both, "the side-by-side movie is back");
+    // A run's own movie comes back the same way (a scene not shown side by side).
+    let reports = tempfile::tempdir().unwrap();
+    let planned = plan::parse("own.yaml", &side_by_side_campaign("none").replace(", side_by_side: true", "")).unwrap();
+    let layout = Layout::new(reports.path(), &planned.campaign.name);
+    let done = run_campaign(&planned, &layout, Some(1)).unwrap();
+    let run_movie = layout.movie_file(&done.records[0].run_id);
+    let one = std::fs::read(&run_movie).unwrap();
+    std::fs::remove_file(&run_movie).unwrap();
+    assert_eq!(run_campaign(&planned, &layout, Some(1)).unwrap().simulated, 0, "the record is stored");
+    assert_eq!(std::fs::read(&run_movie).unwrap(), one, "the run's movie is back");
 }
 
 #[test]
