@@ -123,13 +123,21 @@ pub(super) fn measure(spec: &RunSpec, scene: &Scene, outcome: &Outcome, m: &mut 
         ..PackingMetrics::default()
     };
     if relaxed {
-        let moduli = |strain| stiffness_modulus(&forces, &backbone, &rattler, strain);
-        m.bulk_modulus_2d = moduli(BULK).map(|u| u / (4.0 * area));
-        m.shear_modulus_2d = moduli(SHEAR).map(|u| u / area);
+        (m.bulk_modulus_2d, m.shear_modulus_2d) = stiffness_moduli(&forces, n, area);
         let strained = |strain| strained_second_derivative(scene, outcome, strain);
         m.bulk_modulus_2d_strained = strained(BULK).map(|u| u / (4.0 * area));
         m.shear_modulus_2d_strained = strained(SHEAR).map(|u| u / area);
     }
+}
+
+/// K = (1/4A) d²U/dε² and G = (1/A) d²U/dγ² (N/m) of a packing at rest with contacts `forces`
+/// among `discs` discs in a box of area `area` (m²), from its stiffness matrix
+/// ([`stiffness_modulus`]); 0 without a backbone, `None` for a floppy one.
+pub fn stiffness_moduli(forces: &ContactForces, discs: usize, area: f64) -> (Option<f64>, Option<f64>) {
+    let rattler = forces.rattlers(discs);
+    let backbone = forces.backbone(&rattler);
+    let moduli = |strain| stiffness_modulus(forces, &backbone, &rattler, strain);
+    (moduli(BULK).map(|u| u / (4.0 * area)), moduli(SHEAR).map(|u| u / area))
 }
 
 /// d²U/dε² (J) of the relaxed packing under the strain gradient `strain`, from its stiffness
