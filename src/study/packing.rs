@@ -224,7 +224,7 @@ pub(super) fn columns() -> Vec<Block<PackingMetrics>> {
         Number("pressure", |r| r.group.pressure),
         Number("pressure_floor", |r| r.group.pressure_floor),
         Count("contacts", |r| r.group.contacts),
-        Number("coordination", |r| r.group.coordination),
+        Number("backbone_coordination", |r| r.group.coordination),
         Number("rattler_fraction", |r| r.group.rattler_fraction),
         Number("energy", |r| r.group.energy),
         Number("bulk_modulus_2d", |r| r.group.bulk_modulus_2d),
