@@ -238,6 +238,7 @@ pub fn run_once(config: &BenchConfig) -> BenchResult {
     let (path, bonds) = match &scene.network {
         Network::Lattice(lattice) => ("stencil", lattice.bond_count()),
         Network::Bonds(bonds) => ("bond-list", bonds.len()),
+        Network::Packing(packing) => ("contacts", packing.overlapping(&scene.particles.x, &scene.particles.y).len()),
     };
     let particles = scene.particles.len();
     let trace = scene.run().trace;

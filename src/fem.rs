@@ -372,14 +372,14 @@ fn pre_stretch(length: f64, rest: f64, resolution: f64) -> f64 {
 }
 
 /// One entry (row, column, value) of a stiffness matrix over the free degrees of freedom.
-type Entry = Triplet<usize, usize, f64>;
+pub type Entry = Triplet<usize, usize, f64>;
 
 /// Factors K + εI (ε = 1e-12 of the largest diagonal entry) and solves K u = `force`; `None`
 /// when the factorisation fails. The shift leaves u off by about ε‖K⁻¹‖ (6e-11 of E on a
 /// 10 × 10 steel block), which iterative refinement with the unshifted K takes off:
 /// u ← u + (K + εI)⁻¹(f − K u), while the residual falls at least twofold, at most
 /// [`REFINEMENTS`] times (a load on a mechanism's zero mode never lets it fall).
-fn factor_and_solve(size: usize, entries: &mut Vec<Entry>, force: &[f64]) -> Option<Vec<f64>> {
+pub fn factor_and_solve(size: usize, entries: &mut Vec<Entry>, force: &[f64]) -> Option<Vec<f64>> {
     if size == 0 {
         return Some(Vec::new());
     }

@@ -8,12 +8,14 @@ pub use self::moduli::{
     constrained_modulus_y, extension_error_allowed, homogeneity, lattice_constants, modulus_error_bound,
     network_constants, plane_wave_speeds, row_extension, row_extension_weights, shear_modulus, tensile_moduli,
 };
+pub use self::packing::ContactForces;
 pub use self::wave::{ARRIVAL_CRITERIA, arrival_time};
 
 mod chain;
 mod contact;
 mod energy;
 mod moduli;
+mod packing;
 mod wave;
 
 /// Relative error (measured − reference)/reference, when both exist.

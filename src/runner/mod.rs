@@ -399,6 +399,9 @@ fn run_and_store(
         None => {}
     }
     write_atomically(&layout.series_table_file(&record.run_id), &stored.series)?;
+    if let Some(table) = record.final_state.take() {
+        write_atomically(&layout.packing_file(&record.run_id), &table)?;
+    }
     write_atomically(&layout.run_file(&record.run_id), &stored.json)?;
     Ok(Some((record, true)))
 }

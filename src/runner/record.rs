@@ -56,6 +56,10 @@ pub struct RunRecord {
     /// `runs/<run_id>.gif`, never stored in the record.
     #[serde(skip)]
     pub movie: Option<Movie>,
+    /// A packing's discs where its run stopped (`packings/<run_id>.parquet`,
+    /// [`series::packing_table`]): written by the runner beside the record, never held in it.
+    #[serde(skip)]
+    pub final_state: Option<Vec<u8>>,
 }
 
 /// What a record's message says (followed by why) when its run's movie could not be drawn:
@@ -227,6 +231,7 @@ impl RunRecord {
             probe_table: self.probe_table.clone(),
             full_series: None,
             movie: None,
+            final_state: None,
         }
     }
 

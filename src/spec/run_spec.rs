@@ -416,6 +416,11 @@ impl RunSpec {
         self.scene_kind.lattice()
     }
 
+    /// A packing scene's packing; `None` for other kinds.
+    pub fn packing(&self) -> Option<&super::kind::PackingSpec> {
+        self.scene_kind.packing()
+    }
+
     /// When the relaxation of a loaded lattice or a relaxing chain stops; `None` otherwise.
     pub fn relax(&self) -> Option<RelaxSpec> {
         self.scene_kind.relax()
@@ -476,6 +481,8 @@ fn physics_words(path: &str, value: &Value) -> String {
         "lattice.k_y_ratio" => "k_y/k",
         "lattice.cut_fraction" => "cut fraction",
         "lattice.stiffness_spread" => "spread w",
+        "packing.fraction" => "φ",
+        "packing.n" => "N",
         other => other.rsplit('.').next().unwrap_or(other),
     };
     format!("{symbol} = {text}")

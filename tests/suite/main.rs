@@ -20,6 +20,7 @@ mod lattice;
 mod lattice_types;
 mod movies;
 mod nonlinear;
+mod packing;
 mod physics;
 mod pipeline;
 mod relax;
