@@ -493,42 +493,30 @@ fn pinned_results(campaign: &str, scope: Scope) {
     );
 }
 
+/// One test per pinned campaign, `pinned_results_of_<campaign>`, so that the campaigns run
+/// side by side and fail one by one.
+macro_rules! pinned_campaigns {
+    ($($test:ident: $campaign:literal, $scope:ident;)*) => {
+        $(
+            #[test]
+            fn $test() {
+                pinned_results($campaign, Scope::$scope);
+            }
+        )*
+    };
+}
+
 // The shipped campaigns whose results are pinned: whole where that is cheap (smoke, shards) or
 // another test runs it anyway (lattice-types, whose report the lattice-types tests read), a
 // covering share of the others (docs/performance.md, "The slowest tests").
-#[test]
-fn pinned_results_of_smoke() {
-    pinned_results("smoke", Scope::Whole);
-}
-
-#[test]
-fn pinned_results_of_shards() {
-    pinned_results("shards", Scope::Whole);
-}
-
-#[test]
-fn pinned_results_of_lattice_types() {
-    pinned_results("lattice-types", Scope::Whole);
-}
-
-#[test]
-fn pinned_results_of_coursework() {
-    pinned_results("coursework", Scope::Share);
-}
-
-#[test]
-fn pinned_results_of_coursework_hertz() {
-    pinned_results("coursework-hertz", Scope::Share);
-}
-
-#[test]
-fn pinned_results_of_stability() {
-    pinned_results("stability", Scope::Share);
-}
-
-#[test]
-fn pinned_results_of_dt_study() {
-    pinned_results("dt-study", Scope::Share);
+pinned_campaigns! {
+    pinned_results_of_smoke: "smoke", Whole;
+    pinned_results_of_shards: "shards", Whole;
+    pinned_results_of_lattice_types: "lattice-types", Whole;
+    pinned_results_of_coursework: "coursework", Share;
+    pinned_results_of_coursework_hertz: "coursework-hertz", Share;
+    pinned_results_of_stability: "stability", Share;
+    pinned_results_of_dt_study: "dt-study", Share;
 }
 
 /// report.md rendered from a frozen set of records (tests/snapshots/report/runs, made once by
