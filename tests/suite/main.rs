@@ -25,5 +25,6 @@ mod physics;
 mod pipeline;
 mod relax;
 mod series;
+mod shipped;
 mod unit;
 mod waves;
