@@ -20,9 +20,12 @@ pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
             && r.spec.law == LawSpec::Linear
             && r.metrics.recommended_sound_speed().is_some()
     });
-    let chain = linear.iter().copied().find(|r| r.spec.chain().is_some())?;
-    let error = relative(chain.metrics.recommended_sound_speed(), chain.metrics.sound_speed_theory);
-    let mut sentences = chain_speed_sentences(chain, error);
+    let chain = linear.iter().copied().find(|r| r.spec.chain().is_some());
+    let block = Block::of(e);
+    // The item needs a chain's front or the 2D block (whose speed its moduli give at least).
+    let shown = chain.or(block.as_ref().and_then(|b| b.wave)).or(block.as_ref().map(|b| b.tensile[0]))?;
+    let error = chain.and_then(|c| relative(c.metrics.recommended_sound_speed(), c.metrics.sound_speed_theory));
+    let mut sentences = chain.map(|c| chain_speed_sentences(c, error)).unwrap_or_default();
     let rows = lattice_speed_rows(&linear);
     if !rows.is_empty() {
         sentences.push(
@@ -31,27 +34,32 @@ pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
                 .into(),
         );
     }
-    let block = Block::of(e);
     sentences.extend(block.as_ref().map(Block::sound_sentence));
     sentences.extend(precursor_sentence(&linear));
+    let chain_short = chain.map(|c| {
+        format!(
+            "chain: V = {} m/s by the speed threshold, {} of a√(k/m)",
+            cell(c.metrics.recommended_sound_speed()),
+            error.map(rel).unwrap_or_default()
+        )
+    });
+    let short: Vec<String> = block.as_ref().map(Block::sound_short).into_iter().chain(chain_short).collect();
     Some(Answer {
         title: "The speed of sound",
         question: "(d) Estimate the sound speed from the arrival time at the bottom; which criterion, which others, \
                    and how does it compare with t_s = N_s t_c?",
-        short: format!(
-            "{}chain: V = {} m/s by the speed threshold, {} of a√(k/m)",
-            block.as_ref().map_or_else(String::new, |b| format!("{}; ", b.sound_short())),
-            cell(chain.metrics.recommended_sound_speed()),
-            error.map(rel).unwrap_or_default()
-        ),
+        short: short.join("; "),
         sentences,
         reference: format!(
             "The exact front speed a√(k/m) of the linear chain; tolerance {SPEED_TOLERANCE} (the threshold catches \
-             the dispersive front early)."
+             the dispersive front early); without a chain, an observation."
         ),
-        verdict: Verdict::of([error.is_some_and(|x| x.abs() <= SPEED_TOLERANCE)]),
+        verdict: match chain {
+            Some(_) => Verdict::of([error.is_some_and(|x| x.abs() <= SPEED_TOLERANCE)]),
+            None => Verdict::Observed,
+        },
         figures: e
-            .figures(&[(&chain.spec.scene, FigureKind::SpaceTime), (&chain.spec.scene, FigureKind::SpeedAgainstV0)]),
+            .figures(&[(&shown.spec.scene, FigureKind::SpaceTime), (&shown.spec.scene, FigureKind::SpeedAgainstV0)]),
         table: (!rows.is_empty()).then(|| Table {
             header: ["scene", "run", "V (m/s)", "c theory (m/s)", "error"].map(String::from).to_vec(),
             rows,
