@@ -177,13 +177,24 @@ impl<'a> Block<'a> {
         }
     }
 
+    /// How the values were found: extrapolated over two sizes or more, else measured on one
+    /// block, whose finite-size share is then not estimated.
+    fn basis(&self) -> String {
+        if self.tensile.len() < 2 {
+            format!("measured on {} alone (one size: its finite-size share, ∝ 1/N, is not estimated)", self.sizes())
+        } else {
+            format!("extrapolated to an infinite block (the finite-size share falls as 1/N) from {}", self.sizes())
+        }
+    }
+
     /// The summary's line of E and ν: the extrapolated values with their uncertainty.
     pub(super) fn youngs_short(&self) -> String {
         format!(
-            "E = {} Pa, ν = {} ({}, N → ∞ from {}); continuum {} Pa, {}",
+            "E = {} Pa, ν = {} ({}, {} {}); continuum {} Pa, {}",
             self.youngs.words(),
             self.poisson.words(),
             self.supports(),
+            if self.tensile.len() < 2 { "one size:" } else { "N → ∞ from" },
             self.sizes(),
             self.youngs.continuum.map_or_else(|| "–".into(), sig),
             self.poisson.continuum.map_or_else(|| "–".into(), sig),
@@ -228,8 +239,8 @@ impl<'a> Block<'a> {
         let shear = self.shear_short().map_or_else(String::new, |g| format!("; {g}"));
         format!(
             "The 2D block (m = {} kg per node, k = {} N/m, k_d/k = {}, a = {} m, d = {} m: ρ = {} kg/m³) has \
-             E = {} Pa and ν = {}, extrapolated to an infinite block from {} on the {} (the finite-size effect \
-             falls as 1/N: {} Pa and {} on the largest), against the continuum's {} Pa and {}{shear}.",
+             E = {} Pa and ν = {}, {} on the {} ({} Pa and {} on the largest), against the continuum's {} Pa and \
+             {}{shear}.",
             sig(s.mass),
             sig(s.k),
             sig(s.lattice().map_or(f64::NAN, |l| l.k_diag) / s.k),
@@ -238,7 +249,7 @@ impl<'a> Block<'a> {
             sig(self.density()),
             self.youngs.words(),
             self.poisson.words(),
-            self.sizes(),
+            self.basis(),
             self.supports(),
             sig(self.youngs.largest),
             sig(self.poisson.largest),
@@ -272,19 +283,21 @@ impl<'a> Block<'a> {
 
 impl Block<'_> {
     /// Item 10's sentence on the extrapolation: how the moduli converge and to what.
-    pub(super) fn extrapolation_sentence(&self) -> String {
-        format!(
-            "A finite block departs from the continuum by a boundary layer of fixed thickness at the point loads \
+    pub(super) fn extrapolation_sentence(&self) -> Option<String> {
+        (self.tensile.len() >= 2).then(|| {
+            format!(
+                "A finite block departs from the continuum by a boundary layer of fixed thickness at the point loads \
              and the supports, a share ∝ 1/N of its modulus; Richardson's v∞ = (N₂ v₂ − N₁ v₁)/(N₂ − N₁) over \
              the two largest of {} on the {} gives E = {} Pa and ν = {} (the uncertainty: the change when the next \
              smaller pair of blocks is used, or the whole correction with two sizes), against the continuum's {} Pa \
              and {}.",
-            self.sizes(),
-            self.supports(),
-            self.youngs.words(),
-            self.poisson.words(),
-            self.youngs.continuum.map_or_else(|| "–".into(), sig),
-            self.poisson.continuum.map_or_else(|| "–".into(), sig),
-        )
+                self.sizes(),
+                self.supports(),
+                self.youngs.words(),
+                self.poisson.words(),
+                self.youngs.continuum.map_or_else(|| "–".into(), sig),
+                self.poisson.continuum.map_or_else(|| "–".into(), sig),
+            )
+        })
     }
 }

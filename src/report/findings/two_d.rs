@@ -423,7 +423,7 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
         );
     }
     let block = Block::of(e);
-    sentences.extend(block.as_ref().map(Block::extrapolation_sentence));
+    sentences.extend(block.as_ref().and_then(Block::extrapolation_sentence));
     Some(Answer {
         title: "Young's modulus and Poisson's ratio",
         question: "(a, b) Measure E and ν under 1 kN up on every top-row node.",
