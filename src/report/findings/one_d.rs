@@ -79,18 +79,10 @@ fn pair_cases<'a>(linear: &[&'a RunRecord]) -> Vec<&'a RunRecord> {
 /// dashpot of the wrong sign misses by order 1.
 const BALANCE_TOLERANCE: f64 = 1e-2;
 
-/// The coursework's first requirement: one force function, the loops around it and its signs,
-/// judged by what a wrong sign would break: the energy balance of every run at t_c/50.
-pub(super) fn force_function(e: &Evidence) -> Option<Answer> {
-    let runs = e.ok(|r| (r.spec.dt_per_tc() - 50.0).abs() < 1.0 && !r.spec.allow_unstable);
-    let balances: Vec<(f64, &RunRecord)> =
-        runs.iter().filter_map(|r| Some((r.metrics.energy_error?.abs(), *r))).collect();
-    let (worst, worst_run) = balances.iter().copied().max_by(|a, b| a.0.total_cmp(&b.0))?;
-    let mut kinds: Vec<&str> = balances.iter().map(|(_, r)| r.spec.kind().name()).collect();
-    kinds.sort_unstable();
-    kinds.dedup();
-    let count = |keep: fn(&RunRecord) -> bool| balances.iter().filter(|(_, r)| keep(r)).count();
-    let mut sentences = vec![
+/// The force function and the loops in words: the signs of n̂, δ and f, and the connectivity
+/// apart from the force and both apart from the integration.
+fn force_design() -> Vec<String> {
+    vec![
         "One function computes every spring's force (Spring::force_on_i, for every law and every scene): with \
          n̂ = (x_i − x_j)/|x_i − x_j| and δ = |x_i − x_j| − x_e (positive when stretched: the coursework's overlap \
          with the opposite sign), f_i = −(s(δ) + γ δ̇) n̂ with δ̇ = (v_i − v_j)·n̂, so a stretched spring pulls i \
@@ -102,18 +94,32 @@ pub(super) fn force_function(e: &Evidence) -> Option<Answer> {
          over the bonds adding f_i to i and −f_i to j, and only then integrates: the integrator sees summed \
          forces, never a spring."
             .to_string(),
-        format!(
-            "A wrong sign would break the energy balance E_kin + E_pot + E_dissipated = W: over the {} runs at \
+    ]
+}
+
+/// The coursework's first requirement: one force function, the loops around it and its signs,
+/// judged by what a wrong sign would break: the energy balance of every run at t_c/50.
+pub(super) fn force_function(e: &Evidence) -> Option<Answer> {
+    let runs = e.ok(|r| (r.spec.dt_per_tc() - 50.0).abs() < 1.0 && !r.spec.allow_unstable);
+    let balances: Vec<(f64, &RunRecord)> =
+        runs.iter().filter_map(|r| Some((r.metrics.energy_error?.abs(), *r))).collect();
+    let (worst, worst_run) = balances.iter().copied().max_by(|a, b| a.0.total_cmp(&b.0))?;
+    let mut kinds: Vec<&str> = balances.iter().map(|(_, r)| r.spec.kind().name()).collect();
+    kinds.sort_unstable();
+    kinds.dedup();
+    let count = |keep: fn(&RunRecord) -> bool| balances.iter().filter(|(_, r)| keep(r)).count();
+    let mut sentences = force_design();
+    sentences.push(format!(
+        "A wrong sign would break the energy balance E_kin + E_pot + E_dissipated = W: over the {} runs at \
              dt = t_c/50 ({}; {} with a non-linear law, {} damped) it holds to {} at worst ({}), the scheme's \
              O(dt²) error.",
-            balances.len(),
-            kinds.join(", "),
-            count(|r| !r.spec.law.is_linear()),
-            count(|r| r.spec.gamma > 0.0 || r.spec.gamma_background > 0.0),
-            sig(worst),
-            worst_run.spec.scene
-        ),
-    ];
+        balances.len(),
+        kinds.join(", "),
+        count(|r| !r.spec.law.is_linear()),
+        count(|r| r.spec.gamma > 0.0 || r.spec.gamma_background > 0.0),
+        sig(worst),
+        worst_run.spec.scene
+    ));
     let damped =
         pair_cases(&e.ok(|r| is_pair(r) && r.spec.law == LawSpec::Linear)).into_iter().find(|r| r.spec.gamma > 0.0);
     if let Some(r) = damped {
