@@ -4,6 +4,7 @@
 //! number is read from the records at render time; an item whose runs the campaign lacks is
 //! left out. This file lists the questions; `finding.rs` is the vocabulary they answer in.
 
+mod block;
 mod discussion;
 mod dynamics;
 mod finding;
@@ -26,7 +27,8 @@ pub fn findings(evidence: &Evidence) -> Vec<Finding> {
     // The coursework's questions see its evidence ([`Evidence::coursework`]); the lattice
     // types' see every run.
     let coursework = evidence.coursework();
-    let asked: [(Question, &Evidence); 26] = [
+    let asked: [(Question, &Evidence); 27] = [
+        (one_d::force_function, &coursework),
         (one_d::two_particles, &coursework),
         (one_d::time_step, &coursework),
         (one_d::chain, &coursework),
@@ -60,4 +62,22 @@ pub fn findings(evidence: &Evidence) -> Vec<Finding> {
         .enumerate()
         .map(|(i, answer)| answer.numbered(i + 1))
         .collect()
+}
+
+/// The abstract: the campaign's answers in a few sentences, each computed from its results
+/// (the coursework's evidence); a sentence whose runs the campaign lacks is left out.
+pub fn overview(evidence: &Evidence) -> Vec<String> {
+    let e = evidence.coursework();
+    let block = block::Block::of(&e);
+    [
+        one_d::pair_headline(&e),
+        block.as_ref().map(block::Block::moduli_sentence),
+        block.as_ref().map(block::Block::sound_sentence),
+        dynamics::dissipation_headline(&e),
+        materials::fem_headline(&e),
+        discussion::hertz_headline(&e),
+    ]
+    .into_iter()
+    .flatten()
+    .collect()
 }
