@@ -64,17 +64,23 @@ fn windowed_modes(rows: &[Vec<f64>], nodes: usize) -> Vec<Vec<f64>> {
 /// Each mode's power at the frequencies i·`step`, i = 0..=`grid` (the phases computed once per
 /// frequency and sample, shared by the modes).
 fn spectra(times: &[f64], amplitudes: &[Vec<f64>], step: f64, grid: usize) -> Vec<Vec<f64>> {
-    let mut power = vec![vec![0.0; grid + 1]; amplitudes.len()];
-    for i in 0..=grid {
-        let omega = i as f64 * step;
-        let phases: Vec<(f64, f64)> = times.iter().map(|t| (omega * (t - times[0])).sin_cos()).collect();
-        for (mode, series) in amplitudes.iter().enumerate() {
-            let (re, im) =
-                series.iter().zip(&phases).fold((0.0, 0.0), |(re, im), (a, (sin, cos))| (re + a * cos, im - a * sin));
-            power[mode][i] = re * re + im * im;
-        }
-    }
-    power
+    let by_frequency: Vec<Vec<f64>> = (0..=grid)
+        .map(|i| {
+            let omega = i as f64 * step;
+            let phases: Vec<(f64, f64)> = times.iter().map(|t| (omega * (t - times[0])).sin_cos()).collect();
+            amplitudes
+                .iter()
+                .map(|series| {
+                    let (re, im) = series
+                        .iter()
+                        .zip(&phases)
+                        .fold((0.0, 0.0), |(re, im), (a, (sin, cos))| (re + a * cos, im - a * sin));
+                    re * re + im * im
+                })
+                .collect()
+        })
+        .collect();
+    (0..amplitudes.len()).map(|mode| by_frequency.iter().map(|power| power[mode]).collect()).collect()
 }
 
 /// The position of a spectrum's largest value in grid steps, between grid points by a parabola
