@@ -3,7 +3,7 @@
 pub use self::chain::normal_mode_error;
 pub use self::contact::{ContactTiming, contact_timing};
 pub use self::dispersion::{ModePeak, branch_stiffness, free_line_modes};
-pub use self::energy::energy_error;
+pub use self::energy::{decay_rate, energy_error};
 pub use self::moduli::{
     ContinuumModuli, ElasticConstants, IsotropicConstants, LatticeShape, TensileModuli, anisotropic_moduli,
     constrained_modulus_y, extension_error_allowed, homogeneity, lattice_constants, modulus_error_bound,

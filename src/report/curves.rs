@@ -1,13 +1,14 @@
 //! The analytical curves drawn over the MD data, and the measurements between them: the pair's
 //! overlap δ(t) against the damped oscillator's, the chain's motion against its normal-mode
 //! sum, the damped power-law contact's restitution and duration against v0 beside their
-//! independent references, and a lattice strip's dispersion relation ω(q), measured by a
+//! independent references, a lattice's relaxation under background damping against its slowest
+//! envelope, and a lattice strip's dispersion relation ω(q), measured by a
 //! space–time Fourier transform of a probed column, against the branches of its springs. The
 //! findings (`findings/curves.rs`) state these numbers through the same functions.
 
-use super::figure::{Figure, FigureKind, Part, groups, representative};
+use super::figure::{Figure, FigureKind, Part, background_damping_only, groups, representative};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
-use crate::measure::{ModePeak, branch_stiffness, curve_deviation, free_line_modes};
+use crate::measure::{ModePeak, branch_stiffness, curve_deviation, decay_rate, free_line_modes};
 use crate::model::LawSpec;
 use crate::runner::RunRecord;
 use crate::spec::{Diagonals, KindSpec, Supports};
@@ -22,6 +23,7 @@ pub fn part(records: &[RunRecord], scene: &str) -> anyhow::Result<Part> {
     figures.extend(normal_mode_figure(scene, &shown)?);
     figures.extend(restitution_figures(scene, &shown)?);
     figures.extend(dispersion_figure(scene, &shown)?);
+    figures.extend(envelope_figure(scene, &shown)?);
     Ok(Part { figures, rows: () })
 }
 
@@ -346,6 +348,86 @@ fn dispersion_figure(scene: &str, shown: &[&RunRecord]) -> anyhow::Result<Option
         ),
         image: line_chart(
             &chart(format!("{scene}: dispersion ω(q)"), "wavenumber q (rad/m)", "ω (rad/s)", Scale::Linear),
+            &series,
+        )?,
+    }))
+}
+
+/// A loaded lattice's relaxation under background damping alone: E_kin/E_pot against time, and
+/// its late decay rate measured and predicted.
+pub struct Envelope {
+    /// (t, E_kin/E_pot) at every sample with E_pot > 0.
+    pub ratio: Vec<(f64, f64)>,
+    /// The decay rate (1/s) of the ratio over the second half of its decay (`measure::decay_rate`).
+    pub measured: f64,
+    /// γ_g/m − Re √((γ_g/m)² − 4k_min/m) (1/s) (`theory::background_decay_rate`).
+    pub predicted: f64,
+}
+
+/// The relaxation envelope of a loaded lattice relaxed by background damping alone whose
+/// softest stiffness k_min is known (E_pot settles at the static answer's, so E_kin/E_pot falls
+/// as E_kin); `None` for other runs.
+pub fn envelope(r: &RunRecord) -> Option<Envelope> {
+    let lattice = r.spec.lattice().is_some() && r.spec.relax().is_some() && background_damping_only(r);
+    let k_min = r.metrics.lattice.stiffness_min.filter(|&k| lattice && k > 0.0)?;
+    let t = &r.trace;
+    let ratio: Vec<(f64, f64)> = (0..t.time.len())
+        .filter(|&s| t.potential[s] > 0.0)
+        .map(|s| (t.time[s], t.kinetic[s] / t.potential[s]))
+        .collect();
+    Some(Envelope {
+        measured: decay_rate(&ratio)?,
+        predicted: theory::background_decay_rate(r.spec.gamma_background, r.spec.mass, k_min),
+        ratio,
+    })
+}
+
+/// At most this many relaxations in the envelope figure.
+const MOST_ENVELOPES: usize = 6;
+
+/// E_kin/E_pot of the lattices of `scene` relaxed by background damping alone (those stopped
+/// by the energy criterion, where any are), each with its predicted envelope C e^(−rate t)
+/// through the highest of its late crests.
+fn envelope_figure(scene: &str, shown: &[&RunRecord]) -> anyhow::Result<Option<Figure>> {
+    let all: Vec<(&RunRecord, Envelope)> = shown.iter().filter_map(|r| Some((*r, envelope(r)?))).collect();
+    let by_energy = |r: &RunRecord| r.spec.relax().is_some_and(|x| x.residual_force.is_none());
+    let energy_only = all.iter().any(|(r, _)| by_energy(r));
+    let drawn: Vec<&(&RunRecord, Envelope)> =
+        all.iter().filter(|(r, _)| !energy_only || by_energy(r)).take(MOST_ENVELOPES).collect();
+    if drawn.is_empty() {
+        return Ok(None);
+    }
+    let mut series = Vec::new();
+    for (r, e) in drawn {
+        let (Some(&(first, _)), Some(&(last, _))) = (e.ratio.first(), e.ratio.last()) else { continue };
+        let middle = 0.5 * (first + last);
+        let height = e
+            .ratio
+            .iter()
+            .filter(|p| p.0 >= middle)
+            .map(|&(t, y)| y.ln() + e.predicted * t)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let label = format!("γ_g = {} N s/m", crate::report::words::short(r.spec.gamma_background));
+        let line =
+            (0..=30).map(|i| first + (last - first) * i as f64 / 30.0).map(|t| (t, (height - e.predicted * t).exp()));
+        series.push(Series { label: format!("MD, {label}"), points: e.ratio.clone(), mark: Mark::Line });
+        series.push(Series {
+            label: format!("e^(−{} t/s), {label}", crate::report::words::short(e.predicted)),
+            points: line.collect(),
+            mark: Mark::Line,
+        });
+    }
+    Ok(Some(Figure {
+        scene: scene.into(),
+        kind: FigureKind::Envelope,
+        file: format!("plots/{scene}-envelope.svg"),
+        caption: format!(
+            "Relaxation under background damping alone, {scene}: E_kin/E_pot of MD against time with the predicted \
+             late envelope C e^(−rate t), rate = γ_g/m − Re √((γ_g/m)² − 4k_min/m) (the energy's γ_g/m below \
+             γ_crit = 2√(k_min m), the slowest mode's above), through the highest late crest."
+        ),
+        image: line_chart(
+            &chart(format!("{scene}: relaxation envelopes"), "time t (s)", "E_kin / E_pot", Scale::LogY),
             &series,
         )?,
     }))

@@ -57,6 +57,8 @@ pub enum FigureKind {
     DurationV0,
     /// A lattice strip's dispersion relation ω(q) over its branches (`curves.rs`).
     Dispersion,
+    /// A lattice's relaxation under background damping over its late envelope (`curves.rs`).
+    Envelope,
 }
 
 /// A drawn figure.

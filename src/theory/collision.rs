@@ -1,7 +1,7 @@
-//! The motion of a damped collision: the linear pair's overlap δ(t) in closed form, and a
-//! power-law contact with a dashpot, which has none, integrated on its own (fourth-order
-//! Runge–Kutta in its own variables, no code shared with the simulation), with the dashpot that
-//! gives it a restitution asked for.
+//! Damped motion: the linear pair's overlap δ(t) in closed form, the slowest energy decay of a
+//! network under background damping, and a power-law contact with a dashpot, which has no
+//! closed form, integrated on its own (fourth-order Runge–Kutta in its own variables, no code
+//! shared with the simulation), with the dashpot that gives it a restitution asked for.
 
 use super::two_body::{Overdamped, pair_omega, power_law_contact_duration};
 
@@ -20,6 +20,23 @@ use super::two_body::{Overdamped, pair_omega, power_law_contact_duration};
 pub fn linear_pair_overlap(k: f64, m: f64, gamma: f64, v: f64, t: f64) -> Result<f64, Overdamped> {
     let omega = pair_omega(k, m, gamma)?;
     Ok(v / omega * (-gamma * t / m).exp() * (omega * t).sin())
+}
+
+/// The rate (1/s) at which the kinetic energy of a network of masses `m` (kg) under background
+/// damping `gamma_g` (N s/m) alone falls at late times, its softest stiffness `k_min` (N/m):
+/// each mode obeys m ẍ = −k x − γ_g ẋ, so below γ_crit = 2√(k_min m) every mode's energy falls
+/// as e^(−γ_g t/m), and above it the slowest mode's as e^(−2λt),
+/// λ = γ_g/(2m) − √((γ_g/(2m))² − k_min/m): together γ_g/m − Re √((γ_g/m)² − 4k_min/m).
+///
+/// ```
+/// use mdsolids::theory::background_decay_rate;
+/// assert_eq!(background_decay_rate(1.0, 1.0, 1.0), 1.0); // below γ_crit = 2: γ_g/m
+/// let overdamped = background_decay_rate(10.0, 1.0, 1.0);
+/// assert!((overdamped - (10.0 - 96f64.sqrt())).abs() < 1e-12);
+/// ```
+pub fn background_decay_rate(gamma_g: f64, m: f64, k_min: f64) -> f64 {
+    let rate = gamma_g / m;
+    rate - (rate * rate - 4.0 * k_min / m).max(0.0).sqrt()
 }
 
 /// Runge–Kutta steps per undamped contact duration: the error of the restitution (∝ h⁴) is

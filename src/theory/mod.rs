@@ -2,7 +2,9 @@
 //! chain and the plane waves of the square lattice.
 
 pub use self::chain::{ChainModes, chain_mode_frequency};
-pub use self::collision::{linear_pair_overlap, power_law_gamma_for_restitution, power_law_restitution};
+pub use self::collision::{
+    background_decay_rate, linear_pair_overlap, power_law_gamma_for_restitution, power_law_restitution,
+};
 pub use self::lattice::{branch_frequency, square_branch_stiffnesses};
 pub use self::two_body::{
     Overdamped, gamma_for_restitution, linear_contact_duration, linear_restitution, pair_omega,

@@ -241,3 +241,28 @@ fn the_dispersion_relation_says_why_a_kick_stays_in_its_column() {
         assert_eq!(report.contains("The transverse branch rises to"), diagonals == "both");
     }
 }
+
+#[test]
+fn the_relaxation_follows_its_slowest_envelope() {
+    // Below γ_crit every mode's energy falls as e^(−γ_g t/m), above it the slowest mode's as
+    // e^(−2λt): the sentence names the regimes the sweep has, and the late decay rate meets
+    // γ_g/m − Re √((γ_g/m)² − 4k_min/m) within 5 % in both.
+    let critical = execute_all(&loaded_lattice("{background: critical}", "seed: [1]"))[0]
+        .metrics
+        .lattice
+        .gamma_background_critical
+        .unwrap();
+    let g = |x: f64| format!("{}", x * critical);
+    // Sampled every 0.25 t_c (the slowest mode rings at ~6 t_c): the crests are seen.
+    let sampled = |gammas: String| {
+        background_sweep(&gammas).replace("relax: {max_tc: 20000}", "relax: {max_tc: 2000}\n    time: {samples: 8000}")
+    };
+    let below = report_of("bg", &sampled(format!("[{}, {}]", g(0.25), g(0.5))));
+    let line = line_with(&below, "Relaxed by background damping alone");
+    assert!(line.contains("2 below γ_crit fall at the energy's envelope") && !line.contains("above it"), "{line}");
+    assert!(number_after(line, "4k_min/m) to ") <= 0.05 && line.contains("within the tolerance"), "{line}");
+    let above = report_of("bg", &sampled(format!("[{}, {}]", g(3.0), g(8.0))));
+    let line = line_with(&above, "Relaxed by background damping alone");
+    assert!(line.contains("2 above it at the slowest mode's 2λ") && !line.contains("below γ_crit fall"), "{line}");
+    assert!(number_after(line, "4k_min/m) to ") <= 0.05, "{line}");
+}
