@@ -161,12 +161,11 @@ pub(super) fn power_contacts(e: &Evidence) -> Option<Answer> {
         sentences.push(sentence);
         checks.push(within);
     }
-    sentences.extend(
-        runs.iter()
-            .filter(|r| r.spec.restitution_target.is_some() && r.spec.gamma > 0.0)
-            .take(1)
-            .filter_map(|r| calibration(r)),
-    );
+    if let Some(target) = runs.iter().find(|r| r.spec.restitution_target.is_some() && r.spec.gamma > 0.0) {
+        sentences.extend(calibration(target));
+        let error = relative(target.metrics.pair.restitution, restitution_reference(target));
+        checks.push(error.is_some_and(|x| x.abs() <= RESTITUTION_TOLERANCE));
+    }
     if sentences.is_empty() {
         return None;
     }
