@@ -2,7 +2,8 @@
 
 pub use self::chain::normal_mode_error;
 pub use self::contact::{ContactTiming, contact_timing};
-pub use self::energy::energy_error;
+pub use self::dispersion::{ModePeak, branch_stiffness, free_line_modes};
+pub use self::energy::{decay_rate, energy_error};
 pub use self::moduli::{
     ContinuumModuli, ElasticConstants, IsotropicConstants, LatticeShape, TensileModuli, anisotropic_moduli,
     constrained_modulus_y, extension_error_allowed, homogeneity, lattice_constants, modulus_error_bound,
@@ -13,6 +14,7 @@ pub use self::wave::{ARRIVAL_CRITERIA, arrival_time};
 
 mod chain;
 mod contact;
+mod dispersion;
 mod energy;
 mod moduli;
 mod packing;
@@ -24,6 +26,17 @@ pub fn relative_error(measured: Option<f64>, reference: Option<f64>) -> Option<f
         (Some(m), Some(r)) if r != 0.0 => Some((m - r) / r),
         _ => None,
     }
+}
+
+/// How far a measured curve lies from its analytical twin: the largest |y − exact(t)| over
+/// the `points` (t, y) where `exact` is defined, divided by the largest |exact(t)| there (a
+/// relative distance, 0 when they coincide). `None` where `exact` is nowhere defined or zero.
+pub fn curve_deviation(points: &[(f64, f64)], exact: impl Fn(f64) -> Option<f64>) -> Option<f64> {
+    let (deviation, scale) = points
+        .iter()
+        .filter_map(|&(t, y)| exact(t).map(|e| ((y - e).abs(), e.abs())))
+        .fold((0.0f64, 0.0f64), |(d, s), (dy, e)| (d.max(dy), s.max(e)));
+    (scale > 0.0).then(|| deviation / scale)
 }
 
 /// Order of convergence p in |error| ∝ dt^p: least-squares slope of ln|error| against ln dt

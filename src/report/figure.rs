@@ -47,6 +47,18 @@ pub enum FigureKind {
     SpeedAgainstV0,
     /// Displacement of every row or particle against time (`waves.rs`).
     SpaceTime,
+    /// A pair's overlap δ(t) over the damped oscillator's (`curves.rs`).
+    Overlap,
+    /// A chain's displacements over its normal-mode sum (`curves.rs`).
+    NormalModes,
+    /// A damped power-law contact's restitution against v0 (`curves.rs`).
+    RestitutionV0,
+    /// A power-law contact's duration against v0 (`curves.rs`).
+    DurationV0,
+    /// A lattice strip's dispersion relation ω(q) over its branches (`curves.rs`).
+    Dispersion,
+    /// A lattice's relaxation under background damping over its late envelope (`curves.rs`).
+    Envelope,
 }
 
 /// A drawn figure.

@@ -4,6 +4,7 @@
 //! in, so the binary works from any directory. Only sections of the campaign's scenes show.
 
 mod context;
+mod curves;
 mod edges;
 
 pub use self::context::LeftOut;

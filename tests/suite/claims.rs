@@ -246,6 +246,37 @@ fn controlled_shear(supports: &str) -> String {
     format!(
         "version: 1\nname: ctl\nscenes:\n  - name: force\n{common}    load: {{case: shear, per_node: 1000.0}}\n  \
          - name: velocity\n{common}    load: {{case: shear, control: velocity, strain: 1.0e-4}}\n"
+
+/// A linear bonded pair, undamped and damped (r = 0.5), at `dt_per_tc`.
+fn bonded_pair(dt_per_tc: u32) -> String {
+    format!(
+        "version: 1\nname: pp\nscenes:\n  - name: pair\n    kind: pair\n    v0: 1.0\n    time: {{dt_per_tc: {dt_per_tc}}}\n    \
+         grid:\n      damping.restitution: [1.0, 0.5]\n"
+    )
+}
+
+#[test]
+fn the_pairs_overlap_is_judged_against_the_damped_oscillator() {
+    // At t_c/50 a second-order scheme drifts by ~1.5e-3 of the amplitude over 3 t_c, at t_c/10
+    // by ~4e-2: the tolerance 5e-3 lies between, and the sentence's verdict follows the number.
+    for (dt_per_tc, verdict) in [(50, "within"), (10, "outside")] {
+        let report = report_of("pp", &bonded_pair(dt_per_tc));
+        for case in ["The undamped bonded pair", "The damped bonded pair"] {
+            let line = line_with(&report, case);
+            let deviation = number_after(line, "m to ");
+            assert_eq!(deviation <= 5e-3, verdict == "within", "{line}");
+            assert!(line.contains(&format!("{verdict} the tolerance 5e-3")), "{line}");
+        }
+    }
+}
+
+/// Power-law contacts of exponent `beta` over v0, undamped and with γ = 0.1 N s/m, and one
+/// pair given a restitution target of 0.5 at v0 = 1.
+fn power_contacts(beta: f64) -> String {
+    format!(
+        "version: 1\nname: pc\ndefaults:\n  material: {{law: power, beta: {beta}, contact: true}}\nscenes:\n  \
+         - name: sweep\n    kind: pair\n    grid:\n      damping.gamma: [0.0, 0.1]\n      v0: [0.01, 0.1, 0.3]\n  \
+         - name: target\n    kind: pair\n    v0: 1.0\n    damping: {{restitution: 0.5}}\n"
     )
 }
 
@@ -261,4 +292,75 @@ fn force_and_velocity_control_agree_only_where_the_strain_is_homogeneous() {
     let line = line_with(&coursework, "Velocity control (4 × 4");
     assert!(line.contains("so the driven block is stiffer"), "{line}");
     assert!(number_after(line, "boundary conditions differ by ") > 1e-6, "{line}");
+
+fn the_power_law_contact_is_told_by_its_exponent() {
+    // Hertz (β = 3/2): t_c ∝ v0^(−1/5), the restitution rises with v0 and the linear
+    // calibration of γ misses its target; β = 1 is the linear spring: t_c and r do not depend
+    // on v0 and the calibration holds. The fitted exponent within 0.01 of (1 − β)/(1 + β).
+    let hertz = report_of("pc", &power_contacts(1.5));
+    let exponent = number_after(line_with(&hertz, "contact duration falls as v0^"), "falls as v0^");
+    assert!((exponent + 0.2).abs() < 0.01, "{exponent}");
+    assert!(line_with(&hertz, "With a fixed dashpot").contains("the restitution rises from"));
+    let calibration = line_with(&hertz, "target asked for r = 0.5000");
+    assert!(calibration.contains("the calibration is not"), "{calibration}");
+    let measured = number_after(calibration, "and gets ");
+    assert!(
+        (measured - 0.5).abs() > 0.02 && (number_after(calibration, "own integration: ") / measured - 1.0).abs() < 5e-3
+    );
+    let linear = report_of("pc", &power_contacts(1.0));
+    assert!(number_after(line_with(&linear, "falls as v0^"), "falls as v0^").abs() < 0.01);
+    assert!(line_with(&linear, "With a fixed dashpot").contains("does not depend on v0"));
+    assert!(line_with(&linear, "target asked for r = 0.5000").contains("the linear calibration of γ holds"));
+}
+
+/// A strip periodic in x, free at the bottom, 20 rows, pushed down and sideways on its top
+/// row, with or without `diagonals`.
+fn strip(diagonals: &str) -> String {
+    format!(
+        "version: 1\nname: st\nscenes:\n  - name: strip\n    kind: lattice\n    lattice: {{nx: 4, ny: 20, k_diag_ratio: 0.5, \
+         diagonals: {diagonals}}}\n    supports: periodic-x-free\n    impulse: {{node: top-centre}}\n    probes: {{columns: [centre]}}\n    \
+         time: {{integrator: velocity-verlet, duration_tc: 100, samples: 500}}\n    grid:\n      \
+         impulse.force: [[0.0, -1.0e-6], [1.0e-6, 0.0]]\n"
+    )
+}
+
+#[test]
+fn the_dispersion_relation_says_why_a_kick_stays_in_its_column() {
+    // The fitted branch stiffnesses against the dynamical matrix's k + k_d and k_d (k = 1,
+    // k_d = 0.5 N/m; none: 1 and 0) within 1 % (the peaks sit within a few per cent of the
+    // resolution); the transverse branch is flat without diagonals and rises with them.
+    for (diagonals, longitudinal, transverse) in [("none", 1.0, 0.0), ("both", 1.5, 0.5)] {
+        let report = report_of("st", &strip(diagonals));
+        let fitted = |marker: &str| number_after(line_with(&report, marker), "fitted to the peaks k_eff = ");
+        assert!((fitted("Downward step") / longitudinal - 1.0).abs() < 0.01, "{report}");
+        assert!((fitted("Sideways step") - transverse).abs() < 0.01 * longitudinal);
+        let flat = report.contains("stays in its column without diagonals");
+        assert_eq!(flat, diagonals == "none");
+        assert_eq!(report.contains("The transverse branch rises to"), diagonals == "both");
+    }
+}
+
+#[test]
+fn the_relaxation_follows_its_slowest_envelope() {
+    // Below γ_crit every mode's energy falls as e^(−γ_g t/m), above it the slowest mode's as
+    // e^(−2λt): the sentence names the regimes the sweep has, and the late decay rate meets
+    // γ_g/m − Re √((γ_g/m)² − 4k_min/m) within 5 % in both.
+    let critical = execute_all(&loaded_lattice("{background: critical}", "seed: [1]"))[0]
+        .metrics
+        .lattice
+        .gamma_background_critical
+        .unwrap();
+    let g = |x: f64| format!("{}", x * critical);
+    // Sampled every 0.25 t_c (the slowest mode rings at ~6 t_c): the crests are seen.
+    let sampled = |gammas: String| {
+        background_sweep(&gammas).replace("relax: {max_tc: 20000}", "relax: {max_tc: 2000}\n    time: {samples: 8000}")
+    };
+    let below = report_of("bg", &sampled(format!("[{}, {}]", g(0.25), g(0.5))));
+    let line = line_with(&below, "Relaxed by background damping alone");
+    assert!(line.contains("2 below γ_crit fall at the energy's envelope") && !line.contains("above it"), "{line}");
+    assert!(number_after(line, "4k_min/m) to ") <= 0.05 && line.contains("within the tolerance"), "{line}");
+    let above = report_of("bg", &sampled(format!("[{}, {}]", g(3.0), g(8.0))));
+    let line = line_with(&above, "Relaxed by background damping alone");
+    assert!(line.contains("2 above it at the slowest mode's 2λ") && !line.contains("below γ_crit fall"), "{line}");
+    assert!(number_after(line, "4k_min/m) to ") <= 0.05, "{line}");
 }

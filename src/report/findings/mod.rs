@@ -5,6 +5,7 @@
 //! left out. This file lists the questions; `finding.rs` is the vocabulary they answer in.
 
 mod block;
+mod curves;
 mod discussion;
 mod dynamics;
 mod finding;
@@ -27,17 +28,20 @@ pub fn findings(evidence: &Evidence) -> Vec<Finding> {
     // The coursework's questions see its evidence ([`Evidence::coursework`]); the lattice
     // types' see every run.
     let coursework = evidence.coursework();
-    let asked: [(Question, &Evidence); 27] = [
+    let asked: [(Question, &Evidence); 30] = [
         (one_d::force_function, &coursework),
         (one_d::two_particles, &coursework),
         (one_d::time_step, &coursework),
         (one_d::chain, &coursework),
+        (curves::motion, &coursework),
         (one_d::hertz_pair_and_chain, &coursework),
+        (curves::power_contacts, &coursework),
         (one_d::walls, &coursework),
         (two_d::units_and_time_step, &coursework),
         (two_d::diagonal_stiffness, &coursework),
         (two_d::lattice_time_step, &coursework),
         (two_d::kick, &coursework),
+        (curves::dispersion_relation, &coursework),
         (two_d::youngs_and_poisson, &coursework),
         (two_d::shear, &coursework),
         (dynamics::sound_speed, &coursework),

@@ -199,8 +199,9 @@ impl KindSpec {
     /// modes, space–time), impulse and probed lattices.
     pub(super) fn records_displacements(&self) -> bool {
         match self {
-            KindSpec::Pair(_) | KindSpec::Packing(_) => false,
-            KindSpec::Chain(_) => true,
+            KindSpec::Packing(_) => false,
+            // A pair's two particles cost nothing; the report draws their overlap against δ(t).
+            KindSpec::Pair(_) | KindSpec::Chain(_) => true,
             KindSpec::Lattice(run) => run.records_displacements(),
         }
     }
