@@ -596,13 +596,13 @@ fn report_sentences_follow_the_results() {
         ] {
             assert!(report.contains(&sentence), "report.md of m = {mass}, k = {k} lacks {sentence:?}");
         }
-        assert!(report.contains("| 2 | [The time step](#2-the-time-step) |"), "the summary links each item");
+        assert!(report.contains("| 3 | [The time step](#3-the-time-step) |"), "the summary links each item");
         stated.push(four_digits(t_c));
     }
     assert_ne!(stated[0], stated[1], "the two campaigns state different numbers");
 }
 
-/// The summary line of item 2 judges the order of the pair's time-step error only where the
+/// The summary line of the time step (item 3, after the force function and the pair) judges the order of the pair's time-step error only where the
 /// campaign sweeps dt: one dt gives an observation ("no dt sweep", •), not ✗ with no order; a
 /// sweep gives the order and ✓. A scene shows only the tables it has rows for: a chain between
 /// walls no normal-mode table, an impulse lattice no moduli table.
@@ -622,7 +622,7 @@ fn the_time_step_is_judged_only_over_a_sweep_and_empty_tables_are_left_out() {
         let out = mdsolids(dir.path(), &["run", file.to_str().unwrap()]);
         assert!(out.status.success(), "{}", text(&out.stderr));
         let report = std::fs::read_to_string(dir.path().join("sweep").join("report.md")).unwrap();
-        let line = report.lines().find(|l| l.starts_with("| 2 | [The time step]")).unwrap().to_string();
+        let line = report.lines().find(|l| l.starts_with("| 3 | [The time step]")).unwrap().to_string();
         for header in ["| run | grid values | N | excited |", "| run | grid values | size | springs |"] {
             assert!(!report.contains(header), "a table without rows: {header}");
         }
