@@ -246,6 +246,22 @@ fn controlled_shear(supports: &str) -> String {
     format!(
         "version: 1\nname: ctl\nscenes:\n  - name: force\n{common}    load: {{case: shear, per_node: 1000.0}}\n  \
          - name: velocity\n{common}    load: {{case: shear, control: velocity, strain: 1.0e-4}}\n"
+    )
+}
+
+#[test]
+fn force_and_velocity_control_agree_only_where_the_strain_is_homogeneous() {
+    // The periodic strip shears homogeneously: both boundary conditions give G = k_d/d. On the
+    // coursework's supports the block bends: a top row held straight is stiffer than one
+    // pulled by equal forces.
+    let periodic = report_of("ctl", &controlled_shear("periodic-x"));
+    let line = line_with(&periodic, "Velocity control (4 × 4");
+    assert!(line.contains("the same modulus: the strain is homogeneous"), "{line}");
+    let coursework = report_of("ctl", &controlled_shear("coursework"));
+    let line = line_with(&coursework, "Velocity control (4 × 4");
+    assert!(line.contains("so the driven block is stiffer"), "{line}");
+    assert!(number_after(line, "boundary conditions differ by ") > 1e-6, "{line}");
+}
 
 /// A linear bonded pair, undamped and damped (r = 0.5), at `dt_per_tc`.
 fn bonded_pair(dt_per_tc: u32) -> String {
@@ -281,18 +297,6 @@ fn power_contacts(beta: f64) -> String {
 }
 
 #[test]
-fn force_and_velocity_control_agree_only_where_the_strain_is_homogeneous() {
-    // The periodic strip shears homogeneously: both boundary conditions give G = k_d/d. On the
-    // coursework's supports the block bends: a top row held straight is stiffer than one
-    // pulled by equal forces.
-    let periodic = report_of("ctl", &controlled_shear("periodic-x"));
-    let line = line_with(&periodic, "Velocity control (4 × 4");
-    assert!(line.contains("the same modulus: the strain is homogeneous"), "{line}");
-    let coursework = report_of("ctl", &controlled_shear("coursework"));
-    let line = line_with(&coursework, "Velocity control (4 × 4");
-    assert!(line.contains("so the driven block is stiffer"), "{line}");
-    assert!(number_after(line, "boundary conditions differ by ") > 1e-6, "{line}");
-
 fn the_power_law_contact_is_told_by_its_exponent() {
     // Hertz (β = 3/2): t_c ∝ v0^(−1/5), the restitution rises with v0 and the linear
     // calibration of γ misses its target; β = 1 is the linear spring: t_c and r do not depend
