@@ -16,7 +16,7 @@ fn values<'a>(html: &'a str, attribute: &str) -> Vec<&'a str> {
 
 #[test]
 fn every_heading_has_a_unique_id_and_every_contents_link_resolves() {
-    let html = to_html(PAGE);
+    let html = to_html(PAGE, &Default::default());
     let ids = values(&html, "id");
     assert_eq!(["<h1", "<h2", "<h3"].iter().map(|h| html.matches(h).count()).sum::<usize>(), 5, "{html}");
     for id in ["title", "results", "speed-v", "results-1", "ünïcode--more"] {
@@ -44,14 +44,14 @@ fn the_contents_go_where_the_marker_is_in_both_pages() {
     let markdown = with_contents(&page);
     assert!(markdown.contains("- [A b](#a-b)\n- [C](#c)\n\nIntro."), "{markdown}");
     assert_eq!(with_contents(PAGE), number_captions(PAGE), "no marker: no list in report.md");
-    let html = to_html(&page);
+    let html = to_html(&page, &Default::default());
     assert_eq!(html.matches("<nav").count(), 1, "{html}");
     assert!(html.find("</nav>").unwrap() < html.find("Intro.").unwrap(), "{html}");
 }
 
 #[test]
 fn captioned_images_are_numbered_figures_and_all_images_load_lazily() {
-    let html = to_html(PAGE);
+    let html = to_html(PAGE, &Default::default());
     assert_eq!(html.matches("<figure").count(), 2, "{html}");
     assert!(
         html.contains(
@@ -70,7 +70,7 @@ fn captioned_images_are_numbered_figures_and_all_images_load_lazily() {
         "no caption, no number: {html}"
     );
     assert_eq!(html.matches("<img").count(), html.matches("loading=\"lazy\"").count());
-    let text_after = to_html("![a](x.svg) and text\n\n*not a caption*\n");
+    let text_after = to_html("![a](x.svg) and text\n\n*not a caption*\n", &Default::default());
     assert!(!text_after.contains("<figure"), "{text_after}");
 }
 
@@ -100,7 +100,7 @@ fn the_contents_leave_out_what_a_summary_above_links() {
         list,
         "**Contents**\n\n- [Summary](#summary)\n- [Answers](#answers)\n- [Appendix](#appendix)\n  - [Methods](#methods)\n\n"
     );
-    let html = to_html(&page);
+    let html = to_html(&page, &Default::default());
     let ids = values(&html, "id");
     for id in ["1-a", "2-ü", "answers", "methods"] {
         assert!(ids.contains(&id), "{id} in {ids:?}");
@@ -111,7 +111,7 @@ fn the_contents_leave_out_what_a_summary_above_links() {
 
 #[test]
 fn tables_scroll_inside_their_own_box() {
-    let html = to_html(PAGE);
+    let html = to_html(PAGE, &Default::default());
     assert!(html.contains("<div class=\"table-wrap\">\n<table>"), "{html}");
     assert!(html.contains("</table>\n</div>"), "{html}");
 }
@@ -120,6 +120,7 @@ fn tables_scroll_inside_their_own_box() {
 fn math_becomes_mathml_and_bad_latex_falls_back_to_its_code() {
     let html = to_html(
         "Inline $t_c = \\pi \\sqrt{m/k}$ and\n\n$$E = \\frac{1}{2} m v^2$$\n\nBad $\\frac{1}$, $\\nosuchcommand x$ here.\n",
+        &Default::default(),
     );
     assert!(html.contains("<math"), "{html}");
     assert!(html.contains("display=\"block\""), "{html}");
