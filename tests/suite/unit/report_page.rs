@@ -1,7 +1,10 @@
 //! Unit tests of `src/report/page.rs`, moved out of the library (one test binary).
 
-use mdsolids::report::page::{CONTENTS_MARKER, number_captions, percent_decoded, to_html, with_contents};
-use std::collections::HashSet;
+use mdsolids::report::images::{Shown, Strip, size_of};
+use mdsolids::report::page::{
+    APPENDIX_MARKER, CONTENTS_MARKER, number_captions, percent_decoded, split_appendix, to_html, with_contents,
+};
+use std::collections::{HashMap, HashSet};
 
 const PAGE: &str = "# Title\n\nLead paragraph.\n\n## Results\n\n### Speed `v`\n\n\
     ![A chart](plots/a.svg)\n\n*The speed against time.*\n\n\
@@ -127,4 +130,74 @@ fn math_becomes_mathml_and_bad_latex_falls_back_to_its_code() {
     assert!(html.contains("<mfrac>"), "{html}");
     assert!(html.contains("<code class=\"math-error\" title=\"LaTeX that could not be rendered\">\\frac{1}</code>, <code class=\"math-error\" title=\"LaTeX that could not be rendered\">\\nosuchcommand x</code> here."), "{html}");
     assert!(!html.contains('$'), "{html}");
+}
+
+#[test]
+fn images_carry_their_size_and_a_movie_its_filmstrip() {
+    let strip = Strip { file: "plots/m.filmstrip.png".into(), size: (806, 326), caption: "frames 1, 4 of 4".into() };
+    let images = HashMap::from([
+        ("plots/a.svg".to_string(), Shown { size: Some((820, 500)), filmstrip: None }),
+        ("plots/m.gif".to_string(), Shown { size: Some((400, 160)), filmstrip: Some(strip) }),
+    ]);
+    let html = to_html(PAGE, &images);
+    assert!(
+        html.contains(r#"<img src="plots/a.svg" alt="A chart" width="820" height="500" loading="lazy">"#),
+        "{html}"
+    );
+    assert!(html.contains(r#"<img src="plots/m.gif" alt="A movie" width="400" height="160" class="movie" loading="lazy"><img src="plots/m.filmstrip.png" alt="A movie (frames 1, 4 of 4)" width="806" height="326" class="filmstrip" loading="lazy">"#), "{html}");
+    // An image the page could not read is shown without a size, not left out.
+    assert!(html.contains(r#"<img src="plots/b.svg" alt="Alone" loading="lazy">"#), "{html}");
+}
+
+#[test]
+fn image_sizes_are_read_from_png_gif_and_svg_headers() {
+    // Files written by the crates that write the report's images, of sizes chosen here.
+    let mut png = Vec::new();
+    let mut encoder = png::Encoder::new(&mut png, 37, 11);
+    encoder.set_color(png::ColorType::Grayscale);
+    encoder.write_header().unwrap().write_image_data(&[0u8; 37 * 11]).unwrap();
+    assert_eq!(size_of(&png), Some((37, 11)));
+    let mut gif = Vec::new();
+    {
+        let mut encoder = gif::Encoder::new(&mut gif, 23, 5, &[0, 0, 0, 255, 255, 255]).unwrap();
+        encoder
+            .write_frame(&gif::Frame { width: 23, height: 5, buffer: vec![0u8; 23 * 5].into(), ..Default::default() })
+            .unwrap();
+    }
+    assert_eq!(size_of(&gif), Some((23, 5)));
+    let svg = br#"<?xml version="1.0"?>
+<svg width="820" height="500" viewBox="0 0 820 500" xmlns="http://www.w3.org/2000/svg"><rect/></svg>"#;
+    assert_eq!(size_of(svg), Some((820, 500)));
+    assert_eq!(size_of(b"<svg viewBox=\"0 0 1 1\"></svg>"), None, "no size given: none guessed");
+    assert_eq!(size_of(b"plain text"), None);
+}
+
+#[test]
+fn a_table_without_rows_is_not_written() {
+    let html = to_html("Before.\n\n| a | b |\n|---|---|\n\nAfter.\n\n| c |\n|---|\n| 1 |\n", &Default::default());
+    assert_eq!(html.matches("<table>").count(), 1, "{html}");
+    assert_eq!(html.matches("table-wrap").count(), 1, "{html}");
+    assert!(html.contains("<td>1</td>") && !html.contains("<th>a</th>"), "{html}");
+}
+
+#[test]
+fn the_appendix_is_a_page_of_its_own_and_links_cross_between_the_pages() {
+    let page = format!(
+        "# T\n\n{CONTENTS_MARKER}\n\n## Answers\n\nSee [the method](#method) and [above](#answers).\n\n\
+         {APPENDIX_MARKER}\n\n## Appendix\n\n### Method\n\nBack to [the answers](#answers), [here](#method).\n"
+    );
+    let (main, appendix) = split_appendix(&to_html(&page, &Default::default()));
+    let appendix = appendix.expect("the marker starts an appendix");
+    assert!(main.contains(r##"<a href="appendix.html#method">the method</a>"##), "{main}");
+    assert!(main.contains(r##"<a href="#answers">above</a>"##), "{main}");
+    assert!(main.contains(r#"<a href="appendix.html">appendix.html</a>"#), "the main page links its appendix: {main}");
+    assert!(!main.contains("<h3"), "the appendix's headings are not on the main page: {main}");
+    // The contents list on the main page leads to the appendix's sections there.
+    assert!(main.contains(r##"href="appendix.html#appendix""##), "{main}");
+    assert!(appendix.contains(r##"<a href="index.html#answers">the answers</a>"##), "{appendix}");
+    assert!(appendix.contains(r##"<a href="#method">here</a>"##), "{appendix}");
+    assert!(appendix.contains(r#"<a href="index.html">"#), "the appendix links back: {appendix}");
+    // Without the marker: one page, as before.
+    let (whole, none) = split_appendix(&to_html(PAGE, &Default::default()));
+    assert!(none.is_none() && whole == to_html(PAGE, &Default::default()));
 }
