@@ -198,3 +198,27 @@ fn the_relaxation_winner_is_the_method_with_the_fewest_force_evaluations() {
         assert!(paragraph.contains(&format!("{winner} wins on the largest block")), "{paragraph}");
     }
 }
+
+#[test]
+fn each_lattice_type_is_set_against_its_continuum_or_said_to_have_no_modulus() {
+    // A triangular block carries the tensile load (E and ν against λ = μ = √3k/(4d)); a
+    // honeycomb one is a mechanism (z = 3 < 4) and has neither.
+    let yaml = "version: 1\nname: lt\nscenes:\n  - name: types\n    kind: lattice\n    damping: {restitution: 0.5}\n    \
+                lattice: {nx: 6, ny: 5}\n    load: {per_node: 0.01}\n    relax: {max_tc: 2000}\n    grid:\n      \
+                lattice.type: [triangular, honeycomb]\n";
+    let records = execute_all(yaml);
+    let triangular = &records[0].metrics.lattice;
+    let report = report_of("lt", yaml);
+    let paragraph = line_with(&report, "**The networks against their continuum.**");
+    let (e, e_continuum) =
+        (number_after(paragraph, "triangular (z = 6): E = "), number_after(paragraph, " Pa against "));
+    // 4 significant digits in the text.
+    assert!((e / triangular.youngs_modulus.unwrap() - 1.0).abs() < 1e-3, "{paragraph}");
+    assert!((e_continuum / triangular.youngs_modulus_theory.unwrap() - 1.0).abs() < 1e-3, "{paragraph}");
+    assert!(
+        (e_continuum / (2.0 / 3f64.sqrt()) - 1.0).abs() < 1e-3,
+        "E = 2k/(√3 d) of the triangular continuum: {paragraph}"
+    );
+    assert!(paragraph.contains("honeycomb (z = 3): no E (mechanism"), "{paragraph}");
+    assert!(!paragraph.contains("honeycomb (z = 3): E ="), "{paragraph}");
+}

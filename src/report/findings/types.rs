@@ -841,11 +841,11 @@ pub(super) fn against_continuum(e: &Evidence) -> Option<Paragraph> {
         .map(|t| type_against_continuum(e, t, &waves))
         .collect();
     Some(Paragraph {
-        title: "The four networks against their continuum",
+        title: "The networks against their continuum",
         text: format!(
             "Each network from its largest block, measured against the continuum of its bonds (the static \
-             answer where no MD ran): {}. The continuum is the network's long-wavelength limit: a finite block \
-             differs from it by its edges and supports (the isotropy item follows E as the block grows).",
+             answer where no MD ran): {}. The continuum is the network's long-wavelength limit, which a finite \
+             block approaches as its edges and supports matter less.",
             types.join("; ")
         ),
     })
