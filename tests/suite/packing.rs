@@ -227,3 +227,28 @@ fn bad_packings_are_refused_naming_the_field() {
     let message = mdsolids::plan::parse("t.yaml", &damped).err().map(|e| e.to_string()).unwrap_or_default();
     assert!(message.contains("damping"), "{message}");
 }
+
+/// `bench --workload packing` runs the workload and prints one JSON line with its
+/// fields: the discs counted, the contacts at the start as an all-pairs search counts them
+/// (an independent count, exact), and the throughput as particles × steps / wall time
+/// recomputed from the line (1e-12 relative: the same three numbers, rounded once by JSON's
+/// shortest round trip). Not timed. A disc count outside 2..=10^7 is refused.
+#[test]
+fn packing_bench_reports_its_json_line() {
+    let work = tempfile::tempdir().unwrap();
+    let args = ["bench", "--workload", "packing", "--n", "200", "--steps", "20", "--threads", "1", "--repeat", "1"];
+    let out = mdsolids_ok(work.path(), &[&args[..], &["--json"]].concat());
+    let line: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON line");
+    assert_eq!(line["workload"], "packing");
+    assert_eq!(line["path"], "contacts");
+    assert_eq!((line["particles"].as_u64(), line["steps"].as_u64()), (Some(200), Some(20)));
+    let (periodic, x, y, radius) = random_bidisperse(200, 0.5, 1.4, 0.90, 1);
+    let touching = all_pairs(&x, &y, &radius, &periodic, 0.0).len();
+    assert!(touching > 0, "random discs at φ = 0.9 overlap");
+    assert_eq!(line["bonds"].as_u64(), Some(touching as u64));
+    let (wall, rate) = (line["wall_s"].as_f64().unwrap(), line["particle_steps_per_s"].as_f64().unwrap());
+    assert!(wall > 0.0 && (rate - 200.0 * 20.0 / wall).abs() <= 1e-12 * rate, "{line}");
+    let refused = crate::common::mdsolids(work.path(), &["bench", "--workload", "packing", "--n", "1"]);
+    let stderr = crate::common::text(&refused.stderr);
+    assert!(!refused.status.success() && stderr.contains("--n 1: the packing's discs must be in 2..=10000000"));
+}

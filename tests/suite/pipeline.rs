@@ -78,6 +78,7 @@ fn small_campaign_end_to_end() {
     let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
     assert!(report.contains("Scene `pair` (pair)") && report.contains("Scene `chain` (chain)"));
     assert!(report.contains("not clamped"), "the report states the contact force is not clamped");
+    pages_are_whole(&dir, &report);
 
     // A rerun of the unchanged campaign simulates nothing and leaves the stored runs alone.
     let stored: Vec<_> = run_files(&dir).iter().map(|f| modified(f)).collect();
@@ -93,6 +94,31 @@ fn small_campaign_end_to_end() {
     assert!(text(&report.stdout).contains("re-rendered from 5 stored runs"));
     assert!(dir.join("report.md").is_file() && dir.join("plots/chain-energy-0.svg").is_file());
     assert_eq!(stored, run_files(&dir).iter().map(|f| modified(f)).collect::<Vec<_>>());
+}
+
+/// The report's pages in `dir` (of the Markdown `report`): the appendix on its own page where
+/// the report has answers, every image with its width and height (nothing moves as they load),
+/// and no table without rows.
+fn pages_are_whole(dir: &Path, report: &str) {
+    assert!(report.contains("## Summary"), "the smoke campaign answers coursework items");
+    let main = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    let appendix = std::fs::read_to_string(dir.join("appendix.html")).unwrap();
+    assert!(
+        main.contains("<h2 id=\"summary\">") && !main.contains("id=\"appendix-methods-and-every-scene-in-detail\"")
+    );
+    assert!(
+        appendix.contains("id=\"appendix-methods-and-every-scene-in-detail\"") && !appendix.contains("id=\"summary\"")
+    );
+    for page in [&main, &appendix] {
+        let images: Vec<&str> = page.split("<img ").skip(1).map(|rest| &rest[..rest.find('>').unwrap()]).collect();
+        assert!(!images.is_empty());
+        for image in images {
+            assert!(image.contains(" width=\"") && image.contains(" height=\""), "an image without its size: {image}");
+        }
+        for table in page.split("<table>").skip(1) {
+            assert!(table[..table.find("</table>").unwrap()].contains("<td"), "a table without rows: {table}");
+        }
+    }
 }
 
 #[test]
