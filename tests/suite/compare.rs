@@ -259,7 +259,7 @@ fn damped_pair(name: &str, law: &str) -> String {
 /// The page opens with what differs physically (issue 33): each physical quantity's medians on
 /// both sides in a sentence, before the diagnostics; and a restitution that misses the target
 /// its dashpot was set for is said, side by side. The claim flips between the sides: the linear
-/// pair meets r = 0.5 (to ~1e-4 at t_c/50, far inside the 1 % the sentence allows), the Hertz
+/// pair meets r = 0.5 (to 1.3e-3 at the default step, well inside the 1 % the sentence allows), the Hertz
 /// pair, whose γ comes from the same linear formula, does not (r ≈ 0.3 measured in the Hertz twin).
 #[test]
 fn the_physics_comes_first_and_a_missed_restitution_is_said() {
@@ -278,7 +278,7 @@ fn the_physics_comes_first_and_a_missed_restitution_is_said() {
     assert!(!report.contains("(dimensionless)"), "{report}");
     let r = |dir: &Path| floats(&read(&dir.join("results.parquet")), "restitution")[0].unwrap();
     let (r_a, r_b) = (r(&a), r(&b));
-    assert!((r_a / 0.5 - 1.0).abs() < 1e-3 && (r_b / 0.5 - 1.0).abs() > 0.01, "A {r_a}, B {r_b}");
+    assert!((r_a / 0.5 - 1.0).abs() < 5e-3 && (r_b / 0.5 - 1.0).abs() > 0.01, "A {r_a}, B {r_b}");
     let line = report.lines().find(|l| l.starts_with("- The restitution r, in pair: ")).expect(&report);
     let stated = numbers(line);
     // Four significant digits: within 5e-4 relative.
