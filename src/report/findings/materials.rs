@@ -229,8 +229,7 @@ pub(super) fn anisotropic(e: &Evidence) -> Option<Answer> {
     });
     let mut groups: BTreeMap<String, Vec<&RunRecord>> = BTreeMap::new();
     for r in &runs {
-        let key = r.spec.varied_in_words(|path| path != "load.case");
-        groups.entry(key).or_default().push(r);
+        groups.entry(network_words(r)).or_default().push(r);
     }
     let (rows, mut sentences) = anisotropic_rows(&groups);
     if rows.is_empty() {
@@ -273,6 +272,21 @@ pub(super) fn anisotropic(e: &Evidence) -> Option<Answer> {
             rows,
         }),
     })
+}
+
+/// An anisotropic network in words, from its lattice whatever the grid varies: its diagonal
+/// families and its vertical springs' stiffness over the horizontal ones', in the campaign's
+/// frame (a run loaded along x simulates the lattice turned by 90°: k_x and k_y, and the
+/// rising and falling families, swapped back here).
+fn network_words(r: &RunRecord) -> String {
+    let Some(l) = r.spec.lattice() else { return String::new() };
+    let (diagonals, ratio) = match (l.rotated, l.diagonals) {
+        (false, d) => (d, l.k_y / l.k_x),
+        (true, Diagonals::Rising) => (Diagonals::Falling, l.k_x / l.k_y),
+        (true, Diagonals::Falling) => (Diagonals::Rising, l.k_x / l.k_y),
+        (true, d) => (d, l.k_x / l.k_y),
+    };
+    format!("{} diagonals, k_y/k = {ratio}", diagonals.name())
 }
 
 /// One row per anisotropic network (E_y, E_x, ν both ways, G) and a sentence each on how its
