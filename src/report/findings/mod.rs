@@ -9,6 +9,7 @@ mod curves;
 mod discussion;
 mod dynamics;
 mod finding;
+mod jamming;
 mod materials;
 mod one_d;
 mod relaxation;
@@ -28,7 +29,7 @@ pub fn findings(evidence: &Evidence) -> Vec<Finding> {
     // The coursework's questions see its evidence ([`Evidence::coursework`]); the lattice
     // types' see every run.
     let coursework = evidence.coursework();
-    let asked: [(Question, &Evidence); 30] = [
+    let asked: [(Question, &Evidence); 31] = [
         (one_d::force_function, &coursework),
         (one_d::two_particles, &coursework),
         (one_d::time_step, &coursework),
@@ -58,6 +59,7 @@ pub fn findings(evidence: &Evidence) -> Vec<Finding> {
         (types::directions, evidence),
         (types::percolation, evidence),
         (types::waves, evidence),
+        (jamming::jamming, evidence),
         (discussion::linear_and_hertz, &coursework),
     ];
     asked
