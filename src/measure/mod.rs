@@ -55,6 +55,8 @@ pub struct PowerLawFit {
     pub exponent: f64,
     /// R² of the straight line on log–log axes (1: every point on it).
     pub r_squared: f64,
+    /// The prefactor c.
+    pub prefactor: f64,
 }
 
 /// Fits y = c x^p to the positive, finite `points` (x, y); `None` with fewer than two of them
@@ -65,7 +67,11 @@ pub fn power_law_fit(points: &[(f64, f64)]) -> Option<PowerLawFit> {
         .filter(|(x, y)| *x > 0.0 && *y > 0.0 && x.is_finite() && y.is_finite())
         .map(|(x, y)| (x.ln(), y.ln()))
         .collect();
-    line_fit(&logs).map(|line| PowerLawFit { exponent: line.slope, r_squared: line.r_squared })
+    line_fit(&logs).map(|line| PowerLawFit {
+        exponent: line.slope,
+        r_squared: line.r_squared,
+        prefactor: line.intercept.exp(),
+    })
 }
 
 /// A least-squares straight line y = a + b x.

@@ -12,6 +12,7 @@ mod exponents;
 mod figure;
 mod figures;
 pub mod findings;
+mod jamming;
 pub mod kinds;
 pub mod markdown;
 pub mod page;

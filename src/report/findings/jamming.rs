@@ -7,8 +7,9 @@
 use std::collections::BTreeMap;
 
 use super::finding::{Answer, Evidence, Table, Verdict, plus_minus, sig};
-use crate::measure::{line_fit, power_law_fit};
-use crate::report::solids::mean_spread;
+use crate::measure::line_fit;
+use crate::report::figure::FigureKind;
+use crate::report::jamming::{FIT_FLOOR, ISOSTATIC, Onset, Scaling, excess, jammed, key, onsets, scalings};
 use crate::runner::RunRecord;
 
 /// The reference of every number here.
@@ -18,8 +19,6 @@ const PHI_J: f64 = 0.842;
 /// The allowance for finite size beside 2 standard errors: their φ_J(N) approaches 0.842 from
 /// packings of a few hundred discs on, and smaller ones spread and shift by about 0.01.
 const FINITE_SIZE: f64 = 0.01;
-/// z at jamming in 2D: isostatic, 2d contacts per disc.
-const ISOSTATIC: f64 = 4.0;
 /// The tolerance of z_J against 4: a finite periodic packing of N' discs jams at the
 /// isostatic count 2N' − 1 (z = 4 − 2/N'), and the extrapolation in √Δφ starts from the
 /// smallest Δφ measured (z − 4 ≈ 0.3 at Δφ ≈ 0.005 in `campaigns/jamming.yaml`).
@@ -28,32 +27,6 @@ const Z_TOLERANCE: f64 = 0.15;
 /// Δφ, each point one quench of a few hundred discs, moves by about this much from seed to
 /// seed (judged on the largest N only).
 const EXPONENT_TOLERANCE: f64 = 0.15;
-
-/// The scalings are fitted from Δφ ≥ this many times the spread of φ_J between seeds.
-const FIT_FLOOR: f64 = 5.0;
-
-/// A packing's value, if measured.
-type Pick = fn(&RunRecord) -> Option<f64>;
-
-/// The scalings near jamming for contact forces ∝ δ^β (δ ∝ Δφ): name, value and the theory's
-/// exponent as a function of β: p ∝ δ^β, z − 4 ∝ Δφ^½ (geometry), K ∝ k_t ∝ δ^(β−1) and
-/// G ∝ K Δz ∝ Δφ^(β−½); linear (β = 1): 1, ½, 0, ½; Hertz (β = 3/2): 3/2, ½, ½, 1.
-const SCALINGS: [(&str, Pick, fn(f64) -> f64); 4] = [
-    ("p", |r| r.metrics.packing.pressure, |beta| beta),
-    ("z − 4", |r| r.metrics.packing.coordination.map(|z| z - ISOSTATIC), |_| 0.5),
-    ("K", |r| r.metrics.packing.bulk_modulus_2d, |beta| beta - 1.0),
-    ("G", |r| r.metrics.packing.shear_modulus_2d, |beta| beta - 0.5),
-];
-
-/// The packing's (N, seed): its φ_J's key.
-fn key(r: &RunRecord) -> Option<(usize, u64)> {
-    r.spec.packing().map(|p| (p.n, p.seed))
-}
-
-/// Whether the packing jammed (p above its floor with a backbone, relaxed).
-fn jammed(r: &RunRecord) -> bool {
-    r.metrics.packing.packing_state.as_deref() == Some("jammed")
-}
 
 /// The contact law in words, from its exponent β.
 fn law_words(beta: f64) -> String {
@@ -64,64 +37,7 @@ fn law_words(beta: f64) -> String {
     }
 }
 
-/// φ_J of every (N, seed) with two jammed linear packings or more: p = a (φ − φ_J) fitted by
-/// least squares over them, φ_J = −intercept/a (none when the pressure does not rise with φ).
-fn onsets(runs: &[&RunRecord]) -> BTreeMap<(usize, u64), f64> {
-    let mut points: BTreeMap<(usize, u64), Vec<(f64, f64)>> = BTreeMap::new();
-    for r in runs.iter().filter(|r| r.spec.law.is_linear() && jammed(r)) {
-        let m = &r.metrics.packing;
-        if let (Some(k), Some(phi), Some(p)) = (key(r), m.packing_fraction, m.pressure) {
-            points.entry(k).or_default().push((phi, p));
-        }
-    }
-    points
-        .into_iter()
-        .filter_map(|(k, points)| line_fit(&points).filter(|l| l.slope > 0.0).map(|l| (k, -l.intercept / l.slope)))
-        .collect()
-}
-
-/// Δφ = φ − φ_J of a packing, from its (N, seed)'s φ_J, when positive.
-fn excess(onsets: &BTreeMap<(usize, u64), f64>, r: &RunRecord) -> Option<f64> {
-    let phi_j = onsets.get(&key(r)?)?;
-    Some(r.metrics.packing.packing_fraction? - phi_j).filter(|d| *d > 0.0)
-}
-
-/// The campaign's φ_J of one N: mean and standard error over its seeds, and how it stands.
-struct Onset {
-    n: usize,
-    seeds: usize,
-    mean: f64,
-    /// The standard error of the mean (0 with one seed).
-    error: f64,
-    /// The standard deviation between seeds (0 with one seed).
-    spread: f64,
-}
-
 impl Onset {
-    /// φ_J of every N, by rising N.
-    fn per_size(onsets: &BTreeMap<(usize, u64), f64>) -> Vec<Onset> {
-        let mut sizes: BTreeMap<usize, Vec<f64>> = BTreeMap::new();
-        for (&(n, _), &phi) in onsets {
-            sizes.entry(n).or_default().push(phi);
-        }
-        sizes
-            .into_iter()
-            .map(|(n, phis)| {
-                let (mean, spread) = mean_spread(phis.iter().map(|p| Some(*p)));
-                let spread = spread.unwrap_or(0.0);
-                let error = spread / (phis.len() as f64).sqrt();
-                Onset { n, seeds: phis.len(), mean: mean.unwrap_or(f64::NAN), error, spread }
-            })
-            .collect()
-    }
-
-    /// The smallest Δφ the scalings are fitted from: each packing is its own quench, whose own
-    /// φ_J scatters about its seed's by about the spread σ between seeds, so Δφ ≥ `FIT_FLOOR` σ
-    /// keeps that error of ln Δφ below ln(1 + 1/`FIT_FLOOR`) ≈ 0.18.
-    fn fit_floor(&self) -> f64 {
-        FIT_FLOOR * self.spread
-    }
-
     /// Within 2 standard errors and the finite-size allowance of O'Hern et al.'s φ_J.
     fn within(&self) -> bool {
         (self.mean - PHI_J).abs() <= 2.0 * self.error + FINITE_SIZE
@@ -176,41 +92,10 @@ fn coordination_at_jamming(
     line_fit(&points).map(|l| (l.intercept, points.len()))
 }
 
-/// One fitted scaling: quantity, fitted exponent, theory's exponent, points.
-struct Scaling {
-    quantity: &'static str,
-    fitted: f64,
-    theory: f64,
-    points: usize,
-}
-
 impl Scaling {
     fn within(&self) -> bool {
-        (self.fitted - self.theory).abs() <= EXPONENT_TOLERANCE
+        (self.fit.exponent - self.theory).abs() <= EXPONENT_TOLERANCE
     }
-}
-
-/// The scalings of the jammed packings of `n` discs with contact exponent `beta`, each fitted
-/// on log–log axes against Δφ over the packings with Δφ ≥ `floor` and a positive value.
-fn scalings(
-    runs: &[&RunRecord],
-    onsets: &BTreeMap<(usize, u64), f64>,
-    n: usize,
-    beta: f64,
-    floor: f64,
-) -> Vec<Scaling> {
-    let mine: Vec<&&RunRecord> =
-        runs.iter().filter(|r| jammed(r) && r.spec.law.beta() == beta && key(r).is_some_and(|k| k.0 == n)).collect();
-    SCALINGS
-        .iter()
-        .filter_map(|&(quantity, pick, theory)| {
-            let points: Vec<(f64, f64)> =
-                mine.iter().filter_map(|r| Some((excess(onsets, r).filter(|d| *d >= floor)?, pick(r)?))).collect();
-            let fit = power_law_fit(&points)?;
-            let points = points.iter().filter(|(x, y)| *x > 0.0 && *y > 0.0).count();
-            Some(Scaling { quantity, fitted: fit.exponent, theory: theory(beta), points })
-        })
-        .collect()
 }
 
 /// The sentence of one law and N's scalings.
@@ -225,7 +110,13 @@ fn scalings_sentence(beta: f64, size: &Onset, fitted: &[Scaling], judged: bool) 
             } else {
                 ", outside"
             };
-            format!("{} ∝ Δφ^{} (theory {}{verdict}; {} packings)", s.quantity, sig(s.fitted), sig(s.theory), s.points)
+            format!(
+                "{} ∝ Δφ^{} (theory {}{verdict}; {} packings)",
+                s.quantity,
+                sig(s.fit.exponent),
+                sig(s.theory),
+                s.points.len()
+            )
         })
         .collect();
     let how = if judged {
@@ -300,7 +191,7 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
              {EXPONENT_TOLERANCE}."
         ),
         verdict: Verdict::of(checks),
-        figures: Vec::new(),
+        figures: packing_scenes(&runs).into_iter().filter_map(|scene| e.figure(scene, FigureKind::Jamming)).collect(),
         table: Some(Table {
             header: ["law", "N", "quantity", "measured", "theory", "seeds or packings", "verdict"]
                 .map(String::from)
@@ -335,9 +226,9 @@ fn all_scalings(
                     &law_words(beta),
                     size.n,
                     s.quantity,
-                    &sig(s.fitted),
+                    &sig(s.fit.exponent),
                     s.theory,
-                    s.points,
+                    s.points.len(),
                     judged.then(|| s.within()),
                 ));
             }
@@ -345,6 +236,13 @@ fn all_scalings(
         }
     }
     (sentences, rows, checks)
+}
+
+/// The packing scenes of `runs`, in campaign order.
+fn packing_scenes<'a>(runs: &[&'a RunRecord]) -> Vec<&'a str> {
+    let mut scenes: Vec<&str> = runs.iter().map(|r| r.spec.scene.as_str()).collect();
+    scenes.dedup();
+    scenes
 }
 
 /// A table row; `ok` `None` for a number not judged.
