@@ -21,10 +21,13 @@ pub(super) const FIT_FLOOR: f64 = 5.0;
 /// A packing's value, if measured.
 type Pick = fn(&RunRecord) -> Option<f64>;
 
+/// A theory's exponent as a function of the contact law's β.
+type Exponent = fn(f64) -> f64;
+
 /// The scalings near jamming for contact forces ∝ δ^β (δ ∝ Δφ): name, value and the theory's
 /// exponent as a function of β: p ∝ δ^β, z − 4 ∝ Δφ^½ (geometry), K ∝ k_t ∝ δ^(β−1) and
 /// G ∝ K Δz ∝ Δφ^(β−½); linear (β = 1): 1, ½, 0, ½; Hertz (β = 3/2): 3/2, ½, ½, 1.
-const SCALINGS: [(&str, Pick, fn(f64) -> f64); 4] = [
+const SCALINGS: [(&str, Pick, Exponent); 4] = [
     ("p", |r| r.metrics.packing.pressure, |beta| beta),
     ("z − 4", |r| r.metrics.packing.coordination.map(|z| z - ISOSTATIC), |_| 0.5),
     ("K", |r| r.metrics.packing.bulk_modulus_2d, |beta| beta - 1.0),
