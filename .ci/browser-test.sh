@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # CI: the coursework report in a real browser (issue 16, item 7). Renders campaigns/coursework.yaml
 # (~25 s of runs on a warm build), then .ci/browser-check.mjs opens its index.html in headless
-# Chromium at 1400 px through the DevTools protocol and checks: every image and movie loads, no
-# console errors, no horizontal scrolling, an id on every heading, every contents and local link
-# resolves, at most 3 MB loaded in all; and the coursework folder holds at most 10 MB on disk. It prints each check with its measured value and keeps a
-# screenshot of the first screen as the CI artefact: <reports>/coursework/screenshot.png, with
+# Chromium at 1400 px through the DevTools protocol, and its appendix.html, and checks: every image
+# and movie loads and has its width and height, no console errors, no horizontal scrolling, an id
+# on every heading, every contents and local link resolves, index.html at most 35 screens of
+# 1280 x 1000 px, printed (A4, the page's print style) in at most 20 pages, at most 3 MB
+# loaded, and the coursework folder at most 10 MB on disk. It prints each check with its measured value and keeps a screenshot of the first screen
+# and the printed PDF as the CI artefacts: <reports>/coursework/screenshot.png and print.pdf, with
 # <reports> = $MDSOLIDS_BROWSER_REPORTS or target/browser-test.
 #
 # Skipped (exit 0, "SKIP" message) where no Chromium can be had: not installed and not root, no

@@ -12,7 +12,7 @@ use crate::fem::{Entry, factor_and_solve};
 use crate::measure::ContactForces;
 use crate::model::{Axes, Particles, PeriodicBox, random_bidisperse};
 use crate::sim::{Network, Outcome, Packing, Scene};
-use crate::spec::{PackingRun, RunSpec};
+use crate::spec::{PackingRun, PackingSpec, RunSpec};
 
 /// The skin of the contact list, in small diameters (LAMMPS's `neighbor 0.2 bin` at d = 1).
 const SKIN: f64 = 0.2;
@@ -58,14 +58,20 @@ pub struct PackingMetrics {
 /// The discs of a packing run as the spec places them: the field's geometry and the particles
 /// (masses in proportion to the discs' areas, `mass` the small disc's), at rest.
 pub fn discs(spec: &RunSpec, run: &PackingRun) -> (Packing, Particles) {
-    let p = &run.packing;
-    let small = 0.5 * spec.spacing;
+    discs_of(&run.packing, spec.spacing, spec.mass, spec.k)
+}
+
+/// The discs of `p`, small ones of diameter `spacing` (m) and mass `small_mass` (kg), larger
+/// ones of mass ∝ area, contacts of stiffness constant `k`, at rest: the packing runs' and the
+/// packing bench's (`crate::bench`).
+pub fn discs_of(p: &PackingSpec, spacing: f64, small_mass: f64, k: f64) -> (Packing, Particles) {
+    let small = 0.5 * spacing;
     let (periodic, x, y, radius) = random_bidisperse(p.n, small, p.radius_ratio, p.fraction, p.seed);
     let mut particles = Particles::default();
     for ((x, y), r) in x.iter().zip(&y).zip(&radius) {
-        particles.push(*x, *y, spec.mass * (r / small).powi(2), Axes::FREE);
+        particles.push(*x, *y, small_mass * (r / small).powi(2), Axes::FREE);
     }
-    (Packing { radius, periodic, k: spec.k, skin: SKIN * spec.spacing }, particles)
+    (Packing { radius, periodic, k, skin: SKIN * spacing }, particles)
 }
 
 /// The force at which a packing's relaxation is judged (N): k d^β, a contact overlapped by one

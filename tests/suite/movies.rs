@@ -74,11 +74,47 @@ fn movie_has_its_frames_and_colours_follow_the_speed() {
     assert!(first.iter().all(|&x| x < 60), "only the first particle is fast at t = 0: {:?}", first);
     // Later the energy has spread: no disc is at the top colour at the left end any more.
     assert!(hot_columns(&frames[6]).iter().all(|&x| x >= 60) || hot_columns(&frames[6]).is_empty());
-    // The report shows the movie (the HTML page as an image, the Markdown as a link).
+    // The report shows the movie (the HTML pages as an image, the Markdown as a link).
     mdsolids::report::render(campaign, &layout, &done.records).unwrap();
     let link = format!("plots/{}.gif", record.run_id);
     assert!(std::fs::read_to_string(layout.file("report.md")).unwrap().contains(&format!("]({link})")));
-    assert!(std::fs::read_to_string(layout.file("index.html")).unwrap().contains(&format!("<img src=\"{link}\"")));
+    assert!(pages(&layout).contains(&format!("<img src=\"{link}\"")));
+    the_movie_prints_as_its_filmstrip(&layout, &link, &frames);
+}
+
+/// The report's HTML: its main page and, where it has one, its appendix page.
+fn pages(layout: &Layout) -> String {
+    let appendix = std::fs::read_to_string(layout.file("appendix.html")).unwrap_or_default();
+    std::fs::read_to_string(layout.file("index.html")).unwrap() + &appendix
+}
+
+/// On paper, the movie at `link` (whose decoded frames are `frames`) is its filmstrip: the first,
+/// the last and two frames between, two to a row, 6 pixels apart, each as the GIF shows it.
+fn the_movie_prints_as_its_filmstrip(layout: &Layout, link: &str, frames: &[Vec<u8>]) {
+    let strip = link.replace(".gif", ".filmstrip.png");
+    let html = pages(layout);
+    let (width, height) = (400, 160);
+    let (strip_w, strip_h) = (2 * width + 6, 2 * height + 6);
+    assert!(
+        html.contains(&format!("<img src=\"{strip}\""))
+            && html.contains(&format!("width=\"{strip_w}\" height=\"{strip_h}\" class=\"filmstrip\"")),
+        "{html}"
+    );
+    let mut decoder = png::Decoder::new(std::fs::File::open(layout.file(&strip)).unwrap());
+    decoder.set_transformations(png::Transformations::EXPAND);
+    let mut reader = decoder.read_info().unwrap();
+    let mut rgb = vec![0u8; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut rgb).unwrap();
+    assert_eq!((info.width, info.height), (strip_w as u32, strip_h as u32));
+    // 12 frames: 1, 5, 8 and 12 (evenly spread, rounded), counted from 1.
+    for (n, k) in [0, 4, 7, 11].into_iter().enumerate() {
+        let (x0, y0) = ((n % 2) * (width + 6), (n / 2) * (height + 6));
+        for (y, x) in (0..height).flat_map(|y| (0..width).map(move |x| (y, x))) {
+            let printed = &rgb[3 * ((y0 + y) * strip_w + x0 + x)..][..3];
+            let shown = &frames[k][4 * (y * width + x)..][..3];
+            assert_eq!(printed, shown, "frame {} at ({x}, {y})", k + 1);
+        }
+    }
 }
 
 #[test]

@@ -228,14 +228,14 @@ fn bad_packings_are_refused_naming_the_field() {
     assert!(message.contains("damping"), "{message}");
 }
 
-/// Runs a linear packing scene of 64 discs at `fractions` (a YAML list), seeds 1 and 2, and
-/// returns its results table and report.
-fn jamming_campaign(fractions: &str) -> (DataFrame, String) {
+/// Runs a packing scene of 64 discs with contact law `law` at `fractions` (a YAML list), seeds
+/// 1 and 2, and returns its results table and report.
+fn jamming_campaign(law: &str, fractions: &str) -> (DataFrame, String) {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("jam.yaml");
     let yaml = format!(
         "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    packing: {{n: 64, fraction: 0.86}}\n    \
-         grid:\n      packing.fraction: {fractions}\n      seed: [1, 2]\n"
+         material: {{law: {law}}}\n    grid:\n      packing.fraction: {fractions}\n      seed: [1, 2]\n"
     );
     std::fs::write(&file, yaml).unwrap();
     mdsolids_ok(dir.path(), &["run", file.to_str().unwrap()]);
@@ -250,7 +250,7 @@ fn jamming_campaign(fractions: &str) -> (DataFrame, String) {
 
 #[test]
 fn the_jamming_item_states_phi_j_as_the_results_table_gives_it() {
-    let (frame, report) = jamming_campaign("[0.84, 0.86, 0.88, 0.90]");
+    let (frame, report) = jamming_campaign("linear", "[0.84, 0.86, 0.88, 0.90]");
     // Independently of the report: per seed, the normal equations of p = a φ + b over the
     // jammed rows, φ_J = −b/a; their mean over the seeds.
     let states = frame.column("packing_state").unwrap().str().unwrap().clone();
@@ -285,11 +285,42 @@ fn the_jamming_item_states_phi_j_as_the_results_table_gives_it() {
 }
 
 #[test]
-fn packings_all_below_jamming_state_that_no_jammed_state_was_found() {
+fn without_two_jammed_linear_packings_per_seed_the_item_states_no_phi_j() {
     // φ = 0.70 and 0.75, far below φ_J: the item finds nothing to extrapolate and says that
     // O'Hern et al.'s 0.842 lies above every fraction (the verdict within); no φ_J is stated.
-    let (_, report) = jamming_campaign("[0.70, 0.75]");
+    let (_, report) = jamming_campaign("linear", "[0.70, 0.75]");
     let line = line_with(&report, "No jammed state was found");
     assert!(line.contains("0 of the 4 packings") && line.contains("above every fraction here"), "{line}");
     assert!(!report.contains("N = 64: φ_J = "));
+    // Hertz packings above jamming jam, but φ_J comes from linear ones: none is stated, the
+    // item counts the jammed packings and judges nothing.
+    let (_, hertz) = jamming_campaign("hertz", "[0.86, 0.88]");
+    let line = line_with(&hertz, "No φ_J could be found");
+    assert!(line.contains("4 of the 4 packings"), "{line}");
+    assert!(!hertz.contains("No jammed state was found") && !hertz.contains("N = 64: φ_J = "));
+}
+
+/// `bench --workload packing` runs the issue's workload and prints one JSON line with its
+/// fields: the discs counted, the contacts at the start as an all-pairs search counts them
+/// (an independent count, exact), and the throughput as particles × steps / wall time
+/// recomputed from the line (1e-12 relative: the same three numbers, rounded once by JSON's
+/// shortest round trip). Not timed. A disc count outside 2..=10^7 is refused.
+#[test]
+fn packing_bench_reports_its_json_line() {
+    let work = tempfile::tempdir().unwrap();
+    let args = ["bench", "--workload", "packing", "--n", "200", "--steps", "20", "--threads", "1", "--repeat", "1"];
+    let out = mdsolids_ok(work.path(), &[&args[..], &["--json"]].concat());
+    let line: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON line");
+    assert_eq!(line["workload"], "packing");
+    assert_eq!(line["path"], "contacts");
+    assert_eq!((line["particles"].as_u64(), line["steps"].as_u64()), (Some(200), Some(20)));
+    let (periodic, x, y, radius) = random_bidisperse(200, 0.5, 1.4, 0.90, 1);
+    let touching = all_pairs(&x, &y, &radius, &periodic, 0.0).len();
+    assert!(touching > 0, "random discs at φ = 0.9 overlap");
+    assert_eq!(line["bonds"].as_u64(), Some(touching as u64));
+    let (wall, rate) = (line["wall_s"].as_f64().unwrap(), line["particle_steps_per_s"].as_f64().unwrap());
+    assert!(wall > 0.0 && (rate - 200.0 * 20.0 / wall).abs() <= 1e-12 * rate, "{line}");
+    let refused = crate::common::mdsolids(work.path(), &["bench", "--workload", "packing", "--n", "1"]);
+    let stderr = crate::common::text(&refused.stderr);
+    assert!(!refused.status.success() && stderr.contains("--n 1: the packing's discs must be in 2..=10000000"));
 }

@@ -78,6 +78,7 @@ fn small_campaign_end_to_end() {
     let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
     assert!(report.contains("Scene `pair` (pair)") && report.contains("Scene `chain` (chain)"));
     assert!(report.contains("not clamped"), "the report states the contact force is not clamped");
+    pages_are_whole(&dir, &report);
 
     // A rerun of the unchanged campaign simulates nothing and leaves the stored runs alone.
     let stored: Vec<_> = run_files(&dir).iter().map(|f| modified(f)).collect();
@@ -95,6 +96,31 @@ fn small_campaign_end_to_end() {
     assert_eq!(stored, run_files(&dir).iter().map(|f| modified(f)).collect::<Vec<_>>());
 }
 
+/// The report's pages in `dir` (of the Markdown `report`): the appendix on its own page where
+/// the report has answers, every image with its width and height (nothing moves as they load),
+/// and no table without rows.
+fn pages_are_whole(dir: &Path, report: &str) {
+    assert!(report.contains("## Summary"), "the smoke campaign answers coursework items");
+    let main = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    let appendix = std::fs::read_to_string(dir.join("appendix.html")).unwrap();
+    assert!(
+        main.contains("<h2 id=\"summary\">") && !main.contains("id=\"appendix-methods-and-every-scene-in-detail\"")
+    );
+    assert!(
+        appendix.contains("id=\"appendix-methods-and-every-scene-in-detail\"") && !appendix.contains("id=\"summary\"")
+    );
+    for page in [&main, &appendix] {
+        let images: Vec<&str> = page.split("<img ").skip(1).map(|rest| &rest[..rest.find('>').unwrap()]).collect();
+        assert!(!images.is_empty());
+        for image in images {
+            assert!(image.contains(" width=\"") && image.contains(" height=\""), "an image without its size: {image}");
+        }
+        for table in page.split("<table>").skip(1) {
+            assert!(table[..table.find("</table>").unwrap()].contains("<td"), "a table without rows: {table}");
+        }
+    }
+}
+
 #[test]
 fn plan_lists_runs_and_simulates_nothing() {
     let reports = tempfile::tempdir().unwrap();
@@ -102,7 +128,7 @@ fn plan_lists_runs_and_simulates_nothing() {
     assert!(out.status.success(), "{}", text(&out.stderr));
     let stdout = text(&out.stdout);
     assert!(stdout.contains("pair-contact-") && stdout.contains("dt_per_tc=500"), "{stdout}");
-    assert!(stdout.contains("243 runs") && stdout.contains("dt·ω_max"), "{stdout}");
+    assert!(stdout.contains("255 runs") && stdout.contains("dt·ω_max"), "{stdout}");
     assert!(!reports.path().join("coursework").exists(), "plan wrote output");
 }
 

@@ -5,8 +5,7 @@
 
 use std::collections::BTreeMap;
 
-use super::finding::{Evidence, percent, plus_minus, relative, sig};
-use super::two_d::regular;
+use super::finding::{Evidence, percent, plus_minus, regular, relative, sig};
 use crate::runner::RunRecord;
 use crate::spec::{Control, Diagonals, LoadCase, Supports};
 

@@ -10,6 +10,7 @@ use crate::report::figure::{background_damping_only, bond_damping_only};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::spec::{Diagonals, LoadCase};
+use crate::summary::ScalingFit;
 
 /// One paragraph of the discussion.
 #[derive(Serialize)]
@@ -209,14 +210,32 @@ fn time_step(e: &Evidence) -> Option<Paragraph> {
     })
 }
 
-/// The exponent Hertz springs (β = 3/2) predict for a fitted quantity against its variable:
-/// the solitary wave's speed ∝ v0^(1/5), moduli ∝ F^(1/3), a chain's stiffness ∝ |ΔW|^(1/2).
-fn hertz_exponent(quantity: &str) -> Option<f64> {
-    match quantity {
-        "sound_speed" => Some(0.2),
-        q if q.contains("modulus") => Some(1.0 / 3.0),
-        q if q.ends_with("stiffness") => Some(0.5),
+/// The exponent springs s ∝ δ^β predict for a fitted quantity against its variable (β from
+/// the fit's scene): the solitary wave's speed ∝ v0^((β−1)/(β+1)) (Nesterenko), moduli
+/// ∝ F^((β−1)/β) and a chain's stiffness ∝ |ΔW|^(β−1), since s′ ∝ δ^(β−1) and F ∝ δ^β.
+/// Hertz (β = 3/2): 1/5, 1/3 and 1/2; linear (β = 1): 0.
+fn predicted_exponent(e: &Evidence, fit: &ScalingFit) -> Option<f64> {
+    let beta = e.all(|r| r.spec.scene == fit.scene).first()?.spec.law.beta();
+    match fit.quantity {
+        "sound_speed" => Some((beta - 1.0) / (beta + 1.0)),
+        q if q.contains("modulus") => Some((beta - 1.0) / beta),
+        q if q.ends_with("stiffness") => Some(beta - 1.0),
         _ => None,
+    }
+}
+
+/// A fitted quantity's symbol as the report writes it (E, G, c, F, v0, the walls' Δ, the
+/// chain's stiffness), its column name in words where it has none.
+fn symbol(column: &str) -> String {
+    match column {
+        "youngs_modulus" => "E".into(),
+        "shear_modulus" => "G".into(),
+        "sound_speed" => "c".into(),
+        "load_per_node" => "the load per node F".into(),
+        "v0" => "the kick v0".into(),
+        "wall_displacement" => "the walls' displacement Δ".into(),
+        "secant_stiffness" => "the chain's secant stiffness".into(),
+        other => other.replace('_', " "),
     }
 }
 
@@ -229,8 +248,7 @@ pub(super) fn linear_and_hertz(e: &Evidence) -> Option<Answer> {
     let mut rows = Vec::new();
     let mut checks = Vec::new();
     for fit in e.fits {
-        let predicted = if fit.law == "linear" { Some(0.0) } else { hertz_exponent(fit.quantity) };
-        let Some(predicted) = predicted else { continue };
+        let Some(predicted) = predicted_exponent(e, fit) else { continue };
         checks.push((fit.fit.exponent - predicted).abs() <= EXPONENT_TOLERANCE);
         rows.push(vec![
             fit.scene.clone(),
@@ -272,11 +290,12 @@ pub(super) fn hertz_headline(e: &Evidence) -> Option<String> {
         .iter()
         .filter(|f| f.law != "linear" && !f.quantity.starts_with("tangent") && !f.quantity.ends_with("tangent"))
     {
-        let Some(predicted) = hertz_exponent(fit.quantity) else { continue };
+        let Some(predicted) = predicted_exponent(e, fit) else { continue };
+        let verdict = if (fit.fit.exponent - predicted).abs() <= EXPONENT_TOLERANCE { "within" } else { "outside" };
         let law = format!(
-            "{} ∝ {}^{} (predicted {predicted:.3})",
-            fit.quantity.replace('_', " "),
-            fit.against.replace('_', " "),
+            "{} ∝ {}^{} (predicted {predicted:.3}, {verdict} {EXPONENT_TOLERANCE})",
+            symbol(fit.quantity),
+            symbol(fit.against),
             exponent(fit.fit.exponent)
         );
         if !laws.iter().any(|l| l.starts_with(&law[..law.find('^').unwrap_or(0)])) {

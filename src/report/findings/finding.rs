@@ -5,10 +5,11 @@
 
 use serde::Serialize;
 
-use crate::model::LatticeType;
+use crate::model::{LatticeType, LawSpec};
 use crate::report::figure::{Figure, FigureKind, FigureRef, movie_refs};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
+use crate::spec::LatticeSpec;
 use crate::summary::ScalingFit;
 
 // Numbers in sentences: 4 significant digits, plain or scientific as reads best.
@@ -173,6 +174,13 @@ impl<'a> Evidence<'a> {
 /// A relative error as a signed number with 2 digits (`+1.6e-4`).
 pub fn rel(e: f64) -> String {
     format!("{e:+.1e}")
+}
+
+/// A loaded (not kicked), regular, linear lattice: the coursework's moduli runs.
+pub(super) fn regular(r: &RunRecord) -> Option<&LatticeSpec> {
+    r.spec.lattice().filter(|l| {
+        l.impulse.is_none() && !l.is_random() && l.k_x == l.k_y && !l.rotated && r.spec.law == LawSpec::Linear
+    })
 }
 
 /// The shortest dissipation time (s) among `runs`; infinite when none relaxed.

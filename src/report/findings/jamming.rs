@@ -261,30 +261,43 @@ fn row(
     vec![law.into(), n.to_string(), quantity.into(), measured.into(), sig(theory), count.to_string(), verdict.into()]
 }
 
-/// The answer when no seed has two jammed linear packings: the fractions it reached, and
-/// whether O'Hern et al.'s φ_J lies above them (nothing should have jammed) or among them.
+/// The answer when no seed has two jammed linear packings: how many jammed, and, when none
+/// did, whether O'Hern et al.'s φ_J lies above the fractions reached (nothing should have
+/// jammed) or among them; with some jammed, an observation.
 fn unjammed(any: &[&RunRecord]) -> Answer {
     let highest = any.iter().filter_map(|r| r.spec.packing().map(|p| p.fraction)).fold(0.0f64, f64::max);
     let jammed_count = any.iter().filter(|r| jammed(r)).count();
     let below = highest < PHI_J;
-    let sentences = vec![format!(
-        "No jammed state was found from which to extrapolate φ_J: {jammed_count} of the {} packings (fractions up to \
-         {}) jammed, and no seed has two jammed linear packings. {CITATION}'s φ_J ≈ {PHI_J} lies {}.",
+    let counted = format!(
+        "{jammed_count} of the {} packings (fractions up to {}) jammed, and no seed has two jammed linear packings to \
+         extrapolate φ_J from",
         any.len(),
-        sig(highest),
-        if below {
-            "above every fraction here, so none should jam"
-        } else {
-            "within the fractions here, so the packings above it should have jammed"
-        }
-    )];
+        sig(highest)
+    );
+    let sentence = if jammed_count > 0 {
+        format!("No φ_J could be found: {counted}.")
+    } else {
+        format!(
+            "No jammed state was found: {counted}. {CITATION}'s φ_J ≈ {PHI_J} lies {}.",
+            if below {
+                "above every fraction here, so none should jam"
+            } else {
+                "within the fractions here, so the packings above it should have jammed"
+            }
+        )
+    };
+    let verdict = if jammed_count > 0 { Verdict::Observed } else { Verdict::of([below]) };
     Answer {
         title: "Jamming",
         question: "Where do random packings of discs jam, and how do p, z, K and G grow above it?",
-        short: format!("no jammed state up to φ = {}", sig(highest)),
-        sentences,
+        short: if jammed_count > 0 {
+            "no φ_J: no seed has two jammed linear packings".into()
+        } else {
+            format!("no jammed state up to φ = {}", sig(highest))
+        },
+        sentences: vec![sentence],
         reference: format!("{CITATION}: φ_J ≈ {PHI_J} for 1:1.4 bidisperse discs."),
-        verdict: Verdict::of([below]),
+        verdict,
         figures: Vec::new(),
         table: None,
     }

@@ -6,7 +6,7 @@
 use std::collections::BTreeMap;
 
 use super::block::Block;
-use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, rel, relative, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, regular, rel, relative, sig};
 use crate::measure::convergence_order;
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, representative};
@@ -19,13 +19,6 @@ use crate::spec::{Control, Diagonals, LatticeSpec, LoadCase, Supports};
 /// relaxation stops at E_kin/E_pot < 1e-8 or a residual force of 1e-6 of the load, which leaves
 /// the slowest mode's displacement error at about 1e-4 … 1e-3 of the deformation.
 pub(super) const STATIC_TOLERANCE: f64 = 2e-3;
-
-/// A loaded (not kicked), regular, linear lattice: the coursework's moduli runs.
-pub(super) fn regular(r: &RunRecord) -> Option<&LatticeSpec> {
-    r.spec.lattice().filter(|l| {
-        l.impulse.is_none() && !l.is_random() && l.k_x == l.k_y && !l.rotated && r.spec.law == LawSpec::Linear
-    })
-}
 
 /// The fitted order, as text.
 fn order_text(order: Option<f64>) -> String {
