@@ -282,6 +282,8 @@ fn the_jamming_item_states_phi_j_as_the_results_table_gives_it() {
     let within = (stated - 0.842).abs() <= 2.0 * error + 0.01;
     assert!(line.contains(if within { ": within" } else { ": outside" }), "{line}");
     assert!(report.contains("Linear contacts, N = 64"), "the scalings are fitted");
+    // No lattice, no homogeneity item (it had shown an empty table).
+    assert!(!report.contains("Homogeneity of the deformation"));
 }
 
 #[test]
