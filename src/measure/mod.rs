@@ -55,6 +55,8 @@ pub struct PowerLawFit {
     pub exponent: f64,
     /// R² of the straight line on log–log axes (1: every point on it).
     pub r_squared: f64,
+    /// The prefactor c.
+    pub prefactor: f64,
 }
 
 /// Fits y = c x^p to the positive, finite `points` (x, y); `None` with fewer than two of them
@@ -65,16 +67,40 @@ pub fn power_law_fit(points: &[(f64, f64)]) -> Option<PowerLawFit> {
         .filter(|(x, y)| *x > 0.0 && *y > 0.0 && x.is_finite() && y.is_finite())
         .map(|(x, y)| (x.ln(), y.ln()))
         .collect();
-    if logs.len() < 2 {
+    line_fit(&logs).map(|line| PowerLawFit {
+        exponent: line.slope,
+        r_squared: line.r_squared,
+        prefactor: line.intercept.exp(),
+    })
+}
+
+/// A least-squares straight line y = a + b x.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LineFit {
+    /// The slope b.
+    pub slope: f64,
+    /// The intercept a (y at x = 0).
+    pub intercept: f64,
+    /// R² of the line (1: every point on it).
+    pub r_squared: f64,
+}
+
+/// Fits y = a + b x to `points` (x, y) by least squares; `None` with fewer than two of them or
+/// a single x.
+pub fn line_fit(points: &[(f64, f64)]) -> Option<LineFit> {
+    if points.len() < 2 {
         return None;
     }
-    let n = logs.len() as f64;
-    let (mx, my) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
-    let (sxy, sxx, syy) = logs.iter().fold((0.0, 0.0, 0.0), |(a, b, c), (x, y)| {
+    let n = points.len() as f64;
+    let (mx, my) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let (sxy, sxx, syy) = points.iter().fold((0.0, 0.0, 0.0), |(a, b, c), (x, y)| {
         (a + (x - mx) * (y - my), b + (x - mx) * (x - mx), c + (y - my) * (y - my))
     });
-    (sxx > 0.0)
-        .then(|| PowerLawFit { exponent: sxy / sxx, r_squared: if syy > 0.0 { sxy * sxy / (sxx * syy) } else { 1.0 } })
+    (sxx > 0.0).then(|| LineFit {
+        slope: sxy / sxx,
+        intercept: my - sxy / sxx * mx,
+        r_squared: if syy > 0.0 { sxy * sxy / (sxx * syy) } else { 1.0 },
+    })
 }
 
 /// Errors at or below this are round-off, not truncation: left out of orders and

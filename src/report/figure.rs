@@ -59,6 +59,8 @@ pub enum FigureKind {
     Dispersion,
     /// A lattice's relaxation under background damping over its late envelope (`curves.rs`).
     Envelope,
+    /// A packing scene's p, z − 4, K and G against φ − φ_J with their power laws (`jamming.rs`).
+    Jamming,
 }
 
 /// A drawn figure.

@@ -57,8 +57,9 @@ pub(super) fn part(records: &[RunRecord], scene: &str, kind: SceneKind) -> anyho
         SceneKind::Pair => pair_part(&runs)?,
         SceneKind::Chain => chain_part(&runs)?,
         SceneKind::Lattice => lattice_part(&runs, records)?,
-        // A packing's figures and rows of its own are still to come (issue 34's Jamming item).
-        SceneKind::Packing => Part { figures: Vec::new(), rows: KindRows::default() },
+        SceneKind::Packing => {
+            Part { figures: super::jamming::part(records, scene)?.figures, rows: KindRows::default() }
+        }
     };
     figures.extend(own.figures);
     Ok(Part { figures, rows: own.rows })

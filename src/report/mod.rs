@@ -13,6 +13,7 @@ mod figure;
 mod figures;
 pub mod findings;
 pub mod images;
+mod jamming;
 pub mod kinds;
 pub mod markdown;
 pub mod page;

@@ -1,20 +1,7 @@
 //! The report's sentences are claims computed from the data: each test builds small campaigns
 //! on both sides of a claim and sees the sentence flip with the data.
 
-use crate::common::{execute_all, report_of};
-
-/// The first number in `text` after `marker` (the report writes 4 to 6 significant digits).
-fn number_after(text: &str, marker: &str) -> f64 {
-    let rest = &text[text.find(marker).unwrap_or_else(|| panic!("no {marker:?} in {text}")) + marker.len()..];
-    let end = rest.find(|c: char| !(c.is_ascii_digit() || ".e-+".contains(c))).unwrap_or(rest.len());
-    // A sentence's full stop is not a decimal point.
-    rest[..end].trim_end_matches('.').parse().unwrap_or_else(|_| panic!("no number after {marker:?}: {rest}"))
-}
-
-/// The report line that contains `marker`.
-fn line_with<'a>(report: &'a str, marker: &str) -> &'a str {
-    report.lines().find(|l| l.contains(marker)).unwrap_or_else(|| panic!("no line with {marker:?}"))
-}
+use crate::common::{execute_all, line_with, number_after, report_of};
 
 /// A 4 × 4 loaded lattice, m = k = 1, with `damping` (a YAML flow map) and a `grid` line.
 fn loaded_lattice(damping: &str, grid: &str) -> String {

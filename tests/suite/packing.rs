@@ -1,7 +1,7 @@
 //! Packings (issue 34): the cell list against an all-pairs search, a two-disc collision through
 //! the packing's field against the pair's closed form, hand-placed periodic cells against their
 //! closed forms, the moduli by the stiffness matrix against relaxed energies, the exported
-//! final state, and the refusals.
+//! final state, the refusals, and the report's item "Jamming" against the results table.
 
 use mdsolids::measure::ContactForces;
 use mdsolids::model::{Axes, Contacts, LawSpec, Particles, PeriodicBox, contacts_within, random_bidisperse};
@@ -10,7 +10,7 @@ use mdsolids::study::packing::stiffness_moduli;
 use mdsolids::theory::{gamma_for_restitution, linear_contact_duration, linear_restitution};
 use polars::prelude::*;
 
-use crate::common::mdsolids_ok;
+use crate::common::{line_with, mdsolids_ok, number_after};
 
 /// The pairs within r_i + r_j + skin by comparing every pair (the reference the cell list must
 /// reproduce), each as (i, j, shift x bits, shift y bits), sorted.
@@ -226,6 +226,80 @@ fn bad_packings_are_refused_naming_the_field() {
     let damped = campaign("{n: 64, fraction: 0.8}") + "    damping: {restitution: 0.5}\n";
     let message = mdsolids::plan::parse("t.yaml", &damped).err().map(|e| e.to_string()).unwrap_or_default();
     assert!(message.contains("damping"), "{message}");
+}
+
+/// Runs a packing scene of 64 discs with contact law `law` at `fractions` (a YAML list), seeds
+/// 1 and 2, and returns its results table and report.
+fn jamming_campaign(law: &str, fractions: &str) -> (DataFrame, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("jam.yaml");
+    let yaml = format!(
+        "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    packing: {{n: 64, fraction: 0.86}}\n    \
+         material: {{law: {law}}}\n    grid:\n      packing.fraction: {fractions}\n      seed: [1, 2]\n"
+    );
+    std::fs::write(&file, yaml).unwrap();
+    mdsolids_ok(dir.path(), &["run", file.to_str().unwrap()]);
+    let folder = dir.path().join("jam");
+    let frame = CsvReadOptions::default()
+        .try_into_reader_with_file_path(Some(folder.join("results.csv")))
+        .unwrap()
+        .finish()
+        .unwrap();
+    (frame, std::fs::read_to_string(folder.join("report.md")).unwrap())
+}
+
+#[test]
+fn the_jamming_item_states_phi_j_as_the_results_table_gives_it() {
+    let (frame, report) = jamming_campaign("linear", "[0.84, 0.86, 0.88, 0.90]");
+    // Independently of the report: per seed, the normal equations of p = a φ + b over the
+    // jammed rows, φ_J = −b/a; their mean over the seeds.
+    let states = frame.column("packing_state").unwrap().str().unwrap().clone();
+    let (phi, p, seed) = (numbers(&frame, "packing_fraction"), numbers(&frame, "pressure"), numbers(&frame, "seed"));
+    let onsets: Vec<f64> = [1.0, 2.0]
+        .iter()
+        .map(|&s| {
+            let rows: Vec<(f64, f64)> = (0..frame.height())
+                .filter(|&i| seed[i] == Some(s) && states.get(i) == Some("jammed"))
+                .map(|i| (phi[i].unwrap(), p[i].unwrap()))
+                .collect();
+            assert!(rows.len() >= 2, "seed {s}: {rows:?}");
+            let n = rows.len() as f64;
+            let (sx, sy) = rows.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x, b + y));
+            let (sxx, sxy) = rows.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x * x, b + x * y));
+            let slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+            let intercept = (sy - slope * sx) / n;
+            -intercept / slope
+        })
+        .collect();
+    let mean = 0.5 * (onsets[0] + onsets[1]);
+    let line = line_with(&report, "N = 64: φ_J = ");
+    let (stated, error) = (number_after(line, "φ_J = "), number_after(line, " ± "));
+    // The report rounds φ_J to its standard error's second digit: within 5e-4 at SE < 0.01.
+    assert!((stated - mean).abs() < 5e-4, "{line}: independent {mean} from {onsets:?}");
+    // The standard error of two seeds is half their difference.
+    assert!((error - 0.5 * (onsets[0] - onsets[1]).abs()).abs() <= 0.05 * error + 1e-4, "{line}");
+    // The verdict follows the stated tolerance: 2 standard errors + 0.01 of 0.842.
+    let within = (stated - 0.842).abs() <= 2.0 * error + 0.01;
+    assert!(line.contains(if within { ": within" } else { ": outside" }), "{line}");
+    assert!(report.contains("Linear contacts, N = 64"), "the scalings are fitted");
+    // No lattice, no homogeneity item (it had shown an empty table).
+    assert!(!report.contains("Homogeneity of the deformation"));
+}
+
+#[test]
+fn without_two_jammed_linear_packings_per_seed_the_item_states_no_phi_j() {
+    // φ = 0.70 and 0.75, far below φ_J: the item finds nothing to extrapolate and says that
+    // O'Hern et al.'s 0.842 lies above every fraction (the verdict within); no φ_J is stated.
+    let (_, report) = jamming_campaign("linear", "[0.70, 0.75]");
+    let line = line_with(&report, "No jammed state was found");
+    assert!(line.contains("0 of the 4 packings") && line.contains("above every fraction here"), "{line}");
+    assert!(!report.contains("N = 64: φ_J = "));
+    // Hertz packings above jamming jam, but φ_J comes from linear ones: none is stated, the
+    // item counts the jammed packings and judges nothing.
+    let (_, hertz) = jamming_campaign("hertz", "[0.86, 0.88]");
+    let line = line_with(&hertz, "No φ_J could be found");
+    assert!(line.contains("4 of the 4 packings"), "{line}");
+    assert!(!hertz.contains("No jammed state was found") && !hertz.contains("N = 64: φ_J = "));
 }
 
 /// `bench --workload packing` runs the issue's workload and prints one JSON line with its

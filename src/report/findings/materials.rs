@@ -25,7 +25,8 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
     let measured = e.ok(|r| regular(r) && r.metrics.lattice.homogeneity.is_some());
     let undefined =
         e.ok(|r| regular(r) && r.metrics.lattice.homogeneity.is_none() && r.metrics.lattice.youngs_modulus.is_some());
-    let by_size = homogeneity_by_setup(&measured)?;
+    // Without a loaded regular lattice (a packing campaign) there is nothing to say.
+    let by_size = homogeneity_by_setup(&measured).filter(|b| !b.is_empty() || !undefined.is_empty())?;
     let mut sentences = vec![
         "Homogeneity is the largest distance of a left- or right-edge node's horizontal displacement from the \
          straight line fitted through that edge, divided by the edges' mean horizontal displacement: 0 when the \

@@ -9,6 +9,7 @@ mod curves;
 mod discussion;
 mod dynamics;
 mod finding;
+mod jamming;
 mod materials;
 mod one_d;
 mod relaxation;
@@ -67,7 +68,7 @@ fn studies(evidence: &Evidence) -> Vec<Answer> {
 /// The coursework's items that its evidence ([`Evidence::coursework`]: square lattices relaxed
 /// by MD) answers, in the coursework's order.
 fn coursework(coursework: &Evidence) -> Vec<Answer> {
-    let asked: [Question; 24] = [
+    let asked: [Question; 25] = [
         one_d::force_function,
         one_d::two_particles,
         one_d::time_step,
@@ -91,6 +92,7 @@ fn coursework(coursework: &Evidence) -> Vec<Answer> {
         materials::anisotropic,
         materials::random,
         materials::md_and_fem,
+        jamming::jamming,
         discussion::linear_and_hertz,
     ];
     asked.iter().filter_map(|question| question(coursework)).collect()
