@@ -143,16 +143,8 @@ fn numbers(frame: &DataFrame, name: &str) -> Vec<Option<f64>> {
 #[test]
 fn relaxed_packings_agree_on_their_moduli_and_are_recomputed_from_their_files() {
     let dir = tempfile::tempdir().unwrap();
-    let file = dir.path().join("jam.yaml");
     let yaml = "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    packing: {n: 64, fraction: 0.86}\n    grid:\n      packing.fraction: [0.80, 0.88]\n      material.law: [linear, hertz]\n      seed: [1, 2]\n";
-    std::fs::write(&file, yaml).unwrap();
-    mdsolids_ok(dir.path(), &["run", file.to_str().unwrap()]);
-    let folder = dir.path().join("jam");
-    let frame = CsvReadOptions::default()
-        .try_into_reader_with_file_path(Some(folder.join("results.csv")))
-        .unwrap()
-        .finish()
-        .unwrap();
+    let (frame, folder) = run_jam(dir.path(), yaml);
     let states: Vec<String> =
         frame.column("packing_state").unwrap().str().unwrap().iter().map(|s| s.unwrap().to_string()).collect();
     let (fraction, pressure, side) =
@@ -232,20 +224,26 @@ fn bad_packings_are_refused_naming_the_field() {
 /// 1 and 2, and returns its results table and report.
 fn jamming_campaign(law: &str, fractions: &str) -> (DataFrame, String) {
     let dir = tempfile::tempdir().unwrap();
-    let file = dir.path().join("jam.yaml");
     let yaml = format!(
         "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    packing: {{n: 64, fraction: 0.86}}\n    \
          material: {{law: {law}}}\n    grid:\n      packing.fraction: {fractions}\n      seed: [1, 2]\n"
     );
+    let (frame, folder) = run_jam(dir.path(), &yaml);
+    (frame, std::fs::read_to_string(folder.join("report.md")).unwrap())
+}
+
+/// Runs the campaign `yaml` (named `jam`) under `dir`: its results table and its folder.
+fn run_jam(dir: &std::path::Path, yaml: &str) -> (DataFrame, std::path::PathBuf) {
+    let file = dir.join("jam.yaml");
     std::fs::write(&file, yaml).unwrap();
-    mdsolids_ok(dir.path(), &["run", file.to_str().unwrap()]);
-    let folder = dir.path().join("jam");
+    mdsolids_ok(dir, &["run", file.to_str().unwrap()]);
+    let folder = dir.join("jam");
     let frame = CsvReadOptions::default()
         .try_into_reader_with_file_path(Some(folder.join("results.csv")))
         .unwrap()
         .finish()
         .unwrap();
-    (frame, std::fs::read_to_string(folder.join("report.md")).unwrap())
+    (frame, folder)
 }
 
 #[test]
