@@ -10,7 +10,15 @@
 //! 1 kN up on every top-row node, the residual-force check every t_c; velocity Verlet,
 //! dt = t_c/50.
 //!
-//! Either workload on another `lattice` type: the same springs k (k_d has no place there) on
+//! `packing`: N bidisperse discs (half of diameter 1 m, half 1.4 m, masses π r² kg) at
+//! uniformly random positions (seed 1) in the periodic square box they cover to φ = 0.90,
+//! linear contact springs k = 1 N/m with a dashpot γ = 0.5 m_eff (m_eff = π/8 kg, the small
+//! pair's reduced mass, as LAMMPS's `hooke 1 0.5` gives that pair), contacts found by cell
+//! lists with a skin of 0.2 m and rebuilt when a disc has moved half of it; velocity Verlet,
+//! dt = t_c/50 with t_c = π/√(2k/m) of two small discs (m = π/4 kg). The same workload as
+//! ../shared/bench/in.packing for LAMMPS. `--n` counts discs here, not a lattice side.
+//!
+//! Either lattice workload on another `lattice` type: the same springs k (k_d has no place there) on
 //! an N-row triangular, honeycomb or kagome network of N nodes per row (N + 1 rows for a kagome
 //! network at even N: its top and bottom rows must be full ones): the triangular one on the
 //! stencil (its rows staggered), the honeycomb and kagome through the bond-list loop (their
@@ -21,6 +29,8 @@ use serde::Serialize;
 
 use crate::model::{Axes, LatticeType, LawSpec, Layout, Particles, PlanarLattice, SquareLattice};
 use crate::sim::{IntegratorKind, Load, Network, Relaxation, Sampling, Scene};
+use crate::spec::PackingSpec;
+use crate::study::packing::discs_of;
 use crate::theory::{gamma_for_restitution, linear_contact_duration};
 
 /// Which scene to time.
@@ -31,6 +41,8 @@ pub enum Workload {
     Kernel,
     /// The damped, loaded, clamped lattice with its relaxation checks: a relaxing run's step.
     Relax,
+    /// N random bidisperse discs at φ = 0.90 whose contacts come and go (module docs).
+    Packing,
 }
 
 impl Workload {
@@ -39,6 +51,7 @@ impl Workload {
         match self {
             Workload::Kernel => "kernel",
             Workload::Relax => "relax",
+            Workload::Packing => "packing",
         }
     }
 }
@@ -48,7 +61,7 @@ impl Workload {
 pub struct BenchConfig {
     /// Which scene.
     pub workload: Workload,
-    /// Lattice side N (N² particles).
+    /// Lattice side N (N² particles); discs for `packing`.
     pub n: usize,
     /// Steps to time.
     pub steps: u64,
@@ -75,21 +88,21 @@ impl BenchConfig {
 /// Throughput of one timed run.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct BenchResult {
-    /// `kernel` or `relax`.
+    /// `kernel`, `relax` or `packing`.
     pub workload: Workload,
-    /// The network's type.
+    /// The network's type (a packing has none: `--lattice` as given).
     pub lattice: LatticeType,
-    /// Lattice side N.
+    /// Lattice side N, or discs N.
     pub n: usize,
-    /// Particles N².
+    /// Particles N² (N discs).
     pub particles: usize,
-    /// Bonds.
+    /// Bonds (overlapping pairs at the start for a packing).
     pub bonds: usize,
     /// Steps timed.
     pub steps: u64,
     /// Threads of the pool the run used.
     pub threads: usize,
-    /// `stencil` or `bond-list`.
+    /// `stencil`, `bond-list` or `contacts`.
     pub path: &'static str,
     /// Wall time of the stepping loop (s).
     pub wall_s: f64,
@@ -168,6 +181,7 @@ pub fn reference_scene(config: &BenchConfig) -> Scene {
     match config.workload {
         Workload::Kernel => kernel_scene(config),
         Workload::Relax => relax_scene(config),
+        Workload::Packing => packing_scene(config.n, config.steps),
     }
 }
 
@@ -232,12 +246,26 @@ fn relax_scene(config: &BenchConfig) -> Scene {
     scene
 }
 
+/// The packing workload (module docs): `n` discs, `steps` steps.
+fn packing_scene(n: usize, steps: u64) -> Scene {
+    let (k, small_mass) = (1.0, std::f64::consts::PI * 0.25);
+    let discs = PackingSpec { n, radius_ratio: 1.4, fraction: 0.90, seed: 1 };
+    let (packing, particles) = discs_of(&discs, 1.0, small_mass, k);
+    // Two small discs: reduced mass m/2, undamped t_c = π/√(k/(m/2)) (LAMMPS's dt).
+    let t_c = linear_contact_duration(k, small_mass, 0.0).expect("an undamped pair oscillates");
+    Scene::new(particles, Network::Packing(packing), LawSpec::Linear, Sampling::new(t_c / 50.0, steps))
+        .contact(true)
+        .damping(0.5 * 0.5 * small_mass, 0.0)
+        .integrator(IntegratorKind::VelocityVerlet)
+}
+
 /// Runs the scene of `config` once on the current rayon pool and measures it.
 pub fn run_once(config: &BenchConfig) -> BenchResult {
     let scene = reference_scene(config);
     let (path, bonds) = match &scene.network {
         Network::Lattice(lattice) => ("stencil", lattice.bond_count()),
         Network::Bonds(bonds) => ("bond-list", bonds.len()),
+        Network::Packing(packing) => ("contacts", packing.overlapping(&scene.particles.x, &scene.particles.y).len()),
     };
     let particles = scene.particles.len();
     let trace = scene.run().trace;

@@ -689,12 +689,21 @@ fn lattice_type(name: &str) -> Result<LatticeType, String> {
 fn bench_command(configs: &[BenchConfig], threads: Option<usize>, repeat: usize, json: bool) -> anyhow::Result<()> {
     anyhow::ensure!(!configs.is_empty(), "--workload: name at least one");
     let config = &configs[0];
-    // The largest lattice a campaign may hold (2000 × 2000): a larger N aborted on allocation.
-    anyhow::ensure!((2..=2000).contains(&config.n), "--n {}: the lattice side must be in 2..=2000", config.n);
     anyhow::ensure!(config.steps >= 1 && repeat >= 1, "--steps and --repeat must be ≥ 1");
     anyhow::ensure!(repeat <= 100, "--repeat {repeat}: at most 100 timed repetitions");
     anyhow::ensure!((0.0..1.0).contains(&config.dilute), "--dilute {}: must be in [0, 1)", config.dilute);
     for config in configs {
+        if config.workload == Workload::Packing {
+            // The most discs a packing campaign may hold.
+            anyhow::ensure!(
+                (2..=10_000_000).contains(&config.n),
+                "--n {}: the packing's discs must be in 2..=10000000",
+                config.n
+            );
+            continue;
+        }
+        // The largest lattice a campaign may hold (2000 × 2000): a larger N aborted on allocation.
+        anyhow::ensure!((2..=2000).contains(&config.n), "--n {}: the lattice side must be in 2..=2000", config.n);
         let rows = config.rows();
         if let Some((_, rule)) = PlanarLattice::size_problem(config.lattice, config.n, rows, false) {
             anyhow::bail!("--n {} --lattice {}: {rule}", config.n, config.lattice.name());

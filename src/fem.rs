@@ -12,9 +12,11 @@
 mod ordering;
 mod solver;
 mod sparse;
+mod triplets;
 
 pub use self::solver::{Convergence, NEWTON_TOLERANCE, Solver};
 pub use self::sparse::Analyses;
+pub use self::triplets::{Entry, factor_and_solve};
 
 use self::sparse::Analysis;
 use crate::model::{Bonds, ForceLaw};

@@ -36,6 +36,12 @@ pub fn particle_table_name(run_id: &str) -> String {
     format!("series/{run_id}.particles.parquet")
 }
 
+/// The final state of packing run `run_id` (its discs' x, y and radius, `runner::series`),
+/// relative to its campaign's directory.
+pub fn packing_name(run_id: &str) -> String {
+    format!("packings/{run_id}.parquet")
+}
+
 /// The side-by-side movie of `scene`, relative to its campaign's directory.
 pub fn side_by_side_name(scene: &str) -> String {
     format!("plots/{scene}-side-by-side.gif")
@@ -61,6 +67,10 @@ impl Layout {
     /// The probe table of run `run_id`, stored with its record.
     pub fn probe_table_file(&self, run_id: &str) -> PathBuf {
         self.file(&probe_table_name(run_id))
+    }
+    /// The final state of packing run `run_id`, written with its record.
+    pub fn packing_file(&self, run_id: &str) -> PathBuf {
+        self.file(&packing_name(run_id))
     }
     /// The lock file held while run `run_id` is simulated (hidden, beside the records).
     pub fn run_lock_file(&self, run_id: &str) -> PathBuf {

@@ -62,7 +62,7 @@ const SETUP: [&str; 31] = [
 ];
 
 /// Errors and spreads besides the `*_error` columns.
-const DEVIATIONS: [&str; 4] = ["error", "spacing_spread", "static_nonlinearity", "homogeneity"];
+const DEVIATIONS: [&str; 5] = ["error", "spacing_spread", "static_nonlinearity", "static_residual", "homogeneity"];
 
 /// The class of column `name`.
 pub fn class(name: &str) -> Class {
@@ -82,7 +82,7 @@ pub fn class(name: &str) -> Class {
 /// first match counts, so longer names come first. k and its kin are C in N/m^β for power-law
 /// springs: written N/m^β for both. Pure numbers (ratios, counts, relative errors) are listed
 /// as "1" like any other unit: a column not listed has no unit shown, never a wrong one.
-const UNITS: [(&str, &str); 72] = [
+const UNITS: [(&str, &str); 73] = [
     // Costs and counts.
     ("wall_s", "s"),
     ("loop_s", "s"),
@@ -157,6 +157,7 @@ const UNITS: [(&str, &str); 72] = [
     ("error", "1"),
     ("homogeneity", "1"),
     ("static_nonlinearity", "1"),
+    ("static_residual", "1"),
     ("threshold", "1"),
 ];
 

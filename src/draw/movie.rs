@@ -75,7 +75,8 @@ impl std::error::Error for PastDeadline {}
 /// axes; colours are scaled to the fastest speed after the first frame. Fails with
 /// [`PastDeadline`] once the movie's deadline passes (looked at between frames), writing nothing.
 pub fn write_movie(path: &Path, movie: &Movie) -> anyhow::Result<()> {
-    let bytes = encode_movie_panels(&[movie]).with_context(|| format!("cannot draw the movie '{}'", path.display()))?;
+    let bytes = encode_movie_panels(&[movie], movie.deadline)
+        .with_context(|| format!("cannot draw the movie '{}'", path.display()))?;
     crate::output::write_atomically(path, &bytes)
 }
 
@@ -83,9 +84,10 @@ pub fn write_movie(path: &Path, movie: &Movie) -> anyhow::Result<()> {
 /// size, one colour bar): the same view and the same colour scale for all, so the runs compare
 /// frame by frame (e.g. a lattice with and without diagonals). As many frames as the shortest
 /// panel has. Drawing and encoding only: an error here is the movie's own (no frames, positions
-/// not finite, past the deadline), which the runner records on the run; writing the bytes is
-/// the caller's, and a file that cannot be written (a full disk) stops a campaign.
-pub fn encode_movie_panels(panels: &[&Movie]) -> anyhow::Result<Vec<u8>> {
+/// not finite, past `deadline`), which the runner records on the run; writing the bytes is
+/// the caller's, and a file that cannot be written (a full disk) stops a campaign. One run's
+/// movie is part of the run, so its `deadline` is the run's; side-by-side panels have none.
+pub fn encode_movie_panels(panels: &[&Movie], deadline: Option<std::time::Instant>) -> anyhow::Result<Vec<u8>> {
     ensure_font()?;
     let frames = panels.iter().map(|m| m.frames.len()).min().unwrap_or(0);
     anyhow::ensure!(frames > 0, "a movie needs at least one frame");
@@ -93,8 +95,6 @@ pub fn encode_movie_panels(panels: &[&Movie]) -> anyhow::Result<Vec<u8>> {
     let scales = Scales::of(panels, frames);
     // Frames are drawn into one RGB buffer and encoded into memory (as plotters' GIF backend
     // does, but that one writes to a fixed path itself); the file is then written atomically.
-    // One run's movie is part of the run, and within its deadline; side-by-side panels are not.
-    let deadline = if let [movie] = panels { movie.deadline } else { None };
     let encoding = |error: gif::EncodingError| anyhow::anyhow!("cannot encode the movie: {error}");
     let (width, height) = (view.width, view.height);
     let mut pixels = vec![0u8; width as usize * height as usize * 3];

@@ -17,7 +17,7 @@ const MECHANISM_RESIDUAL: f64 = 1e-6;
 
 /// Iterative refinements of a solve with a fresh factor of the shifted K, at most (each one
 /// more solve with the same factor; two are usually all the shift needs).
-const REFINEMENTS: usize = 3;
+pub(super) const REFINEMENTS: usize = 3;
 
 /// Out-of-balance force below this fraction of the load ends the Newton–Raphson iteration ...
 pub const NEWTON_TOLERANCE: f64 = 1e-12;

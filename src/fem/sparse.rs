@@ -162,7 +162,7 @@ pub(super) struct Factor {
 
 /// Diagonal shift, relative to the largest diagonal entry, that lets Cholesky factor a
 /// semi-definite K (zero-energy motions the load does not drive).
-const REGULARISATION: f64 = 1e-12;
+pub(super) const REGULARISATION: f64 = 1e-12;
 
 impl Factor {
     /// Room for the factors of `analysis`, nothing factored yet.

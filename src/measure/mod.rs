@@ -2,18 +2,22 @@
 
 pub use self::chain::normal_mode_error;
 pub use self::contact::{ContactTiming, contact_timing};
-pub use self::energy::energy_error;
+pub use self::dispersion::{ModePeak, branch_stiffness, free_line_modes};
+pub use self::energy::{decay_rate, energy_error};
 pub use self::moduli::{
     ContinuumModuli, ElasticConstants, IsotropicConstants, LatticeShape, TensileModuli, anisotropic_moduli,
     constrained_modulus_y, extension_error_allowed, homogeneity, lattice_constants, modulus_error_bound,
     network_constants, plane_wave_speeds, row_extension, row_extension_weights, shear_modulus, tensile_moduli,
 };
+pub use self::packing::ContactForces;
 pub use self::wave::{ARRIVAL_CRITERIA, arrival_time};
 
 mod chain;
 mod contact;
+mod dispersion;
 mod energy;
 mod moduli;
+mod packing;
 mod wave;
 
 /// Relative error (measured − reference)/reference, when both exist.
@@ -22,6 +26,17 @@ pub fn relative_error(measured: Option<f64>, reference: Option<f64>) -> Option<f
         (Some(m), Some(r)) if r != 0.0 => Some((m - r) / r),
         _ => None,
     }
+}
+
+/// How far a measured curve lies from its analytical twin: the largest |y − exact(t)| over
+/// the `points` (t, y) where `exact` is defined, divided by the largest |exact(t)| there (a
+/// relative distance, 0 when they coincide). `None` where `exact` is nowhere defined or zero.
+pub fn curve_deviation(points: &[(f64, f64)], exact: impl Fn(f64) -> Option<f64>) -> Option<f64> {
+    let (deviation, scale) = points
+        .iter()
+        .filter_map(|&(t, y)| exact(t).map(|e| ((y - e).abs(), e.abs())))
+        .fold((0.0f64, 0.0f64), |(d, s), (dy, e)| (d.max(dy), s.max(e)));
+    (scale > 0.0).then(|| deviation / scale)
 }
 
 /// Order of convergence p in |error| ∝ dt^p: least-squares slope of ln|error| against ln dt
@@ -40,6 +55,8 @@ pub struct PowerLawFit {
     pub exponent: f64,
     /// R² of the straight line on log–log axes (1: every point on it).
     pub r_squared: f64,
+    /// The prefactor c.
+    pub prefactor: f64,
 }
 
 /// Fits y = c x^p to the positive, finite `points` (x, y); `None` with fewer than two of them
@@ -50,16 +67,40 @@ pub fn power_law_fit(points: &[(f64, f64)]) -> Option<PowerLawFit> {
         .filter(|(x, y)| *x > 0.0 && *y > 0.0 && x.is_finite() && y.is_finite())
         .map(|(x, y)| (x.ln(), y.ln()))
         .collect();
-    if logs.len() < 2 {
+    line_fit(&logs).map(|line| PowerLawFit {
+        exponent: line.slope,
+        r_squared: line.r_squared,
+        prefactor: line.intercept.exp(),
+    })
+}
+
+/// A least-squares straight line y = a + b x.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LineFit {
+    /// The slope b.
+    pub slope: f64,
+    /// The intercept a (y at x = 0).
+    pub intercept: f64,
+    /// R² of the line (1: every point on it).
+    pub r_squared: f64,
+}
+
+/// Fits y = a + b x to `points` (x, y) by least squares; `None` with fewer than two of them or
+/// a single x.
+pub fn line_fit(points: &[(f64, f64)]) -> Option<LineFit> {
+    if points.len() < 2 {
         return None;
     }
-    let n = logs.len() as f64;
-    let (mx, my) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
-    let (sxy, sxx, syy) = logs.iter().fold((0.0, 0.0, 0.0), |(a, b, c), (x, y)| {
+    let n = points.len() as f64;
+    let (mx, my) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let (sxy, sxx, syy) = points.iter().fold((0.0, 0.0, 0.0), |(a, b, c), (x, y)| {
         (a + (x - mx) * (y - my), b + (x - mx) * (x - mx), c + (y - my) * (y - my))
     });
-    (sxx > 0.0)
-        .then(|| PowerLawFit { exponent: sxy / sxx, r_squared: if syy > 0.0 { sxy * sxy / (sxx * syy) } else { 1.0 } })
+    (sxx > 0.0).then(|| LineFit {
+        slope: sxy / sxx,
+        intercept: my - sxy / sxx * mx,
+        r_squared: if syy > 0.0 { sxy * sxy / (sxx * syy) } else { 1.0 },
+    })
 }
 
 /// Errors at or below this are round-off, not truncation: left out of orders and

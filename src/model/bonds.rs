@@ -97,8 +97,9 @@ impl Bonds {
     }
 }
 
-/// A uniform number in [0, 1) from `(seed, index)` by the splitmix64 finaliser.
-fn uniform(seed: u64, index: u64) -> f64 {
+/// A uniform number in [0, 1) from `(seed, index)` by the splitmix64 finaliser: the one
+/// source of randomness of the networks and packings (reproducible on every machine).
+pub(crate) fn uniform(seed: u64, index: u64) -> f64 {
     let mut z = seed.wrapping_add(index.wrapping_mul(0x9e37_79b9_7f4a_7c15));
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);

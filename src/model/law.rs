@@ -248,6 +248,12 @@ impl LawSpec {
     pub fn tangent_stiffness(self, k: f64, delta: f64) -> f64 {
         self.dispatch(Evaluate { k, delta, quantity: Quantity::Tangent })
     }
+
+    /// Stored energy e(δ) (J) of a bond with constant `k` at extension `delta` (m), for the
+    /// scalar uses outside the bond loop (a packing's contact energy).
+    pub fn energy(self, k: f64, delta: f64) -> f64 {
+        self.dispatch(Evaluate { k, delta, quantity: Quantity::Energy })
+    }
 }
 
 /// Which of a law's functions [`Evaluate`] asks for.
@@ -255,6 +261,7 @@ impl LawSpec {
 enum Quantity {
     Force,
     Tangent,
+    Energy,
 }
 
 /// A [`Quantity`] at stiffness constant `k` and extension `delta` (m).
@@ -270,6 +277,7 @@ impl LawVisitor for Evaluate {
         match self.quantity {
             Quantity::Force => law.elastic_force(self.k, self.delta),
             Quantity::Tangent => law.tangent_stiffness(self.k, self.delta),
+            Quantity::Energy => law.energy(self.k, self.delta),
         }
     }
 }

@@ -8,11 +8,13 @@ pub use self::lattice::SquareLattice;
 pub use self::law::{
     BondDashpot, Dashpot, ForceLaw, LawName, LawSpec, LawVisitor, Linear, NoDashpot, PowerLaw, Spring,
 };
+pub use self::packing::{Contacts, PeriodicBox, bidisperse_box, contacts_within, random_bidisperse};
 pub use self::particles::{Axes, Particles};
 pub use self::planar::{Edges, LatticeType, Layout, PlanarLattice};
 
 mod bonds;
 mod lattice;
 mod law;
+mod packing;
 mod particles;
 mod planar;

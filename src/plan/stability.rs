@@ -319,7 +319,7 @@ impl Modes {
 /// `extension` (N/m) and its unit direction from j to i.
 fn for_each_bond_direction(scene: &Scene, extension: f64, mut visit: impl FnMut(usize, usize, f64, f64, f64)) {
     let p = &scene.particles;
-    scene.network.for_each_bond(|i, j, _rest, k, shift| {
+    scene.network.for_each_bond(&p.x, &p.y, |i, j, _rest, k, shift| {
         let (dx, dy) = (p.x[i] - p.x[j] + shift, p.y[i] - p.y[j]);
         let r = dx.hypot(dy);
         visit(i, j, scene.law.tangent_stiffness(k, extension), dx / r, dy / r);

@@ -3,7 +3,7 @@
 use serde::Serialize;
 
 use super::figure::{Figure, FigureRef, movie_refs};
-use super::findings::{Evidence, Finding, Paragraph, discussion, findings};
+use super::findings::{Evidence, Finding, Paragraph, discussion, findings, overview};
 use super::kinds::{KindsPresent, physics_words};
 use super::scene::{Scene, SceneTables, Scenes};
 use super::words::number;
@@ -54,6 +54,8 @@ pub struct ReportContext {
     kinds: KindsPresent,
     has_wave: bool,
     target_error: String,
+    /// The abstract: the answers in sentences, each computed from the results.
+    overview: Vec<String>,
     /// The coursework's items this campaign answers, in the coursework's order.
     findings: Vec<Finding>,
     /// The discussion's paragraphs.
@@ -158,6 +160,7 @@ pub fn build(
         kinds: KindsPresent::of(campaign),
         target_error: format!("{:e}", campaign.target_error),
         has_wave: records.iter().any(|r| r.spec.wave().is_some()),
+        overview: overview(&evidence),
         findings: findings(&evidence),
         discussion: discussion(&evidence),
         explains: Explains::of(&scenes),

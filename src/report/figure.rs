@@ -47,6 +47,20 @@ pub enum FigureKind {
     SpeedAgainstV0,
     /// Displacement of every row or particle against time (`waves.rs`).
     SpaceTime,
+    /// A pair's overlap δ(t) over the damped oscillator's (`curves.rs`).
+    Overlap,
+    /// A chain's displacements over its normal-mode sum (`curves.rs`).
+    NormalModes,
+    /// A damped power-law contact's restitution against v0 (`curves.rs`).
+    RestitutionV0,
+    /// A power-law contact's duration against v0 (`curves.rs`).
+    DurationV0,
+    /// A lattice strip's dispersion relation ω(q) over its branches (`curves.rs`).
+    Dispersion,
+    /// A lattice's relaxation under background damping over its late envelope (`curves.rs`).
+    Envelope,
+    /// A packing scene's p, z − 4, K and G against φ − φ_J with their power laws (`jamming.rs`).
+    Jamming,
 }
 
 /// A drawn figure.
@@ -89,11 +103,11 @@ pub struct FigureRef {
     pub caption: String,
 }
 
-/// The movies of a scene: its runs side by side if drawn (the same panels as the runs' own
-/// movies, so those are then left out), otherwise each run's own.
+/// The movies of a scene: its runs side by side if drawn (runs shown side by side have no
+/// movie of their own), and each other run's own.
 pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> Vec<FigureRef> {
     let together = side_by_side.iter().any(|s| s == scene);
-    let own = mine.iter().filter(|r| !together && r.has_movie());
+    let own = mine.iter().filter(|r| r.has_own_movie());
     together
         .then(|| FigureRef {
             file: side_by_side_name(scene),

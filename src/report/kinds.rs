@@ -57,6 +57,9 @@ pub(super) fn part(records: &[RunRecord], scene: &str, kind: SceneKind) -> anyho
         SceneKind::Pair => pair_part(&runs)?,
         SceneKind::Chain => chain_part(&runs)?,
         SceneKind::Lattice => lattice_part(&runs, records)?,
+        SceneKind::Packing => {
+            Part { figures: super::jamming::part(records, scene)?.figures, rows: KindRows::default() }
+        }
     };
     figures.extend(own.figures);
     Ok(Part { figures, rows: own.rows })

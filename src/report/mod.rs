@@ -4,6 +4,7 @@
 //! in, so the binary works from any directory. Only sections of the campaign's scenes show.
 
 mod context;
+mod curves;
 mod edges;
 
 pub use self::context::LeftOut;
@@ -11,6 +12,8 @@ mod exponents;
 mod figure;
 mod figures;
 pub mod findings;
+pub mod images;
+mod jamming;
 pub mod kinds;
 pub mod markdown;
 pub mod page;
@@ -70,7 +73,7 @@ pub fn render_with_left_out(
     let movies: BTreeSet<String> = side_by_side
         .iter()
         .map(|scene| crate::output::side_by_side_name(scene))
-        .chain(records.iter().filter(|r| r.spec.movie.is_some()).map(|r| crate::output::movie_name(&r.run_id)))
+        .chain(records.iter().filter(|r| r.has_own_movie()).map(|r| crate::output::movie_name(&r.run_id)))
         .collect();
     remove_stale(&layout.root, "plots", ".gif", &movies)?;
     // Movies of earlier versions sat in the cache folder.
@@ -117,7 +120,9 @@ pub(crate) fn remove_stale(root: &Path, dir: &str, suffix: &str, keep: &BTreeSet
 
 /// Renders the Markdown template `(name, text)` with `context` into `<dir>/report.md`, and the
 /// same Markdown as HTML (pulldown-cmark) inside the page shell into `<dir>/index.html`, so
-/// the text exists once.
+/// the text exists once; where the Markdown marks an appendix (`page::APPENDIX_MARKER`), what
+/// follows it goes to `<dir>/appendix.html` instead, linked from `index.html`. The images are
+/// read back for their sizes, and each movie gets its filmstrip for print (`images.rs`).
 pub fn write_pages(dir: &std::path::Path, markdown: (&str, &str), mut context: tera::Context) -> anyhow::Result<()> {
     let (name, text) = markdown;
     // Two instances: every value is escaped for its target, Markdown (`markdown::tera`) or HTML.
@@ -127,7 +132,25 @@ pub fn write_pages(dir: &std::path::Path, markdown: (&str, &str), mut context: t
     let mut tera = tera::Tera::new();
     tera.add_raw_template("index.html", HTML_TEMPLATE).context("templates/index.html.tera does not parse")?;
     write_atomically(&dir.join("report.md"), page::with_contents(&markdown).as_bytes())?;
-    context.insert("body", &page::to_html(&markdown));
+    let sources = page::image_sources(&markdown);
+    let shown = images::shown(dir, sources.iter().map(String::as_str))?;
+    let (main, appendix) = page::split_appendix(&page::to_html(&markdown, &shown));
+    context.insert("body", &main);
     let html = tera.render("index.html", &context).context("cannot render templates/index.html.tera")?;
-    write_atomically(&dir.join("index.html"), html.as_bytes())
+    write_atomically(&dir.join(page::MAIN_PAGE), html.as_bytes())?;
+    let appendix_file = dir.join(page::APPENDIX_PAGE);
+    let Some(appendix) = appendix else {
+        // An earlier report of this folder may have had an appendix.
+        return match std::fs::remove_file(&appendix_file) {
+            Err(error) if error.kind() != std::io::ErrorKind::NotFound => {
+                Err(error).with_context(|| format!("cannot remove the stale '{}'", appendix_file.display()))
+            }
+            _ => Ok(()),
+        };
+    };
+    let title = context.get("title").and_then(|t| t.as_str()).unwrap_or_default().to_string();
+    context.insert("title", &format!("{title}: appendix"));
+    context.insert("body", &appendix);
+    let html = tera.render("index.html", &context).context("cannot render templates/index.html.tera")?;
+    write_atomically(&appendix_file, html.as_bytes())
 }

@@ -15,16 +15,32 @@
 //! - a figure as a paragraph holding only an image (or a link around one) followed by an italic
 //!   paragraph, its caption: both pages number it, the caption starting "Figure N: " (in
 //!   `index.html` inside a `<figure id="figure-N">`), nothing to count.
+//! - a line [`APPENDIX_MARKER`] where the appendix starts: `index.html` ends there with a link to
+//!   `appendix.html`, which holds the rest ([`split_appendix`]); `report.md` stays one document.
+//!
+//! Every `<img>` gets its `width` and `height` from [`images::shown`](super::images::shown), a
+//! movie its filmstrip (an `<img class="filmstrip">` the page's print style shows in its place),
+//! and a table without rows is not written.
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 
 use pulldown_cmark::{CowStr, Event, HeadingLevel, Options, Parser, Tag, TagEnd};
 use pulldown_cmark_escape::{escape_href, escape_html};
 
+use super::images::Shown;
+
 /// The line (alone on it) where a template wants the contents list: an HTML comment, so
 /// Markdown viewers show nothing of it when no list follows.
 pub const CONTENTS_MARKER: &str = "<!-- contents -->";
+
+/// The line (alone on it) where the appendix starts: an HTML comment, invisible in `report.md`.
+pub const APPENDIX_MARKER: &str = "<!-- appendix -->";
+
+/// The page a report opens on.
+pub const MAIN_PAGE: &str = "index.html";
+/// The page a report's appendix is written to.
+pub const APPENDIX_PAGE: &str = "appendix.html";
 
 /// GitHub's tables, and `$…$` / `$$…$$` read as math, not text.
 const OPTIONS: Options = Options::ENABLE_TABLES.union(Options::ENABLE_MATH);
@@ -175,10 +191,10 @@ pub fn with_contents(markdown: &str) -> String {
 }
 
 /// `markdown` as the HTML body of `index.html` (see the module's documentation): numbered as in
-/// [`with_contents`].
-pub fn to_html(markdown: &str) -> String {
+/// [`with_contents`], its images sized by `images` (keyed by their source as written).
+pub fn to_html(markdown: &str, images: &HashMap<String, Shown>) -> String {
     let markdown = place_contents(&number_captions(markdown), true);
-    let events = figure_elements(Parser::new_ext(&markdown, OPTIONS).collect());
+    let events = figure_elements(without_empty_tables(Parser::new_ext(&markdown, OPTIONS).collect()));
     let mut ids = headings(&markdown).into_iter().map(|h| h.id);
     let mut out = Vec::with_capacity(events.len());
     let mut nav: Option<usize> = None; // open lists inside the contents' <nav>
@@ -188,7 +204,7 @@ pub fn to_html(markdown: &str) -> String {
             match event {
                 Event::End(TagEnd::Image) => {
                     let (src, title, alt) = image.take().expect("an image is open");
-                    out.push(Event::InlineHtml(img(&src, &title, &alt).into()));
+                    out.push(Event::InlineHtml(img(&src, &title, &alt, images.get(src.as_ref())).into()));
                 }
                 Event::Text(t) | Event::Code(t) | Event::InlineMath(t) | Event::DisplayMath(t) => alt.push_str(&t),
                 _ => {}
@@ -234,18 +250,116 @@ pub fn to_html(markdown: &str) -> String {
     body
 }
 
-/// An `<img>` loaded when it comes near the window (the page shows dozens of figures).
-fn img(src: &str, title: &str, alt: &str) -> String {
+/// An `<img>` loaded when it comes near the window (the page shows dozens of figures), with its
+/// size where `shown` knows it; a movie with a filmstrip is followed by the strip, which only
+/// print shows (`.filmstrip` in the page's style) and the screen leaves out (`.movie` there).
+fn img(src: &str, title: &str, alt: &str, shown: Option<&Shown>) -> String {
+    let strip = shown.and_then(|s| s.filmstrip.as_ref());
+    let mut html = tag(src, alt, shown.and_then(|s| s.size), strip.map(|_| "movie"));
+    if !title.is_empty() {
+        html.insert_str(html.len() - 1, &attribute("title", title));
+    }
+    if let Some(strip) = strip {
+        html.push_str(&tag(&strip.file, &format!("{alt} ({})", strip.caption), Some(strip.size), Some("filmstrip")));
+    }
+    html
+}
+
+/// `<img src alt [width height] [class] loading="lazy">`, every value escaped.
+fn tag(src: &str, alt: &str, size: Option<(u32, u32)>, class: Option<&str>) -> String {
     let mut html = String::from("<img src=\"");
     escape_href(&mut html, src).expect("writing to a String cannot fail");
-    html.push_str("\" alt=\"");
-    escape_html(&mut html, alt).expect("writing to a String cannot fail");
-    if !title.is_empty() {
-        html.push_str("\" title=\"");
-        escape_html(&mut html, title).expect("writing to a String cannot fail");
+    html.push('"');
+    html.push_str(&attribute("alt", alt));
+    if let Some((width, height)) = size {
+        html.push_str(&format!(" width=\"{width}\" height=\"{height}\""));
     }
-    html.push_str("\" loading=\"lazy\">");
+    if let Some(class) = class {
+        html.push_str(&attribute("class", class));
+    }
+    html.push_str(" loading=\"lazy\">");
     html
+}
+
+/// ` name="value"`, the value escaped for HTML.
+fn attribute(name: &str, value: &str) -> String {
+    let mut html = format!(" {name}=\"");
+    escape_html(&mut html, value).expect("writing to a String cannot fail");
+    html.push('"');
+    html
+}
+
+/// `events` without the tables that have no rows below their header (a table the data left
+/// empty says nothing, and a reader would look for what is missing).
+fn without_empty_tables(events: Vec<Event>) -> Vec<Event> {
+    let mut out = Vec::with_capacity(events.len());
+    let mut table: Option<(usize, bool)> = None; // where the open table starts in `out`, has it a row
+    for event in events {
+        match &event {
+            Event::Start(Tag::Table(_)) => table = Some((out.len(), false)),
+            Event::Start(Tag::TableRow) => table = table.map(|(start, _)| (start, true)),
+            Event::End(TagEnd::Table) => {
+                if let Some((start, false)) = table.take() {
+                    out.truncate(start);
+                    continue;
+                }
+            }
+            _ => {}
+        }
+        out.push(event);
+    }
+    out
+}
+
+/// The sources of the images `markdown` shows, as written, in order.
+pub fn image_sources(markdown: &str) -> Vec<String> {
+    Parser::new_ext(markdown, OPTIONS)
+        .filter_map(|event| match event {
+            Event::Start(Tag::Image { dest_url, .. }) => Some(dest_url.into_string()),
+            _ => None,
+        })
+        .collect()
+}
+
+/// `body` (of [`to_html`]) split at the [`APPENDIX_MARKER`]: the main page, ending with a link
+/// to `appendix.html`, and the appendix, starting with a link back; each link to a heading or
+/// figure on the other page leads there. Without the marker, `body` and no appendix.
+pub fn split_appendix(body: &str) -> (String, Option<String>) {
+    let Some(at) = body.find(APPENDIX_MARKER) else { return (body.to_string(), None) };
+    let (main, appendix) = (&body[..at], &body[at + APPENDIX_MARKER.len()..]);
+    let main = linked_across(main, appendix, APPENDIX_PAGE);
+    let appendix = linked_across(appendix, main.as_str(), MAIN_PAGE);
+    let main = format!(
+        "{main}<p class=\"appendix-link\"><strong>Appendix:</strong> the methods, every scene with its figures, \
+         movies and tables, and every run's numbers are on a page of their own, \
+         <a href=\"{APPENDIX_PAGE}\">{APPENDIX_PAGE}</a>.</p>\n"
+    );
+    let appendix = format!("<p class=\"back\"><a href=\"{MAIN_PAGE}\">← the report</a></p>\n{appendix}");
+    (main, Some(appendix))
+}
+
+/// `part` with each `href="#id"` whose id is not in `part` but in `other` pointing to
+/// `other_page#id`.
+fn linked_across(part: &str, other: &str, other_page: &str) -> String {
+    let ids = |html: &str| -> HashSet<String> {
+        html.split(" id=\"").skip(1).filter_map(|rest| rest.split('"').next()).map(str::to_string).collect()
+    };
+    let (mine, theirs) = (ids(part), ids(other));
+    let mut out = String::with_capacity(part.len());
+    let mut pieces = part.split("href=\"#");
+    out.push_str(pieces.next().unwrap_or_default());
+    for piece in pieces {
+        let id = piece.split('"').next().unwrap_or_default();
+        let decoded = percent_decoded(id);
+        let elsewhere = !mine.contains(&decoded) && theirs.contains(&decoded);
+        out.push_str(if elsewhere { "href=\"" } else { "href=\"#" });
+        if elsewhere {
+            out.push_str(other_page);
+            out.push('#');
+        }
+        out.push_str(piece);
+    }
+    out
 }
 
 /// LaTeX `latex` as MathML (a block when `display`); LaTeX the renderer cannot read as its code

@@ -1,11 +1,12 @@
-//! The scenes as the report shows them: every topic (`kinds.rs`, `precision.rs`, `waves.rs`,
-//! `probes.rs`, `solids.rs`, `stability_map.rs`, `exponents.rs`) asked once per scene for its
-//! part, the figures it draws and the rows of its tables. The one list of the topics, in the
+//! The scenes as the report shows them: every topic (`kinds.rs`, `curves.rs`, `precision.rs`,
+//! `waves.rs`, `probes.rs`, `solids.rs`, `stability_map.rs`, `exponents.rs`) asked once per scene
+//! for its part, the figures it draws and the rows of its tables. The one list of the topics, in the
 //! order a scene shows their figures; a new topic is one line in [`scene_part`] and one field of
 //! [`SceneTables`].
 
 use serde::Serialize;
 
+use super::curves;
 use super::exponents::{self, ExponentRow};
 use super::figure::{Figure, Part};
 use super::figures::dissipation_figure;
@@ -81,6 +82,7 @@ fn scene_part(
     target_error: f64,
 ) -> anyhow::Result<Part<SceneTables>> {
     let kind = kinds::part(records, scene, kind)?;
+    let curves = curves::part(records, scene)?;
     let precision = precision::part(records, scene, target_error)?;
     let waves = waves::part(records, fits, scene)?;
     let probes = probes::part(records, scene)?;
@@ -89,6 +91,7 @@ fn scene_part(
     let exponents = exponents::part(fits, scene);
     let figures = [
         kind.figures,
+        curves.figures,
         precision.figures,
         waves.figures,
         probes.figures,

@@ -93,6 +93,7 @@ fn blank_record(spec: &RunSpec) -> RunRecord {
         probe_table: None,
         full_series: None,
         movie: None,
+        final_state: None,
     }
 }
 
@@ -125,6 +126,8 @@ fn fill(record: &mut RunRecord, mut run: Run, deadline: Instant) {
         t_c: spec.t_c,
         deadline: Some(deadline),
     });
+    // Made here, where the final state is at hand; a table that cannot be made is left out.
+    record.final_state = series::packing_table(spec, &run.outcome.state.particles).ok().flatten();
     let trace = run.outcome.trace;
     record.status = trace.status;
     record.message = trace.message.clone();

@@ -374,9 +374,12 @@ fn run_and_store(
     let campaign = &plan.campaign;
     let mut record = execute_within(spec, &campaign.budget, &plan.estimates);
     if let Some(movie) = record.movie.take() {
-        write_run_movie(layout, &mut record, &movie, campaign.budget.seconds_per_run)?;
-        if movie.spec.side_by_side && record.has_movie() {
+        // A run shown side by side is a panel of its scene's movie, drawn once all have ended;
+        // its own movie would repeat that panel (and weigh as much), so none is written.
+        if movie.spec.side_by_side {
             *panel.lock().expect("a panel is written once") = Some(movie);
+        } else {
+            write_run_movie(layout, &mut record, &movie, campaign.budget.seconds_per_run)?;
         }
     }
     // The tables first: a kill between them and the record leaves files and no record (the
@@ -396,6 +399,9 @@ fn run_and_store(
         None => {}
     }
     write_atomically(&layout.series_table_file(&record.run_id), &stored.series)?;
+    if let Some(table) = record.final_state.take() {
+        write_atomically(&layout.packing_file(&record.run_id), &table)?;
+    }
     write_atomically(&layout.run_file(&record.run_id), &stored.json)?;
     Ok(Some((record, true)))
 }
@@ -412,7 +418,7 @@ pub fn write_run_movie(
     movie: &Movie,
     seconds_per_run: f64,
 ) -> anyhow::Result<()> {
-    let error = match crate::draw::encode_movie_panels(&[movie]) {
+    let error = match crate::draw::encode_movie_panels(&[movie], movie.deadline) {
         Ok(bytes) => return write_atomically(&layout.movie_file(&record.run_id), &bytes),
         Err(error) => error,
     };
@@ -451,7 +457,8 @@ pub fn write_missing_movies(
         frames.remove(&spec.run_id()).or_else(|| execute_within(spec, &campaign.budget, &plan.estimates).movie)
     };
     let mut redrawn: BTreeMap<String, Movie> = BTreeMap::new();
-    for record in records.iter().filter(|r| r.has_movie() && !layout.movie_file(&r.run_id).is_file()) {
+    let own_missing = |r: &&RunRecord| r.has_own_movie() && !layout.movie_file(&r.run_id).is_file();
+    for record in records.iter().filter(own_missing) {
         if let Some(movie) = movie_of(&record.spec) {
             write_movie_or_say(&layout.movie_file(&record.run_id), &[&movie])?;
             redrawn.insert(record.run_id.clone(), movie);
@@ -459,7 +466,7 @@ pub fn write_missing_movies(
     }
     for (scene, _) in &campaign.scenes {
         let ids = side_by_side_ids(campaign, scene);
-        if ids.len() < 2 || side_by_side_is_current(campaign, layout, scene) {
+        if ids.is_empty() || side_by_side_is_current(campaign, layout, scene) {
             continue;
         }
         let (movie_path, runs_path) = (layout.side_by_side_movie(scene), layout.side_by_side_runs(scene));
@@ -488,7 +495,7 @@ pub fn write_missing_movies(
 /// movie's own error: past its run's deadline, positions not finite) is said on stderr and left
 /// out (false), for it never stops a campaign. A file that cannot be written is an error.
 fn write_movie_or_say(path: &std::path::Path, panels: &[&Movie]) -> anyhow::Result<bool> {
-    match crate::draw::encode_movie_panels(panels) {
+    match crate::draw::encode_movie_panels(panels, None) {
         Ok(bytes) => write_atomically(path, &bytes).map(|()| true),
         Err(error) => {
             eprintln!("warning: the movie '{}' is not drawn: {error:#}", path.display());
@@ -509,7 +516,7 @@ pub fn side_by_side_is_current(campaign: &Campaign, layout: &Layout, scene: &str
     let listed = read_regular(&layout.side_by_side_runs(scene), STORED_FILE_MOST_BYTES, "a stored file")
         .map(|bytes| String::from_utf8_lossy(&bytes).into_owned())
         .unwrap_or_default();
-    ids.len() >= 2 && listed == ids.join("\n") + "\n" && layout.side_by_side_movie(scene).is_file()
+    !ids.is_empty() && listed == ids.join("\n") + "\n" && layout.side_by_side_movie(scene).is_file()
 }
 
 /// One bar for the whole campaign (count, elapsed, ETA); hidden when stderr is not a terminal.

@@ -56,6 +56,10 @@ pub struct RunRecord {
     /// `runs/<run_id>.gif`, never stored in the record.
     #[serde(skip)]
     pub movie: Option<Movie>,
+    /// A packing's discs where its run stopped (`packings/<run_id>.parquet`,
+    /// [`series::packing_table`]): written by the runner beside the record, never held in it.
+    #[serde(skip)]
+    pub final_state: Option<Vec<u8>>,
 }
 
 /// What a record's message says (followed by why) when its run's movie could not be drawn:
@@ -70,6 +74,13 @@ impl RunRecord {
         self.spec.movie.is_some()
             && !matches!(self.status, RunStatus::Panicked | RunStatus::Budget | RunStatus::Mechanism)
             && !self.message.contains(NO_MOVIE)
+    }
+
+    /// Whether the run has a movie of its own (`plots/<run_id>.gif`): it has a movie
+    /// ([`RunRecord::has_movie`]) and is not shown side by side with its scene's other runs,
+    /// where it is a panel of the scene's movie instead.
+    pub fn has_own_movie(&self) -> bool {
+        self.has_movie() && self.spec.movie.is_some_and(|m| !m.side_by_side)
     }
 
     /// Checks a record read from the store as the record of `spec` (whose id names its file):
@@ -220,6 +231,7 @@ impl RunRecord {
             probe_table: self.probe_table.clone(),
             full_series: None,
             movie: None,
+            final_state: None,
         }
     }
 

@@ -14,8 +14,9 @@ use polars::prelude::{
     SerReader, StatisticsOptions,
 };
 
+use crate::model::Particles;
 use crate::sim::{ProbeTrace, STORED_SAMPLES, Trace, stored_samples};
-use crate::spec::{RunSpec, SeriesKept};
+use crate::spec::{KindSpec, RunSpec, SeriesKept};
 
 /// The energy columns of a series table, in the order of a [`Trace`]'s series: kinetic,
 /// potential, dissipated energy and the loads' work so far (J).
@@ -343,6 +344,20 @@ fn values_column(name: &str, values: Vec<f64>, spec: &RunSpec) -> Column {
     } else {
         Column::new(name.into(), values)
     }
+}
+
+/// `packings/<run_id>.parquet` of a packing run: its discs where the run stopped, one row per
+/// disc, `x`, `y` and `radius` (m, double precision), from which every number of its row
+/// can be computed again (with `box_side` of the results table); `None` for other kinds.
+pub fn packing_table(spec: &RunSpec, particles: &Particles) -> anyhow::Result<Option<Vec<u8>>> {
+    let KindSpec::Packing(run) = &spec.scene_kind else { return Ok(None) };
+    let (packing, _) = crate::study::packing::discs(spec, run);
+    let columns = vec![
+        Column::new("x".into(), particles.x.clone()),
+        Column::new("y".into(), particles.y.clone()),
+        Column::new("radius".into(), packing.radius),
+    ];
+    parquet(columns).map(Some)
 }
 
 /// `columns` as a Parquet file: zstd at polars' level (3: level 19 made the coursework's folder

@@ -1,6 +1,7 @@
 //! Time integration of a [`Scene`]: the bond force loop, the integrators, per-step probes and
 //! the sampled [`Trace`]. Pure computation: no files, no terminal, no threads.
 
+pub use self::contacts::{ContactNetwork, Packing};
 pub use self::field::{BondNetwork, ForceField};
 pub use self::integrate::{
     ForestRuth, Gear, Integrator, IntegratorKind, PositionVerlet, RungeKutta4, SymplecticEuler, VelocityVerlet,
@@ -14,6 +15,7 @@ pub use self::scene::{Network, Outcome, Scene, simulate_with};
 pub use self::state::{Drive, Load, State};
 pub use self::stencil::LatticeNetwork;
 
+mod contacts;
 mod field;
 mod integrate;
 pub(crate) mod parallel;

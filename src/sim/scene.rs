@@ -1,6 +1,7 @@
 //! A scene: everything one run integrates, as plain data, and the one place where the run's
 //! choices (law, dashpot, contact, integrator) are turned into monomorphised code.
 
+use super::contacts::{ContactNetwork, Packing};
 use super::field::{BondNetwork, ForceField};
 use super::integrate::{
     ForestRuth, Gear, IntegratorKind, PositionVerlet, RungeKutta4, SymplecticEuler, VelocityVerlet,
@@ -22,14 +23,24 @@ pub enum Network {
     Lattice(SquareLattice),
     /// Any other network: an explicit bond list, sorted for sequential access.
     Bonds(Bonds),
+    /// Discs in a periodic box, their contacts found as they move.
+    Packing(Packing),
 }
 
 impl Network {
-    /// Calls `visit(i, j, rest, k, shift_x)` for every bond (separation x_i − x_j + shift_x).
-    pub fn for_each_bond(&self, visit: impl FnMut(usize, usize, f64, f64, f64)) {
+    /// Calls `visit(i, j, rest, k, shift_x)` for every bond (separation x_i − x_j + shift_x)
+    /// at positions `(x, y)`: a packing's overlapping pairs there that do not cross the box's
+    /// bottom edge (a bond has no y shift), for the plan's mode estimate and the movie.
+    pub fn for_each_bond(&self, x: &[f64], y: &[f64], mut visit: impl FnMut(usize, usize, f64, f64, f64)) {
         match self {
             Network::Lattice(lattice) => lattice.for_each_bond(visit),
             Network::Bonds(bonds) => bonds.for_each(visit),
+            Network::Packing(packing) => {
+                let touching = packing.overlapping(x, y);
+                for b in (0..touching.len()).filter(|&b| touching.shift_y[b] == 0.0) {
+                    visit(touching.i[b], touching.j[b], touching.rest[b], packing.k, touching.shift_x[b]);
+                }
+            }
         }
     }
 }
@@ -151,6 +162,10 @@ impl Scene {
             }
             Network::Bonds(bonds) => {
                 let field = BondNetwork::new(spring, bonds, self.particles.len(), self.background_gamma);
+                self.integrate(field)
+            }
+            Network::Packing(packing) => {
+                let field = ContactNetwork::new(spring, packing.clone(), self.background_gamma);
                 self.integrate(field)
             }
         }

@@ -64,11 +64,13 @@ pub enum SceneKind {
     Chain,
     /// An nx × ny square lattice on supports, loaded on its top row and relaxed.
     Lattice,
+    /// Bidisperse discs in a periodic square box, relaxed to an energy minimum (jammed or not).
+    Packing,
 }
 
 impl SceneKind {
     /// Every kind, in the order error messages list them.
-    pub const ALL: [SceneKind; 3] = [SceneKind::Pair, SceneKind::Chain, SceneKind::Lattice];
+    pub const ALL: [SceneKind; 4] = [SceneKind::Pair, SceneKind::Chain, SceneKind::Lattice, SceneKind::Packing];
 
     /// The name used in files and tables.
     pub fn name(self) -> &'static str {
@@ -76,6 +78,7 @@ impl SceneKind {
             SceneKind::Pair => "pair",
             SceneKind::Chain => "chain",
             SceneKind::Lattice => "lattice",
+            SceneKind::Packing => "packing",
         }
     }
 }
@@ -86,7 +89,7 @@ impl SceneKind {
 pub struct RawScene {
     /// Scene name (unique in the campaign).
     pub name: Option<String>,
-    /// `pair` or `chain`.
+    /// `pair`, `chain`, `lattice` or `packing`.
     pub kind: Option<SceneKind>,
     /// Masses and springs.
     pub material: Option<RawMaterial>,
@@ -108,6 +111,8 @@ pub struct RawScene {
     pub wall_distance: Option<f64>,
     /// Lattice: size and diagonal springs.
     pub lattice: Option<RawLattice>,
+    /// Packing: discs, size ratio and area fraction.
+    pub packing: Option<RawPacking>,
     /// Lattice: how the bottom is supported.
     pub supports: Option<Supports>,
     /// Lattice: the load on the top row.
@@ -125,8 +130,8 @@ pub struct RawScene {
     pub impulse: Option<RawImpulse>,
     /// Lattice: rows and columns whose displacement and velocity are recorded at every sample.
     pub probes: Option<RawProbes>,
-    /// Lattice: seed of the random bond cutting and stiffness spread (a grid axis for
-    /// ensembles; default 1).
+    /// Lattice: seed of the random bond cutting and stiffness spread; packing: of the discs'
+    /// random positions (a grid axis for ensembles; default 1).
     pub seed: Option<u64>,
     /// Grid over this scene only (dotted paths), combined with the campaign's grid.
     pub grid: Option<Grid>,
@@ -160,6 +165,18 @@ pub struct RawLattice {
     /// Every kept bond's stiffness times 1 + w·U with U uniform in [−1, 1] (from `seed`);
     /// w in [0, 1).
     pub stiffness_spread: Option<f64>,
+}
+
+/// `packing:` section.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPacking {
+    /// Number of discs (≥ 2), half small (diameter `geometry.spacing`), half large.
+    pub n: Option<usize>,
+    /// Large diameter / small diameter (default 1.4).
+    pub radius_ratio: Option<f64>,
+    /// Area fraction φ the discs cover in the periodic square box, in (0, 1).
+    pub fraction: Option<f64>,
 }
 
 /// Which diagonal springs a lattice has.

@@ -90,6 +90,8 @@ fn resolve_body(
     let spacing = positive(geometry_spacing(&geometry), "geometry.spacing")?;
     let Springs { mass, k, law, contact, derived_from } = resolve_springs(kind, raw, spacing, geometry.depth)?;
     kind::check_fields(kind, raw)?;
+    // A packing's springs are contacts whatever the material says (`check_fields` refuses false).
+    let contact = contact || kind == SceneKind::Packing;
     let v0 = kind::resolve_v0(kind, raw, contact)?;
     let scene_kind = KindSpec::resolve(kind, raw, k, spacing, geometry.depth, derived_from)?;
     let spec = RunSpec {

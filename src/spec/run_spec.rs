@@ -342,8 +342,8 @@ impl RunSpec {
     /// Estimated peak memory (bytes) of the run over all its stages, summed (an upper bound:
     /// the stages' transient parts do not overlap), from what they allocate:
     /// - the time loop: per particle ~40 numbers of state, integrator history and forces plus
-    ///   ~4 bonds of 5 numbers; per sample 5 numbers, and 4 per particle when displacements
-    ///   are recorded; 3 per particle per movie frame (and one per bond with bond strain); a
+    ///   ~4 bonds of 5 numbers; per sample 5 numbers, and when displacements are recorded 4
+    ///   rows of one number per particle and ~7 of the row's own (header and allocation); 3 per particle per movie frame (and one per bond with bond strain); a
     ///   wave probe's at most 10⁵ entries of 7 numbers; a reference run holds its own copy;
     /// - the ω_max estimate: two lists of 5 numbers per bond and ~8 vectors over the particles;
     /// - a loaded lattice's static solve: ~800 bytes per bond (the stiffness entries, 16 of
@@ -360,7 +360,9 @@ impl RunSpec {
         let particles = self.particles() as f64;
         let bonds = self.bonds() as f64;
         let samples = (self.samples + 2) as f64;
-        let per_sample = 5.0 + if self.records_displacements() { 4.0 * particles } else { 0.0 };
+        // Four rows per sample (u and v along x and y), each a Vec: its particles' numbers and
+        // ~7 more, the 24-byte header and the allocator's ~32 bytes, which a pair's 2 are not.
+        let per_sample = 5.0 + if self.records_displacements() { 4.0 * (particles + 7.0) } else { 0.0 };
         let strain = |m: &MovieSpec| if m.bond_strain { bonds } else { 0.0 };
         let frames = self.movie.map_or(0.0, |m| f64::from(m.frames) * (3.0 * particles + strain(&m)));
         let wave = if self.wave().is_some() { 7.0 * 1e5 } else { 0.0 };
@@ -414,6 +416,11 @@ impl RunSpec {
     /// A lattice scene's lattice; `None` for other kinds.
     pub fn lattice(&self) -> Option<&LatticeSpec> {
         self.scene_kind.lattice()
+    }
+
+    /// A packing scene's packing; `None` for other kinds.
+    pub fn packing(&self) -> Option<&super::kind::PackingSpec> {
+        self.scene_kind.packing()
     }
 
     /// When the relaxation of a loaded lattice or a relaxing chain stops; `None` otherwise.
@@ -476,6 +483,8 @@ fn physics_words(path: &str, value: &Value) -> String {
         "lattice.k_y_ratio" => "k_y/k",
         "lattice.cut_fraction" => "cut fraction",
         "lattice.stiffness_spread" => "spread w",
+        "packing.fraction" => "φ",
+        "packing.n" => "N",
         other => other.rsplit('.').next().unwrap_or(other),
     };
     format!("{symbol} = {text}")

@@ -470,12 +470,13 @@ impl StaticSolve<'_> {
             }
             _ => self.solver.solve_nonlinear(law, reference_extension(self.spec), Some(self.deadline)),
         };
-        self.metrics.static_residual = Some(self.solver.convergence().residual).filter(|r| r.is_finite());
         let (ux, uy) = match nonlinear {
             Some(StaticSolution::Displacements { ux, uy }) => (ux, uy),
             Some(StaticSolution::PastDeadline) => return Err(past_deadline()),
+            // Newton did not converge: the linear answer stands, and no residual of Newton's.
             _ => return Ok(linear_answer),
         };
+        self.metrics.static_residual = Some(self.solver.convergence().residual).filter(|r| r.is_finite());
         let top_row_force = self.top_row_force(law, &ux, &uy);
         let fem = moduli(self.spec, self.l, top_row_force, &ux, &uy);
         if self.spec.law.is_linear() {

@@ -8,6 +8,7 @@ pub mod chain;
 mod columns;
 mod common;
 pub mod lattice;
+pub mod packing;
 pub mod pair;
 
 pub use self::columns::{Slot, Values};
@@ -74,6 +75,9 @@ pub struct Metrics {
     /// The lattice's moduli and static answer.
     #[serde(flatten)]
     pub lattice: lattice::LatticeMetrics,
+    /// The packing at rest: pressure, contacts, moduli.
+    #[serde(flatten)]
+    pub packing: packing::PackingMetrics,
 }
 
 impl Metrics {
@@ -117,6 +121,7 @@ pub fn build_scene(spec: &RunSpec) -> Scene {
         KindSpec::Pair(pair) => pair::build(spec, pair),
         KindSpec::Chain(chain) => chain::build(spec, chain),
         KindSpec::Lattice(run) => lattice::build(spec, &run.lattice),
+        KindSpec::Packing(run) => packing::build(spec, run),
     }
 }
 
@@ -146,7 +151,7 @@ pub fn run(spec: &RunSpec, deadline: Instant, analyses: &Analyses) -> Result<Run
     let start = (scene.particles.x.clone(), scene.particles.y.clone());
     let mut bonds = Vec::new();
     if spec.movie.is_some() {
-        scene.network.for_each_bond(|i, j, rest, _, shift| {
+        scene.network.for_each_bond(&scene.particles.x, &scene.particles.y, |i, j, rest, _, shift| {
             if shift == 0.0 {
                 bonds.push((i, j, rest));
             }
@@ -159,12 +164,17 @@ pub fn run(spec: &RunSpec, deadline: Instant, analyses: &Analyses) -> Result<Run
     // tangent moduli are the static answer's, `*_tangent_fem`).
     let tangent =
         spec.relax().and_then(|r| r.tangent_step).filter(|_| !spec.static_only()).map(|step| (step, scene.clone()));
+    // A packing is measured again under strain from its relaxed state, by the same scene.
+    let packing_scene = spec.packing().map(|_| scene.clone());
     let mut outcome = scene.run();
     if let Some(reason) = no_criterion {
         (outcome.trace.status, outcome.trace.message) = (RunStatus::NoEquilibrium, reason);
         (outcome.trace.relaxed_at, outcome.trace.relaxed_by) = (None, None);
     }
     measure(spec, &outcome, &start, &mut metrics);
+    if let Some(scene) = &packing_scene {
+        packing::measure(spec, scene, &outcome, &mut metrics.packing);
+    }
     if let Some((step, again)) = tangent.filter(|_| outcome.trace.relaxed_at.is_some()) {
         tangent_step(spec, again, &outcome, step, &mut metrics);
     }
@@ -223,6 +233,8 @@ fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metr
             lattice::measure(spec, &run.lattice, outcome, start, &mut metrics.lattice);
             (lattice::wave_speed(spec, &run.lattice), Some(lattice::relaxing(&run.lattice)))
         }
+        // Measured with its scene by `run`; relaxed by its largest static force.
+        KindSpec::Packing(run) => (None, Some((run.packing.n, "k d^β (a contact overlapped by one small diameter)"))),
     };
     measure_wave(spec, outcome, wave_speed, metrics);
     if let Some((side, scale)) = relaxing {
@@ -303,8 +315,8 @@ fn tangent_step(spec: &RunSpec, mut scene: Scene, relaxed: &Outcome, step: f64, 
         KindSpec::Chain(_) => {
             chain::tangent_stiffness(spec, wall_step, start, &next.state.particles, &mut metrics.chain)
         }
-        // A pair never relaxes, so it takes no tangent step.
-        KindSpec::Pair(_) => {}
+        // A pair never relaxes, and a packing has no tangent step.
+        KindSpec::Pair(_) | KindSpec::Packing(_) => {}
     }
 }
 
@@ -331,6 +343,7 @@ pub fn result_columns(slot: Slot, runs: &[RunRow]) -> Vec<(&'static str, Values)
     let mut columns = kind_columns(pair::columns(), slot, runs, |m| &m.pair);
     columns.extend(kind_columns(lattice::columns(), slot, runs, |m| &m.lattice));
     columns.extend(kind_columns(chain::columns(), slot, runs, |m| &m.chain));
+    columns.extend(kind_columns(packing::columns(), slot, runs, |m| &m.packing));
     columns
 }
 

@@ -69,3 +69,16 @@ pub fn mdsolids_ok(reports: &std::path::Path, args: &[&str]) -> std::process::Ou
 pub fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
 }
+
+/// The first number in `text` after `marker` (the report writes 4 to 6 significant digits).
+pub fn number_after(text: &str, marker: &str) -> f64 {
+    let rest = &text[text.find(marker).unwrap_or_else(|| panic!("no {marker:?} in {text}")) + marker.len()..];
+    let end = rest.find(|c: char| !(c.is_ascii_digit() || ".e-+".contains(c))).unwrap_or(rest.len());
+    // A sentence's full stop is not a decimal point.
+    rest[..end].trim_end_matches('.').parse().unwrap_or_else(|_| panic!("no number after {marker:?}: {rest}"))
+}
+
+/// The report line that contains `marker`.
+pub fn line_with<'a>(report: &'a str, marker: &str) -> &'a str {
+    report.lines().find(|l| l.contains(marker)).unwrap_or_else(|| panic!("no line with {marker:?}"))
+}

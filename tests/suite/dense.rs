@@ -118,7 +118,9 @@ impl Problem {
         let scene = build_scene(spec);
         let p = &scene.particles;
         let mut springs = Vec::new();
-        scene.network.for_each_bond(|i, j, rest, k, shift| springs.push((i, j, rest, k, shift)));
+        scene.network.for_each_bond(&scene.particles.x, &scene.particles.y, |i, j, rest, k, shift| {
+            springs.push((i, j, rest, k, shift))
+        });
         let mut free = vec![None; 2 * p.len()];
         let mut rows = 0;
         for (dof, slot) in free.iter_mut().enumerate() {

@@ -74,11 +74,47 @@ fn movie_has_its_frames_and_colours_follow_the_speed() {
     assert!(first.iter().all(|&x| x < 60), "only the first particle is fast at t = 0: {:?}", first);
     // Later the energy has spread: no disc is at the top colour at the left end any more.
     assert!(hot_columns(&frames[6]).iter().all(|&x| x >= 60) || hot_columns(&frames[6]).is_empty());
-    // The report shows the movie (the HTML page as an image, the Markdown as a link).
+    // The report shows the movie (the HTML pages as an image, the Markdown as a link).
     mdsolids::report::render(campaign, &layout, &done.records).unwrap();
     let link = format!("plots/{}.gif", record.run_id);
     assert!(std::fs::read_to_string(layout.file("report.md")).unwrap().contains(&format!("]({link})")));
-    assert!(std::fs::read_to_string(layout.file("index.html")).unwrap().contains(&format!("<img src=\"{link}\"")));
+    assert!(pages(&layout).contains(&format!("<img src=\"{link}\"")));
+    the_movie_prints_as_its_filmstrip(&layout, &link, &frames);
+}
+
+/// The report's HTML: its main page and, where it has one, its appendix page.
+fn pages(layout: &Layout) -> String {
+    let appendix = std::fs::read_to_string(layout.file("appendix.html")).unwrap_or_default();
+    std::fs::read_to_string(layout.file("index.html")).unwrap() + &appendix
+}
+
+/// On paper, the movie at `link` (whose decoded frames are `frames`) is its filmstrip: the first,
+/// the last and two frames between, two to a row, 6 pixels apart, each as the GIF shows it.
+fn the_movie_prints_as_its_filmstrip(layout: &Layout, link: &str, frames: &[Vec<u8>]) {
+    let strip = link.replace(".gif", ".filmstrip.png");
+    let html = pages(layout);
+    let (width, height) = (400, 160);
+    let (strip_w, strip_h) = (2 * width + 6, 2 * height + 6);
+    assert!(
+        html.contains(&format!("<img src=\"{strip}\""))
+            && html.contains(&format!("width=\"{strip_w}\" height=\"{strip_h}\" class=\"filmstrip\"")),
+        "{html}"
+    );
+    let mut decoder = png::Decoder::new(std::fs::File::open(layout.file(&strip)).unwrap());
+    decoder.set_transformations(png::Transformations::EXPAND);
+    let mut reader = decoder.read_info().unwrap();
+    let mut rgb = vec![0u8; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut rgb).unwrap();
+    assert_eq!((info.width, info.height), (strip_w as u32, strip_h as u32));
+    // 12 frames: 1, 5, 8 and 12 (evenly spread, rounded), counted from 1.
+    for (n, k) in [0, 4, 7, 11].into_iter().enumerate() {
+        let (x0, y0) = ((n % 2) * (width + 6), (n / 2) * (height + 6));
+        for (y, x) in (0..height).flat_map(|y| (0..width).map(move |x| (y, x))) {
+            let printed = &rgb[3 * ((y0 + y) * strip_w + x0 + x)..][..3];
+            let shown = &frames[k][4 * (y * width + x)..][..3];
+            assert_eq!(printed, shown, "frame {} at ({x}, {y})", k + 1);
+        }
+    }
 }
 
 #[test]
@@ -101,7 +137,23 @@ fn a_scene_can_show_its_runs_side_by_side() {
     assert!(report.contains("](plots/kick-side-by-side.gif)"), "{report}");
     for r in &campaign.runs {
         assert!(!report.contains(&format!("plots/{}.gif", r.run_id())), "the own movie of {} shown twice", r.run_id());
+        assert!(!layout.movie_file(&r.run_id()).exists(), "a panel is not also written as a movie of its own");
     }
+}
+
+#[test]
+fn one_run_shown_side_by_side_is_a_movie_of_one_panel() {
+    // A scene of one run that asks to be shown side by side gets its one-panel movie, not
+    // nothing: the rule "a run shown side by side has no movie of its own" holds for any count.
+    let reports = tempfile::tempdir().unwrap();
+    let planned = plan::parse("pair.yaml", &side_by_side_campaign("both")).unwrap();
+    let layout = Layout::new(reports.path(), &planned.campaign.name);
+    let done = run_campaign(&planned, &layout, Some(1)).unwrap();
+    assert_eq!(frames(&layout.side_by_side_movie("kick")).0, 300);
+    assert!(!layout.movie_file(&done.records[0].run_id).exists());
+    mdsolids::report::render(&planned.campaign, &layout, &done.records).unwrap();
+    let report = std::fs::read_to_string(layout.file("report.md")).unwrap();
+    assert!(report.contains("](plots/kick-side-by-side.gif)"), "{report}");
 }
 
 #[test]
@@ -163,15 +215,22 @@ fn movies_lost_after_a_kill_are_drawn_again_the_same() {
     let planned = plan::parse("pair.yaml", &side_by_side_campaign("none, both")).unwrap();
     let campaign = &planned.campaign;
     let layout = Layout::new(reports.path(), &campaign.name);
-    let done = run_campaign(&planned, &layout, Some(2)).unwrap();
-    let run_movie = layout.movie_file(&done.records[1].run_id);
-    let (both, one) = (std::fs::read(layout.side_by_side_movie("kick")).unwrap(), std::fs::read(&run_movie).unwrap());
+    run_campaign(&planned, &layout, Some(2)).unwrap();
+    let both = std::fs::read(layout.side_by_side_movie("kick")).unwrap();
     std::fs::remove_file(layout.side_by_side_movie("kick")).unwrap();
-    std::fs::remove_file(&run_movie).unwrap();
     let again = run_campaign(&planned, &layout, Some(2)).unwrap();
     assert_eq!(again.simulated, 0, "the records are stored");
-    assert_eq!(std::fs::read(&run_movie).unwrap(), one, "the run's movie is back");
     assert_eq!(std::fs::read(layout.side_by_side_movie("kick")).unwrap(), both, "the side-by-side movie is back");
+    // A run's own movie comes back the same way (a scene not shown side by side).
+    let reports = tempfile::tempdir().unwrap();
+    let planned = plan::parse("own.yaml", &side_by_side_campaign("none").replace(", side_by_side: true", "")).unwrap();
+    let layout = Layout::new(reports.path(), &planned.campaign.name);
+    let done = run_campaign(&planned, &layout, Some(1)).unwrap();
+    let run_movie = layout.movie_file(&done.records[0].run_id);
+    let one = std::fs::read(&run_movie).unwrap();
+    std::fs::remove_file(&run_movie).unwrap();
+    assert_eq!(run_campaign(&planned, &layout, Some(1)).unwrap().simulated, 0, "the record is stored");
+    assert_eq!(std::fs::read(&run_movie).unwrap(), one, "the run's movie is back");
 }
 
 #[test]

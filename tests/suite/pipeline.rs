@@ -1,9 +1,11 @@
 //! The campaign pipeline end to end, through the binary: files written, reruns served from the
 //! store, reports re-rendered without simulating, and bad input refused before anything runs.
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use crate::common::{mdsolids, text};
+use crate::shipped;
 
 fn modified(path: &Path) -> std::time::SystemTime {
     std::fs::metadata(path).and_then(|m| m.modified()).expect("file exists")
@@ -76,6 +78,7 @@ fn small_campaign_end_to_end() {
     let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
     assert!(report.contains("Scene `pair` (pair)") && report.contains("Scene `chain` (chain)"));
     assert!(report.contains("not clamped"), "the report states the contact force is not clamped");
+    pages_are_whole(&dir, &report);
 
     // A rerun of the unchanged campaign simulates nothing and leaves the stored runs alone.
     let stored: Vec<_> = run_files(&dir).iter().map(|f| modified(f)).collect();
@@ -93,6 +96,31 @@ fn small_campaign_end_to_end() {
     assert_eq!(stored, run_files(&dir).iter().map(|f| modified(f)).collect::<Vec<_>>());
 }
 
+/// The report's pages in `dir` (of the Markdown `report`): the appendix on its own page where
+/// the report has answers, every image with its width and height (nothing moves as they load),
+/// and no table without rows.
+fn pages_are_whole(dir: &Path, report: &str) {
+    assert!(report.contains("## Summary"), "the smoke campaign answers coursework items");
+    let main = std::fs::read_to_string(dir.join("index.html")).unwrap();
+    let appendix = std::fs::read_to_string(dir.join("appendix.html")).unwrap();
+    assert!(
+        main.contains("<h2 id=\"summary\">") && !main.contains("id=\"appendix-methods-and-every-scene-in-detail\"")
+    );
+    assert!(
+        appendix.contains("id=\"appendix-methods-and-every-scene-in-detail\"") && !appendix.contains("id=\"summary\"")
+    );
+    for page in [&main, &appendix] {
+        let images: Vec<&str> = page.split("<img ").skip(1).map(|rest| &rest[..rest.find('>').unwrap()]).collect();
+        assert!(!images.is_empty());
+        for image in images {
+            assert!(image.contains(" width=\"") && image.contains(" height=\""), "an image without its size: {image}");
+        }
+        for table in page.split("<table>").skip(1) {
+            assert!(table[..table.find("</table>").unwrap()].contains("<td"), "a table without rows: {table}");
+        }
+    }
+}
+
 #[test]
 fn plan_lists_runs_and_simulates_nothing() {
     let reports = tempfile::tempdir().unwrap();
@@ -100,7 +128,7 @@ fn plan_lists_runs_and_simulates_nothing() {
     assert!(out.status.success(), "{}", text(&out.stderr));
     let stdout = text(&out.stdout);
     assert!(stdout.contains("pair-contact-") && stdout.contains("dt_per_tc=500"), "{stdout}");
-    assert!(stdout.contains("243 runs") && stdout.contains("dt·ω_max"), "{stdout}");
+    assert!(stdout.contains("255 runs") && stdout.contains("dt·ω_max"), "{stdout}");
     assert!(!reports.path().join("coursework").exists(), "plan wrote output");
 }
 
@@ -418,58 +446,104 @@ fn same_cell(pinned: &str, now: &str) -> bool {
     }
 }
 
-/// Where `now` differs from the snapshot, as lines saying row, column and both values.
-fn table_differences(pinned: &str, now: &str) -> Vec<String> {
+/// Where the rows of `now` differ from the snapshot's rows of the same runs (matched by
+/// `run_id`), as lines saying run, column and both values. A column `now` lacks (a grid path or
+/// a kind's column none of a share's runs has) must be empty in the snapshot for these runs,
+/// and `now` may have no column the snapshot lacks. With `whole`, the columns and the runs must
+/// be the snapshot's, all of them.
+fn table_differences(pinned: &str, now: &str, whole: bool) -> Vec<String> {
     let (pinned, now) = (csv_cells(pinned), csv_cells(now));
-    if pinned.first() != now.first() || pinned.len() != now.len() {
-        return vec![format!(
-            "columns or rows differ: {} rows of {:?} pinned, {} rows of {:?} now",
+    let (header, columns) = (&pinned[0], &now[0]);
+    let mut differences: Vec<String> =
+        columns.iter().filter(|c| !header.contains(c)).map(|c| format!("column {c} is not in the snapshot")).collect();
+    if whole && (header != columns || pinned.len() != now.len()) {
+        differences.push(format!(
+            "columns or rows differ: {} rows of {header:?} pinned, {} rows of {columns:?} now",
             pinned.len(),
-            pinned.first(),
-            now.len(),
-            now.first()
-        )];
+            now.len()
+        ));
     }
-    let header = &pinned[0];
-    let mut differences = Vec::new();
-    for (row, (a, b)) in pinned.iter().zip(&now).enumerate().skip(1) {
-        for (column, (x, y)) in a.iter().zip(b).enumerate() {
-            if !same_cell(x, y) {
-                differences.push(format!("row {row} ({}) column {}: pinned {x:?}, now {y:?}", a[0], header[column]));
+    let by_run: BTreeMap<&str, &Vec<String>> = pinned[1..].iter().map(|row| (row[0].as_str(), row)).collect();
+    for row in &now[1..] {
+        let Some(pinned_row) = by_run.get(row[0].as_str()) else {
+            differences.push(format!("run {} is not in the snapshot", row[0]));
+            continue;
+        };
+        for (column, name) in header.iter().enumerate() {
+            let cell = columns.iter().position(|c| c == name).map_or("", |at| row[at].as_str());
+            if !same_cell(&pinned_row[column], cell) {
+                differences
+                    .push(format!("run {} column {name}: pinned {:?}, now {cell:?}", row[0], pinned_row[column]));
             }
         }
     }
     differences
 }
 
-/// `results.csv` of every shipped campaign, timing and build columns aside, is pinned in
-/// tests/snapshots/results/: a refactor must leave every result as it was.
-#[test]
-fn pinned_results_of_the_shipped_campaigns() {
-    let reports = tempfile::tempdir().unwrap();
-    let mut failures = Vec::new();
-    for campaign in ["smoke", "shards", "coursework", "coursework-hertz", "stability", "dt-study", "lattice-types"] {
-        let out = mdsolids(reports.path(), &["run", &format!("campaigns/{campaign}.yaml")]);
-        assert!(out.status.success(), "{campaign}: {}", text(&out.stderr));
-        let now = pinned_table(&std::fs::read_to_string(reports.path().join(campaign).join("results.csv")).unwrap());
-        let snapshot = snapshot_dir().join("results").join(format!("{campaign}.csv"));
-        if updating_snapshots() {
-            std::fs::create_dir_all(snapshot.parent().unwrap()).unwrap();
-            std::fs::write(&snapshot, &now).unwrap();
-            continue;
-        }
-        let pinned =
-            std::fs::read_to_string(&snapshot).expect("the snapshot exists (MDSOLIDS_UPDATE_SNAPSHOTS=1 writes it)");
-        let differences = table_differences(&pinned, &now);
-        if !differences.is_empty() {
-            failures.push(format!(
-                "{campaign}: {} cells differ:\n  {}",
-                differences.len(),
-                differences[..differences.len().min(20)].join("\n  ")
-            ));
-        }
+/// How much of a shipped campaign a pinned test runs.
+#[derive(Clone, Copy, PartialEq)]
+enum Scope {
+    /// Every run (`shipped::whole`).
+    Whole,
+    /// Per scene, the cheapest runs that take every value of every grid axis once
+    /// (`shipped::covering_share`): the rows of those runs are compared with the snapshot.
+    Share,
+}
+
+/// `results.csv` of the shipped campaign `campaign`, timing and build columns aside, against
+/// its snapshot in tests/snapshots/results/ (which holds every run): a refactor must leave
+/// every result as it was. `scope` is how much of the campaign the test runs;
+/// `MDSOLIDS_PINNED=whole` runs every campaign whole, and `MDSOLIDS_UPDATE_SNAPSHOTS=1` runs it
+/// whole and writes its snapshot (docs/guarantees.md, "Pinned outputs").
+fn pinned_results(campaign: &str, scope: Scope) {
+    let whole = scope == Scope::Whole
+        || updating_snapshots()
+        || std::env::var_os("MDSOLIDS_PINNED").is_some_and(|v| v == "whole");
+    let folder = if whole { shipped::whole(campaign) } else { shipped::covering_share(campaign) };
+    let now = pinned_table(&std::fs::read_to_string(folder.join("results.csv")).unwrap());
+    let snapshot = snapshot_dir().join("results").join(format!("{campaign}.csv"));
+    if updating_snapshots() {
+        std::fs::create_dir_all(snapshot.parent().unwrap()).unwrap();
+        std::fs::write(&snapshot, &now).unwrap();
+        return;
     }
-    assert!(failures.is_empty(), "results changed:\n{}", failures.join("\n"));
+    let pinned =
+        std::fs::read_to_string(&snapshot).expect("the snapshot exists (MDSOLIDS_UPDATE_SNAPSHOTS=1 writes it)");
+    let differences = table_differences(&pinned, &now, whole);
+    assert!(
+        differences.is_empty(),
+        "{campaign}: results changed, {} cells differ in the {} of {} runs run:\n  {}",
+        differences.len(),
+        now.lines().count() - 1,
+        pinned.lines().count() - 1,
+        differences[..differences.len().min(20)].join("\n  ")
+    );
+}
+
+/// One test per pinned campaign, `pinned_results_of_<campaign>`, so that the campaigns run
+/// side by side and fail one by one.
+macro_rules! pinned_campaigns {
+    ($($test:ident: $campaign:literal, $scope:ident;)*) => {
+        $(
+            #[test]
+            fn $test() {
+                pinned_results($campaign, Scope::$scope);
+            }
+        )*
+    };
+}
+
+// The shipped campaigns whose results are pinned: whole where that is cheap (smoke, shards) or
+// another test runs it anyway (lattice-types, whose report the lattice-types tests read), a
+// covering share of the others (docs/performance.md, "The slowest tests").
+pinned_campaigns! {
+    pinned_results_of_smoke: "smoke", Whole;
+    pinned_results_of_shards: "shards", Whole;
+    pinned_results_of_lattice_types: "lattice-types", Whole;
+    pinned_results_of_coursework: "coursework", Share;
+    pinned_results_of_coursework_hertz: "coursework-hertz", Share;
+    pinned_results_of_stability: "stability", Share;
+    pinned_results_of_dt_study: "dt-study", Share;
 }
 
 /// report.md rendered from a frozen set of records (tests/snapshots/report/runs, made once by
@@ -549,13 +623,13 @@ fn report_sentences_follow_the_results() {
         ] {
             assert!(report.contains(&sentence), "report.md of m = {mass}, k = {k} lacks {sentence:?}");
         }
-        assert!(report.contains("| 2 | [The time step](#2-the-time-step) |"), "the summary links each item");
+        assert!(report.contains("| 3 | [The time step](#3-the-time-step) |"), "the summary links each item");
         stated.push(four_digits(t_c));
     }
     assert_ne!(stated[0], stated[1], "the two campaigns state different numbers");
 }
 
-/// The summary line of item 2 judges the order of the pair's time-step error only where the
+/// The summary line of the time step (item 3, after the force function and the pair) judges the order of the pair's time-step error only where the
 /// campaign sweeps dt: one dt gives an observation ("no dt sweep", •), not ✗ with no order; a
 /// sweep gives the order and ✓. A scene shows only the tables it has rows for: a chain between
 /// walls no normal-mode table, an impulse lattice no moduli table.
@@ -575,7 +649,7 @@ fn the_time_step_is_judged_only_over_a_sweep_and_empty_tables_are_left_out() {
         let out = mdsolids(dir.path(), &["run", file.to_str().unwrap()]);
         assert!(out.status.success(), "{}", text(&out.stderr));
         let report = std::fs::read_to_string(dir.path().join("sweep").join("report.md")).unwrap();
-        let line = report.lines().find(|l| l.starts_with("| 2 | [The time step]")).unwrap().to_string();
+        let line = report.lines().find(|l| l.starts_with("| 3 | [The time step]")).unwrap().to_string();
         for header in ["| run | grid values | N | excited |", "| run | grid values | size | springs |"] {
             assert!(!report.contains(header), "a table without rows: {header}");
         }

@@ -10,6 +10,7 @@ use crate::report::figure::{background_damping_only, bond_damping_only};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::spec::{Diagonals, LoadCase};
+use crate::summary::ScalingFit;
 
 /// One paragraph of the discussion.
 #[derive(Serialize)]
@@ -62,8 +63,55 @@ fn linear_against_hertz(e: &Evidence) -> Option<Paragraph> {
              network's is not; superposition, normal modes and one sound speed are linear ideas.",
             if linear.is_empty() { "no sweep over the amplitude".to_string() } else { linear.join(", ") },
             hertz.join(", ")
-        ),
+        ) + &two_d_numbers(e).map_or_else(String::new, |s| format!(" {s}")),
     })
+}
+
+/// The 2D difference in numbers: the loaded Hertz block's Young's modulus over its loads beside
+/// the linear block's of the same size, supports and constant at one of those loads, and the
+/// kicked Hertz lattice's front speeds beside the linear lattice's.
+fn two_d_numbers(e: &Evidence) -> Option<String> {
+    let loaded = |r: &RunRecord| {
+        r.spec
+            .lattice()
+            .is_some_and(|l| l.impulse.is_none() && !l.is_random() && l.load_case == LoadCase::Tensile && !l.rotated)
+            && r.metrics.lattice.youngs_modulus.is_some()
+    };
+    let mut hertz = e.ok(|r| !r.spec.law.is_linear() && loaded(r));
+    hertz.sort_by(|a, b| load(a).total_cmp(&load(b)));
+    let (soft, stiff) = (*hertz.first()?, *hertz.last()?);
+    let same = |r: &RunRecord, h: &RunRecord| {
+        let (l, m) = (r.spec.lattice(), h.spec.lattice());
+        r.spec.k == h.spec.k
+            && l.zip(m).is_some_and(|(l, m)| (l.nx, l.supports, l.diagonals) == (m.nx, m.supports, m.diagonals))
+    };
+    let linear = e.ok(|r| r.spec.law.is_linear() && loaded(r));
+    let (twin, at) =
+        hertz.iter().find_map(|h| linear.iter().find(|r| same(r, h) && load(r) == load(h)).map(|r| (*r, *h)))?;
+    let l = twin.spec.lattice()?;
+    Some(format!(
+        "In 2D: the linear {} × {} block on {} supports has E = {} Pa at every load; the Hertz block of the same \
+         constant {} has {} Pa at the same {} N per node, and from {} Pa at {} N to {} Pa at {} N: ×{} for ×{} \
+         the load.",
+        l.nx,
+        l.ny,
+        l.supports.name(),
+        cell(twin.metrics.lattice.youngs_modulus),
+        sig(twin.spec.k),
+        cell(at.metrics.lattice.youngs_modulus),
+        sig(load(at)),
+        cell(soft.metrics.lattice.youngs_modulus),
+        sig(load(soft)),
+        cell(stiff.metrics.lattice.youngs_modulus),
+        sig(load(stiff)),
+        sig(stiff.metrics.lattice.youngs_modulus? / soft.metrics.lattice.youngs_modulus?),
+        sig(load(stiff) / load(soft))
+    ))
+}
+
+/// The load per node (N) of a loaded lattice, 0 for any other run.
+fn load(r: &RunRecord) -> f64 {
+    r.spec.lattice().map_or(0.0, |l| l.load_per_node)
 }
 
 /// The square lattice with and without diagonal springs.
@@ -162,14 +210,32 @@ fn time_step(e: &Evidence) -> Option<Paragraph> {
     })
 }
 
-/// The exponent Hertz springs (β = 3/2) predict for a fitted quantity against its variable:
-/// the solitary wave's speed ∝ v0^(1/5), moduli ∝ F^(1/3), a chain's stiffness ∝ |ΔW|^(1/2).
-fn hertz_exponent(quantity: &str) -> Option<f64> {
-    match quantity {
-        "sound_speed" => Some(0.2),
-        q if q.contains("modulus") => Some(1.0 / 3.0),
-        q if q.ends_with("stiffness") => Some(0.5),
+/// The exponent springs s ∝ δ^β predict for a fitted quantity against its variable (β from
+/// the fit's scene): the solitary wave's speed ∝ v0^((β−1)/(β+1)) (Nesterenko), moduli
+/// ∝ F^((β−1)/β) and a chain's stiffness ∝ |ΔW|^(β−1), since s′ ∝ δ^(β−1) and F ∝ δ^β.
+/// Hertz (β = 3/2): 1/5, 1/3 and 1/2; linear (β = 1): 0.
+fn predicted_exponent(e: &Evidence, fit: &ScalingFit) -> Option<f64> {
+    let beta = e.all(|r| r.spec.scene == fit.scene).first()?.spec.law.beta();
+    match fit.quantity {
+        "sound_speed" => Some((beta - 1.0) / (beta + 1.0)),
+        q if q.contains("modulus") => Some((beta - 1.0) / beta),
+        q if q.ends_with("stiffness") => Some(beta - 1.0),
         _ => None,
+    }
+}
+
+/// A fitted quantity's symbol as the report writes it (E, G, c, F, v0, the walls' Δ, the
+/// chain's stiffness), its column name in words where it has none.
+fn symbol(column: &str) -> String {
+    match column {
+        "youngs_modulus" => "E".into(),
+        "shear_modulus" => "G".into(),
+        "sound_speed" => "c".into(),
+        "load_per_node" => "the load per node F".into(),
+        "v0" => "the kick v0".into(),
+        "wall_displacement" => "the walls' displacement Δ".into(),
+        "secant_stiffness" => "the chain's secant stiffness".into(),
+        other => other.replace('_', " "),
     }
 }
 
@@ -182,8 +248,7 @@ pub(super) fn linear_and_hertz(e: &Evidence) -> Option<Answer> {
     let mut rows = Vec::new();
     let mut checks = Vec::new();
     for fit in e.fits {
-        let predicted = if fit.law == "linear" { Some(0.0) } else { hertz_exponent(fit.quantity) };
-        let Some(predicted) = predicted else { continue };
+        let Some(predicted) = predicted_exponent(e, fit) else { continue };
         checks.push((fit.fit.exponent - predicted).abs() <= EXPONENT_TOLERANCE);
         rows.push(vec![
             fit.scene.clone(),
@@ -213,5 +278,34 @@ pub(super) fn linear_and_hertz(e: &Evidence) -> Option<Answer> {
             header: ["scene", "law", "quantity", "exponent", "predicted", "R²"].map(String::from).to_vec(),
             rows,
         }),
+    })
+}
+
+/// The abstract's sentence on Hertz springs: every fitted law of the non-linear scenes that has
+/// a prediction, its exponent beside it, and the linear springs' 0.
+pub(super) fn hertz_headline(e: &Evidence) -> Option<String> {
+    let mut laws: Vec<String> = Vec::new();
+    for fit in e
+        .fits
+        .iter()
+        .filter(|f| f.law != "linear" && !f.quantity.starts_with("tangent") && !f.quantity.ends_with("tangent"))
+    {
+        let Some(predicted) = predicted_exponent(e, fit) else { continue };
+        let verdict = if (fit.fit.exponent - predicted).abs() <= EXPONENT_TOLERANCE { "within" } else { "outside" };
+        let law = format!(
+            "{} ∝ {}^{} (predicted {predicted:.3}, {verdict} {EXPONENT_TOLERANCE})",
+            symbol(fit.quantity),
+            symbol(fit.against),
+            exponent(fit.fit.exponent)
+        );
+        if !laws.iter().any(|l| l.starts_with(&law[..law.find('^').unwrap_or(0)])) {
+            laws.push(law);
+        }
+    }
+    (!laws.is_empty()).then(|| {
+        format!(
+            "Hertz springs make the answers depend on the amplitude, where linear springs give exponent 0: {}.",
+            laws.join(", ")
+        )
     })
 }

@@ -5,10 +5,11 @@
 
 use serde::Serialize;
 
-use crate::model::LatticeType;
+use crate::model::{LatticeType, LawSpec};
 use crate::report::figure::{Figure, FigureKind, FigureRef, movie_refs};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
+use crate::spec::LatticeSpec;
 use crate::summary::ScalingFit;
 
 // Numbers in sentences: 4 significant digits, plain or scientific as reads best.
@@ -175,6 +176,13 @@ pub fn rel(e: f64) -> String {
     format!("{e:+.1e}")
 }
 
+/// A loaded (not kicked), regular, linear lattice: the coursework's moduli runs.
+pub(super) fn regular(r: &RunRecord) -> Option<&LatticeSpec> {
+    r.spec.lattice().filter(|l| {
+        l.impulse.is_none() && !l.is_random() && l.k_x == l.k_y && !l.rotated && r.spec.law == LawSpec::Linear
+    })
+}
+
 /// The shortest dissipation time (s) among `runs`; infinite when none relaxed.
 pub(super) fn fastest_relaxation(runs: &[&RunRecord]) -> f64 {
     runs.iter().filter_map(|r| r.metrics.dissipation_time).fold(f64::INFINITY, f64::min)
@@ -197,4 +205,27 @@ pub(super) fn noise(x: Option<f64>, scale: f64) -> String {
         Some(v) if v.abs() < 1e-9 * scale => "0".into(),
         other => cell(other),
     }
+}
+
+/// `x ± u` with the uncertainty's two significant digits setting the value's last, both on one
+/// power of ten (`(2.6650 ± 0.0090)e11`, `0.3330 ± 0.0011`); `x` alone when there is no
+/// uncertainty to state.
+pub(super) fn plus_minus(x: f64, u: f64) -> String {
+    if !(u > 0.0 && u.is_finite() && x.is_finite() && x != 0.0) {
+        return sig(x);
+    }
+    let magnitude = x.abs().log10().floor() as i32;
+    let power = if (-3..5).contains(&magnitude) { 0 } else { magnitude };
+    let (x, u) = (x / 10f64.powi(power), u / 10f64.powi(power));
+    let decimals = (1 - u.log10().floor() as i32).clamp(0, 8) as usize;
+    if power == 0 {
+        format!("{x:.decimals$} ± {u:.decimals$}")
+    } else {
+        format!("({x:.decimals$} ± {u:.decimals$})e{power}")
+    }
+}
+
+/// A relative difference in per cent with its sign (`+4.577 %`).
+pub(super) fn percent(x: f64) -> String {
+    format!("{}{} %", if x < 0.0 { "−" } else { "+" }, sig(100.0 * x.abs()))
 }

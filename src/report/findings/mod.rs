@@ -4,60 +4,124 @@
 //! number is read from the records at render time; an item whose runs the campaign lacks is
 //! left out. This file lists the questions; `finding.rs` is the vocabulary they answer in.
 
+mod block;
+mod curves;
 mod discussion;
 mod dynamics;
 mod finding;
+mod jamming;
 mod materials;
 mod one_d;
 mod relaxation;
 mod two_d;
 mod types;
 
-use self::finding::Answer;
+use std::collections::HashSet;
 
-pub use self::discussion::{Paragraph, discussion};
+use self::finding::Answer;
+use crate::model::LatticeType;
+use crate::sim::RelaxMethod;
+
+pub use self::discussion::Paragraph;
 pub use self::finding::{Evidence, Finding, Table, Verdict, rel};
 
 /// One item's answer from the evidence it is asked of, if that has its runs.
 type Question = fn(&Evidence) -> Option<Answer>;
 
-/// The coursework's items that `evidence` answers, in the coursework's order, numbered.
+/// The questions `evidence` answers, numbered: a study's own (time to a modulus, the lattice
+/// types), asked of every run, where the campaign is a study ([`is_study`]); otherwise the
+/// coursework's items, in the coursework's order. A study campaign's square lattices would
+/// answer coursework items too, but that is the coursework report's text again, not the study's.
 pub fn findings(evidence: &Evidence) -> Vec<Finding> {
-    // The coursework's questions see its evidence ([`Evidence::coursework`]); the lattice
-    // types' see every run.
-    let coursework = evidence.coursework();
-    let asked: [(Question, &Evidence); 26] = [
-        (one_d::two_particles, &coursework),
-        (one_d::time_step, &coursework),
-        (one_d::chain, &coursework),
-        (one_d::hertz_pair_and_chain, &coursework),
-        (one_d::walls, &coursework),
-        (two_d::units_and_time_step, &coursework),
-        (two_d::diagonal_stiffness, &coursework),
-        (two_d::lattice_time_step, &coursework),
-        (two_d::kick, &coursework),
-        (two_d::youngs_and_poisson, &coursework),
-        (two_d::shear, &coursework),
-        (dynamics::sound_speed, &coursework),
-        (dynamics::dissipation, &coursework),
-        (materials::homogeneity, &coursework),
-        (materials::hertz_moduli, &coursework),
-        (dynamics::hertz_kick, &coursework),
-        (materials::anisotropic, &coursework),
-        (materials::random, &coursework),
-        (materials::md_and_fem, &coursework),
-        (relaxation::time_to_modulus, evidence),
-        (types::moduli, evidence),
-        (types::isotropy, evidence),
-        (types::directions, evidence),
-        (types::percolation, evidence),
-        (types::waves, evidence),
-        (discussion::linear_and_hertz, &coursework),
-    ];
-    asked
+    let answers = if is_study(evidence) { studies(evidence) } else { coursework(&evidence.coursework()) };
+    answers.into_iter().enumerate().map(|(i, answer)| answer.numbered(i + 1)).collect()
+}
+
+/// Whether the campaign is a study, not coursework: it compares relaxation methods (its runs
+/// stopped by the displacement bound use more than one, critical damping counting as one) or
+/// lattice types (one of its lattices is not square), and a study question answers it. A
+/// coursework block relaxed by one minimiser is still coursework.
+fn is_study(evidence: &Evidence) -> bool {
+    let lattices = evidence.all(|r| r.spec.lattice().is_some());
+    let methods: HashSet<(RelaxMethod, bool)> = lattices
         .iter()
-        .filter_map(|(question, evidence)| question(evidence))
-        .enumerate()
-        .map(|(i, answer)| answer.numbered(i + 1))
-        .collect()
+        .filter_map(|r| r.spec.relax().filter(|relax| relax.tolerance.is_some()))
+        .map(|relax| (relax.method, relax.critical_background))
+        .collect();
+    let types = lattices.iter().filter_map(|r| r.spec.lattice()).any(|l| l.lattice_type != LatticeType::Square);
+    (methods.len() > 1 || types) && !studies(evidence).is_empty()
+}
+
+/// The studies' own questions that `evidence` answers.
+fn studies(evidence: &Evidence) -> Vec<Answer> {
+    let asked: [Question; 6] = [
+        relaxation::time_to_modulus,
+        types::moduli,
+        types::isotropy,
+        types::directions,
+        types::percolation,
+        types::waves,
+    ];
+    asked.iter().filter_map(|question| question(evidence)).collect()
+}
+
+/// The coursework's items that its evidence ([`Evidence::coursework`]: square lattices relaxed
+/// by MD) answers, in the coursework's order.
+fn coursework(coursework: &Evidence) -> Vec<Answer> {
+    let asked: [Question; 25] = [
+        one_d::force_function,
+        one_d::two_particles,
+        one_d::time_step,
+        one_d::chain,
+        curves::motion,
+        one_d::hertz_pair_and_chain,
+        curves::power_contacts,
+        one_d::walls,
+        two_d::units_and_time_step,
+        two_d::diagonal_stiffness,
+        two_d::lattice_time_step,
+        two_d::kick,
+        curves::dispersion_relation,
+        two_d::youngs_and_poisson,
+        two_d::shear,
+        dynamics::sound_speed,
+        dynamics::dissipation,
+        materials::homogeneity,
+        materials::hertz_moduli,
+        dynamics::hertz_kick,
+        materials::anisotropic,
+        materials::random,
+        materials::md_and_fem,
+        jamming::jamming,
+        discussion::linear_and_hertz,
+    ];
+    asked.iter().filter_map(|question| question(coursework)).collect()
+}
+
+/// The discussion's paragraphs: a study's own where the campaign is one (as [`findings`]
+/// decides), otherwise the coursework's themes.
+pub fn discussion(evidence: &Evidence) -> Vec<Paragraph> {
+    if !is_study(evidence) {
+        return discussion::discussion(evidence);
+    }
+    let paragraphs: [fn(&Evidence) -> Option<Paragraph>; 2] = [relaxation::which_method, types::against_continuum];
+    paragraphs.iter().filter_map(|paragraph| paragraph(evidence)).collect()
+}
+
+/// The abstract: the campaign's answers in a few sentences, each computed from its results
+/// (the coursework's evidence); a sentence whose runs the campaign lacks is left out.
+pub fn overview(evidence: &Evidence) -> Vec<String> {
+    let e = evidence.coursework();
+    let block = block::Block::of(&e);
+    [
+        one_d::pair_headline(&e),
+        block.as_ref().map(block::Block::moduli_sentence),
+        block.as_ref().map(block::Block::sound_sentence),
+        dynamics::dissipation_headline(&e),
+        materials::fem_headline(&e),
+        discussion::hertz_headline(&e),
+    ]
+    .into_iter()
+    .flatten()
+    .collect()
 }

@@ -74,6 +74,108 @@ fn pair_cases<'a>(linear: &[&'a RunRecord]) -> Vec<&'a RunRecord> {
     cases
 }
 
+/// How far the energy balance E_kin + E_pot + E_dissipated = W may miss at dt = t_c/50: ten
+/// times a second-order scheme's error there, about (ω dt)²/4 = (π/50)²/4 ≈ 1e-3; a force or
+/// dashpot of the wrong sign misses by order 1.
+const BALANCE_TOLERANCE: f64 = 1e-2;
+
+/// The force function and the loops in words: the signs of n̂, δ and f, and the connectivity
+/// apart from the force and both apart from the integration.
+fn force_design() -> Vec<String> {
+    vec![
+        "One function computes every spring's force (Spring::force_on_i, for every law and every scene): with \
+         n̂ = (x_i − x_j)/|x_i − x_j| and δ = |x_i − x_j| − x_e (positive when stretched: the coursework's overlap \
+         with the opposite sign), f_i = −(s(δ) + γ δ̇) n̂ with δ̇ = (v_i − v_j)·n̂, so a stretched spring pulls i \
+         towards j and a closing dashpot pushes them apart; j receives f_j = −f_i from the same call, one call per \
+         pair."
+            .to_string(),
+        "The connectivity is kept apart from the force: a chain's bonds are its neighbours, a lattice's its \
+         stencil's bond families (or a bond list for irregular networks); every step resets the forces, loops \
+         over the bonds adding f_i to i and −f_i to j, and only then integrates: the integrator sees summed \
+         forces, never a spring."
+            .to_string(),
+    ]
+}
+
+/// The coursework's first requirement: one force function, the loops around it and its signs,
+/// judged by what a wrong sign would break: the energy balance of every run at t_c/50.
+pub(super) fn force_function(e: &Evidence) -> Option<Answer> {
+    // A minimiser's steps (FIRE, CG) follow no equation of motion, so no energy balance checks them.
+    let integrated = |r: &RunRecord| r.spec.relax().is_none_or(|relax| !relax.method.is_minimiser());
+    let runs = e.ok(|r| (r.spec.dt_per_tc() - 50.0).abs() < 1.0 && !r.spec.allow_unstable && integrated(r));
+    let balances: Vec<(f64, &RunRecord)> =
+        runs.iter().filter_map(|r| Some((r.metrics.energy_error?.abs(), *r))).collect();
+    let (worst, worst_run) = balances.iter().copied().max_by(|a, b| a.0.total_cmp(&b.0))?;
+    let mut kinds: Vec<&str> = balances.iter().map(|(_, r)| r.spec.kind().name()).collect();
+    kinds.sort_unstable();
+    kinds.dedup();
+    let count = |keep: fn(&RunRecord) -> bool| balances.iter().filter(|(_, r)| keep(r)).count();
+    let mut sentences = force_design();
+    sentences.push(format!(
+        "A wrong sign would break the energy balance E_kin + E_pot + E_dissipated = W: over the {} runs at \
+             dt = t_c/50 ({}; {} with a non-linear law, {} damped) it holds to {} at worst ({}), the scheme's \
+             O(dt²) error.",
+        balances.len(),
+        kinds.join(", "),
+        count(|r| !r.spec.law.is_linear()),
+        count(|r| r.spec.gamma > 0.0 || r.spec.gamma_background > 0.0),
+        sig(worst),
+        worst_run.spec.scene
+    ));
+    let damped =
+        pair_cases(&e.ok(|r| is_pair(r) && r.spec.law == LawSpec::Linear)).into_iter().find(|r| r.spec.gamma > 0.0);
+    if let Some(r) = damped {
+        sentences.push(format!(
+            "The damped pair's restitution, r = {} for γ = {} N s/m, is below 1 as a dashpot's must be: one of the \
+             wrong sign would feed energy in (r > 1).",
+            cell(r.metrics.pair.restitution),
+            sig(r.spec.gamma)
+        ));
+    }
+    Some(Answer {
+        title: "The force function and the loops",
+        question: "One function for the force of every spring (n̂, δ, signs), the connectivity apart from the \
+                   force, both apart from the integration; f_i←j = −f_j←i.",
+        short: format!(
+            "one force function; energy balance within {} over {} runs at t_c/50",
+            sig(worst),
+            balances.len()
+        ),
+        sentences,
+        reference: format!(
+            "Newton's third law by construction; the energy balance within {BALANCE_TOLERANCE:e} at t_c/50 (ten \
+             times the second-order error (π/50)²/4 ≈ 1e-3)."
+        ),
+        verdict: Verdict::of([worst <= BALANCE_TOLERANCE]),
+        figures: Vec::new(),
+        table: None,
+    })
+}
+
+/// The abstract's sentence on two particles: the undamped contact duration against π/ω and the
+/// damped restitution against its target.
+pub(super) fn pair_headline(e: &Evidence) -> Option<String> {
+    let cases = pair_cases(&e.ok(|r| is_pair(r) && r.spec.law == LawSpec::Linear));
+    let undamped = cases.iter().find(|r| r.spec.gamma == 0.0)?;
+    let (t_err, _) = pair_errors(undamped);
+    let damped = cases.iter().find(|r| r.spec.gamma > 0.0).map_or_else(String::new, |r| {
+        format!(
+            "; γ = {} N s/m gives r = {} for the target {}",
+            sig(r.spec.gamma),
+            cell(r.metrics.pair.restitution),
+            cell(r.spec.restitution_target)
+        )
+    });
+    Some(format!(
+        "Two particles of {} kg on a spring of {} N/m stay in contact for t_c = π/ω = {} s, MD within {} of it at \
+         dt = t_c/50{damped}.",
+        sig(undamped.spec.mass),
+        sig(undamped.spec.k),
+        sig(undamped.spec.t_c),
+        t_err.map_or_else(|| "–".into(), |x| format!("{:.1e}", x.abs()))
+    ))
+}
+
 /// Two particles: t_c and r against π/ω and exp(−γ t_c/m), undamped and damped.
 pub(super) fn two_particles(e: &Evidence) -> Option<Answer> {
     let cases = pair_cases(&e.ok(|r| is_pair(r) && r.spec.law == LawSpec::Linear));

@@ -3,7 +3,9 @@
 //! FIRE and CG, each against the critically damped bound in steps and the static answer of the
 //! same network.
 
+use super::discussion::Paragraph;
 use super::finding::{Answer, Evidence, Table, Verdict, cell, extremes, relative, sig};
+use crate::measure::power_law_fit;
 use crate::runner::RunRecord;
 use crate::sim::{RelaxMethod, RunStatus};
 use crate::study::lattice::critical_bound_steps;
@@ -55,7 +57,10 @@ pub(super) fn time_to_modulus(e: &Evidence) -> Option<Answer> {
     let bounds = BoundChecks::of(&runs);
     let critical = e.ok(|r| bounded(r) && r.spec.relax().is_some_and(|relax| relax.critical_background));
     let critical_ratios: Vec<f64> = critical.iter().filter_map(|r| over_bound(r)).collect();
-    let mut sentences: Vec<String> = bounds.sentence().into_iter().collect();
+    let races = races(&runs);
+    let mut sentences: Vec<String> = races.last().map(Race::sentence).into_iter().collect();
+    sentences.extend(winners_sentence(&races));
+    sentences.extend(bounds.sentence());
     sentences.extend(critical_sentence(&critical, &critical_ratios));
     sentences.extend(fixed_damping_sentence(e));
     sentences.extend(minimiser_sentences(e));
@@ -65,8 +70,8 @@ pub(super) fn time_to_modulus(e: &Evidence) -> Option<Answer> {
     );
     Some(Answer {
         title: "Relaxation: time to a modulus",
-        question: "How soon is a loaded lattice at rest, provably, and which method gets there first?",
-        short: bounds.short(&critical_ratios),
+        question: "Which method brings a loaded lattice to rest first, provably, and by how much?",
+        short: races.last().map_or_else(|| bounds.short(&critical_ratios), Race::short),
         sentences,
         reference: format!(
             "The static answer of the same network (Newton to ‖R‖ ≤ {:e} ‖f‖): each relaxed run's |E − E_fem| \
@@ -259,4 +264,160 @@ fn sizes(runs: &[&RunRecord]) -> String {
     sizes.sort_unstable();
     sizes.dedup();
     sizes.iter().map(usize::to_string).collect::<Vec<_>>().join(", ")
+}
+
+/// The runs of one block that more than one method brought to rest: the same scene settings but
+/// the method (block, material, load and tolerance), the cheapest first.
+struct Race<'a> {
+    /// Ended `ok`, by force evaluations (an MD step is one), fewest first.
+    runs: Vec<&'a RunRecord>,
+}
+
+/// Every [`Race`] among the bounded `runs`, the one that matters most last: the largest block
+/// (by node count), then the most methods (of equal ones, in campaign order).
+fn races<'a>(runs: &[&'a RunRecord]) -> Vec<Race<'a>> {
+    let setup = |r: &RunRecord| {
+        let l = r.spec.lattice().expect("a bounded run is a lattice's");
+        let tolerance = r.spec.relax().and_then(|relax| relax.tolerance);
+        format!(
+            "{} {:?} {} {} {} {} {:?}",
+            block(r),
+            l.load_case,
+            l.load_per_node,
+            r.spec.k,
+            r.spec.mass,
+            r.spec.spacing,
+            tolerance
+        )
+    };
+    let mut groups: Vec<(String, Vec<&RunRecord>)> = Vec::new();
+    for r in runs.iter().copied().filter(|r| r.status == RunStatus::Ok) {
+        let key = setup(r);
+        match groups.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, mine)) => mine.push(r),
+            None => groups.push((key, vec![r])),
+        }
+    }
+    let mut races: Vec<Race> = groups
+        .into_iter()
+        .map(|(_, mut runs)| {
+            runs.sort_by_key(|r| r.steps);
+            Race { runs }
+        })
+        .filter(|race| race.methods() > 1)
+        .collect();
+    races.sort_by_key(|race| (race.nodes(), race.methods()));
+    races
+}
+
+impl Race<'_> {
+    fn methods(&self) -> usize {
+        let mut names: Vec<String> = self.runs.iter().map(|r| method(r)).collect();
+        names.dedup();
+        names.len()
+    }
+
+    fn nodes(&self) -> usize {
+        self.runs[0].spec.lattice().map_or(0, |l| l.nx * l.ny)
+    }
+
+    fn winner(&self) -> &RunRecord {
+        self.runs[0]
+    }
+
+    /// How many times the winner's force evaluations `other` takes.
+    fn times(&self, other: &RunRecord) -> f64 {
+        other.steps as f64 / self.winner().steps.max(1) as f64
+    }
+
+    /// Who wins at this block and by how much, in force evaluations and in loop time.
+    fn sentence(&self) -> String {
+        let w = self.winner();
+        let others: Vec<String> = self.runs[1..]
+            .iter()
+            .map(|r| {
+                format!(
+                    "{} × fewer than {} ({} steps, {} × the loop time)",
+                    sig(self.times(r)),
+                    method(r),
+                    r.steps,
+                    sig(r.trace.loop_s / w.trace.loop_s.max(f64::MIN_POSITIVE))
+                )
+            })
+            .collect();
+        format!(
+            "On the largest block that several methods brought to rest ({}), the fastest to a certified \
+             modulus is {}: {} force evaluations in {} s of time loop ({} s of wall time), {}. A force \
+             evaluation is one MD step or one minimiser iteration; the loop times were measured beside the \
+             campaign's other runs, and each wall time adds its run's setup (the static twin and the bound's \
+             ‖K⁻¹g‖₂).",
+            block(w),
+            method(w),
+            w.steps,
+            sig(w.trace.loop_s),
+            sig(w.wall_s),
+            others.join(", ")
+        )
+    }
+
+    fn short(&self) -> String {
+        let w = self.winner();
+        let last = self.runs[self.runs.len() - 1];
+        format!(
+            "{} first at {}: {} × fewer force evaluations than {}",
+            method(w),
+            block(w),
+            sig(self.times(last)),
+            method(last)
+        )
+    }
+}
+
+/// Which method won at each block size, where the winner changes with it.
+fn winners_sentence(races: &[Race]) -> Option<String> {
+    let winners: Vec<String> =
+        races.iter().map(|race| format!("{} at {}", method(race.winner()), block(race.winner()))).collect();
+    (winners.len() > 1).then(|| format!("The cheapest method block by block: {}.", winners.join(", ")))
+}
+
+/// The discussion of a relaxation campaign: which method to use, and how each one's cost grows
+/// with the block (least-squares exponent of force evaluations against N over its relaxed runs).
+pub(super) fn which_method(e: &Evidence) -> Option<Paragraph> {
+    let runs = e.all(bounded);
+    let races = races(&runs);
+    let race = races.last()?;
+    let mut growth = Vec::new();
+    let mut names: Vec<String> = e.ok(|r| bounded(r) && !block(r).contains("cut")).iter().map(|r| method(r)).collect();
+    names.sort();
+    names.dedup();
+    for name in names {
+        let mine = e.ok(|r| bounded(r) && !block(r).contains("cut") && method(r) == name);
+        let points: Vec<(f64, f64)> =
+            mine.iter().filter_map(|r| Some((r.spec.lattice()?.nx as f64, r.steps as f64))).collect();
+        if let Some(fit) = power_law_fit(&points).filter(|_| points.len() > 2) {
+            growth.push(format!("{name} as N^{:.2} (N = {})", fit.exponent, sizes(&mine)));
+        }
+    }
+    let w = race.winner();
+    let last = race.runs[race.runs.len() - 1];
+    let minimiser = w.spec.relax().is_some_and(|relax| relax.method.is_minimiser());
+    Some(Paragraph {
+        title: "Which method to use",
+        text: format!(
+            "{} wins on the largest block several methods relaxed ({}), by {} × in force evaluations over {}. \
+             The steps each method needs grow with the block's side N: {}. Damped MD is held back by the \
+             slowest mode (ω_min ∝ 1/N) at a time step the fastest mode sets, so its steps grow with N however \
+             it is damped; a minimiser's steps are bound to no mode. {}",
+            method(w),
+            block(w),
+            sig(race.times(last)),
+            method(last),
+            if growth.is_empty() { "not measured (one size per method)".to_string() } else { growth.join("; ") },
+            if minimiser {
+                "For a modulus alone, the minimiser; MD remains the tool for the motion itself."
+            } else {
+                "Here damped MD is the cheapest way to the modulus as well as the tool for the motion."
+            }
+        ),
+    })
 }

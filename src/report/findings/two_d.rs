@@ -5,7 +5,8 @@
 
 use std::collections::BTreeMap;
 
-use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, rel, relative, sig};
+use super::block::Block;
+use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, regular, rel, relative, sig};
 use crate::measure::convergence_order;
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, representative};
@@ -18,13 +19,6 @@ use crate::spec::{Control, Diagonals, LatticeSpec, LoadCase, Supports};
 /// relaxation stops at E_kin/E_pot < 1e-8 or a residual force of 1e-6 of the load, which leaves
 /// the slowest mode's displacement error at about 1e-4 … 1e-3 of the deformation.
 pub(super) const STATIC_TOLERANCE: f64 = 2e-3;
-
-/// A loaded (not kicked), regular, linear lattice: the coursework's moduli runs.
-fn regular(r: &RunRecord) -> Option<&LatticeSpec> {
-    r.spec.lattice().filter(|l| {
-        l.impulse.is_none() && !l.is_random() && l.k_x == l.k_y && !l.rotated && r.spec.law == LawSpec::Linear
-    })
-}
 
 /// The fitted order, as text.
 fn order_text(order: Option<f64>) -> String {
@@ -397,9 +391,12 @@ fn moduli(e: &Evidence, case: LoadCase) -> Option<Moduli> {
 pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
     let Moduli { mut sentences, table, checks, scenes } = moduli(e, LoadCase::Tensile)?;
     let both = e.ok(|r| regular(r).is_some_and(|l| l.load_case == LoadCase::Tensile && l.diagonals == Diagonals::Both));
-    // The largest block, a free one (coursework or clamped supports) before a periodic strip.
-    let largest =
-        both.iter().max_by_key(|r| r.spec.lattice().map_or((0, false), |l| (l.nx, l.supports != Supports::PeriodicX)));
+    // The largest block, a free one before a periodic strip, on the coursework's supports first.
+    let largest = both.iter().max_by_key(|r| {
+        r.spec.lattice().map_or((0, false, false), |l| {
+            (l.nx, l.supports != Supports::PeriodicX, l.supports == Supports::Coursework)
+        })
+    });
     if let Some(r) = largest {
         // A periodic strip cannot contract sideways: its continuum ν is 0, not k_d/(k + k_d).
         let periodic = r.spec.lattice().is_some_and(|l| l.supports == Supports::PeriodicX);
@@ -418,20 +415,14 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
             ),
         );
     }
+    let block = Block::of(e);
+    sentences.extend(block.as_ref().and_then(Block::extrapolation_sentence));
     Some(Answer {
         title: "Young's modulus and Poisson's ratio",
         question: "(a, b) Measure E and ν under 1 kN up on every top-row node.",
-        short: largest.map_or_else(
-            || format!("MD = static truss within {STATIC_TOLERANCE}"),
-            |r| {
-                format!(
-                    "E = {} Pa, ν = {} ({}); MD = static truss within {STATIC_TOLERANCE}",
-                    cell(r.metrics.lattice.youngs_modulus),
-                    noise(r.metrics.lattice.poisson_ratio, 1.0),
-                    r.spec.lattice().map(|l| format!("{} × {}", l.nx, l.ny)).unwrap_or_default()
-                )
-            },
-        ),
+        short: block
+            .as_ref()
+            .map_or_else(|| format!("MD = static truss within {STATIC_TOLERANCE}"), Block::youngs_short),
         sentences,
         reference: format!(
             "The static truss answer of the same network (tolerance {STATIC_TOLERANCE:e}: the relaxation's stopping \
@@ -464,30 +455,13 @@ pub(super) fn shear(e: &Evidence) -> Option<Answer> {
             cell(r.metrics.lattice.shear_modulus_theory)
         ));
     }
-    let driven = e.ok(driven);
-    for r in driven.iter().take(4) {
-        let Some((name, md, fem, _)) = modulus(r) else { continue };
-        sentences.push(format!(
-            "Velocity control ({}): the top row driven to a strain of {}, {name} from the supports' force = {} Pa \
-             against the static {} Pa.",
-            r.spec.lattice().map(lattice_words).unwrap_or_default(),
-            cell(r.spec.lattice().map(|l| l.drive_strain)),
-            cell(md),
-            cell(fem)
-        ));
-    }
+    sentences.extend(e.ok(driven).into_iter().take(4).filter_map(|r| control_sentence(e, r)));
     Some(Answer {
         title: "The shear modulus",
         question: "(c) Measure G under a horizontal load on every top-row node.",
-        short: periodic.first().map_or_else(
+        short: Block::of(e).and_then(|b| b.shear_short()).map_or_else(
             || "G measured; no shear stiffness without diagonals".into(),
-            |r| {
-                format!(
-                    "G = {} Pa on the periodic strip against k_d/d = {} Pa; none without diagonals",
-                    cell(r.metrics.lattice.shear_modulus),
-                    cell(r.metrics.lattice.shear_modulus_theory)
-                )
-            },
+            |g| format!("{g}; none without diagonals"),
         ),
         sentences,
         reference: format!("The static truss answer (tolerance {STATIC_TOLERANCE:e}) and G = k_d/d."),
@@ -495,6 +469,51 @@ pub(super) fn shear(e: &Evidence) -> Option<Answer> {
         figures: scenes.iter().take(1).flat_map(|s| e.figures(&[(s, FigureKind::Size)])).collect(),
         table: Some(table),
     })
+}
+
+/// Two static answers closer than this are the same modulus: the static solver's precision is
+/// about 1e-9 of it.
+const SAME_STATIC: f64 = 1e-6;
+
+/// A velocity-driven run against its force-loaded twin (same load case, supports, size and
+/// springs), when the campaign has one: the modulus both give, and why they differ where they
+/// do. An imposed displacement holds the top row straight, equal forces let it bend, so the
+/// two boundary conditions have different static answers wherever the strain is not
+/// homogeneous; MD meets each of its own.
+fn control_sentence(e: &Evidence, driven: &RunRecord) -> Option<String> {
+    let d = driven.spec.lattice()?;
+    let (name, md_v, fem_v, _) = modulus(driven)?;
+    let twin = e.ok(|r| {
+        regular(r).is_some_and(|l| {
+            l.control == Control::Force
+                && (l.load_case, l.supports, l.nx, l.ny, l.diagonals)
+                    == (d.load_case, d.supports, d.nx, d.ny, d.diagonals)
+                && l.k_diag == d.k_diag
+        }) && (r.spec.mass, r.spec.k, r.spec.spacing) == (driven.spec.mass, driven.spec.k, driven.spec.spacing)
+    });
+    let head = format!(
+        "Velocity control ({}): the top row driven to a strain of {}, {name} from the supports' force = {} Pa \
+         against its static {} Pa",
+        lattice_words(d),
+        sig(d.drive_strain),
+        cell(md_v),
+        cell(fem_v)
+    );
+    let Some(force) = twin.first() else { return Some(head + ".") };
+    let (_, md_f, fem_f, _) = modulus(force)?;
+    let gap = relative(fem_v, fem_f)?;
+    let why = if gap.abs() < SAME_STATIC {
+        "the same modulus: the strain is homogeneous, so it does not matter whether the top row is moved or pulled"
+            .to_string()
+    } else {
+        format!(
+            "the static answers of the two boundary conditions differ by {}: the imposed displacement holds the top \
+             row straight where equal forces let it bend, so the driven block is {}",
+            rel(gap),
+            if gap > 0.0 { "stiffer" } else { "softer" }
+        )
+    };
+    Some(format!("{head}; force control gives {} Pa (static {} Pa): {why}.", cell(md_f), cell(fem_f)))
 }
 
 /// A lattice driven at constant velocity (the coursework's velocity boundary condition).

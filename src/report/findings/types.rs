@@ -4,6 +4,7 @@
 
 use std::collections::BTreeMap;
 
+use super::discussion::Paragraph;
 use super::finding::{Answer, Evidence, Table, Verdict, cell, extremes, rel, relative, sig};
 use crate::measure::lattice_constants;
 use crate::model::LatticeType;
@@ -11,6 +12,7 @@ use crate::report::figure::FigureKind;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::spec::{LatticeSpec, LoadCase, Supports};
+use crate::study::lattice::LatticeMetrics;
 
 /// True for a lattice run of another type than square (a campaign that names types).
 fn other_type(r: &RunRecord) -> bool {
@@ -822,4 +824,86 @@ fn honeycomb_sentence(waves: &[Wave]) -> Option<String> {
          zero (μ = 0), and a sideways step turns its bonds and sends nothing down.",
         honeycomb.join(" or a ")
     ))
+}
+
+/// The discussion of a lattice-types campaign: each type's E, ν, G and longitudinal wave speed
+/// against its continuum, from its largest loaded block of each kind (E and ν of a free block in
+/// tension on coursework supports, G of a periodic strip in shear) and its waves.
+pub(super) fn against_continuum(e: &Evidence) -> Option<Paragraph> {
+    if !e.records.iter().any(|r| other_type(r)) {
+        return None;
+    }
+    let waves = e.ok(|r| r.spec.lattice().is_some_and(|l| l.impulse.is_some()) && r.spec.wave().is_some());
+    let (_, waves) = wave_rows(&waves)?;
+    let types: Vec<String> = LatticeType::ALL
+        .into_iter()
+        .filter(|&t| e.records.iter().any(|r| r.spec.lattice().is_some() && kind(r) == t))
+        .map(|t| type_against_continuum(e, t, &waves))
+        .collect();
+    Some(Paragraph {
+        title: "The networks against their continuum",
+        text: format!(
+            "Each network from its largest block, measured against the continuum of its bonds (the static \
+             answer where no MD ran): {}. The continuum is the network's long-wavelength limit, which a finite \
+             block approaches as its edges and supports matter less.",
+            types.join("; ")
+        ),
+    })
+}
+
+/// One type's sentence of [`against_continuum`].
+fn type_against_continuum(e: &Evidence, t: LatticeType, waves: &[Wave]) -> String {
+    let tension = loaded_runs(e, t, LoadCase::Tensile, Supports::Coursework);
+    let shear = loaded_runs(e, t, LoadCase::Shear, Supports::PeriodicX);
+    let mut said: Vec<String> = [
+        against("E", " Pa", &tension, |l| l.youngs_modulus.or(l.youngs_modulus_fem), |l| l.youngs_modulus_theory),
+        against("ν", "", &tension, |l| l.poisson_ratio.or(l.poisson_ratio_fem), |l| l.poisson_ratio_theory),
+        against("G", " Pa", &shear, |l| l.shear_modulus.or(l.shear_modulus_fem), |l| l.shear_modulus_theory),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    let longitudinal = ratios(waves, |w| w.kind == t && !w.transverse);
+    if !longitudinal.is_empty() {
+        said.push(format!("its longitudinal wave at {} × c_L", span(&longitudinal)));
+    }
+    format!("{} (z = {}): {}", t.name(), t.coordination(), said.join(", "))
+}
+
+/// A modulus `name` (in `unit`) of the largest of `runs` that has one, against its continuum;
+/// where none has, why not (the largest run's status).
+fn against(
+    name: &str,
+    unit: &str,
+    runs: &[&RunRecord],
+    measured: fn(&LatticeMetrics) -> Option<f64>,
+    theory: fn(&LatticeMetrics) -> Option<f64>,
+) -> Option<String> {
+    let largest = |pick: &dyn Fn(&RunRecord) -> bool| {
+        runs.iter().copied().filter(|r| pick(r)).max_by_key(|r| r.spec.lattice().map_or(0, |l| l.nx * l.ny))
+    };
+    let Some(r) = largest(&|r| measured(&r.metrics.lattice).is_some()) else {
+        return largest(&|_| true).map(|r| format!("no {name} ({}, {})", r.status.as_str(), block_in_words(r)));
+    };
+    let (x, reference) = (measured(&r.metrics.lattice), theory(&r.metrics.lattice));
+    let off = relative(x, reference).map_or_else(|| "no reference".into(), |d| format!("{:+.2} %", 100.0 * d));
+    Some(format!("{name} = {}{unit} against {}{unit} ({off}, {})", cell(x), cell(reference), block_in_words(r)))
+}
+
+/// The loaded blocks of type `t` under `case` on `supports` (not diluted, not turned).
+fn loaded_runs<'a>(e: &Evidence<'a>, t: LatticeType, case: LoadCase, supports: Supports) -> Vec<&'a RunRecord> {
+    e.all(|r| {
+        kind(r) == t
+            && r.spec.lattice().is_some_and(|l| {
+                l.load_case == case && l.supports == supports && l.impulse.is_none() && !l.is_random() && !l.rotated
+            })
+    })
+}
+
+/// "free block 33 × 33" or "periodic strip 12 × 11", and whether MD or the static answer.
+fn block_in_words(r: &RunRecord) -> String {
+    let Some(l) = r.spec.lattice() else { return String::new() };
+    let what = if l.supports == Supports::PeriodicX { "periodic strip" } else { "block" };
+    let how = if r.spec.static_only() { "static" } else { "MD" };
+    format!("{how}, {what} {} × {}", l.nx, l.ny)
 }

@@ -7,11 +7,13 @@ use serde::{Deserialize, Serialize};
 
 pub use self::chain::ChainRun;
 pub use self::lattice::{ImpulseSpec, LatticeRun, LatticeSpec, ProbeLine};
+pub use self::packing::{PackingRun, PackingSpec};
 pub use self::pair::PairRun;
 
 mod chain;
 mod lattice;
 mod lattice_type;
+mod packing;
 mod pair;
 
 use self::lattice::{Solid, derive_from_solid};
@@ -28,6 +30,8 @@ pub enum KindSpec {
     Chain(ChainRun),
     /// A square lattice.
     Lattice(LatticeRun),
+    /// Discs in a periodic box.
+    Packing(PackingRun),
 }
 
 impl KindSpec {
@@ -37,6 +41,7 @@ impl KindSpec {
             KindSpec::Pair(_) => SceneKind::Pair,
             KindSpec::Chain(_) => SceneKind::Chain,
             KindSpec::Lattice(_) => SceneKind::Lattice,
+            KindSpec::Packing(_) => SceneKind::Packing,
         }
     }
 
@@ -47,6 +52,7 @@ impl KindSpec {
             KindSpec::Pair(pair) => KindSpec::Pair(*pair),
             KindSpec::Chain(chain) => KindSpec::Chain(ChainRun { relax: None, wave: None, ..chain.clone() }),
             KindSpec::Lattice(lattice) => KindSpec::Lattice(LatticeRun { relax: None, wave: None, ..lattice.clone() }),
+            KindSpec::Packing(packing) => KindSpec::Packing(packing.clone()),
         }
     }
 
@@ -66,19 +72,29 @@ impl KindSpec {
         }
     }
 
-    /// When the relaxation of a loaded lattice or a relaxing chain stops; `None` otherwise.
+    /// A packing scene's packing; `None` for other kinds.
+    pub fn packing(&self) -> Option<&PackingSpec> {
+        match self {
+            KindSpec::Packing(run) => Some(&run.packing),
+            _ => None,
+        }
+    }
+
+    /// When the relaxation of a loaded lattice, a relaxing chain or a packing stops; `None`
+    /// otherwise.
     pub fn relax(&self) -> Option<RelaxSpec> {
         match self {
             KindSpec::Pair(_) => None,
             KindSpec::Chain(chain) => chain.relax,
             KindSpec::Lattice(run) => run.relax,
+            KindSpec::Packing(run) => Some(run.relax),
         }
     }
 
     /// The timed wave of a chain or an impulse lattice, if asked for.
     pub fn wave(&self) -> Option<&WaveSpec> {
         match self {
-            KindSpec::Pair(_) => None,
+            KindSpec::Pair(_) | KindSpec::Packing(_) => None,
             KindSpec::Chain(chain) => chain.wave.as_ref(),
             KindSpec::Lattice(run) => run.wave.as_ref(),
         }
@@ -100,6 +116,7 @@ impl KindSpec {
             SceneKind::Pair => KindSpec::Pair(PairRun { gap: None }),
             SceneKind::Chain => KindSpec::Chain(ChainRun::resolve(raw, spacing)?),
             SceneKind::Lattice => KindSpec::Lattice(LatticeRun::resolve(raw, k, depth, derived_from)?),
+            SceneKind::Packing => KindSpec::Packing(PackingRun::resolve(raw, spacing)?),
         })
     }
 
@@ -107,7 +124,7 @@ impl KindSpec {
     pub(super) fn check(&self, spacing: f64, v0: f64) -> Result<(), Issue> {
         match self {
             KindSpec::Chain(chain) => chain.check(spacing, v0),
-            KindSpec::Pair(_) | KindSpec::Lattice(_) => Ok(()),
+            KindSpec::Pair(_) | KindSpec::Lattice(_) | KindSpec::Packing(_) => Ok(()),
         }
     }
 
@@ -117,7 +134,7 @@ impl KindSpec {
         match self {
             KindSpec::Pair(_) => true,
             KindSpec::Chain(chain) => chain.is_collision(),
-            KindSpec::Lattice(_) => false,
+            KindSpec::Lattice(_) | KindSpec::Packing(_) => false,
         }
     }
 
@@ -133,7 +150,7 @@ impl KindSpec {
     pub(super) fn resolve_after_length(&mut self, raw: &RawScene, spacing: f64) -> Result<(), Issue> {
         match self {
             KindSpec::Lattice(run) => run.resolve_wave(raw, spacing),
-            KindSpec::Pair(_) | KindSpec::Chain(_) => Ok(()),
+            KindSpec::Pair(_) | KindSpec::Chain(_) | KindSpec::Packing(_) => Ok(()),
         }
     }
 
@@ -144,6 +161,7 @@ impl KindSpec {
             KindSpec::Pair(pair) => Some(pair.default_duration_tc(v0, t_c)),
             KindSpec::Chain(chain) => chain.default_duration_tc(),
             KindSpec::Lattice(run) => run.default_duration_tc(),
+            KindSpec::Packing(_) => None,
         }
     }
 
@@ -153,6 +171,7 @@ impl KindSpec {
             KindSpec::Pair(pair) => pair.particles(),
             KindSpec::Chain(chain) => chain.particles(),
             KindSpec::Lattice(run) => run.particles(),
+            KindSpec::Packing(run) => run.particles(),
         }
     }
 
@@ -162,6 +181,7 @@ impl KindSpec {
             KindSpec::Pair(pair) => pair.bonds(),
             KindSpec::Chain(chain) => chain.bonds(),
             KindSpec::Lattice(run) => run.bonds(),
+            KindSpec::Packing(run) => run.bonds(),
         }
     }
 
@@ -169,7 +189,7 @@ impl KindSpec {
     /// a pair.
     pub(super) fn stored_nodes(&self) -> usize {
         match self {
-            KindSpec::Pair(_) => 0,
+            KindSpec::Pair(_) | KindSpec::Packing(_) => 0,
             KindSpec::Chain(chain) => chain.particles(),
             KindSpec::Lattice(run) => run.stored_nodes(),
         }
@@ -179,8 +199,9 @@ impl KindSpec {
     /// modes, space–time), impulse and probed lattices.
     pub(super) fn records_displacements(&self) -> bool {
         match self {
-            KindSpec::Pair(_) => false,
-            KindSpec::Chain(_) => true,
+            KindSpec::Packing(_) => false,
+            // A pair's two particles cost nothing; the report draws their overlap against δ(t).
+            KindSpec::Pair(_) | KindSpec::Chain(_) => true,
             KindSpec::Lattice(run) => run.records_displacements(),
         }
     }
@@ -190,6 +211,7 @@ impl KindSpec {
     pub(super) fn static_dofs(&self) -> usize {
         match self {
             KindSpec::Lattice(run) => run.static_dofs(),
+            KindSpec::Packing(run) => run.static_dofs(),
             KindSpec::Pair(_) | KindSpec::Chain(_) => 0,
         }
     }
@@ -201,6 +223,7 @@ impl KindSpec {
             KindSpec::Pair(pair) => pair.deformation(v0),
             KindSpec::Chain(chain) => chain.deformation(spacing, v0),
             KindSpec::Lattice(run) => run.deformation(spacing),
+            KindSpec::Packing(run) => run.deformation(spacing),
         }
     }
 }
@@ -213,6 +236,8 @@ pub(super) fn resolve_v0(kind: SceneKind, raw: &RawScene, contact: bool) -> Resu
         SceneKind::Pair => PairRun::resolve_v0(raw),
         SceneKind::Chain => ChainRun::resolve_v0(raw, contact),
         SceneKind::Lattice => LatticeRun::resolve_v0(contact),
+        // A packing starts at rest; `check_fields` refuses a v0.
+        SceneKind::Packing => Ok(0.0),
     }
 }
 
@@ -227,7 +252,7 @@ pub(super) fn solid(
 ) -> Result<Solid, Issue> {
     match kind {
         SceneKind::Lattice => derive_from_solid(raw, material, spacing, depth),
-        SceneKind::Pair | SceneKind::Chain => {
+        SceneKind::Pair | SceneKind::Chain | SceneKind::Packing => {
             let only_lattices = "only for lattice scenes (give mass and k directly)";
             let derived = material.density.is_some() || material.youngs_modulus.is_some();
             require(!derived, "material.density", "(set)", only_lattices)?;
@@ -266,17 +291,37 @@ pub(super) fn check_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue>
         "chains (a lattice's receiver is its bottom row)",
     )?;
     only(raw.wave.is_some() && is(SceneKind::Lattice) && raw.impulse.is_none(), "wave", "chains and impulse lattices")?;
-    for (present, path) in [
-        (raw.lattice.is_some(), "lattice"),
-        (raw.supports.is_some(), "supports"),
-        (raw.load.is_some(), "load"),
-        (raw.seed.is_some(), "seed"),
-    ] {
+    for (present, path) in
+        [(raw.lattice.is_some(), "lattice"), (raw.supports.is_some(), "supports"), (raw.load.is_some(), "load")]
+    {
         only(present && !is(SceneKind::Lattice), path, "lattice scenes")?;
     }
+    only(
+        raw.seed.is_some() && !is(SceneKind::Lattice) && !is(SceneKind::Packing),
+        "seed",
+        "lattice and packing scenes",
+    )?;
+    check_packing_fields(kind, raw)?;
     only(raw.relax.is_some() && is(SceneKind::Pair), "relax", "lattices and chains between moved walls")?;
     only(raw.relax.is_some() && raw.wave.is_some(), "wave", "chains that are hit, not relaxed")?;
     only(raw.v0.is_some() && is(SceneKind::Lattice), "v0", "pair and chain scenes (lattices are loaded, not kicked)")
+}
+
+/// A packing's section only on a packing; a packing has no kick, damping or movie (it relaxes by
+/// a minimiser, which has no time), and its springs are contacts.
+fn check_packing_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue> {
+    let packing = kind == SceneKind::Packing;
+    let only = |present: bool, path: &str, allowed: &str| require(!present, path, "(set)", allowed);
+    only(raw.packing.is_some() && !packing, "packing", "only for packing scenes; remove it from this scene")?;
+    if !packing {
+        return Ok(());
+    }
+    let untimed = "not for packing scenes: a packing starts at rest and relaxes by a minimiser, which has no time";
+    only(raw.v0.is_some(), "v0", untimed)?;
+    only(raw.damping.is_some(), "damping", untimed)?;
+    only(raw.movie.is_some(), "movie", "not for packing scenes yet (its final state is packings/<run_id>.parquet)")?;
+    let bonded = raw.material.as_ref().and_then(|m| m.contact) == Some(false);
+    require(!bonded, "material.contact", false, "a packing's springs are contacts (true, the default here)")
 }
 
 /// The kind's own fields in their flat columns, `None` where the kind has no such field.
@@ -295,6 +340,8 @@ pub(super) struct KindColumns {
     lattice: Option<LatticeSpec>,
     #[serde(default)]
     wave: Option<WaveSpec>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    packing: Option<PackingSpec>,
 }
 
 impl From<KindSpec> for KindColumns {
@@ -312,6 +359,9 @@ impl From<KindSpec> for KindColumns {
             KindSpec::Lattice(LatticeRun { lattice, relax, wave }) => {
                 KindColumns { lattice: Some(lattice), relax, wave, ..KindColumns::default() }
             }
+            KindSpec::Packing(PackingRun { packing, relax }) => {
+                KindColumns { packing: Some(packing), relax: Some(relax), ..KindColumns::default() }
+            }
         }
     }
 }
@@ -319,7 +369,7 @@ impl From<KindSpec> for KindColumns {
 impl KindColumns {
     /// The kind `kind` with its fields, refusing a field another kind has or a missing one.
     pub(super) fn into_kind(self, kind: SceneKind) -> Result<KindSpec, String> {
-        let KindColumns { gap, n, node, wall_distance, relax, lattice, wave } = self;
+        let KindColumns { gap, n, node, wall_distance, relax, lattice, wave, packing } = self;
         let refuse = |fields: &[(bool, &str)]| match fields.iter().find(|(present, _)| *present) {
             Some((_, field)) => Err(format!("a {} run has no `{field}`, yet it is set", kind.name())),
             None => Ok(()),
@@ -334,11 +384,12 @@ impl KindColumns {
                     (relax.is_some(), "relax"),
                     (lattice.is_some(), "lattice"),
                     (wave.is_some(), "wave"),
+                    (packing.is_some(), "packing"),
                 ])?;
                 KindSpec::Pair(PairRun { gap })
             }
             SceneKind::Chain => {
-                refuse(&[(gap.is_some(), "gap"), (lattice.is_some(), "lattice")])?;
+                refuse(&[(gap.is_some(), "gap"), (lattice.is_some(), "lattice"), (packing.is_some(), "packing")])?;
                 KindSpec::Chain(ChainRun {
                     n: n.ok_or_else(|| needed("n"))?,
                     node: node.ok_or_else(|| needed("node"))?,
@@ -353,8 +404,17 @@ impl KindColumns {
                     (n.is_some(), "n"),
                     (node.is_some(), "node"),
                     (wall_distance.is_some(), "wall_distance"),
+                    (packing.is_some(), "packing"),
                 ])?;
                 KindSpec::Lattice(LatticeRun { lattice: lattice.ok_or_else(|| needed("lattice"))?, relax, wave })
+            }
+            SceneKind::Packing => {
+                refuse(&[
+                    (gap.is_some() || n.is_some() || node.is_some(), "gap, n or node"),
+                    (wall_distance.is_some() || lattice.is_some() || wave.is_some(), "wall_distance, lattice or wave"),
+                ])?;
+                let packing = packing.ok_or_else(|| needed("packing"))?;
+                KindSpec::Packing(PackingRun { packing, relax: relax.ok_or_else(|| needed("relax"))? })
             }
         })
     }

@@ -211,13 +211,14 @@ fn pulled_lattice(n: usize, force: f64) -> (Vec<f64>, Vec<f64>, Bonds, Vec<usize
     (x, y, bonds, (0..n).collect(), loads)
 }
 
-/// Newton–Raphson on a lattice stretched by ~4 % reuses the one factor of the linear K: one
-/// numeric factorisation for the linear answer and every correction (conjugate gradients
-/// preconditioned with it), each correction 1–3 solves, and the out-of-balance force it ends
-/// at is recorded, at most 1e-12 of the load. The answer satisfies the non-linear equations
-/// to that residual (checked by `Truss::reaction`: the supports carry the whole load).
+/// Newton–Raphson on a lattice stretched by ~4 % converges quadratically on the network's one
+/// symbolic analysis: one numeric factorisation for the linear answer and one per correction
+/// (three from the linear answer: the residual falls ~4 %, ~1e-3, ~1e-6 … squared each time),
+/// and the out-of-balance force it ends at is recorded, at most 1e-12 of the load. The answer
+/// satisfies the non-linear equations to that residual (checked by `Truss::reaction`: the
+/// supports carry the whole load).
 #[test]
-fn newton_reuses_the_linear_factor() {
+fn newton_converges_quadratically_and_records_its_residual() {
     let (n, force) = (12, 0.05);
     let (x, y, bonds, held, loads) = pulled_lattice(n, force);
     let truss = Truss { x: &x, y: &y, bonds: &bonds, held_x: &held, held_y: &held, loads: &loads, prescribed: &[] };
@@ -227,10 +228,10 @@ fn newton_reuses_the_linear_factor() {
         panic!("Newton converges")
     };
     let convergence = solver.convergence();
-    assert_eq!(convergence.factorisations, 1, "{convergence:?}");
+    assert!(convergence.factorisations <= 5, "{convergence:?}");
     assert!(convergence.residual <= 1e-12, "{convergence:?}");
-    // The linear solve takes ≤ 4 solves (one and its refinements), Newton 2–4 corrections.
-    assert!(convergence.solves <= 16, "{convergence:?}");
+    // Each factor solves once and refines at most 3 times.
+    assert!(convergence.solves <= 4 * convergence.factorisations, "{convergence:?}");
     let (_, carried) = truss.reaction(&Linear, &ux, &uy, &held);
     // The supports hold −(total load); 1e-10: the 1e-12 residual summed over 2n² dofs.
     assert!((carried + force * n as f64).abs() <= 1e-10, "{carried}");

@@ -2,7 +2,7 @@
 
 use mdsolids::report::markdown::{code, inline, paragraphs, tex};
 
-use mdsolids::report::page::to_html as html;
+use mdsolids::report::page::to_html;
 
 const HOSTILE: &str =
     "<script>alert(1)</script> | a*b* _c_ [x](javascript:y) ![i](j) `k` &lt; #\n| row\r\n~~s~~ $x$ \\";
@@ -64,4 +64,9 @@ fn paragraphs_stay_paragraphs() {
     }
     assert!(body.contains("<p>- not a list 1. not a list either</p>"), "{body}");
     assert!(body.contains("<p>1986) a year</p>"), "{body}");
+}
+
+/// The page's HTML of `markdown`, with no images to size.
+fn html(markdown: &str) -> String {
+    to_html(markdown, &Default::default())
 }

@@ -1,7 +1,10 @@
 //! Unit tests of `src/report/page.rs`, moved out of the library (one test binary).
 
-use mdsolids::report::page::{CONTENTS_MARKER, number_captions, percent_decoded, to_html, with_contents};
-use std::collections::HashSet;
+use mdsolids::report::images::{Shown, Strip, size_of};
+use mdsolids::report::page::{
+    APPENDIX_MARKER, CONTENTS_MARKER, number_captions, percent_decoded, split_appendix, to_html, with_contents,
+};
+use std::collections::{HashMap, HashSet};
 
 const PAGE: &str = "# Title\n\nLead paragraph.\n\n## Results\n\n### Speed `v`\n\n\
     ![A chart](plots/a.svg)\n\n*The speed against time.*\n\n\
@@ -16,7 +19,7 @@ fn values<'a>(html: &'a str, attribute: &str) -> Vec<&'a str> {
 
 #[test]
 fn every_heading_has_a_unique_id_and_every_contents_link_resolves() {
-    let html = to_html(PAGE);
+    let html = to_html(PAGE, &Default::default());
     let ids = values(&html, "id");
     assert_eq!(["<h1", "<h2", "<h3"].iter().map(|h| html.matches(h).count()).sum::<usize>(), 5, "{html}");
     for id in ["title", "results", "speed-v", "results-1", "ünïcode--more"] {
@@ -44,14 +47,14 @@ fn the_contents_go_where_the_marker_is_in_both_pages() {
     let markdown = with_contents(&page);
     assert!(markdown.contains("- [A b](#a-b)\n- [C](#c)\n\nIntro."), "{markdown}");
     assert_eq!(with_contents(PAGE), number_captions(PAGE), "no marker: no list in report.md");
-    let html = to_html(&page);
+    let html = to_html(&page, &Default::default());
     assert_eq!(html.matches("<nav").count(), 1, "{html}");
     assert!(html.find("</nav>").unwrap() < html.find("Intro.").unwrap(), "{html}");
 }
 
 #[test]
 fn captioned_images_are_numbered_figures_and_all_images_load_lazily() {
-    let html = to_html(PAGE);
+    let html = to_html(PAGE, &Default::default());
     assert_eq!(html.matches("<figure").count(), 2, "{html}");
     assert!(
         html.contains(
@@ -70,7 +73,7 @@ fn captioned_images_are_numbered_figures_and_all_images_load_lazily() {
         "no caption, no number: {html}"
     );
     assert_eq!(html.matches("<img").count(), html.matches("loading=\"lazy\"").count());
-    let text_after = to_html("![a](x.svg) and text\n\n*not a caption*\n");
+    let text_after = to_html("![a](x.svg) and text\n\n*not a caption*\n", &Default::default());
     assert!(!text_after.contains("<figure"), "{text_after}");
 }
 
@@ -100,7 +103,7 @@ fn the_contents_leave_out_what_a_summary_above_links() {
         list,
         "**Contents**\n\n- [Summary](#summary)\n- [Answers](#answers)\n- [Appendix](#appendix)\n  - [Methods](#methods)\n\n"
     );
-    let html = to_html(&page);
+    let html = to_html(&page, &Default::default());
     let ids = values(&html, "id");
     for id in ["1-a", "2-ü", "answers", "methods"] {
         assert!(ids.contains(&id), "{id} in {ids:?}");
@@ -111,7 +114,7 @@ fn the_contents_leave_out_what_a_summary_above_links() {
 
 #[test]
 fn tables_scroll_inside_their_own_box() {
-    let html = to_html(PAGE);
+    let html = to_html(PAGE, &Default::default());
     assert!(html.contains("<div class=\"table-wrap\">\n<table>"), "{html}");
     assert!(html.contains("</table>\n</div>"), "{html}");
 }
@@ -120,10 +123,81 @@ fn tables_scroll_inside_their_own_box() {
 fn math_becomes_mathml_and_bad_latex_falls_back_to_its_code() {
     let html = to_html(
         "Inline $t_c = \\pi \\sqrt{m/k}$ and\n\n$$E = \\frac{1}{2} m v^2$$\n\nBad $\\frac{1}$, $\\nosuchcommand x$ here.\n",
+        &Default::default(),
     );
     assert!(html.contains("<math"), "{html}");
     assert!(html.contains("display=\"block\""), "{html}");
     assert!(html.contains("<mfrac>"), "{html}");
     assert!(html.contains("<code class=\"math-error\" title=\"LaTeX that could not be rendered\">\\frac{1}</code>, <code class=\"math-error\" title=\"LaTeX that could not be rendered\">\\nosuchcommand x</code> here."), "{html}");
     assert!(!html.contains('$'), "{html}");
+}
+
+#[test]
+fn images_carry_their_size_and_a_movie_its_filmstrip() {
+    let strip = Strip { file: "plots/m.filmstrip.png".into(), size: (806, 326), caption: "frames 1, 4 of 4".into() };
+    let images = HashMap::from([
+        ("plots/a.svg".to_string(), Shown { size: Some((820, 500)), filmstrip: None }),
+        ("plots/m.gif".to_string(), Shown { size: Some((400, 160)), filmstrip: Some(strip) }),
+    ]);
+    let html = to_html(PAGE, &images);
+    assert!(
+        html.contains(r#"<img src="plots/a.svg" alt="A chart" width="820" height="500" loading="lazy">"#),
+        "{html}"
+    );
+    assert!(html.contains(r#"<img src="plots/m.gif" alt="A movie" width="400" height="160" class="movie" loading="lazy"><img src="plots/m.filmstrip.png" alt="A movie (frames 1, 4 of 4)" width="806" height="326" class="filmstrip" loading="lazy">"#), "{html}");
+    // An image the page could not read is shown without a size, not left out.
+    assert!(html.contains(r#"<img src="plots/b.svg" alt="Alone" loading="lazy">"#), "{html}");
+}
+
+#[test]
+fn image_sizes_are_read_from_png_gif_and_svg_headers() {
+    // Files written by the crates that write the report's images, of sizes chosen here.
+    let mut png = Vec::new();
+    let mut encoder = png::Encoder::new(&mut png, 37, 11);
+    encoder.set_color(png::ColorType::Grayscale);
+    encoder.write_header().unwrap().write_image_data(&[0u8; 37 * 11]).unwrap();
+    assert_eq!(size_of(&png), Some((37, 11)));
+    let mut gif = Vec::new();
+    {
+        let mut encoder = gif::Encoder::new(&mut gif, 23, 5, &[0, 0, 0, 255, 255, 255]).unwrap();
+        encoder
+            .write_frame(&gif::Frame { width: 23, height: 5, buffer: vec![0u8; 23 * 5].into(), ..Default::default() })
+            .unwrap();
+    }
+    assert_eq!(size_of(&gif), Some((23, 5)));
+    let svg = br#"<?xml version="1.0"?>
+<svg width="820" height="500" viewBox="0 0 820 500" xmlns="http://www.w3.org/2000/svg"><rect/></svg>"#;
+    assert_eq!(size_of(svg), Some((820, 500)));
+    assert_eq!(size_of(b"<svg viewBox=\"0 0 1 1\"></svg>"), None, "no size given: none guessed");
+    assert_eq!(size_of(b"plain text"), None);
+}
+
+#[test]
+fn a_table_without_rows_is_not_written() {
+    let html = to_html("Before.\n\n| a | b |\n|---|---|\n\nAfter.\n\n| c |\n|---|\n| 1 |\n", &Default::default());
+    assert_eq!(html.matches("<table>").count(), 1, "{html}");
+    assert_eq!(html.matches("table-wrap").count(), 1, "{html}");
+    assert!(html.contains("<td>1</td>") && !html.contains("<th>a</th>"), "{html}");
+}
+
+#[test]
+fn the_appendix_is_a_page_of_its_own_and_links_cross_between_the_pages() {
+    let page = format!(
+        "# T\n\n{CONTENTS_MARKER}\n\n## Answers\n\nSee [the method](#method) and [above](#answers).\n\n\
+         {APPENDIX_MARKER}\n\n## Appendix\n\n### Method\n\nBack to [the answers](#answers), [here](#method).\n"
+    );
+    let (main, appendix) = split_appendix(&to_html(&page, &Default::default()));
+    let appendix = appendix.expect("the marker starts an appendix");
+    assert!(main.contains(r##"<a href="appendix.html#method">the method</a>"##), "{main}");
+    assert!(main.contains(r##"<a href="#answers">above</a>"##), "{main}");
+    assert!(main.contains(r#"<a href="appendix.html">appendix.html</a>"#), "the main page links its appendix: {main}");
+    assert!(!main.contains("<h3"), "the appendix's headings are not on the main page: {main}");
+    // The contents list on the main page leads to the appendix's sections there.
+    assert!(main.contains(r##"href="appendix.html#appendix""##), "{main}");
+    assert!(appendix.contains(r##"<a href="index.html#answers">the answers</a>"##), "{appendix}");
+    assert!(appendix.contains(r##"<a href="#method">here</a>"##), "{appendix}");
+    assert!(appendix.contains(r#"<a href="index.html">"#), "the appendix links back: {appendix}");
+    // Without the marker: one page, as before.
+    let (whole, none) = split_appendix(&to_html(PAGE, &Default::default()));
+    assert!(none.is_none() && whole == to_html(PAGE, &Default::default()));
 }

@@ -10,10 +10,12 @@ fn metrics_serialise_flat() {
     metrics.pair.contact_duration = Some(0.5);
     metrics.chain.wall_force = Some(-2.0);
     metrics.lattice.youngs_modulus = Some(2e11);
+    metrics.packing.pressure = Some(0.01);
     let value = serde_json::to_value(&metrics).unwrap();
     let object = value.as_object().unwrap();
-    assert_eq!(object.len(), 53, "{object:?}");
-    for (key, number) in [("energy_error", 1e-3), ("contact_duration", 0.5), ("wall_force", -2.0)] {
+    // 53 keys before the packing's 13.
+    assert_eq!(object.len(), 66, "{object:?}");
+    for (key, number) in [("energy_error", 1e-3), ("contact_duration", 0.5), ("wall_force", -2.0), ("pressure", 0.01)] {
         assert_eq!(object[key].as_f64(), Some(number), "{key}");
     }
     assert_eq!(object["youngs_modulus"].as_f64(), Some(2e11));

@@ -1,0 +1,263 @@
+//! Connectivity of a packing: discs in a periodic box whose contacts come and go. What touches
+//! what is found here, by cell lists (never by all pairs); the force of a contact is the one
+//! spring force (`Spring::force_on_i`, rest length r_i + r_j, acting in compression only), and
+//! neither knows how time is integrated (`crate::sim`).
+
+use super::bonds::uniform;
+
+/// A periodic square box of side L (m), sheared by `tilt` (m): the image of a point one period
+/// up sits at (x + tilt, y + L) (Lees–Edwards), so that a shear strain γ is tilt = γ L.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PeriodicBox {
+    /// Side L (m).
+    pub side: f64,
+    /// x offset (m) of the image one period up; 0 for the unsheared box.
+    pub tilt: f64,
+}
+
+impl PeriodicBox {
+    /// The unsheared box of side `side` (m).
+    pub fn square(side: f64) -> PeriodicBox {
+        PeriodicBox { side, tilt: 0.0 }
+    }
+
+    /// Its area L² (m²): shearing keeps it.
+    pub fn area(&self) -> f64 {
+        self.side * self.side
+    }
+
+    /// The lattice vector a (L, 0) + b (tilt, L) that, added to the separation `(dx, dy)` (m),
+    /// gives its nearest image (exactly so for |tilt| ≤ L/2 and separations below L/2).
+    pub fn nearest_image(&self, dx: f64, dy: f64) -> (f64, f64) {
+        let b = (dy / self.side).round();
+        let a = ((dx - b * self.tilt) / self.side).round();
+        (-a * self.side - b * self.tilt, -b * self.side)
+    }
+
+    /// The point's coordinates along the box's two edges, as fractions in [0, 1).
+    fn fractional(&self, x: f64, y: f64) -> (f64, f64) {
+        let t = y / self.side;
+        let s = (x - self.tilt * t) / self.side;
+        (s - s.floor(), t - t.floor())
+    }
+}
+
+/// Pairs of discs: pair `b` joins `i[b] < j[b]` through the image of `j` whose separation is
+/// x_i − x_j + (shift_x, shift_y); its rest length is r_i + r_j, so that δ < 0 is an overlap.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Contacts {
+    /// First disc of each pair (the smaller index).
+    pub i: Vec<usize>,
+    /// Second disc.
+    pub j: Vec<usize>,
+    /// r_i + r_j (m).
+    pub rest: Vec<f64>,
+    /// x of the image's lattice vector (m).
+    pub shift_x: Vec<f64>,
+    /// y of the image's lattice vector (m).
+    pub shift_y: Vec<f64>,
+}
+
+impl Contacts {
+    /// Number of pairs.
+    pub fn len(&self) -> usize {
+        self.i.len()
+    }
+
+    /// True when there are none.
+    pub fn is_empty(&self) -> bool {
+        self.i.is_empty()
+    }
+
+    /// Appends the pair (i, j) through the image (shift_x, shift_y) (m), rest length `rest` (m).
+    pub fn push(&mut self, i: usize, j: usize, rest: f64, (shift_x, shift_y): (f64, f64)) {
+        self.i.push(i);
+        self.j.push(j);
+        self.rest.push(rest);
+        self.shift_x.push(shift_x);
+        self.shift_y.push(shift_y);
+    }
+
+    /// The separation (m) of pair `b` at positions `(x, y)`.
+    #[inline(always)]
+    pub fn separation(&self, b: usize, x: &[f64], y: &[f64]) -> (f64, f64) {
+        let (i, j) = (self.i[b], self.j[b]);
+        (x[i] - x[j] + self.shift_x[b], y[i] - y[j] + self.shift_y[b])
+    }
+}
+
+/// Every pair of discs (i < j, each image of j separately) whose centres are closer than
+/// r_i + r_j + `skin` (m), at positions `(x, y)` in `periodic`, ordered by i. Cell lists: the
+/// box is cut into c × c cells at least one reach 2 r_max + skin wide (across its sheared
+/// edges), and each cell is compared with itself and four neighbours, so the work is linear in
+/// the discs. A box under three cells wide (a few discs) compares every pair with its images.
+pub fn contacts_within(x: &[f64], y: &[f64], radius: &[f64], periodic: &PeriodicBox, skin: f64) -> Contacts {
+    let reach = 2.0 * radius.iter().fold(0.0f64, |m, r| m.max(*r)) + skin;
+    // A cell's width across its slanted edge is (L/c)/√(1 + (tilt/L)²).
+    let slant = (1.0 + (periodic.tilt / periodic.side).powi(2)).sqrt();
+    let cells = (periodic.side / (reach * slant)).floor();
+    let found = if cells >= 3.0 {
+        cell_list(x, y, radius, periodic, skin, cells as usize)
+    } else {
+        every_image(x, y, radius, periodic, skin, reach)
+    };
+    ordered_by_first(found, x.len())
+}
+
+/// Adds the pair (p, q) when its nearest image is within r_p + r_q + `skin`.
+#[allow(clippy::too_many_arguments)] // the structure of arrays, one slice per component
+fn consider(
+    p: usize,
+    q: usize,
+    x: &[f64],
+    y: &[f64],
+    radius: &[f64],
+    periodic: &PeriodicBox,
+    skin: f64,
+    found: &mut Contacts,
+) {
+    let (i, j) = (p.min(q), p.max(q));
+    let (dx, dy) = (x[i] - x[j], y[i] - y[j]);
+    let shift = periodic.nearest_image(dx, dy);
+    let (sx, sy) = (dx + shift.0, dy + shift.1);
+    let rest = radius[i] + radius[j];
+    let reach = rest + skin;
+    if sx * sx + sy * sy < reach * reach {
+        found.push(i, j, rest, shift);
+    }
+}
+
+/// The cell-list search over `cells` × `cells` cells (≥ 3 a side, so that the nine around a
+/// cell are distinct and the nearest image is the only one in reach).
+fn cell_list(x: &[f64], y: &[f64], radius: &[f64], periodic: &PeriodicBox, skin: f64, cells: usize) -> Contacts {
+    let n = x.len();
+    let cell_of = |p: usize| {
+        let (s, t) = periodic.fractional(x[p], y[p]);
+        let column = ((s * cells as f64) as usize).min(cells - 1);
+        let row = ((t * cells as f64) as usize).min(cells - 1);
+        row * cells + column
+    };
+    // Counting sort of the discs by cell: `members[start[c]..start[c + 1]]` are cell c's.
+    let home: Vec<usize> = (0..n).map(cell_of).collect();
+    let mut start = vec![0usize; cells * cells + 1];
+    for &c in &home {
+        start[c + 1] += 1;
+    }
+    for c in 0..cells * cells {
+        start[c + 1] += start[c];
+    }
+    let mut members = vec![0usize; n];
+    let mut next = start.clone();
+    for (p, &c) in home.iter().enumerate() {
+        members[next[c]] = p;
+        next[c] += 1;
+    }
+    let mut found = Contacts::default();
+    // Each pair of neighbouring cells once: the cell itself and the half of its eight
+    // neighbours to the right and above.
+    const HALF_SHELL: [(usize, usize); 4] = [(1, 0), (usize::MAX, 1), (0, 1), (1, 1)];
+    for row in 0..cells {
+        for column in 0..cells {
+            let own = &members[start[row * cells + column]..start[row * cells + column + 1]];
+            for (a, &p) in own.iter().enumerate() {
+                for &q in &own[a + 1..] {
+                    consider(p, q, x, y, radius, periodic, skin, &mut found);
+                }
+            }
+            for (dc, dr) in HALF_SHELL {
+                let other = (row + dr) % cells * cells + (column + cells).wrapping_add(dc) % cells;
+                for &p in own {
+                    for &q in &members[start[other]..start[other + 1]] {
+                        consider(p, q, x, y, radius, periodic, skin, &mut found);
+                    }
+                }
+            }
+        }
+    }
+    found
+}
+
+/// The search of a box under three cells wide: every pair with every image in reach (a disc
+/// may touch two images of another). Only a few discs fit such a box (its side is below three
+/// reaches), so the pairs are few.
+fn every_image(x: &[f64], y: &[f64], radius: &[f64], periodic: &PeriodicBox, skin: f64, reach: f64) -> Contacts {
+    let images = (reach / periodic.side).ceil() as i64 + 1;
+    let mut found = Contacts::default();
+    for i in 0..x.len() {
+        for j in i + 1..x.len() {
+            let (dx, dy) = (x[i] - x[j], y[i] - y[j]);
+            let nearest = periodic.nearest_image(dx, dy);
+            let rest = radius[i] + radius[j];
+            for b in -images..=images {
+                for a in -images..=images {
+                    let (a, b) = (a as f64, b as f64);
+                    let shift = (nearest.0 + a * periodic.side + b * periodic.tilt, nearest.1 + b * periodic.side);
+                    let (sx, sy) = (dx + shift.0, dy + shift.1);
+                    if sx * sx + sy * sy < (rest + skin) * (rest + skin) {
+                        found.push(i, j, rest, shift);
+                    }
+                }
+            }
+        }
+    }
+    found
+}
+
+/// The pairs reordered by their first disc (a counting sort, stable), so that the force loop
+/// reads and writes the first disc's memory in increasing order.
+fn ordered_by_first(found: Contacts, discs: usize) -> Contacts {
+    let mut start = vec![0usize; discs + 1];
+    for &i in &found.i {
+        start[i + 1] += 1;
+    }
+    for p in 0..discs {
+        start[p + 1] += start[p];
+    }
+    let mut order = vec![0usize; found.len()];
+    for (b, &i) in found.i.iter().enumerate() {
+        order[start[i]] = b;
+        start[i] += 1;
+    }
+    let mut sorted = Contacts::default();
+    for b in order {
+        sorted.push(found.i[b], found.j[b], found.rest[b], (found.shift_x[b], found.shift_y[b]));
+    }
+    sorted
+}
+
+/// The periodic square box in which ⌈n/2⌉ discs of radius `small` (m) and ⌊n/2⌋ of `ratio`
+/// times that cover the area fraction `fraction`: L = √(π (n_s r_s² + n_l r_l²) / φ).
+pub fn bidisperse_box(n: usize, small: f64, ratio: f64, fraction: f64) -> PeriodicBox {
+    let (n_small, n_large) = (n.div_ceil(2) as f64, (n / 2) as f64);
+    let discs_area = std::f64::consts::PI * small * small * (n_small + n_large * ratio * ratio);
+    PeriodicBox::square((discs_area / fraction).sqrt())
+}
+
+/// `n` discs, the first ⌈n/2⌉ of radius `small` (m) and the rest `ratio` times larger, at
+/// uniformly random positions (from `seed`) in the periodic square box whose area their discs
+/// cover to the fraction `fraction`: (box, x, y, radius). The discs are numbered along rows of
+/// the box (cells one large diameter wide), so that neighbours in space are near in memory.
+pub fn random_bidisperse(
+    n: usize,
+    small: f64,
+    ratio: f64,
+    fraction: f64,
+    seed: u64,
+) -> (PeriodicBox, Vec<f64>, Vec<f64>, Vec<f64>) {
+    let radius: Vec<f64> = (0..n).map(|k| if k < n.div_ceil(2) { small } else { small * ratio }).collect();
+    let periodic = bidisperse_box(n, small, ratio, fraction);
+    let side = periodic.side;
+    let place = |k: usize| (uniform(seed, 2 * k as u64) * side, uniform(seed, 2 * k as u64 + 1) * side);
+    let cell = 2.0 * small * ratio;
+    let columns = (side / cell).ceil().max(1.0) as usize;
+    let mut order: Vec<(usize, usize)> = (0..n)
+        .map(|k| {
+            let (x, y) = place(k);
+            (((y / cell) as usize) * columns + (x / cell) as usize, k)
+        })
+        .collect();
+    order.sort_unstable();
+    let (x, y): (Vec<f64>, Vec<f64>) = order.iter().map(|&(_, k)| place(k)).unzip();
+    let radius = order.iter().map(|&(_, k)| radius[k]).collect();
+    (periodic, x, y, radius)
+}

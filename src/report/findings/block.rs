@@ -1,0 +1,302 @@
+//! The 2D block's answers, computed once for the summary, the abstract and the items: E and ν
+//! of the loaded block extrapolated to an infinite block with their uncertainty, G of the
+//! periodic strip, and the block's sound speed in m/s, measured by a wave run of the same
+//! material and derived from the measured moduli and density.
+
+use std::collections::BTreeMap;
+
+use super::finding::{Evidence, percent, plus_minus, regular, relative, sig};
+use crate::runner::RunRecord;
+use crate::spec::{Control, Diagonals, LoadCase, Supports};
+
+/// The material of a lattice run, as bits so that it can key a map: mass (kg), k (N/m),
+/// k_d (N/m), spacing a (m), depth d (m).
+type Material = [u64; 5];
+
+/// The material of `r`, if it is a lattice.
+fn material(r: &RunRecord) -> Option<Material> {
+    let l = r.spec.lattice()?;
+    Some([r.spec.mass, r.spec.k, l.k_diag, r.spec.spacing, l.depth].map(f64::to_bits))
+}
+
+/// A modulus measured on blocks of several sizes N, extrapolated to N → ∞.
+pub(super) struct Extrapolated {
+    /// The extrapolated value.
+    pub(super) value: f64,
+    /// Its uncertainty: the change of the extrapolation when the smallest block is left out
+    /// (three or more sizes), or the whole finite-size correction (two sizes); with one size
+    /// the relaxation's MD − static difference alone.
+    pub(super) uncertainty: f64,
+    /// The measured value on the largest block.
+    pub(super) largest: f64,
+    /// The continuum value the network discretises.
+    pub(super) continuum: Option<f64>,
+}
+
+/// Richardson's extrapolation of a finite-size effect ∝ 1/N from blocks of N₁ < N₂ nodes a
+/// side: v(N) = v∞ + b/N gives v∞ = (N₂ v₂ − N₁ v₁)/(N₂ − N₁). A boundary layer of fixed
+/// thickness (the point loads, the single pinned corner) changes a modulus by a share ∝ 1/N.
+fn richardson((n1, v1): (f64, f64), (n2, v2): (f64, f64)) -> f64 {
+    (n2 * v2 - n1 * v1) / (n2 - n1)
+}
+
+impl Extrapolated {
+    /// The extrapolation of `pick` over `runs`, one per size, by rising size; `fem` the same
+    /// quantity's static answer, whose difference from MD bounds the uncertainty from below.
+    fn of(
+        runs: &[&RunRecord],
+        pick: fn(&RunRecord) -> Option<f64>,
+        fem: fn(&RunRecord) -> Option<f64>,
+        theory: fn(&RunRecord) -> Option<f64>,
+    ) -> Option<Extrapolated> {
+        let series: Vec<(f64, f64)> =
+            runs.iter().filter_map(|r| Some((r.spec.lattice()?.nx as f64, pick(r)?))).collect();
+        let last = *runs.last()?;
+        let largest = series.last()?.1;
+        let relaxation = relative(pick(last), fem(last)).map_or(0.0, |x| (x * largest).abs());
+        let n = series.len();
+        let (value, finite_size) = match n {
+            1 => (largest, 0.0),
+            2 => {
+                let value = richardson(series[0], series[1]);
+                (value, (value - largest).abs())
+            }
+            _ => {
+                let value = richardson(series[n - 2], series[n - 1]);
+                (value, (value - richardson(series[n - 3], series[n - 2])).abs())
+            }
+        };
+        Some(Extrapolated { value, uncertainty: finite_size.max(relaxation), largest, continuum: theory(last) })
+    }
+
+    /// The value with its uncertainty.
+    pub(super) fn words(&self) -> String {
+        plus_minus(self.value, self.uncertainty)
+    }
+}
+
+/// The block's E and ν from the tensile runs of one set-up (supports and material), G from its
+/// periodic strip, and its sound speed.
+pub(super) struct Block<'a> {
+    /// The tensile runs extrapolated, one per size, by rising size.
+    pub(super) tensile: Vec<&'a RunRecord>,
+    pub(super) youngs: Extrapolated,
+    pub(super) poisson: Extrapolated,
+    /// The periodic strip's G (the largest one) and its MD − static difference (Pa).
+    pub(super) shear: Option<(&'a RunRecord, f64)>,
+    /// The wave run of the same material that timed its front over the longest distance.
+    pub(super) wave: Option<&'a RunRecord>,
+}
+
+impl<'a> Block<'a> {
+    /// The block of `e`: the force-loaded, linear, regular lattices with both diagonals, on the
+    /// coursework's supports where the campaign has them (their moduli converge to the
+    /// continuum's: a clamped bottom stiffens a block of any size), else on the set-up with the
+    /// most sizes. A periodic strip cannot contract, so it gives G but not E and ν.
+    pub(super) fn of(e: &Evidence<'a>) -> Option<Block<'a>> {
+        let loaded = |case: LoadCase| {
+            e.ok(move |r| {
+                regular(r).is_some_and(|l| {
+                    l.load_case == case && l.control == Control::Force && l.diagonals == Diagonals::Both
+                })
+            })
+        };
+        let mut setups: BTreeMap<(bool, Material), BTreeMap<usize, &RunRecord>> = BTreeMap::new();
+        for r in loaded(LoadCase::Tensile) {
+            let Some(l) = r.spec.lattice().filter(|l| l.supports != Supports::PeriodicX) else { continue };
+            let key = (l.supports != Supports::Coursework, material(r)?);
+            setups.entry(key).or_default().entry(l.nx).or_insert(r);
+        }
+        let ((_, chosen), sizes) =
+            setups.into_iter().min_by_key(|((other, _), sizes)| (*other, usize::MAX - sizes.len()))?;
+        let tensile: Vec<&RunRecord> = sizes.into_values().collect();
+        let youngs = Extrapolated::of(
+            &tensile,
+            |r| r.metrics.lattice.youngs_modulus,
+            |r| r.metrics.lattice.youngs_modulus_fem,
+            |r| r.metrics.lattice.youngs_modulus_theory,
+        )?;
+        let poisson = Extrapolated::of(
+            &tensile,
+            |r| r.metrics.lattice.poisson_ratio,
+            |r| r.metrics.lattice.poisson_ratio_fem,
+            |r| r.metrics.lattice.poisson_ratio_theory,
+        )?;
+        let shear = loaded(LoadCase::Shear)
+            .into_iter()
+            .filter(|r| material(r) == Some(chosen))
+            .filter(|r| r.spec.lattice().is_some_and(|l| l.supports == Supports::PeriodicX))
+            .max_by_key(|r| r.spec.lattice().map_or(0, |l| l.nx))
+            .and_then(|r| {
+                let m = &r.metrics.lattice;
+                Some((r, (m.shear_modulus? - m.shear_modulus_fem?).abs()))
+            });
+        let same_medium = |r: &RunRecord| material(r).is_some_and(|m| m == chosen);
+        let wave = e
+            .ok(|r| {
+                r.spec.law.is_linear()
+                    && r.spec.lattice().is_some_and(|l| l.impulse.is_some() && l.diagonals == Diagonals::Both)
+                    && r.metrics.recommended_sound_speed().is_some()
+                    && r.metrics.sound_speed_theory.is_some()
+            })
+            .into_iter()
+            .filter(|r| same_medium(r))
+            .max_by(|a, b| a.metrics.wave_distance.unwrap_or(0.0).total_cmp(&b.metrics.wave_distance.unwrap_or(0.0)));
+        Some(Block { tensile, youngs, poisson, shear, wave })
+    }
+
+    /// The run that fixes the block's material (its largest tensile block).
+    fn first(&self) -> &'a RunRecord {
+        self.tensile[self.tensile.len() - 1]
+    }
+
+    /// The block's density ρ = m/(a² d) (kg/m³): one node's mass over its cell's volume.
+    pub(super) fn density(&self) -> f64 {
+        let s = &self.first().spec;
+        s.mass / (s.spacing * s.spacing * s.lattice().map_or(f64::NAN, |l| l.depth))
+    }
+
+    /// The longitudinal sound speed (m/s) of a sheet with the extrapolated E and ν and the
+    /// block's density, c = √(E/(ρ(1 − ν²))) (plane stress), with its uncertainty from theirs:
+    /// δc/c = ½ δE/E + ν δν/(1 − ν²).
+    pub(super) fn sound_from_moduli(&self) -> (f64, f64) {
+        let (e, nu) = (&self.youngs, &self.poisson);
+        let c = (e.value / (self.density() * (1.0 - nu.value * nu.value))).sqrt();
+        let share = 0.5 * e.uncertainty / e.value + nu.value * nu.uncertainty / (1.0 - nu.value * nu.value);
+        (c, c * share)
+    }
+
+    /// The sizes extrapolated from, in words (`5 × 5 … 40 × 40`).
+    pub(super) fn sizes(&self) -> String {
+        let size = |r: &RunRecord| r.spec.lattice().map(|l| format!("{} × {}", l.nx, l.ny)).unwrap_or_default();
+        match self.tensile.as_slice() {
+            [one] => size(one),
+            [first, .., last] => format!("{} … {}", size(first), size(last)),
+            [] => String::new(),
+        }
+    }
+
+    /// How the values were found: extrapolated over two sizes or more, else measured on one
+    /// block, whose finite-size share is then not estimated.
+    fn basis(&self) -> String {
+        if self.tensile.len() < 2 {
+            format!("measured on {} alone (one size: its finite-size share, ∝ 1/N, is not estimated)", self.sizes())
+        } else {
+            format!("extrapolated to an infinite block (the finite-size share falls as 1/N) from {}", self.sizes())
+        }
+    }
+
+    /// The summary's line of E and ν: the extrapolated values with their uncertainty.
+    pub(super) fn youngs_short(&self) -> String {
+        format!(
+            "E = {} Pa, ν = {} ({}, {} {}); continuum {} Pa, {}",
+            self.youngs.words(),
+            self.poisson.words(),
+            self.supports(),
+            if self.tensile.len() < 2 { "one size:" } else { "N → ∞ from" },
+            self.sizes(),
+            self.youngs.continuum.map_or_else(|| "–".into(), sig),
+            self.poisson.continuum.map_or_else(|| "–".into(), sig),
+        )
+    }
+
+    /// The supports of the extrapolated set-up, in words.
+    fn supports(&self) -> String {
+        format!("{} supports", self.first().spec.lattice().map_or("", |l| l.supports.name()))
+    }
+
+    /// The summary's line of G, when the campaign has a periodic strip of the block.
+    pub(super) fn shear_short(&self) -> Option<String> {
+        let (r, spread) = self.shear?;
+        let m = &r.metrics.lattice;
+        Some(format!(
+            "G = {} Pa on the periodic strip against k_d/d = {} Pa",
+            plus_minus(m.shear_modulus?, spread),
+            sig(m.shear_modulus_theory?)
+        ))
+    }
+
+    /// The summary's line of the sound speed in m/s: measured if a wave crossed the block,
+    /// else from the moduli.
+    pub(super) fn sound_short(&self) -> String {
+        let (c, spread) = self.sound_from_moduli();
+        let derived = format!("√(E/(ρ(1 − ν²))) = {} m/s", plus_minus(c, spread));
+        match self.wave.and_then(|w| Some((w.metrics.recommended_sound_speed()?, w.metrics.sound_speed_theory?))) {
+            Some((v, c_l)) => format!(
+                "V = {} m/s in the block, {} on c_L = {} m/s; {derived}",
+                sig(v),
+                percent((v - c_l) / c_l),
+                sig(c_l)
+            ),
+            None => format!("{derived} in the block (no wave crossed it)"),
+        }
+    }
+
+    /// The abstract's sentence on the block's moduli.
+    pub(super) fn moduli_sentence(&self) -> String {
+        let s = &self.first().spec;
+        let shear = self.shear_short().map_or_else(String::new, |g| format!("; {g}"));
+        format!(
+            "The 2D block (m = {} kg per node, k = {} N/m, k_d/k = {}, a = {} m, d = {} m: ρ = {} kg/m³) has \
+             E = {} Pa and ν = {}, {} on the {} ({} Pa and {} on the largest), against the continuum's {} Pa and \
+             {}{shear}.",
+            sig(s.mass),
+            sig(s.k),
+            sig(s.lattice().map_or(f64::NAN, |l| l.k_diag) / s.k),
+            sig(s.spacing),
+            sig(s.lattice().map_or(f64::NAN, |l| l.depth)),
+            sig(self.density()),
+            self.youngs.words(),
+            self.poisson.words(),
+            self.basis(),
+            self.supports(),
+            sig(self.youngs.largest),
+            sig(self.poisson.largest),
+            self.youngs.continuum.map_or_else(|| "–".into(), sig),
+            self.poisson.continuum.map_or_else(|| "–".into(), sig),
+        )
+    }
+
+    /// The abstract's sentence on the block's sound speed.
+    pub(super) fn sound_sentence(&self) -> String {
+        let (c, spread) = self.sound_from_moduli();
+        let derived =
+            format!("its measured E, ν and density give c = √(E/(ρ(1 − ν²))) = {} m/s", plus_minus(c, spread));
+        let measured = self.wave.and_then(|w| {
+            Some((w.metrics.recommended_sound_speed()?, w.metrics.sound_speed_theory?, w.metrics.wave_distance?))
+        });
+        match measured {
+            Some((v, c_l, distance)) => format!(
+                "Sound crosses the block at {} m/s (the front timed over {} m by the 1 % speed threshold), {} on \
+                 c_L = a√((k + k_d)/m) = {} m/s, and {derived}: the threshold catches the dispersive precursor \
+                 ahead of the front.",
+                sig(v),
+                sig(distance),
+                percent((v - c_l) / c_l),
+                sig(c_l)
+            ),
+            None => format!("No wave crossed the block here; {derived}."),
+        }
+    }
+}
+
+impl Block<'_> {
+    /// Item 10's sentence on the extrapolation: how the moduli converge and to what.
+    pub(super) fn extrapolation_sentence(&self) -> Option<String> {
+        (self.tensile.len() >= 2).then(|| {
+            format!(
+                "A finite block departs from the continuum by a boundary layer of fixed thickness at the point loads \
+             and the supports, a share ∝ 1/N of its modulus; Richardson's v∞ = (N₂ v₂ − N₁ v₁)/(N₂ − N₁) over \
+             the two largest of {} on the {} gives E = {} Pa and ν = {} (the uncertainty: the change when the next \
+             smaller pair of blocks is used, or the whole correction with two sizes), against the continuum's {} Pa \
+             and {}.",
+                self.sizes(),
+                self.supports(),
+                self.youngs.words(),
+                self.poisson.words(),
+                self.youngs.continuum.map_or_else(|| "–".into(), sig),
+                self.poisson.continuum.map_or_else(|| "–".into(), sig),
+            )
+        })
+    }
+}

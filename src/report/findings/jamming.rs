@@ -1,0 +1,304 @@
+//! Issue 34's item "Jamming": where the campaign's packings jam and how they scale above it,
+//! against O'Hern, Silbert, Liu & Nagel, Phys. Rev. E 68, 011306 (2003). φ_J of each seed from
+//! p → 0 of its linear packings (p = a (φ − φ_J) fitted over its jammed ones), their mean and
+//! standard error per N; z at jamming from z = z_J + c √Δφ; and log–log fits of p, z − 4, K
+//! and G against Δφ = φ − φ_J per contact law and N.
+
+use std::collections::BTreeMap;
+
+use super::finding::{Answer, Evidence, Table, Verdict, plus_minus, sig};
+use crate::measure::line_fit;
+use crate::report::figure::FigureKind;
+use crate::report::jamming::{FIT_FLOOR, ISOSTATIC, Onset, Scaling, excess, jammed, key, onsets, scalings};
+use crate::runner::RunRecord;
+
+/// The reference of every number here.
+const CITATION: &str = "O'Hern, Silbert, Liu & Nagel, Phys. Rev. E 68, 011306 (2003)";
+/// Their φ_J of 50:50 discs of diameter ratio 1.4, N → ∞.
+const PHI_J: f64 = 0.842;
+/// The allowance for finite size beside 2 standard errors: the mean φ_J of small periodic
+/// packings moves with N (by +0.007 from N = 64 to 1024 in `campaigns/jamming.yaml`).
+const FINITE_SIZE: f64 = 0.01;
+/// The tolerance of z_J against 4: a finite periodic packing of N' discs jams at the
+/// isostatic count 2N' − 1 (z = 4 − 2/N'), and the extrapolation in √Δφ starts from the
+/// smallest Δφ measured (z − 4 ≈ 0.3 at Δφ ≈ 0.005 in `campaigns/jamming.yaml`).
+const Z_TOLERANCE: f64 = 0.15;
+/// The tolerance of a fitted exponent against the theory's (judged on the largest N only):
+/// Δφ of the smallest fitted point is uncertain by up to 1/`FIT_FLOOR` of itself (ln 1.2 ≈
+/// 0.18), which over a fitted range of ln(0.08/0.004) ≈ 3 moves a slope by up to ≈ 0.06; the
+/// tolerance allows as much again for the corrections to scaling away from Δφ → 0, which the
+/// theory's exponents leave out.
+const EXPONENT_TOLERANCE: f64 = 0.15;
+
+/// The contact law in words, from its exponent β.
+fn law_words(beta: f64) -> String {
+    match beta {
+        1.0 => "linear".into(),
+        1.5 => "Hertz".into(),
+        _ => format!("power (β = {})", sig(beta)),
+    }
+}
+
+impl Onset {
+    /// Within 2 standard errors and the finite-size allowance of O'Hern et al.'s φ_J.
+    fn within(&self) -> bool {
+        (self.mean - PHI_J).abs() <= 2.0 * self.error + FINITE_SIZE
+    }
+
+    /// Its sentence.
+    fn sentence(&self) -> String {
+        format!(
+            "N = {}: φ_J = {} (mean ± standard error over {} seeds), {} from {CITATION}'s {PHI_J}: {} (tolerance: 2 \
+             standard errors + {FINITE_SIZE}, the latter for the finite size).",
+            self.n,
+            plus_minus(self.mean, self.error),
+            self.seeds,
+            signed(self.mean - PHI_J),
+            if self.within() { "within" } else { "outside" },
+        )
+    }
+}
+
+/// A difference with its sign and 4 significant digits.
+fn signed(x: f64) -> String {
+    format!("{}{}", if x < 0.0 { "−" } else { "+" }, sig(x.abs()))
+}
+
+/// How the mean φ_J moves from the smallest N to the largest, if the campaign has two sizes.
+fn trend_sentence(sizes: &[Onset]) -> Option<String> {
+    let (first, last) = (sizes.first()?, sizes.last()?);
+    (sizes.len() > 1).then(|| {
+        let toward = (last.mean - PHI_J).abs() < (first.mean - PHI_J).abs();
+        format!(
+            "From N = {} to N = {} the mean φ_J moves by {}, {} 0.842.",
+            first.n,
+            last.n,
+            signed(last.mean - first.mean),
+            if toward { "towards" } else { "away from" }
+        )
+    })
+}
+
+/// z at jamming of the linear packings of `n` discs: z = z_J + c √Δφ fitted over the jammed
+/// ones, with the number of packings.
+fn coordination_at_jamming(
+    runs: &[&RunRecord],
+    onsets: &BTreeMap<(usize, u64), f64>,
+    n: usize,
+) -> Option<(f64, usize)> {
+    let points: Vec<(f64, f64)> = runs
+        .iter()
+        .filter(|r| r.spec.law.is_linear() && jammed(r) && key(r).is_some_and(|k| k.0 == n))
+        .filter_map(|r| Some((excess(onsets, r)?.sqrt(), r.metrics.packing.coordination?)))
+        .collect();
+    line_fit(&points).map(|l| (l.intercept, points.len()))
+}
+
+impl Scaling {
+    fn within(&self) -> bool {
+        (self.fit.exponent - self.theory).abs() <= EXPONENT_TOLERANCE
+    }
+}
+
+/// The sentence of one law and N's scalings.
+fn scalings_sentence(beta: f64, size: &Onset, fitted: &[Scaling], judged: bool) -> String {
+    let parts: Vec<String> = fitted
+        .iter()
+        .map(|s| {
+            let verdict = if !judged {
+                ""
+            } else if s.within() {
+                ", within"
+            } else {
+                ", outside"
+            };
+            format!(
+                "{} ∝ Δφ^{} (theory {}{verdict}; {} packings)",
+                s.quantity,
+                sig(s.fit.exponent),
+                sig(s.theory),
+                s.points.len()
+            )
+        })
+        .collect();
+    let how = if judged {
+        format!("judged within {EXPONENT_TOLERANCE} of the theory's exponent")
+    } else {
+        "a smaller N, not judged".into()
+    };
+    format!(
+        "{} contacts, N = {}, over Δφ ≥ {} ({FIT_FLOOR} times the spread of φ_J between seeds; {how}): {}.",
+        capitalised(&law_words(beta)),
+        size.n,
+        sig(size.fit_floor()),
+        parts.join(", ")
+    )
+}
+
+/// `text` with its first letter upper case.
+fn capitalised(text: &str) -> String {
+    let mut chars = text.chars();
+    chars.next().map_or_else(String::new, |c| c.to_uppercase().collect::<String>() + chars.as_str())
+}
+
+/// Where do random packings of discs jam, and how do their pressure, contacts and moduli grow
+/// above it? `None` without packings.
+pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
+    let any = e.all(|r| r.spec.packing().is_some());
+    if any.is_empty() {
+        return None;
+    }
+    let runs = e.ok(|r| r.spec.packing().is_some());
+    let onsets = onsets(&runs);
+    let sizes = Onset::per_size(&onsets);
+    let Some(largest) = sizes.last() else { return Some(unjammed(&any)) };
+    let mut sentences = vec![format!(
+        "Each seed's φ_J is where the pressure of its linear packings extrapolates to zero: p = a (φ − φ_J) fitted \
+         by least squares over its jammed packings (p above the relaxation's floor, a backbone left), {} seeds in all.",
+        onsets.len()
+    )];
+    sentences.extend(sizes.iter().map(Onset::sentence));
+    sentences.extend(trend_sentence(&sizes));
+    let mut checks: Vec<bool> = sizes.iter().map(Onset::within).collect();
+    let mut rows: Vec<Vec<String>> = sizes
+        .iter()
+        .map(|s| row("linear", s.n, "φ_J", &plus_minus(s.mean, s.error), PHI_J, s.seeds, Some(s.within())))
+        .collect();
+    if let Some((z_j, points)) = coordination_at_jamming(&runs, &onsets, largest.n) {
+        let ok = (z_j - ISOSTATIC).abs() <= Z_TOLERANCE;
+        sentences.push(format!(
+            "z at jamming (mean contacts per disc, rattlers removed), from z = z_J + c √Δφ fitted over the {points} \
+             jammed linear packings of N = {}: z_J = {}, against the isostatic {ISOSTATIC}: {} (tolerance \
+             {Z_TOLERANCE}: a finite periodic packing of N' discs jams at the isostatic count 2N' − 1, z = 4 − 2/N', \
+             and the extrapolation starts from the smallest Δφ measured).",
+            largest.n,
+            sig(z_j),
+            if ok { "within" } else { "outside" }
+        ));
+        checks.push(ok);
+        rows.push(row("linear", largest.n, "z_J", &sig(z_j), ISOSTATIC, points, Some(ok)));
+    }
+    let (scaling_sentences, scaling_rows, scaling_checks) = all_scalings(&runs, &onsets, &sizes);
+    sentences.extend(scaling_sentences);
+    rows.extend(scaling_rows);
+    checks.extend(scaling_checks);
+    Some(Answer {
+        title: "Jamming",
+        question: "Where do random packings of discs jam, and how do p, z, K and G grow above it?",
+        short: format!("φ_J = {} (N = {}) against {PHI_J}", plus_minus(largest.mean, largest.error), largest.n),
+        sentences,
+        reference: format!(
+            "{CITATION}: φ_J ≈ {PHI_J} for 1:1.4 bidisperse discs, z_J = 4, and p, z − 4, K, G ∝ Δφ^(1, ½, 0, ½) for \
+             linear and ^(3/2, ½, ½, 1) for Hertz contacts; exponents judged on the largest N within \
+             {EXPONENT_TOLERANCE}."
+        ),
+        verdict: Verdict::of(checks),
+        figures: packing_scenes(&runs).into_iter().filter_map(|scene| e.figure(scene, FigureKind::Jamming)).collect(),
+        table: Some(Table {
+            header: ["law", "N", "quantity", "measured", "theory", "seeds or packings", "verdict"]
+                .map(String::from)
+                .to_vec(),
+            rows,
+        }),
+    })
+}
+
+/// The scalings of every contact law at every N of `sizes`, in sentences, table rows and
+/// checks (the largest N of each law judged).
+fn all_scalings(
+    runs: &[&RunRecord],
+    onsets: &BTreeMap<(usize, u64), f64>,
+    sizes: &[Onset],
+) -> (Vec<String>, Vec<Vec<String>>, Vec<bool>) {
+    let mut laws: Vec<u64> = runs.iter().map(|r| r.spec.law.beta().to_bits()).collect();
+    laws.sort_unstable();
+    laws.dedup();
+    let (mut sentences, mut rows, mut checks) = (Vec::new(), Vec::new(), Vec::new());
+    for beta in laws.into_iter().map(f64::from_bits) {
+        let fitted: Vec<(&Onset, Vec<Scaling>)> = sizes
+            .iter()
+            .map(|size| (size, scalings(runs, onsets, size.n, beta, size.fit_floor())))
+            .filter(|(_, fitted)| !fitted.is_empty())
+            .collect();
+        for (i, (size, scalings)) in fitted.iter().enumerate() {
+            let judged = i + 1 == fitted.len();
+            sentences.push(scalings_sentence(beta, size, scalings, judged));
+            for s in scalings {
+                rows.push(row(
+                    &law_words(beta),
+                    size.n,
+                    s.quantity,
+                    &sig(s.fit.exponent),
+                    s.theory,
+                    s.points.len(),
+                    judged.then(|| s.within()),
+                ));
+            }
+            checks.extend(scalings.iter().filter(|_| judged).map(Scaling::within));
+        }
+    }
+    (sentences, rows, checks)
+}
+
+/// The packing scenes of `runs`, in campaign order.
+fn packing_scenes<'a>(runs: &[&'a RunRecord]) -> Vec<&'a str> {
+    let mut scenes: Vec<&str> = runs.iter().map(|r| r.spec.scene.as_str()).collect();
+    scenes.dedup();
+    scenes
+}
+
+/// A table row; `ok` `None` for a number not judged.
+fn row(
+    law: &str,
+    n: usize,
+    quantity: &str,
+    measured: &str,
+    theory: f64,
+    count: usize,
+    ok: Option<bool>,
+) -> Vec<String> {
+    let verdict = ok.map_or("not judged", |ok| if ok { "within" } else { "outside" });
+    vec![law.into(), n.to_string(), quantity.into(), measured.into(), sig(theory), count.to_string(), verdict.into()]
+}
+
+/// The answer when no seed has two jammed linear packings: how many jammed, and, when none
+/// did, whether O'Hern et al.'s φ_J lies above the fractions reached (nothing should have
+/// jammed) or among them; with some jammed, an observation.
+fn unjammed(any: &[&RunRecord]) -> Answer {
+    let highest = any.iter().filter_map(|r| r.spec.packing().map(|p| p.fraction)).fold(0.0f64, f64::max);
+    let jammed_count = any.iter().filter(|r| jammed(r)).count();
+    let below = highest < PHI_J;
+    let counted = format!(
+        "{jammed_count} of the {} packings (fractions up to {}) jammed, and no seed has two jammed linear packings to \
+         extrapolate φ_J from",
+        any.len(),
+        sig(highest)
+    );
+    let sentence = if jammed_count > 0 {
+        format!("No φ_J could be found: {counted}.")
+    } else {
+        format!(
+            "No jammed state was found: {counted}. {CITATION}'s φ_J ≈ {PHI_J} lies {}.",
+            if below {
+                "above every fraction here, so none should jam"
+            } else {
+                "within the fractions here, so the packings above it should have jammed"
+            }
+        )
+    };
+    let verdict = if jammed_count > 0 { Verdict::Observed } else { Verdict::of([below]) };
+    Answer {
+        title: "Jamming",
+        question: "Where do random packings of discs jam, and how do p, z, K and G grow above it?",
+        short: if jammed_count > 0 {
+            "no φ_J: no seed has two jammed linear packings".into()
+        } else {
+            format!("no jammed state up to φ = {}", sig(highest))
+        },
+        sentences: vec![sentence],
+        reference: format!("{CITATION}: φ_J ≈ {PHI_J} for 1:1.4 bidisperse discs."),
+        verdict,
+        figures: Vec::new(),
+        table: None,
+    }
+}

@@ -1,0 +1,190 @@
+//! The packings' jamming (issue 34): φ_J of each (N, seed) from p → 0 of its linear packings,
+//! its mean and spread per N, Δφ = φ − φ_J of every packing, and the scalings of p, z − 4, K
+//! and G against Δφ fitted on log–log axes and drawn, one figure per packing scene. The report's
+//! item "Jamming" (`findings/jamming.rs`) states them against the literature.
+
+use std::collections::BTreeMap;
+
+use super::figure::{Figure, FigureKind, Part};
+use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
+use crate::measure::{PowerLawFit, line_fit, power_law_fit};
+use crate::report::solids::mean_spread;
+use crate::runner::RunRecord;
+use crate::sim::RunStatus;
+
+/// z at jamming in 2D: isostatic, 2d contacts per disc.
+pub(super) const ISOSTATIC: f64 = 4.0;
+
+/// The scalings are fitted from Δφ ≥ this many times the spread of φ_J between seeds.
+pub(super) const FIT_FLOOR: f64 = 5.0;
+
+/// A packing's value, if measured.
+type Pick = fn(&RunRecord) -> Option<f64>;
+
+/// A theory's exponent as a function of the contact law's β.
+type Exponent = fn(f64) -> f64;
+
+/// The scalings near jamming for contact forces ∝ δ^β (δ ∝ Δφ): name, value and the theory's
+/// exponent as a function of β: p ∝ δ^β, z − 4 ∝ Δφ^½ (geometry), K ∝ k_t ∝ δ^(β−1) and
+/// G ∝ K Δz ∝ Δφ^(β−½); linear (β = 1): 1, ½, 0, ½; Hertz (β = 3/2): 3/2, ½, ½, 1.
+const SCALINGS: [(&str, Pick, Exponent); 4] = [
+    ("p", |r| r.metrics.packing.pressure, |beta| beta),
+    ("z − 4", |r| r.metrics.packing.coordination.map(|z| z - ISOSTATIC), |_| 0.5),
+    ("K", |r| r.metrics.packing.bulk_modulus_2d, |beta| beta - 1.0),
+    ("G", |r| r.metrics.packing.shear_modulus_2d, |beta| beta - 0.5),
+];
+
+/// The packing's (N, seed): its φ_J's key.
+pub(super) fn key(r: &RunRecord) -> Option<(usize, u64)> {
+    r.spec.packing().map(|p| (p.n, p.seed))
+}
+
+/// Whether the packing jammed (p above its floor with a backbone, relaxed).
+pub(super) fn jammed(r: &RunRecord) -> bool {
+    r.metrics.packing.packing_state.as_deref() == Some("jammed")
+}
+
+/// φ_J of every (N, seed) with two jammed linear packings or more: p = a (φ − φ_J) fitted by
+/// least squares over them, φ_J = −intercept/a (none when the pressure does not rise with φ).
+pub(super) fn onsets(runs: &[&RunRecord]) -> BTreeMap<(usize, u64), f64> {
+    let mut points: BTreeMap<(usize, u64), Vec<(f64, f64)>> = BTreeMap::new();
+    for r in runs.iter().filter(|r| r.spec.law.is_linear() && jammed(r)) {
+        let m = &r.metrics.packing;
+        if let (Some(k), Some(phi), Some(p)) = (key(r), m.packing_fraction, m.pressure) {
+            points.entry(k).or_default().push((phi, p));
+        }
+    }
+    points
+        .into_iter()
+        .filter_map(|(k, points)| line_fit(&points).filter(|l| l.slope > 0.0).map(|l| (k, -l.intercept / l.slope)))
+        .collect()
+}
+
+/// Δφ = φ − φ_J of a packing, from its (N, seed)'s φ_J, when positive.
+pub(super) fn excess(onsets: &BTreeMap<(usize, u64), f64>, r: &RunRecord) -> Option<f64> {
+    let phi_j = onsets.get(&key(r)?)?;
+    Some(r.metrics.packing.packing_fraction? - phi_j).filter(|d| *d > 0.0)
+}
+
+/// The campaign's φ_J of one N: mean and standard error over its seeds, and how it stands.
+pub(super) struct Onset {
+    pub(super) n: usize,
+    pub(super) seeds: usize,
+    pub(super) mean: f64,
+    /// The standard error of the mean (0 with one seed).
+    pub(super) error: f64,
+    /// The standard deviation between seeds (0 with one seed).
+    pub(super) spread: f64,
+}
+
+impl Onset {
+    /// φ_J of every N, by rising N.
+    pub(super) fn per_size(onsets: &BTreeMap<(usize, u64), f64>) -> Vec<Onset> {
+        let mut sizes: BTreeMap<usize, Vec<f64>> = BTreeMap::new();
+        for (&(n, _), &phi) in onsets {
+            sizes.entry(n).or_default().push(phi);
+        }
+        sizes
+            .into_iter()
+            .map(|(n, phis)| {
+                let (mean, spread) = mean_spread(phis.iter().map(|p| Some(*p)));
+                let spread = spread.unwrap_or(0.0);
+                let error = spread / (phis.len() as f64).sqrt();
+                Onset { n, seeds: phis.len(), mean: mean.unwrap_or(f64::NAN), error, spread }
+            })
+            .collect()
+    }
+
+    /// The smallest Δφ the scalings are fitted from: each packing is its own quench, whose own
+    /// φ_J scatters about its seed's by about the spread σ between seeds, so Δφ ≥ `FIT_FLOOR` σ
+    /// keeps that error of ln Δφ below ln(1 + 1/`FIT_FLOOR`) ≈ 0.18.
+    pub(super) fn fit_floor(&self) -> f64 {
+        FIT_FLOOR * self.spread
+    }
+}
+
+/// One fitted scaling: quantity, its fit against Δφ, the theory's exponent and the points
+/// (Δφ, value) fitted.
+pub(super) struct Scaling {
+    pub(super) quantity: &'static str,
+    pub(super) fit: PowerLawFit,
+    pub(super) theory: f64,
+    pub(super) points: Vec<(f64, f64)>,
+}
+
+/// The scalings of the jammed packings of `n` discs with contact exponent `beta`, each fitted
+/// on log–log axes against Δφ over the packings with Δφ ≥ `floor` and a positive value.
+pub(super) fn scalings(
+    runs: &[&RunRecord],
+    onsets: &BTreeMap<(usize, u64), f64>,
+    n: usize,
+    beta: f64,
+    floor: f64,
+) -> Vec<Scaling> {
+    let mine: Vec<&&RunRecord> =
+        runs.iter().filter(|r| jammed(r) && r.spec.law.beta() == beta && key(r).is_some_and(|k| k.0 == n)).collect();
+    SCALINGS
+        .iter()
+        .filter_map(|&(quantity, pick, theory)| {
+            let points: Vec<(f64, f64)> = mine
+                .iter()
+                .filter_map(|r| Some((excess(onsets, r).filter(|d| *d >= floor)?, pick(r).filter(|y| *y > 0.0)?)))
+                .collect();
+            let fit = power_law_fit(&points)?;
+            Some(Scaling { quantity, fit, theory: theory(beta), points })
+        })
+        .collect()
+}
+
+/// The packing scene's figure: p, z − 4, K and G of its largest N's jammed packings against
+/// Δφ on log–log axes (φ_J from the linear packings of the whole campaign), each with its
+/// fitted power law; none without a φ_J.
+pub(super) fn part(records: &[RunRecord], scene: &str) -> anyhow::Result<Part<()>> {
+    let runs: Vec<&RunRecord> =
+        records.iter().filter(|r| r.status == RunStatus::Ok && r.spec.packing().is_some()).collect();
+    let onsets = onsets(&runs);
+    let mine: Vec<&RunRecord> = runs.iter().copied().filter(|r| r.spec.scene == scene).collect();
+    let sizes = Onset::per_size(&onsets);
+    let (Some(first), Some(size)) =
+        (mine.first(), sizes.iter().rev().find(|s| mine.iter().any(|r| key(r).is_some_and(|k| k.0 == s.n))))
+    else {
+        return Ok(Part { figures: Vec::new(), rows: () });
+    };
+    let beta = first.spec.law.beta();
+    let mut series = Vec::new();
+    for s in scalings(&mine, &onsets, size.n, beta, size.fit_floor()) {
+        series.push(Series {
+            label: format!("{}: packings", s.quantity),
+            points: s.points.clone(),
+            mark: Mark::Markers,
+        });
+        let mut xs: Vec<f64> = s.points.iter().map(|p| p.0).collect();
+        xs.sort_by(f64::total_cmp);
+        let line = xs.iter().map(|&x| (x, s.fit.prefactor * x.powf(s.fit.exponent))).collect();
+        series.push(Series {
+            label: format!("{}: fit Δφ^{:.2} (theory {:.2})", s.quantity, s.fit.exponent, s.theory),
+            points: line,
+            mark: Mark::Line,
+        });
+    }
+    let chart = Chart {
+        title: format!("{scene}: p, z − 4, K and G against Δφ (N = {})", size.n),
+        x_label: "Δφ = φ − φ_J".into(),
+        y_label: "p, K, G (N/m); z − 4".into(),
+        scale: Scale::LogLog,
+    };
+    let figure = Figure {
+        scene: scene.into(),
+        kind: FigureKind::Jamming,
+        file: format!("plots/{scene}-jamming.svg"),
+        caption: format!(
+            "{scene}: pressure p, excess coordination z − 4 and moduli K, G of the jammed packings of {} discs \
+             against Δφ = φ − φ_J (φ_J per seed from p → 0 of the linear packings), over Δφ ≥ {:.3}, on log–log axes \
+             with fitted power laws.",
+            size.n,
+            size.fit_floor()
+        ),
+        image: line_chart(&chart, &series)?,
+    };
+    Ok(Part { figures: vec![figure], rows: () })
+}

@@ -1,0 +1,143 @@
+//! The force field of a packing: discs in a periodic box whose contacts are found as they
+//! move. A list of the pairs within r_i + r_j + skin (`model::contacts_within`, cell lists) is
+//! kept until some disc has moved half a skin since it was made: until then no pair outside it
+//! can overlap. Every pair's force is the one spring force, `Spring::force_on_i` with rest
+//! length r_i + r_j, which a contact spring exerts only while the discs overlap (δ < 0).
+
+use super::field::{ForceField, add_background_damping};
+use crate::model::{Contacts, Dashpot, ForceLaw, PeriodicBox, Spring, contacts_within};
+
+/// The discs' geometry a packing's field needs: radii (m), the periodic box and the stiffness
+/// constant of every contact (k, N/m, or C, N/m^β).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Packing {
+    /// Radius of each disc (m).
+    pub radius: Vec<f64>,
+    /// The periodic box.
+    pub periodic: PeriodicBox,
+    /// Stiffness constant of every contact.
+    pub k: f64,
+    /// Skin (m): the list keeps pairs up to r_i + r_j + skin apart.
+    pub skin: f64,
+}
+
+impl Packing {
+    /// The pairs of discs that overlap (δ < 0) at positions `(x, y)`.
+    pub fn overlapping(&self, x: &[f64], y: &[f64]) -> Contacts {
+        let near = contacts_within(x, y, &self.radius, &self.periodic, 0.0);
+        let mut touching = Contacts::default();
+        for b in 0..near.len() {
+            let (dx, dy) = near.separation(b, x, y);
+            if (dx * dx + dy * dy).sqrt() < near.rest[b] {
+                touching.push(near.i[b], near.j[b], near.rest[b], (near.shift_x[b], near.shift_y[b]));
+            }
+        }
+        touching
+    }
+}
+
+/// A packing's contacts under one spring law `L`, dashpot `D` (contact springs: `CONTACT` is
+/// true for every packing the spec builds), with background damping.
+#[derive(Clone, Debug)]
+pub struct ContactNetwork<L, D, const CONTACT: bool> {
+    spring: Spring<L, D, CONTACT>,
+    packing: Packing,
+    /// The pairs within reach when the list was made ...
+    near: Contacts,
+    /// ... at these positions (m).
+    made_at: (Vec<f64>, Vec<f64>),
+    /// Lists made so far.
+    builds: u64,
+    background_gamma: f64,
+}
+
+impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ContactNetwork<L, D, CONTACT> {
+    /// The field of `packing` under `spring`, with background damping `background_gamma`
+    /// (N s/m); its list is made at the first evaluation.
+    pub fn new(spring: Spring<L, D, CONTACT>, packing: Packing, background_gamma: f64) -> Self {
+        ContactNetwork {
+            spring,
+            packing,
+            near: Contacts::default(),
+            made_at: (Vec::new(), Vec::new()),
+            builds: 0,
+            background_gamma,
+        }
+    }
+
+    /// Lists made so far (one at the first evaluation, then one each time a disc has moved
+    /// half a skin).
+    pub fn builds(&self) -> u64 {
+        self.builds
+    }
+
+    /// True when the list made at `made_at` may miss an overlap at `(x, y)`: some disc moved
+    /// more than half the skin (two discs closing in on each other cover at most a skin).
+    fn stale(&self, x: &[f64], y: &[f64]) -> bool {
+        let (x0, y0) = &self.made_at;
+        if x0.len() != x.len() {
+            return true;
+        }
+        let limit = 0.25 * self.packing.skin * self.packing.skin;
+        x.iter().zip(y).zip(x0.iter().zip(y0)).any(|((x, y), (x0, y0))| (x - x0).powi(2) + (y - y0).powi(2) > limit)
+    }
+
+    fn refresh(&mut self, x: &[f64], y: &[f64]) {
+        if self.stale(x, y) {
+            self.near = contacts_within(x, y, &self.packing.radius, &self.packing.periodic, self.packing.skin);
+            self.made_at = (x.to_vec(), y.to_vec());
+            self.builds += 1;
+        }
+    }
+}
+
+impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for ContactNetwork<L, D, CONTACT> {
+    // A damped contact's force jumps where it closes (γ δ̇): a packing's thousands of contacts
+    // switch within most steps, so the step is not split there (as in LAMMPS's granular
+    // styles); the jump costs an O(dt) error per contact (restitution off by ~1e-2 at t_c/50).
+
+    fn uses_velocity(&self) -> bool {
+        D::ACTIVE || self.background_gamma > 0.0
+    }
+
+    fn add_forces(&mut self, x: &[f64], y: &[f64], vx: &[f64], vy: &[f64], fx: &mut [f64], fy: &mut [f64]) -> f64 {
+        self.refresh(x, y);
+        let near = &self.near;
+        let k = self.packing.k;
+        let mut power = 0.0;
+        for b in 0..near.len() {
+            let (i, j) = (near.i[b], near.j[b]);
+            let (dx, dy) = near.separation(b, x, y);
+            let (dvx, dvy) = if D::ACTIVE { (vx[i] - vx[j], vy[i] - vy[j]) } else { (0.0, 0.0) };
+            let f = self.spring.force_on_i(k, near.rest[b], dx, dy, dvx, dvy);
+            fx[i] += f.fx;
+            fy[i] += f.fy;
+            fx[j] -= f.fx;
+            fy[j] -= f.fy;
+            power += f.dissipation;
+        }
+        if self.background_gamma > 0.0 {
+            power += add_background_damping(self.background_gamma, vx, vy, fx, fy);
+        }
+        power
+    }
+
+    /// Σ e(δ) over the overlapping pairs, from a search of its own (the list may be stale).
+    fn potential_energy(&self, x: &[f64], y: &[f64]) -> f64 {
+        let touching = self.packing.overlapping(x, y);
+        (0..touching.len())
+            .map(|b| {
+                let (dx, dy) = touching.separation(b, x, y);
+                self.spring.energy(self.packing.k, touching.rest[b], dx, dy)
+            })
+            .sum()
+    }
+
+    fn bond_energy(&self, k: f64, rest: f64, dx: f64, dy: f64) -> f64 {
+        self.spring.energy(k, rest, dx, dy)
+    }
+
+    /// None: contacts come and go, so there is no bond whose collapse the samples could check
+    /// (two discs may turn about each other), and no switch is predicted (see above).
+    fn for_each_bond(&self, _visit: &mut dyn FnMut(usize, usize, f64, f64, f64)) {}
+}

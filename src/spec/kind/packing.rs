@@ -1,0 +1,139 @@
+//! The packing's own fields (discs, size ratio, area fraction, seed, relaxation) and its part of
+//! the resolution and of what a run spec tells: no v0, contact springs, a minimiser, its
+//! particles and contacts.
+
+use serde::{Deserialize, Serialize};
+
+use crate::model::bidisperse_box;
+use crate::sim::RelaxMethod;
+use crate::spec::issue::{Issue, Num, missing, require};
+use crate::spec::raw::RawScene;
+use crate::spec::shared::{Deformation, RelaxSpec};
+
+/// Size ratio of the large discs to the small ones unless `packing.radius_ratio` says (O'Hern
+/// et al. 2003's 1:1.4).
+const DEFAULT_RADIUS_RATIO: f64 = 1.4;
+/// The largest static force left at rest, as a fraction of k·d^β (the force of a contact
+/// overlapped by one small diameter d), unless `relax.residual_force` says.
+const DEFAULT_RESIDUAL_FORCE: f64 = 1e-9;
+/// The overlap (in small diameters) at which a power law is linearised for t_c and the time
+/// step: about the overlaps of a packing at φ ≈ 0.9.
+const REFERENCE_OVERLAP: f64 = 0.03;
+/// Most discs a packing may have.
+const MOST_DISCS: usize = 10_000_000;
+
+/// The resolved packing of a packing scene.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PackingSpec {
+    /// Discs; the first ⌈n/2⌉ small (diameter `geometry.spacing`), the rest large.
+    pub n: usize,
+    /// Large diameter / small diameter (≥ 1).
+    pub radius_ratio: f64,
+    /// Area fraction the discs cover in the box, in (0, 1).
+    pub fraction: f64,
+    /// Seed of the random positions.
+    pub seed: u64,
+}
+
+impl PackingSpec {
+    /// The side (m) of the periodic square box, for small discs of diameter `spacing` (m).
+    pub fn box_side(&self, spacing: f64) -> f64 {
+        bidisperse_box(self.n, 0.5 * spacing, self.radius_ratio, self.fraction).side
+    }
+}
+
+/// What only a packing has.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PackingRun {
+    /// The discs and their box.
+    pub packing: PackingSpec,
+    /// How it relaxes (a minimiser) and when it is at rest.
+    pub relax: RelaxSpec,
+}
+
+impl PackingRun {
+    /// The packing's discs, box and relaxation, for small discs of diameter `spacing` (m).
+    pub(super) fn resolve(raw: &RawScene, spacing: f64) -> Result<PackingRun, Issue> {
+        let section =
+            raw.packing.clone().ok_or_else(|| missing("packing", "packing: {n: ≥ 2, fraction: in (0, 1)}"))?;
+        let n = section.n.ok_or_else(|| missing("packing.n", "the number of discs, ≥ 2"))?;
+        require((2..=MOST_DISCS).contains(&n), "packing.n", n, &format!("an integer from 2 to {MOST_DISCS}"))?;
+        let fraction =
+            section.fraction.ok_or_else(|| missing("packing.fraction", "the discs' area fraction, in (0, 1)"))?;
+        require(fraction > 0.0 && fraction < 1.0, "packing.fraction", Num(fraction), "must be in (0, 1)")?;
+        let radius_ratio = section.radius_ratio.unwrap_or(DEFAULT_RADIUS_RATIO);
+        require(
+            radius_ratio.is_finite() && (1.0..=100.0).contains(&radius_ratio),
+            "packing.radius_ratio",
+            Num(radius_ratio),
+            "must be from 1 to 100 (large diameter / small diameter)",
+        )?;
+        let packing = PackingSpec { n, radius_ratio, fraction, seed: raw.seed.unwrap_or(1) };
+        let (side, largest) = (packing.box_side(spacing), radius_ratio * spacing);
+        require(
+            side > largest,
+            "packing.n",
+            n,
+            &format!(
+                "more discs, or a lower packing.fraction: the box side {} m is not larger than a large disc's \
+                 diameter {} m (a disc would overlap itself)",
+                Num(side),
+                Num(largest)
+            ),
+        )?;
+        Ok(PackingRun { packing, relax: resolve_relax(raw)? })
+    }
+
+    /// The discs.
+    pub(super) fn particles(&self) -> usize {
+        self.packing.n
+    }
+
+    /// Contacts, at most: three per disc (z ≤ 6 in a 2D packing of discs).
+    pub(super) fn bonds(&self) -> usize {
+        3 * self.packing.n
+    }
+
+    /// The stiffness matrix's degrees of freedom (two per disc), solved for the moduli.
+    pub(super) fn static_dofs(&self) -> usize {
+        2 * self.packing.n
+    }
+
+    /// Contacts overlapped by a few per cent of a small diameter `spacing` (m).
+    pub(super) fn deformation(&self, spacing: f64) -> Deformation {
+        Deformation::Extension(-REFERENCE_OVERLAP * spacing)
+    }
+}
+
+/// A packing relaxes by a minimiser (`fire` by default, or `cg`) until its largest static force
+/// is below `relax.residual_force` (a fraction of k·d^β); the lattices' tolerance, tangent step
+/// and damped or static methods have no meaning here.
+fn resolve_relax(raw: &RawScene) -> Result<RelaxSpec, Issue> {
+    let relax = raw.relax.clone().unwrap_or_default();
+    let method = relax.method.unwrap_or(RelaxMethod::Fire);
+    require(
+        method.is_minimiser(),
+        "relax.method",
+        method.name(),
+        "fire or cg: a packing relaxes by a minimiser (it has no static answer, and no time to damp)",
+    )?;
+    let for_lattices = "is for lattices and chains; a packing stops on relax.residual_force";
+    require(relax.tolerance.is_none(), "relax.tolerance", "(set)", for_lattices)?;
+    require(relax.tangent_step.is_none(), "relax.tangent_step", "(set)", for_lattices)?;
+    require(relax.kinetic_ratio.is_none(), "relax.kinetic_ratio", "(set)", for_lattices)?;
+    let residual = relax.residual_force.unwrap_or(DEFAULT_RESIDUAL_FORCE);
+    require(
+        residual > 0.0 && residual < 1e-2,
+        "relax.residual_force",
+        Num(residual),
+        "must be in (0, 0.01) (the largest force left, a fraction of k·d^β)",
+    )?;
+    Ok(RelaxSpec {
+        kinetic_ratio: 1.0,
+        residual_force: Some(residual),
+        tangent_step: None,
+        method,
+        tolerance: None,
+        critical_background: false,
+    })
+}

@@ -1,0 +1,243 @@
+//! The packing: bidisperse discs in a periodic square box, relaxed by a minimiser to a minimum
+//! of their overlap energy. Its scene, and its measurement at rest: the virial pressure,
+//! contacts, rattlers and coordination, whether it jammed, and its moduli twice, from the
+//! stiffness matrix (non-affine relaxation and pre-stress included) and from the relaxed
+//! energies of the packing strained a little both ways.
+
+use serde::{Deserialize, Serialize};
+
+use super::columns::{Block, Column, Slot};
+use super::common::{relaxation, scene};
+use crate::fem::{Entry, factor_and_solve};
+use crate::measure::ContactForces;
+use crate::model::{Axes, Particles, PeriodicBox, random_bidisperse};
+use crate::sim::{Network, Outcome, Packing, Scene};
+use crate::spec::{PackingRun, PackingSpec, RunSpec};
+
+/// The skin of the contact list, in small diameters (LAMMPS's `neighbor 0.2 bin` at d = 1).
+const SKIN: f64 = 0.2;
+/// The strain of the strained relaxations, either way: small enough that no contact opens
+/// or closes at φ − φ_J ≳ 1e-5, large enough that ε² U'' stands above the minimiser's floor.
+const STRAIN: f64 = 1e-6;
+/// The strain gradients E of the two moduli (r → (I + εE) r, row-major): compression ...
+const BULK: [f64; 4] = [1.0, 0.0, 0.0, 1.0];
+/// ... and simple shear x → x + γ y.
+const SHEAR: [f64; 4] = [0.0, 1.0, 0.0, 0.0];
+
+/// What a packing measures at rest.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PackingMetrics {
+    /// Σ π r² / L², the area fraction of the discs.
+    pub packing_fraction: Option<f64>,
+    /// L (m), the side of the periodic box.
+    pub box_side: Option<f64>,
+    /// 2D virial pressure p = Σ f_c l_c / 2A (N/m).
+    pub pressure: Option<f64>,
+    /// The pressure the relaxation's floor leaves (N/m): p below it is p = 0.
+    pub pressure_floor: Option<f64>,
+    /// `jammed`, `unjammed` (p = 0 within the floor) or `not relaxed` (within its budget).
+    pub packing_state: Option<String>,
+    /// Overlapping pairs.
+    pub contacts: Option<u64>,
+    /// Mean contacts per disc, rattlers removed.
+    pub coordination: Option<f64>,
+    /// Fraction of the discs that are rattlers.
+    pub rattler_fraction: Option<f64>,
+    /// Overlap energy Σ e(δ) (J).
+    pub energy: Option<f64>,
+    /// K = (1/4A) d²U/dε² (N/m) under x → (1 + ε) x, from the stiffness matrix.
+    pub bulk_modulus_2d: Option<f64>,
+    /// G = (1/A) d²U/dγ² (N/m) under x → x + γ y, from the stiffness matrix.
+    pub shear_modulus_2d: Option<f64>,
+    /// K from relaxed energies at ε = ±1e-6.
+    pub bulk_modulus_2d_strained: Option<f64>,
+    /// G from relaxed energies at γ = ±1e-6.
+    pub shear_modulus_2d_strained: Option<f64>,
+}
+
+/// The discs of a packing run as the spec places them: the field's geometry and the particles
+/// (masses in proportion to the discs' areas, `mass` the small disc's), at rest.
+pub fn discs(spec: &RunSpec, run: &PackingRun) -> (Packing, Particles) {
+    discs_of(&run.packing, spec.spacing, spec.mass, spec.k)
+}
+
+/// The discs of `p`, small ones of diameter `spacing` (m) and mass `small_mass` (kg), larger
+/// ones of mass ∝ area, contacts of stiffness constant `k`, at rest: the packing runs' and the
+/// packing bench's (`crate::bench`).
+pub fn discs_of(p: &PackingSpec, spacing: f64, small_mass: f64, k: f64) -> (Packing, Particles) {
+    let small = 0.5 * spacing;
+    let (periodic, x, y, radius) = random_bidisperse(p.n, small, p.radius_ratio, p.fraction, p.seed);
+    let mut particles = Particles::default();
+    for ((x, y), r) in x.iter().zip(&y).zip(&radius) {
+        particles.push(*x, *y, small_mass * (r / small).powi(2), Axes::FREE);
+    }
+    (Packing { radius, periodic, k, skin: SKIN * spacing }, particles)
+}
+
+/// The force at which a packing's relaxation is judged (N): k d^β, a contact overlapped by one
+/// small diameter d.
+fn force_scale(spec: &RunSpec) -> f64 {
+    spec.law.elastic_force(spec.k, spec.spacing).abs()
+}
+
+/// The packing's scene: its discs at their random positions, relaxed by its minimiser until
+/// the largest static force is below `relax.residual_force` k d^β.
+pub(super) fn build(spec: &RunSpec, run: &PackingRun) -> Scene {
+    let (packing, particles) = discs(spec, run);
+    let mut scene = scene(spec, particles, Network::Packing(packing), None);
+    scene.sampling.relaxation = relaxation(spec, Some(force_scale(spec)), run.packing.n);
+    scene
+}
+
+/// Measures the packing where its run stopped (relaxed or not): its geometry, contacts and
+/// pressure, whether it jammed, and its moduli both ways (relaxed runs only).
+pub(super) fn measure(spec: &RunSpec, scene: &Scene, outcome: &Outcome, m: &mut PackingMetrics) {
+    let Network::Packing(packing) = &scene.network else { return };
+    let p = &outcome.state.particles;
+    let n = p.len();
+    let area = packing.periodic.area();
+    let forces = ContactForces::of(packing, spec.law, &p.x, &p.y);
+    let rattler = forces.rattlers(n);
+    let backbone = forces.backbone(&rattler);
+    let discs_area: f64 = packing.radius.iter().map(|r| std::f64::consts::PI * r * r).sum();
+    let largest = packing.radius.iter().fold(0.0f64, |a, r| a.max(*r));
+    let pressure = forces.pressure(area);
+    // Every contact carrying at most the residual force f_r (z ≤ 6: at most 3n contacts)
+    // gives p ≤ 3 n f_r (2 r_max) / 2A.
+    let floor = spec.relax().and_then(|r| r.residual_force).unwrap_or(0.0) * force_scale(spec);
+    let pressure_floor = 3.0 * n as f64 * floor * 2.0 * largest / (2.0 * area);
+    let relaxed = outcome.trace.relaxed_at.is_some();
+    let jammed = relaxed && pressure > pressure_floor && !backbone.is_empty();
+    let state = if !relaxed {
+        "not relaxed"
+    } else if jammed {
+        "jammed"
+    } else {
+        "unjammed"
+    };
+    let kept = n - rattler.iter().filter(|&&r| r).count();
+    *m = PackingMetrics {
+        packing_fraction: Some(discs_area / area),
+        box_side: Some(packing.periodic.side),
+        pressure: Some(pressure),
+        pressure_floor: Some(pressure_floor),
+        packing_state: Some(state.into()),
+        contacts: Some(forces.pairs.len() as u64),
+        coordination: Some(if kept > 0 { 2.0 * backbone.len() as f64 / kept as f64 } else { 0.0 }),
+        rattler_fraction: Some((n - kept) as f64 / n as f64),
+        energy: Some(forces.total_energy()),
+        ..PackingMetrics::default()
+    };
+    if relaxed {
+        (m.bulk_modulus_2d, m.shear_modulus_2d) = stiffness_moduli(&forces, n, area);
+        let strained = |strain| strained_second_derivative(scene, outcome, strain);
+        m.bulk_modulus_2d_strained = strained(BULK).map(|u| u / (4.0 * area));
+        m.shear_modulus_2d_strained = strained(SHEAR).map(|u| u / area);
+    }
+}
+
+/// K = (1/4A) d²U/dε² and G = (1/A) d²U/dγ² (N/m) of a packing at rest with contacts `forces`
+/// among `discs` discs in a box of area `area` (m²), from its stiffness matrix
+/// ([`stiffness_modulus`]); 0 without a backbone, `None` for a floppy one.
+pub fn stiffness_moduli(forces: &ContactForces, discs: usize, area: f64) -> (Option<f64>, Option<f64>) {
+    let rattler = forces.rattlers(discs);
+    let backbone = forces.backbone(&rattler);
+    let moduli = |strain| stiffness_modulus(forces, &backbone, &rattler, strain);
+    (moduli(BULK).map(|u| u / (4.0 * area)), moduli(SHEAR).map(|u| u / area))
+}
+
+/// d²U/dε² (J) of the relaxed packing under the strain gradient `strain`, from its stiffness
+/// matrix: the affine part less Ξᵀ H⁻¹ Ξ, H = Σ over the backbone's contacts of the blocks
+/// k_t n̂n̂ᵀ + (s/l)(I − n̂n̂ᵀ) (the second the pre-stress), over the discs that are not
+/// rattlers, one of them held (H's null space is the two translations, to which Ξ is
+/// orthogonal). 0 without a backbone (nothing carries a strain); `None` when H is singular
+/// beyond the translations (a floppy backbone).
+fn stiffness_modulus(forces: &ContactForces, backbone: &[usize], rattler: &[bool], strain: [f64; 4]) -> Option<f64> {
+    let discs = rattler.len();
+    let (affine, mixed) = forces.affine(backbone, strain, discs);
+    let mut dof = vec![usize::MAX; 2 * discs];
+    let mut free = 0;
+    // The first disc of the backbone is held: its dofs stay unnumbered.
+    for p in (0..discs).filter(|&p| !rattler[p]).skip(1) {
+        (dof[2 * p], dof[2 * p + 1]) = (free, free + 1);
+        free += 2;
+    }
+    if backbone.is_empty() {
+        return Some(0.0);
+    }
+    let mut entries: Vec<Entry> = Vec::with_capacity(16 * backbone.len());
+    for &c in backbone {
+        let (n, s, k_t, l) = (forces.normal[c], forces.tension[c], forces.tangent[c], forces.length[c]);
+        let n = [n.0, n.1];
+        let block = |a: usize, b: usize| k_t * n[a] * n[b] + s / l * (f64::from(u8::from(a == b)) - n[a] * n[b]);
+        let (i, j) = (forces.pairs.i[c], forces.pairs.j[c]);
+        for (p, sign_p) in [(i, 1.0), (j, -1.0)] {
+            for (q, sign_q) in [(i, 1.0), (j, -1.0)] {
+                for a in 0..2 {
+                    for b in 0..2 {
+                        let (row, col) = (dof[2 * p + a], dof[2 * q + b]);
+                        if row != usize::MAX && col != usize::MAX {
+                            entries.push(Entry { row, col, val: sign_p * sign_q * block(a, b) });
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let mut rhs = vec![0.0; free];
+    for (d, &index) in dof.iter().enumerate().filter(|(_, index)| **index != usize::MAX) {
+        rhs[index] = mixed[d];
+    }
+    let u = factor_and_solve(free, &mut entries, &rhs)?;
+    Some(affine - rhs.iter().zip(&u).map(|(a, b)| a * b).sum::<f64>())
+}
+
+/// d²U/dε² (J) by relaxed energies: the relaxed packing of `outcome` strained by ±ε along
+/// `strain` (positions and box together), relaxed again by the run's own minimiser and
+/// criterion, (U(+ε) − 2U(0) + U(−ε))/ε². `None` when either does not relax.
+fn strained_second_derivative(scene: &Scene, outcome: &Outcome, strain: [f64; 4]) -> Option<f64> {
+    let energy_at = |epsilon: f64| {
+        let mut strained = scene.clone();
+        let Network::Packing(packing) = &mut strained.network else { return None };
+        let box_0 = packing.periodic;
+        // The box's edges (L, 0) and (tilt, L) deform with the discs.
+        packing.periodic = PeriodicBox {
+            side: box_0.side * (1.0 + epsilon * strain[3]),
+            tilt: box_0.tilt + epsilon * (strain[0] * box_0.tilt + strain[1] * box_0.side),
+        };
+        let (x, y) = (&outcome.state.particles.x, &outcome.state.particles.y);
+        for i in 0..x.len() {
+            strained.particles.x[i] = x[i] + epsilon * (strain[0] * x[i] + strain[1] * y[i]);
+            strained.particles.y[i] = y[i] + epsilon * (strain[2] * x[i] + strain[3] * y[i]);
+        }
+        let trace = strained.run().trace;
+        trace.relaxed_at.and(trace.potential.last().copied())
+    };
+    let (plus, minus) = (energy_at(STRAIN)?, energy_at(-STRAIN)?);
+    let at_rest = outcome.trace.potential.last().copied()?;
+    Some((plus - 2.0 * at_rest + minus) / (STRAIN * STRAIN))
+}
+
+/// The packing's result columns: what was asked, what it became, and its moduli both ways.
+pub(super) fn columns() -> Vec<Block<PackingMetrics>> {
+    use Column::{Count, Number, Word};
+    let columns: Vec<Column<PackingMetrics>> = vec![
+        Count("discs", |r| r.spec.packing().map(|p| p.n as u64)),
+        Number("radius_ratio", |r| r.spec.packing().map(|p| p.radius_ratio)),
+        Number("packing_fraction", |r| r.group.packing_fraction),
+        Number("box_side", |r| r.group.box_side),
+        Word("packing_state", |r| r.group.packing_state.clone()),
+        Number("pressure", |r| r.group.pressure),
+        Number("pressure_floor", |r| r.group.pressure_floor),
+        Count("contacts", |r| r.group.contacts),
+        Number("backbone_coordination", |r| r.group.coordination),
+        Number("rattler_fraction", |r| r.group.rattler_fraction),
+        Number("energy", |r| r.group.energy),
+        Number("bulk_modulus_2d", |r| r.group.bulk_modulus_2d),
+        Number("bulk_modulus_2d_strained", |r| r.group.bulk_modulus_2d_strained),
+        Number("shear_modulus_2d", |r| r.group.shear_modulus_2d),
+        Number("shear_modulus_2d_strained", |r| r.group.shear_modulus_2d_strained),
+        Count("packing_relax_steps", |r| r.spec.packing().map(|_| r.steps)),
+    ];
+    vec![Block { slot: Slot::Tail, shown: Some(|spec| spec.packing().is_some()), columns }]
+}

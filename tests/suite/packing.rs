@@ -1,0 +1,326 @@
+//! Packings (issue 34): the cell list against an all-pairs search, a two-disc collision through
+//! the packing's field against the pair's closed form, hand-placed periodic cells against their
+//! closed forms, the moduli by the stiffness matrix against relaxed energies, the exported
+//! final state, the refusals, and the report's item "Jamming" against the results table.
+
+use mdsolids::measure::ContactForces;
+use mdsolids::model::{Axes, Contacts, LawSpec, Particles, PeriodicBox, contacts_within, random_bidisperse};
+use mdsolids::sim::{IntegratorKind, Network, Packing, Sampling, Scene};
+use mdsolids::study::packing::stiffness_moduli;
+use mdsolids::theory::{gamma_for_restitution, linear_contact_duration, linear_restitution};
+use polars::prelude::*;
+
+use crate::common::{line_with, mdsolids_ok, number_after};
+
+/// The pairs within r_i + r_j + skin by comparing every pair (the reference the cell list must
+/// reproduce), each as (i, j, shift x bits, shift y bits), sorted.
+fn all_pairs(x: &[f64], y: &[f64], radius: &[f64], periodic: &PeriodicBox, skin: f64) -> Vec<(usize, usize, u64, u64)> {
+    let mut found = Vec::new();
+    for i in 0..x.len() {
+        for j in i + 1..x.len() {
+            let (dx, dy) = (x[i] - x[j], y[i] - y[j]);
+            let (sx, sy) = periodic.nearest_image(dx, dy);
+            let reach = radius[i] + radius[j] + skin;
+            if (dx + sx).powi(2) + (dy + sy).powi(2) < reach * reach {
+                found.push((i, j, sx.to_bits(), sy.to_bits()));
+            }
+        }
+    }
+    found.sort_unstable();
+    found
+}
+
+fn listed(c: &Contacts) -> Vec<(usize, usize, u64, u64)> {
+    let mut found: Vec<_> =
+        (0..c.len()).map(|b| (c.i[b], c.j[b], c.shift_x[b].to_bits(), c.shift_y[b].to_bits())).collect();
+    found.sort_unstable();
+    found
+}
+
+#[test]
+fn cell_list_finds_exactly_the_pairs_of_an_all_pairs_search() {
+    // Random states: seeded discs, moved out of the box by whole and partial periods (the
+    // search must wrap them), in the square box and a sheared one; same pairs and images, bit
+    // for bit.
+    for seed in 1..=4u64 {
+        let (square, mut x, mut y, radius) = random_bidisperse(400, 0.5, 1.4, 0.84, seed);
+        for i in 0..x.len() {
+            x[i] += square.side * ((i % 7) as f64 - 3.0) + 0.01 * (i % 3) as f64;
+            y[i] -= square.side * ((i % 5) as f64 - 2.0);
+        }
+        for periodic in [square, PeriodicBox { tilt: 0.05 * square.side, ..square }] {
+            let cells = contacts_within(&x, &y, &radius, &periodic, 0.2);
+            let reference = all_pairs(&x, &y, &radius, &periodic, 0.2);
+            assert!(reference.len() > 400, "a dense state has many pairs: {}", reference.len());
+            assert_eq!(listed(&cells), reference, "seed {seed}, tilt {}", periodic.tilt);
+        }
+    }
+}
+
+/// Two discs of mass `m` (radius ½) on a line in a large periodic box, approaching at 1 m/s
+/// through the packing's field, at dt = t_c/1000: (contact duration, restitution).
+fn two_disc_collision(gamma: f64, m: f64, k: f64) -> (f64, f64) {
+    let t_c = linear_contact_duration(k, m, gamma).unwrap();
+    let dt = t_c / 1000.0;
+    let mut particles = Particles::default();
+    particles.push(5.0, 10.0, m, Axes::FREE);
+    particles.push(6.1, 10.0, m, Axes::FREE);
+    (particles.vx[0], particles.vx[1]) = (0.5, -0.5);
+    let packing = Packing { radius: vec![0.5, 0.5], periodic: PeriodicBox::square(20.0), k, skin: 0.2 };
+    let steps = ((0.1 + 1.5 * t_c) / dt) as u64;
+    let mut sampling = Sampling::new(dt, steps);
+    sampling.every = 1;
+    let outcome = Scene::new(particles, Network::Packing(packing), LawSpec::Linear, sampling)
+        .contact(true)
+        .damping(gamma, 0.0)
+        .integrator(IntegratorKind::VelocityVerlet)
+        .run();
+    let touching = outcome.trace.potential.iter().filter(|&&u| u > 0.0).count();
+    let p = &outcome.state.particles;
+    (touching as f64 * dt, (p.vx[1] - p.vx[0]) / 1.0)
+}
+
+#[test]
+fn two_discs_through_the_packing_path_give_the_pairs_contact_time_and_restitution() {
+    let (m, k) = (std::f64::consts::PI / 4.0, 1.0);
+    // Undamped: t_c = π/√(2k/m). Counting sampled steps in contact resolves it to a step or
+    // two: 2e-3 of t_c at dt = t_c/1000.
+    let (duration, restitution) = two_disc_collision(0.0, m, k);
+    let t_c = linear_contact_duration(k, m, 0.0).unwrap();
+    assert!((duration / t_c - 1.0).abs() < 2e-3, "t_c {duration} against {t_c}");
+    assert!((restitution - 1.0).abs() < 1e-5, "an elastic contact gives r = 1: {restitution}");
+    // Damped for r = 0.5: the dashpot's jump where the contact closes and opens is integrated
+    // without splitting the step, an O(dt) error (≈1e-2 at t_c/50, so ≈5e-4 at t_c/1000).
+    let gamma = gamma_for_restitution(0.5, k, m);
+    let (_, restitution) = two_disc_collision(gamma, m, k);
+    let expected = linear_restitution(k, m, gamma).unwrap();
+    assert!((restitution / expected - 1.0).abs() < 2e-3, "r {restitution} against {expected}");
+}
+
+/// The contacts of discs `radius` at `(x, y)` in the periodic box of side `side`, k = 1.
+fn cell(x: Vec<f64>, y: Vec<f64>, radius: Vec<f64>, side: f64) -> (ContactForces, f64) {
+    let packing = Packing { radius, periodic: PeriodicBox::square(side), k: 1.0, skin: 0.0 };
+    (ContactForces::of(&packing, LawSpec::Linear, &x, &y), side * side)
+}
+
+#[test]
+fn a_square_four_disc_cell_has_its_closed_form_contacts_and_pressure() {
+    // Equal discs of diameter d = 1.1 on a square lattice of spacing a = 1 (box 2 × 2): each
+    // touches its four axis neighbours (two discs, each through two images), 8 contacts of
+    // overlap d − a; p = Σ k(d − a) a / 2A = 8 · 0.1 / 8 = k (d − a)/a.
+    let (forces, area) = cell(vec![0.0, 1.0, 0.0, 1.0], vec![0.0, 0.0, 1.0, 1.0], vec![0.55; 4], 2.0);
+    assert_eq!(forces.pairs.len(), 8);
+    assert!((forces.pressure(area) - 0.1).abs() < 1e-14, "p = {}", forces.pressure(area));
+    assert!((forces.total_energy() - 8.0 * 0.5 * 0.01).abs() < 1e-14);
+}
+
+#[test]
+fn a_checkerboard_four_disc_cell_has_its_closed_form_pressure_and_moduli() {
+    // Small discs (r_s) at (0, 0), (1, 1), large (r_l) at (1, 0), (0, 1), box 2 × 2, k = 1:
+    // 8 axis contacts (l = 1, δ_a = 1 − r_s − r_l), 4 small–small and 4 large–large diagonal
+    // ones (l = √2, δ = √2 − 2r). Every disc is a centre of inversion, so Ξ = 0 and the moduli
+    // are affine: K = Σ k l²/4A, G = Σ (k l² n_x²n_y² + s l n_y⁴)/A with s = k δ; p = −Σ s l/2A.
+    let (r_s, r_l) = (0.72, 0.75);
+    let (forces, area) = cell(vec![0.0, 1.0, 1.0, 0.0], vec![0.0, 1.0, 0.0, 1.0], vec![r_s, r_s, r_l, r_l], 2.0);
+    let root2 = 2f64.sqrt();
+    let (s_a, s_ss, s_ll) = (1.0 - r_s - r_l, root2 - 2.0 * r_s, root2 - 2.0 * r_l);
+    assert_eq!(forces.pairs.len(), 16);
+    let pressure = -(8.0 * s_a + 4.0 * root2 * (s_ss + s_ll)) / (2.0 * area);
+    assert!((forces.pressure(area) / pressure - 1.0).abs() < 1e-13, "p {} against {pressure}", forces.pressure(area));
+    let bulk = (8.0 + 8.0 * 2.0) / (4.0 * area);
+    let shear = (4.0 * s_a + 8.0 * 0.5 + 4.0 * (s_ss + s_ll) * root2 / 4.0) / area;
+    let (k, g) = stiffness_moduli(&forces, 4, area);
+    // Round-off of a 6-dof solve: 1e-10.
+    assert!((k.unwrap() / bulk - 1.0).abs() < 1e-10, "K {k:?} against {bulk}");
+    assert!((g.unwrap() / shear - 1.0).abs() < 1e-10, "G {g:?} against {shear}");
+}
+
+/// Column `name` of `frame` as numbers.
+fn numbers(frame: &DataFrame, name: &str) -> Vec<Option<f64>> {
+    frame.column(name).unwrap().cast(&DataType::Float64).unwrap().f64().unwrap().iter().collect()
+}
+
+#[test]
+fn relaxed_packings_agree_on_their_moduli_and_are_recomputed_from_their_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let yaml = "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    packing: {n: 64, fraction: 0.86}\n    grid:\n      packing.fraction: [0.80, 0.88]\n      material.law: [linear, hertz]\n      seed: [1, 2]\n";
+    let (frame, folder) = run_jam(dir.path(), yaml);
+    let states: Vec<String> =
+        frame.column("packing_state").unwrap().str().unwrap().iter().map(|s| s.unwrap().to_string()).collect();
+    let (fraction, pressure, side) =
+        (numbers(&frame, "packing_fraction"), numbers(&frame, "pressure"), numbers(&frame, "box_side"));
+    let (contacts, runs) = (numbers(&frame, "contacts"), frame.column("run_id").unwrap().str().unwrap().clone());
+    for row in 0..frame.height() {
+        // φ = 0.80 is below jamming (φ_J ≈ 0.84), 0.88 above: the state says so.
+        let jammed = fraction[row].unwrap() > 0.84;
+        assert_eq!(states[row], if jammed { "jammed" } else { "unjammed" }, "row {row}");
+        if jammed {
+            for (affine, strained) in
+                [("bulk_modulus_2d", "bulk_modulus_2d_strained"), ("shear_modulus_2d", "shear_modulus_2d_strained")]
+            {
+                // Two independent routes: the stiffness matrix, and second differences of
+                // energies relaxed at strain ±1e-6 to forces of 1e-9 k d (observed: within
+                // 1e-6 of K at φ = 0.86, 2e-4 of K for Hertz discs at 0.88, where the
+                // relaxation's floor is a larger share of the softer contacts' energy).
+                let (a, b) = (numbers(&frame, affine)[row].unwrap(), numbers(&frame, strained)[row].unwrap());
+                let scale = numbers(&frame, "bulk_modulus_2d")[row].unwrap();
+                assert!((a - b).abs() < 1e-3 * scale, "{affine} {a} against {b}, row {row}");
+            }
+        }
+        // The exported state, read back: overlaps counted and the virial summed by hand over
+        // all pairs (nearest images), linear or Hertz by the run's law.
+        let id = runs.get(row).unwrap();
+        let bytes = std::fs::read(folder.join(format!("packings/{id}.parquet"))).unwrap();
+        let state = ParquetReader::new(std::io::Cursor::new(bytes)).finish().unwrap();
+        let (x, y, r) = (numbers(&state, "x"), numbers(&state, "y"), numbers(&state, "radius"));
+        let l = side[row].unwrap();
+        let beta = numbers(&frame, "beta")[row].unwrap();
+        let (mut count, mut virial) = (0u64, 0.0);
+        for i in 0..x.len() {
+            for j in i + 1..x.len() {
+                let wrap = |d: f64| d - l * (d / l).round();
+                let dist =
+                    (wrap(x[i].unwrap() - x[j].unwrap()).powi(2) + wrap(y[i].unwrap() - y[j].unwrap()).powi(2)).sqrt();
+                let overlap = r[i].unwrap() + r[j].unwrap() - dist;
+                if overlap > 0.0 {
+                    count += 1;
+                    virial += overlap.powf(beta) * dist;
+                }
+            }
+        }
+        assert_eq!(Some(count as f64), contacts[row], "row {row}");
+        let p = pressure[row].unwrap();
+        assert!(
+            (virial / (2.0 * l * l) - p).abs() <= 1e-12 * p.max(1e-300) + 1e-300,
+            "p {p} against {}",
+            virial / (2.0 * l * l)
+        );
+    }
+}
+
+#[test]
+fn bad_packings_are_refused_naming_the_field() {
+    let campaign = |packing: &str| {
+        format!("version: 1\nname: t\nscenes:\n  - name: p\n    kind: packing\n    packing: {packing}\n")
+    };
+    for (packing, field) in [
+        ("{n: 1, fraction: 0.8}", "packing.n"),
+        ("{n: 64, fraction: 1.2}", "packing.fraction"),
+        ("{n: 64, fraction: 0}", "packing.fraction"),
+        ("{n: 64, fraction: 0.8, radius_ratio: 0.9}", "packing.radius_ratio"),
+        // Two discs, one of diameter 3, cover 95 % of a box 2.9 m wide: a disc wider than it.
+        ("{n: 2, fraction: 0.95, radius_ratio: 3}", "packing.n"),
+    ] {
+        let message =
+            mdsolids::plan::parse("t.yaml", &campaign(packing)).err().map(|e| e.to_string()).unwrap_or_default();
+        assert!(message.contains("t.yaml") && message.contains(field), "{packing}: {message}");
+    }
+    let damped = campaign("{n: 64, fraction: 0.8}") + "    damping: {restitution: 0.5}\n";
+    let message = mdsolids::plan::parse("t.yaml", &damped).err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(message.contains("damping"), "{message}");
+}
+
+/// Runs a packing scene of 64 discs with contact law `law` at `fractions` (a YAML list), seeds
+/// 1 and 2, and returns its results table and report.
+fn jamming_campaign(law: &str, fractions: &str) -> (DataFrame, String) {
+    let dir = tempfile::tempdir().unwrap();
+    let yaml = format!(
+        "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    packing: {{n: 64, fraction: 0.86}}\n    \
+         material: {{law: {law}}}\n    grid:\n      packing.fraction: {fractions}\n      seed: [1, 2]\n"
+    );
+    let (frame, folder) = run_jam(dir.path(), &yaml);
+    (frame, std::fs::read_to_string(folder.join("report.md")).unwrap())
+}
+
+/// Runs the campaign `yaml` (named `jam`) under `dir`: its results table and its folder.
+fn run_jam(dir: &std::path::Path, yaml: &str) -> (DataFrame, std::path::PathBuf) {
+    let file = dir.join("jam.yaml");
+    std::fs::write(&file, yaml).unwrap();
+    mdsolids_ok(dir, &["run", file.to_str().unwrap()]);
+    let folder = dir.join("jam");
+    let frame = CsvReadOptions::default()
+        .try_into_reader_with_file_path(Some(folder.join("results.csv")))
+        .unwrap()
+        .finish()
+        .unwrap();
+    (frame, folder)
+}
+
+#[test]
+fn the_jamming_item_states_phi_j_as_the_results_table_gives_it() {
+    let (frame, report) = jamming_campaign("linear", "[0.84, 0.86, 0.88, 0.90]");
+    // Independently of the report: per seed, the normal equations of p = a φ + b over the
+    // jammed rows, φ_J = −b/a; their mean over the seeds.
+    let states = frame.column("packing_state").unwrap().str().unwrap().clone();
+    let (phi, p, seed) = (numbers(&frame, "packing_fraction"), numbers(&frame, "pressure"), numbers(&frame, "seed"));
+    let onsets: Vec<f64> = [1.0, 2.0]
+        .iter()
+        .map(|&s| {
+            let rows: Vec<(f64, f64)> = (0..frame.height())
+                .filter(|&i| seed[i] == Some(s) && states.get(i) == Some("jammed"))
+                .map(|i| (phi[i].unwrap(), p[i].unwrap()))
+                .collect();
+            assert!(rows.len() >= 2, "seed {s}: {rows:?}");
+            let n = rows.len() as f64;
+            let (sx, sy) = rows.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x, b + y));
+            let (sxx, sxy) = rows.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x * x, b + x * y));
+            let slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+            let intercept = (sy - slope * sx) / n;
+            -intercept / slope
+        })
+        .collect();
+    let mean = 0.5 * (onsets[0] + onsets[1]);
+    let line = line_with(&report, "N = 64: φ_J = ");
+    let (stated, error) = (number_after(line, "φ_J = "), number_after(line, " ± "));
+    // The report rounds φ_J to its standard error's second digit: within 5e-4 at SE < 0.01.
+    assert!((stated - mean).abs() < 5e-4, "{line}: independent {mean} from {onsets:?}");
+    // The standard error of two seeds is half their difference.
+    assert!((error - 0.5 * (onsets[0] - onsets[1]).abs()).abs() <= 0.05 * error + 1e-4, "{line}");
+    // The verdict follows the stated tolerance: 2 standard errors + 0.01 of 0.842.
+    let within = (stated - 0.842).abs() <= 2.0 * error + 0.01;
+    assert!(line.contains(if within { ": within" } else { ": outside" }), "{line}");
+    assert!(report.contains("Linear contacts, N = 64"), "the scalings are fitted");
+    // No lattice, no homogeneity item (it had shown an empty table).
+    assert!(!report.contains("Homogeneity of the deformation"));
+}
+
+#[test]
+fn without_two_jammed_linear_packings_per_seed_the_item_states_no_phi_j() {
+    // φ = 0.70 and 0.75, far below φ_J: the item finds nothing to extrapolate and says that
+    // O'Hern et al.'s 0.842 lies above every fraction (the verdict within); no φ_J is stated.
+    let (_, report) = jamming_campaign("linear", "[0.70, 0.75]");
+    let line = line_with(&report, "No jammed state was found");
+    assert!(line.contains("0 of the 4 packings") && line.contains("above every fraction here"), "{line}");
+    assert!(!report.contains("N = 64: φ_J = "));
+    // Hertz packings above jamming jam, but φ_J comes from linear ones: none is stated, the
+    // item counts the jammed packings and judges nothing.
+    let (_, hertz) = jamming_campaign("hertz", "[0.86, 0.88]");
+    let line = line_with(&hertz, "No φ_J could be found");
+    assert!(line.contains("4 of the 4 packings"), "{line}");
+    assert!(!hertz.contains("No jammed state was found") && !hertz.contains("N = 64: φ_J = "));
+}
+
+/// `bench --workload packing` runs the issue's workload and prints one JSON line with its
+/// fields: the discs counted, the contacts at the start as an all-pairs search counts them
+/// (an independent count, exact), and the throughput as particles × steps / wall time
+/// recomputed from the line (1e-12 relative: the same three numbers, rounded once by JSON's
+/// shortest round trip). Not timed. A disc count outside 2..=10^7 is refused.
+#[test]
+fn packing_bench_reports_its_json_line() {
+    let work = tempfile::tempdir().unwrap();
+    let args = ["bench", "--workload", "packing", "--n", "200", "--steps", "20", "--threads", "1", "--repeat", "1"];
+    let out = mdsolids_ok(work.path(), &[&args[..], &["--json"]].concat());
+    let line: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON line");
+    assert_eq!(line["workload"], "packing");
+    assert_eq!(line["path"], "contacts");
+    assert_eq!((line["particles"].as_u64(), line["steps"].as_u64()), (Some(200), Some(20)));
+    let (periodic, x, y, radius) = random_bidisperse(200, 0.5, 1.4, 0.90, 1);
+    let touching = all_pairs(&x, &y, &radius, &periodic, 0.0).len();
+    assert!(touching > 0, "random discs at φ = 0.9 overlap");
+    assert_eq!(line["bonds"].as_u64(), Some(touching as u64));
+    let (wall, rate) = (line["wall_s"].as_f64().unwrap(), line["particle_steps_per_s"].as_f64().unwrap());
+    assert!(wall > 0.0 && (rate - 200.0 * 20.0 / wall).abs() <= 1e-12 * rate, "{line}");
+    let refused = crate::common::mdsolids(work.path(), &["bench", "--workload", "packing", "--n", "1"]);
+    let stderr = crate::common::text(&refused.stderr);
+    assert!(!refused.status.success() && stderr.contains("--n 1: the packing's discs must be in 2..=10000000"));
+}
