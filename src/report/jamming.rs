@@ -136,6 +136,32 @@ pub(super) fn scalings(
         .collect()
 }
 
+/// G/K of the jammed packings of `n` discs with contact exponent `beta` against their excess
+/// coordination Δz = z − 4, fitted on log–log axes over the packings with Δφ ≥ `floor`: the
+/// theory's G ∝ K Δz makes it Δz¹ for every contact law (the shear modulus is the bulk
+/// modulus thinned by how far the contact network is above isostatic).
+pub(super) fn ratio_against_contacts(
+    runs: &[&RunRecord],
+    onsets: &BTreeMap<(usize, u64), f64>,
+    n: usize,
+    beta: f64,
+    floor: f64,
+) -> Option<Scaling> {
+    let points: Vec<(f64, f64)> = runs
+        .iter()
+        .filter(|r| jammed(r) && r.spec.law.beta() == beta && key(r).is_some_and(|k| k.0 == n))
+        .filter(|r| excess(onsets, r).is_some_and(|d| d >= floor))
+        .filter_map(|r| {
+            let m = &r.metrics.packing;
+            let dz = m.coordination? - ISOSTATIC;
+            let ratio = m.shear_modulus_2d? / m.bulk_modulus_2d?;
+            (dz > 0.0 && ratio > 0.0).then_some((dz, ratio))
+        })
+        .collect();
+    let fit = power_law_fit(&points)?;
+    Some(Scaling { quantity: "G/K against z − 4", fit, theory: 1.0, points })
+}
+
 /// The packing scene's figure: p, z − 4, K and G of its largest N's jammed packings against
 /// Δφ on log–log axes (φ_J from the linear packings of the whole campaign), each with its
 /// fitted power law; none without a φ_J.

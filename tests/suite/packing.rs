@@ -280,6 +280,7 @@ fn the_jamming_item_states_phi_j_as_the_results_table_gives_it() {
     let within = (stated - 0.842).abs() <= 2.0 * error + 0.01;
     assert!(line.contains(if within { ": within" } else { ": outside" }), "{line}");
     assert!(report.contains("Linear contacts, N = 64"), "the scalings are fitted");
+    ratio_against_contacts_is_the_tables(&frame, &report, &onsets);
     // No lattice, no homogeneity item (it had shown an empty table).
     assert!(!report.contains("Homogeneity of the deformation"));
 }
@@ -323,4 +324,34 @@ fn packing_bench_reports_its_json_line() {
     let refused = crate::common::mdsolids(work.path(), &["bench", "--workload", "packing", "--n", "1"]);
     let stderr = crate::common::text(&refused.stderr);
     assert!(!refused.status.success() && stderr.contains("--n 1: the packing's discs must be in 2..=10000000"));
+}
+
+/// The G/K sentence against an independent least-squares slope of ln(G/K) on ln(z − 4) over
+/// the table's jammed packings at Δφ ≥ the floor the scalings sentence states (seed 1 and 2's
+/// `onsets`), positive G, K and z − 4; four significant digits, 5e-4 relative; the verdict
+/// from the stated tolerance 0.15 against the theory's 1.
+fn ratio_against_contacts_is_the_tables(frame: &DataFrame, report: &str, onsets: &[f64]) {
+    let floor = number_after(line_with(report, "Linear contacts, N = 64, over"), "Δφ ≥ ");
+    let states = frame.column("packing_state").unwrap().str().unwrap().clone();
+    let columns = ["packing_fraction", "seed", "backbone_coordination", "shear_modulus_2d", "bulk_modulus_2d"]
+        .map(|c| numbers(frame, c));
+    let points: Vec<(f64, f64)> = (0..frame.height())
+        .filter(|&i| states.get(i) == Some("jammed"))
+        .filter_map(|i| {
+            let [phi, seed, z, g, k] = columns.each_ref().map(|c| c[i]);
+            let onset = onsets[seed? as usize - 1];
+            let (dz, ratio) = (z? - 4.0, g? / k?);
+            (phi? - onset >= floor && dz > 0.0 && ratio > 0.0).then(|| (dz.ln(), ratio.ln()))
+        })
+        .collect();
+    let n = points.len() as f64;
+    let (sx, sy) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x, b + y));
+    let (sxx, sxy) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x * x, b + x * y));
+    let slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+    let line = line_with(report, "Linear contacts, N = 64: G/K ∝ (z − 4)^");
+    let stated = number_after(line, "(z − 4)^");
+    assert!((stated / slope - 1.0).abs() <= 5e-4, "{line}: independent {slope} over {points:?}");
+    assert!(line.contains(&format!("over {} packings", points.len())), "{line}");
+    let within = (stated - 1.0).abs() <= 0.15;
+    assert!(line.contains(if within { "), within 0.15" } else { "), outside 0.15" }), "{line}");
 }

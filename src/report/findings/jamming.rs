@@ -9,7 +9,9 @@ use std::collections::BTreeMap;
 use super::finding::{Answer, Evidence, Table, Verdict, plus_minus, sig};
 use crate::measure::line_fit;
 use crate::report::figure::FigureKind;
-use crate::report::jamming::{FIT_FLOOR, ISOSTATIC, Onset, Scaling, excess, jammed, key, onsets, scalings};
+use crate::report::jamming::{
+    FIT_FLOOR, ISOSTATIC, Onset, Scaling, excess, jammed, key, onsets, ratio_against_contacts, scalings,
+};
 use crate::runner::RunRecord;
 
 /// The reference of every number here.
@@ -236,8 +238,47 @@ fn all_scalings(
             }
             checks.extend(scalings.iter().filter(|_| judged).map(Scaling::within));
         }
+        if let Some((size, largest)) = fitted.last()
+            && let Some(ratio) = ratio_against_contacts(runs, onsets, size.n, beta, size.fit_floor())
+        {
+            sentences.push(ratio_sentence(beta, size.n, &ratio, implied_ratio_exponent(largest)));
+            rows.push(row(
+                &law_words(beta),
+                size.n,
+                ratio.quantity,
+                &sig(ratio.fit.exponent),
+                1.0,
+                ratio.points.len(),
+                Some(ratio.within()),
+            ));
+            checks.push(ratio.within());
+        }
     }
     (sentences, rows, checks)
+}
+
+/// The exponent of G/K against z − 4 that the fits against Δφ imply: (g − k)/ζ for G ∝ Δφ^g,
+/// K ∝ Δφ^k and z − 4 ∝ Δφ^ζ.
+fn implied_ratio_exponent(fitted: &[Scaling]) -> Option<f64> {
+    let exponent = |name: &str| fitted.iter().find(|s| s.quantity == name).map(|s| s.fit.exponent);
+    Some((exponent("G")? - exponent("K")?) / exponent("z − 4")?)
+}
+
+/// G/K against the excess coordination in words, with its verdict and the exponent the fits
+/// against Δφ imply.
+fn ratio_sentence(beta: f64, n: usize, ratio: &Scaling, implied: Option<f64>) -> String {
+    let implied = implied.map_or(String::new(), |x| {
+        let agree = if (x - ratio.fit.exponent).abs() <= EXPONENT_TOLERANCE { "consistent with" } else { "unlike" };
+        format!("; the fits of G, K and z − 4 against Δφ above imply (g − k)/ζ = {}, {agree} it", sig(x))
+    });
+    format!(
+        "{} contacts, N = {n}: G/K ∝ (z − 4)^{} over {} packings, against the theory's 1 (G ∝ K Δz: shear costs what \
+         the contacts beyond the isostatic 4 give), {} {EXPONENT_TOLERANCE}{implied}.",
+        capitalised(&law_words(beta)),
+        sig(ratio.fit.exponent),
+        ratio.points.len(),
+        if ratio.within() { "within" } else { "outside" }
+    )
 }
 
 /// The packing scenes of `runs`, in campaign order.
