@@ -473,3 +473,20 @@ fn anisotropy_is_set_against_the_continuums_ratio_and_flips_with_it() {
         assert!(line.contains(words), "{line}");
     }
 }
+
+#[test]
+fn background_damping_times_are_listed_per_stopping_criterion() {
+    // Two runs per γ_g, one stopped by E_kin/E_pot and one by the residual force: each list
+    // names its criterion and holds each γ_g once, in the order the runs stop by it.
+    let report = report_of(
+        "bg",
+        &loaded_lattice("{}", "damping.background: [0.5, 2.0]\n      relax.residual_force: [null, 1.0e-6]"),
+    );
+    let line = line_with(&report, "Background damping f = −γ_g v alone: ");
+    let lists: Vec<&str> = line.split("γ_g = ").skip(1).collect();
+    assert_eq!(lists.len(), 2, "{line}");
+    assert!(lists[0].starts_with("0.5000, 2.000 N s/m give ") && lists[0].contains("(E_kin/E_pot"), "{line}");
+    assert!(lists[1].starts_with("0.5000, 2.000 N s/m give ") && lists[1].contains("(largest static force"), "{line}");
+    // Without bond-damped runs there is no ratio to state (it had read "–× faster").
+    assert!(!line.contains("faster than the fastest bond damping"), "{line}");
+}

@@ -313,14 +313,15 @@ fn damping_sentences(
     }
     if !background.is_empty() {
         sentences.push(format!(
-            "Background damping f = −γ_g v alone: γ_g = {} N s/m give {} s; it damps every mode, the slow ones \
-             too, and relaxes the block {}× faster than the fastest bond damping here.",
-            background.iter().map(|r| sig(r.spec.gamma_background)).collect::<Vec<_>>().join(", "),
-            background.iter().map(|r| cell(r.metrics.dissipation_time)).collect::<Vec<_>>().join(", "),
+            "Background damping f = −γ_g v alone: {}; it damps every mode, the slow ones too{}.",
+            background_times(background),
             if bond.is_empty() {
-                "–".into()
+                String::new()
             } else {
-                format!("{:.0}", fastest_relaxation(bond) / fastest_relaxation(background))
+                format!(
+                    ", and relaxes the block {:.0}× faster than the fastest bond damping here",
+                    fastest_relaxation(bond) / fastest_relaxation(background)
+                )
             }
         ));
     }
@@ -331,6 +332,30 @@ fn damping_sentences(
             .extend(trend("background damping (energy criterion)", "γ_g", energy, |r| r.spec.gamma_background)),
     }
     sentences
+}
+
+/// The dissipation times of the background-damped runs, one list per stopping criterion (a
+/// sweep may stop its runs by either): "γ_g = … N s/m give … s (criterion)".
+fn background_times(background: &[&RunRecord]) -> String {
+    let mut criteria: Vec<&str> = Vec::new();
+    for r in background {
+        let criterion = r.metrics.dissipation_criterion.as_deref().unwrap_or("–");
+        if !criteria.contains(&criterion) {
+            criteria.push(criterion);
+        }
+    }
+    let listed = |criterion: &str| {
+        let runs: Vec<&&RunRecord> = background
+            .iter()
+            .filter(|r| r.metrics.dissipation_criterion.as_deref().unwrap_or("–") == criterion)
+            .collect();
+        format!(
+            "γ_g = {} N s/m give {} s ({criterion})",
+            runs.iter().map(|r| sig(r.spec.gamma_background)).collect::<Vec<_>>().join(", "),
+            runs.iter().map(|r| cell(r.metrics.dissipation_time)).collect::<Vec<_>>().join(", ")
+        )
+    };
+    criteria.into_iter().map(listed).collect::<Vec<_>>().join("; ")
 }
 
 /// A sweep of background damping γ_g (energy criterion) against its critical value
