@@ -8,16 +8,12 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use super::sparse::{Analysis, Factor, conjugate_gradients, dot};
-use super::{Dofs, ErrorBounds, StaticSolution, Truss};
+use super::{Dofs, ErrorBounds, StaticSolution, Truss, refined_solve};
 use crate::model::{ForceLaw, Linear};
 use crate::sim::euclidean_norm;
 
 /// Residuals above this fraction of the load mean the equations have no solution.
 const MECHANISM_RESIDUAL: f64 = 1e-6;
-
-/// Iterative refinements of a solve with a fresh factor of the shifted K, at most (each one
-/// more solve with the same factor; two are usually all the shift needs).
-pub(super) const REFINEMENTS: usize = 3;
 
 /// Out-of-balance force below this fraction of the load ends the Newton–Raphson iteration ...
 pub const NEWTON_TOLERANCE: f64 = 1e-12;
@@ -254,27 +250,22 @@ impl<'a> Solver<'a> {
         self.solve_fresh(force)
     }
 
-    /// K u = `force` with a fresh factor of K + εI (ε = 1e-12 of the largest diagonal entry);
-    /// `None` when the factorisation fails. The shift leaves u off by about ε‖K⁻¹‖ (6e-11 of E
-    /// on a 10 × 10 steel block), which iterative refinement with the unshifted K takes off:
-    /// u ← u + (K + εI)⁻¹(f − K u), while the residual falls at least twofold, at most
-    /// [`REFINEMENTS`] times (a load on a mechanism's zero mode never lets it fall).
+    /// K u = `force` with a fresh factor of K + εI (ε = 1e-12 of the largest diagonal entry),
+    /// refined ([`refined_solve`]); `None` when the factorisation fails.
     fn solve_fresh(&mut self, force: &[f64]) -> Option<Vec<f64>> {
         if !self.fresh && !self.factorise() {
             return None;
         }
-        let mut u = self.factor_solve(force)?;
-        let mut residual = self.out_of_balance(&u, force);
-        for _ in 0..REFINEMENTS {
-            let correction = self.factor_solve(&residual)?;
-            let refined: Vec<f64> = u.iter().zip(&correction).map(|(a, b)| a + b).collect();
-            let left = self.out_of_balance(&refined, force);
-            if euclidean_norm(left.iter()) >= 0.5 * euclidean_norm(residual.iter()) {
-                break;
-            }
-            (u, residual) = (refined, left);
-        }
-        Some(u)
+        let Solver { analysis, stiffness, factor, convergence, .. } = self;
+        let analysis = analysis.as_ref()?;
+        refined_solve(
+            force,
+            |f| {
+                convergence.solves += 1;
+                factor.as_mut()?.solve(f)
+            },
+            |u| analysis.multiply(stiffness, u).iter().zip(force).map(|(ku, f)| f - ku).collect(),
+        )
     }
 
     /// One solve with the factor.

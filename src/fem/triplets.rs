@@ -6,35 +6,20 @@ use faer::prelude::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::{Mat, Side};
 
-use super::solver::REFINEMENTS;
+use super::refined_solve;
 use super::sparse::REGULARISATION;
-use crate::sim::euclidean_norm;
 
 /// One entry (row, column, value) of a stiffness matrix over the free degrees of freedom.
 pub type Entry = Triplet<usize, usize, f64>;
 
-/// Factors K + εI (ε = 1e-12 of the largest diagonal entry) and solves K u = `force`; `None`
-/// when the factorisation fails. The shift leaves u off by about ε‖K⁻¹‖ (6e-11 of E on a
-/// 10 × 10 steel block), which iterative refinement with the unshifted K takes off:
-/// u ← u + (K + εI)⁻¹(f − K u), while the residual falls at least twofold, at most
-/// [`REFINEMENTS`] times (a load on a mechanism's zero mode never lets it fall).
+/// Factors K + εI (ε = 1e-12 of the largest diagonal entry) and solves K u = `force`, refined
+/// ([`refined_solve`]); `None` when the factorisation fails.
 pub fn factor_and_solve(size: usize, entries: &mut Vec<Entry>, force: &[f64]) -> Option<Vec<f64>> {
     if size == 0 {
         return Some(Vec::new());
     }
     let factor = Factor::of(size, entries)?;
-    let mut u = factor.solve(force)?;
-    let mut residual = out_of_balance(entries, &u, force);
-    for _ in 0..REFINEMENTS {
-        let correction = factor.solve(&residual)?;
-        let refined: Vec<f64> = u.iter().zip(&correction).map(|(a, b)| a + b).collect();
-        let left = out_of_balance(entries, &refined, force);
-        if euclidean_norm(left.iter()) >= 0.5 * euclidean_norm(residual.iter()) {
-            break;
-        }
-        (u, residual) = (refined, left);
-    }
-    Some(u)
+    refined_solve(force, |f| factor.solve(f), |u| out_of_balance(entries, u, force))
 }
 
 /// The sparse Cholesky factor of (K + εI)/s, s the power of two nearest K's largest diagonal
