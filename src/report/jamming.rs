@@ -112,6 +112,20 @@ pub(super) struct Scaling {
     pub(super) points: Vec<(f64, f64)>,
 }
 
+/// The jammed packings of `n` discs with contact exponent `beta` whose Δφ = φ − φ_J is at
+/// least `floor`, each with its Δφ: what the scalings are fitted over.
+fn fitted_packings<'a>(
+    runs: &[&'a RunRecord],
+    onsets: &BTreeMap<(usize, u64), f64>,
+    (n, beta): (usize, f64),
+    floor: f64,
+) -> Vec<(f64, &'a RunRecord)> {
+    runs.iter()
+        .filter(|r| jammed(r) && r.spec.law.beta() == beta && key(r).is_some_and(|k| k.0 == n))
+        .filter_map(|r| Some((excess(onsets, r).filter(|d| *d >= floor)?, *r)))
+        .collect()
+}
+
 /// The scalings of the jammed packings of `n` discs with contact exponent `beta`, each fitted
 /// on log–log axes against Δφ over the packings with Δφ ≥ `floor` and a positive value.
 pub(super) fn scalings(
@@ -121,15 +135,12 @@ pub(super) fn scalings(
     beta: f64,
     floor: f64,
 ) -> Vec<Scaling> {
-    let mine: Vec<&&RunRecord> =
-        runs.iter().filter(|r| jammed(r) && r.spec.law.beta() == beta && key(r).is_some_and(|k| k.0 == n)).collect();
+    let mine = fitted_packings(runs, onsets, (n, beta), floor);
     SCALINGS
         .iter()
         .filter_map(|&(quantity, pick, theory)| {
-            let points: Vec<(f64, f64)> = mine
-                .iter()
-                .filter_map(|r| Some((excess(onsets, r).filter(|d| *d >= floor)?, pick(r).filter(|y| *y > 0.0)?)))
-                .collect();
+            let points: Vec<(f64, f64)> =
+                mine.iter().filter_map(|&(d, r)| Some((d, pick(r).filter(|y| *y > 0.0)?))).collect();
             let fit = power_law_fit(&points)?;
             Some(Scaling { quantity, fit, theory: theory(beta), points })
         })
@@ -147,11 +158,9 @@ pub(super) fn ratio_against_contacts(
     beta: f64,
     floor: f64,
 ) -> Option<Scaling> {
-    let points: Vec<(f64, f64)> = runs
-        .iter()
-        .filter(|r| jammed(r) && r.spec.law.beta() == beta && key(r).is_some_and(|k| k.0 == n))
-        .filter(|r| excess(onsets, r).is_some_and(|d| d >= floor))
-        .filter_map(|r| {
+    let points: Vec<(f64, f64)> = fitted_packings(runs, onsets, (n, beta), floor)
+        .into_iter()
+        .filter_map(|(_, r)| {
             let m = &r.metrics.packing;
             let dz = m.coordination? - ISOSTATIC;
             let ratio = m.shear_modulus_2d? / m.bulk_modulus_2d?;
