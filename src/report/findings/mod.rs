@@ -29,19 +29,19 @@ pub use self::finding::{Evidence, Finding, Table, Verdict, rel};
 type Question = fn(&Evidence) -> Option<Answer>;
 
 /// The questions `evidence` answers, numbered: a study's own (time to a modulus, the lattice
-/// types), asked of every run, where the campaign is a study ([`is_study`]); otherwise the
+/// types), asked of every run, where the campaign is a study ([`study_answers`]); otherwise the
 /// coursework's items, in the coursework's order. A study campaign's square lattices would
 /// answer coursework items too, but that is the coursework report's text again, not the study's.
 pub fn findings(evidence: &Evidence) -> Vec<Finding> {
-    let answers = if is_study(evidence) { studies(evidence) } else { coursework(&evidence.coursework()) };
+    let answers = study_answers(evidence).unwrap_or_else(|| coursework(&evidence.coursework()));
     answers.into_iter().enumerate().map(|(i, answer)| answer.numbered(i + 1)).collect()
 }
 
-/// Whether the campaign is a study, not coursework: it compares relaxation methods (its runs
-/// stopped by the displacement bound use more than one, critical damping counting as one) or
-/// lattice types (one of its lattices is not square), and a study question answers it. A
-/// coursework block relaxed by one minimiser is still coursework.
-fn is_study(evidence: &Evidence) -> bool {
+/// A study's answers, when the campaign is a study, not coursework: it compares relaxation
+/// methods (its runs stopped by the displacement bound use more than one, critical damping
+/// counting as one) or lattice types (one of its lattices is not square), and a study question
+/// answers it. A coursework block relaxed by one minimiser is still coursework.
+fn study_answers(evidence: &Evidence) -> Option<Vec<Answer>> {
     let lattices = evidence.all(|r| r.spec.lattice().is_some());
     let methods: HashSet<(RelaxMethod, bool)> = lattices
         .iter()
@@ -49,7 +49,10 @@ fn is_study(evidence: &Evidence) -> bool {
         .map(|relax| (relax.method, relax.critical_background))
         .collect();
     let types = lattices.iter().filter_map(|r| r.spec.lattice()).any(|l| l.lattice_type != LatticeType::Square);
-    (methods.len() > 1 || types) && !studies(evidence).is_empty()
+    if !(methods.len() > 1 || types) {
+        return None;
+    }
+    Some(studies(evidence)).filter(|answers| !answers.is_empty())
 }
 
 /// The studies' own questions that `evidence` answers.
@@ -101,7 +104,7 @@ fn coursework(coursework: &Evidence) -> Vec<Answer> {
 /// The discussion's paragraphs: a study's own where the campaign is one (as [`findings`]
 /// decides), otherwise the coursework's themes.
 pub fn discussion(evidence: &Evidence) -> Vec<Paragraph> {
-    if !is_study(evidence) {
+    if study_answers(evidence).is_none() {
         return discussion::discussion(evidence);
     }
     let paragraphs: [fn(&Evidence) -> Option<Paragraph>; 2] = [relaxation::which_method, types::against_continuum];
