@@ -475,6 +475,29 @@ fn anisotropy_is_set_against_the_continuums_ratio_and_flips_with_it() {
 }
 
 #[test]
+fn the_isotropic_reference_of_an_anisotropy_scene_keeps_every_direction() {
+    // The scene varies k_y/k over 1 and 2, pulled both ways and sheared: the k_y = k network is
+    // the isotropic reference and must keep E_y and G beside E_x (its tensile and shear runs had
+    // been left out for being isotropic, leaving "–"). Turned by 90° it is the same network, so
+    // E_y = E_x to FIRE's relaxation (residual 1e-6 of the load: 1e-4 relative is generous) and
+    // ν the same both ways; with k_y = 2k the row differs.
+    let yaml = anisotropic_block("both", 1.0)
+        .replace("[tensile, tensile-x]", "[tensile, tensile-x, shear]\n      lattice.k_y_ratio: [1.0, 2.0]");
+    let report = report_of("an", &yaml);
+    let cells = |marker: &str| -> Vec<f64> {
+        let row = line_with(&report, marker);
+        row.split('|').skip(2).filter(|c| !c.trim().is_empty()).map(|c| c.trim().parse().expect(row)).collect()
+    };
+    let isotropic = cells("| both diagonals, k_y/k = 1 |");
+    assert_eq!(isotropic.len(), 5, "E_y, E_x, ν both ways and G: {isotropic:?}");
+    assert!((isotropic[0] / isotropic[1] - 1.0).abs() < 1e-4, "{isotropic:?}");
+    assert!((isotropic[2] / isotropic[3] - 1.0).abs() < 1e-3, "{isotropic:?}");
+    assert!(isotropic[4] > 0.0, "{isotropic:?}");
+    let stiff = cells("| both diagonals, k_y/k = 2 |");
+    assert!(stiff[0] / stiff[1] > 1.3, "{stiff:?}");
+}
+
+#[test]
 fn background_damping_times_are_listed_per_stopping_criterion() {
     // Two runs per γ_g, one stopped by E_kin/E_pot and one by the residual force: each list
     // names its criterion and holds each γ_g once, in the order the runs stop by it.

@@ -220,14 +220,7 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
 
 /// Anisotropic networks: moduli in both directions.
 pub(super) fn anisotropic(e: &Evidence) -> Option<Answer> {
-    let runs = e.ok(|r| {
-        r.spec.lattice().is_some_and(|l| {
-            (l.k_x != l.k_y
-                || !matches!(l.diagonals, crate::spec::Diagonals::Both | crate::spec::Diagonals::None)
-                || l.rotated)
-                && !l.is_random()
-        })
-    });
+    let runs = anisotropy_runs(e);
     let mut groups: BTreeMap<String, Vec<&RunRecord>> = BTreeMap::new();
     for r in &runs {
         groups.entry(network_words(r)).or_default().push(r);
@@ -273,6 +266,19 @@ pub(super) fn anisotropic(e: &Evidence) -> Option<Answer> {
             rows,
         }),
     })
+}
+
+/// The runs of the scenes that measure anisotropy: those with an anisotropic network (k_y ≠ k_x
+/// or one diagonal family) or a load turned to x, with every other regular run of those scenes,
+/// so the isotropic network a scene holds as its reference keeps its E_y and G beside its E_x.
+fn anisotropy_runs<'a>(e: &Evidence<'a>) -> Vec<&'a RunRecord> {
+    let anisotropic = |r: &RunRecord| {
+        r.spec
+            .lattice()
+            .is_some_and(|l| l.k_x != l.k_y || !matches!(l.diagonals, Diagonals::Both | Diagonals::None) || l.rotated)
+    };
+    let scenes: Vec<&str> = e.ok(anisotropic).iter().map(|r| r.spec.scene.as_str()).collect();
+    e.ok(|r| scenes.contains(&r.spec.scene.as_str()) && r.spec.lattice().is_some_and(|l| !l.is_random()))
 }
 
 /// An anisotropic network in words, from its lattice whatever the grid varies: its diagonal
