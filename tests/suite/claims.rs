@@ -116,6 +116,13 @@ fn random_networks_average_the_rigid_seeds_and_say_where_rigidity_held() {
     // A mechanism has no kept fraction and no modulus: its row says so instead of averaging 0.
     let row = line_with(&heavy, "| tensile | 0.60 |");
     assert_eq!(row, "| tensile | 0.60 | 0/6 | – | – | – |");
+    // The item points on to the jammed packings: the link's page is where `mdsolids run` writes
+    // the jamming campaign, `<reports>/<campaign name>/index.html` beside this report's folder.
+    let pointer = line_with(&heavy, "the random solid is a jammed packing");
+    assert!(pointer.contains("`mdsolids run campaigns/jamming.yaml`"), "{pointer}");
+    let jamming = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/campaigns/jamming.yaml")).unwrap();
+    let name = mdsolids::spec::parse("jamming.yaml", &jamming).unwrap().name;
+    assert!(pointer.ends_with(&format!("[../{name}/index.html](../{name}/index.html).")), "{pointer}");
 }
 
 /// A free 20 × 20 lattice kicked down at its upper-right node with speed `v0` (m/s, c = 1 m/s
@@ -512,4 +519,25 @@ fn background_damping_times_are_listed_per_stopping_criterion() {
     assert!(lists[1].starts_with("0.5000, 2.000 N s/m give ") && lists[1].contains("(largest static force"), "{line}");
     // Without bond-damped runs there is no ratio to state (it had read "–× faster").
     assert!(!line.contains("faster than the fastest bond damping"), "{line}");
+}
+
+#[test]
+fn the_n_by_1_row_is_the_chain_within_verlets_drift_and_flips_beyond_it() {
+    // Independent bound: Verlet's phase drift of the chain's top mode ω_N = 2√(k/m) sin(Nπ/(2(N+1)))
+    // over T, ω_N³ dt² T/24 rad (k = m = 1, N = 11, dt = t_c/50, t_c = π/√2 s, T = 4 t_c). Symplectic
+    // Euler's velocities are first order, off by ~ω dt/2 ≈ 0.04 from the start: beyond the bound.
+    let t_c = std::f64::consts::PI / 2f64.sqrt();
+    let top = 2.0 * (11.0 * std::f64::consts::PI / 24.0).sin();
+    let drift = top.powi(3) * (t_c / 50.0).powi(2) * 4.0 * t_c / 24.0;
+    for (integrator, verdict) in [("position-verlet", "inside"), ("symplectic-euler", "beyond")] {
+        let yaml = format!(
+            "version: 1\nname: row\nscenes:\n  - name: chain\n    kind: chain\n    n: 11\n    node: 6\n    \
+             v0: 0.1\n    time: {{integrator: {integrator}, duration_tc: 4}}\n"
+        );
+        let report = report_of("row", &yaml);
+        let line = line_with(&report, "its motion follows the chain's exact normal modes");
+        assert!((number_after(line, "ω_N³ dt² T/24 = ") / drift - 1.0).abs() < 1e-3, "{drift}: {line}");
+        assert!(line.contains(&format!("speed, {verdict} Verlet's phase drift")), "{integrator}: {line}");
+        assert_eq!(line.contains("N × 1 gives back the chain"), verdict == "inside", "{line}");
+    }
 }

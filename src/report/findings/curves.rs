@@ -68,6 +68,7 @@ pub(super) fn motion(e: &Evidence) -> Option<Answer> {
             "The damped oscillator of the reduced mass m/2; tolerance {OVERLAP_TOLERANCE:e} of the largest overlap (a \
              second-order scheme drifts by (π/50)²/24 · 3π ≈ 1.5e-3 over 3 t_c at t_c/50)."
         ),
+        see_also: None,
         verdict: if checks.is_empty() { Verdict::Observed } else { Verdict::of(checks) },
         figures,
         table: None,
@@ -187,6 +188,7 @@ pub(super) fn power_contacts(e: &Evidence) -> Option<Answer> {
              {EXPONENT_TOLERANCE}); the restitution of (m/2) δ̈ = −C δ^β − γ δ̇ integrated on its own (RK4, 20 000 steps \
              per contact), tolerance {RESTITUTION_TOLERANCE:e} at t_c/50."
         ),
+        see_also: None,
         verdict: if checks.is_empty() { Verdict::Observed } else { Verdict::of(checks) },
         figures,
         table: None,
@@ -371,6 +373,7 @@ pub(super) fn dispersion_relation(e: &Evidence) -> Option<Answer> {
         reference: "The branches 2√(k_eff/m)|sin(qa/2)| of the springs; tolerance half the spectrum's resolution, \
                     π/T over the run's length T."
             .into(),
+        see_also: None,
         verdict: Verdict::of(checks),
         figures,
         table: None,

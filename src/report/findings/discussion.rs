@@ -272,6 +272,7 @@ pub(super) fn linear_and_hertz(e: &Evidence) -> Option<Answer> {
              difference in words."
         )],
         reference: format!("Exponent 0 (linear) and the Hertz predictions; tolerance {EXPONENT_TOLERANCE}."),
+        see_also: None,
         verdict: Verdict::of(checks),
         figures: Vec::new(),
         table: Some(Table {

@@ -54,6 +54,7 @@ pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
             "The exact front speed a√(k/m) of the linear chain; tolerance {SPEED_TOLERANCE} (the threshold catches \
              the dispersive front early); without a chain, an observation."
         ),
+        see_also: None,
         verdict: match chain {
             Some(_) => Verdict::of([error.is_some_and(|x| x.abs() <= SPEED_TOLERANCE)]),
             None => Verdict::Observed,
@@ -206,6 +207,7 @@ pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
         short: dissipation_short(&bond, &background, sweep.as_ref()),
         sentences,
         reference: "No analytical reference: the times are measured, with the stopping criterion stated.".into(),
+        see_also: None,
         verdict: Verdict::Observed,
         figures: shown,
         table: Some(dissipation_table(&relaxed)),
@@ -512,6 +514,7 @@ pub(super) fn hertz_kick(e: &Evidence) -> Option<Answer> {
         short: format!("front speed ∝ v0^{:.3}", fit.fit.exponent),
         sentences,
         reference: "Nesterenko's solitary-wave speed ∝ v0^(1/5) for Hertz contacts; within 0.05.".into(),
+        see_also: None,
         verdict: Verdict::of([(fit.fit.exponent - 0.2).abs() <= 0.05]),
         figures: e.figures(&[(&fit.scene, FigureKind::SpeedAgainstV0), (&fit.scene, FigureKind::SpaceTime)]),
         table: None,

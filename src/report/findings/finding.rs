@@ -60,12 +60,27 @@ pub struct Finding {
     pub sentences: Vec<String>,
     /// What it is held against, with the tolerance and why.
     pub reference: String,
+    /// Where the question goes on: another campaign's report, with a sentence.
+    pub see_also: Option<SeeAlso>,
     /// Within, outside or observed.
     pub verdict: Verdict,
     /// Figures that show it.
     pub figures: Vec<FigureRef>,
     /// Its numbers in one table.
     pub table: Option<Table>,
+}
+
+/// A pointer from an item to another campaign that takes its question further: what that
+/// campaign does, its file, and its report's page relative to this one (reports side by side
+/// under one folder).
+#[derive(Clone, Debug, Serialize)]
+pub struct SeeAlso {
+    /// What the other campaign does and answers, in a sentence.
+    pub text: String,
+    /// The campaign file that makes it, from the crate's folder.
+    pub campaign: &'static str,
+    /// Its report's page, relative to this report's folder.
+    pub page: &'static str,
 }
 
 /// A finding before it is numbered: what each question's function returns.
@@ -75,6 +90,7 @@ pub(super) struct Answer {
     pub(super) short: String,
     pub(super) sentences: Vec<String>,
     pub(super) reference: String,
+    pub(super) see_also: Option<SeeAlso>,
     pub(super) verdict: Verdict,
     pub(super) figures: Vec<FigureRef>,
     pub(super) table: Option<Table>,
@@ -92,6 +108,7 @@ impl Answer {
             short: self.short,
             sentences: self.sentences,
             reference: self.reference,
+            see_also: self.see_also,
             verdict: self.verdict,
             figures: self.figures,
             table: self.table,

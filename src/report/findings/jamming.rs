@@ -194,6 +194,7 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
              linear and ^(3/2, ½, ½, 1) for Hertz contacts; exponents judged on the largest N within \
              {EXPONENT_TOLERANCE}."
         ),
+        see_also: None,
         verdict: Verdict::of(checks),
         figures: packing_scenes(&runs).into_iter().filter_map(|scene| e.figure(scene, FigureKind::Jamming)).collect(),
         table: Some(Table {
@@ -338,6 +339,7 @@ fn unjammed(any: &[&RunRecord]) -> Answer {
         },
         sentences: vec![sentence],
         reference: format!("{CITATION}: φ_J ≈ {PHI_J} for 1:1.4 bidisperse discs."),
+        see_also: None,
         verdict,
         figures: Vec::new(),
         table: None,

@@ -7,7 +7,7 @@ use crate::report::solids::mean_spread;
 use std::collections::BTreeMap;
 
 use super::block::Block;
-use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, percent, rel, relative, sig};
+use super::finding::{Answer, Evidence, SeeAlso, Table, Verdict, cell, noise, percent, rel, relative, sig};
 use crate::model::LawSpec;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
@@ -69,6 +69,7 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
         reference: "A homogeneous strain keeps the edges straight (0); an observation of how far each set-up departs \
                     from it."
             .into(),
+        see_also: None,
         verdict: Verdict::Observed,
         figures,
         table: Some(Table { header: ["load", "supports", "lattice", "homogeneity"].map(String::from).to_vec(), rows }),
@@ -212,6 +213,7 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
         short: format!("E ∝ F^{:.3} (Hertz: 1/3)", first.fit.exponent),
         sentences,
         reference: "The Hertz scaling F^(1/3); fitted exponents within 0.03.".into(),
+        see_also: None,
         verdict: Verdict::of(checks),
         figures: load_figures.into_iter().flatten().take(2).collect(),
         table: None,
@@ -257,6 +259,7 @@ pub(super) fn anisotropic(e: &Evidence) -> Option<Answer> {
                     constants C11 = k_x + k_d, C22 = k_y + k_d, C12 = C66 = k_d (both families; one family of \
                     k_r: k_r/2 each, with C16 = C26 = k_r/2); a finite block keeps a share ∝ 1/N above it."
             .into(),
+        see_also: None,
         verdict: Verdict::of([worst <= 2e-3]),
         figures: Vec::new(),
         table: Some(Table {
@@ -406,6 +409,7 @@ pub(super) fn random(e: &Evidence) -> Option<Answer> {
         short: format!("{mechanisms} of {} cut networks lost rigidity", runs.len()),
         sentences,
         reference: "Effective-medium theory's rigidity threshold at half the bonds kept; an observation.".into(),
+        see_also: Some(jammed_packings()),
         verdict: Verdict::Observed,
         figures: e.figure(&scene, FigureKind::Dilution).into_iter().collect(),
         table: Some(Table {
@@ -422,6 +426,20 @@ pub(super) fn random(e: &Evidence) -> Option<Answer> {
             rows,
         }),
     })
+}
+
+/// Where the random solid goes on: a granular material's random solid is a jammed packing of
+/// discs whose contacts come and go, the jamming campaign's subject.
+fn jammed_packings() -> SeeAlso {
+    SeeAlso {
+        text: "In granular matter the random solid is a jammed packing: discs whose contacts come and go, rigid \
+               above the jamming fraction φ_J ≈ 0.842 with z → 4 contacts each, the same threshold 2d as the cut \
+               networks' here. The jamming campaign quenches bidisperse discs across φ_J and states φ_J, z and the \
+               scalings of p, z − 4, K and G against O'Hern et al. (2003)."
+            .into(),
+        campaign: "campaigns/jamming.yaml",
+        page: "../jamming/index.html",
+    }
 }
 
 /// One row per load case and cut fraction: how many seeds stayed rigid, their kept fraction and
@@ -576,6 +594,7 @@ pub(super) fn md_and_fem(e: &Evidence) -> Option<Answer> {
         short: format!("median |MD − static| = {}", sig(median)),
         sentences,
         reference: "The exact static answer of the same network; the median within 1e-3.".into(),
+        see_also: None,
         verdict: Verdict::of([median <= 1e-3]),
         figures: Vec::new(),
         table: None,

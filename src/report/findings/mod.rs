@@ -71,7 +71,7 @@ fn studies(evidence: &Evidence) -> Vec<Answer> {
 /// The coursework's items that its evidence ([`Evidence::coursework`]: square lattices relaxed
 /// by MD) answers, in the coursework's order.
 fn coursework(coursework: &Evidence) -> Vec<Answer> {
-    let asked: [Question; 25] = [
+    let asked: [Question; 26] = [
         one_d::force_function,
         one_d::two_particles,
         one_d::time_step,
@@ -80,6 +80,7 @@ fn coursework(coursework: &Evidence) -> Vec<Answer> {
         one_d::hertz_pair_and_chain,
         curves::power_contacts,
         one_d::walls,
+        one_d::chain_as_row,
         two_d::units_and_time_step,
         two_d::diagonal_stiffness,
         two_d::lattice_time_step,

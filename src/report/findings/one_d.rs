@@ -146,6 +146,7 @@ pub(super) fn force_function(e: &Evidence) -> Option<Answer> {
             "Newton's third law by construction; the energy balance within {BALANCE_TOLERANCE:e} at t_c/50 (ten \
              times the second-order error (π/50)²/4 ≈ 1e-3)."
         ),
+        see_also: None,
         verdict: Verdict::of([worst <= BALANCE_TOLERANCE]),
         figures: Vec::new(),
         table: None,
@@ -218,6 +219,7 @@ pub(super) fn two_particles(e: &Evidence) -> Option<Answer> {
             "Analytical damped oscillator of the reduced mass; tolerance {PAIR_TOLERANCE:e} at t_c/50 (a second-order \
              scheme errs by about (π/50)²/24 ≈ 1.6e-4 there)."
         ),
+        see_also: None,
         verdict: Verdict::of(checks),
         figures: e.figures(&[
             ("pair-bonded", FigureKind::Energy),
@@ -329,6 +331,7 @@ pub(super) fn time_step(e: &Evidence) -> Option<Answer> {
         },
         sentences,
         reference: "Verlet's second order: the fitted order must lie within 0.1 of 2.".into(),
+        see_also: None,
         verdict: order.map_or(Verdict::Observed, |p| Verdict::of([(p - 2.0).abs() <= 0.1])),
         figures: e.figures(&[
             ("pair-bonded", FigureKind::ErrorDt),
@@ -367,15 +370,76 @@ fn sweep_sentence(bonded: &[&RunRecord], reference: &RunRecord, order: f64) -> O
     ))
 }
 
-/// The chain of N kicked at its centre against its exact normal-mode solution.
-pub(super) fn chain(e: &Evidence) -> Option<Answer> {
+/// The linear chain kicked between its walls that is held against its exact normal modes: the
+/// run at t_c/50 (Verlet where there is one).
+fn normal_mode_chain<'a>(e: &Evidence<'a>) -> Option<&'a RunRecord> {
     let linear = e.ok(|r| {
         r.spec.chain().is_some_and(|c| c.relax.is_none() && c.wave.is_none())
             && r.spec.movie.is_none()
             && r.spec.law == LawSpec::Linear
             && r.metrics.chain.chain_mode_error.is_some()
     });
-    let reference = at_50(&linear)?;
+    at_50(&linear)
+}
+
+/// N × 1 gives back the chain: the chain scenes run the 2D code's (n + 2) × 1 lattice, and
+/// that row's motion is the chain's exact normal-mode solution to within Verlet's own phase
+/// drift. Verlet advances a mode of ω with 2 asin(ω dt/2)/dt = ω (1 + (ω dt)²/24 + …), so over
+/// the run's T the top mode ω_N = 2√(k/m) sin(Nπ/(2(N+1))) drifts by ω_N³ dt² T/24 rad; the
+/// error, relative to the largest displacement, sums the modes' drifts weighted by their share,
+/// so it stays below the top mode's unless the force or the integration is wrong.
+pub(super) fn chain_as_row(e: &Evidence) -> Option<Answer> {
+    let reference = normal_mode_chain(e)?;
+    let (spec, chain) = (&reference.spec, reference.spec.chain()?);
+    let error = reference.metrics.chain.chain_mode_error?;
+    let top = 2.0
+        * (spec.k / spec.mass).sqrt()
+        * (chain.n as f64 * std::f64::consts::PI / (2.0 * (chain.n + 1) as f64)).sin();
+    let drift = top.powi(3) * spec.dt * spec.dt * spec.duration / 24.0;
+    let within = error <= drift;
+    let sentences = vec![
+        format!(
+            "The chain of {} particles between walls is the 2D code's {} × 1 lattice: one row of the lattices' \
+             stencil with its end nodes fixed as the walls, positions and velocities as 2D vectors, the one spring \
+             force function and the same integrators. Every spring lies along x, so n̂ = (±1, 0) and no force acts \
+             along y: the row moves as the 1D chain (the 1D scenes also hold y, which changes no bit of the run).",
+            chain.n,
+            chain.n + 2
+        ),
+        format!(
+            "At dt = t_c/{:.0} over {} t_c its motion follows the chain's exact normal modes \
+             ω_n = 2√(k/m) sin(nπ/(2(N+1))) to {} of its largest displacement and speed, {} Verlet's phase drift of the top \
+             mode, ω_N³ dt² T/24 = {} rad: {}.",
+            spec.dt_per_tc(),
+            sig(spec.duration / spec.t_c),
+            sig(error),
+            if within { "inside" } else { "beyond" },
+            sig(drift),
+            if within {
+                "N × 1 gives back the chain"
+            } else {
+                "more than Verlet's own error allows, so not the chain's answer at this step"
+            }
+        ),
+    ];
+    Some(Answer {
+        title: "N × 1: the chain as a lattice",
+        question: "Set up the code for N_x × N_y particles such that N × 1 gives back the linear chain.",
+        short: format!("the {} × 1 lattice follows the chain's normal modes to {}", chain.n + 2, sig(error)),
+        sentences,
+        reference: "The chain's exact normal-mode solution, within Verlet's phase drift of its top mode over the \
+                    run, ω_N³ dt² T/24."
+            .into(),
+        see_also: None,
+        verdict: Verdict::of([within]),
+        figures: Vec::new(),
+        table: None,
+    })
+}
+
+/// The chain of N kicked at its centre against its exact normal-mode solution.
+pub(super) fn chain(e: &Evidence) -> Option<Answer> {
+    let reference = normal_mode_chain(e)?;
     let chain = reference.spec.chain()?;
     let order = order_of(e, reference, |r| r.metrics.chain.chain_mode_error);
     let movies = e.movies(|r| r.spec.chain().is_some_and(|c| c.n == chain.n && c.relax.is_none()));
@@ -412,6 +476,7 @@ pub(super) fn chain(e: &Evidence) -> Option<Answer> {
         sentences,
         reference:
             "The exact normal-mode solution; the error must fall at second order (fitted order within 0.2 of 2).".into(),
+        see_also: None,
         verdict: Verdict::of([order.is_some_and(|p| (p - 2.0).abs() <= 0.2)]),
         figures,
         table: None,
@@ -470,6 +535,7 @@ pub(super) fn hertz_pair_and_chain(e: &Evidence) -> Option<Answer> {
             "The exact Hertz contact duration (tolerance {PAIR_TOLERANCE:e} at t_c/50); the chain's energy balance \
              to 1e-3 at t_c/50."
         ),
+        see_also: None,
         verdict: Verdict::of(checks),
         figures,
         table: None,
@@ -516,6 +582,7 @@ pub(super) fn walls(e: &Evidence) -> Option<Answer> {
             "Static equilibrium of n+1 equal springs; tolerance {WALL_TOLERANCE:e} (the relaxation stops at a \
              residual force of 1e-9 N); the Hertz exponent within 0.05 of 1/2."
         ),
+        see_also: None,
         verdict: Verdict::of(checks),
         figures,
         table: None,

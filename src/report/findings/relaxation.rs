@@ -79,6 +79,7 @@ pub(super) fn time_to_modulus(e: &Evidence) -> Option<Answer> {
              damped bound in steps.",
             crate::fem::NEWTON_TOLERANCE
         ),
+        see_also: None,
         verdict,
         figures: Vec::new(),
         table: Some(time_table(&runs)),

@@ -86,6 +86,7 @@ pub(super) fn units_and_time_step(e: &Evidence) -> Option<Answer> {
         reference: "The integrator's stability limit dt·ω_max ≤ 2 (Verlet), measured per run; verdict: every run \
                     below it."
             .into(),
+        see_also: None,
         verdict: Verdict::of([worst < 1.0]),
         figures: Vec::new(),
         table: None,
@@ -132,6 +133,7 @@ pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
         short: "k_d/k = 1/√2 ≈ 0.7071 for equal E; 0.5 chosen (ν = 1/3)".into(),
         sentences,
         reference: "The continuum constants C11 = k + k_d, C12 = C44 = k_d (per unit depth).".into(),
+        see_also: None,
         verdict: Verdict::Observed,
         figures: Vec::new(),
         table: None,
@@ -182,6 +184,7 @@ pub(super) fn lattice_time_step(e: &Evidence) -> Option<Answer> {
         short: format!("energy error ∝ dt^{}", order_text(order)),
         sentences,
         reference: "Velocity Verlet's second order: fitted order within 0.2 of 2.".into(),
+        see_also: None,
         verdict: Verdict::of([order.is_some_and(|p| (p - 2.0).abs() <= 0.2)]),
         figures: e.figures(&[(&scene, FigureKind::WorkPrecision), (&scene, FigureKind::ErrorDt)]),
         table: Some(Table {
@@ -298,6 +301,7 @@ pub(super) fn kick(e: &Evidence) -> Option<Answer> {
         short: kick_short(&kicked),
         sentences,
         reference: "The chain's front speed a√(k/m) and the lattice's c_L; an observation.".into(),
+        see_also: None,
         verdict: Verdict::Observed,
         figures: shown,
         table: None,
@@ -428,6 +432,7 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
             "The static truss answer of the same network (tolerance {STATIC_TOLERANCE:e}: the relaxation's stopping \
              rule) and the continuum constants (finite size explains the rest)."
         ),
+        see_also: None,
         verdict: Verdict::of(checks),
         figures: scenes
             .iter()
@@ -465,6 +470,7 @@ pub(super) fn shear(e: &Evidence) -> Option<Answer> {
         ),
         sentences,
         reference: format!("The static truss answer (tolerance {STATIC_TOLERANCE:e}) and G = k_d/d."),
+        see_also: None,
         verdict: Verdict::of(checks),
         figures: scenes.iter().take(1).flat_map(|s| e.figures(&[(s, FigureKind::Size)])).collect(),
         table: Some(table),

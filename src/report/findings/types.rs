@@ -76,6 +76,7 @@ pub(super) fn moduli(e: &Evidence) -> Option<Answer> {
                     λ = μ = √3k/(4d) (triangular), √3k/(8d) (kagome), λ = k/(2√3 d), μ = 0 (honeycomb); \
                     Maxwell's count z against 2d = 4."
             .into(),
+        see_also: None,
         verdict: Verdict::of([worst < 5e-3]),
         figures: Vec::new(),
         table: Some(Table {
@@ -186,6 +187,7 @@ pub(super) fn isotropy(e: &Evidence) -> Option<Answer> {
         sentences,
         reference: "Isotropy: E_x/E_y = 1 within 5 % at the largest size (edges O(1/N)); E = 2k/(√3 d), ν = 1/3."
             .into(),
+        see_also: None,
         verdict: if checks.is_empty() { Verdict::Observed } else { Verdict::of(checks) },
         figures: Vec::new(),
         table: Some(Table {
@@ -292,6 +294,7 @@ pub(super) fn directions(e: &Evidence) -> Option<Answer> {
              (the free block's E and ν carry its edges' O(1/N), about 2 % at N = 33).",
             DIRECTION_TOLERANCE * 100.0
         ),
+        see_also: None,
         verdict: Verdict::of(checks),
         figures: Vec::new(),
         table: Some(Table {
@@ -455,6 +458,7 @@ pub(super) fn percolation(e: &Evidence) -> Option<Answer> {
         reference: "Effective-medium theory: p_c = 2d/z (2/3 triangular, 1/2 square with both diagonals); \
                     Jacobs and Thorpe (1995): 0.660 for the triangular network; an observation."
             .into(),
+        see_also: None,
         verdict: Verdict::Observed,
         figures: diluted_scenes.iter().filter_map(|scene| e.figure(scene, FigureKind::Dilution)).collect(),
         table: Some(Table {
@@ -673,6 +677,7 @@ pub(super) fn waves(e: &Evidence) -> Option<Answer> {
                     kagome's a√(k/(2m)), shown, not judged), within 20 % (the arrival criteria's spread on the \
                     square lattice)."
             .into(),
+        see_also: None,
         verdict: Verdict::of(ratios(&waves, judged).iter().map(|x| (x - 1.0).abs() < 0.2)),
         figures: e.movies(|r| other_type(r) && r.spec.movie.is_some()),
         table: Some(Table {
