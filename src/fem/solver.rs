@@ -1,7 +1,7 @@
 //! The static problems of one network, on one symbolic analysis and in one factor's memory: the
-//! linear answer (a fresh factor of K, refined), Newton–Raphson's corrections (a fresh factor of
-//! the tangent each), the responses of the tangent (conjugate gradients preconditioned with the
-//! factor at hand, a fresh factor only where they stall), and what bounds a relaxation's error (k_min by inverse
+//! linear answer (a fresh factor of K, refined), Newton–Raphson's corrections and the responses
+//! of the tangent (conjugate gradients preconditioned with the factor at hand, a fresh factor
+//! of the tangent only where they stall), and what bounds a relaxation's error (k_min by inverse
 //! iteration and ‖K_t⁻¹ g‖ on a fresh factor of the tangent, in the same memory). Pure: no I/O.
 
 use std::sync::Arc;
@@ -25,6 +25,20 @@ const NEWTON_STEP_TOLERANCE: f64 = 1e-14;
 const NEWTON_ITERATIONS: usize = 50;
 /// A response K_t Δu = f (the tangent moduli, the sensitivity) is solved to this fraction of ‖f‖.
 const RESPONSE_TOLERANCE: f64 = 1e-12;
+/// A Newton correction is solved to at most this fraction of its ‖R‖ (see [`forcing`]).
+const LARGEST_FORCING: f64 = 1e-4;
+
+/// How far a Newton correction K_t Δu = R is solved, as a fraction η of ‖R‖, when the
+/// out-of-balance force is `residual` ‖f‖ (inexact Newton: ‖R⁺‖ ≲ η‖R‖ + C‖R‖², so the root is
+/// the same and only the work differs). η = ‖R‖/‖f‖ keeps the convergence quadratic, and no
+/// tighter than what brings ‖R⁺‖ to a tenth of the tolerance (0.1 · 1e-12 ‖f‖/‖R‖) is needed;
+/// at most 1e-4, so each step stays within 1e-4 of the exact Newton step (1e-2 let corrections
+/// on diluted, nearly floppy networks wander to another equilibrium). On the 500² lattice at
+/// a strain of 1e-3: ‖R‖ = 1e-4 then 1e-8 ‖f‖, η = 1e-4 then 1e-5, two conjugate-gradient solves
+/// on the linear factor each, where solving to 1e-12 took four to five.
+fn forcing(residual: f64) -> f64 {
+    residual.max(0.1 * NEWTON_TOLERANCE / residual).clamp(RESPONSE_TOLERANCE, LARGEST_FORCING)
+}
 
 /// Inverse iteration for the softest stiffness stops once its Rayleigh quotient changes by
 /// less than this fraction ...
@@ -125,9 +139,11 @@ impl<'a> Solver<'a> {
     /// Newton–Raphson from displacements `(ux, uy)`: R(u) = f + Σ spring forces at x + u,
     /// K_t Δu = R, until ‖R‖ ≤ 1e-12 ‖f‖ or ‖Δu‖ ≤ 1e-14 ‖u‖. The tangent of a spring with
     /// tension s along n̂ at length r is s′(δ) n̂ n̂ᵀ + (s/r)(I − n̂ n̂ᵀ). Each correction is
-    /// solved with a fresh factor of K_t on the network's one symbolic analysis, in the same
-    /// memory, refined (full Newton: corrections by conjugate gradients on the linear factor,
-    /// tried, stalled or stopped elsewhere on diluted, nearly floppy networks). An iteration that does not converge returns `None`; once the wall
+    /// solved to [`forcing`]'s fraction of ‖R‖ by conjugate gradients preconditioned with the
+    /// factor at hand (the linear K's: the tangent differs from it by terms of the order of the
+    /// strain, so each solve gains ~log₁₀(1/strain) digits), and with a fresh factor of K_t on
+    /// the network's one symbolic analysis, in the same memory, where they stall (diluted,
+    /// nearly floppy networks). An iteration that does not converge returns `None`; once the wall
     /// clock passes `deadline` (looked at before every correction) it stops with `PastDeadline`.
     pub fn solve_nonlinear_from<L: ForceLaw>(
         &mut self,
@@ -147,7 +163,7 @@ impl<'a> Solver<'a> {
             if deadline.is_some_and(|deadline| Instant::now() > deadline) {
                 return Some(StaticSolution::PastDeadline);
             }
-            let step = self.solve_fresh(&residual)?;
+            let step = self.solve(&residual, forcing(norm / load_norm))?;
             let (dx, dy) = self.truss.expand(&self.dofs, &step);
             for i in 0..ux.len() {
                 ux[i] += dx[i];
