@@ -202,3 +202,13 @@ fn section(scene: Scene, records: &[RunRecord], figures: &[Figure], side_by_side
         name: scene.name,
     })
 }
+
+impl ReportContext {
+    /// Marks each finding's pointer to another campaign's report whose page is there, relative to
+    /// this report's folder `root`: only those are linked (the others say how to make them).
+    pub fn look_for_pointed_pages(&mut self, root: &std::path::Path) {
+        for see_also in self.findings.iter_mut().filter_map(|f| f.see_also.as_mut()) {
+            see_also.written = root.join(see_also.page).is_file();
+        }
+    }
+}

@@ -89,7 +89,8 @@ pub fn render_with_left_out(
     remove_stale(&layout.root, "probes", ".parquet", &probes)?;
     // Probe tables of earlier versions were CSV.
     remove_stale(&layout.root, "probes", ".csv", &BTreeSet::new())?;
-    let context = context::build(campaign, records, fits, left_out, scenes, &side_by_side);
+    let mut context = context::build(campaign, records, fits, left_out, scenes, &side_by_side);
+    context.look_for_pointed_pages(&layout.root);
     let context = tera::Context::from_serialize(&context).context("cannot build the report context")?;
     write_pages(&layout.root, ("report.md", MARKDOWN_TEMPLATE), context)
 }

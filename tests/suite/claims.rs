@@ -1,7 +1,7 @@
 //! The report's sentences are claims computed from the data: each test builds small campaigns
 //! on both sides of a claim and sees the sentence flip with the data.
 
-use crate::common::{execute_all, line_with, number_after, report_of};
+use crate::common::{execute_all, line_with, mdsolids_ok, number_after, report_of};
 
 /// A 4 × 4 loaded lattice, m = k = 1, with `damping` (a YAML flow map) and a `grid` line.
 fn loaded_lattice(damping: &str, grid: &str) -> String {
@@ -116,13 +116,30 @@ fn random_networks_average_the_rigid_seeds_and_say_where_rigidity_held() {
     // A mechanism has no kept fraction and no modulus: its row says so instead of averaging 0.
     let row = line_with(&heavy, "| tensile | 0.60 |");
     assert_eq!(row, "| tensile | 0.60 | 0/6 | – | – | – |");
-    // The item points on to the jammed packings: the link's page is where `mdsolids run` writes
-    // the jamming campaign, `<reports>/<campaign name>/index.html` beside this report's folder.
-    let pointer = line_with(&heavy, "the random solid is a jammed packing");
-    assert!(pointer.contains("`mdsolids run campaigns/jamming.yaml`"), "{pointer}");
+}
+
+#[test]
+fn the_random_networks_point_to_the_jamming_report_and_link_it_once_it_is_there() {
+    // The pointed page is where `mdsolids run` writes the jamming campaign,
+    // `<reports>/<campaign name>/index.html`, beside this report's folder: not there yet, the
+    // item says how to make it; there, a render of the same campaign links it.
     let jamming = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/campaigns/jamming.yaml")).unwrap();
     let name = mdsolids::spec::parse("jamming.yaml", &jamming).unwrap().name;
-    assert!(pointer.ends_with(&format!("[../{name}/index.html](../{name}/index.html).")), "{pointer}");
+    let reports = tempfile::tempdir().unwrap();
+    let file = reports.path().join("rnd.yaml");
+    std::fs::write(&file, random_block("[0.2]").replace("seed: [1, 2, 3, 4, 5, 6]", "seed: [1]")).unwrap();
+    let pointer = |command: &str| {
+        mdsolids_ok(reports.path(), &[command, file.to_str().unwrap()]);
+        let report = std::fs::read_to_string(reports.path().join("rnd/report.md")).unwrap();
+        line_with(&report, "the random solid is a jammed packing").to_string()
+    };
+    let before = pointer("run");
+    assert!(before.contains("`mdsolids run campaigns/jamming.yaml`"), "{before}");
+    assert!(before.contains(&format!("as `../{name}/index.html`, and linked here when")), "{before}");
+    std::fs::create_dir(reports.path().join(&name)).unwrap();
+    std::fs::write(reports.path().join(&name).join("index.html"), "<html></html>").unwrap();
+    let after = pointer("report");
+    assert!(after.ends_with(&format!("[../{name}/index.html](../{name}/index.html).")), "{after}");
 }
 
 /// A free 20 × 20 lattice kicked down at its upper-right node with speed `v0` (m/s, c = 1 m/s

@@ -81,6 +81,8 @@ pub struct SeeAlso {
     pub campaign: &'static str,
     /// Its report's page, relative to this report's folder.
     pub page: &'static str,
+    /// Whether that page was there when this report was rendered (it is linked only then).
+    pub written: bool,
 }
 
 /// A finding before it is numbered: what each question's function returns.

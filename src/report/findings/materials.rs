@@ -439,6 +439,7 @@ fn jammed_packings() -> SeeAlso {
             .into(),
         campaign: "campaigns/jamming.yaml",
         page: "../jamming/index.html",
+        written: false,
     }
 }
 
