@@ -9,6 +9,7 @@ use plotters::prelude::*;
 use std::path::Path;
 
 use super::chart::{diverging, draw_error, ensure_font};
+use crate::measure::Discs;
 use crate::sim::Frame;
 
 /// What a movie shows: the frames, the bonds between the particles, the size.
@@ -26,6 +27,10 @@ pub struct Movie {
     /// line) a wall, drawn as a bar; in 2D a filled square when held along both axes, an open
     /// one when along one.
     pub supports: Vec<(usize, crate::model::Axes)>,
+    /// A packing's discs, drawn to scale in their box in place of the frames' particles:
+    /// coloured by their load Σ|f|, their contacts as black lines as wide as their force is
+    /// large (the force chains).
+    pub discs: Option<Discs>,
     /// Frame count and size.
     pub spec: crate::spec::MovieSpec,
     /// Title drawn on every frame.
@@ -158,20 +163,15 @@ impl View {
             .flat_map(|m| m.frames.iter().map(move |f| (&m.frames[0], f)))
             .flat_map(|(first, f)| (0..f.x.len()).map(move |i| (f.x[i] - first.x[i]).hypot(f.y[i] - first.y[i])))
             .fold(0.0f64, f64::max);
-        let magnification = magnification(largest_displacement, spacing);
-        let magnified = |now: &[f64], start: &[f64]| -> Vec<f64> {
-            now.iter().zip(start).map(|(r, r0)| r0 + magnification * (r - r0)).collect()
-        };
-        let shown: Vec<Vec<(Vec<f64>, Vec<f64>)>> = panels
-            .iter()
-            .map(|m| {
-                m.frames.iter().map(|f| (magnified(&f.x, &m.frames[0].x), magnified(&f.y, &m.frames[0].y))).collect()
-            })
-            .collect();
+        // A packing's discs move by their size and more: drawn as they are, in their box.
+        let largest_disc =
+            panels.iter().flat_map(|m| m.discs.iter().flat_map(|d| d.radius.iter().copied())).fold(0.0, f64::max);
+        let magnification = if largest_disc > 0.0 { 1.0 } else { magnification(largest_displacement, spacing) };
+        let shown = shown_positions(panels, magnification);
         let drawn = || shown.iter().flatten();
         let (x0, x1) = extent(drawn().flat_map(|(x, _)| x.iter().copied()));
         let (y0, y1) = extent(drawn().flat_map(|(_, y)| y.iter().copied()));
-        let pad = 0.6 * spacing;
+        let pad = if largest_disc > 0.0 { largest_disc } else { 0.6 * spacing };
         let scale = (((x1 - x0) / 2.0 + pad) / plot_w * 2.0).max(((y1 - y0) / 2.0 + pad) / plot_h * 2.0);
         let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
         // Smaller discs when the bonds carry colour, so the bonds show between them.
@@ -188,6 +188,23 @@ impl View {
             one_dimensional,
         })
     }
+}
+
+/// The positions each panel's frames are drawn at: a packing's discs in their box, other
+/// particles at r(0) + M (r − r(0)) with the magnification M of every panel.
+fn shown_positions(panels: &[&Movie], magnification: f64) -> Vec<Vec<(Vec<f64>, Vec<f64>)>> {
+    let magnified = |now: &[f64], start: &[f64]| -> Vec<f64> {
+        now.iter().zip(start).map(|(r, r0)| r0 + magnification * (r - r0)).collect()
+    };
+    panels
+        .iter()
+        .map(|m| match &m.discs {
+            Some(discs) => discs.frames.iter().map(|f| (f.x.clone(), f.y.clone())).collect(),
+            None => {
+                m.frames.iter().map(|f| (magnified(&f.x, &m.frames[0].x), magnified(&f.y, &m.frames[0].y))).collect()
+            }
+        })
+        .collect()
 }
 
 /// The smallest and largest of `values` (∞, −∞ when there are none).
@@ -212,6 +229,9 @@ fn shortest_bond(panels: &[&Movie]) -> Option<f64> {
 struct Scales {
     fastest: f64,
     largest_strain: f64,
+    /// A packing's largest disc load Σ|f| and contact force |f| (N) over its frames (0: none).
+    largest_load: f64,
+    largest_force: f64,
 }
 
 impl Scales {
@@ -234,9 +254,15 @@ impl Scales {
             .filter(|e| *e > 0.0)
             .collect();
         strains.sort_by(f64::total_cmp);
+        // A packing's random start overlaps far more than its relaxed state: the loads and
+        // forces after the first frame set the scales, so the force chains of the relaxed
+        // packing span them (the start is drawn at the top colour and width, clamped).
+        let disc_frames = || panels.iter().flat_map(|m| m.discs.iter().flat_map(|d| d.frames[skip..].iter()));
         Scales {
             fastest: if fastest > 0.0 { fastest } else { 1.0 },
             largest_strain: strains.get(strains.len() * 99 / 100).copied().unwrap_or(0.0),
+            largest_load: disc_frames().flat_map(|f| f.load.iter().copied()).fold(0.0, f64::max),
+            largest_force: disc_frames().flat_map(|f| f.contacts.iter().map(|c| c.2)).fold(0.0, f64::max),
         }
     }
 }
@@ -255,10 +281,18 @@ fn draw_frame(pixels: &mut [u8], panels: &[&Movie], view: &View, scales: &Scales
     for ((movie, area), positions) in panels.iter().zip(&areas).zip(&view.shown) {
         let (header, body) = area.split_vertically(HEADER);
         draw_header(&header, movie, k, view.magnification)?;
-        draw_particles(&body, movie, &positions[k], &movie.frames[k], view, scales)?;
+        match &movie.discs {
+            Some(discs) => draw_discs(&body, discs, k, view, scales)?,
+            None => draw_particles(&body, movie, &positions[k], &movie.frames[k], view, scales)?,
+        }
     }
     let strained = scales.largest_strain > 0.0;
-    draw_colour_bar(&bar, scales.fastest, strained.then_some(scales.largest_strain), view.height)?;
+    let colours = if panels.iter().any(|m| m.discs.is_some()) {
+        (scales.largest_load.max(f64::MIN_POSITIVE), "Σ|f| (N)")
+    } else {
+        (scales.fastest, "|v| (m/s)")
+    };
+    draw_colour_bar(&bar, colours, strained.then_some(scales.largest_strain), view.height)?;
     root.present().map_err(draw_error)
 }
 
@@ -327,6 +361,53 @@ fn draw_particles(
         };
         Rectangle::new([(cx - w, cy - h), (cx + w, cy + h)], style)
     }))
+    .map_err(draw_error)?;
+    Ok(())
+}
+
+/// Pixels of a contact line carrying the force `force` of the run's largest `largest` (N),
+/// between discs whose smallest is `small` px across: 1 px for a vanishing force, growing
+/// linearly to half that disc (at most 8 px) at the largest, so a chain stays inside its discs.
+pub fn force_line_width(force: f64, largest: f64, small: f64) -> u32 {
+    let widest = (0.5 * small).clamp(1.0, 8.0);
+    if largest > 0.0 { 1 + ((widest - 1.0) * (force / largest).clamp(0.0, 1.0)).round() as u32 } else { 1 }
+}
+
+/// Frame `k` of a packing: its contacts as black lines ([`force_line_width`]) under its discs,
+/// each a circle of its own radius (to scale) coloured by its load Σ|f| on the speed scale and
+/// outlined, so the lines show where the discs overlap and through the gaps.
+fn draw_discs(
+    body: &DrawingArea<BitMapBackend<'_>, Shift>,
+    discs: &Discs,
+    k: usize,
+    view: &View,
+    scales: &Scales,
+) -> anyhow::Result<()> {
+    let mut ctx =
+        ChartBuilder::on(body).build_cartesian_2d(view.x_range.clone(), view.y_range.clone()).map_err(draw_error)?;
+    let frame = &discs.frames[k];
+    let pixels = |r: f64| ((r / view.scale).round() as i32).max(1);
+    let load = |i: usize| speed_color(frame.load[i] / scales.largest_load.max(f64::MIN_POSITIVE));
+    ctx.draw_series(
+        (0..frame.x.len()).map(|i| Circle::new((frame.x[i], frame.y[i]), pixels(discs.radius[i]), load(i).filled())),
+    )
+    .map_err(draw_error)?;
+    ctx.draw_series(
+        (0..frame.x.len()).map(|i| {
+            Circle::new((frame.x[i], frame.y[i]), pixels(discs.radius[i]), RGBColor(90, 90, 90).stroke_width(1))
+        }),
+    )
+    .map_err(draw_error)?;
+    let small = 2.0 * discs.radius.iter().copied().fold(f64::INFINITY, f64::min) / view.scale;
+    ctx.draw_series(frame.contacts.iter().map(|&(from, to, force)| {
+        PathElement::new(vec![from, to], BLACK.stroke_width(force_line_width(force, scales.largest_force, small)))
+    }))
+    .map_err(draw_error)?;
+    let side = discs.side;
+    ctx.draw_series(std::iter::once(PathElement::new(
+        vec![(0.0, 0.0), (side, 0.0), (side, side), (0.0, side), (0.0, 0.0)],
+        RGBColor(200, 0, 0).stroke_width(1),
+    )))
     .map_err(draw_error)?;
     Ok(())
 }
@@ -437,7 +518,7 @@ pub fn gif_frame(now: &[u8], previous: Option<&[u8]>, width: usize) -> gif::Fram
 /// coloured, the strain scale (red stretched, blue compressed, full colour from ±`largest_strain`).
 fn draw_colour_bar(
     bar: &DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>,
-    fastest: f64,
+    (largest_value, label): (f64, &str),
     largest_strain: Option<f64>,
     height: u32,
 ) -> anyhow::Result<()> {
@@ -450,9 +531,9 @@ fn draw_colour_bar(
         bar.draw(&Rectangle::new([(10, y), (30, y + h)], speed_color(fraction).filled())).map_err(draw_error)?;
     }
     let style = ("sans-serif", 12).into_font().color(&BLACK);
-    bar.draw(&Text::new(format!("{fastest:.2e}"), (34, top), style.clone())).map_err(draw_error)?;
+    bar.draw(&Text::new(format!("{largest_value:.2e}"), (34, top), style.clone())).map_err(draw_error)?;
     bar.draw(&Text::new("0".to_string(), (34, bottom - 12), style.clone())).map_err(draw_error)?;
-    bar.draw(&Text::new("|v| (m/s)".to_string(), (4, 8), style.clone())).map_err(draw_error)?;
+    bar.draw(&Text::new(label.to_string(), (4, 8), style.clone())).map_err(draw_error)?;
     if let Some(largest) = largest_strain {
         // Bonds: red stretched, blue compressed, full colour at ±largest.
         bar.draw(&Text::new("ε:".to_string(), (2, bottom + 4), style.clone())).map_err(draw_error)?;

@@ -112,3 +112,58 @@ impl ContactForces {
         (second, mixed)
     }
 }
+
+/// A contact as a movie draws it: from disc i to the image of disc j it touches (m), and its
+/// repulsion |s(δ)| (N).
+pub type ContactLine = ((f64, f64), (f64, f64), f64);
+
+/// A frame of a packing as a movie draws it: every disc wrapped into the box [0, L)², each
+/// contact as a segment from disc i to the image of disc j it touches, with its repulsion
+/// |s(δ)| (N), and each disc's load Σ|s| over its contacts (N).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DiscFrame {
+    /// x of each disc in the box (m).
+    pub x: Vec<f64>,
+    /// y of each disc in the box (m).
+    pub y: Vec<f64>,
+    /// Contacts: the segment's ends (x_i, y_i), (x_i − dx, y_i − dy) (m) and its force (N).
+    pub contacts: Vec<ContactLine>,
+    /// Σ|s| over each disc's contacts (N).
+    pub load: Vec<f64>,
+}
+
+impl DiscFrame {
+    /// The frame of `packing` (unsheared) at positions `(x, y)` under `law`.
+    pub fn of(packing: &Packing, law: LawSpec, x: &[f64], y: &[f64]) -> DiscFrame {
+        let side = packing.periodic.side;
+        let wrap = |v: f64| v - side * (v / side).floor();
+        let forces = ContactForces::of(packing, law, x, y);
+        let mut frame = DiscFrame {
+            x: x.iter().map(|&v| wrap(v)).collect(),
+            y: y.iter().map(|&v| wrap(v)).collect(),
+            contacts: Vec::with_capacity(forces.pairs.len()),
+            load: vec![0.0; x.len()],
+        };
+        for b in 0..forces.pairs.len() {
+            let (i, j) = (forces.pairs.i[b], forces.pairs.j[b]);
+            let (dx, dy) = forces.pairs.separation(b, x, y);
+            let force = forces.tension[b].abs();
+            let from = (frame.x[i], frame.y[i]);
+            frame.contacts.push((from, (from.0 - dx, from.1 - dy), force));
+            frame.load[i] += force;
+            frame.load[j] += force;
+        }
+        frame
+    }
+}
+
+/// A packing's movie frames as discs: their radii (m), the box side L (m) and each frame.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Discs {
+    /// Radius of each disc (m).
+    pub radius: Vec<f64>,
+    /// Box side L (m).
+    pub side: f64,
+    /// The frames, as the movie's.
+    pub frames: Vec<DiscFrame>,
+}

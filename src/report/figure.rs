@@ -116,19 +116,37 @@ pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> 
         .into_iter()
         .chain(own.map(|r| FigureRef {
             file: movie_name(&r.run_id),
-            caption: format!(
-                "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), {}{}; \
+            caption: if r.spec.packing().is_some() {
+                packing_movie_caption(scene, r)
+            } else {
+                format!(
+                    "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), {}{}; \
                  displacements are drawn to scale unless the frame states a magnification × M.{}",
-                r.spec.varied_in_words(|_| true),
-                match r.spec.movie {
-                    Some(movie) if movie.bond_strain => "bonds coloured by strain (red stretched, blue compressed)",
-                    _ => "bonds in grey",
-                },
-                supports_in_words(&r.spec),
-                untimed_in_words(&r.spec),
-            ),
+                    r.spec.varied_in_words(|_| true),
+                    match r.spec.movie {
+                        Some(movie) if movie.bond_strain => "bonds coloured by strain (red stretched, blue compressed)",
+                        _ => "bonds in grey",
+                    },
+                    supports_in_words(&r.spec),
+                    untimed_in_words(&r.spec),
+                )
+            },
         }))
         .collect()
+}
+
+/// A packing's movie in words: discs to scale in their periodic box, coloured by their load,
+/// the contacts as lines as wide as their force.
+fn packing_movie_caption(scene: &str, r: &RunRecord) -> String {
+    format!(
+        "Movie of {scene} ({}): the discs drawn to scale in their periodic box (red), each coloured by its load, \
+         the sum of its contact forces Σ|f| (colour bar in N; rattlers, with no contacts, dark), and every contact \
+         as a black line from centre to centre whose width grows with its force: the force chains that carry the \
+         pressure. The scales are the relaxed state's; the random start's larger overlaps are drawn at full colour \
+         and width.{}",
+        r.spec.varied_in_words(|_| true),
+        untimed_in_words(&r.spec),
+    )
 }
 
 /// What the frames of a run with no time show (a minimiser or the static solve): two states,

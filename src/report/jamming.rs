@@ -44,6 +44,12 @@ pub(super) fn jammed(r: &RunRecord) -> bool {
     r.metrics.packing.packing_state.as_deref() == Some("jammed")
 }
 
+/// A packing the fits are made over: one relaxed for its own sake (a movie's run repeats one of
+/// the grid's packings for its picture and would count it twice).
+pub(crate) fn fitted(r: &RunRecord) -> bool {
+    r.status == RunStatus::Ok && r.spec.packing().is_some() && r.spec.movie.is_none()
+}
+
 /// φ_J of every (N, seed) with two jammed linear packings or more: p = a (φ − φ_J) fitted by
 /// least squares over them, φ_J = −intercept/a (none when the pressure does not rise with φ).
 pub(super) fn onsets(runs: &[&RunRecord]) -> BTreeMap<(usize, u64), f64> {
@@ -175,8 +181,7 @@ pub(super) fn ratio_against_contacts(
 /// Δφ on log–log axes (φ_J from the linear packings of the whole campaign), each with its
 /// fitted power law; none without a φ_J.
 pub(super) fn part(records: &[RunRecord], scene: &str) -> anyhow::Result<Part<()>> {
-    let runs: Vec<&RunRecord> =
-        records.iter().filter(|r| r.status == RunStatus::Ok && r.spec.packing().is_some()).collect();
+    let runs: Vec<&RunRecord> = records.iter().filter(|r| fitted(r)).collect();
     let onsets = onsets(&runs);
     let mine: Vec<&RunRecord> = runs.iter().copied().filter(|r| r.spec.scene == scene).collect();
     let sizes = Onset::per_size(&onsets);

@@ -121,6 +121,7 @@ fn fill(record: &mut RunRecord, mut run: Run, deadline: Instant) {
         captions: untimed_captions(spec, &run.outcome.trace),
         bonds: run.bonds,
         supports: run.supports,
+        discs: run.discs.take(),
         spec: movie,
         title: format!("{} {}", spec.scene, spec.varied_in_words(|_| true)),
         t_c: spec.t_c,

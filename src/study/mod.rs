@@ -113,6 +113,9 @@ pub struct Run {
     /// are held along, collected when the run asks for a movie. A hold along y that every
     /// particle has is the line a 1D scene moves on, not a support, and is left out.
     pub supports: Vec<(usize, Axes)>,
+    /// A packing's movie frames as discs to scale with their contact forces, when it asks for
+    /// a movie.
+    pub discs: Option<crate::measure::Discs>,
 }
 
 /// Builds the scene of `spec`.
@@ -175,6 +178,8 @@ pub fn run(spec: &RunSpec, deadline: Instant, analyses: &Analyses) -> Result<Run
     if let Some(scene) = &packing_scene {
         packing::measure(spec, scene, &outcome, &mut metrics.packing);
     }
+    let discs =
+        packing_scene.as_ref().filter(|_| spec.movie.is_some()).and_then(|s| packing::movie_discs(spec, s, &outcome));
     if let Some((step, again)) = tangent.filter(|_| outcome.trace.relaxed_at.is_some()) {
         tangent_step(spec, again, &outcome, step, &mut metrics);
     }
@@ -193,7 +198,7 @@ pub fn run(spec: &RunSpec, deadline: Instant, analyses: &Analyses) -> Result<Run
     if let Some(l) = spec.lattice() {
         lattice::keep_probes(l, &mut outcome.trace);
     }
-    Ok(Run { outcome, metrics, reference_s, bonds, supports })
+    Ok(Run { outcome, metrics, reference_s, bonds, supports, discs })
 }
 
 /// The held particles of `particles` with the axes they are held along; a hold along y on

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 use super::columns::{Block, Column, Slot};
 use super::common::{relaxation, scene};
 use crate::fem::{Entry, factor_and_solve};
-use crate::measure::ContactForces;
+use crate::measure::{ContactForces, DiscFrame, Discs};
 use crate::model::{Axes, Particles, PeriodicBox, random_bidisperse};
 use crate::sim::{Network, Outcome, Packing, Scene};
 use crate::spec::{PackingRun, PackingSpec, RunSpec};
@@ -87,6 +87,14 @@ pub(super) fn build(spec: &RunSpec, run: &PackingRun) -> Scene {
     let mut scene = scene(spec, particles, Network::Packing(packing), None);
     scene.sampling.relaxation = relaxation(spec, Some(force_scale(spec)), run.packing.n);
     scene
+}
+
+/// The movie frames of a packing's run as discs with their contact forces
+/// ([`crate::measure::DiscFrame`]); `None` for another network.
+pub(super) fn movie_discs(spec: &RunSpec, scene: &Scene, outcome: &Outcome) -> Option<Discs> {
+    let Network::Packing(packing) = &scene.network else { return None };
+    let frames = outcome.frames.iter().map(|f| DiscFrame::of(packing, spec.law, &f.x, &f.y)).collect();
+    Some(Discs { radius: packing.radius.clone(), side: packing.periodic.side, frames })
 }
 
 /// Measures the packing where its run stopped (relaxed or not): its geometry, contacts and

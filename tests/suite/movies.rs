@@ -391,3 +391,28 @@ fn runs_with_no_time_draw_their_start_and_end() {
     }
     assert!(report.contains("the start and the state it stopped at"), "{report}");
 }
+
+#[test]
+fn a_packing_movie_draws_its_discs_to_scale_with_their_force_chains() {
+    // 64 discs at φ = 0.86 relaxed by FIRE: two frames (the start and the jammed state), the
+    // jammed one with its contacts as black lines (nothing else on the frame is black: the
+    // discs take the load's colours, the box is red, the text is a few hundred pixels). The
+    // lines' geometry and widths are checked against their formulas in the unit tests.
+    let yaml = "version: 1\nname: chains\nscenes:\n  - name: jam\n    kind: packing\n    \
+                packing: {n: 64, fraction: 0.86}\n    movie: {frames: 2, width: 500, height: 470}\n";
+    let reports = tempfile::tempdir().unwrap();
+    let file = reports.path().join("chains.yaml");
+    std::fs::write(&file, yaml).unwrap();
+    crate::common::mdsolids_ok(reports.path(), &["run", file.to_str().unwrap()]);
+    let plots = reports.path().join("chains/plots");
+    let gif = std::fs::read_dir(&plots)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .find(|p| p.extension().is_some_and(|e| e == "gif"));
+    let (width, frames) = frames(&gif.expect("the packing's movie"));
+    assert_eq!((width, frames.len()), (500, 2));
+    let black = frames[1].chunks(4).filter(|p| p[..3] == [0, 0, 0]).count();
+    assert!(black > 500, "force chains drawn: {black} black pixels");
+    let report = std::fs::read_to_string(reports.path().join("chains/report.md")).unwrap();
+    assert!(report.contains("every contact as a black line from centre to centre whose width grows with its force"));
+}

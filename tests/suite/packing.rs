@@ -3,7 +3,7 @@
 //! closed forms, the moduli by the stiffness matrix against relaxed energies, the exported
 //! final state, the refusals, and the report's item "Jamming" against the results table.
 
-use mdsolids::measure::ContactForces;
+use mdsolids::measure::{ContactForces, DiscFrame};
 use mdsolids::model::{Axes, Contacts, LawSpec, Particles, PeriodicBox, contacts_within, random_bidisperse};
 use mdsolids::sim::{IntegratorKind, Network, Packing, Sampling, Scene};
 use mdsolids::study::packing::stiffness_moduli;
@@ -112,6 +112,24 @@ fn a_square_four_disc_cell_has_its_closed_form_contacts_and_pressure() {
     assert_eq!(forces.pairs.len(), 8);
     assert!((forces.pressure(area) - 0.1).abs() < 1e-14, "p = {}", forces.pressure(area));
     assert!((forces.total_energy() - 8.0 * 0.5 * 0.01).abs() < 1e-14);
+}
+
+#[test]
+fn a_movie_frame_of_a_packing_wraps_its_discs_and_carries_each_contacts_force() {
+    // Box 4 × 4, k = 1, discs of radius 0.6: disc 0 at (0.2, 1) and disc 1 at (3.1, 1) touch
+    // across the left edge (separation 1.1 through the image, overlap 0.1, force k·0.1); disc
+    // 2 at (5.5, 3) has left the box and is drawn at (1.5, 3), touching nothing. The contact's
+    // line runs from disc 0 to disc 1's image at (−0.9, 1), outside the box; each disc's load is
+    // the force. Exact numbers: sums and differences of short binary fractions, tolerance 1e-12.
+    let packing = Packing { radius: vec![0.6; 3], periodic: PeriodicBox::square(4.0), k: 1.0, skin: 0.0 };
+    let frame = DiscFrame::of(&packing, LawSpec::Linear, &[0.2, 3.1, 5.5], &[1.0, 1.0, 3.0]);
+    assert_eq!((frame.x[2], frame.y[2]), (1.5, 3.0), "the wandering disc wrapped into the box");
+    assert_eq!(frame.contacts.len(), 1, "{:?}", frame.contacts);
+    let ((x0, y0), (x1, y1), force) = frame.contacts[0];
+    assert!((x0 - 0.2).abs() < 1e-12 && (y0 - 1.0).abs() < 1e-12, "from disc 0: ({x0}, {y0})");
+    assert!((x1 + 0.9).abs() < 1e-12 && (y1 - 1.0).abs() < 1e-12, "to disc 1's image: ({x1}, {y1})");
+    assert!((force - 0.1).abs() < 1e-12, "{force}");
+    assert!((frame.load[0] - 0.1).abs() < 1e-12 && (frame.load[1] - 0.1).abs() < 1e-12 && frame.load[2] == 0.0);
 }
 
 #[test]

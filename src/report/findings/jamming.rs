@@ -8,9 +8,9 @@ use std::collections::BTreeMap;
 
 use super::finding::{Answer, Evidence, Table, Verdict, plus_minus, sig};
 use crate::measure::line_fit;
-use crate::report::figure::FigureKind;
+use crate::report::figure::{FigureKind, FigureRef};
 use crate::report::jamming::{
-    FIT_FLOOR, ISOSTATIC, Onset, Scaling, excess, jammed, key, onsets, ratio_against_contacts, scalings,
+    FIT_FLOOR, ISOSTATIC, Onset, Scaling, excess, fitted, jammed, key, onsets, ratio_against_contacts, scalings,
 };
 use crate::runner::RunRecord;
 
@@ -146,11 +146,11 @@ fn capitalised(text: &str) -> String {
 /// Where do random packings of discs jam, and how do their pressure, contacts and moduli grow
 /// above it? `None` without packings.
 pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
-    let any = e.all(|r| r.spec.packing().is_some());
+    let any = e.all(|r| r.spec.packing().is_some() && r.spec.movie.is_none());
     if any.is_empty() {
         return None;
     }
-    let runs = e.ok(|r| r.spec.packing().is_some());
+    let runs = e.ok(fitted);
     let onsets = onsets(&runs);
     let sizes = Onset::per_size(&onsets);
     let Some(largest) = sizes.last() else { return Some(unjammed(&any)) };
@@ -196,7 +196,7 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
         ),
         see_also: None,
         verdict: Verdict::of(checks),
-        figures: packing_scenes(&runs).into_iter().filter_map(|scene| e.figure(scene, FigureKind::Jamming)).collect(),
+        figures: jamming_figures(e, &runs),
         table: Some(Table {
             header: ["law", "N", "quantity", "measured", "theory", "seeds or packings", "verdict"]
                 .map(String::from)
@@ -280,6 +280,15 @@ fn ratio_sentence(beta: f64, n: usize, ratio: &Scaling, implied: Option<f64>) ->
         ratio.points.len(),
         if ratio.within() { "within" } else { "outside" }
     )
+}
+
+/// The item's figures: each packing scene's log–log scalings, then the packings' movies.
+fn jamming_figures(e: &Evidence, runs: &[&RunRecord]) -> Vec<FigureRef> {
+    packing_scenes(runs)
+        .into_iter()
+        .filter_map(|scene| e.figure(scene, FigureKind::Jamming))
+        .chain(e.movies(|r| r.spec.packing().is_some()))
+        .collect()
 }
 
 /// The packing scenes of `runs`, in campaign order.

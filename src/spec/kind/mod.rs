@@ -307,8 +307,9 @@ pub(super) fn check_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue>
     only(raw.v0.is_some() && is(SceneKind::Lattice), "v0", "pair and chain scenes (lattices are loaded, not kicked)")
 }
 
-/// A packing's section only on a packing; a packing has no kick, damping or movie (it relaxes by
-/// a minimiser, which has no time), and its springs are contacts.
+/// A packing's section only on a packing; a packing has no kick or damping (it relaxes by a
+/// minimiser, which has no time: its movie is the start and the relaxed state), and its
+/// springs are contacts.
 fn check_packing_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue> {
     let packing = kind == SceneKind::Packing;
     let only = |present: bool, path: &str, allowed: &str| require(!present, path, "(set)", allowed);
@@ -319,7 +320,6 @@ fn check_packing_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue> {
     let untimed = "not for packing scenes: a packing starts at rest and relaxes by a minimiser, which has no time";
     only(raw.v0.is_some(), "v0", untimed)?;
     only(raw.damping.is_some(), "damping", untimed)?;
-    only(raw.movie.is_some(), "movie", "not for packing scenes yet (its final state is packings/<run_id>.parquet)")?;
     let bonded = raw.material.as_ref().and_then(|m| m.contact) == Some(false);
     require(!bonded, "material.contact", false, "a packing's springs are contacts (true, the default here)")
 }

@@ -1,6 +1,6 @@
 //! Unit tests of `src/draw/movie.rs`, moved out of the library (one test binary).
 
-use mdsolids::draw::movie::{Palette, UNCHANGED, gif_frame, magnification, readable};
+use mdsolids::draw::movie::{Palette, UNCHANGED, force_line_width, gif_frame, magnification, readable};
 
 /// Sub-micron waves in a 0.1 m lattice are magnified to a third of the spacing at most, by
 /// a round factor; visible displacements and a still picture are drawn as they are.
@@ -45,4 +45,17 @@ fn later_frames_hold_only_what_changed() {
     assert_eq!((rgb(frame.buffer[0]), rgb(frame.buffer[1])), ([0, 0, 0].as_slice(), [200, 30, 30].as_slice()));
     let same = gif_frame(&next, Some(&next), 4);
     assert_eq!((same.width, same.height, same.buffer.as_ref()), (1, 1, [UNCHANGED].as_slice()));
+}
+
+#[test]
+fn a_contact_line_grows_with_its_force_up_to_half_the_smallest_disc() {
+    // 1 px at no force, 1 + (w − 1) f/f_max in between, w = half the smallest disc's pixels
+    // (at most 8): discs of 10 px give w = 5; of 40 px, 8; of 1 px, 1 (a line, not nothing).
+    assert_eq!(force_line_width(0.0, 2.0, 10.0), 1);
+    assert_eq!(force_line_width(1.0, 2.0, 10.0), 3);
+    assert_eq!(force_line_width(2.0, 2.0, 10.0), 5);
+    assert_eq!(force_line_width(4.0, 2.0, 10.0), 5, "clamped at the largest");
+    assert_eq!(force_line_width(2.0, 2.0, 40.0), 8);
+    assert_eq!(force_line_width(2.0, 2.0, 1.0), 1);
+    assert_eq!(force_line_width(1.0, 0.0, 10.0), 1, "no forces at all");
 }
