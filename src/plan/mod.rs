@@ -39,12 +39,20 @@ pub fn parse(file: &str, text: &str) -> Result<Plan, SpecError> {
 
 /// Plans every run of `campaign` ([`plan_run`]), refusing the campaign at the first run that
 /// cannot run. Errors name the file, the scene, the grid values and the field.
-pub fn plan(file: &str, mut campaign: Campaign) -> Result<Plan, SpecError> {
+pub fn plan(file: &str, campaign: Campaign) -> Result<Plan, SpecError> {
     let estimates = Estimates::default();
+    let campaign = plan_sharing(file, campaign, &estimates)?;
+    Ok(Plan { campaign, estimates })
+}
+
+/// [`plan`] with `estimates` that other plans share: many one-run campaigns of the same
+/// integrators (a test's product of axes) measure each stability limit once, as a campaign's
+/// runs do. The runs read the same `estimates` again ([`crate::runner::execute_within`]).
+pub fn plan_sharing(file: &str, mut campaign: Campaign, estimates: &Estimates) -> Result<Campaign, SpecError> {
     let (scenes, budget) = (&campaign.scenes, campaign.budget);
     campaign.runs.par_iter_mut().try_for_each(|spec| {
         let refused = budget.refuses(spec).is_some();
-        plan_run(spec, refused, &estimates).map_err(|detail| {
+        plan_run(spec, refused, estimates).map_err(|detail| {
             let index = scenes.iter().position(|(name, _)| *name == spec.scene).unwrap_or(0);
             let place = match spec.varied_label(|_| true) {
                 label if label.is_empty() => format!("scenes[{index}] ({})", spec.scene),
@@ -53,7 +61,7 @@ pub fn plan(file: &str, mut campaign: Campaign) -> Result<Plan, SpecError> {
             SpecError::Invalid { file: file.to_string(), detail: format!("{place}.{detail}") }
         })
     })?;
-    Ok(Plan { campaign, estimates })
+    Ok(campaign)
 }
 
 /// Decides the time step of `spec` where the campaign gave `time.dt_omega_max` (dt = value /

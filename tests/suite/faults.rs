@@ -514,17 +514,17 @@ fn the_memory_estimate_covers_the_peak_of_every_kind_of_run() {
         ("the program alone", "  - name: s\n    kind: pair\n    v0: 1.0\n".to_string()),
         ("loaded lattice with diagonals (static solve)", loaded("both")),
         ("loaded square lattice (static solve)", loaded("none")),
-        ("pair with 4·10^6 samples", "  - name: s\n    kind: pair\n    v0: 1.0\n    time: {duration_tc: 160000, samples: 4000000}\n".into()),
-        ("chain recording displacements", "  - name: s\n    kind: chain\n    n: 1000\n    v0: 0.1\n    time: {duration_tc: 200, samples: 3000}\n".into()),
+        ("pair with 2·10^6 samples", "  - name: s\n    kind: pair\n    v0: 1.0\n    time: {duration_tc: 80000, samples: 2000000}\n".into()),
+        ("chain recording displacements", "  - name: s\n    kind: chain\n    n: 1000\n    v0: 0.1\n    time: {duration_tc: 100, samples: 1500}\n".into()),
         (
             "chain keeping every particle's series (output.series: full)",
-            "  - name: s\n    kind: chain\n    n: 1000\n    v0: 0.1\n    time: {duration_tc: 200, samples: 3000}\n    \
+            "  - name: s\n    kind: chain\n    n: 1000\n    v0: 0.1\n    time: {duration_tc: 100, samples: 1500}\n    \
              output: {series: full}\n"
                 .into(),
         ),
         (
             "kicked lattice with probes and a movie",
-            "  - name: s\n    kind: lattice\n    lattice: {size: 100, k_diag_ratio: 0.5}\n    supports: free\n    \
+            "  - name: s\n    kind: lattice\n    lattice: {size: 70, k_diag_ratio: 0.5}\n    supports: free\n    \
              impulse: {velocity: [0.0, -0.01]}\n    probes: {rows: [bottom, centre]}\n    movie: {frames: 10, width: \
              300, height: 300, bond_strain: true}\n    time: {integrator: velocity-verlet, duration_tc: 20, samples: 2000}\n"
                 .into(),
