@@ -233,9 +233,15 @@ fn bad_packings_are_refused_naming_the_field() {
             mdsolids::plan::parse("t.yaml", &campaign(packing)).err().map(|e| e.to_string()).unwrap_or_default();
         assert!(message.contains("t.yaml") && message.contains(field), "{packing}: {message}");
     }
-    let damped = campaign("{n: 64, fraction: 0.8}") + "    damping: {restitution: 0.5}\n";
-    let message = mdsolids::plan::parse("t.yaml", &damped).err().map(|e| e.to_string()).unwrap_or_default();
-    assert!(message.contains("damping"), "{message}");
+    for (extra, field) in [
+        ("    damping: {restitution: 0.5}\n", "damping"),
+        // A packing has contacts, not bonds with a rest length to strain: its movie draws forces.
+        ("    movie: {frames: 2, bond_strain: true}\n", "movie.bond_strain"),
+    ] {
+        let scene = campaign("{n: 64, fraction: 0.8}") + extra;
+        let message = mdsolids::plan::parse("t.yaml", &scene).err().map(|e| e.to_string()).unwrap_or_default();
+        assert!(message.contains("t.yaml") && message.contains(field), "{extra}: {message}");
+    }
 }
 
 /// Runs a packing scene of 64 discs with contact law `law` at `fractions` (a YAML list), seeds

@@ -320,6 +320,12 @@ fn check_packing_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue> {
     let untimed = "not for packing scenes: a packing starts at rest and relaxes by a minimiser, which has no time";
     only(raw.v0.is_some(), "v0", untimed)?;
     only(raw.damping.is_some(), "damping", untimed)?;
+    let strained = raw.movie.as_ref().and_then(|m| m.bond_strain) == Some(true);
+    only(
+        strained,
+        "movie.bond_strain",
+        "not for packing scenes: a packing has contacts, not bonds; its movie draws each contact as a line as wide as its force",
+    )?;
     let bonded = raw.material.as_ref().and_then(|m| m.contact) == Some(false);
     require(!bonded, "material.contact", false, "a packing's springs are contacts (true, the default here)")
 }
