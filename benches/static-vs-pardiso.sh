@@ -17,6 +17,7 @@
 set -euo pipefail
 N=${1:-250}
 root=$(cd "$(dirname "$0")/.." && pwd)
+. "$root/benches/reference-network.sh"
 mdsolids=$root/target/release/mdsolids
 [ -x "$mdsolids" ] || { echo "build first: cargo build --release" >&2; exit 1; }
 venv=$root/target/pardiso-venv
@@ -76,21 +77,7 @@ print(json.dumps({"tool": "PARDISO", "n": n, "dofs": size, "assemble_s": round(a
                   "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss // 1024}))
 PY
 
-cat >"$work/static.yaml" <<YAML
-version: 1
-name: static-vs-pardiso
-budget: {seconds_per_run: 3600, memory_per_run_mb: 20000}
-scenes:
-  - name: static
-    kind: lattice
-    material: {mass: 1.0, k: 1.0}
-    geometry: {spacing: 1.0, depth: 1.0}
-    time: {integrator: velocity-verlet, dt_per_tc: 50}
-    supports: clamped-bottom
-    lattice: {size: $N, k_diag_ratio: 0.5, diagonals: both}
-    load: {case: tensile, per_node: 1.0e-3}
-    relax: {method: static}
-YAML
+reference_campaign static-vs-pardiso static "$N" "{method: static}" >"$work/static.yaml"
 /usr/bin/time -f "%e %U %S %M" -o "$work/time" "$mdsolids" --reports "$work/reports" run -j 1 "$work/static.yaml" >/dev/null
 python3 - "$work/reports/static-vs-pardiso/results.csv" "$work/time" "$work/pardiso.json" "$N" <<'PY'
 import csv, json, sys

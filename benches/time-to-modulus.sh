@@ -10,6 +10,7 @@
 set -euo pipefail
 N=${1:-160}
 root=$(cd "$(dirname "$0")/.." && pwd)
+. "$root/benches/reference-network.sh"
 reference=$root/../shared/bench
 mdsolids=$root/target/release/mdsolids
 [ -x "$mdsolids" ] || { echo "build first: cargo build --release" >&2; exit 1; }
@@ -42,21 +43,7 @@ done
 for method in static fire cg; do
   relax="{method: $method, tolerance: 1.0e-4}"
   [ "$method" = static ] && relax="{method: static}"
-  cat >"$work/$method.yaml" <<EOF
-version: 1
-name: modulus-$method
-budget: {seconds_per_run: 3600, memory_per_run_mb: 20000}
-scenes:
-  - name: $method
-    kind: lattice
-    material: {mass: 1.0, k: 1.0}
-    geometry: {spacing: 1.0, depth: 1.0}
-    time: {integrator: velocity-verlet, dt_per_tc: 50}
-    supports: clamped-bottom
-    lattice: {size: $N, k_diag_ratio: 0.5, diagonals: both}
-    load: {case: tensile, per_node: 1.0e-3}
-    relax: $relax
-EOF
+  reference_campaign "modulus-$method" "$method" "$N" "$relax" >"$work/$method.yaml"
   start=$(now)
   "$mdsolids" --reports "$work/reports" run -j 1 "$work/$method.yaml" >/dev/null
   wall=$(echo "$(now) - $start" | bc)

@@ -229,7 +229,8 @@ fn shortest_bond(panels: &[&Movie]) -> Option<f64> {
 struct Scales {
     fastest: f64,
     largest_strain: f64,
-    /// A packing's largest disc load Σ|f| and contact force |f| (N) over its frames (0: none).
+    /// A packing's largest disc load Σ|f| (N) over its frames (the smallest positive number
+    /// when there is none, so the colours divide by it) and contact force |f| (N, 0: none).
     largest_load: f64,
     largest_force: f64,
 }
@@ -261,7 +262,7 @@ impl Scales {
         Scales {
             fastest: if fastest > 0.0 { fastest } else { 1.0 },
             largest_strain: strains.get(strains.len() * 99 / 100).copied().unwrap_or(0.0),
-            largest_load: disc_frames().flat_map(|f| f.load.iter().copied()).fold(0.0, f64::max),
+            largest_load: disc_frames().flat_map(|f| f.load.iter().copied()).fold(f64::MIN_POSITIVE, f64::max),
             largest_force: disc_frames().flat_map(|f| f.contacts.iter().map(|c| c.2)).fold(0.0, f64::max),
         }
     }
@@ -288,7 +289,7 @@ fn draw_frame(pixels: &mut [u8], panels: &[&Movie], view: &View, scales: &Scales
     }
     let strained = scales.largest_strain > 0.0;
     let colours = if panels.iter().any(|m| m.discs.is_some()) {
-        (scales.largest_load.max(f64::MIN_POSITIVE), "Σ|f| (N)")
+        (scales.largest_load, "Σ|f| (N)")
     } else {
         (scales.fastest, "|v| (m/s)")
     };
@@ -387,7 +388,7 @@ fn draw_discs(
         ChartBuilder::on(body).build_cartesian_2d(view.x_range.clone(), view.y_range.clone()).map_err(draw_error)?;
     let frame = &discs.frames[k];
     let pixels = |r: f64| ((r / view.scale).round() as i32).max(1);
-    let load = |i: usize| speed_color(frame.load[i] / scales.largest_load.max(f64::MIN_POSITIVE));
+    let load = |i: usize| speed_color(frame.load[i] / scales.largest_load);
     ctx.draw_series(
         (0..frame.x.len()).map(|i| Circle::new((frame.x[i], frame.y[i]), pixels(discs.radius[i]), load(i).filled())),
     )

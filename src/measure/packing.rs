@@ -133,14 +133,13 @@ pub struct DiscFrame {
 }
 
 impl DiscFrame {
-    /// The frame of `packing` (unsheared) at positions `(x, y)` under `law`.
+    /// The frame of `packing` at positions `(x, y)` under `law`.
     pub fn of(packing: &Packing, law: LawSpec, x: &[f64], y: &[f64]) -> DiscFrame {
-        let side = packing.periodic.side;
-        let wrap = |v: f64| v - side * (v / side).floor();
         let forces = ContactForces::of(packing, law, x, y);
+        let (inside_x, inside_y) = x.iter().zip(y).map(|(&x, &y)| packing.periodic.inside(x, y)).unzip();
         let mut frame = DiscFrame {
-            x: x.iter().map(|&v| wrap(v)).collect(),
-            y: y.iter().map(|&v| wrap(v)).collect(),
+            x: inside_x,
+            y: inside_y,
             contacts: Vec::with_capacity(forces.pairs.len()),
             load: vec![0.0; x.len()],
         };

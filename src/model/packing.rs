@@ -34,6 +34,13 @@ impl PeriodicBox {
         (-a * self.side - b * self.tilt, -b * self.side)
     }
 
+    /// The image of point (x, y) (m) inside the box: s (L, 0) + t (tilt, L) with its fractions
+    /// s, t in [0, 1) ([`PeriodicBox::fractional`]).
+    pub fn inside(&self, x: f64, y: f64) -> (f64, f64) {
+        let (s, t) = self.fractional(x, y);
+        (s * self.side + t * self.tilt, t * self.side)
+    }
+
     /// The point's coordinates along the box's two edges, as fractions in [0, 1).
     fn fractional(&self, x: f64, y: f64) -> (f64, f64) {
         let t = y / self.side;

@@ -152,15 +152,8 @@ pub fn run(spec: &RunSpec, deadline: Instant, analyses: &Analyses) -> Result<Run
         scene.sampling.steps = 0;
     }
     let start = (scene.particles.x.clone(), scene.particles.y.clone());
-    let mut bonds = Vec::new();
-    if spec.movie.is_some() {
-        scene.network.for_each_bond(&scene.particles.x, &scene.particles.y, |i, j, rest, _, shift| {
-            if shift == 0.0 {
-                bonds.push((i, j, rest));
-            }
-        });
-    }
-    let supports = if spec.movie.is_some() { supports(&scene.particles) } else { Vec::new() };
+    let (bonds, supports) =
+        if spec.movie.is_some() { (movie_bonds(&scene), supports(&scene.particles)) } else { Default::default() };
     let sample_every = scene.sampling.every;
     // The tangent step relaxes the same scene again, its static set-up (critical γ_g, the
     // displacement bound) included; a static-only run has no MD tangent to measure (its
@@ -199,6 +192,18 @@ pub fn run(spec: &RunSpec, deadline: Instant, analyses: &Analyses) -> Result<Run
         lattice::keep_probes(l, &mut outcome.trace);
     }
     Ok(Run { outcome, metrics, reference_s, bonds, supports, discs })
+}
+
+/// The bonds a movie draws (i, j, rest length in m): every bond of `scene` but those across a
+/// periodic side.
+fn movie_bonds(scene: &Scene) -> Vec<(usize, usize, f64)> {
+    let mut bonds = Vec::new();
+    scene.network.for_each_bond(&scene.particles.x, &scene.particles.y, |i, j, rest, _, shift| {
+        if shift == 0.0 {
+            bonds.push((i, j, rest));
+        }
+    });
+    bonds
 }
 
 /// The held particles of `particles` with the axes they are held along; a hold along y on
