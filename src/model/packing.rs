@@ -66,17 +66,6 @@ pub struct Contacts {
 }
 
 impl Contacts {
-    /// No pairs yet, room for `pairs`.
-    pub fn with_capacity(pairs: usize) -> Contacts {
-        Contacts {
-            i: Vec::with_capacity(pairs),
-            j: Vec::with_capacity(pairs),
-            rest: Vec::with_capacity(pairs),
-            shift_x: Vec::with_capacity(pairs),
-            shift_y: Vec::with_capacity(pairs),
-        }
-    }
-
     /// Number of pairs.
     pub fn len(&self) -> usize {
         self.i.len()
@@ -87,7 +76,42 @@ impl Contacts {
         self.i.is_empty()
     }
 
+    /// Forgets the pairs, keeping the memory.
+    pub fn clear(&mut self) {
+        self.resize(0);
+    }
+
+    /// Room for `additional` more pairs.
+    fn reserve(&mut self, additional: usize) {
+        self.i.reserve(additional);
+        self.j.reserve(additional);
+        self.rest.reserve(additional);
+        self.shift_x.reserve(additional);
+        self.shift_y.reserve(additional);
+    }
+
+    /// Exactly `pairs` pairs, new ones (0, 0) of rest length 0 until set.
+    fn resize(&mut self, pairs: usize) {
+        self.i.resize(pairs, 0);
+        self.j.resize(pairs, 0);
+        self.rest.resize(pairs, 0.0);
+        self.shift_x.resize(pairs, 0.0);
+        self.shift_y.resize(pairs, 0.0);
+    }
+
+    /// Makes pair `b` the pair (i, j) through the image (shift_x, shift_y) (m), rest length
+    /// `rest` (m).
+    #[inline(always)]
+    fn set(&mut self, b: usize, i: usize, j: usize, rest: f64, (shift_x, shift_y): (f64, f64)) {
+        self.i[b] = i;
+        self.j[b] = j;
+        self.rest[b] = rest;
+        self.shift_x[b] = shift_x;
+        self.shift_y[b] = shift_y;
+    }
+
     /// Appends the pair (i, j) through the image (shift_x, shift_y) (m), rest length `rest` (m).
+    #[inline]
     pub fn push(&mut self, i: usize, j: usize, rest: f64, (shift_x, shift_y): (f64, f64)) {
         self.i.push(i);
         self.j.push(j);
@@ -105,21 +129,117 @@ impl Contacts {
 }
 
 /// Every pair of discs (i < j, each image of j separately) whose centres are closer than
-/// r_i + r_j + `skin` (m), at positions `(x, y)` in `periodic`, ordered by i. Cell lists: the
-/// box is cut into c × c cells at least one reach 2 r_max + skin wide (across its sheared
-/// edges), and each cell is compared with itself and four neighbours, so the work is linear in
-/// the discs. A box under three cells wide (a few discs) compares every pair with its images.
+/// r_i + r_j + `skin` (m), at positions `(x, y)` in `periodic`, ordered by i (by
+/// [`ContactSearch::within`], in memory of its own).
 pub fn contacts_within(x: &[f64], y: &[f64], radius: &[f64], periodic: &PeriodicBox, skin: f64) -> Contacts {
-    let reach = 2.0 * radius.iter().fold(0.0f64, |m, r| m.max(*r)) + skin;
-    // A cell's width across its slanted edge is (L/c)/√(1 + (tilt/L)²).
-    let slant = (1.0 + (periodic.tilt / periodic.side).powi(2)).sqrt();
-    let cells = (periodic.side / (reach * slant)).floor();
-    let found = if cells >= 3.0 {
-        cell_list(x, y, radius, periodic, skin, cells as usize)
-    } else {
-        every_image(x, y, radius, periodic, skin, reach)
-    };
-    ordered_by_first(found, x.len())
+    let mut near = Contacts::default();
+    ContactSearch::default().within(x, y, radius, periodic, skin, &mut near);
+    near
+}
+
+/// The memory a contact search works in, kept from one search to the next: a packing's list is
+/// made again every few steps, and lists of 10⁶ discs made in fresh memory spent more time in
+/// the kernel's page faults than in the search.
+#[derive(Clone, Debug, Default)]
+pub struct ContactSearch {
+    /// Each disc's cell.
+    home: Vec<usize>,
+    /// Where each cell's discs start in `members` (then, reused, each disc's pairs in the list).
+    start: Vec<usize>,
+    /// The discs, cell after cell.
+    members: Vec<usize>,
+    /// The next free place of each cell in `members`.
+    next: Vec<usize>,
+    /// The pairs in the order the search finds them.
+    found: Contacts,
+}
+
+impl ContactSearch {
+    /// Puts into `near` every pair of discs (i < j, each image of j separately) whose centres
+    /// are closer than r_i + r_j + `skin` (m), at positions `(x, y)` in `periodic`, ordered by
+    /// i. Cell lists: the box is cut into c × c cells at least one reach 2 r_max + skin wide
+    /// (across its sheared edges), and each cell is compared with itself and four neighbours,
+    /// so the work is linear in the discs. A box under three cells wide (a few discs) compares
+    /// every pair with its images.
+    pub fn within(
+        &mut self,
+        x: &[f64],
+        y: &[f64],
+        radius: &[f64],
+        periodic: &PeriodicBox,
+        skin: f64,
+        near: &mut Contacts,
+    ) {
+        let reach = 2.0 * radius.iter().fold(0.0f64, |m, r| m.max(*r)) + skin;
+        // A cell's width across its slanted edge is (L/c)/√(1 + (tilt/L)²).
+        let slant = (1.0 + (periodic.tilt / periodic.side).powi(2)).sqrt();
+        let cells = (periodic.side / (reach * slant)).floor();
+        self.found.clear();
+        if cells >= 3.0 {
+            self.cell_list(x, y, radius, periodic, skin, cells as usize);
+        } else {
+            every_image(x, y, radius, periodic, skin, reach, &mut self.found);
+        }
+        ordered_by_first(&self.found, x.len(), &mut self.start, near);
+    }
+
+    /// Sorts the discs by cell (a counting sort): `members[start[c]..start[c + 1]]` are cell
+    /// c's, of `cells` × `cells`.
+    fn sort_into_cells(&mut self, x: &[f64], y: &[f64], periodic: &PeriodicBox, cells: usize) {
+        let cell_of = |p: usize| {
+            let (s, t) = periodic.fractional(x[p], y[p]);
+            let column = ((s * cells as f64) as usize).min(cells - 1);
+            let row = ((t * cells as f64) as usize).min(cells - 1);
+            row * cells + column
+        };
+        self.home.clear();
+        self.home.extend((0..x.len()).map(cell_of));
+        self.start.clear();
+        self.start.resize(cells * cells + 1, 0);
+        for &c in &self.home {
+            self.start[c + 1] += 1;
+        }
+        for c in 0..cells * cells {
+            self.start[c + 1] += self.start[c];
+        }
+        self.members.resize(x.len(), 0);
+        self.next.clear();
+        self.next.extend_from_slice(&self.start);
+        for (p, &c) in self.home.iter().enumerate() {
+            self.members[self.next[c]] = p;
+            self.next[c] += 1;
+        }
+    }
+
+    /// The cell-list search over `cells` × `cells` cells (≥ 3 a side, so that the nine around
+    /// a cell are distinct and the nearest image is the only one in reach), into `found`.
+    fn cell_list(&mut self, x: &[f64], y: &[f64], radius: &[f64], periodic: &PeriodicBox, skin: f64, cells: usize) {
+        self.sort_into_cells(x, y, periodic, cells);
+        let (start, members, found) = (&self.start, &self.members, &mut self.found);
+        // A dense packing has ~3 pairs per disc within a reach: room for 4 saves the regrowths.
+        found.reserve(4 * x.len());
+        // Each pair of neighbouring cells once: the cell itself and the half of its eight
+        // neighbours to the right and above.
+        const HALF_SHELL: [(usize, usize); 4] = [(1, 0), (usize::MAX, 1), (0, 1), (1, 1)];
+        for row in 0..cells {
+            for column in 0..cells {
+                let own = &members[start[row * cells + column]..start[row * cells + column + 1]];
+                for (a, &p) in own.iter().enumerate() {
+                    for &q in &own[a + 1..] {
+                        consider(p, q, x, y, radius, periodic, skin, found);
+                    }
+                }
+                for (dc, dr) in HALF_SHELL {
+                    let other = (row + dr) % cells * cells + (column + cells).wrapping_add(dc) % cells;
+                    for &p in own {
+                        for &q in &members[start[other]..start[other + 1]] {
+                            consider(p, q, x, y, radius, periodic, skin, found);
+                        }
+                    }
+                }
+            }
+        }
+    }
 }
 
 /// Adds the pair (p, q) when its nearest image is within r_p + r_q + `skin`. A separation
@@ -128,6 +248,7 @@ pub fn contacts_within(x: &[f64], y: &[f64], radius: &[f64], periodic: &Periodic
 /// apart: those across its edges, or with a disc that has left the box (positions are not
 /// wrapped back).
 #[allow(clippy::too_many_arguments)] // the structure of arrays, one slice per component
+#[inline(always)]
 fn consider(
     p: usize,
     q: usize,
@@ -150,63 +271,19 @@ fn consider(
     }
 }
 
-/// The cell-list search over `cells` × `cells` cells (≥ 3 a side, so that the nine around a
-/// cell are distinct and the nearest image is the only one in reach).
-fn cell_list(x: &[f64], y: &[f64], radius: &[f64], periodic: &PeriodicBox, skin: f64, cells: usize) -> Contacts {
-    let n = x.len();
-    let cell_of = |p: usize| {
-        let (s, t) = periodic.fractional(x[p], y[p]);
-        let column = ((s * cells as f64) as usize).min(cells - 1);
-        let row = ((t * cells as f64) as usize).min(cells - 1);
-        row * cells + column
-    };
-    // Counting sort of the discs by cell: `members[start[c]..start[c + 1]]` are cell c's.
-    let home: Vec<usize> = (0..n).map(cell_of).collect();
-    let mut start = vec![0usize; cells * cells + 1];
-    for &c in &home {
-        start[c + 1] += 1;
-    }
-    for c in 0..cells * cells {
-        start[c + 1] += start[c];
-    }
-    let mut members = vec![0usize; n];
-    let mut next = start.clone();
-    for (p, &c) in home.iter().enumerate() {
-        members[next[c]] = p;
-        next[c] += 1;
-    }
-    // A dense packing has ~3 pairs per disc within a reach: room for 4 saves the regrowths.
-    let mut found = Contacts::with_capacity(4 * n);
-    // Each pair of neighbouring cells once: the cell itself and the half of its eight
-    // neighbours to the right and above.
-    const HALF_SHELL: [(usize, usize); 4] = [(1, 0), (usize::MAX, 1), (0, 1), (1, 1)];
-    for row in 0..cells {
-        for column in 0..cells {
-            let own = &members[start[row * cells + column]..start[row * cells + column + 1]];
-            for (a, &p) in own.iter().enumerate() {
-                for &q in &own[a + 1..] {
-                    consider(p, q, x, y, radius, periodic, skin, &mut found);
-                }
-            }
-            for (dc, dr) in HALF_SHELL {
-                let other = (row + dr) % cells * cells + (column + cells).wrapping_add(dc) % cells;
-                for &p in own {
-                    for &q in &members[start[other]..start[other + 1]] {
-                        consider(p, q, x, y, radius, periodic, skin, &mut found);
-                    }
-                }
-            }
-        }
-    }
-    found
-}
-
 /// The search of a box under three cells wide: every pair with every image in reach (a disc
-/// may touch two images of another). Only a few discs fit such a box (its side is below three
-/// reaches), so the pairs are few.
-fn every_image(x: &[f64], y: &[f64], radius: &[f64], periodic: &PeriodicBox, skin: f64, reach: f64) -> Contacts {
+/// may touch two images of another), into `found`. Only a few discs fit such a box (its side
+/// is below three reaches), so the pairs are few.
+fn every_image(
+    x: &[f64],
+    y: &[f64],
+    radius: &[f64],
+    periodic: &PeriodicBox,
+    skin: f64,
+    reach: f64,
+    found: &mut Contacts,
+) {
     let images = (reach / periodic.side).ceil() as i64 + 1;
-    let mut found = Contacts::default();
     for i in 0..x.len() {
         for j in i + 1..x.len() {
             let (dx, dy) = (x[i] - x[j], y[i] - y[j]);
@@ -224,29 +301,26 @@ fn every_image(x: &[f64], y: &[f64], radius: &[f64], periodic: &PeriodicBox, ski
             }
         }
     }
-    found
 }
 
-/// The pairs reordered by their first disc (a counting sort, stable), so that the force loop
-/// reads and writes the first disc's memory in increasing order.
-fn ordered_by_first(found: Contacts, discs: usize) -> Contacts {
-    let mut start = vec![0usize; discs + 1];
+/// `found`'s pairs into `sorted`, reordered by their first disc (a counting sort, stable, with
+/// `start` its counts), so that the force loop reads and writes the first disc's memory in
+/// increasing order.
+fn ordered_by_first(found: &Contacts, discs: usize, start: &mut Vec<usize>, sorted: &mut Contacts) {
+    start.clear();
+    start.resize(discs + 1, 0);
     for &i in &found.i {
         start[i + 1] += 1;
     }
     for p in 0..discs {
         start[p + 1] += start[p];
     }
-    let mut order = vec![0usize; found.len()];
-    for (b, &i) in found.i.iter().enumerate() {
-        order[start[i]] = b;
-        start[i] += 1;
+    sorted.resize(found.len());
+    for b in 0..found.len() {
+        let place = &mut start[found.i[b]];
+        sorted.set(*place, found.i[b], found.j[b], found.rest[b], (found.shift_x[b], found.shift_y[b]));
+        *place += 1;
     }
-    let mut sorted = Contacts::with_capacity(found.len());
-    for b in order {
-        sorted.push(found.i[b], found.j[b], found.rest[b], (found.shift_x[b], found.shift_y[b]));
-    }
-    sorted
 }
 
 /// The periodic square box in which ⌈n/2⌉ discs of radius `small` (m) and ⌊n/2⌋ of `ratio`

@@ -5,7 +5,7 @@
 //! length r_i + r_j, which a contact spring exerts only while the discs overlap (δ < 0).
 
 use super::field::{ForceField, add_background_damping};
-use crate::model::{Contacts, Dashpot, ForceLaw, PeriodicBox, Spring, contacts_within};
+use crate::model::{ContactSearch, Contacts, Dashpot, ForceLaw, PeriodicBox, Spring, contacts_within};
 
 /// The discs' geometry a packing's field needs: radii (m), the periodic box and the stiffness
 /// constant of every contact (k, N/m, or C, N/m^β).
@@ -44,6 +44,8 @@ pub struct ContactNetwork<L, D, const CONTACT: bool> {
     packing: Packing,
     /// The pairs within reach when the list was made ...
     near: Contacts,
+    /// ... by this search (its memory kept for the next) ...
+    search: ContactSearch,
     /// ... at these positions (m).
     made_at: (Vec<f64>, Vec<f64>),
     /// Lists made so far.
@@ -59,6 +61,7 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ContactNetwork<L, D, CONTACT>
             spring,
             packing,
             near: Contacts::default(),
+            search: ContactSearch::default(),
             made_at: (Vec::new(), Vec::new()),
             builds: 0,
             background_gamma,
@@ -84,8 +87,12 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ContactNetwork<L, D, CONTACT>
 
     fn refresh(&mut self, x: &[f64], y: &[f64]) {
         if self.stale(x, y) {
-            self.near = contacts_within(x, y, &self.packing.radius, &self.packing.periodic, self.packing.skin);
-            self.made_at = (x.to_vec(), y.to_vec());
+            let p = &self.packing;
+            self.search.within(x, y, &p.radius, &p.periodic, p.skin, &mut self.near);
+            self.made_at.0.clear();
+            self.made_at.0.extend_from_slice(x);
+            self.made_at.1.clear();
+            self.made_at.1.extend_from_slice(y);
             self.builds += 1;
         }
     }
