@@ -249,7 +249,7 @@ fn relax_scene(config: &BenchConfig) -> Scene {
 /// The packing workload (module docs): `n` discs, `steps` steps.
 fn packing_scene(n: usize, steps: u64) -> Scene {
     let (k, small_mass) = (1.0, std::f64::consts::PI * 0.25);
-    let discs = PackingSpec { n, radius_ratio: 1.4, fraction: 0.90, seed: 1 };
+    let discs = PackingSpec { n, radius_ratio: 1.4, fraction: 0.90, seed: 1, compression: None };
     let (packing, particles) = discs_of(&discs, 1.0, small_mass, k);
     // Two small discs: reduced mass m/2, undamped t_c = π/√(k/(m/2)) (LAMMPS's dt).
     let t_c = linear_contact_duration(k, small_mass, 0.0).expect("an undamped pair oscillates");

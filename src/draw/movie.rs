@@ -374,7 +374,8 @@ pub fn force_line_width(force: f64, largest: f64, small: f64) -> u32 {
     if largest > 0.0 { 1 + ((widest - 1.0) * (force / largest).clamp(0.0, 1.0)).round() as u32 } else { 1 }
 }
 
-/// Frame `k` of a packing: its contacts as black lines ([`force_line_width`]) under its discs,
+/// Frame `k` of a packing: its contacts as black lines ([`force_line_width`]; those under 1e-6 of
+/// the largest force left out) under its discs,
 /// each a circle of its own radius (to scale) coloured by its load Σ|f| on the speed scale and
 /// outlined, so the lines show where the discs overlap and through the gaps.
 fn draw_discs(
@@ -400,11 +401,14 @@ fn draw_discs(
     )
     .map_err(draw_error)?;
     let small = 2.0 * discs.radius.iter().copied().fold(f64::INFINITY, f64::min) / view.scale;
-    ctx.draw_series(frame.contacts.iter().map(|&(from, to, force)| {
+    // A contact under 1e-6 of the largest force is an overlap the minimiser left at its floor
+    // (an unjammed packing's), not a force chain: not drawn.
+    let carrying = frame.contacts.iter().filter(|c| c.2 > 1e-6 * scales.largest_force);
+    ctx.draw_series(carrying.map(|&(from, to, force)| {
         PathElement::new(vec![from, to], BLACK.stroke_width(force_line_width(force, scales.largest_force, small)))
     }))
     .map_err(draw_error)?;
-    let side = discs.side;
+    let side = frame.side;
     ctx.draw_series(std::iter::once(PathElement::new(
         vec![(0.0, 0.0), (side, 0.0), (side, side), (0.0, side), (0.0, 0.0)],
         RGBColor(200, 0, 0).stroke_width(1),

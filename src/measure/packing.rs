@@ -122,6 +122,8 @@ pub type ContactLine = ((f64, f64), (f64, f64), f64);
 /// |s(δ)| (N), and each disc's load Σ|s| over its contacts (N).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct DiscFrame {
+    /// The box side L (m): a compressed packing's frames each have their own.
+    pub side: f64,
     /// x of each disc in the box (m).
     pub x: Vec<f64>,
     /// y of each disc in the box (m).
@@ -138,6 +140,7 @@ impl DiscFrame {
         let forces = ContactForces::of(packing, law, x, y);
         let (inside_x, inside_y) = x.iter().zip(y).map(|(&x, &y)| packing.periodic.inside(x, y)).unzip();
         let mut frame = DiscFrame {
+            side: packing.periodic.side,
             x: inside_x,
             y: inside_y,
             contacts: Vec::with_capacity(forces.pairs.len()),
@@ -156,13 +159,11 @@ impl DiscFrame {
     }
 }
 
-/// A packing's movie frames as discs: their radii (m), the box side L (m) and each frame.
+/// A packing's movie frames as discs: their radii (m) and each frame in its box.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Discs {
     /// Radius of each disc (m).
     pub radius: Vec<f64>,
-    /// Box side L (m).
-    pub side: f64,
     /// The frames, as the movie's.
     pub frames: Vec<DiscFrame>,
 }

@@ -142,11 +142,23 @@ fn packing_movie_caption(scene: &str, r: &RunRecord) -> String {
         "Movie of {scene} ({}): the discs drawn to scale in their periodic box (red), each coloured by its load, \
          the sum of its contact forces Σ|f| (colour bar in N; rattlers, with no contacts, dark), and every contact \
          as a black line from centre to centre whose width grows with its force: the force chains that carry the \
-         pressure. The scales are the relaxed state's; the random start's larger overlaps are drawn at full colour \
+         pressure. The scales are those of the frames after the start; the random start's larger overlaps are drawn at full colour \
          and width.{}",
         r.spec.varied_in_words(|_| true),
-        untimed_in_words(&r.spec),
+        compression_in_words(r.spec.packing()).unwrap_or_else(|| untimed_in_words(&r.spec).to_string()),
     )
+}
+
+/// A slowly compressed packing's frames in words; `None` for a packing made at its fraction.
+fn compression_in_words(packing: Option<&crate::spec::PackingSpec>) -> Option<String> {
+    let packing = packing?;
+    let compression = packing.compression?;
+    Some(format!(
+        " A slow compression, one frame per state, not a motion: the random start at φ = {:.4}, then the packing \
+         relaxed there and after each of {} equal steps of φ up to {:.4}, its box (red) shrinking with it \
+         (captioned). A relaxed packing below its jamming point carries no force: its lines appear at the stage where it jams.",
+        compression.from, compression.steps, packing.fraction
+    ))
 }
 
 /// What the frames of a run with no time show (a minimiser or the static solve): two states,

@@ -44,10 +44,12 @@ pub(super) fn jammed(r: &RunRecord) -> bool {
     r.metrics.packing.packing_state.as_deref() == Some("jammed")
 }
 
-/// A packing the fits are made over: one relaxed for its own sake (a movie's run repeats one of
-/// the grid's packings for its picture and would count it twice).
+/// A packing the fits are made over: one quenched from random positions at its fraction (O'Hern
+/// et al.'s protocol; a slowly compressed one followed another path to its state), relaxed for
+/// its own sake (a movie's run is made for its picture and may repeat one of the grid's).
 pub(crate) fn fitted(r: &RunRecord) -> bool {
-    r.status == RunStatus::Ok && r.spec.packing().is_some() && r.spec.movie.is_none()
+    let quenched = r.spec.packing().is_some_and(|p| p.compression.is_none());
+    r.status == RunStatus::Ok && quenched && r.spec.movie.is_none()
 }
 
 /// φ_J of every (N, seed) with two jammed linear packings or more: p = a (φ − φ_J) fitted by

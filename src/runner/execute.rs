@@ -116,9 +116,10 @@ fn run_and_measure(spec: &RunSpec, deadline: Instant, estimates: &Estimates) -> 
 /// and movie (written by the runner beside the record, its encoding bounded by `deadline`).
 fn fill(record: &mut RunRecord, mut run: Run, deadline: Instant) {
     let spec = &record.spec;
+    let captions = untimed_captions(spec, &run.outcome.trace, run.outcome.frames.len());
     record.movie = spec.movie.map(|movie| Movie {
         frames: std::mem::take(&mut run.outcome.frames),
-        captions: untimed_captions(spec, &run.outcome.trace),
+        captions,
         bonds: run.bonds,
         supports: run.supports,
         discs: run.discs.take(),
@@ -142,10 +143,11 @@ fn fill(record: &mut RunRecord, mut run: Run, deadline: Instant) {
     (record.trace, record.full_series) = series::kept(trace, &record.spec);
 }
 
-/// What the frames of a run with no time show (a minimiser's or the static solve's two frames,
-/// `relax.method: fire | cg | static`): the start, then the state it ended in, with the method
-/// and its force evaluations; none for a run in time, whose frames show their time.
-fn untimed_captions(spec: &RunSpec, trace: &Trace) -> Vec<String> {
+/// What the `frames` frames of a run with no time show (a minimiser's or the static solve's
+/// two frames, `relax.method: fire | cg | static`): the start, then the state it ended in, with
+/// the method and its force evaluations; a compressed packing's, the start and each stage it
+/// relaxed at, with its area fraction; none for a run in time, whose frames show their time.
+fn untimed_captions(spec: &RunSpec, trace: &Trace, frames: usize) -> Vec<String> {
     let Some(method) = spec.relax().map(|r| r.method).filter(|m| *m != RelaxMethod::Damped) else {
         return Vec::new();
     };
@@ -155,7 +157,22 @@ fn untimed_captions(spec: &RunSpec, trace: &Trace) -> Vec<String> {
         (_, RunStatus::Ok) => format!("relaxed ({name}, {evaluations} force evaluations)"),
         (_, status) => format!("stopped ({name}, {evaluations} force evaluations): {status}"),
     };
-    vec!["start".into(), end]
+    match spec.packing().filter(|p| p.compression.is_some()) {
+        Some(packing) => compression_captions(&packing.stage_fractions(), frames, &end),
+        None => vec!["start".into(), end],
+    }
+}
+
+/// The captions of a compressed packing's `frames` frames: its random start at the first of
+/// the stages' area fractions `stages`, each stage relaxed, and the last with `end`.
+fn compression_captions(stages: &[f64], frames: usize, end: &str) -> Vec<String> {
+    let mut captions = vec![format!("start: random positions, φ = {:.4}", stages[0])];
+    captions.extend(stages.iter().take(frames.saturating_sub(1)).map(|phi| format!("φ = {phi:.4}, relaxed")));
+    if let Some(last) = stages.get(frames.saturating_sub(2)).filter(|_| frames >= 2) {
+        let end = end.replace(" force evaluations", " force evaluations in all");
+        captions[frames - 1] = format!("φ = {last:.4}, {end}");
+    }
+    captions
 }
 
 fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {

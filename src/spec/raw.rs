@@ -177,6 +177,12 @@ pub struct RawPacking {
     pub radius_ratio: Option<f64>,
     /// Area fraction φ the discs cover in the periodic square box, in (0, 1).
     pub fraction: Option<f64>,
+    /// A slow compression: the discs are placed and relaxed at this area fraction (below
+    /// `fraction`), then squeezed to `fraction` in `compress_steps` equal steps of φ, relaxed
+    /// after each.
+    pub compress_from: Option<f64>,
+    /// Steps of the compression (default 10; only with `compress_from`).
+    pub compress_steps: Option<u32>,
 }
 
 /// Which diagonal springs a lattice has.

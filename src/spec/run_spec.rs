@@ -238,7 +238,8 @@ impl RunSpec {
     /// particle-steps/s) and force evaluation, for the run and its reference run, if any; a
     /// minimiser (`relax.method: fire | cg`) takes [`RunSpec::minimiser_evaluations`] of ~8 ns
     /// per particle instead (2.7 × an MD step: the power, mixing and norms of FIRE, CG's line
-    /// search, each one more pass over the particles), not its cap `steps`; plus
+    /// search, each one more pass over the particles), not its cap `steps` (a packing's: its cap,
+    /// once per stage of a slow compression); plus
     /// the stages around the loop: the ω_max estimate (≤ 1000 power iterations at ~7 ns per
     /// bond, twice with bond dashpots; one pass beyond [`POWER_METHOD_BONDS`]), a loaded
     /// lattice's static solve (sparse Cholesky of a 2D network: 3.5e-7 s · dofs^1.33, fitted to
@@ -252,9 +253,11 @@ impl RunSpec {
         // A reference run at dt/R takes R times as many steps.
         let runs = 1.0 + self.reference_refinement.map_or(0.0, f64::from);
         let stepped = if self.static_only() { 0.0 } else { 1.0 };
+        // A slowly compressed packing relaxes once per stage.
+        let stages = self.packing().map_or(1.0, |p| p.stage_fractions().len() as f64);
         let time_loop = match self.minimiser_evaluations() {
             Some(minimiser) => runs * minimiser * (80e-9 + 8e-9 * particles),
-            None => stepped * runs * self.steps as f64 * (80e-9 + 3e-9 * evaluations * particles),
+            None => stages * stepped * runs * self.steps as f64 * (80e-9 + 3e-9 * evaluations * particles),
         };
         let eigenproblems = if self.gamma > 0.0 { 2.0 } else { 1.0 };
         let passes = if self.bonds() > POWER_METHOD_BONDS { 1.0 } else { 1000.0 };

@@ -160,9 +160,15 @@ pub fn run(spec: &RunSpec, deadline: Instant, analyses: &Analyses) -> Result<Run
     // tangent moduli are the static answer's, `*_tangent_fem`).
     let tangent =
         spec.relax().and_then(|r| r.tangent_step).filter(|_| !spec.static_only()).map(|step| (step, scene.clone()));
-    // A packing is measured again under strain from its relaxed state, by the same scene.
-    let packing_scene = spec.packing().map(|_| scene.clone());
-    let mut outcome = scene.run();
+    // A packing is measured again under strain from its relaxed state, by the scene of its last
+    // stage (a compressed packing's box).
+    let (packing_scene, mut outcome) = match spec.packing() {
+        Some(_) => {
+            let (last, outcome) = packing::relax(spec, scene);
+            (Some(last), outcome)
+        }
+        None => (None, scene.run()),
+    };
     if let Some(reason) = no_criterion {
         (outcome.trace.status, outcome.trace.message) = (RunStatus::NoEquilibrium, reason);
         (outcome.trace.relaxed_at, outcome.trace.relaxed_by) = (None, None);

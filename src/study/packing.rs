@@ -57,8 +57,10 @@ pub struct PackingMetrics {
 
 /// The discs of a packing run as the spec places them: the field's geometry and the particles
 /// (masses in proportion to the discs' areas, `mass` the small disc's), at rest.
+/// A slowly compressed packing's discs are placed at its first stage's fraction.
 pub fn discs(spec: &RunSpec, run: &PackingRun) -> (Packing, Particles) {
-    discs_of(&run.packing, spec.spacing, spec.mass, spec.k)
+    let first = run.packing.stage_fractions()[0];
+    discs_of(&PackingSpec { fraction: first, ..run.packing.clone() }, spec.spacing, spec.mass, spec.k)
 }
 
 /// The discs of `p`, small ones of diameter `spacing` (m) and mass `small_mass` (kg), larger
@@ -89,12 +91,58 @@ pub(super) fn build(spec: &RunSpec, run: &PackingRun) -> Scene {
     scene
 }
 
+/// Relaxes the packing's `scene` at each of its stages ([`PackingSpec::stage_fractions`]): at
+/// the fraction it is placed at, then, for a slow compression, squeezed to each next fraction
+/// (box and positions shrunk together, at rest) and relaxed again, until a stage does not relax.
+/// The scene of the last stage run (its box) and that stage's outcome, with the force
+/// evaluations of every stage and, for a movie, the random start and each relaxed stage.
+pub(super) fn relax(spec: &RunSpec, scene: Scene) -> (Scene, Outcome) {
+    let stages = spec.packing().map(PackingSpec::stage_fractions).unwrap_or_default();
+    let mut stage = scene.clone();
+    let mut outcome = scene.run();
+    let (mut frames, mut evaluations) = (std::mem::take(&mut outcome.frames), outcome.trace.steps);
+    for pair in stages.windows(2) {
+        if outcome.trace.relaxed_at.is_none() {
+            break;
+        }
+        stage = squeezed(&stage, &outcome, (pair[0] / pair[1]).sqrt());
+        outcome = stage.clone().run();
+        frames.extend(outcome.frames.pop());
+        evaluations += outcome.trace.steps;
+    }
+    (outcome.frames, outcome.trace.steps) = (frames, evaluations);
+    (stage, outcome)
+}
+
+/// `scene` with the discs where `outcome` left them, at rest, their positions and the box
+/// shrunk by `factor` (L ∝ 1/√φ: the ratio √(φ/φ′) of two stages' fractions).
+fn squeezed(scene: &Scene, outcome: &Outcome, factor: f64) -> Scene {
+    let mut next = scene.clone();
+    if let Network::Packing(packing) = &mut next.network {
+        packing.periodic.side *= factor;
+        packing.periodic.tilt *= factor;
+    }
+    let (x, y) = (&outcome.state.particles.x, &outcome.state.particles.y);
+    let p = &mut next.particles;
+    for i in 0..x.len() {
+        (p.x[i], p.y[i], p.vx[i], p.vy[i]) = (factor * x[i], factor * y[i], 0.0, 0.0);
+    }
+    next
+}
+
 /// The movie frames of a packing's run as discs with their contact forces
-/// ([`crate::measure::DiscFrame`]); `None` for another network.
+/// ([`crate::measure::DiscFrame`]), each in its box (a compressed packing's shrinks: the start
+/// and the first relaxed state share the first stage's): `None` for another network.
 pub(super) fn movie_discs(spec: &RunSpec, scene: &Scene, outcome: &Outcome) -> Option<Discs> {
-    let Network::Packing(packing) = &scene.network else { return None };
-    let frames = outcome.frames.iter().map(|f| DiscFrame::of(packing, spec.law, &f.x, &f.y)).collect();
-    Some(Discs { radius: packing.radius.clone(), side: packing.periodic.side, frames })
+    let (Network::Packing(packing), Some(p)) = (&scene.network, spec.packing()) else { return None };
+    let stages = p.stage_fractions();
+    let boxes = std::iter::once(stages[0]).chain(stages.iter().copied()).map(|fraction| Packing {
+        periodic: PeriodicBox::square(p.box_side_at(fraction, spec.spacing)),
+        ..packing.clone()
+    });
+    let frames =
+        outcome.frames.iter().zip(boxes).map(|(f, boxed)| DiscFrame::of(&boxed, spec.law, &f.x, &f.y)).collect();
+    Some(Discs { radius: packing.radius.clone(), frames })
 }
 
 /// Measures the packing where its run stopped (relaxed or not): its geometry, contacts and

@@ -242,14 +242,65 @@ fn bad_packings_are_refused_naming_the_field() {
         let message = mdsolids::plan::parse("t.yaml", &scene).err().map(|e| e.to_string()).unwrap_or_default();
         assert!(message.contains("t.yaml") && message.contains(field), "{extra}: {message}");
     }
+    // A compression ends at packing.fraction, so it starts below it; its steps need a start.
+    for (packing, field) in [
+        ("{n: 64, fraction: 0.8, compress_from: 0.8}", "packing.compress_from"),
+        ("{n: 64, fraction: 0.8, compress_from: 0}", "packing.compress_from"),
+        ("{n: 64, fraction: 0.8, compress_steps: 4}", "packing.compress_steps"),
+        ("{n: 64, fraction: 0.8, compress_from: 0.7, compress_steps: 0}", "packing.compress_steps"),
+    ] {
+        let message =
+            mdsolids::plan::parse("t.yaml", &campaign(packing)).err().map(|e| e.to_string()).unwrap_or_default();
+        assert!(message.contains("t.yaml") && message.contains(field), "{packing}: {message}");
+    }
+}
+
+#[test]
+fn a_slowly_compressed_packing_ends_in_its_box_jams_on_the_way_and_has_its_moduli_both_ways() {
+    // 64 discs placed at φ = 0.80 (below φ_J ≈ 0.84) and squeezed to 0.88 in 4 steps of 0.02.
+    let yaml = "version: 1\nname: c\nscenes:\n  - name: c\n    kind: packing\n    material: {mass: 1.0, k: 1.0}\n    \
+                packing: {n: 64, fraction: 0.88, compress_from: 0.80, compress_steps: 4}\n    \
+                movie: {frames: 6, width: 300, height: 300}\n";
+    let spec = &crate::common::runs(yaml)[0];
+    let far = std::time::Instant::now() + std::time::Duration::from_secs(600);
+    let run = mdsolids::study::run(spec, far, &Default::default()).unwrap_or_else(|_| panic!("the run stopped"));
+    let packing = &run.metrics.packing;
+    assert_eq!(packing.packing_state.as_deref(), Some("jammed"));
+    // The discs' area over the box's, from the radii (not the spec): the stages' fractions,
+    // each to rounding (1e-12), in one box per frame; the start and the first stage share one.
+    let discs = run.discs.expect("the movie's discs");
+    let area: f64 = discs.radius.iter().map(|r| std::f64::consts::PI * r * r).sum();
+    let fractions: Vec<f64> = discs.frames.iter().map(|f| area / (f.side * f.side)).collect();
+    let expected = [0.80, 0.80, 0.82, 0.84, 0.86, 0.88];
+    assert_eq!(fractions.len(), expected.len(), "{fractions:?}");
+    for (phi, want) in fractions.iter().zip(expected) {
+        assert!((phi - want).abs() < 1e-12, "{fractions:?}");
+    }
+    assert!((packing.packing_fraction.unwrap() - 0.88).abs() < 1e-12);
+    // Relaxed below jamming, no contact carries more than the minimiser's floor (1e-9 k d,
+    // with room: 1e-7); at 0.88 the packing is jammed and carries force.
+    let largest = |f: &mdsolids::measure::DiscFrame| f.contacts.iter().map(|c| c.2).fold(0.0, f64::max);
+    assert!(largest(&discs.frames[1]) < 1e-7, "φ = 0.80: {}", largest(&discs.frames[1]));
+    assert!(largest(&discs.frames[5]) > 1e-3, "φ = 0.88: {}", largest(&discs.frames[5]));
+    // The moduli of the final box both ways (the strained relaxations strain the last stage's
+    // box: the first's would be unjammed): 1e-3, as for every relaxed packing.
+    let (k, k_strained) = (packing.bulk_modulus_2d.unwrap(), packing.bulk_modulus_2d_strained.unwrap());
+    let (g, g_strained) = (packing.shear_modulus_2d.unwrap(), packing.shear_modulus_2d_strained.unwrap());
+    assert!(k > 0.0 && (k_strained / k - 1.0).abs() < 1e-3, "K {k} against {k_strained}");
+    assert!(g > 0.0 && (g_strained / g - 1.0).abs() < 1e-3, "G {g} against {g_strained}");
 }
 
 /// Runs a packing scene of 64 discs with contact law `law` at `fractions` (a YAML list), seeds
 /// 1 and 2, and returns its results table and report.
 fn jamming_campaign(law: &str, fractions: &str) -> (DataFrame, String) {
+    campaign_of(law, "", fractions)
+}
+
+/// [`jamming_campaign`] with `more` fields of the packing (", field: value", ...).
+fn campaign_of(law: &str, more: &str, fractions: &str) -> (DataFrame, String) {
     let dir = tempfile::tempdir().unwrap();
     let yaml = format!(
-        "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    packing: {{n: 64, fraction: 0.86}}\n    \
+        "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    packing: {{n: 64, fraction: 0.86{more}}}\n    \
          material: {{law: {law}}}\n    grid:\n      packing.fraction: {fractions}\n      seed: [1, 2]\n"
     );
     let (frame, folder) = run_jam(dir.path(), &yaml);
@@ -323,6 +374,10 @@ fn without_two_jammed_linear_packings_per_seed_the_item_states_no_phi_j() {
     let line = line_with(&hertz, "No φ_J could be found");
     assert!(line.contains("4 of the 4 packings"), "{line}");
     assert!(!hertz.contains("No jammed state was found") && !hertz.contains("N = 64: φ_J = "));
+    // Linear packings above jamming, but slowly compressed: another protocol than O'Hern et
+    // al.'s quench, so not fitted, and no φ_J is stated from them.
+    let (_, compressed) = campaign_of("linear", ", compress_from: 0.8, compress_steps: 2", "[0.86, 0.88]");
+    assert!(!compressed.contains("N = 64: φ_J = "), "{compressed}");
 }
 
 /// `bench --workload packing` runs the issue's workload and prints one JSON line with its

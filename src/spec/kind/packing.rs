@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::model::bidisperse_box;
 use crate::sim::RelaxMethod;
 use crate::spec::issue::{Issue, Num, missing, require};
-use crate::spec::raw::RawScene;
+use crate::spec::raw::{RawPacking, RawScene};
 use crate::spec::shared::{Deformation, RelaxSpec};
 
 /// Size ratio of the large discs to the small ones unless `packing.radius_ratio` says (O'Hern
@@ -21,6 +21,10 @@ const DEFAULT_RESIDUAL_FORCE: f64 = 1e-9;
 const REFERENCE_OVERLAP: f64 = 0.03;
 /// Most discs a packing may have.
 const MOST_DISCS: usize = 10_000_000;
+/// Steps of a slow compression unless `packing.compress_steps` says ...
+const DEFAULT_COMPRESS_STEPS: u32 = 10;
+/// ... and the most it may have (each a relaxation of its own).
+const MOST_COMPRESS_STEPS: u32 = 200;
 
 /// The resolved packing of a packing scene.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -33,12 +37,49 @@ pub struct PackingSpec {
     pub fraction: f64,
     /// Seed of the random positions.
     pub seed: u64,
+    /// The slow compression the packing is made by, if any (none: made at `fraction`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub compression: Option<Compression>,
+}
+
+/// A slow (quasi-static) compression: the discs placed at random and relaxed at area fraction
+/// `from`, then box and discs' positions shrunk together in `steps` equal steps of φ up to the
+/// packing's fraction, relaxed after each, so that the packing passes through its jamming
+/// point as a state followed, not quenched afresh.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Compression {
+    /// The area fraction the discs are placed and first relaxed at.
+    pub from: f64,
+    /// Steps of φ from `from` to the packing's fraction.
+    pub steps: u32,
 }
 
 impl PackingSpec {
     /// The side (m) of the periodic square box, for small discs of diameter `spacing` (m).
     pub fn box_side(&self, spacing: f64) -> f64 {
-        bidisperse_box(self.n, 0.5 * spacing, self.radius_ratio, self.fraction).side
+        self.box_side_at(self.fraction, spacing)
+    }
+
+    /// The side (m) of the box in which the discs cover `fraction`.
+    pub fn box_side_at(&self, fraction: f64, spacing: f64) -> f64 {
+        bidisperse_box(self.n, 0.5 * spacing, self.radius_ratio, fraction).side
+    }
+
+    /// The area fractions the packing is relaxed at, in order: `compression.from` and each
+    /// step of φ up to `fraction` (which ends it exactly), or `fraction` alone.
+    pub fn stage_fractions(&self) -> Vec<f64> {
+        match self.compression {
+            Some(c) => (0..=c.steps)
+                .map(|k| {
+                    if k == c.steps {
+                        self.fraction
+                    } else {
+                        c.from + (self.fraction - c.from) * f64::from(k) / f64::from(c.steps)
+                    }
+                })
+                .collect(),
+            None => vec![self.fraction],
+        }
     }
 }
 
@@ -68,7 +109,8 @@ impl PackingRun {
             Num(radius_ratio),
             "must be from 1 to 100 (large diameter / small diameter)",
         )?;
-        let packing = PackingSpec { n, radius_ratio, fraction, seed: raw.seed.unwrap_or(1) };
+        let compression = compression(&section, fraction)?;
+        let packing = PackingSpec { n, radius_ratio, fraction, seed: raw.seed.unwrap_or(1), compression };
         let (side, largest) = (packing.box_side(spacing), radius_ratio * spacing);
         require(
             side > largest,
@@ -103,6 +145,30 @@ impl PackingRun {
     pub(super) fn deformation(&self, spacing: f64) -> Deformation {
         Deformation::Extension(-REFERENCE_OVERLAP * spacing)
     }
+}
+
+/// The slow compression of `packing.compress_from` (below `fraction`) in `packing.compress_steps`
+/// steps, if asked for.
+fn compression(section: &RawPacking, fraction: f64) -> Result<Option<Compression>, Issue> {
+    let Some(from) = section.compress_from else {
+        let steps = section.compress_steps;
+        require(steps.is_none(), "packing.compress_steps", "(set)", "needs packing.compress_from (where it starts)")?;
+        return Ok(None);
+    };
+    require(
+        from > 0.0 && from < fraction,
+        "packing.compress_from",
+        Num(from),
+        &format!("must be in (0, packing.fraction = {}): the compression ends at packing.fraction", Num(fraction)),
+    )?;
+    let steps = section.compress_steps.unwrap_or(DEFAULT_COMPRESS_STEPS);
+    require(
+        (1..=MOST_COMPRESS_STEPS).contains(&steps),
+        "packing.compress_steps",
+        steps,
+        &format!("an integer from 1 to {MOST_COMPRESS_STEPS}"),
+    )?;
+    Ok(Some(Compression { from, steps }))
 }
 
 /// A packing relaxes by a minimiser (`fire` by default, or `cg`) until its largest static force
