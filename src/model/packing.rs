@@ -77,7 +77,7 @@ impl Contacts {
     }
 
     /// Forgets the pairs, keeping the memory.
-    pub fn clear(&mut self) {
+    fn clear(&mut self) {
         self.resize(0);
     }
 
