@@ -247,6 +247,16 @@ fn bad_packings_are_refused_naming_the_field() {
         let message = mdsolids::plan::parse("t.yaml", &scene).err().map(|e| e.to_string()).unwrap_or_default();
         assert!(message.contains("t.yaml") && message.contains(field), "{extra}: {message}");
     }
+    // A compressed packing's movie is its start and each stage: 4 steps make 6 frames, and the
+    // default 10 steps 12.
+    for (packing, frames) in [("compress_from: 0.7, compress_steps: 4", 5), ("compress_from: 0.7", 6)] {
+        let scene =
+            campaign(&format!("{{n: 64, fraction: 0.8, {packing}}}")) + &format!("    movie: {{frames: {frames}}}\n");
+        let message = mdsolids::plan::parse("t.yaml", &scene).err().map(|e| e.to_string()).unwrap_or_default();
+        assert!(message.contains("t.yaml") && message.contains("movie.frames"), "{packing}: {message}");
+    }
+    let right = campaign("{n: 64, fraction: 0.8, compress_from: 0.7, compress_steps: 4}") + "    movie: {frames: 6}\n";
+    assert!(mdsolids::plan::parse("t.yaml", &right).is_ok());
 }
 
 #[test]

@@ -327,7 +327,27 @@ fn check_packing_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue> {
         "not for packing scenes: a packing has contacts, not bonds; its movie draws each contact as a line as wide as its force",
     )?;
     let bonded = raw.material.as_ref().and_then(|m| m.contact) == Some(false);
-    require(!bonded, "material.contact", false, "a packing's springs are contacts (true, the default here)")
+    require(!bonded, "material.contact", false, "a packing's springs are contacts (true, the default here)")?;
+    compressed_movie_frames(raw)
+}
+
+/// A slowly compressed packing's movie has a frame for its start and one for each relaxed
+/// stage: `movie.frames`, if given, must count them (the plan budgets the movie by it).
+fn compressed_movie_frames(raw: &RawScene) -> Result<(), Issue> {
+    let Some(section) = raw.packing.as_ref().filter(|p| p.compress_from.is_some()) else { return Ok(()) };
+    let Some(frames) = raw.movie.as_ref().and_then(|m| m.frames) else { return Ok(()) };
+    // The default of packing.compress_steps is checked with it in `packing::compression`.
+    let stages = section.compress_steps.unwrap_or(packing::DEFAULT_COMPRESS_STEPS) + 1;
+    require(
+        frames == stages + 1,
+        "movie.frames",
+        frames,
+        &format!(
+            "must be {}: a slowly compressed packing's movie is its start and each of its {stages} relaxed stages \
+             (packing.compress_steps + 2)",
+            stages + 1
+        ),
+    )
 }
 
 /// The kind's own fields in their flat columns, `None` where the kind has no such field.

@@ -22,7 +22,7 @@ const REFERENCE_OVERLAP: f64 = 0.03;
 /// Most discs a packing may have.
 const MOST_DISCS: usize = 10_000_000;
 /// Steps of a slow compression unless `packing.compress_steps` says ...
-const DEFAULT_COMPRESS_STEPS: u32 = 10;
+pub(super) const DEFAULT_COMPRESS_STEPS: u32 = 10;
 /// ... and the most it may have (each a relaxation of its own).
 const MOST_COMPRESS_STEPS: u32 = 200;
 
