@@ -4,6 +4,7 @@
 //! records. Every command that reads a campaign file starts from [`load`]; the runner takes
 //! the [`Plan`] it returns. The cost estimate is [`RunSpec::estimated_seconds`] of a planned run.
 
+mod lanczos;
 pub mod stability;
 
 pub use self::stability::{Estimates, RUN_GROWTH, Stability, estimate};

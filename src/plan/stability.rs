@@ -1,6 +1,6 @@
-//! Numerical stability, known before a run starts: the fastest mode ω_max of a scene (power
-//! iteration on its dynamical matrix; a rigorous node-by-node bound on networks too large for
-//! that, see [`POWER_METHOD_BONDS`]) and the largest ω dt its integrator survives (measured on the
+//! Numerical stability, known before a run starts: the fastest mode ω_max of a scene (the
+//! Lanczos method on its dynamical matrix, [`super::lanczos`]; a rigorous node-by-node bound on networks too large for
+//! that, see [`LANCZOS_BONDS`]) and the largest ω dt its integrator survives (measured on the
 //! damped test oscillator with the integrator's own code). Pure computation, no I/O and no global
 //! state: what is estimated once is kept in the [`Estimates`] value its owner (the plan) passes.
 
@@ -10,7 +10,7 @@ use std::sync::Mutex;
 use crate::fem::Analyses;
 use crate::model::{Axes, BondDashpot, Linear, NoDashpot, Particles, Spring, SquareLattice};
 use crate::sim::{Gear, IntegratorKind, LatticeNetwork, Sampling, Scene, State, StepProbe, simulate_with};
-use crate::spec::{POWER_METHOD_BONDS, RunSpec};
+use crate::spec::{LANCZOS_BONDS, RunSpec};
 use crate::study::build_scene;
 
 /// What is known about a run's stability before it starts.
@@ -100,18 +100,15 @@ impl Estimates {
         self.modes(spec).omega_max
     }
 
-    /// The fastest mode of `spec`'s network: the power method, or the node bound beyond
-    /// [`POWER_METHOD_BONDS`].
+    /// The fastest mode of `spec`'s network: the Lanczos method, or the node bound beyond
+    /// [`LANCZOS_BONDS`].
     fn modes(&self, spec: &RunSpec) -> Modes {
         let key = network_key(spec);
         let known = self.modes.lock().expect("the cache is never poisoned").get(&key).copied();
         known.unwrap_or_else(|| {
             let (scene, extension) = (build_scene(spec), crate::spec::reference_extension(spec));
-            let modes = if spec.bonds() > POWER_METHOD_BONDS {
-                node_bound(&scene, extension)
-            } else {
-                modes(&scene, extension)
-            };
+            let modes =
+                if spec.bonds() > LANCZOS_BONDS { node_bound(&scene, extension) } else { modes(&scene, extension) };
             self.modes.lock().expect("the cache is never poisoned").insert(key, modes);
             modes
         })
@@ -151,12 +148,6 @@ impl Estimates {
     }
 }
 
-/// Iterations of the power method at most; it stops earlier once the Rayleigh quotient has
-/// settled to 1e-10. Eigenvalues below (1 − ε) λ_max are damped as (1 − ε)^(2n): after 1000
-/// iterations those 0.3 % below by e^(−6), so even where the top of the spectrum is dense the
-/// quotient is within ~0.3 % of λ_max and ω_max within ~0.15 % (a lower bound).
-const POWER_ITERATIONS: usize = 1000;
-
 /// Springs of a scene for the eigenvalue estimates: (i, j, weight, n̂x, n̂y), the weight a
 /// stiffness (N/m) or a dashpot constant (N s/m).
 type Springs = Vec<(usize, usize, f64, f64, f64)>;
@@ -182,18 +173,21 @@ impl FreeAxes {
     }
 
     /// The displacement u = M^(−½) w of a mass-weighted vector w, on the free axes.
+    #[inline]
     fn displacement(&self, wx: &[f64], wy: &[f64], i: usize) -> (f64, f64) {
         (wx[i] * self.scale[i] * self.free_x[i], wy[i] * self.scale[i] * self.free_y[i])
     }
 }
 
 /// The largest eigenvalue of M^(−½) A M^(−½) over the free axes, A = Σ w_b n̂ n̂ᵀ over
-/// `springs`, by power iteration, with its (unit, mass-weighted) eigenvector.
-fn largest_eigenvalue(springs: &Springs, axes: &FreeAxes) -> (f64, Vec<f64>, Vec<f64>) {
+/// `springs`, by the Lanczos method ([`super::lanczos`]), with (if `vector`) its unit
+/// mass-weighted eigenvector (x components, then y).
+fn largest_eigenvalue(springs: &Springs, axes: &FreeAxes, vector: bool) -> (f64, Option<Vec<f64>>) {
     let n = axes.scale.len();
-    let apply = |wx: &[f64], wy: &[f64], yx: &mut [f64], yy: &mut [f64]| {
-        yx.fill(0.0);
-        yy.fill(0.0);
+    let apply = |w: &[f64], y: &mut [f64]| {
+        let (wx, wy) = w.split_at(n);
+        y.fill(0.0);
+        let (yx, yy) = y.split_at_mut(n);
         for &(i, j, weight, nx, ny) in springs {
             let ((uxi, uyi), (uxj, uyj)) = (axes.displacement(wx, wy, i), axes.displacement(wx, wy, j));
             let s = weight * (nx * (uxi - uxj) + ny * (uyi - uyj));
@@ -209,32 +203,9 @@ fn largest_eigenvalue(springs: &Springs, axes: &FreeAxes) -> (f64, Vec<f64>, Vec
     };
     // A fixed, irregular start vector (reproducible, not orthogonal to the top mode).
     let start = |i: usize, shift: f64| ((i as f64 + 1.0) * (0.754_877_666 + shift)).fract() - 0.5;
-    let mut wx: Vec<f64> = (0..n).map(|i| start(i, 0.0) * axes.free_x[i]).collect();
-    let mut wy: Vec<f64> = (0..n).map(|i| start(i, 0.31) * axes.free_y[i]).collect();
-    let (mut yx, mut yy) = (vec![0.0; n], vec![0.0; n]);
-    let mut lambda = 0.0;
-    for iteration in 0..POWER_ITERATIONS {
-        let length = wx.iter().chain(&wy).map(|v| v * v).sum::<f64>().sqrt();
-        if length == 0.0 {
-            return (0.0, wx, wy);
-        }
-        wx.iter_mut().chain(wy.iter_mut()).for_each(|v| *v /= length);
-        apply(&wx, &wy, &mut yx, &mut yy);
-        let quotient: f64 = wx.iter().zip(&yx).chain(wy.iter().zip(&yy)).map(|(w, y)| w * y).sum();
-        let settled = iteration > 50 && (quotient - lambda).abs() <= 1e-10 * quotient.abs();
-        lambda = quotient;
-        if settled {
-            break;
-        }
-        std::mem::swap(&mut wx, &mut yx);
-        std::mem::swap(&mut wy, &mut yy);
-    }
-    // The last iterate, normalised (it is A w, not w, when the loop ran out).
-    let length = wx.iter().chain(&wy).map(|v| v * v).sum::<f64>().sqrt();
-    if length > 0.0 {
-        wx.iter_mut().chain(wy.iter_mut()).for_each(|v| *v /= length);
-    }
-    (lambda.max(0.0), wx, wy)
+    let start: Vec<f64> =
+        (0..n).map(|i| start(i, 0.0) * axes.free_x[i]).chain((0..n).map(|i| start(i, 0.31) * axes.free_y[i])).collect();
+    super::lanczos::largest(apply, &start, vector)
 }
 
 /// The part of `spec` its modes depend on (the network, masses, supports, dashpots and the
@@ -290,16 +261,18 @@ pub fn modes(scene: &Scene, extension: f64) -> Modes {
         springs.push((i, j, k_t, nx, ny));
         dashpots.push((i, j, scene.gamma, nx, ny));
     });
-    let (lambda, wx, wy) = largest_eigenvalue(&springs, &axes);
+    let (lambda, mode) = largest_eigenvalue(&springs, &axes, true);
+    let mode = mode.expect("asked for");
+    let (wx, wy) = mode.split_at(p.len());
     let omega_max = lambda.sqrt();
     let mut damping = 0.0;
     for &(i, j, gamma, nx, ny) in &dashpots {
-        let ((uxi, uyi), (uxj, uyj)) = (axes.displacement(&wx, &wy, i), axes.displacement(&wx, &wy, j));
+        let ((uxi, uyi), (uxj, uyj)) = (axes.displacement(wx, wy, i), axes.displacement(wx, wy, j));
         damping += gamma * (nx * (uxi - uxj) + ny * (uyi - uyj)).powi(2);
     }
     damping += scene.background_gamma
-        * (0..p.len()).map(|i| axes.displacement(&wx, &wy, i)).map(|(ux, uy)| ux * ux + uy * uy).sum::<f64>();
-    let bond_rate = if scene.gamma > 0.0 { largest_eigenvalue(&dashpots, &axes).0 } else { 0.0 };
+        * (0..p.len()).map(|i| axes.displacement(wx, wy, i)).map(|(ux, uy)| ux * ux + uy * uy).sum::<f64>();
+    let bond_rate = if scene.gamma > 0.0 { largest_eigenvalue(&dashpots, &axes, false).0 } else { 0.0 };
     Modes::new(omega_max, damping, bond_rate + background_rate(scene, &axes))
 }
 

@@ -10,7 +10,7 @@ pub use self::kind::*;
 pub use self::name::MAX_NAME_LEN;
 pub use self::raw::{Control, Diagonals, Grid, LoadCase, SceneKind, SeriesKept, Supports};
 pub use self::run_spec::{
-    Budget, MovieSpec, POWER_METHOD_BONDS, RESIDUAL_OVER_ROUND_OFF, RESULT_FORMAT, RunSpec, force_resolution,
+    Budget, LANCZOS_BONDS, MovieSpec, RESIDUAL_OVER_ROUND_OFF, RESULT_FORMAT, RunSpec, force_resolution,
     reference_extension, round_off_words, seconds_up_to_1e9,
 };
 pub use self::shared::{RelaxSpec, WaveSpec};

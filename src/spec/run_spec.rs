@@ -156,11 +156,12 @@ pub fn seconds_up_to_1e9(seconds: f64) -> std::time::Duration {
 }
 
 /// Networks with more bonds ([`RunSpec::bonds`]) than this get their modes from a node-by-node
-/// bound in one pass (`plan::stability::node_bound`) instead of the power method, whose up to 1000
-/// passes over 250 000 bonds take about a second and grow with the network (a 2000 × 2000
-/// lattice took 170 s and 1.7 GB before `plan` printed anything). Every shipped campaign stays
-/// below it (its largest lattice, 40 × 40, has 6 400 bonds).
-pub const POWER_METHOD_BONDS: usize = 250_000;
+/// bound in one pass (`plan::stability::node_bound`) instead of the Lanczos method, whose up to
+/// 1000 steps (and as many again for the eigenvector) over 250 000 bonds take seconds and grow
+/// with the network (a 2000 × 2000 lattice took 170 s and 1.7 GB under the power method before
+/// `plan` printed anything). Every shipped campaign stays below it (its largest lattice,
+/// 40 × 40, has 6 400 bonds; Lanczos converges there in 60–250 steps).
+pub const LANCZOS_BONDS: usize = 250_000;
 
 /// The extension (m) at which a power-law spring (no stiffness at δ = 0) is linearised for
 /// t_c, the damping and the stability estimate: the deformation the run is expected to reach.
@@ -240,8 +241,9 @@ impl RunSpec {
     /// per particle instead (2.7 × an MD step: the power, mixing and norms of FIRE, CG's line
     /// search, each one more pass over the particles), not its cap `steps` (a packing's: its cap,
     /// once per stage of a slow compression); plus
-    /// the stages around the loop: the ω_max estimate (≤ 1000 power iterations at ~7 ns per
-    /// bond, twice with bond dashpots; one pass beyond [`POWER_METHOD_BONDS`]), a loaded
+    /// the stages around the loop: the ω_max estimate (≤ 1000 Lanczos steps at ~7 ns per
+    /// bond, an upper bound: 60–250 steps, and as many for the eigenvector, on the shipped
+    /// lattices; twice with bond dashpots; one pass beyond [`LANCZOS_BONDS`]), a loaded
     /// lattice's static solve (sparse Cholesky of a 2D network: 3.5e-7 s · dofs^1.33, fitted to
     /// whole `relax.method: static` runs of 160² … 1000² nodes, 0.61 s … 81 s on one core), twice
     /// over when k_min is found as well (a second factorisation at the static answer) and the
@@ -260,7 +262,7 @@ impl RunSpec {
             None => stages * stepped * runs * self.steps as f64 * (80e-9 + 3e-9 * evaluations * particles),
         };
         let eigenproblems = if self.gamma > 0.0 { 2.0 } else { 1.0 };
-        let passes = if self.bonds() > POWER_METHOD_BONDS { 1.0 } else { 1000.0 };
+        let passes = if self.bonds() > LANCZOS_BONDS { 1.0 } else { 1000.0 };
         let omega_max = stepped * eigenproblems * passes * 7e-9 * self.bonds() as f64;
         let static_solve = (1.0 + stepped) * 3.5e-7 * self.static_dofs().powf(1.33);
         let movie = self.movie.map_or(0.0, |m| 0.2e-6 * f64::from(m.frames) * f64::from(m.width) * f64::from(m.height));

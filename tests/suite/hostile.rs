@@ -393,7 +393,7 @@ proptest! {
 proptest! {
     #![proptest_config(config(MUTATION_CASES))]
     /// Random edits of the shipped campaigns. The large ones are mutated through the spec
-    /// layer only: their stability check takes seconds (one power iteration per lattice run).
+    /// layer only: their stability check takes seconds (one Lanczos eigenvalue estimate per lattice run).
     #[test]
     fn mutated_campaigns_never_panic(
         which in 0..5usize,

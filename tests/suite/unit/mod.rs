@@ -12,6 +12,7 @@ mod measure_dispersion;
 mod measure_moduli;
 mod measure_wave;
 mod model_lattice;
+mod model_law;
 mod model_planar;
 mod output;
 mod owner;

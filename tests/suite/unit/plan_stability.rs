@@ -5,7 +5,7 @@ use mdsolids::plan::stability::{
     node_bound, test_problem,
 };
 use mdsolids::sim::{Gear, IntegratorKind};
-use mdsolids::spec::{POWER_METHOD_BONDS, RunSpec};
+use mdsolids::spec::{LANCZOS_BONDS, RunSpec};
 use mdsolids::study::build_scene;
 
 /// Runs of one network share its modes: a grid over dt, integrators and run lengths has one
@@ -45,13 +45,13 @@ fn runs_of(body: &str) -> Vec<RunSpec> {
     mdsolids::spec::parse("b.yaml", &format!("version: 1\nname: b\nscenes:\n  - name: s\n{body}")).unwrap().runs
 }
 
-/// The node bound is an upper bound on every kind of network (power iteration is a lower
-/// estimate within ~0.15 %, so "≥" is the test) and tight where the top mode is staggered:
+/// The node bound is an upper bound on every kind of network (the Lanczos estimate, a Ritz
+/// value, is a lower bound, so "≥" is the test) and tight where the top mode is staggered:
 /// for the chain and the square lattice with both or no diagonal families the finite
 /// network's ω_max lies below the infinite one's by (π/2(N+1))²/2 relative, ≤ 0.3 % at N = 20;
 /// 1.5 % allows that. One diagonal family: √(6/5.24) − 1 = 7 % high in the infinite lattice
 /// (7.4 % at 20 × 20; 8 % allowed). ζ and ν_max of the
-/// bound within 10 % and above the power method's (ν_max) where it is an upper bound too.
+/// bound within 10 % and above the Lanczos estimate's (ν_max) where it is an upper bound too.
 #[test]
 fn the_node_bound_holds_and_is_tight_on_staggered_modes() {
     let cases = [
@@ -88,15 +88,15 @@ fn the_node_bound_holds_and_is_tight_on_staggered_modes() {
     }
 }
 
-/// A network beyond [`POWER_METHOD_BONDS`] gets the bound, which on a square lattice with
+/// A network beyond [`LANCZOS_BONDS`] gets the bound, which on a square lattice with
 /// both diagonal families (k = 1 N/m, k_d = 0.5 N/m, m = 1 kg) is √(4(k + k_d)/m) = √6 rad/s
-/// to round-off; the power method on this 251 × 251 network would give its finite ω_max,
-/// ~2e-5 lower, and take 1000 passes.
+/// to round-off; the Lanczos method on this 251 × 251 network would give its finite ω_max,
+/// ~2e-5 lower, in hundreds of passes.
 #[test]
 fn a_network_beyond_the_power_method_gets_the_staggered_bound() {
     let spec =
         &runs_of("    kind: lattice\n    lattice: {size: 251, k_diag_ratio: 0.5}\n    load: {case: tensile}\n")[0];
-    assert!(spec.bonds() > POWER_METHOD_BONDS);
+    assert!(spec.bonds() > LANCZOS_BONDS);
     let omega_max = estimate(spec).omega_max;
     assert!((omega_max - 6f64.sqrt()).abs() < 1e-12, "{omega_max}");
 }
@@ -159,4 +159,31 @@ fn gear_limit_bounds_the_growth_over_the_run() {
     let steps = 131_072.0; // 78 181 rounded up to a power of two
     assert!(gear_spectral_radius(test, long).powf(steps) <= RUN_GROWTH);
     assert!(gear_spectral_radius(test, 1.01 * long).powf(steps) > RUN_GROWTH);
+}
+
+/// ω_max from the Lanczos method against closed forms, to 1e-9 relative (the method stops at
+/// a residual of 1e-10 θ; the power method it replaced came within ~0.15 % and stopped after
+/// 1000 passes on networks like these). A chain of N unit masses and springs k = 1 N/m between
+/// two walls: ω² = 4 sin²(jπ/2(N+1)), j = 1 … N. A free N × N square lattice without diagonals
+/// separates into free chains along x and along y: ω² = 4 sin²(jπ/2N), j < N.
+#[test]
+fn lanczos_finds_omega_max_of_chains_and_square_lattices_to_1e_9() {
+    let walls = |n: f64| 2.0 * (n * std::f64::consts::PI / (2.0 * (n + 1.0))).sin();
+    let free = |n: f64| 2.0 * ((n - 1.0) * std::f64::consts::PI / (2.0 * n)).sin();
+    let cases = [
+        ("    kind: chain\n    n: 2\n    v0: 0.1\n", walls(2.0)),
+        ("    kind: chain\n    n: 40\n    v0: 0.1\n", walls(40.0)),
+        ("    kind: chain\n    n: 400\n    v0: 0.1\n", walls(400.0)),
+        (
+            "    kind: lattice\n    lattice: {size: 40, diagonals: none}\n    supports: free\n    impulse: {velocity: [0.0, -0.01]}\n",
+            free(40.0),
+        ),
+    ];
+    for (body, expected) in cases {
+        let spec = &runs_of(body)[0];
+        let (scene, extension) = (build_scene(spec), mdsolids::spec::reference_extension(spec));
+        let omega_max = modes(&scene, extension).omega_max;
+        let relative = omega_max / expected - 1.0;
+        assert!(relative.abs() < 1e-9, "{body}: ω_max {omega_max}, closed form {expected}, relative {relative:e}");
+    }
 }
