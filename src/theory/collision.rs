@@ -62,7 +62,11 @@ const LONGEST_CONTACT: f64 = 50.0;
 /// ```
 pub fn power_law_restitution(c: f64, beta: f64, m: f64, gamma: f64, v: f64) -> Option<f64> {
     let mu = 0.5 * m;
-    let acceleration = |d: f64, s: f64| -(c * d.max(0.0).powf(beta) + gamma * s) / mu;
+    // Hertz's δ^(3/2) as δ√δ, ~10× faster than `powf` and as accurate: 20 000 steps per
+    // contact, and a bisection on γ takes dozens of collisions. Written here, not borrowed from
+    // the springs (`model::law`), so that the answer shares no code with what it checks.
+    let spring = |d: f64| if beta == 1.5 { d * d.sqrt() } else { d.powf(beta) };
+    let acceleration = |d: f64, s: f64| -(c * spring(d.max(0.0)) + gamma * s) / mu;
     // One classical Runge–Kutta step of length h from (δ, δ̇).
     let step = |d: f64, s: f64, h: f64| {
         let (k1d, k1s) = (s, acceleration(d, s));
