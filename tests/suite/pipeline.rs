@@ -121,6 +121,30 @@ fn pages_are_whole(dir: &Path, report: &str) {
     }
 }
 
+/// A reader that stops after one line (`mdsolids plan … | head -1`) ends the command quietly,
+/// by SIGPIPE as `ls | head` does: no panic, no backtrace (it printed "failed printing to
+/// stdout: Broken pipe" and a stack before). The list is ~250 lines, far more than the pipe's
+/// first read, so the write after the reader has gone is sure to happen.
+#[test]
+fn a_reader_that_stops_early_ends_plan_quietly() {
+    use std::io::{BufRead, BufReader};
+    use std::os::unix::process::ExitStatusExt;
+    let reports = tempfile::tempdir().unwrap();
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+        .args(["--reports", reports.path().to_str().unwrap(), "plan", "campaigns/coursework.yaml"])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().unwrap()).read_line(&mut first).unwrap();
+    assert!(first.starts_with("run_id"), "{first}");
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked") && !stderr.contains("Broken pipe"), "{stderr}");
+    assert!(out.status.success() || out.status.signal() == Some(libc::SIGPIPE), "{:?}: {stderr}", out.status);
+}
+
 #[test]
 fn plan_lists_runs_and_simulates_nothing() {
     let reports = tempfile::tempdir().unwrap();
