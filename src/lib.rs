@@ -26,6 +26,7 @@
 
 #![warn(missing_docs)]
 
+pub mod alloc;
 pub mod bench;
 pub mod cli;
 pub mod compare;

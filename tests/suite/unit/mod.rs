@@ -2,6 +2,7 @@
 //! (docs/performance.md, "Build and test times"): one module per source file, named after its path
 //! (`src/spec/grid.rs` → `spec_grid`, `src/report/findings/mod.rs` → `report_findings`).
 
+mod alloc;
 mod compare_exponents;
 mod compare_quantity;
 mod draw_chart;
