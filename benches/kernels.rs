@@ -12,6 +12,10 @@ use mdsolids::bench::{BenchConfig, Workload, reference_lattice, reference_scene}
 use mdsolids::model::{LatticeType, Linear, NoDashpot, Spring};
 use mdsolids::sim::{ForceField, Integrator, LatticeNetwork, State, VelocityVerlet};
 
+/// The program's own allocator (`src/alloc.rs`), so the arrays lie as they do in `mdsolids`.
+#[global_allocator]
+static ALLOCATOR: mdsolids::alloc::Coloured = mdsolids::alloc::Coloured;
+
 const SIZES: [usize; 3] = [100, 316, 1000];
 const SPRING: Spring<Linear, NoDashpot, false> = Spring::new(Linear, NoDashpot);
 
