@@ -8,6 +8,8 @@
 //! recurrence a second time (bit for bit the same vectors) and summing them with the weights of
 //! T_k's top eigenvector. Pure computation.
 
+use crate::sim::euclidean_norm;
+
 /// Lanczos steps at most; a network whose top eigenvalue has not converged by then keeps the
 /// largest Ritz value, a lower bound on λ_max as every Ritz value is (Cauchy interlacing).
 const MAX_STEPS: usize = 1000;
@@ -36,7 +38,7 @@ impl Recurrence {
     }
 
     /// Advances to v_(k+1); returns (α_k, β_(k+1)). β_(k+1) = 0 when the Krylov space is
-    /// invariant (v_(k+1) is then left at zero).
+    /// invariant (v_(k+1) is then zero).
     fn step(&mut self, apply: &mut impl FnMut(&[f64], &mut [f64])) -> (f64, f64) {
         apply(&self.current, &mut self.next);
         for (next, previous) in self.next.iter_mut().zip(&self.previous) {
@@ -46,7 +48,7 @@ impl Recurrence {
         for (next, current) in self.next.iter_mut().zip(&self.current) {
             *next -= alpha * current;
         }
-        let beta = self.next.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let beta = euclidean_norm(self.next.iter());
         let scale = if beta > 0.0 { 1.0 / beta } else { 0.0 };
         self.next.iter_mut().for_each(|v| *v *= scale);
         std::mem::swap(&mut self.previous, &mut self.current);
@@ -59,11 +61,10 @@ impl Recurrence {
 /// λ_max of the symmetric operator `apply` (y = A x, A positive semi-definite) and, with
 /// `vector`, a unit eigenvector for it, from the non-zero start vector `start`.
 pub fn largest(mut apply: impl FnMut(&[f64], &mut [f64]), start: &[f64], vector: bool) -> (f64, Option<Vec<f64>>) {
-    let length = start.iter().map(|v| v * v).sum::<f64>().sqrt();
-    if length == 0.0 {
-        return (0.0, vector.then(|| start.to_vec()));
+    let mut unit = start.to_vec();
+    if normalise(&mut unit) == 0.0 {
+        return (0.0, vector.then_some(unit));
     }
-    let unit: Vec<f64> = start.iter().map(|v| v / length).collect();
     let (mut alphas, mut betas) = (Vec::new(), Vec::new());
     let mut recurrence = Recurrence::new(unit.clone());
     let (mut theta, mut weights) = (0.0, Vec::new());
@@ -98,11 +99,17 @@ fn ritz_vector(mut apply: impl FnMut(&[f64], &mut [f64]), unit: Vec<f64>, weight
             *s += weight * v;
         }
     }
-    let length = sum.iter().map(|v| v * v).sum::<f64>().sqrt();
-    if length > 0.0 {
-        sum.iter_mut().for_each(|v| *v /= length);
-    }
+    normalise(&mut sum);
     sum
+}
+
+/// Divides `v` by its length ‖v‖₂ unless that is 0; returns the length.
+fn normalise(v: &mut [f64]) -> f64 {
+    let length = euclidean_norm(v.iter());
+    if length > 0.0 {
+        v.iter_mut().for_each(|x| *x /= length);
+    }
+    length
 }
 
 /// How many eigenvalues of the tridiagonal T (diagonal `alphas`, off-diagonal `betas`) lie
@@ -125,10 +132,9 @@ fn count_below(alphas: &[f64], betas: &[f64], x: f64) -> usize {
 /// The largest eigenvalue of the tridiagonal T by bisection on [`count_below`] between its
 /// Gershgorin bounds, to the last bits.
 fn top_eigenvalue(alphas: &[f64], betas: &[f64]) -> f64 {
-    let radius = |i: usize| {
-        let below = if i > 0 { betas[i - 1].abs() } else { 0.0 };
-        below + betas.get(i).filter(|_| i + 1 < alphas.len()).map_or(0.0, |b| b.abs())
-    };
+    // T_k's off-diagonal is β_1 … β_(k−1): row i couples to rows i − 1 and i + 1 where they exist.
+    let coupling = |j: Option<usize>| j.and_then(|j| betas.get(j)).map_or(0.0, |b: &f64| b.abs());
+    let radius = |i: usize| coupling(i.checked_sub(1)) + coupling(Some(i));
     let mut high = (0..alphas.len()).map(|i| alphas[i] + radius(i)).fold(f64::MIN, f64::max);
     let mut low = (0..alphas.len()).map(|i| alphas[i] - radius(i)).fold(f64::MAX, f64::min);
     let n = alphas.len();
@@ -170,8 +176,7 @@ fn eigenvector(alphas: &[f64], betas: &[f64], theta: f64) -> Vec<f64> {
             let above = if i + 1 < n { betas[i] * y[i + 1] } else { 0.0 };
             y[i] = (rhs[i] - above) / pivots[i];
         }
-        let length = y.iter().map(|v| v * v).sum::<f64>().sqrt();
-        y.iter_mut().for_each(|v| *v /= length);
+        normalise(&mut y);
     }
     y
 }

@@ -202,9 +202,11 @@ fn largest_eigenvalue(springs: &Springs, axes: &FreeAxes, vector: bool) -> (f64,
         }
     };
     // A fixed, irregular start vector (reproducible, not orthogonal to the top mode).
-    let start = |i: usize, shift: f64| ((i as f64 + 1.0) * (0.754_877_666 + shift)).fract() - 0.5;
-    let start: Vec<f64> =
-        (0..n).map(|i| start(i, 0.0) * axes.free_x[i]).chain((0..n).map(|i| start(i, 0.31) * axes.free_y[i])).collect();
+    let irregular = |i: usize, shift: f64| ((i as f64 + 1.0) * (0.754_877_666 + shift)).fract() - 0.5;
+    let start: Vec<f64> = (0..n)
+        .map(|i| irregular(i, 0.0) * axes.free_x[i])
+        .chain((0..n).map(|i| irregular(i, 0.31) * axes.free_y[i]))
+        .collect();
     super::lanczos::largest(apply, &start, vector)
 }
 

@@ -241,9 +241,9 @@ impl RunSpec {
     /// per particle instead (2.7 × an MD step: the power, mixing and norms of FIRE, CG's line
     /// search, each one more pass over the particles), not its cap `steps` (a packing's: its cap,
     /// once per stage of a slow compression); plus
-    /// the stages around the loop: the ω_max estimate (≤ 1000 Lanczos steps at ~7 ns per
-    /// bond, an upper bound: 60–250 steps, and as many for the eigenvector, on the shipped
-    /// lattices; twice with bond dashpots; one pass beyond [`LANCZOS_BONDS`]), a loaded
+    /// the stages around the loop: the ω_max estimate (1000 Lanczos steps at ~7 ns per
+    /// bond, twice with bond dashpots: the cap of the eigenvalue's pass, where the shipped
+    /// lattices take 60–250 steps and as many again for the eigenvector; one pass beyond [`LANCZOS_BONDS`]), a loaded
     /// lattice's static solve (sparse Cholesky of a 2D network: 3.5e-7 s · dofs^1.33, fitted to
     /// whole `relax.method: static` runs of 160² … 1000² nodes, 0.61 s … 81 s on one core), twice
     /// over when k_min is found as well (a second factorisation at the static answer) and the
