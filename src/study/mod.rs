@@ -182,6 +182,23 @@ pub fn run(spec: &RunSpec, deadline: Instant, analyses: &Analyses) -> Result<Run
     if let Some((step, again)) = tangent.filter(|_| outcome.trace.relaxed_at.is_some()) {
         tangent_step(spec, again, &outcome, step, &mut metrics);
     }
+    let reference_s = measure_error(spec, &outcome, sample_every, deadline, &mut metrics);
+    if let Some(l) = spec.lattice() {
+        lattice::keep_probes(l, &mut outcome.trace);
+    }
+    Ok(Run { outcome, metrics, reference_s, bonds, supports, discs })
+}
+
+/// The run's error (`metrics.error`, `error_measure`): against its reference run at dt/R
+/// when it has one and ran to the end or to a stop without equilibrium, else against the
+/// exact answer. Returns the reference run's wall time (s), 0 without one.
+fn measure_error(
+    spec: &RunSpec,
+    outcome: &Outcome,
+    sample_every: u64,
+    deadline: Instant,
+    metrics: &mut Metrics,
+) -> f64 {
     let started = Instant::now();
     let reference = spec
         .reference_refinement
@@ -192,12 +209,9 @@ pub fn run(spec: &RunSpec, deadline: Instant, analyses: &Analyses) -> Result<Run
     let reference_s = if spec.reference_refinement.is_some() { started.elapsed().as_secs_f64() } else { 0.0 };
     (metrics.error, metrics.error_measure) = match reference {
         Some((refinement, error)) => (Some(error), Some(format!("reference_dt/{refinement}"))),
-        None => exact_error(spec, &metrics),
+        None => exact_error(spec, metrics),
     };
-    if let Some(l) = spec.lattice() {
-        lattice::keep_probes(l, &mut outcome.trace);
-    }
-    Ok(Run { outcome, metrics, reference_s, bonds, supports, discs })
+    reference_s
 }
 
 /// The bonds a movie draws (i, j, rest length in m): every bond of `scene` but those across a
