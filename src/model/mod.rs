@@ -8,7 +8,9 @@ pub use self::lattice::SquareLattice;
 pub use self::law::{
     BondDashpot, Dashpot, ForceLaw, LawName, LawSpec, LawVisitor, Linear, NoDashpot, PowerLaw, Spring,
 };
-pub use self::packing::{ContactSearch, Contacts, PeriodicBox, bidisperse_box, contacts_within, random_bidisperse};
+pub use self::packing::{
+    ContactSearch, Contacts, NearPairs, PeriodicBox, bidisperse_box, contacts_within, random_bidisperse,
+};
 pub use self::particles::{Axes, Particles};
 pub use self::planar::{Edges, LatticeType, Layout, PlanarLattice};
 

@@ -76,11 +76,6 @@ impl Contacts {
         self.i.is_empty()
     }
 
-    /// Forgets the pairs, keeping the memory.
-    fn clear(&mut self) {
-        self.resize(0);
-    }
-
     /// Room for `additional` more pairs.
     fn reserve(&mut self, additional: usize) {
         self.i.reserve(additional);
@@ -88,26 +83,6 @@ impl Contacts {
         self.rest.reserve(additional);
         self.shift_x.reserve(additional);
         self.shift_y.reserve(additional);
-    }
-
-    /// Exactly `pairs` pairs, new ones (0, 0) of rest length 0 until set.
-    fn resize(&mut self, pairs: usize) {
-        self.i.resize(pairs, 0);
-        self.j.resize(pairs, 0);
-        self.rest.resize(pairs, 0.0);
-        self.shift_x.resize(pairs, 0.0);
-        self.shift_y.resize(pairs, 0.0);
-    }
-
-    /// Makes pair `b` the pair (i, j) through the image (shift_x, shift_y) (m), rest length
-    /// `rest` (m).
-    #[inline(always)]
-    fn set(&mut self, b: usize, i: usize, j: usize, rest: f64, (shift_x, shift_y): (f64, f64)) {
-        self.i[b] = i;
-        self.j[b] = j;
-        self.rest[b] = rest;
-        self.shift_x[b] = shift_x;
-        self.shift_y[b] = shift_y;
     }
 
     /// Appends the pair (i, j) through the image (shift_x, shift_y) (m), rest length `rest` (m).
@@ -128,13 +103,111 @@ impl Contacts {
     }
 }
 
+/// The pairs within reach as the force loop reads them, grouped by their first disc
+/// (compressed rows): disc i's pairs are `start[i]..start[i + 1]`, each with its second disc
+/// `other[b]` (> i) and its image's lattice vector `shifts[image[b]]` (m); the rest length is
+/// r_i + r_j from the radii. Eight bytes a pair instead of [`Contacts`]' forty, read in order
+/// once a step: at 10⁶ discs the list is ~20 MB instead of ~100, and the force loop and the
+/// search wait less on main memory.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct NearPairs {
+    /// Where each disc's pairs start (one more entry than discs).
+    pub start: Vec<u32>,
+    /// Second disc of each pair.
+    pub other: Vec<u32>,
+    /// Index of each pair's image in `shifts`.
+    pub image: Vec<u32>,
+    /// The distinct lattice vectors (m) of the list's images, (0, 0) first.
+    pub shifts: Vec<(f64, f64)>,
+}
+
+impl NearPairs {
+    /// Number of pairs.
+    pub fn len(&self) -> usize {
+        self.other.len()
+    }
+
+    /// True when there are none.
+    pub fn is_empty(&self) -> bool {
+        self.other.is_empty()
+    }
+
+    /// The same pairs in the same order as [`Contacts`], with their rest lengths r_i + r_j
+    /// from `radius` (m): for the measurements, which look at pairs one by one.
+    pub fn to_contacts(&self, radius: &[f64]) -> Contacts {
+        let mut pairs = Contacts::default();
+        pairs.reserve(self.len());
+        for (i, rows) in self.start.windows(2).enumerate() {
+            for b in rows[0] as usize..rows[1] as usize {
+                let j = self.other[b] as usize;
+                pairs.push(i, j, radius[i] + radius[j], self.shifts[self.image[b] as usize]);
+            }
+        }
+        pairs
+    }
+}
+
+/// A disc's number as the lists store it: 32 bits (a packing of 2³² discs would need
+/// hundreds of GB, far beyond the memory budget the spec checks first).
+fn narrow(index: usize) -> u32 {
+    u32::try_from(index).expect("a packing has fewer than 2³² discs and pairs")
+}
+
+/// The pairs in the order the search finds them: first and second disc and the image's index
+/// in `shifts`, which `index` finds by the vector's bits (so that ±0 stay apart and every
+/// separation keeps its last bit).
+#[derive(Clone, Debug, Default)]
+struct Found {
+    first: Vec<u32>,
+    other: Vec<u32>,
+    image: Vec<u32>,
+    shifts: Vec<(f64, f64)>,
+    index: std::collections::HashMap<(u64, u64), u32>,
+}
+
+impl Found {
+    /// Forgets the pairs, keeping the memory; image 0 is (0, 0).
+    fn clear(&mut self) {
+        self.first.clear();
+        self.other.clear();
+        self.image.clear();
+        self.shifts.clear();
+        self.index.clear();
+        self.push_shift((0.0, 0.0));
+    }
+
+    /// The index of image `shift` (m), added if new.
+    fn push_shift(&mut self, shift: (f64, f64)) -> u32 {
+        let next = narrow(self.shifts.len());
+        let index = *self.index.entry((shift.0.to_bits(), shift.1.to_bits())).or_insert(next);
+        if index == next {
+            self.shifts.push(shift);
+        }
+        index
+    }
+
+    /// Appends the pair (i, j) through the image of index `image`.
+    #[inline(always)]
+    fn push(&mut self, i: usize, j: usize, image: u32) {
+        self.first.push(narrow(i));
+        self.other.push(narrow(j));
+        self.image.push(image);
+    }
+
+    /// Appends the pair (i, j) through the image (shift_x, shift_y) (m).
+    fn push_shifted(&mut self, i: usize, j: usize, shift: (f64, f64)) {
+        let image = self.push_shift(shift);
+        self.push(i, j, image);
+    }
+}
+
 /// Every pair of discs (i < j, each image of j separately) whose centres are closer than
 /// r_i + r_j + `skin` (m), at positions `(x, y)` in `periodic`, ordered by i (by
 /// [`ContactSearch::within`], in memory of its own).
 pub fn contacts_within(x: &[f64], y: &[f64], radius: &[f64], periodic: &PeriodicBox, skin: f64) -> Contacts {
-    let mut near = Contacts::default();
+    let mut near = NearPairs::default();
     ContactSearch::default().within(x, y, radius, periodic, skin, &mut near);
-    near
+    near.to_contacts(radius)
 }
 
 /// The memory a contact search works in, kept from one search to the next: a packing's list is
@@ -151,7 +224,7 @@ pub struct ContactSearch {
     /// The next free place of each cell in `members`.
     next: Vec<usize>,
     /// The pairs in the order the search finds them.
-    found: Contacts,
+    found: Found,
 }
 
 impl ContactSearch {
@@ -168,7 +241,7 @@ impl ContactSearch {
         radius: &[f64],
         periodic: &PeriodicBox,
         skin: f64,
-        near: &mut Contacts,
+        near: &mut NearPairs,
     ) {
         let reach = 2.0 * radius.iter().fold(0.0f64, |m, r| m.max(*r)) + skin;
         // A cell's width across its slanted edge is (L/c)/√(1 + (tilt/L)²).
@@ -217,7 +290,9 @@ impl ContactSearch {
         self.sort_into_cells(x, y, periodic, cells);
         let (start, members, found) = (&self.start, &self.members, &mut self.found);
         // A dense packing has ~3 pairs per disc within a reach: room for 4 saves the regrowths.
-        found.reserve(4 * x.len());
+        found.first.reserve(4 * x.len());
+        found.other.reserve(4 * x.len());
+        found.image.reserve(4 * x.len());
         // Each pair of neighbouring cells once: the cell itself and the half of its eight
         // neighbours to the right and above.
         const HALF_SHELL: [(usize, usize); 4] = [(1, 0), (usize::MAX, 1), (0, 1), (1, 1)];
@@ -257,32 +332,29 @@ fn consider(
     radius: &[f64],
     periodic: &PeriodicBox,
     skin: f64,
-    found: &mut Contacts,
+    found: &mut Found,
 ) {
     let (i, j) = (p.min(q), p.max(q));
     let (dx, dy) = (x[i] - x[j], y[i] - y[j]);
     let inside = 0.49 * periodic.side;
-    let shift = if dx.abs() < inside && dy.abs() < inside { (0.0, 0.0) } else { periodic.nearest_image(dx, dy) };
-    let (sx, sy) = (dx + shift.0, dy + shift.1);
-    let rest = radius[i] + radius[j];
-    let reach = rest + skin;
-    if sx * sx + sy * sy < reach * reach {
-        found.push(i, j, rest, shift);
+    let reach = radius[i] + radius[j] + skin;
+    if dx.abs() < inside && dy.abs() < inside {
+        if dx * dx + dy * dy < reach * reach {
+            found.push(i, j, 0);
+        }
+    } else {
+        let shift = periodic.nearest_image(dx, dy);
+        let (sx, sy) = (dx + shift.0, dy + shift.1);
+        if sx * sx + sy * sy < reach * reach {
+            found.push_shifted(i, j, shift);
+        }
     }
 }
 
 /// The search of a box under three cells wide: every pair with every image in reach (a disc
 /// may touch two images of another), into `found`. Only a few discs fit such a box (its side
 /// is below three reaches), so the pairs are few.
-fn every_image(
-    x: &[f64],
-    y: &[f64],
-    radius: &[f64],
-    periodic: &PeriodicBox,
-    skin: f64,
-    reach: f64,
-    found: &mut Contacts,
-) {
+fn every_image(x: &[f64], y: &[f64], radius: &[f64], periodic: &PeriodicBox, skin: f64, reach: f64, found: &mut Found) {
     let images = (reach / periodic.side).ceil() as i64 + 1;
     for i in 0..x.len() {
         for j in i + 1..x.len() {
@@ -295,7 +367,7 @@ fn every_image(
                     let shift = (nearest.0 + a * periodic.side + b * periodic.tilt, nearest.1 + b * periodic.side);
                     let (sx, sy) = (dx + shift.0, dy + shift.1);
                     if sx * sx + sy * sy < (rest + skin) * (rest + skin) {
-                        found.push(i, j, rest, shift);
+                        found.push_shifted(i, j, shift);
                     }
                 }
             }
@@ -303,24 +375,29 @@ fn every_image(
     }
 }
 
-/// `found`'s pairs into `sorted`, reordered by their first disc (a counting sort, stable, with
-/// `start` its counts), so that the force loop reads and writes the first disc's memory in
+/// `found`'s pairs into `sorted`, grouped by their first disc (a counting sort, stable, with
+/// `place` its counts), so that the force loop reads and writes the first disc's memory in
 /// increasing order.
-fn ordered_by_first(found: &Contacts, discs: usize, start: &mut Vec<usize>, sorted: &mut Contacts) {
-    start.clear();
-    start.resize(discs + 1, 0);
-    for &i in &found.i {
-        start[i + 1] += 1;
+fn ordered_by_first(found: &Found, discs: usize, place: &mut Vec<usize>, sorted: &mut NearPairs) {
+    place.clear();
+    place.resize(discs + 1, 0);
+    for &i in &found.first {
+        place[i as usize + 1] += 1;
     }
     for p in 0..discs {
-        start[p + 1] += start[p];
+        place[p + 1] += place[p];
     }
-    sorted.resize(found.len());
-    for b in 0..found.len() {
-        let place = &mut start[found.i[b]];
-        sorted.set(*place, found.i[b], found.j[b], found.rest[b], (found.shift_x[b], found.shift_y[b]));
-        *place += 1;
+    sorted.start.clear();
+    sorted.start.extend(place.iter().map(|&b| narrow(b)));
+    sorted.other.resize(found.other.len(), 0);
+    sorted.image.resize(found.image.len(), 0);
+    for b in 0..found.first.len() {
+        let at = &mut place[found.first[b] as usize];
+        sorted.other[*at] = found.other[b];
+        sorted.image[*at] = found.image[b];
+        *at += 1;
     }
+    sorted.shifts.clone_from(&found.shifts);
 }
 
 /// The periodic square box in which ⌈n/2⌉ discs of radius `small` (m) and ⌊n/2⌋ of `ratio`

@@ -5,7 +5,7 @@
 //! length r_i + r_j, which a contact spring exerts only while the discs overlap (δ < 0).
 
 use super::field::{ForceField, add_background_damping};
-use crate::model::{ContactSearch, Contacts, Dashpot, ForceLaw, PeriodicBox, Spring, contacts_within};
+use crate::model::{ContactSearch, Contacts, Dashpot, ForceLaw, NearPairs, PeriodicBox, Spring, contacts_within};
 
 /// The discs' geometry a packing's field needs: radii (m), the periodic box and the stiffness
 /// constant of every contact (k, N/m, or C, N/m^β).
@@ -43,7 +43,7 @@ pub struct ContactNetwork<L, D, const CONTACT: bool> {
     spring: Spring<L, D, CONTACT>,
     packing: Packing,
     /// The pairs within reach when the list was made ...
-    near: Contacts,
+    near: NearPairs,
     /// ... by this search (its memory kept for the next) ...
     search: ContactSearch,
     /// ... at these positions (m).
@@ -60,7 +60,7 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ContactNetwork<L, D, CONTACT>
         ContactNetwork {
             spring,
             packing,
-            near: Contacts::default(),
+            near: NearPairs::default(),
             search: ContactSearch::default(),
             made_at: (Vec::new(), Vec::new()),
             builds: 0,
@@ -109,19 +109,26 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for ContactNetwork
 
     fn add_forces(&mut self, x: &[f64], y: &[f64], vx: &[f64], vy: &[f64], fx: &mut [f64], fy: &mut [f64]) -> f64 {
         self.refresh(x, y);
-        let near = &self.near;
-        let k = self.packing.k;
+        let (near, radius, k) = (&self.near, &self.packing.radius, self.packing.k);
         let mut power = 0.0;
-        for b in 0..near.len() {
-            let (i, j) = (near.i[b], near.j[b]);
-            let (dx, dy) = near.separation(b, x, y);
-            let (dvx, dvy) = if D::ACTIVE { (vx[i] - vx[j], vy[i] - vy[j]) } else { (0.0, 0.0) };
-            let f = self.spring.force_on_i(k, near.rest[b], dx, dy, dvx, dvy);
-            fx[i] += f.fx;
-            fy[i] += f.fy;
-            fx[j] -= f.fx;
-            fy[j] -= f.fy;
-            power += f.dissipation;
+        // Disc i's pairs all come after the pairs in which i is the second disc, so its force
+        // is summed in a register in the list's order: the same sums, bit for bit, as adding
+        // into fx[i] pair by pair.
+        for (i, rows) in near.start.windows(2).enumerate() {
+            let (mut fx_i, mut fy_i) = (fx[i], fy[i]);
+            for b in rows[0] as usize..rows[1] as usize {
+                let j = near.other[b] as usize;
+                let (shift_x, shift_y) = near.shifts[near.image[b] as usize];
+                let (dx, dy) = (x[i] - x[j] + shift_x, y[i] - y[j] + shift_y);
+                let (dvx, dvy) = if D::ACTIVE { (vx[i] - vx[j], vy[i] - vy[j]) } else { (0.0, 0.0) };
+                let f = self.spring.force_on_i(k, radius[i] + radius[j], dx, dy, dvx, dvy);
+                fx_i += f.fx;
+                fy_i += f.fy;
+                fx[j] -= f.fx;
+                fy[j] -= f.fy;
+                power += f.dissipation;
+            }
+            (fx[i], fy[i]) = (fx_i, fy_i);
         }
         if self.background_gamma > 0.0 {
             power += add_background_damping(self.background_gamma, vx, vy, fx, fy);
