@@ -184,13 +184,18 @@ impl FreeAxes {
 /// mass-weighted eigenvector (x components, then y).
 fn largest_eigenvalue(springs: &Springs, axes: &FreeAxes, vector: bool) -> (f64, Option<Vec<f64>>) {
     let n = axes.scale.len();
-    let apply = |w: &[f64], y: &mut [f64]| {
+    // The displacements once per product, not once per spring end (three gathers each).
+    let mut u = vec![0.0; 2 * n];
+    let apply = move |w: &[f64], y: &mut [f64]| {
         let (wx, wy) = w.split_at(n);
+        let (ux, uy) = u.split_at_mut(n);
+        for i in 0..n {
+            (ux[i], uy[i]) = axes.displacement(wx, wy, i);
+        }
         y.fill(0.0);
         let (yx, yy) = y.split_at_mut(n);
         for &(i, j, weight, nx, ny) in springs {
-            let ((uxi, uyi), (uxj, uyj)) = (axes.displacement(wx, wy, i), axes.displacement(wx, wy, j));
-            let s = weight * (nx * (uxi - uxj) + ny * (uyi - uyj));
+            let s = weight * (nx * (ux[i] - ux[j]) + ny * (uy[i] - uy[j]));
             yx[i] += s * nx;
             yy[i] += s * ny;
             yx[j] -= s * nx;
