@@ -176,6 +176,13 @@ impl Found {
         self.push_shift((0.0, 0.0));
     }
 
+    /// Room for `additional` more pairs.
+    fn reserve(&mut self, additional: usize) {
+        self.first.reserve(additional);
+        self.other.reserve(additional);
+        self.image.reserve(additional);
+    }
+
     /// The index of image `shift` (m), added if new.
     fn push_shift(&mut self, shift: (f64, f64)) -> u32 {
         let next = narrow(self.shifts.len());
@@ -290,9 +297,7 @@ impl ContactSearch {
         self.sort_into_cells(x, y, periodic, cells);
         let (start, members, found) = (&self.start, &self.members, &mut self.found);
         // A dense packing has ~3 pairs per disc within a reach: room for 4 saves the regrowths.
-        found.first.reserve(4 * x.len());
-        found.other.reserve(4 * x.len());
-        found.image.reserve(4 * x.len());
+        found.reserve(4 * x.len());
         // Each pair of neighbouring cells once: the cell itself and the half of its eight
         // neighbours to the right and above.
         const HALF_SHELL: [(usize, usize); 4] = [(1, 0), (usize::MAX, 1), (0, 1), (1, 1)];
