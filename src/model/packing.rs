@@ -201,6 +201,18 @@ impl Found {
         self.image.push(image);
     }
 
+    /// Appends the pair (i, j) through image 0 when `keep`. Written without a branch on
+    /// `keep`: the pair is stored, then dropped again when not kept, because whether a pair
+    /// is within reach is a coin toss the processor cannot predict (~15 ns per wrong guess).
+    #[inline(always)]
+    fn push_if(&mut self, i: usize, j: usize, keep: bool) {
+        let kept = self.first.len() + usize::from(keep);
+        self.push(i, j, 0);
+        self.first.truncate(kept);
+        self.other.truncate(kept);
+        self.image.truncate(kept);
+    }
+
     /// Appends the pair (i, j) through the image (shift_x, shift_y) (m).
     fn push_shifted(&mut self, i: usize, j: usize, shift: (f64, f64)) {
         let image = self.push_shift(shift);
@@ -299,9 +311,11 @@ impl ContactSearch {
         // A dense packing has ~3 pairs per disc within a reach: room for 4 saves the regrowths.
         found.reserve(4 * x.len());
         // Each pair of neighbouring cells once: the cell itself and the half of its eight
-        // neighbours to the right and above.
-        const HALF_SHELL: [(usize, usize); 4] = [(1, 0), (usize::MAX, 1), (0, 1), (1, 1)];
+        // neighbours to the right and above, across the box's edges (wrapped without `%`: an
+        // integer division costs more than a cell's few pairs).
+        let wrap = |k: usize| if k == cells { 0 } else { k };
         for row in 0..cells {
+            let up = wrap(row + 1) * cells;
             for column in 0..cells {
                 let own = &members[start[row * cells + column]..start[row * cells + column + 1]];
                 for (a, &p) in own.iter().enumerate() {
@@ -309,8 +323,8 @@ impl ContactSearch {
                         consider(p, q, x, y, radius, periodic, skin, found);
                     }
                 }
-                for (dc, dr) in HALF_SHELL {
-                    let other = (row + dr) % cells * cells + (column + cells).wrapping_add(dc) % cells;
+                let (left, right) = (if column == 0 { cells - 1 } else { column - 1 }, wrap(column + 1));
+                for other in [row * cells + right, up + left, up + column, up + right] {
                     for &p in own {
                         for &q in &members[start[other]..start[other + 1]] {
                             consider(p, q, x, y, radius, periodic, skin, found);
@@ -344,9 +358,7 @@ fn consider(
     let inside = 0.49 * periodic.side;
     let reach = radius[i] + radius[j] + skin;
     if dx.abs() < inside && dy.abs() < inside {
-        if dx * dx + dy * dy < reach * reach {
-            found.push(i, j, 0);
-        }
+        found.push_if(i, j, dx * dx + dy * dy < reach * reach);
     } else {
         let shift = periodic.nearest_image(dx, dy);
         let (sx, sy) = (dx + shift.0, dy + shift.1);
