@@ -76,6 +76,15 @@ impl Contacts {
         self.i.is_empty()
     }
 
+    /// Forgets the pairs, keeping the memory.
+    pub fn clear(&mut self) {
+        self.i.clear();
+        self.j.clear();
+        self.rest.clear();
+        self.shift_x.clear();
+        self.shift_y.clear();
+    }
+
     /// Room for `additional` more pairs.
     fn reserve(&mut self, additional: usize) {
         self.i.reserve(additional);
@@ -236,12 +245,17 @@ pub fn contacts_within(x: &[f64], y: &[f64], radius: &[f64], periodic: &Periodic
 pub struct ContactSearch {
     /// Each disc's cell.
     home: Vec<usize>,
-    /// Where each cell's discs start in `members` (then, reused, each disc's pairs in the list).
+    /// Where each cell's discs start in `members`, kept after the search for
+    /// [`ContactSearch::missed`].
     start: Vec<usize>,
-    /// The discs, cell after cell.
+    /// The discs, cell after cell (at the positions of the last search).
     members: Vec<usize>,
-    /// The next free place of each cell in `members`.
+    /// The next free place of each cell in `members`, then each disc's pairs in the list.
     next: Vec<usize>,
+    /// Cells a side at the last search; 0 when it compared every pair (a box under three cells).
+    cells: usize,
+    /// The escaped discs of [`ContactSearch::missed`] by the cell they are in now: (cell, disc).
+    escaped_cells: Vec<(usize, usize)>,
     /// The pairs in the order the search finds them.
     found: Found,
 }
@@ -267,25 +281,76 @@ impl ContactSearch {
         let slant = (1.0 + (periodic.tilt / periodic.side).powi(2)).sqrt();
         let cells = (periodic.side / (reach * slant)).floor();
         self.found.clear();
-        if cells >= 3.0 {
-            self.cell_list(x, y, radius, periodic, skin, cells as usize);
+        self.cells = if cells >= 3.0 { cells as usize } else { 0 };
+        if self.cells > 0 {
+            self.cell_list(x, y, radius, periodic, skin, self.cells);
         } else {
             every_image(x, y, radius, periodic, skin, reach, &mut self.found);
         }
-        ordered_by_first(&self.found, x.len(), &mut self.start, near);
+        ordered_by_first(&self.found, x.len(), &mut self.next, near);
+    }
+
+    /// The touching pairs (centres closer than r_i + r_j) at positions `(x, y)` that involve a
+    /// disc of `escaped` and are not in the list the last search made at `(made_x, made_y)`
+    /// with `skin`, into `extra`; false, and nothing found, when that search had no cells.
+    ///
+    /// Sound when every other disc is within skin/2 of where the list was made: such a disc j
+    /// touching an escaped e at x_e was within r_e + r_j + skin/2 of x_e when the list was made,
+    /// so in the nine cells around x_e's (cells are 2 r_max + skin wide). A pair is in the list
+    /// exactly when [`reach_of`] says so at the made positions, so each touching pair is
+    /// counted once: by the list or here. Two escaped discs are found by the cells they are
+    /// in now.
+    #[allow(clippy::too_many_arguments)] // both positions and the disc's geometry
+    pub fn missed(
+        &mut self,
+        escaped: &[usize],
+        (x, y): (&[f64], &[f64]),
+        (made_x, made_y): (&[f64], &[f64]),
+        radius: &[f64],
+        periodic: &PeriodicBox,
+        skin: f64,
+        extra: &mut Contacts,
+    ) -> bool {
+        extra.clear();
+        if self.cells == 0 {
+            return false;
+        }
+        let listed = |i: usize, j: usize| reach_of(i, j, made_x, made_y, radius, periodic, skin).0;
+        let mut add = |p: usize, q: usize| {
+            let (i, j) = (p.min(q), p.max(q));
+            if let (true, shift) = reach_of(i, j, x, y, radius, periodic, 0.0)
+                && !listed(i, j)
+            {
+                extra.push(i, j, radius[i] + radius[j], shift.unwrap_or((0.0, 0.0)));
+            }
+        };
+        let now = &mut self.escaped_cells;
+        now.clear();
+        now.extend(escaped.iter().map(|&e| (cell_of(periodic, self.cells, x[e], y[e]), e)));
+        now.sort_unstable();
+        for &(home, e) in now.iter() {
+            for cell in around(self.cells, home) {
+                let from = now.partition_point(|&(c, _)| c < cell);
+                for &(_, other) in now[from..].iter().take_while(|&&(c, _)| c == cell) {
+                    if other > e {
+                        add(e, other);
+                    }
+                }
+                for &j in &self.members[self.start[cell]..self.start[cell + 1]] {
+                    if escaped.binary_search(&j).is_err() {
+                        add(e, j);
+                    }
+                }
+            }
+        }
+        true
     }
 
     /// Sorts the discs by cell (a counting sort): `members[start[c]..start[c + 1]]` are cell
     /// c's, of `cells` × `cells`.
     fn sort_into_cells(&mut self, x: &[f64], y: &[f64], periodic: &PeriodicBox, cells: usize) {
-        let cell_of = |p: usize| {
-            let (s, t) = periodic.fractional(x[p], y[p]);
-            let column = ((s * cells as f64) as usize).min(cells - 1);
-            let row = ((t * cells as f64) as usize).min(cells - 1);
-            row * cells + column
-        };
         self.home.clear();
-        self.home.extend((0..x.len()).map(cell_of));
+        self.home.extend((0..x.len()).map(|p| cell_of(periodic, cells, x[p], y[p])));
         self.start.clear();
         self.start.resize(cells * cells + 1, 0);
         for &c in &self.home {
@@ -336,11 +401,22 @@ impl ContactSearch {
     }
 }
 
-/// Adds the pair (p, q) when its nearest image is within r_p + r_q + `skin`. A separation
-/// under 0.49 L along both axes is its own nearest image (`PeriodicBox::nearest_image` rounds
-/// both fractions to 0), so the divisions and roundings are left to the pairs near half a box
-/// apart: those across its edges, or with a disc that has left the box (positions are not
-/// wrapped back).
+/// The nine cells around `cell` (itself included) of `cells` × `cells`, across the box's edges.
+fn around(cells: usize, cell: usize) -> impl Iterator<Item = usize> {
+    let (row, column) = (cell / cells, cell % cells);
+    let step = move |k: usize, d: usize| (k + cells + d - 1) % cells;
+    (0..3).flat_map(move |dr| (0..3).map(move |dc| step(row, dr) * cells + step(column, dc)))
+}
+
+/// The cell, of `cells` × `cells` in `periodic`, that holds the point (x, y) (m).
+fn cell_of(periodic: &PeriodicBox, cells: usize, x: f64, y: f64) -> usize {
+    let (s, t) = periodic.fractional(x, y);
+    let column = ((s * cells as f64) as usize).min(cells - 1);
+    let row = ((t * cells as f64) as usize).min(cells - 1);
+    row * cells + column
+}
+
+/// Adds the pair (p, q) when its nearest image is within r_p + r_q + `skin` ([`reach_of`]).
 #[allow(clippy::too_many_arguments)] // the structure of arrays, one slice per component
 #[inline(always)]
 fn consider(
@@ -354,17 +430,38 @@ fn consider(
     found: &mut Found,
 ) {
     let (i, j) = (p.min(q), p.max(q));
+    match reach_of(i, j, x, y, radius, periodic, skin) {
+        (keep, None) => found.push_if(i, j, keep),
+        (true, Some(shift)) => found.push_shifted(i, j, shift),
+        (false, Some(_)) => {}
+    }
+}
+
+/// Whether the nearest image of disc j is within r_i + r_j + `skin` of disc i (i < j), and
+/// through which lattice vector: `None` for (0, 0) found without rounding. A separation
+/// under 0.49 L along both axes is its own nearest image (`PeriodicBox::nearest_image` rounds
+/// both fractions to 0), so the divisions and roundings are left to the pairs near half a box
+/// apart: those across its edges, or with a disc that has left the box (positions are not
+/// wrapped back).
+#[inline(always)]
+fn reach_of(
+    i: usize,
+    j: usize,
+    x: &[f64],
+    y: &[f64],
+    radius: &[f64],
+    periodic: &PeriodicBox,
+    skin: f64,
+) -> (bool, Option<(f64, f64)>) {
     let (dx, dy) = (x[i] - x[j], y[i] - y[j]);
     let inside = 0.49 * periodic.side;
     let reach = radius[i] + radius[j] + skin;
     if dx.abs() < inside && dy.abs() < inside {
-        found.push_if(i, j, dx * dx + dy * dy < reach * reach);
+        (dx * dx + dy * dy < reach * reach, None)
     } else {
         let shift = periodic.nearest_image(dx, dy);
         let (sx, sy) = (dx + shift.0, dy + shift.1);
-        if sx * sx + sy * sy < reach * reach {
-            found.push_shifted(i, j, shift);
-        }
+        (sx * sx + sy * sy < reach * reach, Some(shift))
     }
 }
 

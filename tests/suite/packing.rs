@@ -4,8 +4,10 @@
 //! final state, the refusals, and the report's item "Jamming" against the results table.
 
 use mdsolids::measure::{ContactForces, DiscFrame};
-use mdsolids::model::{Axes, Contacts, LawSpec, Particles, PeriodicBox, contacts_within, random_bidisperse};
-use mdsolids::sim::{IntegratorKind, Network, Packing, Sampling, Scene};
+use mdsolids::model::{
+    Axes, Contacts, LawSpec, Linear, NoDashpot, Particles, PeriodicBox, Spring, contacts_within, random_bidisperse,
+};
+use mdsolids::sim::{ContactNetwork, ForceField, IntegratorKind, Network, Packing, Sampling, Scene};
 use mdsolids::study::packing::stiffness_moduli;
 use mdsolids::theory::{gamma_for_restitution, linear_contact_duration, linear_restitution};
 use polars::prelude::*;
@@ -54,6 +56,88 @@ fn cell_list_finds_exactly_the_pairs_of_an_all_pairs_search() {
             assert!(reference.len() > 400, "a dense state has many pairs: {}", reference.len());
             assert_eq!(listed(&cells), reference, "seed {seed}, tilt {}", periodic.tilt);
         }
+    }
+}
+
+/// The forces (fx, fy) of linear contacts k = 1 at `(x, y)` summed over every touching pair of
+/// an all-pairs search: the reference for the packing's field.
+fn all_pairs_forces(x: &[f64], y: &[f64], radius: &[f64], periodic: &PeriodicBox) -> (Vec<f64>, Vec<f64>) {
+    let (mut fx, mut fy) = (vec![0.0; x.len()], vec![0.0; x.len()]);
+    for (i, j, sx, sy) in all_pairs(x, y, radius, periodic, 0.0) {
+        let (dx, dy) = (x[i] - x[j] + f64::from_bits(sx), y[i] - y[j] + f64::from_bits(sy));
+        let r = dx.hypot(dy);
+        let push = radius[i] + radius[j] - r; // k (r_i + r_j − r), along the separation
+        (fx[i], fy[i]) = (fx[i] + push * dx / r, fy[i] + push * dy / r);
+        (fx[j], fy[j]) = (fx[j] - push * dx / r, fy[j] - push * dy / r);
+    }
+    (fx, fy)
+}
+
+#[test]
+fn the_list_and_its_escaped_discs_count_every_touching_pair_once() {
+    // 2 000 discs at φ = 0.90, the field's list made at the start (skin 0.2). Then every disc
+    // moves by up to 0.09 (under half the skin) and some by more: 1 in `escaped_every` by 0.3
+    // to 0.6 in random directions, and half as many moved onto those. 1 in 200 (15 discs, under
+    // the field's share of 1 in 64: the list is kept and those discs are searched for alone)
+    // and 1 in 20 (150, over it: the list is made again); in the square box and a sheared one. The forces
+    // must be the all-pairs sum's to round-off (the pairs are summed in another order, so 1e-12
+    // of the largest force), and the moved state must have touching pairs the list missed, or
+    // the escaped discs' search went untested.
+    let (square, x0, y0, radius) = random_bidisperse(2000, 0.5, 1.4, 0.90, 7);
+    let random = |k: usize, salt: usize| ((k * 7919 + salt * 104_729) % 10_007) as f64 / 10_007.0;
+    let sheared = PeriodicBox { tilt: 0.05 * square.side, ..square };
+    for (escaped_every, periodic) in [(200, square), (20, square), (200, sheared), (20, sheared)] {
+        let mut field = ContactNetwork::new(
+            Spring::<_, _, true>::new(Linear, NoDashpot),
+            Packing { radius: radius.clone(), periodic, k: 1.0, skin: 0.2 },
+            0.0,
+        );
+        let zeros = vec![0.0; x0.len()];
+        let (mut fx, mut fy) = (zeros.clone(), zeros.clone());
+        field.add_forces(&x0, &y0, &zeros, &zeros, &mut fx, &mut fy);
+        let (mut x, mut y) = (x0.clone(), y0.clone());
+        let mut far = vec![false; x.len()];
+        for k in 0..x.len() {
+            far[k] = k % escaped_every == 3;
+            let reach = if far[k] { 0.3 + 0.3 * random(k, 1) } else { 0.09 * random(k, 1) };
+            let angle = std::f64::consts::TAU * random(k, 2);
+            (x[k], y[k]) = (x[k] + reach * angle.cos(), y[k] + reach * angle.sin());
+        }
+        // Every other far disc gets a partner from elsewhere in the box, put where it overlaps
+        // it by 0.05: two escaped discs that touch.
+        for a in (3..x.len()).step_by(2 * escaped_every) {
+            let b = (a + escaped_every / 2 + 500) % x.len();
+            let (gap, angle) = (radius[a] + radius[b] - 0.05, std::f64::consts::TAU * random(a, 3));
+            (x[b], y[b], far[b]) = (x[a] + gap * angle.cos(), y[a] + gap * angle.sin(), true);
+        }
+        let before = all_pairs(&x0, &y0, &radius, &periodic, 0.2);
+        let missed: Vec<_> = all_pairs(&x, &y, &radius, &periodic, 0.0)
+            .into_iter()
+            .filter(|p| before.binary_search(p).is_err())
+            .collect();
+        assert!(
+            missed.iter().any(|&(i, j, ..)| far[i] != far[j]),
+            "1 in {escaped_every}: no missed pair of a far disc"
+        );
+        assert!(missed.iter().any(|&(i, j, ..)| far[i] && far[j]), "1 in {escaped_every}: no missed pair of two");
+        let (mut fx, mut fy) = (zeros.clone(), zeros.clone());
+        field.add_forces(&x, &y, &zeros, &zeros, &mut fx, &mut fy);
+        let (ex, ey) = all_pairs_forces(&x, &y, &radius, &periodic);
+        let largest = ex.iter().chain(&ey).fold(0.0f64, |m, f| m.max(f.abs()));
+        for k in 0..x.len() {
+            let error = (fx[k] - ex[k]).abs().max((fy[k] - ey[k]).abs());
+            assert!(
+                error < 1e-12 * largest,
+                "1 in {escaped_every}, disc {k}: ({}, {}) against ({}, {})",
+                fx[k],
+                fy[k],
+                ex[k],
+                ey[k]
+            );
+        }
+        // Both paths taken: the list kept (one made) under the share, made again over it.
+        assert_eq!(field.builds(), if escaped_every == 200 { 1 } else { 2 }, "1 in {escaped_every}");
+        println!("1 in {escaped_every}: {} touching pairs outside the list", missed.len());
     }
 }
 
