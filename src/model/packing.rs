@@ -291,8 +291,9 @@ impl ContactSearch {
     }
 
     /// The touching pairs (centres closer than r_i + r_j) at positions `(x, y)` that involve a
-    /// disc of `escaped` and are not in the list the last search made at `(made_x, made_y)`
-    /// with `skin`, into `extra`; false, and nothing found, when that search had no cells.
+    /// disc of `escaped` (in increasing order) and are not in the list the last search made at
+    /// `(made_x, made_y)` with `skin`, into `extra`; false, and nothing found, when there are
+    /// escaped discs and that search had no cells to look for them in.
     ///
     /// Sound when every other disc is within skin/2 of where the list was made: such a disc j
     /// touching an escaped e at x_e was within r_e + r_j + skin/2 of x_e when the list was made,
@@ -313,7 +314,7 @@ impl ContactSearch {
     ) -> bool {
         extra.clear();
         if self.cells == 0 {
-            return false;
+            return escaped.is_empty();
         }
         let listed = |i: usize, j: usize| reach_of(i, j, made_x, made_y, radius, periodic, skin).0;
         let mut add = |p: usize, q: usize| {

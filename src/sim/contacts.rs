@@ -100,32 +100,28 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ContactNetwork<L, D, CONTACT>
         escaped.extend((0..x.len()).filter(moved));
     }
 
-    /// Brings the list up to date at `(x, y)`: made again at the first evaluation, when more
-    /// than one disc in `ESCAPED_SHARE` escaped, or when the search had no cells to look in;
-    /// else the escaped discs' missed pairs found.
+    /// Brings the list up to date at `(x, y)`: the escaped discs' missed pairs found, or the
+    /// list made again (at the first evaluation, when more than one disc in `ESCAPED_SHARE`
+    /// escaped, or when escaped discs have no cells to be looked for in).
     fn refresh(&mut self, x: &[f64], y: &[f64]) {
-        let has_list = self.made_at.0.len() == x.len();
-        if has_list {
+        if self.made_at.0.len() == x.len() {
             self.find_escaped(x, y);
+            let (p, (escaped, extra)) = (&self.packing, &mut self.escaped);
+            let made = (self.made_at.0.as_slice(), self.made_at.1.as_slice());
+            if escaped.len() * ESCAPED_SHARE <= x.len()
+                && self.search.missed(escaped, (x, y), made, &p.radius, &p.periodic, p.skin, extra)
+            {
+                return;
+            }
         }
         let p = &self.packing;
-        let (escaped, extra) = &mut self.escaped;
-        if has_list && escaped.is_empty() {
-            extra.clear();
-            return;
-        }
-        let few = has_list && escaped.len() * ESCAPED_SHARE <= x.len();
-        let made = (self.made_at.0.as_slice(), self.made_at.1.as_slice());
-        if few && self.search.missed(escaped, (x, y), made, &p.radius, &p.periodic, p.skin, extra) {
-            return;
-        }
         self.search.within(x, y, &p.radius, &p.periodic, p.skin, &mut self.near);
         self.made_at.0.clear();
         self.made_at.0.extend_from_slice(x);
         self.made_at.1.clear();
         self.made_at.1.extend_from_slice(y);
-        escaped.clear();
-        extra.clear();
+        self.escaped.0.clear();
+        self.escaped.1.clear();
         self.builds += 1;
     }
 }
@@ -142,6 +138,12 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for ContactNetwork
     fn add_forces(&mut self, x: &[f64], y: &[f64], vx: &[f64], vy: &[f64], fx: &mut [f64], fy: &mut [f64]) -> f64 {
         self.refresh(x, y);
         let (near, radius, k) = (&self.near, &self.packing.radius, self.packing.k);
+        // The force on i of the pair (i, j) at separation (dx, dy), rest length `rest`: the list's
+        // pairs and the escaped discs' alike.
+        let pair_force = |i: usize, j: usize, rest: f64, (dx, dy): (f64, f64)| {
+            let (dvx, dvy) = if D::ACTIVE { (vx[i] - vx[j], vy[i] - vy[j]) } else { (0.0, 0.0) };
+            self.spring.force_on_i(k, rest, dx, dy, dvx, dvy)
+        };
         let mut power = 0.0;
         // Disc i's pairs all come after the pairs in which i is the second disc, so its force
         // is summed in a register in the list's order: the same sums, bit for bit, as adding
@@ -151,9 +153,7 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for ContactNetwork
             for b in rows[0] as usize..rows[1] as usize {
                 let j = near.other[b] as usize;
                 let (shift_x, shift_y) = near.shifts[near.image[b] as usize];
-                let (dx, dy) = (x[i] - x[j] + shift_x, y[i] - y[j] + shift_y);
-                let (dvx, dvy) = if D::ACTIVE { (vx[i] - vx[j], vy[i] - vy[j]) } else { (0.0, 0.0) };
-                let f = self.spring.force_on_i(k, radius[i] + radius[j], dx, dy, dvx, dvy);
+                let f = pair_force(i, j, radius[i] + radius[j], (x[i] - x[j] + shift_x, y[i] - y[j] + shift_y));
                 fx_i += f.fx;
                 fy_i += f.fy;
                 fx[j] -= f.fx;
@@ -165,9 +165,7 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for ContactNetwork
         let extra = &self.escaped.1;
         for b in 0..extra.len() {
             let (i, j) = (extra.i[b], extra.j[b]);
-            let (dx, dy) = extra.separation(b, x, y);
-            let (dvx, dvy) = if D::ACTIVE { (vx[i] - vx[j], vy[i] - vy[j]) } else { (0.0, 0.0) };
-            let f = self.spring.force_on_i(k, extra.rest[b], dx, dy, dvx, dvy);
+            let f = pair_force(i, j, extra.rest[b], extra.separation(b, x, y));
             fx[i] += f.fx;
             fy[i] += f.fy;
             fx[j] -= f.fx;

@@ -79,10 +79,10 @@ fn the_list_and_its_escaped_discs_count_every_touching_pair_once() {
     // moves by up to 0.09 (under half the skin) and some by more: 1 in `escaped_every` by 0.3
     // to 0.6 in random directions, and half as many moved onto those. 1 in 200 (15 discs, under
     // the field's share of 1 in 64: the list is kept and those discs are searched for alone)
-    // and 1 in 20 (150, over it: the list is made again); in the square box and a sheared one. The forces
-    // must be the all-pairs sum's to round-off (the pairs are summed in another order, so 1e-12
-    // of the largest force), and the moved state must have touching pairs the list missed, or
-    // the escaped discs' search went untested.
+    // and 1 in 20 (150, over it: the list is made again), in the square box and a sheared one.
+    // The forces must be the all-pairs sum's to round-off (the pairs are summed in another
+    // order, so 1e-12 of the largest force), and the moved state must have touching pairs the
+    // list missed, or the escaped discs' search went untested.
     let (square, x0, y0, radius) = random_bidisperse(2000, 0.5, 1.4, 0.90, 7);
     let random = |k: usize, salt: usize| ((k * 7919 + salt * 104_729) % 10_007) as f64 / 10_007.0;
     let sheared = PeriodicBox { tilt: 0.05 * square.side, ..square };
