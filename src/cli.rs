@@ -18,7 +18,9 @@ use crate::{report, table};
 
 /// Molecular-dynamics studies of mass-spring solids: campaign YAML in, tables and reports out.
 #[derive(Debug, Parser)]
-#[command(name = "mdsolids", version, about)]
+// `bin_name`: usage and help say `mdsolids` whatever the executable is called (the test suite
+// starts it as `mdsolids-tested`, tests/Cargo.toml).
+#[command(name = "mdsolids", bin_name = "mdsolids", version, about)]
 pub struct Cli {
     /// Directory that holds one output directory per campaign.
     #[arg(long, global = true, default_value = "reports")]

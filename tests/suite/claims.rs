@@ -123,7 +123,7 @@ fn the_random_networks_point_to_the_jamming_report_and_link_it_once_it_is_there(
     // The pointed page is where `mdsolids run` writes the jamming campaign,
     // `<reports>/<campaign name>/index.html`, beside this report's folder: not there yet, the
     // item says how to make it; there, a render of the same campaign links it.
-    let jamming = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/campaigns/jamming.yaml")).unwrap();
+    let jamming = std::fs::read_to_string(crate::common::repo().join("campaigns/jamming.yaml")).unwrap();
     let name = mdsolids::spec::parse("jamming.yaml", &jamming).unwrap().name;
     let reports = tempfile::tempdir().unwrap();
     let file = reports.path().join("rnd.yaml");

@@ -79,9 +79,9 @@ fn report_merges_what_is_stored_and_lists_what_is_missing() {
 #[test]
 fn bad_shards_are_refused() {
     for bad in ["4/4", "1/0", "two/4"] {
-        let out = Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+        let out = Command::new(crate::common::MDSOLIDS)
             .args(["run", "campaigns/smoke.yaml", "--shard", bad])
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .current_dir(crate::common::repo())
             .output()
             .unwrap();
         assert!(!out.status.success());
@@ -106,11 +106,11 @@ fn slurm_writes_an_array_and_an_afterany_report_job() {
     let submit = std::fs::read_to_string(dir.join("submit.sh")).unwrap();
     assert!(submit.contains("--dependency=afterany:"), "{submit}");
 
-    let too_many = Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+    let too_many = Command::new(crate::common::MDSOLIDS)
         .arg("--reports")
         .arg(reports.path())
         .args(["slurm", "campaigns/smoke.yaml", "--tasks", "6"])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(crate::common::repo())
         .output()
         .unwrap();
     assert!(text(&too_many.stderr).contains("--tasks 6: must be between 1 and the campaign's 5 runs"));
@@ -118,11 +118,11 @@ fn slurm_writes_an_array_and_an_afterany_report_job() {
     // A line break in --partition or --time once added a line of shell to array.sh.
     std::fs::remove_dir_all(&dir).unwrap();
     for option in ["--partition", "--time"] {
-        let out = Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+        let out = Command::new(crate::common::MDSOLIDS)
             .arg("--reports")
             .arg(reports.path())
             .args(["slurm", "campaigns/smoke.yaml", option, "10\ntouch /tmp/injected"])
-            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .current_dir(crate::common::repo())
             .output()
             .unwrap();
         assert!(!out.status.success(), "{option} with a line break was accepted");

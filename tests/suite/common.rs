@@ -47,13 +47,22 @@ pub fn report_of(name: &str, yaml: &str) -> String {
     std::fs::read_to_string(dir.path().join(name).join("report.md")).unwrap()
 }
 
-/// Runs the binary with `--reports reports` and `args` from the crate's folder.
+/// The program under test: `../src/main.rs` built as this package's binary (tests/Cargo.toml).
+pub const MDSOLIDS: &str = env!("CARGO_BIN_EXE_mdsolids-tested");
+
+/// The repository's top folder, with the campaigns, docs and snapshots the tests read (this
+/// package, tests/Cargo.toml, sits one below it).
+pub fn repo() -> &'static std::path::Path {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).parent().expect("tests/ sits in the repository")
+}
+
+/// Runs the binary with `--reports reports` and `args` from the repository's top folder.
 pub fn mdsolids(reports: &std::path::Path, args: &[&str]) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+    std::process::Command::new(MDSOLIDS)
         .arg("--reports")
         .arg(reports)
         .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(repo())
         .output()
         .expect("the binary runs")
 }

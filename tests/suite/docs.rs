@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 const README_LINES: usize = 250;
 
 fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+    crate::common::repo().to_path_buf()
 }
 
 /// README.md and every `docs/*.md`.

@@ -1,6 +1,7 @@
 //! The fast force loops (row stencil for lattices, blocked bond list, threads) against the
 //! plainest possible loop over a bond list: same trajectories within 1e-12 relative over 1000
-//! steps, for linear, Hertz, damped, contact, constrained and diluted networks.
+//! steps (200 on the threaded path: `sampling`), for linear, Hertz, damped, contact,
+//! constrained and diluted networks.
 
 use mdsolids::model::{
     Axes, BondDashpot, Bonds, Dashpot, ForceLaw, LawSpec, Linear, NoDashpot, Particles, PowerLaw, Spring, SquareLattice,
@@ -101,10 +102,14 @@ fn setup(nx: usize, ny: usize, supports: bool, periodic_x: bool, staggered: bool
     (particles, lattice)
 }
 
-const STEPS: u64 = 1000;
-
-fn sampling() -> Sampling {
-    Sampling::new(0.02, STEPS)
+/// Steps of a run of `nodes` nodes. A wrong force term, block boundary or thread's partial sum
+/// moves a node by the order of its displacement from the first step on, so the lattices of
+/// 10⁴ nodes and more (`PARALLEL_MIN_PARTICLES`, src/sim/parallel.rs: the threaded path, and the costliest for the reference loop, which the
+/// test package compiles unoptimised: docs/performance.md, "Build and test times") run 200
+/// steps; the smaller ones 1000, over which the integrators' histories and the round-off of
+/// position Verlet's Störmer form play out.
+fn sampling(nodes: usize) -> Sampling {
+    Sampling::new(0.02, if nodes >= 10_000 { 200 } else { 1000 })
 }
 
 fn reference<L: ForceLaw, D: Dashpot, const C: bool>(
@@ -116,7 +121,7 @@ fn reference<L: ForceLaw, D: Dashpot, const C: bool>(
 ) -> State {
     let mut field = ReferenceLoop { spring, bonds: bonds.clone(), background_gamma: background };
     let mut state = State::new(particles.clone());
-    simulate_with(integrator, &mut state, &mut field, &sampling(), &mut ());
+    simulate_with(integrator, &mut state, &mut field, &sampling(particles.len()), &mut ());
     state
 }
 
@@ -150,7 +155,7 @@ fn check<L: ForceLaw, D: Dashpot, const C: bool>(
     let (particles, lattice) = setup(nx, ny, supports, periodic_x, staggered);
     let bonds = if dilute > 0.0 { lattice.bonds().randomised(dilute, 0.0, 7, |_, _| false) } else { lattice.bonds() };
     let network = if dilute > 0.0 { Network::Bonds(bonds.clone()) } else { Network::Lattice(lattice) };
-    let scene = Scene::new(particles.clone(), network, law, sampling())
+    let scene = Scene::new(particles.clone(), network, law, sampling(particles.len()))
         .contact(C)
         .damping(gamma, background)
         .integrator(integrator);

@@ -25,7 +25,7 @@ const CAMPAIGN: &str = "version: 1\nname: faults\ndefaults:\n  material: {mass: 
 const RUNS: usize = 26;
 
 fn mdsolids(reports: &Path, args: &[&str]) -> Command {
-    let mut command = Command::new(env!("CARGO_BIN_EXE_mdsolids"));
+    let mut command = Command::new(crate::common::MDSOLIDS);
     command.arg("--reports").arg(reports).args(args).stdout(Stdio::piped()).stderr(Stdio::piped());
     command
 }
@@ -447,7 +447,7 @@ fn a_full_disk_while_a_movie_is_encoded_names_the_file_and_leaves_no_partial_fil
     let reports = dir.path().join("reports");
     let script = format!(
         "trap '' XFSZ; ulimit -f 20; exec {} --reports {} run {} -j 1",
-        env!("CARGO_BIN_EXE_mdsolids"),
+        crate::common::MDSOLIDS,
         reports.display(),
         file.display()
     );
@@ -476,7 +476,7 @@ fn peak_memory_of_run(reports: &Path, file: &Path) -> f64 {
     // SAFETY: a plain integer option; it only makes this process the reaper of orphaned descendants.
     assert_eq!(unsafe { libc::prctl(libc::PR_SET_CHILD_SUBREAPER, 1) }, 0);
     let shell = Command::new("sh")
-        .args(["-c", "\"$0\" --reports \"$1\" run \"$2\" >/dev/null 2>&1 & echo $!", env!("CARGO_BIN_EXE_mdsolids")])
+        .args(["-c", "\"$0\" --reports \"$1\" run \"$2\" >/dev/null 2>&1 & echo $!", crate::common::MDSOLIDS])
         .arg(reports)
         .arg(file)
         .output()

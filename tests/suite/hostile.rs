@@ -12,8 +12,9 @@ use std::process::Command;
 use std::sync::mpsc;
 use std::time::Duration;
 
-const BAD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/campaigns/bad");
-const SHIPPED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/campaigns");
+const BAD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/campaigns/bad");
+// The shipped campaigns, beside this package (tests/Cargo.toml).
+const SHIPPED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../campaigns");
 
 /// A hang guard, not a speed test: every case here parses in well under a second.
 const HANG_GUARD: Duration = Duration::from_secs(10);
@@ -100,7 +101,7 @@ fn the_binary_writes_nothing_for_a_hostile_campaign() {
             let work = tempfile::tempdir().unwrap();
             let reports = work.path().join("reports");
             let campaign = Path::new(BAD).join(format!("{fixture}.yaml"));
-            let output = Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+            let output = Command::new(crate::common::MDSOLIDS)
                 .current_dir(work.path())
                 .arg("--reports")
                 .arg(&reports)
@@ -136,7 +137,7 @@ fn the_run_limit_counts_before_expanding() {
     assert!(error.contains(&format!("at most {} runs", mdsolids::spec::MAX_RUNS)), "{error}");
     assert_eq!(mdsolids::spec::parse("ok.yaml", &campaign(10, 10)).unwrap().runs.len(), 100);
     // The campaign `plan` is timed on (docs/guarantees.md, "Budgets"): 400 × 250, exactly at the limit.
-    let at_limit = mdsolids::spec::load(Path::new("tests/campaigns/plan-100k.yaml")).unwrap();
+    let at_limit = mdsolids::spec::load(&crate::common::repo().join("tests/campaigns/plan-100k.yaml")).unwrap();
     assert_eq!(at_limit.runs.len() as u64, mdsolids::spec::MAX_RUNS);
 }
 
@@ -593,7 +594,7 @@ fn the_guard_reports_a_panic() {
 /// Runs the binary in `dir` with `args`, killing it after [`HANG_GUARD`]: (success, stdout,
 /// stderr), or a panic naming the command if it had to be killed.
 fn binary(dir: &Path, args: &[&str]) -> (bool, String, String) {
-    guarded_binary(Command::new(env!("CARGO_BIN_EXE_mdsolids")).args(args), dir, args)
+    guarded_binary(Command::new(crate::common::MDSOLIDS).args(args), dir, args)
 }
 
 /// [`binary`] with the process's address space limited to 4 GB (`ulimit -v`): where a file
@@ -601,7 +602,7 @@ fn binary(dir: &Path, args: &[&str]) -> (bool, String, String) {
 /// machine's memory.
 fn binary_in_4_gb(dir: &Path, args: &[&str]) -> (bool, String, String) {
     let limited = r#"ulimit -v 4000000 && exec "$0" "$@""#;
-    guarded_binary(Command::new("sh").args(["-c", limited, env!("CARGO_BIN_EXE_mdsolids")]).args(args), dir, args)
+    guarded_binary(Command::new("sh").args(["-c", limited, crate::common::MDSOLIDS]).args(args), dir, args)
 }
 
 /// Runs `command` in `dir` as [`binary`] does; `args` name it in a panic.

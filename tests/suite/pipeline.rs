@@ -130,8 +130,9 @@ fn a_reader_that_stops_early_ends_plan_quietly() {
     use std::io::{BufRead, BufReader};
     use std::os::unix::process::ExitStatusExt;
     let reports = tempfile::tempdir().unwrap();
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+    let mut child = std::process::Command::new(crate::common::MDSOLIDS)
         .args(["--reports", reports.path().to_str().unwrap(), "plan", "campaigns/coursework.yaml"])
+        .current_dir(crate::common::repo())
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())
         .spawn()
@@ -417,7 +418,7 @@ fn updating_snapshots() -> bool {
 }
 
 fn snapshot_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/snapshots")
+    crate::common::repo().join("tests/snapshots")
 }
 
 /// The fields of a CSV text, rows of cells (RFC 4180 quoting, as polars writes it).

@@ -181,7 +181,7 @@ fn the_report_answers_time_to_a_modulus_with_each_method_against_its_bound() {
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("t.yaml");
     std::fs::write(&file, yaml).unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_mdsolids"))
+    let out = std::process::Command::new(crate::common::MDSOLIDS)
         .arg("--reports")
         .arg(dir.path())
         .arg("run")

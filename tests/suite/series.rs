@@ -175,7 +175,7 @@ fn the_python_snippets_of_the_data_page_run() {
     std::fs::write(dir.path().join("coursework.yaml"), DOCS_CAMPAIGN).unwrap();
     let campaign = dir.path().join("coursework.yaml");
     mdsolids_ok(&dir.path().join("reports"), &["run", campaign.to_str().unwrap()]);
-    let page = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/data.md")).unwrap();
+    let page = std::fs::read_to_string(crate::common::repo().join("docs/data.md")).unwrap();
     let blocks = python_blocks(&page);
     assert!(blocks.len() >= 2, "docs/data.md has {} python blocks", blocks.len());
     for (index, block) in blocks.iter().enumerate() {

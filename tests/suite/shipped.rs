@@ -63,7 +63,7 @@ pub fn whole(name: &str) -> PathBuf {
 pub fn covering_share(name: &str) -> PathBuf {
     once(format!("share {name}"), || {
         let file = format!("campaigns/{name}.yaml");
-        let mut plan = mdsolids::plan::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(&file)).unwrap();
+        let mut plan = mdsolids::plan::load(&crate::common::repo().join(&file)).unwrap();
         plan.campaign.runs = covering_runs(&plan.campaign.runs);
         let reports = store().join("share");
         mdsolids::runner::run_campaign(&plan, &Layout::new(&reports, name), None).unwrap();

@@ -60,9 +60,9 @@ fn every_result_column_has_its_own_unit() {
         "material.law",
         "time.integrator",
     ];
-    let snapshots = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/snapshots/results");
+    let snapshots = crate::common::repo().join("tests/snapshots/results");
     let mut unlisted = std::collections::BTreeSet::new();
-    for entry in std::fs::read_dir(snapshots).unwrap() {
+    for entry in std::fs::read_dir(&snapshots).unwrap() {
         let text = std::fs::read_to_string(entry.unwrap().path()).unwrap();
         let header = text.lines().next().unwrap_or_default();
         unlisted.extend(header.split(',').filter(|c| !words.contains(c) && unit(c).is_none()).map(String::from));
