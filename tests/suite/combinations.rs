@@ -173,7 +173,7 @@ fn check(c: &Cell, estimates: &Estimates, references: &References) -> Result<(),
         RunStatus::Ok => {
             let dense = reference.ok_or(format!("ok, but a mechanism in the dense solve ({message})"))?;
             dense.agrees_statically(&spec, &metrics, STATIC_AGREEMENT)?;
-            promised(c, &spec, &metrics, &dense)
+            promised(c, &spec, &metrics, dense)
         }
         other => Err(format!("status {other:?}: {message}")),
     }
