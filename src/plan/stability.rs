@@ -453,6 +453,11 @@ impl StepProbe for Amplitudes {
             self.late = self.late.max(amplitude);
         }
     }
+
+    /// An escaped trial is unbounded whatever follows: its run ends there.
+    fn seen_enough(&self) -> bool {
+        self.escaped
+    }
 }
 
 /// Runs the integrator at ω dt (or ν dt) = `h` on the test equation (unit mass on a unit spring

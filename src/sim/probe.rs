@@ -10,6 +10,12 @@ pub trait StepProbe {
     /// Called with the state at a contact switch inside a step, at `state.time`, where the step
     /// was split (`integrate::take_step`); for probes that time switches, nothing otherwise.
     fn observe_switch(&mut self, _state: &State) {}
+    /// Whether the probe has seen all it needs: the run then ends after this step (a stability
+    /// trial once its amplitude has escaped). Runs a user asked for never end this way.
+    #[inline(always)]
+    fn seen_enough(&self) -> bool {
+        false
+    }
 }
 
 impl StepProbe for () {
@@ -29,6 +35,11 @@ impl<P: StepProbe> StepProbe for Option<P> {
         if let Some(probe) = self {
             probe.observe_switch(state);
         }
+    }
+
+    #[inline(always)]
+    fn seen_enough(&self) -> bool {
+        self.as_ref().is_some_and(P::seen_enough)
     }
 }
 
@@ -170,6 +181,11 @@ impl<A: StepProbe, B: StepProbe> StepProbe for (A, B) {
     fn observe_switch(&mut self, state: &State) {
         self.0.observe_switch(state);
         self.1.observe_switch(state);
+    }
+
+    #[inline(always)]
+    fn seen_enough(&self) -> bool {
+        self.0.seen_enough() || self.1.seen_enough()
     }
 }
 

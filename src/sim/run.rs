@@ -357,7 +357,7 @@ pub fn simulate<F: ForceField, I: Integrator, P: StepProbe>(
             trace.message = format!("{reason} at t = {:.6e} s (step {n})", state.time);
             break;
         }
-        if relaxed {
+        if relaxed || probe.seen_enough() {
             break;
         }
         if let Some(deadline) = sampling.deadline
