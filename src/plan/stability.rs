@@ -268,19 +268,28 @@ pub fn modes(scene: &Scene, extension: f64) -> Modes {
         springs.push((i, j, k_t, nx, ny));
         dashpots.push((i, j, scene.gamma, nx, ny));
     });
-    let (lambda, mode) = largest_eigenvalue(&springs, &axes, true);
-    let mode = mode.expect("asked for");
-    let (wx, wy) = mode.split_at(p.len());
+    // Without dashpots or background damping the fastest mode's damping is 0 whatever the mode,
+    // so its eigenvector (a second pass of the Lanczos recurrence) is not made.
+    let damped = scene.gamma > 0.0 || scene.background_gamma > 0.0;
+    let (lambda, mode) = largest_eigenvalue(&springs, &axes, damped);
     let omega_max = lambda.sqrt();
+    let damping = mode.map_or(0.0, |mode| mode_damping(scene, &axes, &dashpots, &mode));
+    let bond_rate = if scene.gamma > 0.0 { largest_eigenvalue(&dashpots, &axes, false).0 } else { 0.0 };
+    Modes::new(omega_max, damping, bond_rate + background_rate(scene, &axes))
+}
+
+/// uᵀCu / uᵀMu of the unit mass-weighted mode `mode` (1/s): its bonds' dashpots and the
+/// background damping.
+fn mode_damping(scene: &Scene, axes: &FreeAxes, dashpots: &Springs, mode: &[f64]) -> f64 {
+    let (wx, wy) = mode.split_at(scene.particles.len());
     let mut damping = 0.0;
-    for &(i, j, gamma, nx, ny) in &dashpots {
+    for &(i, j, gamma, nx, ny) in dashpots {
         let ((uxi, uyi), (uxj, uyj)) = (axes.displacement(wx, wy, i), axes.displacement(wx, wy, j));
         damping += gamma * (nx * (uxi - uxj) + ny * (uyi - uyj)).powi(2);
     }
-    damping += scene.background_gamma
-        * (0..p.len()).map(|i| axes.displacement(wx, wy, i)).map(|(ux, uy)| ux * ux + uy * uy).sum::<f64>();
-    let bond_rate = if scene.gamma > 0.0 { largest_eigenvalue(&dashpots, &axes, false).0 } else { 0.0 };
-    Modes::new(omega_max, damping, bond_rate + background_rate(scene, &axes))
+    damping
+        + scene.background_gamma
+            * (0..wx.len()).map(|i| axes.displacement(wx, wy, i)).map(|(ux, uy)| ux * ux + uy * uy).sum::<f64>()
 }
 
 impl Modes {
