@@ -4,7 +4,7 @@ use mdsolids::plan::stability::{
     Estimates, RUN_GROWTH, TEST_PARTICLE, TestEquation, TestField, estimate, gear_spectral_radius, modes, network_key,
     node_bound, test_problem,
 };
-use mdsolids::sim::{Gear, IntegratorKind};
+use mdsolids::sim::{Gear, IntegratorKind, Sampling, State, StepProbe, simulate_with};
 use mdsolids::spec::{LANCZOS_BONDS, RunSpec};
 use mdsolids::study::build_scene;
 
@@ -186,4 +186,29 @@ fn lanczos_finds_omega_max_of_chains_and_square_lattices_to_1e_9() {
         let relative = omega_max / expected - 1.0;
         assert!(relative.abs() < 1e-9, "{body}: ω_max {omega_max}, closed form {expected}, relative {relative:e}");
     }
+}
+
+/// A probe that has seen enough ends its run after that step (a stability trial once its
+/// amplitude has escaped); without one the run takes every step it was given.
+#[test]
+fn a_probe_that_has_seen_enough_ends_the_run() {
+    /// Counts the states it is shown: the start, then one per step.
+    struct Count(u64);
+    impl StepProbe for Count {
+        fn observe(&mut self, _state: &State) {
+            self.0 += 1;
+        }
+        fn seen_enough(&self) -> bool {
+            self.0 > 10
+        }
+    }
+    let steps_run = |probe: Option<Count>| {
+        let (mut state, field) = test_problem(TestEquation::Oscillator { zeta: 0.0 });
+        let TestField::Undamped(mut field) = field else { panic!("the undamped test problem has no dashpot") };
+        let sampling = Sampling::new(0.1, 1000);
+        simulate_with(IntegratorKind::VelocityVerlet, &mut state, &mut field, &sampling, &mut { probe });
+        state.steps
+    };
+    assert_eq!(steps_run(Some(Count(0))), 10, "the start and ten steps make eleven states seen");
+    assert_eq!(steps_run(None), 1000);
 }
