@@ -7,17 +7,15 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
+use crate::common::repo;
+
 /// Most lines the README may have: a front page, the guide beside it.
 const README_LINES: usize = 250;
 
-fn root() -> PathBuf {
-    crate::common::repo().to_path_buf()
-}
-
 /// README.md and every `docs/*.md`.
 fn pages() -> Vec<PathBuf> {
-    let mut pages = vec![root().join("README.md")];
-    let mut docs: Vec<PathBuf> = std::fs::read_dir(root().join("docs"))
+    let mut pages = vec![repo().join("README.md")];
+    let mut docs: Vec<PathBuf> = std::fs::read_dir(repo().join("docs"))
         .expect("docs/")
         .map(|entry| entry.unwrap().path())
         .filter(|path| path.extension().is_some_and(|e| e == "md"))
@@ -133,7 +131,7 @@ fn broken(page: &Path, target: &str) -> Option<String> {
 
 #[test]
 fn the_readme_is_a_front_page() {
-    let text = read(&root().join("README.md"));
+    let text = read(&repo().join("README.md"));
     let lines = text.lines().count();
     assert!(lines <= README_LINES, "README.md has {lines} lines; at most {README_LINES} (move the rest into docs/)");
 }
@@ -194,7 +192,7 @@ fn documented_fields(text: &str) -> BTreeSet<String> {
 
 #[test]
 fn the_field_reference_lists_every_field_the_parser_accepts() {
-    let page = root().join("docs/campaigns.md");
+    let page = repo().join("docs/campaigns.md");
     let documented = documented_fields(&read(&page));
     let accepted: BTreeSet<String> =
         mdsolids::spec::scene_fields().into_iter().chain(mdsolids::spec::campaign_fields()).collect();

@@ -12,9 +12,15 @@ use std::process::Command;
 use std::sync::mpsc;
 use std::time::Duration;
 
-const BAD: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/campaigns/bad");
-// The shipped campaigns, beside this package (tests/Cargo.toml).
-const SHIPPED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../campaigns");
+/// The refused fixtures, `tests/campaigns/bad/`.
+fn bad() -> PathBuf {
+    crate::common::repo().join("tests/campaigns/bad")
+}
+
+/// The shipped campaigns' folder, `campaigns/`.
+fn shipped_folder() -> PathBuf {
+    crate::common::repo().join("campaigns")
+}
 
 /// A hang guard, not a speed test: every case here parses in well under a second.
 const HANG_GUARD: Duration = Duration::from_secs(10);
@@ -38,7 +44,7 @@ fn guarded<T: Send + 'static>(
 
 /// The fixtures: (campaign, expected-message file), sorted by name.
 fn fixtures() -> Vec<(PathBuf, PathBuf)> {
-    let mut found: Vec<(PathBuf, PathBuf)> = std::fs::read_dir(BAD)
+    let mut found: Vec<(PathBuf, PathBuf)> = std::fs::read_dir(bad())
         .expect("tests/campaigns/bad exists")
         .map(|entry| entry.expect("a readable directory entry").path())
         .filter(|path| path.extension().is_some_and(|e| e == "yaml"))
@@ -51,7 +57,7 @@ fn fixtures() -> Vec<(PathBuf, PathBuf)> {
 #[test]
 fn every_bad_fixture_is_refused_naming_the_file_and_the_field() {
     let fixtures = fixtures();
-    assert!(fixtures.len() >= 20, "only {} fixtures in {BAD}", fixtures.len());
+    assert!(fixtures.len() >= 20, "only {} fixtures in {}", fixtures.len(), bad().display());
     let mut failures = Vec::new();
     for (campaign, expected) in &fixtures {
         let file = campaign.display().to_string();
@@ -100,7 +106,7 @@ fn the_binary_writes_nothing_for_a_hostile_campaign() {
         for command in ["plan", "run"] {
             let work = tempfile::tempdir().unwrap();
             let reports = work.path().join("reports");
-            let campaign = Path::new(BAD).join(format!("{fixture}.yaml"));
+            let campaign = bad().join(format!("{fixture}.yaml"));
             let output = Command::new(crate::common::MDSOLIDS)
                 .current_dir(work.path())
                 .arg("--reports")
@@ -213,7 +219,7 @@ fn check_sane(campaign: &Campaign) -> Result<(), TestCaseError> {
 
 /// The shipped campaigns, small ones first.
 fn shipped() -> Vec<String> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(SHIPPED)
+    let mut files: Vec<PathBuf> = std::fs::read_dir(shipped_folder())
         .unwrap()
         .map(|entry| entry.unwrap().path())
         .filter(|path| path.extension().is_some_and(|e| e == "yaml"))
@@ -699,7 +705,7 @@ fn unbounded_inputs_and_options_are_refused_at_once() {
         );
         assert_eq!(stderr.matches("larger than").count(), 1, "said once: {stderr}");
     }
-    let smoke = Path::new(SHIPPED).join("smoke.yaml");
+    let smoke = shipped_folder().join("smoke.yaml");
     let smoke = smoke.to_str().unwrap();
     let (ok, _, stderr) = binary(work.path(), &["--reports", "r", "plan", smoke, "--shard", "0/100000000000"]);
     assert!(!ok && stderr.contains("at most 100000"), "{stderr}");
@@ -729,7 +735,7 @@ fn unbounded_inputs_and_options_are_refused_at_once() {
 
 /// The smoke campaign run into `work/r`; returns its store `work/r/smoke/runs`.
 fn stored_smoke(work: &Path) -> PathBuf {
-    let smoke = Path::new(SHIPPED).join("smoke.yaml");
+    let smoke = shipped_folder().join("smoke.yaml");
     let (ok, _, stderr) = binary(work, &["--reports", "r", "run", smoke.to_str().unwrap()]);
     assert!(ok, "{stderr}");
     work.join("r/smoke/runs")
@@ -769,7 +775,7 @@ fn store_files_that_are_not_regular_files_are_corrupt_at_once() {
     make_fifo(&fifo);
     std::fs::remove_file(&zero).unwrap();
     std::os::unix::fs::symlink("/dev/zero", &zero).unwrap();
-    let smoke = Path::new(SHIPPED).join("smoke.yaml");
+    let smoke = shipped_folder().join("smoke.yaml");
     let smoke = smoke.to_str().unwrap();
     // As the binary names them: under `--reports r`.
     let shown = |path: &Path| path.strip_prefix(work.path()).unwrap().display().to_string();
@@ -810,7 +816,7 @@ fn stored_text_reaches_the_terminal_escaped() {
     };
     edit(&stored_record(&runs, "chain-"), "build", "0.1.0+x\u{1b}]0;owned\u{7}\u{1b}[2J");
     edit(&stored_record(&runs, "pair-"), "status", "\u{1b}[31mok");
-    let smoke = Path::new(SHIPPED).join("smoke.yaml");
+    let smoke = shipped_folder().join("smoke.yaml");
     let smoke = smoke.to_str().unwrap();
     let (ok, stdout, stderr) = binary(work.path(), &["--reports", "r", "plan", smoke]);
     assert!(ok && stdout.contains("unknown variant `\\u{1b}[31mok`"), "{stdout}{stderr}");
