@@ -170,8 +170,9 @@ fn indexed_png(pixels: &[u8], size: (u32, u32)) -> anyhow::Result<Vec<u8>> {
     let rgba: Vec<u8> = pixels.chunks_exact(3).flat_map(|p| [p[0], p[1], p[2], 255]).collect();
     let quantiser = color_quant::NeuQuant::new(10, 256, &rgba);
     let mut nearest = std::collections::HashMap::new();
-    let indices: Vec<u8> =
-        rgba.chunks_exact(4).map(|p| *nearest.entry(p).or_insert_with(|| quantiser.index_of(p) as u8)).collect();
+    let indices = super::by_runs(pixels, |[r, g, b]| {
+        *nearest.entry([r, g, b]).or_insert_with(|| quantiser.index_of(&[r, g, b, 255]) as u8)
+    });
     let mut bytes = Vec::new();
     let mut encoder = png::Encoder::new(&mut bytes, size.0, size.1);
     encoder.set_color(png::ColorType::Indexed);

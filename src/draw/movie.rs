@@ -486,7 +486,7 @@ impl Palette {
 
     /// RGB `pixels` as palette indices.
     pub fn indices(&mut self, pixels: &[u8]) -> Vec<u8> {
-        pixels.chunks_exact(3).map(|p| self.index([p[0], p[1], p[2]])).collect()
+        super::by_runs(pixels, |rgb| self.index(rgb))
     }
 }
 
