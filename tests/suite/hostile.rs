@@ -237,7 +237,7 @@ enum Edit {
     Swap(f64, f64),
 }
 
-fn edit() -> impl Strategy<Value = Edit> {
+fn edit() -> BoxedStrategy<Edit> {
     let at = 0.0..1.0f64;
     prop_oneof![
         (at.clone(), 1..40usize).prop_map(|(at, n)| Edit::Delete(at, n)),
@@ -245,6 +245,7 @@ fn edit() -> impl Strategy<Value = Edit> {
         (at.clone(), 1..200usize).prop_map(|(at, n)| Edit::Duplicate(at, n)),
         (at.clone(), at).prop_map(|(a, b)| Edit::Swap(a, b)),
     ]
+    .boxed()
 }
 
 fn apply(text: &str, edits: &[Edit]) -> String {
@@ -378,7 +379,7 @@ const HOSTILE_VALUES: &[&str] = &[
 ];
 
 /// YAML syntax, campaign keys and hostile values, and random numbers and names.
-fn token() -> impl Strategy<Value = String> {
+fn token() -> BoxedStrategy<String> {
     let fixed = [YAML_SYNTAX, CAMPAIGN_KEYS, HOSTILE_VALUES].concat();
     prop_oneof![
         proptest::sample::select(fixed).prop_map(str::to_string),
@@ -386,6 +387,7 @@ fn token() -> impl Strategy<Value = String> {
         any::<i64>().prop_map(|x| x.to_string()),
         "[a-z_.]{1,12}",
     ]
+    .boxed()
 }
 
 proptest! {
@@ -431,7 +433,7 @@ proptest! {
 
 /// A number as YAML text: usually in the plausible range `good`, sometimes of any sign and size,
 /// sometimes hostile.
-fn number(good: std::ops::Range<f64>) -> impl Strategy<Value = String> {
+fn number(good: std::ops::Range<f64>) -> BoxedStrategy<String> {
     prop_oneof![
         12 => good.prop_map(|x| format!("{x}")),
         1 => proptest::sample::select(vec![
@@ -442,10 +444,11 @@ fn number(good: std::ops::Range<f64>) -> impl Strategy<Value = String> {
         .prop_map(str::to_string),
         1 => any::<f64>().prop_map(|x| format!("{x:e}")),
     ]
+    .boxed()
 }
 
 /// A count in `good` (small, so the stability check stays quick) or a hostile one.
-fn count(good: std::ops::Range<u32>) -> impl Strategy<Value = String> {
+fn count(good: std::ops::Range<u32>) -> BoxedStrategy<String> {
     prop_oneof![
         12 => good.prop_map(|n| n.to_string()),
         1 => proptest::sample::select(vec![
@@ -453,19 +456,21 @@ fn count(good: std::ops::Range<u32>) -> impl Strategy<Value = String> {
         ])
         .prop_map(str::to_string),
     ]
+    .boxed()
 }
 
 /// An enum value: usually one of `words`, sometimes a wrong one.
-fn word(words: &'static [&'static str]) -> impl Strategy<Value = String> {
+fn word(words: &'static [&'static str]) -> BoxedStrategy<String> {
     prop_oneof![
         12 => proptest::sample::select(words).prop_map(str::to_string),
         1 => proptest::sample::select(vec!["", "PAIR", "0", "[pair]", "{a: 1}", "null", "../x"]).prop_map(str::to_string),
     ]
+    .boxed()
 }
 
 /// `key: value, ` with probability `p`, else nothing.
-fn field(p: f64, key: &'static str, value: impl Strategy<Value = String>) -> impl Strategy<Value = String> {
-    proptest::option::weighted(p, value).prop_map(move |v| v.map_or(String::new(), |v| format!("{key}: {v}, ")))
+fn field(p: f64, key: &'static str, value: impl Strategy<Value = String> + 'static) -> BoxedStrategy<String> {
+    proptest::option::weighted(p, value).prop_map(move |v| v.map_or(String::new(), |v| format!("{key}: {v}, "))).boxed()
 }
 
 /// `{a, b, ...}` from fields that each end in ", ".
@@ -474,14 +479,15 @@ fn flow_map(fields: &[String]) -> String {
 }
 
 /// The fields every kind of scene has: material, time, damping, geometry and a small grid.
-fn common_fields() -> impl Strategy<Value = String> {
+fn common_fields() -> BoxedStrategy<String> {
     let material = (
         field(0.3, "mass", number(0.1..10.0)),
         field(0.3, "k", number(0.1..10.0)),
         field(0.1, "law", word(&["linear", "power", "hertz"])),
         field(0.1, "beta", number(1.0..3.0)),
     )
-        .prop_map(|(a, b, c, d)| flow_map(&[a, b, c, d]));
+        .prop_map(|(a, b, c, d)| flow_map(&[a, b, c, d]))
+        .boxed();
     let time = (
         field(0.2, "integrator", word(&["position-verlet", "velocity-verlet", "rk4", "gear"])),
         field(0.3, "dt_per_tc", number(20.0..100.0)),
@@ -490,15 +496,18 @@ fn common_fields() -> impl Strategy<Value = String> {
         field(0.3, "duration_tc", number(0.5..20.0)),
         field(0.2, "samples", count(2..500)),
     )
-        .prop_map(|(a, b, c, d, e, f)| flow_map(&[a, b, c, d, e, f]));
+        .prop_map(|(a, b, c, d, e, f)| flow_map(&[a, b, c, d, e, f]))
+        .boxed();
     let damping = (
         field(0.2, "restitution", number(0.05..1.0)),
         field(0.1, "gamma", number(0.0..0.5)),
         field(0.1, "background", number(0.0..0.5)),
     )
-        .prop_map(|(a, b, c)| flow_map(&[a, b, c]));
+        .prop_map(|(a, b, c)| flow_map(&[a, b, c]))
+        .boxed();
     let geometry = (field(0.3, "spacing", number(0.1..10.0)), field(0.2, "depth", number(0.1..10.0)))
-        .prop_map(|(a, b)| flow_map(&[a, b]));
+        .prop_map(|(a, b)| flow_map(&[a, b]))
+        .boxed();
     let grid = proptest::collection::vec(
         (
             proptest::sample::select(vec!["v0", "material.mass", "material.k", "time.dt_per_tc", "bogus"]),
@@ -510,7 +519,8 @@ fn common_fields() -> impl Strategy<Value = String> {
         let axes: Vec<String> =
             axes.iter().map(|(path, values)| format!("{path}: [{}], ", values.join(", "))).collect();
         flow_map(&axes)
-    });
+    })
+    .boxed();
     (
         field(0.5, "material", material),
         field(0.5, "time", time),
@@ -519,20 +529,23 @@ fn common_fields() -> impl Strategy<Value = String> {
         field(0.2, "grid", grid),
     )
         .prop_map(|(a, b, c, d, e)| [a, b, c, d, e].concat())
+        .boxed()
 }
 
 /// A scene of a random kind with mostly plausible and sometimes hostile fields; sometimes a
 /// field of another kind.
-fn scene() -> impl Strategy<Value = String> {
+fn scene() -> BoxedStrategy<String> {
     let pair = (field(0.95, "v0", number(0.1..5.0)), field(0.2, "material", Just("{contact: true}".to_string())))
-        .prop_map(|(v0, contact)| format!("kind: pair, {v0}{contact}"));
+        .prop_map(|(v0, contact)| format!("kind: pair, {v0}{contact}"))
+        .boxed();
     let chain = (
         field(0.95, "n", count(1..12)),
         field(0.95, "v0", number(0.1..5.0)),
         field(0.2, "node", word(&["first", "last", "centre", "3"])),
         field(0.1, "wave", Just("{}".to_string())),
     )
-        .prop_map(|(n, v0, node, wave)| format!("kind: chain, {n}{v0}{node}{wave}"));
+        .prop_map(|(n, v0, node, wave)| format!("kind: chain, {n}{v0}{node}{wave}"))
+        .boxed();
     let lattice = (
         field(0.9, "size", count(2..6)),
         field(0.1, "nx", count(2..6)),
@@ -541,16 +554,19 @@ fn scene() -> impl Strategy<Value = String> {
     )
         .prop_map(|(size, nx, supports, relax)| {
             format!("kind: lattice, lattice: {}, {supports}{relax}", flow_map(&[size, nx]))
-        });
+        })
+        .boxed();
     let stray =
         (word(&["pair", "chain", "lattice"]), field(0.5, "n", count(1..5)), field(0.5, "gap", number(0.0..1.0)))
-            .prop_map(|(kind, n, gap)| format!("kind: {kind}, {n}{gap}"));
+            .prop_map(|(kind, n, gap)| format!("kind: {kind}, {n}{gap}"))
+            .boxed();
     (prop_oneof![3 => pair, 3 => chain, 3 => lattice, 1 => stray], common_fields())
         .prop_map(|(own, common)| format!("{{{}}}", format!("{own}{common}").trim_end_matches(", ")))
+        .boxed()
 }
 
 /// A whole campaign of one or two random scenes, usually named well.
-fn campaign() -> impl Strategy<Value = String> {
+fn campaign() -> BoxedStrategy<String> {
     (
         prop_oneof![4 => Just("fuzz".to_string()), 1 => "[ -~]{0,12}".prop_map(|s| format!("{s:?}"))],
         proptest::collection::vec(scene(), 1..3),
@@ -560,6 +576,7 @@ fn campaign() -> impl Strategy<Value = String> {
                 scenes.iter().enumerate().map(|(i, s)| format!("  - {{name: s{i}, {}\n", &s[1..])).collect();
             format!("version: 1\nname: {name}\nscenes:\n{scenes}")
         })
+        .boxed()
 }
 
 proptest! {
