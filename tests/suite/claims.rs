@@ -125,7 +125,7 @@ fn the_random_networks_point_to_the_jamming_report_and_link_it_once_it_is_there(
     // item says how to make it; there, a render of the same campaign links it.
     let jamming = std::fs::read_to_string(crate::common::repo().join("campaigns/jamming.yaml")).unwrap();
     let name = mdsolids::spec::parse("jamming.yaml", &jamming).unwrap().name;
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let file = reports.path().join("rnd.yaml");
     std::fs::write(&file, random_block("[0.2]").replace("seed: [1, 2, 3, 4, 5, 6]", "seed: [1]")).unwrap();
     let pointer = |command: &str| {

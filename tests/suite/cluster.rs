@@ -29,7 +29,7 @@ fn results_without_timing(dir: &Path) -> Vec<Vec<String>> {
 
 #[test]
 fn four_shards_and_a_report_give_the_table_of_one_run() {
-    let (whole, sharded) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+    let (whole, sharded) = (crate::common::scratch(), crate::common::scratch());
     mdsolids_ok(whole.path(), &["run", "campaigns/smoke.yaml"]);
 
     let mut ran = 0;
@@ -60,7 +60,7 @@ fn four_shards_and_a_report_give_the_table_of_one_run() {
 
 #[test]
 fn report_merges_what_is_stored_and_lists_what_is_missing() {
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     mdsolids_ok(reports.path(), &["run", "campaigns/smoke.yaml", "--shard", "0/4"]);
     let stored = std::fs::read_dir(reports.path().join("smoke/runs"))
         .unwrap()
@@ -91,7 +91,7 @@ fn bad_shards_are_refused() {
 
 #[test]
 fn slurm_writes_an_array_and_an_afterany_report_job() {
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let out =
         text(&mdsolids_ok(reports.path(), &["slurm", "campaigns/smoke.yaml", "--tasks", "4", "--time", "10"]).stdout);
     assert!(out.contains("submit with: bash "), "{out}");

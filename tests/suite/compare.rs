@@ -102,7 +102,7 @@ fn run_campaigns(reports: &Path) {
 
 #[test]
 fn linear_against_power_law() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let reports = dir.path();
     run_campaigns(reports);
     let (a, b) = (reports.join("linear"), reports.join("power"));
@@ -216,7 +216,7 @@ fn opens_with_what_differs(report: &str, joined: &DataFrame) {
 
 #[test]
 fn refuses_what_is_not_a_report() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let reports = dir.path();
     let missing = reports.join("missing");
     let empty = reports.join("empty");
@@ -236,7 +236,7 @@ fn refuses_what_is_not_a_report() {
 /// `--out` may not be a campaign's folder (issue 14, item 13): it would overwrite its report.
 #[test]
 fn refuses_to_write_into_a_campaign_folder() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let reports = dir.path();
     run_campaigns(reports);
     let (a, b) = (reports.join("linear"), reports.join("power"));
@@ -263,7 +263,7 @@ fn damped_pair(name: &str, law: &str) -> String {
 /// pair, whose γ comes from the same linear formula, does not (r ≈ 0.3 measured in the Hertz twin).
 #[test]
 fn the_physics_comes_first_and_a_missed_restitution_is_said() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let reports = dir.path();
     for (name, law) in [("lin", "linear"), ("hertz", "hertz")] {
         let file = reports.join(format!("{name}.yaml"));

@@ -195,7 +195,7 @@ impl Lcg {
 
 #[test]
 fn a_campaign_killed_at_random_moments_reruns_to_the_uninterrupted_table() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let file = campaign_file(dir.path(), CAMPAIGN);
     let reference = dir.path().join("reference");
     let out = mdsolids(&reference, &["run", file.to_str().unwrap(), "-j", "2"]).output().unwrap();
@@ -251,7 +251,7 @@ fn a_campaign_killed_at_random_moments_reruns_to_the_uninterrupted_table() {
 
 #[test]
 fn two_processes_on_one_store_run_every_run_once() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let file = campaign_file(dir.path(), CAMPAIGN);
     let reports = dir.path().join("shared");
     let run = || mdsolids(&reports, &["run", file.to_str().unwrap(), "-j", "2"]).spawn().unwrap();
@@ -268,7 +268,7 @@ fn two_processes_on_one_store_run_every_run_once() {
 
 #[test]
 fn a_result_that_cannot_be_written_stops_the_campaign_and_keeps_the_stored_ones() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let reports = dir.path().join("reports");
     // First half of the grid, stored.
     let first = CAMPAIGN.replace("n: [40, 60, 80, 100, 120, 140]", "n: [40, 60, 80]");
@@ -328,7 +328,7 @@ fn runs_beyond_their_budget_end_with_status_budget_and_plan_warns() {
     assert!(r.message.contains("time budget") && r.steps > 0 && r.steps < runs[0].steps, "{}", r.message);
     assert!(started.elapsed() < Duration::from_secs(30));
     // The plan warns before anything runs.
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let file = dir.path().join("b.yaml");
     std::fs::write(
         &file,
@@ -366,7 +366,7 @@ fn wait_at_most(mut child: std::process::Child, limit: Duration, what: &str) -> 
 fn a_run_locked_by_another_process_is_left_for_last_and_given_up_after_the_stated_time() {
     // Another process (here: this test) holds the lock of the longest run, as a suspended
     // `mdsolids run` would. With one thread, the longest run comes first.
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let file = campaign_file(dir.path(), CAMPAIGN);
     let reports = dir.path().join("reports");
     let campaign = mdsolids::plan::parse("faults.yaml", CAMPAIGN).unwrap().campaign;
@@ -391,7 +391,7 @@ fn a_report_racing_a_run_never_publishes_less_than_is_stored() {
     // Half the runs are stored (one shard) when `report` starts; while it waits for the
     // publish lock (held here, as by a `run` publishing) the other half is stored. It must
     // publish every run: it reads the store once it holds the lock.
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let file = campaign_file(dir.path(), CAMPAIGN);
     let reports = dir.path().join("reports");
     let shard = |i: &str| mdsolids(&reports, &["run", file.to_str().unwrap(), "--shard", i]).output().unwrap();
@@ -413,7 +413,7 @@ fn a_report_racing_a_run_never_publishes_less_than_is_stored() {
 
 #[test]
 fn ctrl_c_ends_with_how_many_runs_are_stored_and_how_to_continue() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let file = campaign_file(dir.path(), CAMPAIGN);
     let reports = dir.path().join("reports");
     let child = mdsolids(&reports, &["run", file.to_str().unwrap(), "-j", "1"]).spawn().unwrap();
@@ -436,7 +436,7 @@ fn a_full_disk_while_a_movie_is_encoded_names_the_file_and_leaves_no_partial_fil
     // full disk fails them with ENOSPC: 20 blocks (10 KB in dash, 20 KB in bash) is more than
     // the run's record and less than the movie (20 large frames, over 30 KB even with each later
     // frame stored as the box that changed).
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let movie = CAMPAIGN
         .split("  - name: film")
         .nth(1)
@@ -530,7 +530,7 @@ fn the_memory_estimate_covers_the_peak_of_every_kind_of_run() {
                 .into(),
         ),
     ];
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let mut program = 0.0;
     for (index, (what, scene)) in cases.iter().enumerate() {
         let yaml = format!("version: 1\nname: m{index}\nscenes:\n{scene}");

@@ -104,7 +104,7 @@ fn boolean_words_are_names_only_when_quoted() {
 fn the_binary_writes_nothing_for_a_hostile_campaign() {
     for fixture in ["name-parent", "name-absolute", "scene-name-parent", "enormous-grid"] {
         for command in ["plan", "run"] {
-            let work = tempfile::tempdir().unwrap();
+            let work = crate::common::scratch();
             let reports = work.path().join("reports");
             let campaign = bad().join(format!("{fixture}.yaml"));
             let output = Command::new(crate::common::MDSOLIDS)
@@ -665,7 +665,7 @@ fn table_rows_after(html: &str, heading: &str) -> Vec<usize> {
 /// `|` and line break split its table row.
 #[test]
 fn hostile_text_stays_text_in_the_report() {
-    let work = tempfile::tempdir().unwrap();
+    let work = crate::common::scratch();
     let yaml = "version: 1\nname: hostile\n\
                 title: \"T <script>alert(1)</script> | *x* [l](javascript:y)\"\n\
                 description: \"<script>alert(2)</script>\\n\\n- not a list | cell\\n# not a heading\\n\\n<img src=x onerror=alert(3)>\"\n\
@@ -711,7 +711,7 @@ fn hostile_text_stays_text_in_the_report() {
 /// of 10^11 (an 800 GB allocation), 100 000 threads and a bench lattice of 10^12 nodes.
 #[test]
 fn unbounded_inputs_and_options_are_refused_at_once() {
-    let work = tempfile::tempdir().unwrap();
+    let work = crate::common::scratch();
     let big = work.path().join("big.yaml");
     std::fs::write(&big, format!("version: 1\n#{}\n", "x".repeat(2 << 20))).unwrap();
     for file in ["/dev/zero", big.to_str().unwrap()] {
@@ -779,7 +779,7 @@ fn series_table_of(record: &Path) -> PathBuf {
 /// simulates it again and stores regular files in its place; the owner file is refused by name.
 #[test]
 fn store_files_that_are_not_regular_files_are_corrupt_at_once() {
-    let work = tempfile::tempdir().unwrap();
+    let work = crate::common::scratch();
     let runs = stored_smoke(work.path());
     let fifo = stored_record(&runs, "pair-");
     let chain = stored_record(&runs, "chain-");
@@ -824,7 +824,7 @@ fn store_files_that_are_not_regular_files_are_corrupt_at_once() {
 /// with their control characters escaped.
 #[test]
 fn stored_text_reaches_the_terminal_escaped() {
-    let work = tempfile::tempdir().unwrap();
+    let work = crate::common::scratch();
     let runs = stored_smoke(work.path());
     let edit = |record: &Path, key: &str, value: &str| {
         let mut json: serde_json::Value = serde_json::from_slice(&std::fs::read(record).unwrap()).unwrap();

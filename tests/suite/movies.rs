@@ -41,7 +41,7 @@ fn frames(path: &std::path::Path) -> (u16, Vec<Vec<u8>>) {
 
 #[test]
 fn movie_has_its_frames_and_colours_follow_the_speed() {
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let planned = plan::parse("film.yaml", CAMPAIGN).unwrap();
     let campaign = &planned.campaign;
     let layout = Layout::new(reports.path(), &campaign.name);
@@ -119,7 +119,7 @@ fn the_movie_prints_as_its_filmstrip(layout: &Layout, link: &str, frames: &[Vec<
 
 #[test]
 fn a_scene_can_show_its_runs_side_by_side() {
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let yaml = "version: 1\nname: pair\nscenes:\n  - name: kick\n    kind: lattice\n    lattice: {size: 5}\n    \
                 supports: free\n    impulse: {velocity: [0.0, -0.01]}\n    movie: {frames: 5, width: 300, height: 200, side_by_side: true}\n    \
                 time: {integrator: velocity-verlet}\n    grid:\n      lattice.diagonals: [none, both]\n";
@@ -145,7 +145,7 @@ fn a_scene_can_show_its_runs_side_by_side() {
 fn one_run_shown_side_by_side_is_a_movie_of_one_panel() {
     // A scene of one run that asks to be shown side by side gets its one-panel movie, not
     // nothing: the rule "a run shown side by side has no movie of its own" holds for any count.
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let planned = plan::parse("pair.yaml", &side_by_side_campaign("both")).unwrap();
     let layout = Layout::new(reports.path(), &planned.campaign.name);
     let done = run_campaign(&planned, &layout, Some(1)).unwrap();
@@ -160,7 +160,7 @@ fn one_run_shown_side_by_side_is_a_movie_of_one_panel() {
 fn bonds_can_be_coloured_by_strain() {
     // A free 6 × 6 lattice whose top-right node is kicked down and to the left: the bonds it
     // pushes are compressed (blue), those it pulls stretched (red).
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let yaml = |strain: bool| {
         format!(
             "version: 1\nname: strain{strain}\nscenes:\n  - name: kick\n    kind: lattice\n    lattice: {{size: 6}}\n    \
@@ -211,7 +211,7 @@ fn movies_lost_after_a_kill_are_drawn_again_the_same() {
     // A kill can land after the records are stored but before (or while) their movies are
     // written; the movies must come back, byte for byte (frames are re-simulated, and runs are
     // deterministic).
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let planned = plan::parse("pair.yaml", &side_by_side_campaign("none, both")).unwrap();
     let campaign = &planned.campaign;
     let layout = Layout::new(reports.path(), &campaign.name);
@@ -222,7 +222,7 @@ fn movies_lost_after_a_kill_are_drawn_again_the_same() {
     assert_eq!(again.simulated, 0, "the records are stored");
     assert_eq!(std::fs::read(layout.side_by_side_movie("kick")).unwrap(), both, "the side-by-side movie is back");
     // A run's own movie comes back the same way (a scene not shown side by side).
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let planned = plan::parse("own.yaml", &side_by_side_campaign("none").replace(", side_by_side: true", "")).unwrap();
     let layout = Layout::new(reports.path(), &planned.campaign.name);
     let done = run_campaign(&planned, &layout, Some(1)).unwrap();
@@ -235,7 +235,7 @@ fn movies_lost_after_a_kill_are_drawn_again_the_same() {
 
 #[test]
 fn a_side_by_side_movie_follows_the_runs_of_its_scene() {
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let run = |diagonals: &str| {
         let planned = plan::parse("pair.yaml", &side_by_side_campaign(diagonals)).unwrap();
         let campaign = &planned.campaign;
@@ -261,7 +261,7 @@ fn a_side_by_side_movie_follows_the_runs_of_its_scene() {
 fn movies_never_write_through_a_planted_link() {
     // Earlier versions wrote `runs/<id>.gif.tmp` (a fixed name) with `File::create`, which
     // follows a symbolic link planted there and overwrites its target.
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let planned = plan::parse("film.yaml", CAMPAIGN).unwrap();
     let campaign = &planned.campaign;
     let layout = Layout::new(reports.path(), &campaign.name);
@@ -277,7 +277,7 @@ fn movies_never_write_through_a_planted_link() {
 
 #[test]
 fn a_lock_file_that_is_a_symbolic_link_is_refused() {
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let planned = plan::parse("film.yaml", CAMPAIGN).unwrap();
     let campaign = &planned.campaign;
     let layout = Layout::new(reports.path(), &campaign.name);
@@ -298,7 +298,7 @@ fn a_movie_stops_at_its_runs_deadline() {
     let planned = plan::parse("film.yaml", CAMPAIGN).unwrap();
     let campaign = &planned.campaign;
     let mut movie = mdsolids::runner::execute(&campaign.runs[0]).movie.unwrap();
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let path = dir.path().join("late.gif");
     movie.deadline = std::time::Instant::now().checked_sub(std::time::Duration::from_millis(1));
     let error = mdsolids::draw::write_movie(&path, &movie).unwrap_err();
@@ -326,7 +326,7 @@ fn black_pixels(width: u16, frame: &[u8]) -> Vec<(usize, usize)> {
 
 #[test]
 fn walls_and_held_nodes_are_drawn() {
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     // The chain between its walls: black bars at both ends.
     let planned = plan::parse("film.yaml", CAMPAIGN).unwrap();
     let layout = Layout::new(reports.path(), &planned.campaign.name);
@@ -363,7 +363,7 @@ fn walls_and_held_nodes_are_drawn() {
 /// frame"), storing nothing and naming no scene, and every rerun stopped the same way.
 #[test]
 fn runs_with_no_time_draw_their_start_and_end() {
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let yaml = "version: 1\nname: still\nscenes:\n  - name: pair\n    kind: pair\n    v0: 1.0\n  - name: block\n    \
                 kind: lattice\n    lattice: {size: 5}\n    supports: clamped-bottom\n    load: {per_node: 0.01}\n    \
                 time: {integrator: velocity-verlet}\n    movie: {frames: 12, width: 300, height: 240}\n    grid:\n      \
@@ -400,7 +400,7 @@ fn a_packing_movie_draws_its_discs_to_scale_with_their_force_chains() {
     // lines' geometry and widths are checked against their formulas in the unit tests.
     let yaml = "version: 1\nname: chains\nscenes:\n  - name: jam\n    kind: packing\n    \
                 packing: {n: 64, fraction: 0.86}\n    movie: {frames: 2, width: 500, height: 470}\n";
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let file = reports.path().join("chains.yaml");
     std::fs::write(&file, yaml).unwrap();
     crate::common::mdsolids_ok(reports.path(), &["run", file.to_str().unwrap()]);

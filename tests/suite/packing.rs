@@ -244,7 +244,7 @@ fn numbers(frame: &DataFrame, name: &str) -> Vec<Option<f64>> {
 
 #[test]
 fn relaxed_packings_agree_on_their_moduli_and_are_recomputed_from_their_files() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let yaml = "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    packing: {n: 64, fraction: 0.86}\n    grid:\n      packing.fraction: [0.80, 0.88]\n      material.law: [linear, hertz]\n      seed: [1, 2]\n";
     let (frame, folder) = run_jam(dir.path(), yaml);
     let states: Vec<String> =
@@ -386,7 +386,7 @@ fn jamming_campaign(law: &str, fractions: &str) -> (DataFrame, String) {
 
 /// [`jamming_campaign`] with `more` fields of the packing (", field: value", ...).
 fn campaign_of(law: &str, more: &str, fractions: &str) -> (DataFrame, String) {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let yaml = format!(
         "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    packing: {{n: 64, fraction: 0.86{more}}}\n    \
          material: {{law: {law}}}\n    grid:\n      packing.fraction: {fractions}\n      seed: [1, 2]\n"
@@ -475,7 +475,7 @@ fn without_two_jammed_linear_packings_per_seed_the_item_states_no_phi_j() {
 /// shortest round trip). Not timed. A disc count outside 2..=10^7 is refused.
 #[test]
 fn packing_bench_reports_its_json_line() {
-    let work = tempfile::tempdir().unwrap();
+    let work = crate::common::scratch();
     let args = ["bench", "--workload", "packing", "--n", "200", "--steps", "20", "--threads", "1", "--repeat", "1"];
     let out = mdsolids_ok(work.path(), &[&args[..], &["--json"]].concat());
     let line: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON line");

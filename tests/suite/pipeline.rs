@@ -53,7 +53,7 @@ const SMOKE_COLUMNS: &[&str] = &[
 
 #[test]
 fn small_campaign_end_to_end() {
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let out = mdsolids(reports.path(), &["run", "campaigns/smoke.yaml"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     assert!(text(&out.stdout).contains("5 runs (5 simulated, 0 cached, 0 not ok)"), "{}", text(&out.stdout));
@@ -129,7 +129,7 @@ fn pages_are_whole(dir: &Path, report: &str) {
 fn a_reader_that_stops_early_ends_plan_quietly() {
     use std::io::{BufRead, BufReader};
     use std::os::unix::process::ExitStatusExt;
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let mut child = std::process::Command::new(crate::common::MDSOLIDS)
         .args(["--reports", reports.path().to_str().unwrap(), "plan", "campaigns/coursework.yaml"])
         .current_dir(crate::common::repo())
@@ -148,7 +148,7 @@ fn a_reader_that_stops_early_ends_plan_quietly() {
 
 #[test]
 fn plan_lists_runs_and_simulates_nothing() {
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let out = mdsolids(reports.path(), &["plan", "campaigns/coursework.yaml"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     let stdout = text(&out.stdout);
@@ -159,7 +159,7 @@ fn plan_lists_runs_and_simulates_nothing() {
 
 /// Writes `yaml` to a file named `name` and returns the error `plan` prints for it.
 fn refusal(name: &str, yaml: &str) -> String {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let file = dir.path().join(name);
     std::fs::write(&file, yaml).unwrap();
     let out = mdsolids(dir.path(), &["plan", file.to_str().unwrap()]);
@@ -218,7 +218,7 @@ fn stored_runs_with_awkward_numbers_are_found_again() {
                 material: {contact: true, law: hertz, mass: 0.785, k: 3.3e7}\n";
     let planned = mdsolids::plan::parse("awkward.yaml", yaml).unwrap();
     let campaign = &planned.campaign;
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let layout = mdsolids::output::Layout::new(reports.path(), &campaign.name);
     let first = mdsolids::runner::run_campaign(&planned, &layout, Some(1)).unwrap();
     assert_eq!(first.simulated, 2);
@@ -232,7 +232,7 @@ fn stored_runs_with_awkward_numbers_are_found_again() {
 /// second silently overwrote the first's tables and report and kept its figures.
 #[test]
 fn two_campaigns_with_one_name_do_not_share_a_folder() {
-    let work = tempfile::tempdir().unwrap();
+    let work = crate::common::scratch();
     let scene =
         |name: &str| format!("version: 1\nname: same\nscenes:\n  - name: {name}\n    kind: pair\n    v0: 1.0\n");
     let (first, second) = (work.path().join("first.yaml"), work.path().join("second.yaml"));
@@ -283,7 +283,7 @@ const STORE_CAMPAIGN: &str = "version: 1\nname: store\nscenes:\n  - name: kick\n
 /// Runs [`STORE_CAMPAIGN`] into a fresh reports directory: (that directory, the campaign file,
 /// the campaign file).
 fn stored_campaign() -> (tempfile::TempDir, PathBuf) {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let file = dir.path().join("store.yaml");
     std::fs::write(&file, STORE_CAMPAIGN).unwrap();
     let out = mdsolids(&dir.path().join("reports"), &["run", file.to_str().unwrap()]);
@@ -577,7 +577,7 @@ pinned_campaigns! {
 /// so they are rendered as current results, and the build stamp in the text is masked.
 #[test]
 fn pinned_report_of_frozen_records() {
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let runs = reports.path().join("report-snapshot").join("runs");
     std::fs::create_dir_all(&runs).unwrap();
     for entry in std::fs::read_dir(snapshot_dir().join("report").join("runs")).unwrap() {
@@ -626,7 +626,7 @@ fn four_digits(x: f64) -> String {
 fn report_sentences_follow_the_results() {
     let mut stated = Vec::new();
     for (mass, k) in [(1.0f64, 1.0f64), (2.0, 9.0)] {
-        let dir = tempfile::tempdir().unwrap();
+        let dir = crate::common::scratch();
         let file = dir.path().join("follow.yaml");
         let yaml = format!(
             "version: 1\nname: follow\ndefaults:\n  material: {{mass: {mass}, k: {k}}}\nscenes:\n  - name: pair\n    \
@@ -662,7 +662,7 @@ fn report_sentences_follow_the_results() {
 fn the_time_step_is_judged_only_over_a_sweep_and_empty_tables_are_left_out() {
     let mut lines = Vec::new();
     for sweep in ["[50]", "[10, 50, 200]"] {
-        let dir = tempfile::tempdir().unwrap();
+        let dir = crate::common::scratch();
         let file = dir.path().join("sweep.yaml");
         let yaml = format!(
             "version: 1\nname: sweep\nscenes:\n  - name: pair\n    kind: pair\n    v0: 1.0\n    grid:\n      \

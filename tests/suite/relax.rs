@@ -178,7 +178,7 @@ fn the_report_answers_time_to_a_modulus_with_each_method_against_its_bound() {
         "{}    grid:\n      lattice.size: [12, 24]\n  - name: minimisers\n    kind: lattice\n    material: {STEEL}\n    geometry: {{spacing: 0.1, depth: 0.01}}\n    lattice: {{k_diag_ratio: 0.5, diagonals: both}}\n    supports: clamped-bottom\n    load: {TENSILE}\n    grid:\n      relax.method: [fire, cg]\n      lattice.size: [12, 24]\n  - name: floppy\n    kind: lattice\n    material: {STEEL}\n    geometry: {{spacing: 0.1, depth: 0.01}}\n    lattice: {{size: 12, k_diag_ratio: 0.5, diagonals: both, cut_fraction: 0.45}}\n    supports: clamped-bottom\n    load: {TENSILE}\n    relax: {{method: fire}}\n",
         steel(12, "    damping: {background: critical}\n    relax: {tolerance: 1.0e-4}\n").replace("size: 12, ", "")
     );
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let file = dir.path().join("t.yaml");
     std::fs::write(&file, yaml).unwrap();
     let out = std::process::Command::new(crate::common::MDSOLIDS)

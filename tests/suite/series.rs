@@ -55,7 +55,7 @@ fn particles_of(folder: &Path, run_id: &str) -> PathBuf {
 /// asked for (`plan` says so), and switching back leaves no full table behind.
 #[test]
 fn full_series_keep_every_particle_and_switching_simulates_the_runs_again() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let (file, reports) = (dir.path().join("kept.yaml"), dir.path().join("reports"));
     let (file_arg, folder) = (file.to_str().unwrap(), reports.join("kept"));
     let write = |series: &str| std::fs::write(&file, CAMPAIGN.replace("SERIES", series)).unwrap();
@@ -171,7 +171,7 @@ fn the_python_snippets_of_the_data_page_run() {
         eprintln!("SKIPPED the_python_snippets_of_the_data_page_run: pandas, polars and pyarrow are not there: {why}");
         return;
     }
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     std::fs::write(dir.path().join("coursework.yaml"), DOCS_CAMPAIGN).unwrap();
     let campaign = dir.path().join("coursework.yaml");
     mdsolids_ok(&dir.path().join("reports"), &["run", campaign.to_str().unwrap()]);

@@ -17,12 +17,14 @@ use mdsolids::spec::RunSpec;
 
 use crate::common::mdsolids_ok;
 
-/// The store this process's tests share; made empty by its first caller. Folders that processes
-/// no longer running left behind are removed then.
+/// The store this process's tests share, under the scratch root (`common::scratch_root`); made
+/// empty by its first caller. Folders that processes no longer running left behind (~20 MB
+/// each, the last suite's among them) are removed then.
 fn store() -> &'static Path {
     static STORE: OnceLock<PathBuf> = OnceLock::new();
     STORE.get_or_init(|| {
-        let root = Path::new(env!("CARGO_TARGET_TMPDIR"));
+        let root = crate::common::scratch_root().join("mdsolids-shipped");
+        let root = root.as_path();
         let own = root.join(format!("shipped-{}", std::process::id()));
         for entry in std::fs::read_dir(root).into_iter().flatten().flatten() {
             let name = entry.file_name().to_string_lossy().into_owned();

@@ -166,7 +166,7 @@ fn probes_record_chosen_rows_and_columns_and_see_momentum_conserved() {
 #[test]
 fn probes_are_stored_as_parquet_and_drawn() {
     use mdsolids::output::Layout;
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let planned = mdsolids::plan::parse("probed.yaml", PROBED).unwrap();
     let campaign = &planned.campaign;
     let layout = Layout::new(reports.path(), &campaign.name);

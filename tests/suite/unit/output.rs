@@ -9,7 +9,7 @@ use std::time::Duration;
 
 #[test]
 fn planted_links_at_the_temporary_names_are_never_written_through() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let victim = dir.path().join("victim");
     std::fs::write(&victim, "precious").unwrap();
     // Links at the next names this process would use (other tests may take some first).
@@ -25,7 +25,7 @@ fn planted_links_at_the_temporary_names_are_never_written_through() {
 
 #[test]
 fn sweeping_removes_only_the_temporaries_of_dead_processes_of_this_host() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let layout = Layout::new(dir.path(), "c");
     let runs = layout.root.join("runs");
     std::fs::create_dir_all(&runs).unwrap();
@@ -56,7 +56,7 @@ fn sweeping_removes_only_the_temporaries_of_dead_processes_of_this_host() {
 /// the limit is refused after one byte past it; a regular file, or a link to one, is read.
 #[test]
 fn only_regular_files_are_read_and_never_past_the_limit() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let fifo = dir.path().join("record.json");
     let path = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
     assert_eq!(unsafe { libc::mkfifo(path.as_ptr(), 0o644) }, 0);

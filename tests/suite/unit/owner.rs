@@ -5,7 +5,7 @@ use mdsolids::owner::{MARKER, campaign_of, claim, identity};
 
 #[test]
 fn the_first_file_owns_the_folder_and_another_is_refused_unless_forced() {
-    let work = tempfile::tempdir().unwrap();
+    let work = crate::common::scratch();
     let (a, b) = (work.path().join("a.yaml"), work.path().join("b.yaml"));
     std::fs::write(&a, "a").unwrap();
     std::fs::write(&b, "b").unwrap();
@@ -28,7 +28,7 @@ fn the_first_file_owns_the_folder_and_another_is_refused_unless_forced() {
 
 #[test]
 fn a_garbled_marker_and_a_comparison_folder_are_refused() {
-    let work = tempfile::tempdir().unwrap();
+    let work = crate::common::scratch();
     let file = work.path().join("a.yaml");
     std::fs::write(&file, "a").unwrap();
     let layout = Layout::new(work.path(), "x");

@@ -3,7 +3,7 @@
 /// Math is written once: LaTeX in `report.md`, MathML in `index.html`.
 #[test]
 fn write_pages_keeps_math_as_latex_in_markdown_and_mathml_in_html() {
-    let dir = tempfile::tempdir().unwrap();
+    let dir = crate::common::scratch();
     let template =
         "# {{ title }}\n\nInline $t_c = {{ tc | tex }}\\,\\mathrm{s}$ and\n\n$$r = e^{-\\gamma t_c / 2m}$$\n";
     let mut context = tera::Context::new();

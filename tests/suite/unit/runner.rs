@@ -16,7 +16,7 @@ fn a_movie_that_cannot_be_drawn_is_recorded_on_its_run() {
     let mut record = execute(&planned.campaign.runs[0]);
     let mut movie = record.movie.take().unwrap();
     movie.frames.clear();
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let layout = Layout::new(reports.path(), "film");
     std::fs::create_dir_all(layout.movie_file(&record.run_id).parent().unwrap()).unwrap();
     assert!(record.has_movie());

@@ -18,7 +18,7 @@ fn job(reports: &Path) -> ArrayJob {
 
 #[test]
 fn the_scripts_run_one_shard_per_task_and_report_after_any_end() {
-    let reports = tempfile::tempdir().unwrap();
+    let reports = crate::common::scratch();
     let scripts = write_scripts(&job(reports.path())).unwrap();
     let array = std::fs::read_to_string(&scripts.array).unwrap();
     for line in ["#SBATCH --array=0-3\n", "#SBATCH --partition=short\n", "#SBATCH --cpus-per-task=2\n"] {
@@ -43,7 +43,7 @@ fn a_reports_directory_with_spaces_is_refused() {
 #[test]
 fn a_partition_or_time_that_is_not_one_is_refused_before_writing() {
     for (partition, time) in [(Some("short\nrm -rf ~"), None), (None, Some("30\nrm -rf ~")), (None, Some("1-"))] {
-        let reports = tempfile::tempdir().unwrap();
+        let reports = crate::common::scratch();
         let job = ArrayJob { partition: partition.map(Into::into), time: time.map(Into::into), ..job(reports.path()) };
         let error = write_scripts(&job).unwrap_err().to_string();
         assert!(error.contains("a Slurm"), "{error}");
