@@ -1,6 +1,6 @@
 //! The shipped campaigns (`campaigns/*.yaml`) as the tests use them, each simulated at most
 //! once per test process, into one store that every test of the process shares
-//! (`target/tmp/shipped-<pid>/`): a test that needs a shipped campaign's results or report asks
+//! (`mdsolids-shipped/shipped-<pid>/` under `common::scratch_root`): a test that needs a shipped campaign's results or report asks
 //! [`whole`] for its folder instead of running the campaign itself, so the pinned results and
 //! the tests of the report's sentences read one run (docs/architecture.md, "Tests").
 //!
