@@ -47,6 +47,22 @@ fn later_frames_hold_only_what_changed() {
     assert_eq!((same.width, same.height, same.buffer.as_ref()), (1, 1, [UNCHANGED].as_slice()));
 }
 
+/// A frame's indices are looked up once per run of equal pixels: a colour that comes back
+/// after another (A A B A), or that differs from the one before in one channel only, gets its
+/// own index again, the same as each pixel looked up alone.
+#[test]
+fn palette_indices_by_runs_are_those_of_each_pixel_alone() {
+    // Black, blue and green share their red channel, blue and cyan their red and blue.
+    let colours = [[0u8, 0, 0], [0, 0, 255], [0, 255, 0], [0, 255, 255], [255, 255, 255]];
+    let order = [0, 0, 1, 1, 0, 2, 3, 3, 2, 4, 0, 4, 1, 3, 0];
+    let pixels: Vec<u8> = order.iter().flat_map(|&c| colours[c]).collect();
+    let by_runs = Palette::default().indices(&pixels);
+    let alone: Vec<u8> = colours.iter().map(|c| Palette::default().indices(c)[0]).collect();
+    // Not vacuous: every colour has an index of its own in the palette.
+    assert_eq!(alone.iter().collect::<std::collections::BTreeSet<_>>().len(), colours.len(), "{alone:?}");
+    assert_eq!(by_runs, order.iter().map(|&c| alone[c]).collect::<Vec<_>>());
+}
+
 #[test]
 fn a_contact_line_grows_with_its_force_up_to_half_the_smallest_disc() {
     // 1 px at no force, 1 + (w − 1) f/f_max in between, w = half the smallest disc's pixels
