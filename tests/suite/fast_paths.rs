@@ -3,58 +3,9 @@
 //! steps (200 on the threaded path: `sampling`), for linear, Hertz, damped, contact,
 //! constrained and diluted networks.
 
-use mdsolids::model::{
-    Axes, BondDashpot, Bonds, Dashpot, ForceLaw, LawSpec, Linear, NoDashpot, Particles, PowerLaw, Spring, SquareLattice,
-};
-use mdsolids::sim::{ForceField, IntegratorKind, Network, Sampling, Scene, State, simulate_with};
-
-/// The reference: every bond in list order, safe indexing, no blocks, no threads.
-struct ReferenceLoop<L, D, const CONTACT: bool> {
-    spring: Spring<L, D, CONTACT>,
-    bonds: Bonds,
-    background_gamma: f64,
-}
-
-impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for ReferenceLoop<L, D, CONTACT> {
-    fn uses_velocity(&self) -> bool {
-        D::ACTIVE || self.background_gamma > 0.0
-    }
-
-    fn add_forces(&mut self, x: &[f64], y: &[f64], vx: &[f64], vy: &[f64], fx: &mut [f64], fy: &mut [f64]) -> f64 {
-        let b = &self.bonds;
-        let mut power = 0.0;
-        for n in 0..b.len() {
-            let (i, j) = (b.i[n], b.j[n]);
-            let f = self.spring.force_on_i(
-                b.stiffness[n],
-                b.rest[n],
-                x[i] - x[j] + b.shift_x[n],
-                y[i] - y[j],
-                vx[i] - vx[j],
-                vy[i] - vy[j],
-            );
-            fx[i] += f.fx;
-            fy[i] += f.fy;
-            fx[j] -= f.fx;
-            fy[j] -= f.fy;
-            power += f.dissipation;
-        }
-        for i in 0..fx.len() {
-            fx[i] -= self.background_gamma * vx[i];
-            fy[i] -= self.background_gamma * vy[i];
-            power += self.background_gamma * (vx[i] * vx[i] + vy[i] * vy[i]);
-        }
-        power
-    }
-
-    fn bond_energy(&self, k: f64, rest: f64, dx: f64, dy: f64) -> f64 {
-        self.spring.energy(k, rest, dx, dy)
-    }
-
-    fn for_each_bond(&self, visit: &mut dyn FnMut(usize, usize, f64, f64, f64)) {
-        self.bonds.for_each(visit);
-    }
-}
+use mdsolids::model::{Axes, LawSpec, Particles, SquareLattice};
+use mdsolids::sim::{IntegratorKind, Network, Sampling, Scene, State};
+use mdsolids_reference::Springs;
 
 /// A deterministic pseudo-random number in [−1, 1) from an index (no RNG crate needed).
 fn jitter(seed: u64) -> f64 {
@@ -112,19 +63,6 @@ fn sampling(nodes: usize) -> Sampling {
     Sampling::new(0.02, if nodes >= 10_000 { 200 } else { 1000 })
 }
 
-fn reference<L: ForceLaw, D: Dashpot, const C: bool>(
-    spring: Spring<L, D, C>,
-    particles: &Particles,
-    bonds: &Bonds,
-    background: f64,
-    integrator: IntegratorKind,
-) -> State {
-    let mut field = ReferenceLoop { spring, bonds: bonds.clone(), background_gamma: background };
-    let mut state = State::new(particles.clone());
-    simulate_with(integrator, &mut state, &mut field, &sampling(particles.len()), &mut ());
-    state
-}
-
 /// Largest position difference, relative to the largest position and to the largest
 /// displacement from the start.
 fn compare(fast: &State, slow: &State, start: &Particles) -> (f64, f64) {
@@ -141,9 +79,9 @@ fn compare(fast: &State, slow: &State, start: &Particles) -> (f64, f64) {
 
 /// One case of the table below, on the square lattice or, `staggered`, the triangular one.
 #[allow(clippy::too_many_arguments)] // one case of the table below
-fn check<L: ForceLaw, D: Dashpot, const C: bool>(
+fn check(
     name: &str,
-    spring: Spring<L, D, C>,
+    springs: Springs,
     law: LawSpec,
     gamma: f64,
     background: f64,
@@ -156,13 +94,14 @@ fn check<L: ForceLaw, D: Dashpot, const C: bool>(
     let bonds = if dilute > 0.0 { lattice.bonds().randomised(dilute, 0.0, 7, |_, _| false) } else { lattice.bonds() };
     let network = if dilute > 0.0 { Network::Bonds(bonds.clone()) } else { Network::Lattice(lattice) };
     let scene = Scene::new(particles.clone(), network, law, sampling(particles.len()))
-        .contact(C)
+        .contact(matches!(springs, Springs::PowerContact { .. }))
         .damping(gamma, background)
         .integrator(integrator);
     // Two threads, so that systems of 10⁴ particles and more take the threaded path.
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
     let fast = pool.install(|| scene.run().state);
-    let slow = reference(spring, &particles, &bonds, background, integrator);
+    // The reference, optimised in a package of its own (tests/reference).
+    let slow = mdsolids_reference::run(springs, &particles, &bonds, background, integrator, &sampling(particles.len()));
     // Only the order of the force sums differs, so the paths part by round-off: positions of
     // up to ~100 m carry ~1e-14 m each step, a random walk to ~1e-13 m over 1000 steps
     // (measured ≤ 2e-15 of the positions for velocity Verlet, 7e-14 for position Verlet, whose
@@ -193,7 +132,7 @@ const PERIODIC_LARGE: (usize, usize, bool, bool) = (120, 90, true, true);
 
 #[test]
 fn linear_lattice() {
-    let spring = Spring::<Linear, NoDashpot, false>::new(Linear, NoDashpot);
+    let spring = Springs::Linear;
     for size in [SMALL, LARGE] {
         check("linear", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, size, 0.0, false);
     }
@@ -212,10 +151,9 @@ fn linear_lattice() {
 
 #[test]
 fn hertz_lattice_bonded_and_contact() {
-    let law = PowerLaw { beta: 1.5 };
-    let bonded = Spring::<PowerLaw, NoDashpot, false>::new(law, NoDashpot);
+    let bonded = Springs::Power { beta: 1.5 };
     check("hertz", bonded, LawSpec::Power { beta: 1.5 }, 0.0, 0.0, IntegratorKind::VelocityVerlet, LARGE, 0.0, false);
-    let contact = Spring::<PowerLaw, NoDashpot, true>::new(law, NoDashpot);
+    let contact = Springs::PowerContact { beta: 1.5 };
     check(
         "hertz contact",
         contact,
@@ -231,7 +169,7 @@ fn hertz_lattice_bonded_and_contact() {
 
 #[test]
 fn damped_lattice() {
-    let spring = Spring::<Linear, BondDashpot, false>::new(Linear, BondDashpot { gamma: 0.05 });
+    let spring = Springs::LinearDamped { gamma: 0.05 };
     // SUPPORTED has several blocks of rows below the parallel threshold: one thread sums the
     // background power row by row and damps each row once its last bond is in.
     for size in [SMALL, SUPPORTED, LARGE] {
@@ -254,7 +192,7 @@ fn damped_lattice() {
 
 #[test]
 fn constrained_lattice() {
-    let spring = Spring::<Linear, NoDashpot, false>::new(Linear, NoDashpot);
+    let spring = Springs::Linear;
     check("supported", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, SUPPORTED, 0.0, false);
     check(
         "supported, position Verlet",
@@ -271,7 +209,7 @@ fn constrained_lattice() {
 
 #[test]
 fn periodic_lattice() {
-    let spring = Spring::<Linear, BondDashpot, false>::new(Linear, BondDashpot { gamma: 0.05 });
+    let spring = Springs::LinearDamped { gamma: 0.05 };
     for size in [PERIODIC_SMALL, PERIODIC_LARGE] {
         check("periodic", spring, LawSpec::Linear, 0.05, 0.0, IntegratorKind::VelocityVerlet, size, 0.0, false);
     }
@@ -294,8 +232,8 @@ fn periodic_lattice() {
 /// linear and damped, threaded (LARGE) and not.
 #[test]
 fn triangular_lattice_stencil() {
-    let spring = Spring::<Linear, NoDashpot, false>::new(Linear, NoDashpot);
-    let damped = Spring::<Linear, BondDashpot, false>::new(Linear, BondDashpot { gamma: 0.05 });
+    let spring = Springs::Linear;
+    let damped = Springs::LinearDamped { gamma: 0.05 };
     for size in [SMALL, LARGE, SUPPORTED] {
         check("triangular", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, size, 0.0, true);
         check(
@@ -327,11 +265,11 @@ fn triangular_lattice_stencil() {
 
 #[test]
 fn diluted_network_bond_list() {
-    let spring = Spring::<Linear, NoDashpot, false>::new(Linear, NoDashpot);
+    let spring = Springs::Linear;
     for size in [SMALL, LARGE] {
         check("diluted", spring, LawSpec::Linear, 0.0, 0.0, IntegratorKind::VelocityVerlet, size, 0.15, false);
     }
-    let damped = Spring::<PowerLaw, BondDashpot, false>::new(PowerLaw { beta: 1.5 }, BondDashpot { gamma: 0.05 });
+    let damped = Springs::PowerDamped { beta: 1.5, gamma: 0.05 };
     check(
         "diluted hertz damped",
         damped,
