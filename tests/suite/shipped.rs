@@ -24,9 +24,8 @@ fn store() -> &'static Path {
     static STORE: OnceLock<PathBuf> = OnceLock::new();
     STORE.get_or_init(|| {
         let root = crate::common::scratch_root().join("mdsolids-shipped");
-        let root = root.as_path();
         let own = root.join(format!("shipped-{}", std::process::id()));
-        for entry in std::fs::read_dir(root).into_iter().flatten().flatten() {
+        for entry in std::fs::read_dir(&root).into_iter().flatten().flatten() {
             let name = entry.file_name().to_string_lossy().into_owned();
             let left = name.strip_prefix("shipped-").is_some_and(|pid| !Path::new("/proc").join(pid).exists());
             if left || entry.path() == own {

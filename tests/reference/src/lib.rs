@@ -30,14 +30,14 @@ pub fn run(
     integrator: IntegratorKind,
     sampling: &Sampling,
 ) -> State {
-    let with = |gamma| BondDashpot { gamma };
+    let dashpot = |gamma| BondDashpot { gamma };
     let run = Run { particles, bonds, background, integrator, sampling };
     match springs {
         Springs::Linear => run.with(Spring::<_, _, false>::new(Linear, NoDashpot)),
-        Springs::LinearDamped { gamma } => run.with(Spring::<_, _, false>::new(Linear, with(gamma))),
+        Springs::LinearDamped { gamma } => run.with(Spring::<_, _, false>::new(Linear, dashpot(gamma))),
         Springs::Power { beta } => run.with(Spring::<_, _, false>::new(PowerLaw { beta }, NoDashpot)),
         Springs::PowerContact { beta } => run.with(Spring::<_, _, true>::new(PowerLaw { beta }, NoDashpot)),
-        Springs::PowerDamped { beta, gamma } => run.with(Spring::<_, _, false>::new(PowerLaw { beta }, with(gamma))),
+        Springs::PowerDamped { beta, gamma } => run.with(Spring::<_, _, false>::new(PowerLaw { beta }, dashpot(gamma))),
     }
 }
 

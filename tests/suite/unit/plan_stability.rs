@@ -189,26 +189,34 @@ fn lanczos_finds_omega_max_of_chains_and_square_lattices_to_1e_9() {
 }
 
 /// A probe that has seen enough ends its run after that step (a stability trial once its
-/// amplitude has escaped); without one the run takes every step it was given.
+/// amplitude has escaped); without one the run takes every step it was given, and a pair of
+/// probes ends it only once both have seen enough.
 #[test]
 fn a_probe_that_has_seen_enough_ends_the_run() {
-    /// Counts the states it is shown: the start, then one per step.
-    struct Count(u64);
+    /// Counts the states it is shown (the start, then one per step) and has seen enough after
+    /// `enough` of them.
+    struct Count {
+        seen: u64,
+        enough: u64,
+    }
     impl StepProbe for Count {
         fn observe(&mut self, _state: &State) {
-            self.0 += 1;
+            self.seen += 1;
         }
         fn seen_enough(&self) -> bool {
-            self.0 > 10
+            self.seen >= self.enough
         }
     }
-    let steps_run = |probe: Option<Count>| {
+    fn steps_run(mut probe: impl StepProbe) -> u64 {
         let (mut state, field) = test_problem(TestEquation::Oscillator { zeta: 0.0 });
         let TestField::Undamped(mut field) = field else { panic!("the undamped test problem has no dashpot") };
         let sampling = Sampling::new(0.1, 1000);
-        simulate_with(IntegratorKind::VelocityVerlet, &mut state, &mut field, &sampling, &mut { probe });
+        simulate_with(IntegratorKind::VelocityVerlet, &mut state, &mut field, &sampling, &mut probe);
         state.steps
-    };
-    assert_eq!(steps_run(Some(Count(0))), 10, "the start and ten steps make eleven states seen");
-    assert_eq!(steps_run(None), 1000);
+    }
+    let count = |enough| Some(Count { seen: 0, enough });
+    assert_eq!(steps_run(count(11)), 10, "the start and ten steps make eleven states seen");
+    assert_eq!(steps_run(None::<Count>), 1000);
+    assert_eq!(steps_run((count(11), count(51))), 50, "the pair runs until the later one has seen enough");
+    assert_eq!(steps_run((count(11), None::<Count>)), 1000, "a pair with a probe that never has");
 }
