@@ -14,7 +14,7 @@ mod solver;
 mod sparse;
 mod triplets;
 
-pub use self::solver::{Convergence, NEWTON_TOLERANCE, Solver};
+pub use self::solver::{Convergence, NEWTON_TOLERANCE, Solver, StiffnessPreconditioner};
 pub use self::sparse::Analyses;
 pub use self::triplets::{Entry, factor_and_solve};
 
@@ -80,6 +80,24 @@ pub struct ErrorBounds {
 struct Dofs {
     index: Vec<usize>,
     free: usize,
+}
+
+impl Dofs {
+    /// Node values (x and y of every node) from the free ones (held ones are zero).
+    fn expand(&self, u: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let nodes = self.index.len() / 2;
+        let at = |dof: usize| if self.index[dof] == usize::MAX { 0.0 } else { u[self.index[dof]] };
+        ((0..nodes).map(|i| at(2 * i)).collect(), (0..nodes).map(|i| at(2 * i + 1)).collect())
+    }
+
+    /// The free values of node values `vx`, `vy` (held ones dropped).
+    fn gather(&self, vx: &[f64], vy: &[f64]) -> Vec<f64> {
+        let mut free = vec![0.0; self.free];
+        for (dof, &row) in self.index.iter().enumerate().filter(|(_, row)| **row != usize::MAX) {
+            free[row] = if dof % 2 == 0 { vx[dof / 2] } else { vy[dof / 2] };
+        }
+        free
+    }
 }
 
 impl<'a> Truss<'a> {
@@ -204,12 +222,6 @@ impl<'a> Truss<'a> {
             }
         }
         force
-    }
-
-    /// Node displacements from the free ones (held ones are zero).
-    fn expand(&self, dofs: &Dofs, u: &[f64]) -> (Vec<f64>, Vec<f64>) {
-        let at = |dof: usize| if dofs.index[dof] == usize::MAX { 0.0 } else { u[dofs.index[dof]] };
-        ((0..self.x.len()).map(|i| at(2 * i)).collect(), (0..self.x.len()).map(|i| at(2 * i + 1)).collect())
     }
 
     /// The tangent stiffness over the free degrees of freedom, written into `stiffness` (its

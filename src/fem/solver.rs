@@ -4,13 +4,13 @@
 //! of the tangent only where they stall), and what bounds a relaxation's error (k_min by inverse
 //! iteration and ‖K_t⁻¹ g‖ on a fresh factor of the tangent, in the same memory). Pure: no I/O.
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use super::sparse::{Analysis, Factor, conjugate_gradients, dot};
 use super::{Dofs, ErrorBounds, StaticSolution, Truss, refined_solve};
 use crate::model::{ForceLaw, Linear};
-use crate::sim::euclidean_norm;
+use crate::sim::{Preconditioner, euclidean_norm};
 
 /// Residuals above this fraction of the load mean the equations have no solution.
 const MECHANISM_RESIDUAL: f64 = 1e-6;
@@ -93,7 +93,7 @@ impl<'a> Solver<'a> {
         let residual = solution.as_ref().map_or(f64::INFINITY, |u| self.relative_residual(u, &force));
         match solution {
             Some(u) if residual <= MECHANISM_RESIDUAL => {
-                let (dx, dy) = self.truss.expand(&self.dofs, &u);
+                let (dx, dy) = self.dofs.expand(&u);
                 for i in 0..ux.len() {
                     ux[i] += dx[i];
                     uy[i] += dy[i];
@@ -119,21 +119,56 @@ impl<'a> Solver<'a> {
         if deadline.is_some_and(|deadline| Instant::now() > deadline) {
             return Some(StaticSolution::PastDeadline);
         }
+        match self.on_linearised(law, linearised_at, |inner| inner.solve_linear()) {
+            StaticSolution::Displacements { ux, uy } => self.solve_nonlinear_from(law, ux, uy, deadline),
+            mechanism => Some(mechanism),
+        }
+    }
+
+    /// `work` done on the linearised network, every spring at its tangent stiffness at extension
+    /// `at` (m), on the same analysis and in this solver's factor memory, handed back after.
+    fn on_linearised<L: ForceLaw, R>(&mut self, law: &L, at: f64, work: impl FnOnce(&mut Solver<'_>) -> R) -> R {
         let mut linearised = self.truss.bonds.clone();
         for k in &mut linearised.stiffness {
-            *k = law.tangent_stiffness(*k, linearised_at);
+            *k = law.tangent_stiffness(*k, at);
         }
         let truss = Truss { bonds: &linearised, ..*self.truss };
         let mut inner = Solver::new(&truss, self.dofs.clone(), self.analysis.clone());
         inner.factor = self.factor.take();
-        let linear = inner.solve_linear();
+        let done = work(&mut inner);
         (self.factor, self.fresh) = (inner.factor.take(), false);
         self.convergence.factorisations += inner.convergence.factorisations;
         self.convergence.solves += inner.convergence.solves;
-        match linear {
-            StaticSolution::Displacements { ux, uy } => self.solve_nonlinear_from(law, ux, uy, deadline),
-            mechanism => Some(mechanism),
+        done
+    }
+
+    /// The factor of the linearised network's stiffness K₀ at its reference geometry (every
+    /// spring at its tangent stiffness at extension `linearised_at`, as
+    /// [`Solver::solve_nonlinear`] starts from), taken out of this solver as a minimiser's
+    /// metric: the factor at hand where it is K₀'s (`linear_springs` whose answer took one
+    /// factorisation, the linear one, its Newton corrections solved on it), else a fresh one.
+    /// The solver's next factorisation allocates anew. `None` when nothing is free or K₀ cannot
+    /// be factored.
+    pub fn take_preconditioner<L: ForceLaw>(
+        &mut self,
+        law: &L,
+        linearised_at: f64,
+        linear_springs: bool,
+    ) -> Option<StiffnessPreconditioner> {
+        let at_hand = linear_springs && self.convergence.factorisations == 1;
+        if !at_hand {
+            let factored = self.on_linearised(law, linearised_at, |inner| {
+                let (ux, uy) = inner.truss.imposed();
+                inner.assemble(&Linear, &ux, &uy);
+                inner.dofs.free > 0 && inner.factorise()
+            });
+            if !factored {
+                return None;
+            }
         }
+        let factor = self.factor.take().filter(Factor::is_factored)?;
+        self.fresh = false;
+        Some(StiffnessPreconditioner { dofs: self.dofs.clone(), factor: Mutex::new(factor) })
     }
 
     /// Newton–Raphson from displacements `(ux, uy)`: R(u) = f + Σ spring forces at x + u,
@@ -164,7 +199,7 @@ impl<'a> Solver<'a> {
                 return Some(StaticSolution::PastDeadline);
             }
             let step = self.solve(&residual, forcing(norm / load_norm))?;
-            let (dx, dy) = self.truss.expand(&self.dofs, &step);
+            let (dx, dy) = self.dofs.expand(&step);
             for i in 0..ux.len() {
                 ux[i] += dx[i];
                 uy[i] += dy[i];
@@ -185,7 +220,7 @@ impl<'a> Solver<'a> {
         self.assemble(law, ux, uy);
         let load = self.truss.load_vector(&self.dofs);
         let step = if self.dofs.free == 0 { Vec::new() } else { self.solve(&load, RESPONSE_TOLERANCE)? };
-        (self.relative_residual(&step, &load) <= MECHANISM_RESIDUAL).then(|| self.truss.expand(&self.dofs, &step))
+        (self.relative_residual(&step, &load) <= MECHANISM_RESIDUAL).then(|| self.dofs.expand(&step))
     }
 
     /// What bounds the error of a relaxation near the equilibrium `(ux, uy)`, from one fresh
@@ -328,5 +363,27 @@ impl<'a> Solver<'a> {
     /// ‖K u − f‖ / ‖f‖ with the stiffness as it stands.
     fn relative_residual(&self, u: &[f64], force: &[f64]) -> f64 {
         euclidean_norm(self.out_of_balance(u, force).iter()) / euclidean_norm(force.iter()).max(f64::MIN_POSITIVE)
+    }
+}
+
+/// A network's factored stiffness as a minimiser's metric ([`Solver::into_preconditioner`]):
+/// z = K₀⁻¹ f over the free axes, one pair of triangular solves each. The factor's work memory
+/// is one per preconditioner, hence the lock.
+pub struct StiffnessPreconditioner {
+    dofs: Dofs,
+    factor: Mutex<Factor>,
+}
+
+impl std::fmt::Debug for StiffnessPreconditioner {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("StiffnessPreconditioner").field("free", &self.dofs.free).finish_non_exhaustive()
+    }
+}
+
+impl Preconditioner for StiffnessPreconditioner {
+    fn solve(&self, fx: &[f64], fy: &[f64]) -> Option<(Vec<f64>, Vec<f64>)> {
+        let force = self.dofs.gather(fx, fy);
+        let z = self.factor.lock().ok()?.solve(&force)?;
+        Some(self.dofs.expand(&z))
     }
 }

@@ -212,6 +212,11 @@ impl Factor {
         factored.is_ok()
     }
 
+    /// Whether the last factorisation succeeded.
+    pub(super) fn is_factored(&self) -> bool {
+        self.scale != 0.0
+    }
+
     /// K⁻¹ `force` = ((K + εI)/s)⁻¹ (force/s); `None` before a factorisation or when the answer is
     /// not finite.
     pub(super) fn solve(&mut self, force: &[f64]) -> Option<Vec<f64>> {

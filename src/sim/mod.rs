@@ -7,7 +7,7 @@ pub use self::integrate::{
     ForestRuth, Gear, Integrator, IntegratorKind, PositionVerlet, RungeKutta4, SymplecticEuler, VelocityVerlet,
 };
 pub use self::probe::{ContactClock, Crossing, Frame, FrameProbe, StepProbe, WaveProbe, WaveRecord};
-pub use self::relax::{RelaxMethod, euclidean_norm};
+pub use self::relax::{Preconditioner, PreconditionerKind, RelaxMethod, SharedPreconditioner, euclidean_norm};
 pub use self::run::{
     ProbeTrace, Relaxation, RunStatus, STORED_NUMBERS, STORED_SAMPLES, Sampling, Trace, simulate, stored_samples,
 };

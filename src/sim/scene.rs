@@ -7,7 +7,7 @@ use super::integrate::{
     ForestRuth, Gear, IntegratorKind, PositionVerlet, RungeKutta4, SymplecticEuler, VelocityVerlet,
 };
 use super::probe::{ContactClock, Crossing, Frame, FrameProbe, StepProbe, WaveProbe, WaveRecord};
-use super::relax::{RelaxMethod, minimise};
+use super::relax::{RelaxMethod, SharedPreconditioner, minimise};
 use super::run::{Sampling, Trace, simulate};
 use super::state::{Drive, Load, State};
 use super::stencil::LatticeNetwork;
@@ -70,6 +70,8 @@ pub struct Scene {
     pub method: RelaxMethod,
     /// Positions (m, x and y) of the static solution, which `RelaxMethod::Static` sets.
     pub rest: Option<(Vec<f64>, Vec<f64>)>,
+    /// The stiffness FIRE moves in (`relax.preconditioner: stiffness`), from the static solver.
+    pub preconditioner: Option<SharedPreconditioner>,
     /// Bond `(i, j, rest)` whose δ = 0 crossings are timed, if any.
     pub contact_clock: Option<(usize, usize, f64)>,
     /// A wave watched from a source particle to receivers, if any: `(source, receivers,
@@ -116,6 +118,7 @@ impl Scene {
             sampling,
             method: RelaxMethod::Damped,
             rest: None,
+            preconditioner: None,
             contact_clock: None,
             wave: None,
             movie_frames: None,
@@ -179,7 +182,7 @@ impl Scene {
         // A minimiser has no time to spread frames over: its movie is the start and the state
         // it stopped at (relaxed, or where it gave up).
         let start = (self.movie_frames.is_some() && self.method != RelaxMethod::Damped).then(|| Frame::of(&state));
-        if let Some(trace) = minimise(self.method, self.rest.as_ref(), &mut state, &mut field, &self.sampling) {
+        if let Some(trace) = minimise(self.method, (self.rest.as_ref(), self.preconditioner.as_ref()), &mut state, &mut field, &self.sampling) {
             let frames = start.map(|start| vec![start, Frame::of(&state)]).unwrap_or_default();
             return Outcome { trace, crossings: Vec::new(), wave: None, frames, state };
         }

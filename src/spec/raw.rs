@@ -427,6 +427,9 @@ pub struct RawRelax {
     /// Tangent moduli (stiffness): after relaxing, raise the load (a chain's wall displacement)
     /// by this fraction, relax again and divide the increments (e.g. 0.01).
     pub tangent_step: Option<f64>,
+    /// Lattice, `fire`, control: force: `stiffness` moves FIRE in the metric of the network's
+    /// linear stiffness, factored once (default `none`: the masses).
+    pub preconditioner: Option<crate::sim::PreconditionerKind>,
 }
 
 /// `material:` section.

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::issue::{Issue, Num, missing, positive, require};
 use super::raw::{Background, Control, RawDamping, RawRelax, RawScene, RawWave};
-use crate::sim::RelaxMethod;
+use crate::sim::{PreconditionerKind, RelaxMethod};
 
 /// E_kin/E_pot below which a relaxation is finished, unless `relax.kinetic_ratio` says.
 const DEFAULT_KINETIC_RATIO: f64 = 1e-8;
@@ -41,6 +41,14 @@ pub struct RelaxSpec {
     /// (`damping.background: critical`).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub critical_background: bool,
+    /// Lattice, FIRE: the metric it moves in. Stored only when not `none`, so the run ids of
+    /// earlier runs stay.
+    #[serde(default, skip_serializing_if = "is_unpreconditioned")]
+    pub preconditioner: PreconditionerKind,
+}
+
+fn is_unpreconditioned(kind: &PreconditionerKind) -> bool {
+    *kind == PreconditionerKind::None
 }
 
 fn is_damped(method: &RelaxMethod) -> bool {
@@ -83,6 +91,8 @@ pub(super) fn resolve_relax(raw: &RawScene, control: Control, load_ramp_tc: Opti
     if method != RelaxMethod::Damped {
         check_untimed(method, control, load_ramp_tc.unwrap_or_default(), &damping)?;
     }
+    let preconditioner = relax.preconditioner.unwrap_or_default();
+    check_preconditioner(preconditioner, method, control)?;
     // A minimiser stops only on the displacement bound (or the residual force): it needs a
     // tolerance even where none is given.
     let tolerance = relax.tolerance.or(method.is_minimiser().then_some(DEFAULT_TOLERANCE));
@@ -93,7 +103,20 @@ pub(super) fn resolve_relax(raw: &RawScene, control: Control, load_ramp_tc: Opti
         method,
         tolerance,
         critical_background,
+        preconditioner,
     })
+}
+
+/// `relax.preconditioner`: FIRE's, on a network with a stiffness matrix held as the loads
+/// leave it (force control: under velocity control the drive moves the top row, which the
+/// matrix holds).
+fn check_preconditioner(kind: PreconditionerKind, method: RelaxMethod, control: Control) -> Result<(), Issue> {
+    if kind == PreconditionerKind::None {
+        return Ok(());
+    }
+    let field = "relax.preconditioner";
+    require(method == RelaxMethod::Fire, field, kind.name(), "is for relax.method: fire")?;
+    require(control == Control::Force, field, kind.name(), "is for control: force (a drive moves the held top row)")
 }
 
 /// `relax.residual_force`, a fraction, and `relax.tangent_step`, a small one under force

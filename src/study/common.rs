@@ -37,8 +37,9 @@ pub(super) fn scene(
         background_gamma: spec.gamma_background,
         integrator: spec.integrator,
         method: spec.relax().map(|r| r.method).unwrap_or_default(),
-        // Set after the static solve, for `relax.method: static`.
+        // Set after the static solve, for `relax.method: static` and `relax.preconditioner`.
         rest: None,
+        preconditioner: None,
         sampling: Sampling {
             dt: spec.dt,
             steps: spec.steps,

@@ -4,18 +4,21 @@
 
 use serde::{Deserialize, Serialize};
 
+use std::sync::Arc;
 use std::time::Instant;
 
 use super::columns::{Block, Column, Row, Slot};
 use super::common::{Stopped, relaxation, scene, sound_speed};
-use crate::fem::{Analyses, Solver, StaticSolution, Truss};
+use crate::fem::{Analyses, Solver, StaticSolution, StiffnessPreconditioner, Truss};
 use crate::measure::{
     LatticeShape, anisotropic_moduli, constrained_modulus_y, extension_error_allowed, homogeneity, lattice_constants,
     modulus_error_bound, network_constants, plane_wave_speeds, row_extension, row_extension_weights, shear_modulus,
     tensile_moduli,
 };
 use crate::model::{Axes, Bonds, Edges, ForceLaw, LatticeType, LawVisitor, Layout, Particles, SquareLattice};
-use crate::sim::{Drive, Load, Network, Outcome, ProbeTrace, Relaxation, Scene, Trace};
+use crate::sim::{
+    Drive, Load, Network, Outcome, PreconditionerKind, ProbeTrace, Relaxation, Scene, SharedPreconditioner, Trace,
+};
 use crate::spec::{
     Control, Diagonals, LatticeSpec, LoadCase, ProbeLine, RESIDUAL_OVER_ROUND_OFF, RunSpec, Supports, force_resolution,
     reference_extension, round_off_words,
@@ -309,15 +312,41 @@ pub(super) fn static_answer(
         prescribed: &prescribed,
     };
     let solver = truss.solver(analyses);
-    let (top_row_force, solution) =
-        scene.law.dispatch(StaticSolve { spec, l, truss: &truss, solver, deadline, metrics })?;
+    let ((top_row_force, solution), preconditioner) =
+        scene.law.dispatch(StaticSolve { spec, l, truss: &truss, solver, deadline, metrics, preconditioner: None })?;
     if spec.static_only() {
         scene.rest = solution.map(|(ux, uy)| {
             let p = &scene.particles;
             (p.x.iter().zip(&ux).map(|(x, u)| x + u).collect(), p.y.iter().zip(&uy).map(|(y, u)| y + u).collect())
         });
     }
+    if let Some(missing) = set_preconditioner(spec, scene, preconditioner) {
+        return Ok(Some(missing));
+    }
     Ok(relaxation_from_static(spec, l, scene, top_row_force, metrics))
+}
+
+/// Hands FIRE the metric it asks for (`relax.preconditioner: stiffness`); returns why the run
+/// cannot have it: a floppy network (k_min = 0), whose regularised factor would blow its
+/// zero-energy motions up by 1e12, or a factorisation that failed. The run is then not run,
+/// rather than quietly relaxed without it.
+fn set_preconditioner(spec: &RunSpec, scene: &mut Scene, made: Option<SharedPreconditioner>) -> Option<String> {
+    if !wants_preconditioner(spec) {
+        return None;
+    }
+    if made.is_none() {
+        return Some(
+            "relax.preconditioner: stiffness needs a network whose linear stiffness can be factored and whose \
+             softest stiffness k_min is > 0 (this one is floppy); give relax.preconditioner: none"
+                .into(),
+        );
+    }
+    scene.preconditioner = made;
+    None
+}
+
+fn wants_preconditioner(spec: &RunSpec) -> bool {
+    spec.relax().is_some_and(|r| r.preconditioner == PreconditionerKind::Stiffness)
 }
 
 /// What a relaxation takes from the static answer: the displacement bound's residual
@@ -433,15 +462,20 @@ struct StaticSolve<'a> {
     solver: Solver<'a>,
     deadline: Instant,
     metrics: &'a mut LatticeMetrics,
+    /// FIRE's metric, when the run asks for one (`relax.preconditioner: stiffness`).
+    preconditioner: Option<StiffnessPreconditioner>,
 }
 
 /// The top row's force (N) and the static displacements (m, x and y) it was taken at.
 type Solved = (f64, Option<(Vec<f64>, Vec<f64>)>);
 
 impl LawVisitor for StaticSolve<'_> {
-    type Output = Result<Solved, Stopped>;
+    type Output = Result<(Solved, Option<SharedPreconditioner>), Stopped>;
     fn visit<L: ForceLaw>(mut self, law: L) -> Self::Output {
-        self.solve(&law)
+        let solved = self.solve(&law)?;
+        // A floppy network's regularised factor would blow its zero-energy motions up by 1e12.
+        let rigid = self.metrics.stiffness_min.is_some_and(|k| k > 0.0);
+        Ok((solved, self.preconditioner.filter(|_| rigid).map(|p| Arc::new(p) as SharedPreconditioner)))
     }
 }
 
@@ -486,6 +520,11 @@ impl StaticSolve<'_> {
         self.metrics.poisson_ratio_fem = fem.poisson_ratio;
         self.metrics.shear_modulus_fem = fem.shear_modulus;
         self.check_deadline()?;
+        if wants_preconditioner(self.spec) {
+            // Before the bounds, whose factor of the tangent would take the linear one's memory.
+            let (at, linear) = (reference_extension(self.spec), self.spec.law.is_linear());
+            self.preconditioner = self.solver.take_preconditioner(law, at, linear);
+        }
         self.bound_errors(law, &ux, &uy)?;
         Ok((top_row_force, Some((ux, uy))))
     }

@@ -10,6 +10,7 @@ mod cg;
 mod fire;
 
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 use std::time::Instant;
 
 use super::field::ForceField;
@@ -60,6 +61,42 @@ impl RelaxMethod {
         }
     }
 }
+
+/// What FIRE may move in instead of the particles' masses (`relax.preconditioner`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PreconditionerKind {
+    /// The masses: m v̇ = F, FIRE as published.
+    #[default]
+    None,
+    /// The network's linear stiffness K₀ at its reference geometry (springs at their tangent
+    /// stiffness there; a power law's at the deformation the load is expected to cause),
+    /// factored once: K₀ v̇ = F (Packwood et al., J. Chem. Phys. 144 (2016) 164109).
+    Stiffness,
+}
+
+impl PreconditionerKind {
+    /// The word in YAML and in the results table.
+    pub fn name(self) -> &'static str {
+        match self {
+            PreconditionerKind::None => "none",
+            PreconditionerKind::Stiffness => "stiffness",
+        }
+    }
+}
+
+/// A symmetric positive definite P (N/m) over the particles' axes that a minimiser moves in:
+/// z = P⁻¹ f. Held axes have f = 0 and z = 0. Made outside the physics core (the static
+/// solver's factor), used here.
+pub trait Preconditioner: std::fmt::Debug + Send + Sync {
+    /// z = P⁻¹ f (m) for the force f (N) on every particle's x and y; `None` when the answer
+    /// is not finite.
+    fn solve(&self, fx: &[f64], fy: &[f64]) -> Option<(Vec<f64>, Vec<f64>)>;
+}
+
+/// The preconditioner a scene's minimiser moves in, shared by the runs of one relaxation (the
+/// tangent step's second one too).
+pub type SharedPreconditioner = Arc<dyn Preconditioner>;
 
 /// The static force (springs and loads, no damping, held axes zero) at the state's positions,
 /// −∇Π, with scratch for the zero velocities the force field is called with.
@@ -130,7 +167,7 @@ fn static_criterion(rule: &Relaxation, force: &Gradient) -> Option<(bool, &'stat
 }
 
 /// Relaxes `state` under `field` by `method` (to `rest`, the static solution's positions, for
-/// `Static`) for at
+/// `Static`; FIRE in the metric of `preconditioner` when given) for at
 /// most `sampling.steps` force evaluations, until the static criterion of
 /// `sampling.relaxation` holds or `sampling.deadline` passes. The trace holds the start and the
 /// end; `steps` counts force evaluations (an MD step costs one), `time` FIRE's pseudo-time.
@@ -139,14 +176,20 @@ fn static_criterion(rule: &Relaxation, force: &Gradient) -> Option<(bool, &'stat
 /// which is the time loop's.
 pub fn minimise<F: ForceField>(
     method: RelaxMethod,
-    rest: Option<&(Vec<f64>, Vec<f64>)>,
+    (rest, preconditioner): (Option<&(Vec<f64>, Vec<f64>)>, Option<&SharedPreconditioner>),
     state: &mut State,
     field: &mut F,
     sampling: &Sampling,
 ) -> Option<Trace> {
     match (method, rest) {
         (RelaxMethod::Damped, _) => None,
-        (RelaxMethod::Fire, _) => Some(run(&mut fire::Fire::new(sampling.dt), state, field, sampling)),
+        (RelaxMethod::Fire, _) => {
+            let mut fire = match preconditioner {
+                Some(p) => fire::Fire::preconditioned(p.clone()),
+                None => fire::Fire::new(sampling.dt),
+            };
+            Some(run(&mut fire, state, field, sampling))
+        }
         (RelaxMethod::Cg, _) => Some(run(&mut cg::ConjugateGradients::new(&*field), state, field, sampling)),
         (RelaxMethod::Static, Some(rest)) => Some(run(&mut Settle(rest), state, field, sampling)),
         (RelaxMethod::Static, None) => Some(Trace {

@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::model::bidisperse_box;
-use crate::sim::RelaxMethod;
+use crate::sim::{PreconditionerKind, RelaxMethod};
 use crate::spec::issue::{Issue, Num, missing, require};
 use crate::spec::raw::{RawPacking, RawScene};
 use crate::spec::shared::{Deformation, RelaxSpec};
@@ -187,6 +187,12 @@ fn resolve_relax(raw: &RawScene) -> Result<RelaxSpec, Issue> {
     require(relax.tolerance.is_none(), "relax.tolerance", "(set)", for_lattices)?;
     require(relax.tangent_step.is_none(), "relax.tangent_step", "(set)", for_lattices)?;
     require(relax.kinetic_ratio.is_none(), "relax.kinetic_ratio", "(set)", for_lattices)?;
+    require(
+        relax.preconditioner.is_none_or(|kind| kind == PreconditionerKind::None),
+        "relax.preconditioner",
+        "(set)",
+        "is for lattices (a packing's contacts change as it moves: it has no one stiffness matrix to factor)",
+    )?;
     let residual = relax.residual_force.unwrap_or(DEFAULT_RESIDUAL_FORCE);
     require(
         residual > 0.0 && residual < 1e-2,
@@ -201,5 +207,6 @@ fn resolve_relax(raw: &RawScene) -> Result<RelaxSpec, Issue> {
         method,
         tolerance: None,
         critical_background: false,
+        preconditioner: PreconditionerKind::None,
     })
 }
