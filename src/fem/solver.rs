@@ -119,53 +119,27 @@ impl<'a> Solver<'a> {
         if deadline.is_some_and(|deadline| Instant::now() > deadline) {
             return Some(StaticSolution::PastDeadline);
         }
-        match self.on_linearised(law, linearised_at, |inner| inner.solve_linear()) {
+        let mut linearised = self.truss.bonds.clone();
+        for k in &mut linearised.stiffness {
+            *k = law.tangent_stiffness(*k, linearised_at);
+        }
+        let truss = Truss { bonds: &linearised, ..*self.truss };
+        let mut inner = Solver::new(&truss, self.dofs.clone(), self.analysis.clone());
+        inner.factor = self.factor.take();
+        let linear = inner.solve_linear();
+        (self.factor, self.fresh) = (inner.factor.take(), false);
+        self.convergence.factorisations += inner.convergence.factorisations;
+        self.convergence.solves += inner.convergence.solves;
+        match linear {
             StaticSolution::Displacements { ux, uy } => self.solve_nonlinear_from(law, ux, uy, deadline),
             mechanism => Some(mechanism),
         }
     }
 
-    /// `work` done on the linearised network, every spring at its tangent stiffness at extension
-    /// `at` (m), on the same analysis and in this solver's factor memory, handed back after.
-    fn on_linearised<L: ForceLaw, R>(&mut self, law: &L, at: f64, work: impl FnOnce(&mut Solver<'_>) -> R) -> R {
-        let mut linearised = self.truss.bonds.clone();
-        for k in &mut linearised.stiffness {
-            *k = law.tangent_stiffness(*k, at);
-        }
-        let truss = Truss { bonds: &linearised, ..*self.truss };
-        let mut inner = Solver::new(&truss, self.dofs.clone(), self.analysis.clone());
-        inner.factor = self.factor.take();
-        let done = work(&mut inner);
-        (self.factor, self.fresh) = (inner.factor.take(), false);
-        self.convergence.factorisations += inner.convergence.factorisations;
-        self.convergence.solves += inner.convergence.solves;
-        done
-    }
-
-    /// The factor of the linearised network's stiffness K₀ at its reference geometry (every
-    /// spring at its tangent stiffness at extension `linearised_at`, as
-    /// [`Solver::solve_nonlinear`] starts from), taken out of this solver as a minimiser's
-    /// metric: the factor at hand where it is K₀'s (`linear_springs` whose answer took one
-    /// factorisation, the linear one, its Newton corrections solved on it), else a fresh one.
-    /// The solver's next factorisation allocates anew. `None` when nothing is free or K₀ cannot
-    /// be factored.
-    pub fn take_preconditioner<L: ForceLaw>(
-        &mut self,
-        law: &L,
-        linearised_at: f64,
-        linear_springs: bool,
-    ) -> Option<StiffnessPreconditioner> {
-        let at_hand = linear_springs && self.convergence.factorisations == 1;
-        if !at_hand {
-            let factored = self.on_linearised(law, linearised_at, |inner| {
-                let (ux, uy) = inner.truss.imposed();
-                inner.assemble(&Linear, &ux, &uy);
-                inner.dofs.free > 0 && inner.factorise()
-            });
-            if !factored {
-                return None;
-            }
-        }
+    /// The factor at hand, taken out of this solver as a minimiser's metric: after
+    /// [`Solver::error_bounds`], the tangent stiffness K_t at the static answer (positive
+    /// definite where k_min > 0). `None` when there is none.
+    pub fn take_preconditioner(&mut self) -> Option<StiffnessPreconditioner> {
         let factor = self.factor.take().filter(Factor::is_factored)?;
         self.fresh = false;
         Some(StiffnessPreconditioner { dofs: self.dofs.clone(), factor: Mutex::new(factor) })
@@ -366,8 +340,8 @@ impl<'a> Solver<'a> {
     }
 }
 
-/// A network's factored stiffness as a minimiser's metric ([`Solver::into_preconditioner`]):
-/// z = K₀⁻¹ f over the free axes, one pair of triangular solves each. The factor's work memory
+/// A network's factored stiffness as a minimiser's metric ([`Solver::take_preconditioner`]):
+/// z = K⁻¹ f over the free axes, one pair of triangular solves each. The factor's work memory
 /// is one per preconditioner, hence the lock.
 pub struct StiffnessPreconditioner {
     dofs: Dofs,

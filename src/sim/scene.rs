@@ -182,7 +182,13 @@ impl Scene {
         // A minimiser has no time to spread frames over: its movie is the start and the state
         // it stopped at (relaxed, or where it gave up).
         let start = (self.movie_frames.is_some() && self.method != RelaxMethod::Damped).then(|| Frame::of(&state));
-        if let Some(trace) = minimise(self.method, (self.rest.as_ref(), self.preconditioner.as_ref()), &mut state, &mut field, &self.sampling) {
+        if let Some(trace) = minimise(
+            self.method,
+            (self.rest.as_ref(), self.preconditioner.as_ref()),
+            &mut state,
+            &mut field,
+            &self.sampling,
+        ) {
             let frames = start.map(|start| vec![start, Frame::of(&state)]).unwrap_or_default();
             return Outcome { trace, crossings: Vec::new(), wave: None, frames, state };
         }

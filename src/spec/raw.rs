@@ -428,7 +428,8 @@ pub struct RawRelax {
     /// by this fraction, relax again and divide the increments (e.g. 0.01).
     pub tangent_step: Option<f64>,
     /// Lattice, `fire`, control: force: `stiffness` moves FIRE in the metric of the network's
-    /// linear stiffness, factored once (default `none`: the masses).
+    /// tangent stiffness at its static answer, factored for the error bound (default `none`:
+    /// the masses).
     pub preconditioner: Option<crate::sim::PreconditionerKind>,
 }
 

@@ -257,8 +257,11 @@ impl RunSpec {
         let stepped = if self.static_only() { 0.0 } else { 1.0 };
         // A slowly compressed packing relaxes once per stage.
         let stages = self.packing().map_or(1.0, |p| p.stage_fractions().len() as f64);
+        // FIRE in the stiffness's metric solves with its factor at every evaluation: ~2.8e-7 s
+        // per degree of freedom (0.20 s at 600², 0.57 s at 1000²).
+        let solve = if self.is_preconditioned() { 2.8e-7 * self.static_dofs() } else { 0.0 };
         let time_loop = match self.minimiser_evaluations() {
-            Some(minimiser) => runs * minimiser * (80e-9 + 8e-9 * particles),
+            Some(minimiser) => runs * minimiser * (80e-9 + 8e-9 * particles + solve),
             None => stages * stepped * runs * self.steps as f64 * (80e-9 + 3e-9 * evaluations * particles),
         };
         let eigenproblems = if self.gamma > 0.0 { 2.0 } else { 1.0 };
@@ -284,9 +287,13 @@ impl RunSpec {
     ///   grows as t_c/dt once Δt_max is well inside the stability limit 2/ω_max (2.2 × from
     ///   t_c/100 to t_c/200); at coarser dt it restarts near that limit and takes as many as at
     ///   t_c/100. Below t_c/50 it thrashes (t_c/25: 28 × t_c/50's); not modelled.
+    /// - FIRE in the stiffness's metric (`relax.preconditioner: stiffness`) 25, whatever the
+    ///   size and load case: 17–18 under tension and 17–25 in shear on 12² … 300² linear blocks,
+    ///   30–35 and 73–75 with Hertz springs.
     pub fn minimiser_evaluations(&self) -> Option<f64> {
         let (relax, lattice) = (self.relax()?, self.lattice()?);
         let (scale, exponent, floor) = match relax.method {
+            crate::sim::RelaxMethod::Fire if self.is_preconditioned() => (25.0, 0.0, 0.0),
             crate::sim::RelaxMethod::Fire => (8.5, 1.04, 250.0),
             crate::sim::RelaxMethod::Cg => (4.7, 1.25, 0.0),
             _ => return None,
@@ -296,11 +303,18 @@ impl RunSpec {
         }
         let tolerance = relax.tolerance.unwrap_or(super::shared::DEFAULT_TOLERANCE);
         let decades = tolerance.recip().ln() / 1e4f64.ln();
-        let shear = if lattice.load_case == super::raw::LoadCase::Shear { 2.5 } else { 1.0 };
-        let coarse_steps =
-            if relax.method == crate::sim::RelaxMethod::Fire { (self.dt_per_tc() / 100.0).max(1.0) } else { 1.0 };
+        let preconditioned = relax.method == crate::sim::RelaxMethod::Fire && self.is_preconditioned();
+        let shear = if lattice.load_case == super::raw::LoadCase::Shear && !preconditioned { 2.5 } else { 1.0 };
+        let by_masses = relax.method == crate::sim::RelaxMethod::Fire && !preconditioned;
+        let coarse_steps = if by_masses { (self.dt_per_tc() / 100.0).max(1.0) } else { 1.0 };
         let evaluations = scale * (lattice.ny as f64).powf(exponent) * decades * shear * coarse_steps;
         Some(evaluations.max(floor).min(self.steps as f64))
+    }
+
+    /// True when FIRE moves in the metric of the network's stiffness
+    /// (`relax.preconditioner: stiffness`).
+    pub fn is_preconditioned(&self) -> bool {
+        self.relax().is_some_and(|r| r.preconditioner != crate::sim::PreconditionerKind::None)
     }
 
     /// Springs of the run's network: at most one per node and bond family in a lattice (cut
@@ -354,7 +368,8 @@ impl RunSpec {
     /// - a loaded lattice's static solve: ~800 bytes per bond (the stiffness entries, 16 of
     ///   24 bytes per bond, and faer's sorted copy) and the Cholesky factor, whose fill
     ///   on a 2D network grows as dofs · log dofs: ~70 bytes · dofs · log₂ dofs (measured
-    ///   ~1100 bytes per dof at 200 × 200 nodes);
+    ///   ~1100 bytes per dof at 200 × 200 nodes), kept through the loop by FIRE in the
+    ///   stiffness's metric;
     /// - the record: its stored series ([`RunSpec::stored_numbers`]: thinned, or every sample
     ///   with `output.series: full`) in memory and as they are written (~50 bytes per number:
     ///   a Parquet table's columns, pages and file, and the copy a full run's record keeps of

@@ -6,6 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::issue::{Issue, Num, missing, positive, require};
 use super::raw::{Background, Control, RawDamping, RawRelax, RawScene, RawWave};
+use crate::model::LawName;
 use crate::sim::{PreconditionerKind, RelaxMethod};
 
 /// E_kin/E_pot below which a relaxation is finished, unless `relax.kinetic_ratio` says.
@@ -92,7 +93,8 @@ pub(super) fn resolve_relax(raw: &RawScene, control: Control, load_ramp_tc: Opti
         check_untimed(method, control, load_ramp_tc.unwrap_or_default(), &damping)?;
     }
     let preconditioner = relax.preconditioner.unwrap_or_default();
-    check_preconditioner(preconditioner, method, control)?;
+    let law = raw.material.as_ref().and_then(|m| m.law).unwrap_or(LawName::Linear);
+    check_preconditioner(preconditioner, (method, control), law)?;
     // A minimiser stops only on the displacement bound (or the residual force): it needs a
     // tolerance even where none is given.
     let tolerance = relax.tolerance.or(method.is_minimiser().then_some(DEFAULT_TOLERANCE));
@@ -109,14 +111,26 @@ pub(super) fn resolve_relax(raw: &RawScene, control: Control, load_ramp_tc: Opti
 
 /// `relax.preconditioner`: FIRE's, on a network with a stiffness matrix held as the loads
 /// leave it (force control: under velocity control the drive moves the top row, which the
-/// matrix holds).
-fn check_preconditioner(kind: PreconditionerKind, method: RelaxMethod, control: Control) -> Result<(), Issue> {
+/// matrix holds), of linear springs: a power law has no stiffness at δ = 0, so far from rest
+/// its forces have little to do with the tangent at rest (a Hertz kagome pulled along its rows,
+/// whose softest tangent stiffness is 1e-6 of k, ran away in that metric).
+fn check_preconditioner(
+    kind: PreconditionerKind,
+    (method, control): (RelaxMethod, Control),
+    law: LawName,
+) -> Result<(), Issue> {
     if kind == PreconditionerKind::None {
         return Ok(());
     }
     let field = "relax.preconditioner";
     require(method == RelaxMethod::Fire, field, kind.name(), "is for relax.method: fire")?;
-    require(control == Control::Force, field, kind.name(), "is for control: force (a drive moves the held top row)")
+    require(control == Control::Force, field, kind.name(), "is for control: force (a drive moves the held top row)")?;
+    require(
+        law == LawName::Linear,
+        field,
+        kind.name(),
+        "is for material.law: linear (a power law has no stiffness at rest)",
+    )
 }
 
 /// `relax.residual_force`, a fraction, and `relax.tangent_step`, a small one under force

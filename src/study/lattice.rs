@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use super::columns::{Block, Column, Row, Slot};
 use super::common::{Stopped, relaxation, scene, sound_speed};
-use crate::fem::{Analyses, Solver, StaticSolution, StiffnessPreconditioner, Truss};
+use crate::fem::{Analyses, Solver, StaticSolution, Truss};
 use crate::measure::{
     LatticeShape, anisotropic_moduli, constrained_modulus_y, extension_error_allowed, homogeneity, lattice_constants,
     modulus_error_bound, network_constants, plane_wave_speeds, row_extension, row_extension_weights, shear_modulus,
@@ -313,7 +313,7 @@ pub(super) fn static_answer(
     };
     let solver = truss.solver(analyses);
     let ((top_row_force, solution), preconditioner) =
-        scene.law.dispatch(StaticSolve { spec, l, truss: &truss, solver, deadline, metrics, preconditioner: None })?;
+        scene.law.dispatch(StaticSolve { spec, l, truss: &truss, solver, deadline, metrics })?;
     if spec.static_only() {
         scene.rest = solution.map(|(ux, uy)| {
             let p = &scene.particles;
@@ -328,7 +328,7 @@ pub(super) fn static_answer(
 
 /// Hands FIRE the metric it asks for (`relax.preconditioner: stiffness`); returns why the run
 /// cannot have it: a floppy network (k_min = 0), whose regularised factor would blow its
-/// zero-energy motions up by 1e12, or a factorisation that failed. The run is then not run,
+/// zero-energy motions up by 1e12, or no factor of its tangent. The run is then not run,
 /// rather than quietly relaxed without it.
 fn set_preconditioner(spec: &RunSpec, scene: &mut Scene, made: Option<SharedPreconditioner>) -> Option<String> {
     if !wants_preconditioner(spec) {
@@ -336,8 +336,8 @@ fn set_preconditioner(spec: &RunSpec, scene: &mut Scene, made: Option<SharedPrec
     }
     if made.is_none() {
         return Some(
-            "relax.preconditioner: stiffness needs a network whose linear stiffness can be factored and whose \
-             softest stiffness k_min is > 0 (this one is floppy); give relax.preconditioner: none"
+            "relax.preconditioner: stiffness needs the tangent stiffness at the static answer factored and positive \
+             definite, its softest stiffness k_min > 0 (this network is floppy); give relax.preconditioner: none"
                 .into(),
         );
     }
@@ -462,8 +462,6 @@ struct StaticSolve<'a> {
     solver: Solver<'a>,
     deadline: Instant,
     metrics: &'a mut LatticeMetrics,
-    /// FIRE's metric, when the run asks for one (`relax.preconditioner: stiffness`).
-    preconditioner: Option<StiffnessPreconditioner>,
 }
 
 /// The top row's force (N) and the static displacements (m, x and y) it was taken at.
@@ -473,9 +471,11 @@ impl LawVisitor for StaticSolve<'_> {
     type Output = Result<(Solved, Option<SharedPreconditioner>), Stopped>;
     fn visit<L: ForceLaw>(mut self, law: L) -> Self::Output {
         let solved = self.solve(&law)?;
-        // A floppy network's regularised factor would blow its zero-energy motions up by 1e12.
+        // The factor the bounds made, of the tangent at the static answer; a floppy network's
+        // (k_min = 0) regularised factor would blow its zero-energy motions up by 1e12.
         let rigid = self.metrics.stiffness_min.is_some_and(|k| k > 0.0);
-        Ok((solved, self.preconditioner.filter(|_| rigid).map(|p| Arc::new(p) as SharedPreconditioner)))
+        let metric = (wants_preconditioner(self.spec) && rigid).then(|| self.solver.take_preconditioner()).flatten();
+        Ok((solved, metric.map(|p| Arc::new(p) as SharedPreconditioner)))
     }
 }
 
@@ -520,11 +520,6 @@ impl StaticSolve<'_> {
         self.metrics.poisson_ratio_fem = fem.poisson_ratio;
         self.metrics.shear_modulus_fem = fem.shear_modulus;
         self.check_deadline()?;
-        if wants_preconditioner(self.spec) {
-            // Before the bounds, whose factor of the tangent would take the linear one's memory.
-            let (at, linear) = (reference_extension(self.spec), self.spec.law.is_linear());
-            self.preconditioner = self.solver.take_preconditioner(law, at, linear);
-        }
         self.bound_errors(law, &ux, &uy)?;
         Ok((top_row_force, Some((ux, uy))))
     }

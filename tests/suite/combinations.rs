@@ -1,8 +1,8 @@
 //! The cross product of every axis a loaded lattice has, at small N: lattice type (square with
 //! and without diagonals, triangular, honeycomb, kagome) × load case (tensile, tensile-x,
 //! shear) × supports (coursework, clamped-bottom, periodic-x) × relaxation (damped with a fixed
-//! γ, critical background damping, FIRE, CG, the static solve) × law (linear, Hertz) × tangent
-//! step (on, off) × movie (on, off): 1 800 cells. Each cell is either refused at plan time with
+//! γ, critical background damping, FIRE, FIRE in the stiffness's metric, CG, the static solve)
+//! × law (linear, Hertz) × tangent step (on, off) × movie (on, off): 2 160 cells. Each cell is either refused at plan time with
 //! a message that names a field, or runs, and then:
 //!
 //! - the static answer (`*_fem`) agrees to 1e-9 with an independent one written here: a dense
@@ -39,7 +39,7 @@ const LOAD: f64 = 1e-3;
 const TYPES: [&str; 5] = ["square", "square-no-diagonals", "triangular", "honeycomb", "kagome"];
 const CASES: [&str; 3] = ["tensile", "tensile-x", "shear"];
 const SUPPORTS: [&str; 3] = ["coursework", "clamped-bottom", "periodic-x"];
-const METHODS: [&str; 5] = ["damped", "critical", "fire", "cg", "static"];
+const METHODS: [&str; 6] = ["damped", "critical", "fire", "fire-stiffness", "cg", "static"];
 const LAWS: [&str; 2] = ["linear", "hertz"];
 
 /// One cell of the product.
@@ -86,6 +86,7 @@ fn campaign(c: &Cell) -> String {
     let (method, damping) = match c.method {
         "damped" => ("damped", "\n    damping: {restitution: 0.5, background: 0.1}"),
         "critical" => ("damped", "\n    damping: {background: critical}"),
+        "fire-stiffness" => ("fire, preconditioner: stiffness", ""),
         other => (other, ""),
     };
     let tolerance = if c.method == "static" { String::new() } else { format!(", tolerance: {TOLERANCE:e}") };
@@ -100,13 +101,22 @@ fn campaign(c: &Cell) -> String {
 }
 
 /// What the fields of a refusal may be: the axes' own.
-const FIELDS: [&str; 8] =
-    ["supports", "load.case", "relax.method", "relax.tangent_step", "movie", "damping", "relax.tolerance", "lattice."];
+const FIELDS: [&str; 9] = [
+    "supports",
+    "load.case",
+    "relax.method",
+    "relax.tangent_step",
+    "movie",
+    "damping",
+    "relax.tolerance",
+    "relax.preconditioner",
+    "lattice.",
+];
 
 #[test]
 fn every_combination_is_refused_with_its_field_or_runs_to_the_independent_static_answer() {
     let cells = cells();
-    assert_eq!(cells.len(), 1800);
+    assert_eq!(cells.len(), 2160);
     // A pool of its own: on the global one its seconds of cells would queue every other test's
     // parallel work behind them (a plan in `hostile::` then passed its 10 s hang guard).
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
@@ -127,7 +137,7 @@ fn every_combination_is_refused_with_its_field_or_runs_to_the_independent_static
 }
 
 /// The dense answers, one per lattice, load case, supports and law: the relaxation, tangent-step
-/// and movie axes leave the static problem as it is, so the 1 800 cells need 90 of them, not one
+/// and movie axes leave the static problem as it is, so the 2 160 cells need 90 of them, not one
 /// each (half the test's time, unoptimised: docs/performance.md, "Build and test times"). Each
 /// is made from the spec of the first cell that asks; a cell whose network, supports or loads
 /// differed would disagree with it and fail.

@@ -147,6 +147,35 @@ fn critical_background_damping_is_twice_m_omega_min_and_relaxes_in_about_the_bou
 }
 
 #[test]
+fn fire_in_the_stiffness_metric_reaches_the_static_answer_in_evaluations_that_do_not_grow() {
+    // FIRE preconditioned with the factored tangent stiffness (P v̇ = F): every mode of P⁻¹K
+    // has a frequency near 1, so its count stays flat from 12² to 48² where FIRE by the masses
+    // grows as n^1.04 (~250 and ~470 here). Tension and shear.
+    let grid =
+        "    relax: {preconditioner: stiffness}\n    grid:\n      relax.method: [fire]\n      lattice.size: [12, 48]\n";
+    for load in [TENSILE, "{case: shear, per_node: 1000.0}"] {
+        let runs = execute_all(&block(12, STEEL, load, grid));
+        for r in &runs {
+            let l = &r.metrics.lattice;
+            let (md, fem) = if load.contains("shear") {
+                (l.shear_modulus, l.shear_modulus_fem)
+            } else {
+                (l.youngs_modulus, l.youngs_modulus_fem)
+            };
+            assert_eq!(r.status, RunStatus::Ok, "{}", label(r));
+            let (error, bound) = (relative(md, fem).abs(), l.relax_error_bound.unwrap());
+            // The same bound and tolerance as FIRE by the masses (above).
+            assert!(bound <= 1e-4, "bound {bound:e} above the tolerance, {}", label(r));
+            assert!(error <= bound, "error {error:e} above its bound {bound:e}, {}", label(r));
+            // 17–25 measured on 12² … 300² blocks; by the masses, 250 at the least.
+            assert!(r.steps <= 50, "{} evaluations, {}", r.steps, label(r));
+        }
+        let (small, large) = (runs[0].steps as f64, runs[1].steps as f64);
+        assert!(large <= 1.5 * small, "{small} evaluations at 12², {large} at 48²");
+    }
+}
+
+#[test]
 fn a_minimiser_refuses_what_it_cannot_run() {
     let refused_with = |load: &str, extra: &str, words: &[&str]| {
         let yaml = block(5, STEEL, load, extra);
@@ -164,6 +193,19 @@ fn a_minimiser_refuses_what_it_cannot_run() {
     refused_with(driven, verlet, &["relax.method", "control: force"]);
     refused("    damping: {background: critical}\n    relax: {method: cg}\n", &["relax.method", "damping.background"]);
     refused("    relax: {tolerance: 0.5}\n", &["relax.tolerance", "(0, 0.1]"]);
+    refused("    relax: {method: cg, preconditioner: stiffness}\n", &["relax.preconditioner", "relax.method: fire"]);
+    let preconditioned =
+        "    time: {integrator: velocity-verlet}\n    relax: {method: fire, preconditioner: stiffness}\n";
+    refused_with(driven, preconditioned, &["relax.", "control: force"]);
+    refused("    relax: {method: fire, preconditioner: diagonal}\n", &["preconditioner", "stiffness"]);
+    let hertz = block(
+        5,
+        "{mass: 0.785, k: 2.0e12, law: hertz}",
+        TENSILE,
+        "    relax: {method: fire, preconditioner: stiffness}\n",
+    );
+    let error = mdsolids::plan::parse("t.yaml", &hertz).map(|_| ()).unwrap_err().to_string();
+    assert!(error.contains("relax.preconditioner") && error.contains("material.law: linear"), "{error}");
     let chain =
         "version: 1\nname: t\nscenes:\n  - {name: c, kind: chain, n: 5, v0: 1.0, damping: {background: critical}}\n";
     let error = mdsolids::plan::parse("t.yaml", chain).map(|_| ()).unwrap_err().to_string();
@@ -237,6 +279,8 @@ fn the_plan_counts_a_minimisers_force_evaluations_within_3x() {
         steel(12, "    grid:\n      relax.method: [fire, cg]\n").replace("size: 12,", "nx: 30, ny: 12,"),
         steel(16, "    relax: {tolerance: 1.0e-6}\n    grid:\n      relax.method: [fire, cg]\n"),
         steel(16, "    relax: {method: fire}\n    time: {integrator: velocity-verlet, dt_per_tc: 300}\n"),
+        steel(12, "    relax: {method: fire, preconditioner: stiffness}\n    grid:\n      lattice.size: [12, 40]\n"),
+        block(12, STEEL, "{case: shear, per_node: 1000.0}", "    relax: {method: fire, preconditioner: stiffness}\n"),
     ];
     for yaml in scenes {
         for r in execute_all(&yaml) {

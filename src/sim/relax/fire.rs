@@ -9,11 +9,15 @@
 //! and the mixing turns v towards z = P⁻¹F with the lengths measured by P,
 //! v ← (1 − α) v + α (|v|_P/|z|_P) z, |v|_P = √(vᵀP v), |z|_P = √(Fᵀz). With P the network's
 //! stiffness every mode of P⁻¹K has a frequency near 1, so the time step is dimensionless and
-//! the evaluations no longer grow with the lattice's size (the slowest mode's period).
+//! the evaluations no longer grow with the lattice's size (the slowest mode's period). P is the
+//! tangent at the static answer (the factor the error bound makes): the linear stiffness at the
+//! reference geometry would do for most networks, but is singular for those whose only stiffness
+//! in some direction is the load's (a kagome pulled along its rows, a periodic honeycomb), where
+//! P⁻¹F blew up.
 
 use super::{Gradient, Minimiser, SharedPreconditioner, dot};
-use crate::sim::field::ForceField;
 use crate::model::Particles;
+use crate::sim::field::ForceField;
 use crate::sim::state::State;
 
 /// Steps with P > 0 before Δt may grow and α shrink (N_delaystep).
@@ -33,9 +37,7 @@ const DT_MAX_FACTOR: f64 = 10.0;
 const DT_MIN_FACTOR: f64 = 0.02;
 /// The preconditioned start step Δt and its largest, Δt_max = 2 Δt (dimensionless: P⁻¹K's
 /// frequencies are near 1 for linear springs, where semi-implicit Euler is stable below
-/// Δt = 2; a Hertz network's tangent stiffens away from its linearised K₀). Measured on 100²
-/// and 300² blocks under tension and shear, linear and Hertz, to 1e-4: from Δt = 0.1 58–85
-/// evaluations, from 0.5 18–75, and Δt_max ≥ 1 made the Hertz blocks under shear unstable.
+/// Δt = 2; away from the static answer a Hertz network's stiffness differs from P).
 const PRECONDITIONED_DT: f64 = 0.5;
 const PRECONDITIONED_DT_MAX: f64 = 1.0;
 
@@ -60,6 +62,11 @@ struct StiffnessMetric {
     /// P v (N), x and y.
     weighted_x: Vec<f64>,
     weighted_y: Vec<f64>,
+    /// The largest move (m) of any axis in one step: the largest |P⁻¹F| at the start, the
+    /// whole response to the load. Where P⁻¹F is far from the way to rest (a Hertz network,
+    /// stiffless at δ = 0, pulled along a direction only the load stiffens), an uncapped step
+    /// threw the particles apart.
+    largest_move: Option<f64>,
 }
 
 impl Fire {
@@ -79,7 +86,8 @@ impl Fire {
 
     /// FIRE in the metric of `preconditioner` (P v̇ = F), from the dimensionless step 0.5.
     pub(super) fn preconditioned(preconditioner: SharedPreconditioner) -> Fire {
-        let metric = StiffnessMetric { preconditioner, weighted_x: Vec::new(), weighted_y: Vec::new() };
+        let metric =
+            StiffnessMetric { preconditioner, weighted_x: Vec::new(), weighted_y: Vec::new(), largest_move: None };
         Fire { metric: Some(metric), dt_max: PRECONDITIONED_DT_MAX, ..Fire::new(PRECONDITIONED_DT) }
     }
 
@@ -142,14 +150,18 @@ impl Fire {
     }
 }
 
+/// The largest |v| over both axes.
+fn largest(vx: &[f64], vy: &[f64]) -> f64 {
+    vx.iter().chain(vy).fold(0.0f64, |m, v| m.max(v.abs()))
+}
+
 impl StiffnessMetric {
     /// The same in the metric P: z = P⁻¹F, v += Δt z (P v += Δt F),
-    /// v ← (1 − α) v + α (|v|_P/|z|_P) z, x += Δt v. Held axes have F = 0, so z = 0 there.
+    /// v ← (1 − α) v + α (|v|_P/|z|_P) z, v scaled down where Δt |v| would pass the largest
+    /// move, x += Δt v. Held axes have F = 0, so z = 0 there.
     fn advance(&mut self, (dt, alpha): (f64, f64), p: &mut Particles, force: &Gradient) -> Result<(), String> {
-        let (zx, zy) = self
-            .preconditioner
-            .solve(&force.fx, &force.fy)
-            .ok_or("the preconditioner's solve P⁻¹F was not finite")?;
+        let (zx, zy) =
+            self.preconditioner.solve(&force.fx, &force.fy).ok_or("the preconditioner's solve P⁻¹F was not finite")?;
         self.weighted_x.resize(p.len(), 0.0);
         self.weighted_y.resize(p.len(), 0.0);
         let (wx, wy) = (&mut self.weighted_x, &mut self.weighted_y);
@@ -168,6 +180,14 @@ impl StiffnessMetric {
             p.vy[i] = (1.0 - alpha) * p.vy[i] + mix * zy[i];
             wx[i] = (1.0 - alpha) * wx[i] + mix * force.fx[i];
             wy[i] = (1.0 - alpha) * wy[i] + mix * force.fy[i];
+        }
+        let cap = *self.largest_move.get_or_insert_with(|| largest(&zx, &zy));
+        let fastest = dt * largest(&p.vx, &p.vy);
+        if fastest > cap {
+            let slower = cap / fastest;
+            [&mut p.vx, &mut p.vy, wx, wy].into_iter().for_each(|v| v.iter_mut().for_each(|x| *x *= slower));
+        }
+        for i in 0..p.len() {
             p.x[i] += dt * p.vx[i];
             p.y[i] += dt * p.vy[i];
         }

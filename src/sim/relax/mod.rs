@@ -69,9 +69,9 @@ pub enum PreconditionerKind {
     /// The masses: m v̇ = F, FIRE as published.
     #[default]
     None,
-    /// The network's linear stiffness K₀ at its reference geometry (springs at their tangent
-    /// stiffness there; a power law's at the deformation the load is expected to cause),
-    /// factored once: K₀ v̇ = F (Packwood et al., J. Chem. Phys. 144 (2016) 164109).
+    /// The network's tangent stiffness K_t at the static answer the run solves beside it, whose
+    /// factor the error bound makes: K_t v̇ = F (preconditioned FIRE: Packwood et al., J. Chem.
+    /// Phys. 144 (2016) 164109).
     Stiffness,
 }
 
@@ -93,6 +93,9 @@ pub trait Preconditioner: std::fmt::Debug + Send + Sync {
     /// is not finite.
     fn solve(&self, fx: &[f64], fy: &[f64]) -> Option<(Vec<f64>, Vec<f64>)>;
 }
+
+/// Every particle's x and y (m).
+type Positions = (Vec<f64>, Vec<f64>);
 
 /// The preconditioner a scene's minimiser moves in, shared by the runs of one relaxation (the
 /// tangent step's second one too).
@@ -176,7 +179,7 @@ fn static_criterion(rule: &Relaxation, force: &Gradient) -> Option<(bool, &'stat
 /// which is the time loop's.
 pub fn minimise<F: ForceField>(
     method: RelaxMethod,
-    (rest, preconditioner): (Option<&(Vec<f64>, Vec<f64>)>, Option<&SharedPreconditioner>),
+    (rest, preconditioner): (Option<&Positions>, Option<&SharedPreconditioner>),
     state: &mut State,
     field: &mut F,
     sampling: &Sampling,
