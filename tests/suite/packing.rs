@@ -326,6 +326,8 @@ fn bad_packings_are_refused_naming_the_field() {
         ("    damping: {restitution: 0.5}\n", "damping"),
         // A packing has contacts, not bonds with a rest length to strain: its movie draws forces.
         ("    movie: {frames: 2, bond_strain: true}\n", "movie.bond_strain"),
+        // Its contacts come and go: there is no one stiffness matrix to move FIRE in.
+        ("    relax: {method: fire, preconditioner: stiffness}\n", "relax.preconditioner"),
     ] {
         let scene = campaign("{n: 64, fraction: 0.8}") + extra;
         let message = mdsolids::plan::parse("t.yaml", &scene).err().map(|e| e.to_string()).unwrap_or_default();

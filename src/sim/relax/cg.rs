@@ -5,7 +5,7 @@
 //! quadratic along the line (linear springs, small rotations), so an iteration costs two force
 //! evaluations there; a power law's takes a few more.
 
-use super::{Gradient, Minimiser, dot};
+use super::{Gradient, Minimiser, dot, largest};
 use crate::sim::field::ForceField;
 use crate::sim::state::State;
 
@@ -96,7 +96,7 @@ impl Minimiser for ConjugateGradients {
     ) -> Result<u64, String> {
         self.update_direction(force);
         let slope_0 = -dot(&force.fx, &force.fy, &self.dx, &self.dy);
-        let longest = self.dx.iter().chain(&self.dy).fold(0.0f64, |m, d| m.max(d.abs()));
+        let longest = largest(&self.dx, &self.dy);
         if longest == 0.0 {
             return Err("CG found a zero search direction".into());
         }

@@ -15,7 +15,7 @@
 //! in some direction is the load's (a kagome pulled along its rows, a periodic honeycomb), where
 //! P⁻¹F blew up.
 
-use super::{Gradient, Minimiser, SharedPreconditioner, dot};
+use super::{Gradient, Minimiser, SharedPreconditioner, dot, largest};
 use crate::model::Particles;
 use crate::sim::field::ForceField;
 use crate::sim::state::State;
@@ -148,11 +148,6 @@ impl Fire {
             p.y[i] += self.dt * p.vy[i];
         }
     }
-}
-
-/// The largest |v| over both axes.
-fn largest(vx: &[f64], vy: &[f64]) -> f64 {
-    vx.iter().chain(vy).fold(0.0f64, |m, v| m.max(v.abs()))
 }
 
 impl StiffnessMetric {

@@ -123,7 +123,7 @@ impl Gradient {
 
     /// The largest |r| (N) on any axis.
     fn largest(&self) -> f64 {
-        self.fx.iter().chain(&self.fy).fold(0.0f64, |m, f| m.max(f.abs()))
+        largest(&self.fx, &self.fy)
     }
 }
 
@@ -329,6 +329,11 @@ pub fn euclidean_norm<'a>(v: impl Iterator<Item = &'a f64> + Clone) -> f64 {
         return plain;
     }
     largest * v.map(|x| (x / largest).powi(2)).sum::<f64>().sqrt()
+}
+
+/// The largest |a| over both axes.
+fn largest(ax: &[f64], ay: &[f64]) -> f64 {
+    ax.iter().chain(ay).fold(0.0f64, |m, a| m.max(a.abs()))
 }
 
 /// Σ a·b over both axes.
