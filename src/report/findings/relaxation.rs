@@ -7,7 +7,7 @@ use super::discussion::Paragraph;
 use super::finding::{Answer, Evidence, Table, Verdict, cell, extremes, relative, sig};
 use crate::measure::power_law_fit;
 use crate::runner::RunRecord;
-use crate::sim::{RelaxMethod, RunStatus};
+use crate::sim::{PreconditionerKind, RelaxMethod, RunStatus};
 use crate::study::lattice::critical_bound_steps;
 
 /// A critically damped run must end within this many critically damped bounds (issue 17).
@@ -27,6 +27,9 @@ fn method(r: &RunRecord) -> String {
         Some(relax) if relax.method == RelaxMethod::Damped => {
             let dashpot = if r.spec.gamma > 0.0 { ", dashpots" } else { "" };
             format!("damped MD (γ_g {} N s/m{dashpot})", sig(r.spec.gamma_background))
+        }
+        Some(relax) if relax.preconditioner != PreconditionerKind::None => {
+            format!("{} in the {} metric", relax.method.name().to_uppercase(), relax.preconditioner.name())
         }
         Some(relax) => relax.method.name().to_uppercase(),
         None => String::new(),
@@ -186,20 +189,28 @@ fn fixed_damping_sentence(e: &Evidence) -> Option<String> {
     ))
 }
 
-/// Per minimiser, its force evaluations over the bound's steps.
+/// Per minimiser (FIRE in a stiffness's metric apart from FIRE by the masses), its force
+/// evaluations over the bound's steps.
 fn minimiser_sentences(e: &Evidence) -> Vec<String> {
+    let by_minimiser = |r: &RunRecord| bounded(r) && r.spec.relax().is_some_and(|relax| relax.method.is_minimiser());
+    // Every minimiser `sim::relax` knows, and every metric, so a new one is timed without
+    // touching this item; in campaign order.
+    let mut names: Vec<String> = Vec::new();
+    for r in e.ok(by_minimiser) {
+        if !names.contains(&method(r)) {
+            names.push(method(r));
+        }
+    }
     let mut sentences = Vec::new();
-    // Every minimiser `sim::relax` knows, so a new one is timed without touching this item.
-    for minimiser in RelaxMethod::ALL.into_iter().filter(|m| m.is_minimiser()) {
-        let mine = e.ok(|r| bounded(r) && r.spec.relax().is_some_and(|relax| relax.method == minimiser));
+    for name in names {
+        let mine = e.ok(|r| by_minimiser(r) && method(r) == name);
         let ratios: Vec<f64> = mine.iter().filter_map(|r| over_bound(r)).collect();
         if ratios.is_empty() {
             continue;
         }
         let (low, high) = extremes(&ratios);
         sentences.push(format!(
-            "{} needs {}–{} of the bound's steps in force evaluations over N = {}.",
-            minimiser.name().to_uppercase(),
+            "{name} needs {}–{} of the bound's steps in force evaluations over N = {}.",
             sig(low),
             sig(high),
             sizes(&mine),
