@@ -320,7 +320,7 @@ pub(super) fn static_answer(
             (p.x.iter().zip(&ux).map(|(x, u)| x + u).collect(), p.y.iter().zip(&uy).map(|(y, u)| y + u).collect())
         });
     }
-    if let Some(missing) = set_preconditioner(spec, scene, preconditioner) {
+    if let Some(missing) = set_preconditioner(spec, scene, preconditioner, metrics) {
         return Ok(Some(missing));
     }
     Ok(relaxation_from_static(spec, l, scene, top_row_force, metrics))
@@ -328,18 +328,26 @@ pub(super) fn static_answer(
 
 /// Hands FIRE the metric it asks for (`relax.preconditioner: stiffness`); returns why the run
 /// cannot have it: a floppy network (k_min = 0), whose regularised factor would blow its
-/// zero-energy motions up by 1e12, or no factor of its tangent. The run is then not run,
-/// rather than quietly relaxed without it.
-fn set_preconditioner(spec: &RunSpec, scene: &mut Scene, made: Option<SharedPreconditioner>) -> Option<String> {
+/// zero-energy motions up by 1e12, or a tangent that could not be factored. The run is then not
+/// run, rather than quietly relaxed without it.
+fn set_preconditioner(
+    spec: &RunSpec,
+    scene: &mut Scene,
+    made: Option<SharedPreconditioner>,
+    metrics: &LatticeMetrics,
+) -> Option<String> {
     if !wants_preconditioner(spec) {
         return None;
     }
     if made.is_none() {
-        return Some(
+        let why = match metrics.stiffness_min {
+            Some(k) if k > 0.0 => "its tangent stiffness at the static answer could not be factored",
+            _ => "this network is floppy (k_min = 0)",
+        };
+        return Some(format!(
             "relax.preconditioner: stiffness needs the tangent stiffness at the static answer factored and positive \
-             definite, its softest stiffness k_min > 0 (this network is floppy); give relax.preconditioner: none"
-                .into(),
-        );
+             definite, its softest stiffness k_min > 0: {why}; give relax.preconditioner: none"
+        ));
     }
     scene.preconditioner = made;
     None
