@@ -550,7 +550,7 @@ fn scene() -> BoxedStrategy<String> {
         field(0.9, "size", count(2..6)),
         field(0.1, "nx", count(2..6)),
         field(0.2, "supports", word(&["coursework", "clamped-bottom", "periodic-x", "free", "periodic-x-free"])),
-        field(0.1, "relax", Just("{max_tc: 50}".to_string())),
+        field(0.1, "relax", word(&["{max_tc: 50}", "{max_tc: 50, method: fire, preconditioner: stiffness}"])),
     )
         .prop_map(|(size, nx, supports, relax)| {
             format!("kind: lattice, lattice: {}, {supports}{relax}", flow_map(&[size, nx]))
