@@ -303,7 +303,8 @@ impl RunSpec {
         }
         let tolerance = relax.tolerance.unwrap_or(super::shared::DEFAULT_TOLERANCE);
         let decades = tolerance.recip().ln() / 1e4f64.ln();
-        let preconditioned = relax.method == crate::sim::RelaxMethod::Fire && self.is_preconditioned();
+        // The metric is FIRE's only (the spec refuses it with any other method).
+        let preconditioned = self.is_preconditioned();
         let shear = if lattice.load_case == super::raw::LoadCase::Shear && !preconditioned { 2.5 } else { 1.0 };
         let by_masses = relax.method == crate::sim::RelaxMethod::Fire && !preconditioned;
         let coarse_steps = if by_masses { (self.dt_per_tc() / 100.0).max(1.0) } else { 1.0 };

@@ -16,9 +16,7 @@ use crate::measure::{
     tensile_moduli,
 };
 use crate::model::{Axes, Bonds, Edges, ForceLaw, LatticeType, LawVisitor, Layout, Particles, SquareLattice};
-use crate::sim::{
-    Drive, Load, Network, Outcome, PreconditionerKind, ProbeTrace, Relaxation, Scene, SharedPreconditioner, Trace,
-};
+use crate::sim::{Drive, Load, Network, Outcome, ProbeTrace, Relaxation, Scene, SharedPreconditioner, Trace};
 use crate::spec::{
     Control, Diagonals, LatticeSpec, LoadCase, ProbeLine, RESIDUAL_OVER_ROUND_OFF, RunSpec, Supports, force_resolution,
     reference_extension, round_off_words,
@@ -336,25 +334,21 @@ fn set_preconditioner(
     made: Option<SharedPreconditioner>,
     metrics: &LatticeMetrics,
 ) -> Option<String> {
-    if !wants_preconditioner(spec) {
+    if !spec.is_preconditioned() {
         return None;
     }
-    if made.is_none() {
-        let why = match metrics.stiffness_min {
-            Some(k) if k > 0.0 => "its tangent stiffness at the static answer could not be factored",
-            _ => "this network is floppy (k_min = 0)",
-        };
-        return Some(format!(
-            "relax.preconditioner: stiffness needs the tangent stiffness at the static answer factored and positive \
-             definite, its softest stiffness k_min > 0: {why}; give relax.preconditioner: none"
-        ));
-    }
-    scene.preconditioner = made;
-    None
-}
-
-fn wants_preconditioner(spec: &RunSpec) -> bool {
-    spec.relax().is_some_and(|r| r.preconditioner == PreconditionerKind::Stiffness)
+    let why = match (metrics.stiffness_min, made) {
+        (Some(k), Some(made)) if k > 0.0 => {
+            scene.preconditioner = Some(made);
+            return None;
+        }
+        (Some(k), None) if k > 0.0 => "its tangent stiffness at the static answer could not be factored",
+        _ => "this network is floppy (k_min = 0)",
+    };
+    Some(format!(
+        "relax.preconditioner: stiffness needs the tangent stiffness at the static answer factored and positive \
+         definite, its softest stiffness k_min > 0: {why}; give relax.preconditioner: none"
+    ))
 }
 
 /// What a relaxation takes from the static answer: the displacement bound's residual
@@ -479,10 +473,9 @@ impl LawVisitor for StaticSolve<'_> {
     type Output = Result<(Solved, Option<SharedPreconditioner>), Stopped>;
     fn visit<L: ForceLaw>(mut self, law: L) -> Self::Output {
         let solved = self.solve(&law)?;
-        // The factor the bounds made, of the tangent at the static answer; a floppy network's
-        // (k_min = 0) regularised factor would blow its zero-energy motions up by 1e12.
-        let rigid = self.metrics.stiffness_min.is_some_and(|k| k > 0.0);
-        let metric = (wants_preconditioner(self.spec) && rigid).then(|| self.solver.take_preconditioner()).flatten();
+        // The factor the bounds made, of the tangent at the static answer (`set_preconditioner`
+        // hands it on only where the network is rigid).
+        let metric = self.spec.is_preconditioned().then(|| self.solver.take_preconditioner()).flatten();
         Ok((solved, metric.map(|p| Arc::new(p) as SharedPreconditioner)))
     }
 }

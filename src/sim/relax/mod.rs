@@ -140,7 +140,7 @@ trait Minimiser {
 }
 
 /// [`RelaxMethod::Static`]: one move, to the positions (m, x and y) of the static solution.
-struct Settle<'a>(&'a (Vec<f64>, Vec<f64>));
+struct Settle<'a>(&'a Positions);
 
 impl Minimiser for Settle<'_> {
     const SETTLES_IN_ONE_MOVE: bool = true;
