@@ -163,12 +163,18 @@ fn svg_or_png(
     Ok(Image::Png(indexed_png(&pixels, SIZE)?))
 }
 
+/// NeuQuant's sampling factor (1 learns from every pixel, 30, its fastest, from every 30th):
+/// the coursework's 24 heavy charts have 296–798 colours, mostly flat fills and the
+/// anti-aliased edges between them, and at 30 their PNGs took 0.5 % fewer bytes than at 10 (the
+/// GIF encoders' default) and their report 0.7 s less CPU (3.03 → 2.32 s, 2026-12-06).
+const QUANTISER_SAMPLING: i32 = 30;
+
 /// RGB `pixels` of `size` as a PNG of at most 256 colours (NeuQuant, as GIF encoders choose
 /// theirs): a chart has a few hundred (its anti-aliased text), and indexed it takes half the
 /// bytes of RGB with no difference to see.
 fn indexed_png(pixels: &[u8], size: (u32, u32)) -> anyhow::Result<Vec<u8>> {
     let rgba: Vec<u8> = pixels.chunks_exact(3).flat_map(|p| [p[0], p[1], p[2], 255]).collect();
-    let quantiser = color_quant::NeuQuant::new(10, 256, &rgba);
+    let quantiser = color_quant::NeuQuant::new(QUANTISER_SAMPLING, 256, &rgba);
     let mut nearest = std::collections::HashMap::new();
     let indices = super::by_runs(pixels, |[r, g, b]| {
         *nearest.entry([r, g, b]).or_insert_with(|| quantiser.index_of(&[r, g, b, 255]) as u8)

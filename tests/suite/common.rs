@@ -1,12 +1,31 @@
 //! Helpers shared by the integration tests.
 
-use mdsolids::plan;
-use mdsolids::runner::{RunRecord, execute};
-use mdsolids::spec::RunSpec;
+use mdsolids::plan::{self, Estimates};
+use mdsolids::runner::{RunRecord, execute_within};
+use mdsolids::spec::{Budget, RunSpec};
 
-/// The runs of an inline campaign (YAML text); panics with the spec error if it is invalid.
+/// The estimates this process's tests plan and run with (each network's modes, each
+/// integrator's stability limits, the static solve's symbolic analyses), as the runs of one
+/// campaign share their plan's: a test that plans an inline campaign and then runs it
+/// estimates each network's modes once, not again in the runner, and tests of one network
+/// share them (the cache is keyed by the network, `plan::network_key`). The suite spent ~4 of
+/// its ~93 CPU-s in the Lanczos estimate of ω_max, half of it estimating again what the plan
+/// had (2026-12-06). A test of the estimates themselves makes its own.
+pub fn estimates() -> &'static Estimates {
+    static SHARED: std::sync::OnceLock<Estimates> = std::sync::OnceLock::new();
+    SHARED.get_or_init(Estimates::default)
+}
+
+/// The runs of an inline campaign (YAML text), planned with [`estimates`]; panics with the
+/// spec error if it is invalid.
 pub fn runs(yaml: &str) -> Vec<RunSpec> {
-    plan::parse("inline.yaml", yaml).unwrap_or_else(|e| panic!("{e}")).campaign.runs
+    let campaign = mdsolids::spec::parse("inline.yaml", yaml).unwrap_or_else(|e| panic!("{e}"));
+    plan::plan_sharing("inline.yaml", campaign, estimates()).unwrap_or_else(|e| panic!("{e}")).runs
+}
+
+/// Runs `spec` as the program does, its stability read from [`estimates`].
+pub fn execute(spec: &RunSpec) -> RunRecord {
+    execute_within(spec, &Budget::default(), estimates())
 }
 
 /// Executes every run of an inline campaign.

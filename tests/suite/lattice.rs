@@ -89,7 +89,7 @@ fn static_answer_approaches_the_continuum() {
     let errors: Vec<f64> = specs
         .iter()
         .map(|s| {
-            let r = mdsolids::runner::execute(s);
+            let r = crate::common::execute(s);
             relative(r.metrics.lattice.youngs_modulus_fem, r.metrics.lattice.youngs_modulus_theory)
         })
         .collect();
@@ -305,7 +305,7 @@ fn factor_reusing_newton_reaches_the_fresh_factor_answer_on_a_stretched_lattice(
                 lattice: {size: 10, k_diag_ratio: 0.5, diagonals: both}\n    supports: clamped-bottom\n    \
                 load: {case: tensile, per_node: 0.05}\n    relax: {method: static}\n";
     let spec = &runs(yaml)[0];
-    let record = mdsolids::runner::execute(spec);
+    let record = crate::common::execute(spec);
     assert_eq!(record.status, RunStatus::Ok, "{}", record.message);
     let l = &record.metrics.lattice;
     let nonlinearity = l.static_nonlinearity.expect("linear springs have a linear answer beside");

@@ -31,7 +31,7 @@ fn label(r: &RunRecord) -> String {
 /// The static answers of a campaign whose MD stops after 1 t_c (`relax.max_tc: 1`): the
 /// static solve comes first and is complete; the short MD run only marks `no_equilibrium`.
 fn static_answers(yaml: &str) -> Vec<RunRecord> {
-    runs(yaml).iter().map(mdsolids::runner::execute).collect()
+    runs(yaml).iter().map(crate::common::execute).collect()
 }
 
 #[test]

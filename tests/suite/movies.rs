@@ -297,7 +297,7 @@ fn a_lock_file_that_is_a_symbolic_link_is_refused() {
 fn a_movie_stops_at_its_runs_deadline() {
     let planned = plan::parse("film.yaml", CAMPAIGN).unwrap();
     let campaign = &planned.campaign;
-    let mut movie = mdsolids::runner::execute(&campaign.runs[0]).movie.unwrap();
+    let mut movie = crate::common::execute(&campaign.runs[0]).movie.unwrap();
     let dir = crate::common::scratch();
     let path = dir.path().join("late.gif");
     movie.deadline = std::time::Instant::now().checked_sub(std::time::Duration::from_millis(1));
@@ -377,7 +377,7 @@ fn runs_with_no_time_draw_their_start_and_end() {
         let (_, drawn) = frames(&layout.movie_file(&record.run_id));
         assert_eq!(drawn.len(), 2, "{method}: the start and the end, whatever movie.frames asks");
         assert_ne!(drawn[0], drawn[1], "{method}: the end is not the start (the load moved the top row)");
-        let captions = mdsolids::runner::execute(&record.spec).movie.unwrap().captions;
+        let captions = crate::common::execute(&record.spec).movie.unwrap().captions;
         let end = match method {
             "static" => "static answer (relax.method: static)".to_string(),
             _ => format!("relaxed ({method}, {} force evaluations)", record.steps),

@@ -1,7 +1,7 @@
 //! `src/runner/mod.rs`: a run's movie beside its record.
 
 use mdsolids::output::Layout;
-use mdsolids::runner::{NO_MOVIE, execute, write_run_movie};
+use mdsolids::runner::{NO_MOVIE, write_run_movie};
 use mdsolids::sim::RunStatus;
 
 /// Issue 31, item 6: a movie that cannot be drawn is recorded on its run, whose status stays,
@@ -13,7 +13,7 @@ fn a_movie_that_cannot_be_drawn_is_recorded_on_its_run() {
     let yaml = "version: 1\nname: film\nscenes:\n  - name: chain\n    kind: chain\n    n: 4\n    v0: 0.1\n    \
                 movie: {frames: 3, width: 200, height: 120}\n";
     let planned = mdsolids::plan::parse("film.yaml", yaml).unwrap();
-    let mut record = execute(&planned.campaign.runs[0]);
+    let mut record = crate::common::execute(&planned.campaign.runs[0]);
     let mut movie = record.movie.take().unwrap();
     movie.frames.clear();
     let reports = crate::common::scratch();

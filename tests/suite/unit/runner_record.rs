@@ -93,7 +93,7 @@ fn the_tables_have_named_columns_of_plain_types() {
 #[test]
 fn a_kicked_column_and_probed_lines_read_back() {
     let (_, lattice, _) = specs();
-    let record = mdsolids::runner::execute(&lattice);
+    let record = crate::common::execute(&lattice);
     let t = &record.trace;
     assert_eq!(t.probes.iter().map(|p| p.name.as_str()).collect::<Vec<_>>(), ["column 3", "row 0"]);
     assert!(t.displacement_x.is_empty() && t.probes[0].displacement_x.is_empty());
