@@ -9,11 +9,14 @@
 //! it satisfies the unregularised equations: ‖K u − f‖ ≤ 1e-6 ‖f‖. Otherwise the load drives a
 //! mechanism.
 
+mod answers;
+mod kept;
 mod ordering;
 mod solver;
 mod sparse;
 mod triplets;
 
+pub use self::answers::{Answers, Shared, StaticAnswer};
 pub use self::solver::{Convergence, NEWTON_TOLERANCE, Solver, StiffnessPreconditioner};
 pub use self::sparse::Analyses;
 pub use self::triplets::{Entry, factor_and_solve};
@@ -120,6 +123,25 @@ impl<'a> Truss<'a> {
                 hasher.update(&v.to_le_bytes());
             });
         }
+        *hasher.finalize().as_bytes()
+    }
+
+    /// A blake3 hash of what the static answer depends on besides the force law, bit for bit:
+    /// the structure ([`Truss::structure_key`]), the positions, every bond's rest length,
+    /// stiffness and period shift, the loads and the imposed displacements; then `law`, the
+    /// force law and whatever it is linearised at, in words.
+    pub fn answer_key(&self, law: &str) -> [u8; 32] {
+        let mut hasher = blake3::Hasher::new();
+        hasher.update(&self.structure_key());
+        let b = self.bonds;
+        let loads: Vec<f64> = self.loads.iter().flat_map(|l| [l.particle as f64, l.fx, l.fy]).collect();
+        let prescribed: Vec<f64> = self.prescribed.iter().flat_map(|&(node, ux, uy)| [node as f64, ux, uy]).collect();
+        for list in [self.x, self.y, &b.rest, &b.stiffness, &b.shift_x, &loads, &prescribed] {
+            let bytes: Vec<u8> = list.iter().flat_map(|v| v.to_le_bytes()).collect();
+            hasher.update(&bytes.len().to_le_bytes());
+            hasher.update(&bytes);
+        }
+        hasher.update(law.as_bytes());
         *hasher.finalize().as_bytes()
     }
 

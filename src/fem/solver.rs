@@ -8,7 +8,7 @@ use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use super::sparse::{Analysis, Factor, conjugate_gradients, dot};
-use super::{Dofs, ErrorBounds, StaticSolution, Truss, refined_solve};
+use super::{Dofs, ErrorBounds, StaticAnswer, StaticSolution, Truss, refined_solve};
 use crate::model::{ForceLaw, Linear};
 use crate::sim::{Preconditioner, euclidean_norm};
 
@@ -82,6 +82,27 @@ impl<'a> Solver<'a> {
     /// How the last Newton–Raphson iteration converged, and the factorisations and solves so far.
     pub fn convergence(&self) -> Convergence {
         self.convergence
+    }
+
+    /// The static answer under `law`: the linear answer, then Newton's from it where the springs
+    /// are linear (`linear_law`: the linearised network is the network), else from the network
+    /// linearised at `linearised_at` ([`Solver::solve_nonlinear`]); Newton is not tried on a
+    /// mechanism. Shared between runs through [`super::Answers`].
+    pub fn solve_static<L: ForceLaw>(
+        &mut self,
+        law: &L,
+        (linear_law, linearised_at): (bool, f64),
+        deadline: Instant,
+    ) -> StaticAnswer {
+        let linear = self.solve_linear();
+        let nonlinear = match (&linear, linear_law) {
+            (StaticSolution::Displacements { ux, uy }, true) => {
+                self.solve_nonlinear_from(law, ux.clone(), uy.clone(), Some(deadline))
+            }
+            (StaticSolution::Displacements { .. }, false) => self.solve_nonlinear(law, linearised_at, Some(deadline)),
+            _ => None,
+        };
+        StaticAnswer { linear, nonlinear, residual: self.convergence.residual }
     }
 
     /// Solves the linear problem K u = f (springs at their rest geometry) with a fresh factor

@@ -4,7 +4,7 @@
 //! kept for the run; and the conjugate gradients that reuse one factor for every tangent near
 //! it. Pure: no I/O.
 
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
@@ -15,6 +15,7 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 
+use super::kept::Kept;
 use super::ordering::nested_dissection;
 use crate::sim::euclidean_norm;
 
@@ -34,11 +35,8 @@ pub(super) struct Analysis {
 /// analysis, and one that is being made is waited for, not made twice.
 #[derive(Default)]
 pub struct Analyses {
-    slots: Mutex<Vec<([u8; 32], Slot)>>,
+    kept: Kept<Analysis, KEPT_ANALYSES>,
 }
-
-/// One network's analysis, made once by whichever run needs it first.
-type Slot = Arc<OnceLock<Arc<Analysis>>>;
 
 impl std::fmt::Debug for Analyses {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -52,7 +50,7 @@ const KEPT_ANALYSES: usize = 2;
 impl Analyses {
     /// How many networks have been analysed and are still kept.
     pub fn len(&self) -> usize {
-        self.slots.lock().expect("the cache is never poisoned").iter().filter(|(_, slot)| slot.get().is_some()).count()
+        self.kept.len()
     }
 
     /// Whether no network has been analysed yet.
@@ -62,20 +60,7 @@ impl Analyses {
 
     /// The analysis of the network hashed as `key`, made by `make` on a miss.
     pub(super) fn get(&self, key: [u8; 32], make: impl FnOnce() -> Analysis) -> Arc<Analysis> {
-        let slot = {
-            let mut slots = self.slots.lock().expect("the cache is never poisoned");
-            match slots.iter().find(|(k, _)| *k == key) {
-                Some((_, slot)) => slot.clone(),
-                None => {
-                    if slots.len() == KEPT_ANALYSES {
-                        slots.remove(0);
-                    }
-                    slots.push((key, Arc::default()));
-                    slots.last().expect("just pushed").1.clone()
-                }
-            }
-        };
-        slot.get_or_init(|| Arc::new(make())).clone()
+        self.kept.get(key, make)
     }
 }
 

@@ -7,7 +7,7 @@
 use std::collections::HashMap;
 use std::sync::Mutex;
 
-use crate::fem::Analyses;
+use crate::fem::Shared;
 use crate::model::{Axes, BondDashpot, Linear, NoDashpot, Particles, Spring, SquareLattice};
 use crate::sim::{BondNetwork, Gear, IntegratorKind, Sampling, Scene, State, StepProbe, simulate_with};
 use crate::spec::{LANCZOS_BONDS, RunSpec};
@@ -61,21 +61,23 @@ pub fn estimate(spec: &RunSpec) -> Stability {
 /// The estimates made so far, so that runs of one network (a grid over dt, integrators, run
 /// lengths) compute its modes once, and runs of one integrator its limit once: the plan fills
 /// it while checking a campaign, and the runs read it again for their records. The runs also
-/// share through it their networks' symbolic analyses for the static solve.
+/// share through it their static solves: each network's symbolic analysis, and each loaded
+/// network's answer.
 #[derive(Debug, Default)]
 pub struct Estimates {
     /// The modes of each network, by [`network_key`].
     modes: Mutex<HashMap<String, Modes>>,
     /// The stability limits measured, by integrator, test equation and run length.
     limits: Mutex<HashMap<LimitKey, f64>>,
-    /// The symbolic analyses of the static solve, by network.
-    analyses: Analyses,
+    /// The static solves' analyses and answers.
+    shared: Shared,
 }
 
 impl Estimates {
-    /// The static solve's symbolic analyses of the networks solved so far.
-    pub fn analyses(&self) -> &Analyses {
-        &self.analyses
+    /// What the runs share of their static solves: the symbolic analyses of the networks and
+    /// the answers of the loaded networks solved so far.
+    pub fn shared(&self) -> &Shared {
+        &self.shared
     }
 
     /// How many networks' modes have been estimated so far.

@@ -102,7 +102,7 @@ fn blank_record(spec: &RunSpec) -> RunRecord {
 fn run_and_measure(spec: &RunSpec, deadline: Instant, estimates: &Estimates) -> Result<Box<Run>, Stopped> {
     assert!(spec.is_planned(), "a run reached the runner without its time step: plan the campaign (crate::plan)");
     let stability = estimates.stepped_stability(spec);
-    let mut run = study::run(spec, deadline, estimates.analyses())?;
+    let mut run = study::run(spec, deadline, estimates.shared())?;
     if let Some(stability) = stability {
         run.metrics.omega_max = Some(stability.omega_max);
         run.metrics.dt_omega_max = Some(stability.dt_omega_max);

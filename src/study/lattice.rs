@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use super::columns::{Block, Column, Row, Slot};
 use super::common::{Stopped, relaxation, scene, sound_speed};
-use crate::fem::{Analyses, Solver, StaticSolution, Truss};
+use crate::fem::{Answers, Shared, Solver, StaticAnswer, StaticSolution, Truss};
 use crate::measure::{
     LatticeShape, anisotropic_moduli, constrained_modulus_y, extension_error_allowed, homogeneity, lattice_constants,
     modulus_error_bound, network_constants, plane_wave_speeds, row_extension, row_extension_weights, shear_modulus,
@@ -281,13 +281,14 @@ fn top_row_drive(spec: &RunSpec, l: &LatticeSpec) -> Drive {
 /// The static answer of a loaded lattice, before its MD run: the fraction of bonds a random
 /// lattice kept, the moduli of the static solution (see [`solve`]), and what the scene's
 /// relaxation needs from it ([`relaxation_from_static`]), on the network's symbolic analysis in
-/// `analyses` (made there if it is new). Returns why the run has no criterion to stop at, if it
-/// has none (it is then not run).
+/// `shared` (made there if it is new), and from the answer another run of the campaign found
+/// for the same network, load and law, if one did. Returns why the run has no criterion to stop
+/// at, if it has none (it is then not run).
 pub(super) fn static_answer(
     spec: &RunSpec,
     l: &LatticeSpec,
     scene: &mut Scene,
-    (deadline, analyses): (Instant, &Analyses),
+    (deadline, shared): (Instant, &Shared),
     metrics: &mut LatticeMetrics,
 ) -> Result<Option<String>, Stopped> {
     let bonds = bonds(spec, l);
@@ -309,9 +310,10 @@ pub(super) fn static_answer(
         loads: &scene.loads,
         prescribed: &prescribed,
     };
-    let solver = truss.solver(analyses);
+    let solver = truss.solver(&shared.analyses);
+    let answers = &shared.answers;
     let ((top_row_force, solution), preconditioner) =
-        scene.law.dispatch(StaticSolve { spec, l, truss: &truss, solver, deadline, metrics })?;
+        scene.law.dispatch(StaticSolve { spec, l, truss: &truss, solver, answers, deadline, metrics })?;
     if spec.static_only() {
         scene.rest = solution.map(|(ux, uy)| {
             let p = &scene.particles;
@@ -462,6 +464,7 @@ struct StaticSolve<'a> {
     l: &'a LatticeSpec,
     truss: &'a Truss<'a>,
     solver: Solver<'a>,
+    answers: &'a Answers,
     deadline: Instant,
     metrics: &'a mut LatticeMetrics,
 }
@@ -496,22 +499,16 @@ impl StaticSolve<'_> {
     /// when the load drives a mechanism, or when the deadline passes (checked between
     /// factorisations).
     fn solve<L: ForceLaw>(&mut self, law: &L) -> Result<Solved, Stopped> {
-        let (linear, linear_answer) = self.solve_linear(law)?;
-        let nonlinear = match (&linear_answer.1, self.spec.law.is_linear()) {
-            // Linear springs: the linearised network is the network, so Newton starts from the
-            // linear answer just solved.
-            (Some((ux, uy)), true) => {
-                self.solver.solve_nonlinear_from(law, ux.clone(), uy.clone(), Some(self.deadline))
-            }
-            _ => self.solver.solve_nonlinear(law, reference_extension(self.spec), Some(self.deadline)),
-        };
-        let (ux, uy) = match nonlinear {
+        self.check_deadline()?;
+        let answer = self.answer(law);
+        let (linear, linear_answer) = self.linear(law, answer.linear)?;
+        let (ux, uy) = match answer.nonlinear {
             Some(StaticSolution::Displacements { ux, uy }) => (ux, uy),
             Some(StaticSolution::PastDeadline) => return Err(past_deadline()),
             // Newton did not converge: the linear answer stands, and no residual of Newton's.
             _ => return Ok(linear_answer),
         };
-        self.metrics.static_residual = Some(self.solver.convergence().residual).filter(|r| r.is_finite());
+        self.metrics.static_residual = Some(answer.residual).filter(|r| r.is_finite());
         let top_row_force = self.top_row_force(law, &ux, &uy);
         let fem = moduli(self.spec, self.l, top_row_force, &ux, &uy);
         if self.spec.law.is_linear() {
@@ -525,12 +522,20 @@ impl StaticSolve<'_> {
         Ok((top_row_force, Some((ux, uy))))
     }
 
-    /// The linear answer, which decides whether the network carries the load at all (a power
-    /// law's linear answer means nothing else): its moduli, kept as `*_linear`, and its top
-    /// row's force and displacements.
-    fn solve_linear<L: ForceLaw>(&mut self, law: &L) -> Result<(Moduli, Solved), Stopped> {
-        self.check_deadline()?;
-        let (linear, answer) = match self.solver.solve_linear() {
+    /// The static answer of this run's network, load and law ([`Solver::solve_static`]):
+    /// solved here, or by another run of the campaign that asked first ([`Answers`]).
+    fn answer<L: ForceLaw>(&mut self, law: &L) -> StaticAnswer {
+        let extension = reference_extension(self.spec);
+        let key = self.truss.answer_key(&format!("{:?} linearised at {:x}", self.spec.law, extension.to_bits()));
+        let (solver, setting, deadline) = (&mut self.solver, (self.spec.law.is_linear(), extension), self.deadline);
+        self.answers.get(key, || solver.solve_static(law, setting, deadline))
+    }
+
+    /// The linear answer `solution`, which decides whether the network carries the load at
+    /// all (a power law's linear answer means nothing else): its moduli, kept as `*_linear`,
+    /// and its top row's force and displacements.
+    fn linear<L: ForceLaw>(&mut self, law: &L, solution: StaticSolution) -> Result<(Moduli, Solved), Stopped> {
+        let (linear, answer) = match solution {
             StaticSolution::Mechanism { residual } => return Err(Stopped::Mechanism { residual }),
             StaticSolution::PastDeadline => return Err(past_deadline()),
             StaticSolution::Displacements { ux, uy } => {

@@ -20,7 +20,7 @@ use serde::{Deserialize, Serialize};
 
 use self::columns::{Block, Row};
 use self::common::relaxation_checks;
-use crate::fem::Analyses;
+use crate::fem::Shared;
 use crate::measure::{ARRIVAL_CRITERIA, arrival_time, energy_error};
 use crate::model::{Axes, Particles};
 use crate::sim::{Outcome, RelaxMethod, RunStatus, Scene, Trace};
@@ -138,13 +138,13 @@ fn build_scene_until(spec: &RunSpec, deadline: Instant) -> Scene {
 /// Builds and integrates `spec` (a loaded lattice after its static answer), its time loops
 /// stopped at `deadline`, and measures it: the kind's measurements, the tangent step of a
 /// relaxed run, the error against a reference run at a finer dt or the exact answer.
-pub fn run(spec: &RunSpec, deadline: Instant, analyses: &Analyses) -> Result<Run, Stopped> {
+pub fn run(spec: &RunSpec, deadline: Instant, shared: &Shared) -> Result<Run, Stopped> {
     let mut scene = build_scene_until(spec, deadline);
     let mut metrics = Metrics::default();
     let mut no_criterion = None;
     if let Some(l) = spec.lattice().filter(|l| l.impulse.is_none()) {
         let started = Instant::now();
-        no_criterion = lattice::static_answer(spec, l, &mut scene, (deadline, analyses), &mut metrics.lattice)?;
+        no_criterion = lattice::static_answer(spec, l, &mut scene, (deadline, shared), &mut metrics.lattice)?;
         metrics.solve_s = Some(started.elapsed().as_secs_f64());
     }
     if no_criterion.is_some() {

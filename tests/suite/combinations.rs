@@ -197,7 +197,7 @@ fn outcome(c: &Cell, spec: &RunSpec, estimates: &Estimates) -> Result<(RunStatus
             mdsolids::runner::execute_within(spec, &Budget::default(), estimates);
         return Ok((status, message, metrics));
     }
-    match mdsolids::study::run(spec, Instant::now() + Duration::from_secs(60), estimates.analyses()) {
+    match mdsolids::study::run(spec, Instant::now() + Duration::from_secs(60), estimates.shared()) {
         Err(mdsolids::study::Stopped::Mechanism { .. }) => {
             Ok((RunStatus::Mechanism, String::new(), Metrics::default()))
         }

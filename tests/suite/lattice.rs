@@ -329,13 +329,53 @@ fn static_solves_share_the_analysis_of_their_network() {
              load: {{case: tensile, per_node: 0.001}}\n    relax: {{method: static}}\n    grid:\n{grid}"
         );
         let plan = mdsolids::plan::parse("inline.yaml", &yaml).unwrap_or_else(|e| panic!("{e}"));
-        assert!(plan.estimates.analyses().is_empty(), "nothing analysed before the runs");
+        assert!(plan.estimates.shared().analyses.is_empty(), "nothing analysed before the runs");
         for spec in &plan.campaign.runs {
             let record = mdsolids::runner::execute_within(spec, &plan.campaign.budget, &plan.estimates);
             assert_eq!(record.status, RunStatus::Ok, "{}", record.message);
         }
-        (plan.campaign.runs.len(), plan.estimates.analyses().len())
+        (plan.campaign.runs.len(), plan.estimates.shared().analyses.len())
     };
     assert_eq!(analysed("      load.per_node: [0.001, 0.002]\n      material.k: [1.0, 2.0]\n"), (4, 1));
     assert_eq!(analysed("      lattice.size: [6, 7]\n"), (2, 2));
+}
+
+/// The static answer is solved once per loaded network and law and shared by the runs of a
+/// campaign: runs that differ only in how they relax to it (static, FIRE, CG, damped MD) keep
+/// one answer, and their `*_fem` moduli are the same bits; another load, stiffness, law or
+/// seed of the bonds cut is another answer (`fem::Answers`, at most two kept). (Each run's
+/// moduli against an independent dense solve: `combinations::`, whose 2 160 cells share one set
+/// of estimates, so a key that confused two problems would fail there too.)
+#[test]
+fn static_solves_share_the_answer_of_their_loaded_network() {
+    let answered = |grid: &str| {
+        let yaml = format!(
+            "version: 1\nname: t\nscenes:\n  - name: s\n    kind: lattice\n    material: {{mass: 1.0, k: 1.0}}\n    \
+             lattice: {{size: 6, k_diag_ratio: 0.5, diagonals: both}}\n    supports: clamped-bottom\n    \
+             load: {{case: tensile, per_node: 0.001}}\n    relax: {{max_tc: 2}}\n    grid:\n{grid}"
+        );
+        let plan = mdsolids::plan::parse("inline.yaml", &yaml).unwrap_or_else(|e| panic!("{e}"));
+        let records: Vec<_> = plan
+            .campaign
+            .runs
+            .iter()
+            .map(|spec| mdsolids::runner::execute_within(spec, &plan.campaign.budget, &plan.estimates))
+            .collect();
+        let moduli: Vec<u64> =
+            records.iter().map(|r| r.metrics.lattice.youngs_modulus_fem.expect("a static modulus").to_bits()).collect();
+        (plan.estimates.shared().answers.len(), moduli)
+    };
+    let (kept, moduli) = answered("      relax.method: [static, fire, cg, damped]\n");
+    assert_eq!(kept, 1, "one answer for four ways to relax to it");
+    assert!(moduli.iter().all(|m| *m == moduli[0]), "the same bits: {moduli:?}");
+    for grid in [
+        "      load.per_node: [0.001, 0.002]\n",
+        "      material.k: [1.0, 2.0]\n",
+        "      material.law: [linear, hertz]\n",
+        "      lattice.cut_fraction: [0.05]\n      seed: [1, 2]\n",
+    ] {
+        let (kept, moduli) = answered(grid);
+        assert_eq!(kept, 2, "{grid}: two problems, two answers");
+        assert_ne!(moduli[0], moduli[1], "{grid}");
+    }
 }

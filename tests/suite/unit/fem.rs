@@ -237,3 +237,32 @@ fn newton_converges_quadratically_and_records_its_residual() {
     // The supports hold −(total load); 1e-10: the 1e-12 residual summed over 2n² dofs.
     assert!((carried + force * n as f64).abs() <= 1e-10, "{carried}");
 }
+
+/// An answer a deadline cut short is not kept (`fem::Answers`): the run that asks next solves
+/// again, while a finished answer is handed out without solving.
+#[test]
+fn an_answer_cut_short_by_a_deadline_is_solved_again() {
+    use mdsolids::fem::{Answers, StaticAnswer};
+    let answers = Answers::default();
+    let answer = |nonlinear| StaticAnswer {
+        linear: StaticSolution::Displacements { ux: vec![0.0], uy: vec![1.0] },
+        nonlinear: Some(nonlinear),
+        residual: 1e-13,
+    };
+    let mut solved = 0;
+    let key = [7; 32];
+    let cut = answers.get(key, || {
+        solved += 1;
+        answer(StaticSolution::PastDeadline)
+    });
+    assert_eq!(
+        (cut.nonlinear, solved, answers.len()),
+        (Some(StaticSolution::PastDeadline), 2, 0),
+        "solved again, not kept"
+    );
+    let done = StaticSolution::Displacements { ux: vec![0.5], uy: vec![1.5] };
+    let first = answers.get(key, || answer(done.clone()));
+    let second = answers.get(key, || unreachable!("kept"));
+    assert_eq!((first.clone(), answers.len()), (second, 1));
+    assert_eq!(first.nonlinear, Some(done));
+}
