@@ -58,8 +58,9 @@ pub struct Metrics {
     pub mode_damping_ratio: Option<f64>,
     /// Largest dt · ω_max the integrator survives at that damping ratio.
     pub stability_limit: Option<f64>,
-    /// Loaded lattice: wall time (s) of its static answer (the solve, and for a relaxing run
-    /// k_min and the sensitivity its bound needs), part of the run's `wall_s`.
+    /// Loaded lattice: wall time (s) of its static answer (the solve, or the wait for the run
+    /// of the campaign that solves it, and for a relaxing run k_min and the sensitivity its
+    /// bound needs), part of the run's `wall_s`.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub solve_s: Option<f64>,
     /// Lattice: time (s) from which the relaxation criterion held.
