@@ -329,6 +329,21 @@ impl Race<'_> {
         names.len()
     }
 
+    /// The scenes its runs come from, in their order, each once: "scene a", "scenes a, b and c".
+    fn scenes(&self) -> String {
+        let mut names: Vec<&str> = Vec::new();
+        for r in &self.runs {
+            if !names.contains(&r.spec.scene.as_str()) {
+                names.push(&r.spec.scene);
+            }
+        }
+        match names.split_last() {
+            Some((last, [])) => format!("scene {last}"),
+            Some((last, rest)) => format!("scenes {} and {last}", rest.join(", ")),
+            None => String::new(),
+        }
+    }
+
     fn nodes(&self) -> usize {
         self.runs[0].spec.lattice().map_or(0, |l| l.nx * l.ny)
     }
@@ -385,11 +400,18 @@ impl Race<'_> {
     }
 }
 
-/// Which method won at each block size, where the winner changes with it.
+/// Which method won at each block size; a block that several races share (another load or
+/// material on the same size) is told apart by its races' scenes.
 fn winners_sentence(races: &[Race]) -> Option<String> {
-    let winners: Vec<String> =
-        races.iter().map(|race| format!("{} at {}", method(race.winner()), block(race.winner()))).collect();
-    (winners.len() > 1).then(|| format!("The cheapest method block by block: {}.", winners.join(", ")))
+    let shared = |race: &Race| races.iter().filter(|other| block(other.winner()) == block(race.winner())).count() > 1;
+    let winners: Vec<String> = races
+        .iter()
+        .map(|race| {
+            let at = format!("{} at {}", method(race.winner()), block(race.winner()));
+            if shared(race) { format!("{at} ({})", race.scenes()) } else { at }
+        })
+        .collect();
+    (winners.len() > 1).then(|| format!("The cheapest method block by block: {}.", winners.join("; ")))
 }
 
 /// The discussion of a relaxation campaign: which method to use, and how each one's cost grows
