@@ -523,11 +523,17 @@ impl StaticSolve<'_> {
     }
 
     /// The static answer of this run's network, load and law ([`Solver::solve_static`]):
-    /// solved here, or by another run of the campaign that asked first ([`Answers`]).
+    /// solved here, or by another run of the campaign that asked first ([`Answers`]). What the
+    /// solver does after it must not depend on which: a relaxing run factors the tangent afresh
+    /// for its bounds, but a static-only run's tangent step solves with the factor its own
+    /// static solve left, so that run solves its answer itself.
     fn answer<L: ForceLaw>(&mut self, law: &L) -> StaticAnswer {
         let extension = reference_extension(self.spec);
-        let key = self.truss.answer_key(&format!("{:?} linearised at {:x}", self.spec.law, extension.to_bits()));
         let (solver, setting, deadline) = (&mut self.solver, (self.spec.law.is_linear(), extension), self.deadline);
+        if self.spec.static_only() && self.spec.relax().and_then(|r| r.tangent_step).is_some() {
+            return solver.solve_static(law, setting, deadline);
+        }
+        let key = self.truss.answer_key(&format!("{:?} linearised at {:x}", self.spec.law, extension.to_bits()));
         self.answers.get(key, || solver.solve_static(law, setting, deadline))
     }
 

@@ -317,21 +317,32 @@ fn factor_reusing_newton_reaches_the_fresh_factor_answer_on_a_stretched_lattice(
     assert!((fem / dense.modulus - 1.0).abs() <= 1e-12, "{fem} against the dense {}", dense.modulus);
 }
 
+/// A clamped 6 × 6 block with both diagonals, pulled by 1e-3 N on each top node, with `relax`
+/// and the grid `grid` (YAML lines), planned.
+fn planned_block(relax: &str, grid: &str) -> mdsolids::plan::Plan {
+    let yaml = format!(
+        "version: 1\nname: t\nscenes:\n  - name: s\n    kind: lattice\n    material: {{mass: 1.0, k: 1.0}}\n    \
+         lattice: {{size: 6, k_diag_ratio: 0.5, diagonals: both}}\n    supports: clamped-bottom\n    \
+         load: {{case: tensile, per_node: 0.001}}\n    relax: {relax}\n    grid:\n{grid}"
+    );
+    mdsolids::plan::parse("inline.yaml", &yaml).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Every run of `plan`, with the plan's estimates (as `mdsolids run` runs them).
+fn run_planned(plan: &mdsolids::plan::Plan) -> Vec<RunRecord> {
+    let run = |spec| mdsolids::runner::execute_within(spec, &plan.campaign.budget, &plan.estimates);
+    plan.campaign.runs.iter().map(run).collect()
+}
+
 /// The static solve's symbolic analysis is made once per network and shared by the runs of a
 /// campaign (through the plan's `Estimates`): two runs of one network with other loads and
 /// stiffnesses share one; two sizes need two.
 #[test]
 fn static_solves_share_the_analysis_of_their_network() {
     let analysed = |grid: &str| {
-        let yaml = format!(
-            "version: 1\nname: t\nscenes:\n  - name: s\n    kind: lattice\n    material: {{mass: 1.0, k: 1.0}}\n    \
-             lattice: {{size: 6, k_diag_ratio: 0.5, diagonals: both}}\n    supports: clamped-bottom\n    \
-             load: {{case: tensile, per_node: 0.001}}\n    relax: {{method: static}}\n    grid:\n{grid}"
-        );
-        let plan = mdsolids::plan::parse("inline.yaml", &yaml).unwrap_or_else(|e| panic!("{e}"));
+        let plan = planned_block("{method: static}", grid);
         assert!(plan.estimates.shared().analyses.is_empty(), "nothing analysed before the runs");
-        for spec in &plan.campaign.runs {
-            let record = mdsolids::runner::execute_within(spec, &plan.campaign.budget, &plan.estimates);
+        for record in run_planned(&plan) {
             assert_eq!(record.status, RunStatus::Ok, "{}", record.message);
         }
         (plan.campaign.runs.len(), plan.estimates.shared().analyses.len())
@@ -349,20 +360,11 @@ fn static_solves_share_the_analysis_of_their_network() {
 #[test]
 fn static_solves_share_the_answer_of_their_loaded_network() {
     let answered = |grid: &str| {
-        let yaml = format!(
-            "version: 1\nname: t\nscenes:\n  - name: s\n    kind: lattice\n    material: {{mass: 1.0, k: 1.0}}\n    \
-             lattice: {{size: 6, k_diag_ratio: 0.5, diagonals: both}}\n    supports: clamped-bottom\n    \
-             load: {{case: tensile, per_node: 0.001}}\n    relax: {{max_tc: 2}}\n    grid:\n{grid}"
-        );
-        let plan = mdsolids::plan::parse("inline.yaml", &yaml).unwrap_or_else(|e| panic!("{e}"));
-        let records: Vec<_> = plan
-            .campaign
-            .runs
+        let plan = planned_block("{max_tc: 2}", grid);
+        let moduli: Vec<u64> = run_planned(&plan)
             .iter()
-            .map(|spec| mdsolids::runner::execute_within(spec, &plan.campaign.budget, &plan.estimates))
+            .map(|r| r.metrics.lattice.youngs_modulus_fem.expect("a static modulus").to_bits())
             .collect();
-        let moduli: Vec<u64> =
-            records.iter().map(|r| r.metrics.lattice.youngs_modulus_fem.expect("a static modulus").to_bits()).collect();
         (plan.estimates.shared().answers.len(), moduli)
     };
     let (kept, moduli) = answered("      relax.method: [static, fire, cg, damped]\n");
@@ -378,4 +380,21 @@ fn static_solves_share_the_answer_of_their_loaded_network() {
         assert_eq!(kept, 2, "{grid}: two problems, two answers");
         assert_ne!(moduli[0], moduli[1], "{grid}");
     }
+}
+
+/// A run's results do not depend on whether another run of its campaign solved the static
+/// answer first: a static-only run's tangent step (`relax.tangent_step`) solves with the factor
+/// its own static solve left, so such a run solves its answer itself and its tangent moduli are
+/// the same bits after a FIRE run of the same network as alone.
+#[test]
+fn a_static_runs_tangent_moduli_do_not_depend_on_a_shared_answer() {
+    let tangent = |records: &[RunRecord]| {
+        let last = records.last().expect("a run");
+        assert_eq!(last.spec.relax().map(|r| r.method.name()), Some("static"));
+        let l = &last.metrics.lattice;
+        [l.youngs_modulus_tangent_fem, l.poisson_ratio_tangent_fem].map(|v| v.expect("a tangent modulus").to_bits())
+    };
+    let alone = run_planned(&planned_block("{tangent_step: 0.001}", "      relax.method: [static]\n"));
+    let after_fire = run_planned(&planned_block("{tangent_step: 0.001}", "      relax.method: [fire, static]\n"));
+    assert_eq!(tangent(&alone), tangent(&after_fire));
 }
