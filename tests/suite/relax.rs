@@ -247,15 +247,17 @@ fn the_report_answers_time_to_a_modulus_with_each_method_against_its_bound() {
     ] {
         assert!(section.contains(words), "missing {words:?} in:\n{section}");
     }
-    // Two races on 12 × 12 blocks (pulled, and the scene `sheared`) are told apart by their
-    // scenes; the one race on 24 × 24 blocks needs no such label.
+    // Two races on 12 × 12 blocks, pulled and sheared, are told apart by their loads; the one
+    // race on 24 × 24 blocks needs no such label.
     let winners = section.split("The cheapest method block by block: ").nth(1).expect("the winners' sentence");
     let winners: Vec<&str> = winners[..winners.find(".\n").expect("a full stop")].split("; ").collect();
     let on = |size: &str| winners.iter().filter(|w| w.contains(size)).copied().collect::<Vec<_>>();
     let (twelve, twenty_four) = (on("at 12 × 12"), on("at 24 × 24"));
-    assert!(twelve.len() == 2 && twelve.iter().all(|w| w.contains("(scene")), "{winners:?}");
-    assert!(twelve.iter().any(|w| w.ends_with("(scene sheared)")) && twelve[0] != twelve[1], "{winners:?}");
-    assert!(twenty_four.len() == 1 && !twenty_four[0].contains("(scene"), "{winners:?}");
+    assert!(twelve.len() == 2 && twelve.iter().all(|w| w.contains(" (load ")), "{winners:?}");
+    for case in ["(load shear, ", "(load tensile, "] {
+        assert!(twelve.iter().any(|w| w.contains(case)), "{case}: {winners:?}");
+    }
+    assert!(twenty_four.len() == 1 && !twenty_four[0].contains('('), "{winners:?}");
 }
 
 #[test]

@@ -322,26 +322,26 @@ fn races<'a>(runs: &[&'a RunRecord]) -> Vec<Race<'a>> {
     races
 }
 
+/// What a race holds fixed besides its block and method, in words, (what, value): the load,
+/// the springs, the masses, the spacing and the tolerance ([`races`] groups by them exactly).
+fn setting(r: &RunRecord) -> [(&'static str, String); 5] {
+    let l = r.spec.lattice().expect("a bounded run is a lattice's");
+    let tolerance = r.spec.relax().and_then(|relax| relax.tolerance).map_or_else(|| "none".to_string(), sig);
+    let case = format!("{:?}", l.load_case).to_lowercase();
+    [
+        ("load", format!("{case}, {} N per node", sig(l.load_per_node))),
+        ("k", format!("{} N/m", sig(r.spec.k))),
+        ("m", format!("{} kg", sig(r.spec.mass))),
+        ("a", format!("{} m", sig(r.spec.spacing))),
+        ("tolerance", tolerance),
+    ]
+}
+
 impl Race<'_> {
     fn methods(&self) -> usize {
         let mut names: Vec<String> = self.runs.iter().map(|r| method(r)).collect();
         names.dedup();
         names.len()
-    }
-
-    /// The scenes its runs come from, in their order, each once: "scene a", "scenes a, b and c".
-    fn scenes(&self) -> String {
-        let mut names: Vec<&str> = Vec::new();
-        for r in &self.runs {
-            if !names.contains(&r.spec.scene.as_str()) {
-                names.push(&r.spec.scene);
-            }
-        }
-        match names.split_last() {
-            Some((last, [])) => format!("scene {last}"),
-            Some((last, rest)) => format!("scenes {} and {last}", rest.join(", ")),
-            None => String::new(),
-        }
     }
 
     fn nodes(&self) -> usize {
@@ -400,18 +400,45 @@ impl Race<'_> {
     }
 }
 
-/// Which method won at each block size; a block that several races share (another load or
-/// material on the same size) is told apart by its races' scenes.
+/// Which method won at each block size; a block that several races share (another load,
+/// material or tolerance on the same size) names what sets each apart.
 fn winners_sentence(races: &[Race]) -> Option<String> {
-    let shared = |race: &Race| races.iter().filter(|other| block(other.winner()) == block(race.winner())).count() > 1;
     let winners: Vec<String> = races
         .iter()
         .map(|race| {
             let at = format!("{} at {}", method(race.winner()), block(race.winner()));
-            if shared(race) { format!("{at} ({})", race.scenes()) } else { at }
+            let same_block: Vec<&Race> = races.iter().filter(|o| block(o.winner()) == block(race.winner())).collect();
+            match same_block.len() {
+                1 => at,
+                _ => format!("{at} ({})", apart(race, &same_block)),
+            }
         })
         .collect();
     (winners.len() > 1).then(|| format!("The cheapest method block by block: {}.", winners.join("; ")))
+}
+
+/// What sets `race` apart from the other races on its block, as "what value": the parts of its
+/// [`setting`] in order, each kept if it tells it from a race no part kept before did (a load
+/// alone against another material; the load and the tolerance against the same load at
+/// another tolerance).
+fn apart(race: &Race, same_block: &[&Race]) -> String {
+    let mine = setting(race.winner());
+    let others: Vec<_> =
+        same_block.iter().filter(|other| !std::ptr::eq(**other, race)).map(|other| setting(other.winner())).collect();
+    let mut alike: Vec<usize> = (0..others.len()).collect();
+    let mut parts = Vec::new();
+    for part in 0..mine.len() {
+        let told = |other: &usize| others[*other][part].1 != mine[part].1;
+        if alike.iter().any(told) {
+            parts.push(part);
+            alike.retain(|other| !told(other));
+        }
+    }
+    // Races the words cannot tell apart (settings that differ past four digits) show them all.
+    if !alike.is_empty() {
+        parts = (0..mine.len()).collect();
+    }
+    parts.iter().map(|&part| format!("{} {}", mine[part].0, mine[part].1)).collect::<Vec<_>>().join(", ")
 }
 
 /// The discussion of a relaxation campaign: which method to use, and how each one's cost grows
