@@ -288,8 +288,9 @@ impl RunSpec {
     ///   t_c/100 to t_c/200); at coarser dt it restarts near that limit and takes as many as at
     ///   t_c/100. Below t_c/50 it thrashes (t_c/25: 28 × t_c/50's); not modelled.
     /// - FIRE in the stiffness's metric (`relax.preconditioner: stiffness`) 25, whatever the
-    ///   size and load case: 17–18 under tension and 17–25 in shear on 12² … 300² linear blocks,
-    ///   30–35 and 73–75 with Hertz springs.
+    ///   size and load case: 17–18 under tension and 17–25 in shear on 12² … 300² linear blocks
+    ///   (the only springs it takes: Hertz blocks, measured before the spec refused them with
+    ///   it, took 30–35 and 73–75).
     pub fn minimiser_evaluations(&self) -> Option<f64> {
         let (relax, lattice) = (self.relax()?, self.lattice()?);
         let (scale, exponent, floor) = match relax.method {
