@@ -77,12 +77,14 @@ fn all_pairs_forces(x: &[f64], y: &[f64], radius: &[f64], periodic: &PeriodicBox
 fn the_list_and_its_escaped_discs_count_every_touching_pair_once() {
     // 2 000 discs at φ = 0.90, the field's list made at the start (skin 0.2). Then every disc
     // moves by up to 0.09 (under half the skin) and some by more: 1 in `escaped_every` by 0.3
-    // to 0.6 in random directions, and half as many moved onto those. 1 in 200 (15 discs, under
-    // the field's share of 1 in 64: the list is kept and those discs are searched for alone)
-    // and 1 in 20 (150, over it: the list is made again), in the square box and a sheared one.
-    // The forces must be the all-pairs sum's to round-off (the pairs are summed in another
-    // order, so 1e-12 of the largest force), and the moved state must have touching pairs the
-    // list missed, or the escaped discs' search went untested.
+    // to 0.6 in random directions, and half as many moved onto those. The last disc, alone in
+    // the field's last, partial block of discs tested for escapes, moves onto disc 1000. 1 in
+    // 200 (16 discs, under the field's share of 1 in 64: the list is kept and those discs are
+    // searched for alone) and 1 in 20 (151, over it: the list is made again), in the square
+    // box and a sheared one. The forces must be the all-pairs sum's to round-off (the pairs
+    // are summed in another order, so 1e-12 of the largest force), and the moved state must
+    // have touching pairs the list missed, the last disc's among them, or the escaped discs'
+    // search went untested.
     let (square, x0, y0, radius) = random_bidisperse(2000, 0.5, 1.4, 0.90, 7);
     let random = |k: usize, salt: usize| ((k * 7919 + salt * 104_729) % 10_007) as f64 / 10_007.0;
     let sheared = PeriodicBox { tilt: 0.05 * square.side, ..square };
@@ -110,6 +112,9 @@ fn the_list_and_its_escaped_discs_count_every_touching_pair_once() {
             let (gap, angle) = (radius[a] + radius[b] - 0.05, std::f64::consts::TAU * random(a, 3));
             (x[b], y[b], far[b]) = (x[a] + gap * angle.cos(), y[a] + gap * angle.sin(), true);
         }
+        let (last, onto) = (x.len() - 1, 1000);
+        let gap = radius[last] + radius[onto] - 0.05;
+        (x[last], y[last], far[last]) = (x[onto] + gap, y[onto], true);
         let before = all_pairs(&x0, &y0, &radius, &periodic, 0.2);
         let missed: Vec<_> = all_pairs(&x, &y, &radius, &periodic, 0.0)
             .into_iter()
@@ -120,6 +125,7 @@ fn the_list_and_its_escaped_discs_count_every_touching_pair_once() {
             "1 in {escaped_every}: no missed pair of a far disc"
         );
         assert!(missed.iter().any(|&(i, j, ..)| far[i] && far[j]), "1 in {escaped_every}: no missed pair of two");
+        assert!(missed.iter().any(|&(i, j, ..)| i == last || j == last), "no missed pair of the last disc");
         let (mut fx, mut fy) = (zeros.clone(), zeros.clone());
         field.add_forces(&x, &y, &zeros, &zeros, &mut fx, &mut fy);
         let (ex, ey) = all_pairs_forces(&x, &y, &radius, &periodic);
