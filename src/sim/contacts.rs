@@ -46,7 +46,9 @@ impl Packing {
 /// 256 gave 27.1, 29.4 and 27.7 M particle-steps/s at 10⁴ discs, 18.5, 20.6 and 21.0 at 10⁶.
 const ESCAPED_SHARE: usize = 64;
 
-/// Discs tested at once for having escaped ([`ContactNetwork::find_escaped`]).
+/// Discs tested at once for having escaped ([`ContactNetwork::find_escaped`]). Blocks of 16,
+/// 64 and 256 ran the packing bench alike (10⁴ discs, 500 steps: 30.1, 29.2–30.1 and 29.8–30.0
+/// M particle-steps/s, against 27.9 testing disc by disc with a jump each).
 const ESCAPE_BLOCK: usize = 64;
 
 /// A packing's contacts under one spring law `L`, dashpot `D` (contact springs: `CONTACT` is
