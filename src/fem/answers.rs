@@ -50,14 +50,19 @@ impl Answers {
     /// The answer of the problem hashed as `key`, solved by `solve` on a miss and waited for
     /// while another run solves it. An answer a deadline cut short is not kept: the next run
     /// solves again, and a run that waited for it solves on its own (stopping at its own
-    /// deadline, which may lie later).
+    /// deadline, which may lie later). The run whose own solve was cut keeps its cut answer:
+    /// solving again, past its deadline, would only repeat the linear factorisation.
     pub fn get(&self, key: [u8; 32], mut solve: impl FnMut() -> StaticAnswer) -> StaticAnswer {
-        let answer = self.kept.get(key, &mut solve);
+        let mut solved_here = false;
+        let answer = self.kept.get(key, || {
+            solved_here = true;
+            solve()
+        });
         if !answer.past_deadline() {
             return (*answer).clone();
         }
         self.kept.forget(key);
-        solve()
+        if solved_here { (*answer).clone() } else { solve() }
     }
 }
 
