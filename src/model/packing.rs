@@ -112,18 +112,19 @@ impl Contacts {
     }
 }
 
-/// The pairs within reach as the force loop reads them, grouped by their first disc
-/// (compressed rows): disc i's pairs are `start[i]..start[i + 1]`, each with its second disc
-/// `other[b]` (> i) and its image's lattice vector `shifts[image[b]]` (m); the rest length is
+/// The pairs within reach as the force loop reads them, grouped by their second disc
+/// (compressed rows): disc j's pairs are `start[j]..start[j + 1]`, each with its first disc
+/// `first[b]` (< j) and its image's lattice vector `shifts[image[b]]` (m); the rest length is
 /// r_i + r_j from the radii. Eight bytes a pair instead of [`Contacts`]' forty, read in order
 /// once a step: at 10⁶ discs the list is ~20 MB instead of ~100, and the force loop and the
-/// search wait less on main memory.
+/// search wait less on main memory. Grouped by the second disc, not the first, so that the
+/// force loop's other disc of a pair is behind it in memory, not ahead (`sim::contacts`).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct NearPairs {
     /// Where each disc's pairs start (one more entry than discs).
     pub start: Vec<u32>,
-    /// Second disc of each pair.
-    pub other: Vec<u32>,
+    /// First disc of each pair.
+    pub first: Vec<u32>,
     /// Index of each pair's image in `shifts`.
     pub image: Vec<u32>,
     /// The distinct lattice vectors (m) of the list's images, (0, 0) first.
@@ -133,12 +134,12 @@ pub struct NearPairs {
 impl NearPairs {
     /// Number of pairs.
     pub fn len(&self) -> usize {
-        self.other.len()
+        self.first.len()
     }
 
     /// True when there are none.
     pub fn is_empty(&self) -> bool {
-        self.other.is_empty()
+        self.first.is_empty()
     }
 
     /// The same pairs in the same order as [`Contacts`], with their rest lengths r_i + r_j
@@ -146,9 +147,9 @@ impl NearPairs {
     pub fn to_contacts(&self, radius: &[f64]) -> Contacts {
         let mut pairs = Contacts::default();
         pairs.reserve(self.len());
-        for (i, rows) in self.start.windows(2).enumerate() {
+        for (j, rows) in self.start.windows(2).enumerate() {
             for b in rows[0] as usize..rows[1] as usize {
-                let j = self.other[b] as usize;
+                let i = self.first[b] as usize;
                 pairs.push(i, j, radius[i] + radius[j], self.shifts[self.image[b] as usize]);
             }
         }
@@ -230,7 +231,7 @@ impl Found {
 }
 
 /// Every pair of discs (i < j, each image of j separately) whose centres are closer than
-/// r_i + r_j + `skin` (m), at positions `(x, y)` in `periodic`, ordered by i (by
+/// r_i + r_j + `skin` (m), at positions `(x, y)` in `periodic`, ordered by j (by
 /// [`ContactSearch::within`], in memory of its own).
 pub fn contacts_within(x: &[f64], y: &[f64], radius: &[f64], periodic: &PeriodicBox, skin: f64) -> Contacts {
     let mut near = NearPairs::default();
@@ -263,7 +264,7 @@ pub struct ContactSearch {
 impl ContactSearch {
     /// Puts into `near` every pair of discs (i < j, each image of j separately) whose centres
     /// are closer than r_i + r_j + `skin` (m), at positions `(x, y)` in `periodic`, ordered by
-    /// i. Cell lists: the box is cut into c × c cells at least one reach 2 r_max + skin wide
+    /// j. Cell lists: the box is cut into c × c cells at least one reach 2 r_max + skin wide
     /// (across its sheared edges), and each cell is compared with itself and four neighbours,
     /// so the work is linear in the discs. A box under three cells wide (a few discs) compares
     /// every pair with its images.
@@ -287,7 +288,7 @@ impl ContactSearch {
         } else {
             every_image(x, y, radius, periodic, skin, reach, &mut self.found);
         }
-        ordered_by_first(&self.found, x.len(), &mut self.next, near);
+        ordered_by_second(&self.found, x.len(), &mut self.next, near);
     }
 
     /// The touching pairs (centres closer than r_i + r_j) at positions `(x, y)` that involve a
@@ -490,25 +491,25 @@ fn every_image(x: &[f64], y: &[f64], radius: &[f64], periodic: &PeriodicBox, ski
     }
 }
 
-/// `found`'s pairs into `sorted`, grouped by their first disc (a counting sort, stable, with
-/// `place` its counts), so that the force loop reads and writes the first disc's memory in
+/// `found`'s pairs into `sorted`, grouped by their second disc (a counting sort, stable, with
+/// `place` its counts), so that the force loop reads and writes the second disc's memory in
 /// increasing order.
-fn ordered_by_first(found: &Found, discs: usize, place: &mut Vec<usize>, sorted: &mut NearPairs) {
+fn ordered_by_second(found: &Found, discs: usize, place: &mut Vec<usize>, sorted: &mut NearPairs) {
     place.clear();
     place.resize(discs + 1, 0);
-    for &i in &found.first {
-        place[i as usize + 1] += 1;
+    for &j in &found.other {
+        place[j as usize + 1] += 1;
     }
     for p in 0..discs {
         place[p + 1] += place[p];
     }
     sorted.start.clear();
     sorted.start.extend(place.iter().map(|&b| narrow(b)));
-    sorted.other.resize(found.other.len(), 0);
+    sorted.first.resize(found.first.len(), 0);
     sorted.image.resize(found.image.len(), 0);
-    for b in 0..found.first.len() {
-        let at = &mut place[found.first[b] as usize];
-        sorted.other[*at] = found.other[b];
+    for b in 0..found.other.len() {
+        let at = &mut place[found.other[b] as usize];
+        sorted.first[*at] = found.first[b];
         sorted.image[*at] = found.image[b];
         *at += 1;
     }

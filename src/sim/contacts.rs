@@ -159,22 +159,27 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for ContactNetwork
             self.spring.force_on_i(k, rest, dx, dy, dvx, dvy)
         };
         let mut power = 0.0;
-        // Disc i's pairs all come after the pairs in which i is the second disc, so its force
-        // is summed in a register in the list's order: the same sums, bit for bit, as adding
-        // into fx[i] pair by pair.
-        for (i, rows) in near.start.windows(2).enumerate() {
-            let (mut fx_i, mut fy_i) = (fx[i], fy[i]);
+        // The list is grouped by the second disc j of each pair (i < j), so j's memory is read
+        // and written in increasing order and its force summed in a register: the leading
+        // edge of the loop's memory traffic is one stream the processor prefetches. The first
+        // discs i lie at most a row of cells behind, read a few rows ago and still in cache.
+        // (Grouped by i, the other disc is a row ahead and its scattered first reads wait on
+        // main memory: 19.1 against 22.9 M particle-steps/s at 10⁶ discs.) j's force collects
+        // the pairs in which it is second before those in which it is first, as the sums did
+        // when grouped by i, but each group in another order: the last bits differ.
+        for (j, rows) in near.start.windows(2).enumerate() {
+            let (mut fx_j, mut fy_j) = (fx[j], fy[j]);
             for b in rows[0] as usize..rows[1] as usize {
-                let j = near.other[b] as usize;
+                let i = near.first[b] as usize;
                 let (shift_x, shift_y) = near.shifts[near.image[b] as usize];
                 let f = pair_force(i, j, radius[i] + radius[j], (x[i] - x[j] + shift_x, y[i] - y[j] + shift_y));
-                fx_i += f.fx;
-                fy_i += f.fy;
-                fx[j] -= f.fx;
-                fy[j] -= f.fy;
+                fx[i] += f.fx;
+                fy[i] += f.fy;
+                fx_j -= f.fx;
+                fy_j -= f.fy;
                 power += f.dissipation;
             }
-            (fx[i], fy[i]) = (fx_i, fy_i);
+            (fx[j], fy[j]) = (fx_j, fy_j);
         }
         let extra = &self.escaped.1;
         for b in 0..extra.len() {

@@ -452,6 +452,7 @@ fn the_jamming_item_states_phi_j_as_the_results_table_gives_it() {
     assert!(line.contains(if within { ": within" } else { ": outside" }), "{line}");
     assert!(report.contains("Linear contacts, N = 64"), "the scalings are fitted");
     ratio_against_contacts_is_the_tables(&frame, &report, &onsets);
+    summary_names_what_is_outside(&report);
     // No lattice, no homogeneity item (it had shown an empty table).
     assert!(!report.contains("Homogeneity of the deformation"));
 }
@@ -499,6 +500,24 @@ fn packing_bench_reports_its_json_line() {
     let refused = crate::common::mdsolids(work.path(), &["bench", "--workload", "packing", "--n", "1"]);
     let stderr = crate::common::text(&refused.stderr);
     assert!(!refused.status.success() && stderr.contains("--n 1: the packing's discs must be in 2..=10000000"));
+}
+
+/// The summary's line of the item states φ_J and then names every judged number of the item's
+/// table that is outside its tolerance, so that its ✗ says what it is for (its ✓ when none).
+fn summary_names_what_is_outside(report: &str) {
+    let line = line_with(report, "[Jamming](#");
+    let outside: Vec<String> = report
+        .lines()
+        .filter(|l| l.starts_with("| linear |") || l.starts_with("| Hertz |") || l.starts_with("| hertz |"))
+        .map(|l| l.split('|').map(str::trim).collect::<Vec<_>>())
+        .filter(|cells| cells.len() == 9 && cells[7] == "outside")
+        .map(|cells| format!("{} ({}, N = {})", cells[3], cells[1], cells[2]))
+        .collect();
+    if outside.is_empty() {
+        assert!(line.contains("✓") && !line.contains("outside"), "{line}");
+    } else {
+        assert!(line.contains(&format!("; outside: {} |", outside.join(", "))) && line.contains("✗"), "{line}");
+    }
 }
 
 /// The G/K sentence against an independent least-squares slope of ln(G/K) on ln(z − 4) over

@@ -161,7 +161,6 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
     )];
     sentences.extend(sizes.iter().map(Onset::sentence));
     sentences.extend(trend_sentence(&sizes));
-    let mut checks: Vec<bool> = sizes.iter().map(Onset::within).collect();
     let mut rows: Vec<Vec<String>> = sizes
         .iter()
         .map(|s| row("linear", s.n, "φ_J", &plus_minus(s.mean, s.error), PHI_J, s.seeds, Some(s.within())))
@@ -177,17 +176,20 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
             sig(z_j),
             if ok { "within" } else { "outside" }
         ));
-        checks.push(ok);
         rows.push(row("linear", largest.n, "z_J", &sig(z_j), ISOSTATIC, points, Some(ok)));
     }
-    let (scaling_sentences, scaling_rows, scaling_checks) = all_scalings(&runs, &onsets, &sizes);
+    let (scaling_sentences, scaling_rows) = all_scalings(&runs, &onsets, &sizes);
     sentences.extend(scaling_sentences);
     rows.extend(scaling_rows);
-    checks.extend(scaling_checks);
     Some(Answer {
         title: "Jamming",
         question: "Where do random packings of discs jam, and how do p, z, K and G grow above it?",
-        short: format!("φ_J = {} (N = {}) against {PHI_J}", plus_minus(largest.mean, largest.error), largest.n),
+        short: format!(
+            "φ_J = {} (N = {}) against {PHI_J}{}",
+            plus_minus(largest.mean, largest.error),
+            largest.n,
+            outside_clause(&rows)
+        ),
         sentences,
         reference: format!(
             "{CITATION}: φ_J ≈ {PHI_J} for 1:1.4 bidisperse discs, z_J = 4, and p, z − 4, K, G ∝ Δφ^(1, ½, 0, ½) for \
@@ -195,7 +197,7 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
              {EXPONENT_TOLERANCE}."
         ),
         see_also: None,
-        verdict: Verdict::of(checks),
+        verdict: Verdict::of(rows.iter().filter_map(|r| judged(r))),
         figures: jamming_figures(e, &runs),
         table: Some(Table {
             header: ["law", "N", "quantity", "measured", "theory", "seeds or packings", "verdict"]
@@ -206,17 +208,17 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
     })
 }
 
-/// The scalings of every contact law at every N of `sizes`, in sentences, table rows and
-/// checks (the largest N of each law judged).
+/// The scalings of every contact law at every N of `sizes`, in sentences and table rows (the
+/// largest N of each law judged).
 fn all_scalings(
     runs: &[&RunRecord],
     onsets: &BTreeMap<(usize, u64), f64>,
     sizes: &[Onset],
-) -> (Vec<String>, Vec<Vec<String>>, Vec<bool>) {
+) -> (Vec<String>, Vec<Vec<String>>) {
     let mut laws: Vec<u64> = runs.iter().map(|r| r.spec.law.beta().to_bits()).collect();
     laws.sort_unstable();
     laws.dedup();
-    let (mut sentences, mut rows, mut checks) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut sentences, mut rows) = (Vec::new(), Vec::new());
     for beta in laws.into_iter().map(f64::from_bits) {
         let fitted: Vec<(&Onset, Vec<Scaling>)> = sizes
             .iter()
@@ -237,7 +239,6 @@ fn all_scalings(
                     judged.then(|| s.within()),
                 ));
             }
-            checks.extend(scalings.iter().filter(|_| judged).map(Scaling::within));
         }
         if let Some((size, largest)) = fitted.last()
             && let Some(ratio) = ratio_against_contacts(runs, onsets, size.n, beta, size.fit_floor())
@@ -252,10 +253,9 @@ fn all_scalings(
                 ratio.points.len(),
                 Some(ratio.within()),
             ));
-            checks.push(ratio.within());
         }
     }
-    (sentences, rows, checks)
+    (sentences, rows)
 }
 
 /// The exponent of G/K against z − 4 that the fits against Δφ imply: (g − k)/ζ for G ∝ Δφ^g,
@@ -310,6 +310,27 @@ fn row(
 ) -> Vec<String> {
     let verdict = ok.map_or("not judged", |ok| if ok { "within" } else { "outside" });
     vec![law.into(), n.to_string(), quantity.into(), measured.into(), sig(theory), count.to_string(), verdict.into()]
+}
+
+/// A table row's verdict: `None` when not judged.
+fn judged(row: &[String]) -> Option<bool> {
+    match row[6].as_str() {
+        "within" => Some(true),
+        "outside" => Some(false),
+        _ => None,
+    }
+}
+
+/// For the summary, whose line states φ_J alone: "; outside: " and every judged number of
+/// `rows` outside its tolerance (law, N), so that the item's ✗ names what it is for; empty
+/// when none is.
+fn outside_clause(rows: &[Vec<String>]) -> String {
+    let outside: Vec<String> = rows
+        .iter()
+        .filter(|r| judged(r) == Some(false))
+        .map(|r| format!("{} ({}, N = {})", r[2], r[0], r[1]))
+        .collect();
+    if outside.is_empty() { String::new() } else { format!("; outside: {}", outside.join(", ")) }
 }
 
 /// The answer when no seed has two jammed linear packings: how many jammed, and, when none
