@@ -14,7 +14,7 @@ use crate::measure::{convergence_order, relative_error};
 use crate::model::LawSpec;
 use crate::runner::RunRecord;
 use crate::sim::{RelaxMethod, RunStatus};
-use crate::spec::{Campaign, RunSpec, SceneKind};
+use crate::spec::{Campaign, PackingSpec, RunSpec, SceneKind};
 
 /// The rows of a scene's own tables, by its kind (the others empty).
 #[derive(Default, Serialize)]
@@ -428,6 +428,7 @@ pub(super) fn physics_words(s: &RunSpec) -> String {
                 s.integrator.name()
             ) + &l.derived_from.as_ref().map(|note| format!(". Derived from the solid: {note}")).unwrap_or_default()
         }
+        None if let Some(p) = s.packing() => packing_words(s, p, &law),
         None => format!(
             "{law}, {}, m = {} kg, x_e = {} m, v0 = {} m/s, {}",
             if s.contact { "contact (compression only)" } else { "bonded (tension and compression)" },
@@ -437,6 +438,29 @@ pub(super) fn physics_words(s: &RunSpec) -> String {
             s.integrator.name()
         ),
     }
+}
+
+/// A packing scene's physics: its contact springs, its two kinds of disc and how it comes to
+/// rest (a minimiser, not the scene's integrator: `relax.method`).
+fn packing_words(s: &RunSpec, p: &PackingSpec, law: &str) -> String {
+    let ratio = p.radius_ratio;
+    let method = match s.relax().map(|r| r.method) {
+        Some(RelaxMethod::Fire) => "FIRE",
+        Some(RelaxMethod::Cg) => "conjugate gradients",
+        _ => "damped MD",
+    };
+    let made = p.compression.map_or(String::new(), |c| {
+        format!(", made by a slow compression from φ = {} in {} steps", number(c.from), c.steps)
+    });
+    format!(
+        "{law} between touching discs (contacts, compression only); half the discs of diameter d = {} m and mass \
+         m = {} kg, half {} times as wide and {} times as heavy (mass ∝ area), in a periodic square box, relaxed \
+         to an energy minimum by {method}{made}",
+        number(s.spacing),
+        number(s.mass),
+        number(ratio),
+        number(ratio * ratio)
+    )
 }
 
 /// A scene's springs in words, with their stiffness: "linear springs k = … N/m".

@@ -61,3 +61,12 @@ pub(super) fn impulse_words(i: &ImpulseSpec) -> String {
         None => format!("node {} kicked at ({}, {}) m/s", i.node, number(i.vx), number(i.vy)),
     }
 }
+
+/// `items` as a list in a sentence joined by `last` ("and", "or"): "a", "a and b", "a, b and c".
+pub fn listed(items: &[String], last: &str) -> String {
+    match items {
+        [] => String::new(),
+        [only] => only.clone(),
+        [init @ .., tail] => format!("{} {last} {tail}", init.join(", ")),
+    }
+}

@@ -558,3 +558,39 @@ fn the_n_by_1_row_is_the_chain_within_verlets_drift_and_flips_beyond_it() {
         assert_eq!(line.contains("N × 1 gives back the chain"), verdict == "inside", "{line}");
     }
 }
+
+/// A packing scene of 16 discs with contact law `law`, and, when `pair` is set, a linear pair
+/// collision beside it.
+fn packings_and(law: &str, pair: bool) -> String {
+    let pair_scene =
+        if pair { "  - name: pair\n    kind: pair\n    material: {contact: true}\n    v0: 1.0\n" } else { "" };
+    format!(
+        "version: 1\nname: ts\nscenes:\n  - name: jam\n    kind: packing\n    packing: {{n: 16, fraction: 0.88}}\n    \
+         material: {{law: {law}}}\n{pair_scene}"
+    )
+}
+
+#[test]
+fn the_time_step_paragraph_speaks_only_of_what_the_campaign_has() {
+    // Linear packings only: the networks are packings, no power law, no time-step sweep.
+    let linear = report_of("ts", &packings_and("linear", false));
+    let paragraph = line_with(&linear, "**The time step.**");
+    assert!(
+        paragraph.contains("On the packings of this campaign it puts the fastest mode at dt·ω_max ≤ "),
+        "{paragraph}"
+    );
+    for absent in ["chains", "lattices", "On two particles", "For Hertz springs", "dt²", "work–precision"] {
+        assert!(!paragraph.contains(absent), "{absent}: {paragraph}");
+    }
+    // Hertz packings and a pair: the Hertz sentence names the packing's deformation, the pair
+    // sentence appears; still no sweep.
+    let hertz = report_of("ts", &packings_and("hertz", true));
+    let paragraph = line_with(&hertz, "**The time step.**");
+    assert!(paragraph.contains("(an overlap of 3 % of a small diameter)"), "{paragraph}");
+    assert!(paragraph.contains("On two particles it keeps t_c to"), "{paragraph}");
+    assert!(!paragraph.contains("dt²") && !paragraph.contains("work–precision"), "{paragraph}");
+    // A packing scene is described by its discs and its minimiser, not by a chain's fields.
+    let scene = line_with(&hertz, "between touching discs");
+    assert!(scene.contains("1.4 times as wide and 1.96 times as heavy") && scene.contains("by FIRE"), "{scene}");
+    assert!(!scene.contains("x_e") && !scene.contains("v0") && !scene.contains("verlet"), "{scene}");
+}

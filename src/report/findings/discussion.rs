@@ -6,10 +6,12 @@ use serde::Serialize;
 
 use super::finding::{Answer, Evidence, Table, Verdict, cell, fastest_relaxation, noise, relative, sig};
 use crate::model::LawSpec;
+use crate::report::figure::FigureKind;
 use crate::report::figure::{background_damping_only, bond_damping_only};
+use crate::report::words;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
-use crate::spec::{Diagonals, LoadCase};
+use crate::spec::{Diagonals, LoadCase, SceneKind};
 use crate::summary::ScalingFit;
 
 /// One paragraph of the discussion.
@@ -175,39 +177,86 @@ fn exponent(p: f64) -> String {
     crate::report::words::exponent(p, 3)
 }
 
-/// One time-step recommendation for every scene.
+/// One time-step recommendation for every scene, each sentence said only where this campaign
+/// has what it speaks of: pairs, the networks' fastest modes, power-law springs, a time-step
+/// sweep with its work–precision figure.
 fn time_step(e: &Evidence) -> Option<Paragraph> {
-    let linear: Vec<f64> = e
-        .ok(|r| {
-            r.spec.law == LawSpec::Linear && r.metrics.dt_omega_max.is_some() && (r.spec.dt_per_tc() - 50.0).abs() < 1.0
-        })
+    let at_rule = |r: &RunRecord| r.metrics.dt_omega_max.is_some() && (r.spec.dt_per_tc() - 50.0).abs() < 1.0;
+    let linear = e.ok(|r| r.spec.law == LawSpec::Linear && at_rule(r));
+    if linear.is_empty() {
+        return None;
+    }
+    let pair_error = linear
         .iter()
-        .filter_map(|r| r.metrics.dt_omega_max)
-        .collect();
-    let largest = linear.iter().copied().fold(0.0, f64::max);
-    let pair_error = e
-        .ok(|r| {
-            r.spec.kind() == crate::spec::SceneKind::Pair
-                && r.spec.law == LawSpec::Linear
-                && (r.spec.dt_per_tc() - 50.0).abs() < 1.0
-        })
-        .iter()
+        .filter(|r| r.spec.kind() == SceneKind::Pair && r.spec.contact)
         .filter_map(|r| relative(r.metrics.pair.contact_duration, r.metrics.pair.contact_duration_theory))
         .map(f64::abs)
         .reduce(f64::max);
-    let on_pairs = pair_error.map_or(String::new(), |error| format!(" On two particles it keeps t_c to {error:.1e}."));
-    (!linear.is_empty()).then(|| Paragraph {
-        title: "The time step",
-        text: format!(
-            "One rule serves every scene: dt = t_c/50 with t_c the contact time of the stiffest pair of the \
-             network (π√(m/(2k)) undamped, π/√(2k/m − (γ/m)²) with its bond dashpot).{on_pairs} On the chains and lattices of this campaign it puts the fastest mode at \
-             dt·ω_max ≤ {} against the Verlet limit 2, and errors fall as dt². For Hertz springs t_c depends \
-             on the amplitude: mdsolids takes t_c at the deformation the scene expects (the impact speed, the \
-             load or the wall displacement), so the same rule holds there. The work–precision figures give the \
-             largest dt for a stated error.",
-            sig(largest)
-        ),
-    })
+    let networks: Vec<&RunRecord> = linear.iter().copied().filter(|r| r.spec.kind() != SceneKind::Pair).collect();
+    let power_kinds = kinds_of(&e.ok(|r| r.spec.law != LawSpec::Linear && at_rule(r)));
+    let swept = e.has_figure(FigureKind::WorkPrecision);
+    Some(Paragraph { title: "The time step", text: time_step_words(pair_error, &networks, &power_kinds, swept) })
+}
+
+/// The time-step paragraph: the rule, the pairs' `pair_error` in t_c, the fastest mode of the
+/// `networks` at the rule, the power laws' t_c in the kinds `power_kinds`, and, with a `swept`
+/// time step, its order and figures.
+fn time_step_words(pair_error: Option<f64>, networks: &[&RunRecord], power_kinds: &[SceneKind], swept: bool) -> String {
+    let mut text = "One rule serves every scene: dt = t_c/50 with t_c the contact time of the stiffest pair of the \
+                    network (π√(m/(2k)) undamped, π/√(2k/m − (γ/m)²) with its bond dashpot)."
+        .to_string();
+    if let Some(error) = pair_error {
+        text += &format!(" On two particles it keeps t_c to {error:.1e}.");
+    }
+    if !networks.is_empty() {
+        let largest = networks.iter().filter_map(|r| r.metrics.dt_omega_max).fold(0.0, f64::max);
+        text += &format!(
+            " On the {} of this campaign it puts the fastest mode at dt·ω_max ≤ {} against the Verlet limit 2{}.",
+            words::listed(&kinds_of(networks).into_iter().map(plural).collect::<Vec<_>>(), "and"),
+            sig(largest),
+            if swept { ", and errors fall as dt²" } else { "" }
+        );
+    }
+    if !power_kinds.is_empty() {
+        let mut expected: Vec<String> = Vec::new();
+        for deformation in power_kinds.iter().flat_map(|&k| expected_deformations(k)) {
+            if !expected.contains(&deformation) {
+                expected.push(deformation);
+            }
+        }
+        text += &format!(
+            " For Hertz springs t_c depends on the amplitude: mdsolids takes t_c at the deformation the scene \
+             expects ({}), so the same rule holds there.",
+            words::listed(&expected, "or")
+        );
+    }
+    if swept {
+        text += " The work–precision figures give the largest dt for a stated error.";
+    }
+    text
+}
+
+/// The scene kinds of `runs`, each once, in the order of [`SceneKind::ALL`].
+fn kinds_of(runs: &[&RunRecord]) -> Vec<SceneKind> {
+    SceneKind::ALL.into_iter().filter(|&k| runs.iter().any(|r| r.spec.kind() == k)).collect()
+}
+
+/// A kind's scenes in the plural: "chains".
+fn plural(kind: SceneKind) -> String {
+    format!("{}s", kind.name())
+}
+
+/// The deformations a power-law scene of `kind` takes t_c at (`spec::kind`'s `deformation`).
+fn expected_deformations(kind: SceneKind) -> Vec<String> {
+    match kind {
+        SceneKind::Pair => vec!["the impact speed".into()],
+        SceneKind::Chain => vec!["the impact speed".into(), "the walls' displacement".into()],
+        SceneKind::Lattice => vec!["the load per node".into(), "the driven strain".into(), "the impact speed".into()],
+        SceneKind::Packing => vec![format!(
+            "an overlap of {} % of a small diameter",
+            words::number(crate::spec::PACKING_REFERENCE_OVERLAP * 100.0)
+        )],
+    }
 }
 
 /// The exponent springs s ∝ δ^β predict for a fitted quantity against its variable (β from

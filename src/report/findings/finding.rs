@@ -179,6 +179,11 @@ impl<'a> Evidence<'a> {
         self.figures.iter().find(|f| f.scene == scene && f.kind == kind).map(Figure::reference)
     }
 
+    /// True when a figure of `kind` was drawn for any scene.
+    pub(super) fn has_figure(&self, kind: FigureKind) -> bool {
+        self.figures.iter().any(|f| f.kind == kind)
+    }
+
     /// The figures `(scene, kind)` that were drawn, in the order asked.
     pub(super) fn figures(&self, wanted: &[(&str, FigureKind)]) -> Vec<FigureRef> {
         wanted.iter().filter_map(|&(scene, kind)| self.figure(scene, kind)).collect()

@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 
 pub use self::chain::ChainRun;
 pub use self::lattice::{ImpulseSpec, LatticeRun, LatticeSpec, ProbeLine};
-pub use self::packing::{Compression, PackingRun, PackingSpec};
+pub use self::packing::{Compression, PackingRun, PackingSpec, REFERENCE_OVERLAP as PACKING_REFERENCE_OVERLAP};
 pub use self::pair::PairRun;
 
 mod chain;

@@ -18,7 +18,7 @@ const DEFAULT_RADIUS_RATIO: f64 = 1.4;
 const DEFAULT_RESIDUAL_FORCE: f64 = 1e-9;
 /// The overlap (in small diameters) at which a power law is linearised for t_c and the time
 /// step: about the overlaps of a packing at φ ≈ 0.9.
-const REFERENCE_OVERLAP: f64 = 0.03;
+pub const REFERENCE_OVERLAP: f64 = 0.03;
 /// Most discs a packing may have.
 const MOST_DISCS: usize = 10_000_000;
 /// Steps of a slow compression unless `packing.compress_steps` says ...
