@@ -428,15 +428,17 @@ pub(super) fn physics_words(s: &RunSpec) -> String {
                 s.integrator.name()
             ) + &l.derived_from.as_ref().map(|note| format!(". Derived from the solid: {note}")).unwrap_or_default()
         }
-        None if let Some(p) = s.packing() => packing_words(s, p, &law),
-        None => format!(
-            "{law}, {}, m = {} kg, x_e = {} m, v0 = {} m/s, {}",
-            if s.contact { "contact (compression only)" } else { "bonded (tension and compression)" },
-            number(s.mass),
-            number(s.spacing),
-            number(s.v0),
-            s.integrator.name()
-        ),
+        None => match s.packing() {
+            Some(p) => packing_words(s, p, &law),
+            None => format!(
+                "{law}, {}, m = {} kg, x_e = {} m, v0 = {} m/s, {}",
+                if s.contact { "contact (compression only)" } else { "bonded (tension and compression)" },
+                number(s.mass),
+                number(s.spacing),
+                number(s.v0),
+                s.integrator.name()
+            ),
+        },
     }
 }
 
@@ -444,11 +446,8 @@ pub(super) fn physics_words(s: &RunSpec) -> String {
 /// rest (a minimiser, not the scene's integrator: `relax.method`).
 fn packing_words(s: &RunSpec, p: &PackingSpec, law: &str) -> String {
     let ratio = p.radius_ratio;
-    let method = match s.relax().map(|r| r.method) {
-        Some(RelaxMethod::Fire) => "FIRE",
-        Some(RelaxMethod::Cg) => "conjugate gradients",
-        _ => "damped MD",
-    };
+    // A packing relaxes by a minimiser (the spec refuses the others).
+    let method = if s.relax().is_some_and(|r| r.method == RelaxMethod::Cg) { "conjugate gradients" } else { "FIRE" };
     let made = p.compression.map_or(String::new(), |c| {
         format!(", made by a slow compression from φ = {} in {} steps", number(c.from), c.steps)
     });

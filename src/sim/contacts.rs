@@ -162,11 +162,12 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> ForceField for ContactNetwork
         // The list is grouped by the second disc j of each pair (i < j), so j's memory is read
         // and written in increasing order and its force summed in a register: the leading
         // edge of the loop's memory traffic is one stream the processor prefetches. The first
-        // discs i lie at most a row of cells behind, read a few rows ago and still in cache.
-        // (Grouped by i, the other disc is a row ahead and its scattered first reads wait on
-        // main memory: 19.1 against 22.9 M particle-steps/s at 10⁶ discs.) j's force collects
-        // the pairs in which it is second before those in which it is first, as the sums did
-        // when grouped by i, but each group in another order: the last bits differ.
+        // discs i lie at most a row of cells behind (but for pairs across the box's top and
+        // bottom edge), read a few rows ago and still in cache. Grouped by i, the other disc
+        // was a row ahead and its scattered first reads waited on main memory (10⁶ discs:
+        // 19.3 against 22.8 M particle-steps/s, docs/performance.md). j's force collects the
+        // pairs in which it is second before those in which it is first, as the sums did when
+        // grouped by i, but each group in another order: the last bits differ.
         for (j, rows) in near.start.windows(2).enumerate() {
             let (mut fx_j, mut fy_j) = (fx[j], fy[j]);
             for b in rows[0] as usize..rows[1] as usize {

@@ -13,7 +13,7 @@ pub use self::run_spec::{
     Budget, LANCZOS_BONDS, MovieSpec, RESIDUAL_OVER_ROUND_OFF, RESULT_FORMAT, RunSpec, force_resolution,
     reference_extension, round_off_words, seconds_up_to_1e9,
 };
-pub use self::shared::{RelaxSpec, WaveSpec};
+pub use self::shared::{Deformation, RelaxSpec, WaveSpec};
 
 pub use self::resolve::DEFAULT_DT_PER_TC;
 

@@ -172,7 +172,7 @@ pub fn reference_extension(spec: &RunSpec) -> f64 {
     let LawSpec::Power { beta } = spec.law else {
         return 0.0;
     };
-    match spec.scene_kind.deformation(spec.spacing, spec.v0) {
+    match spec.deformation() {
         Deformation::Collision(speed) => -crate::theory::power_law_max_overlap(spec.k, beta, spec.mass, speed),
         Deformation::Carrying(force) => (force.abs() / spec.k).powf(1.0 / beta),
         Deformation::Extension(extension) => extension,
@@ -198,7 +198,7 @@ pub fn force_resolution(spec: &RunSpec) -> Option<f64> {
     let tangent = match spec.law {
         LawSpec::Linear => stiffest,
         LawSpec::Power { beta } => {
-            let extension = match spec.scene_kind.deformation(spec.spacing, spec.v0) {
+            let extension = match spec.deformation() {
                 Deformation::Carrying(force) => (force.abs() / stiffest).powf(1.0 / beta),
                 _ => reference_extension(spec),
             };
@@ -219,6 +219,12 @@ pub fn round_off_words(spec: &RunSpec, floor: f64) -> String {
 }
 
 impl RunSpec {
+    /// The deformation the run is expected to reach, which a power law's t_c, damping and
+    /// stability estimate are taken at ([`reference_extension`]).
+    pub fn deformation(&self) -> Deformation {
+        self.scene_kind.deformation(self.spacing, self.v0)
+    }
+
     /// Stable identifier: the scene name and a content hash of the resolved run, its numbers in
     /// one form (`-0.0` as `0`, `50.0` as `50`), so runs with the same physics share one id.
     /// `output.series` is left out: it changes which series the run's files keep, not its

@@ -242,7 +242,8 @@ pub(super) fn bonded(contact: bool) -> Result<(), Issue> {
 
 /// The deformation a run is expected to reach, from which a power-law spring's reference
 /// extension follows (`reference_extension`).
-pub(super) enum Deformation {
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Deformation {
     /// A collision or kick at this speed (m/s): the two-body overlap.
     Collision(f64),
     /// A spring carrying this force (N).

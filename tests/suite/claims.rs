@@ -572,22 +572,24 @@ fn packings_and(law: &str, pair: bool) -> String {
 
 #[test]
 fn the_time_step_paragraph_speaks_only_of_what_the_campaign_has() {
-    // Linear packings only: the networks are packings, no power law, no time-step sweep.
+    // Linear packings only, relaxed by FIRE: no trajectory whose fastest mode the rule bounds,
+    // no power law, no time-step sweep. (The pinned report of tests/snapshots has the other
+    // side: pairs, chains and lattices in time, a sweep, no power law.)
     let linear = report_of("ts", &packings_and("linear", false));
     let paragraph = line_with(&linear, "**The time step.**");
-    assert!(
-        paragraph.contains("On the packings of this campaign it puts the fastest mode at dt·ω_max ≤ "),
-        "{paragraph}"
-    );
-    for absent in ["chains", "lattices", "On two particles", "For Hertz springs", "dt²", "work–precision"] {
+    let minimiser = "The packings of this campaign are relaxed by a minimiser (FIRE), not followed in time";
+    assert!(paragraph.contains(minimiser), "{paragraph}");
+    for absent in
+        ["fastest mode", "chains", "lattices", "On two particles", "For Hertz springs", "dt²", "work–precision"]
+    {
         assert!(!paragraph.contains(absent), "{absent}: {paragraph}");
     }
-    // Hertz packings and a pair: the Hertz sentence names the packing's deformation, the pair
-    // sentence appears; still no sweep.
+    // Hertz packings and a linear pair: the Hertz sentence names the packing's deformation, the
+    // pair sentence appears; still no sweep.
     let hertz = report_of("ts", &packings_and("hertz", true));
     let paragraph = line_with(&hertz, "**The time step.**");
     assert!(paragraph.contains("(an overlap of 3 % of a small diameter)"), "{paragraph}");
-    assert!(paragraph.contains("On two particles it keeps t_c to"), "{paragraph}");
+    assert!(paragraph.contains("On two particles it keeps t_c to") && paragraph.contains(minimiser), "{paragraph}");
     assert!(!paragraph.contains("dt²") && !paragraph.contains("work–precision"), "{paragraph}");
     // A packing scene is described by its discs and its minimiser, not by a chain's fields.
     let scene = line_with(&hertz, "between touching discs");

@@ -506,9 +506,12 @@ fn packing_bench_reports_its_json_line() {
 /// table that is outside its tolerance, so that its ✗ says what it is for (its ✓ when none).
 fn summary_names_what_is_outside(report: &str) {
     let line = line_with(report, "[Jamming](#");
-    let outside: Vec<String> = report
+    // The item's table: the rows after its header, up to the blank line that ends it.
+    let table = report.split_once("| law | N | quantity |").expect("the item's table").1;
+    let outside: Vec<String> = table
         .lines()
-        .filter(|l| l.starts_with("| linear |") || l.starts_with("| Hertz |") || l.starts_with("| hertz |"))
+        .skip(2)
+        .take_while(|l| l.starts_with('|'))
         .map(|l| l.split('|').map(str::trim).collect::<Vec<_>>())
         .filter(|cells| cells.len() == 9 && cells[7] == "outside")
         .map(|cells| format!("{} ({}, N = {})", cells[3], cells[1], cells[2]))

@@ -10,8 +10,8 @@ use crate::report::figure::FigureKind;
 use crate::report::figure::{background_damping_only, bond_damping_only};
 use crate::report::words;
 use crate::runner::RunRecord;
-use crate::sim::RunStatus;
-use crate::spec::{Diagonals, LoadCase, SceneKind};
+use crate::sim::{RelaxMethod, RunStatus};
+use crate::spec::{Deformation, Diagonals, LoadCase, SceneKind};
 use crate::summary::ScalingFit;
 
 /// One paragraph of the discussion.
@@ -178,12 +178,14 @@ fn exponent(p: f64) -> String {
 }
 
 /// One time-step recommendation for every scene, each sentence said only where this campaign
-/// has what it speaks of: pairs, the networks' fastest modes, power-law springs, a time-step
-/// sweep with its work–precision figure.
+/// has what it speaks of: pairs, the integrated networks' fastest modes, minimisers, power-law
+/// springs, a time-step sweep of a network by a Verlet scheme, work–precision figures.
 fn time_step(e: &Evidence) -> Option<Paragraph> {
     let at_rule = |r: &RunRecord| r.metrics.dt_omega_max.is_some() && (r.spec.dt_per_tc() - 50.0).abs() < 1.0;
+    let minimised = |r: &RunRecord| r.spec.relax().is_some_and(|relax| relax.method.is_minimiser());
     let linear = e.ok(|r| r.spec.law == LawSpec::Linear && at_rule(r));
-    if linear.is_empty() {
+    let power = e.ok(|r| r.spec.law != LawSpec::Linear && at_rule(r));
+    if linear.is_empty() && power.is_empty() {
         return None;
     }
     let pair_error = linear
@@ -192,51 +194,88 @@ fn time_step(e: &Evidence) -> Option<Paragraph> {
         .filter_map(|r| relative(r.metrics.pair.contact_duration, r.metrics.pair.contact_duration_theory))
         .map(f64::abs)
         .reduce(f64::max);
-    let networks: Vec<&RunRecord> = linear.iter().copied().filter(|r| r.spec.kind() != SceneKind::Pair).collect();
-    let power_kinds = kinds_of(&e.ok(|r| r.spec.law != LawSpec::Linear && at_rule(r)));
-    let swept = e.has_figure(FigureKind::WorkPrecision);
-    Some(Paragraph { title: "The time step", text: time_step_words(pair_error, &networks, &power_kinds, swept) })
+    let integrated: Vec<&RunRecord> =
+        linear.iter().copied().filter(|r| r.spec.kind() != SceneKind::Pair && !minimised(r)).collect();
+    let text = [
+        rule_words(pair_error),
+        fastest_mode_words(&integrated, verlet_network_sweep(e)),
+        minimiser_words(&e.ok(|r| at_rule(r) && minimised(r))),
+        power_law_words(&power),
+        e.has_figure(FigureKind::WorkPrecision)
+            .then(|| "The work–precision figures give the largest dt for a stated error.".to_string()),
+    ];
+    Some(Paragraph { title: "The time step", text: text.into_iter().flatten().collect::<Vec<_>>().join(" ") })
 }
 
-/// The time-step paragraph: the rule, the pairs' `pair_error` in t_c, the fastest mode of the
-/// `networks` at the rule, the power laws' t_c in the kinds `power_kinds`, and, with a `swept`
-/// time step, its order and figures.
-fn time_step_words(pair_error: Option<f64>, networks: &[&RunRecord], power_kinds: &[SceneKind], swept: bool) -> String {
-    let mut text = "One rule serves every scene: dt = t_c/50 with t_c the contact time of the stiffest pair of the \
-                    network (π√(m/(2k)) undamped, π/√(2k/m − (γ/m)²) with its bond dashpot)."
-        .to_string();
-    if let Some(error) = pair_error {
-        text += &format!(" On two particles it keeps t_c to {error:.1e}.");
-    }
-    if !networks.is_empty() {
-        let largest = networks.iter().filter_map(|r| r.metrics.dt_omega_max).fold(0.0, f64::max);
-        text += &format!(
-            " On the {} of this campaign it puts the fastest mode at dt·ω_max ≤ {} against the Verlet limit 2{}.",
-            words::listed(&kinds_of(networks).into_iter().map(plural).collect::<Vec<_>>(), "and"),
-            sig(largest),
-            if swept { ", and errors fall as dt²" } else { "" }
-        );
-    }
-    if !power_kinds.is_empty() {
-        let mut expected: Vec<String> = Vec::new();
-        for deformation in power_kinds.iter().flat_map(|&k| expected_deformations(k)) {
-            if !expected.contains(&deformation) {
-                expected.push(deformation);
-            }
+/// True when a network (chain or lattice) of the campaign ran at several dt by a Verlet scheme,
+/// whose second order the "errors fall as dt²" of [`fastest_mode_words`] stands on.
+fn verlet_network_sweep(e: &Evidence) -> bool {
+    let verlet = e.ok(|r| {
+        matches!(r.spec.kind(), SceneKind::Chain | SceneKind::Lattice)
+            && r.spec.relax().is_none_or(|relax| !relax.method.is_minimiser())
+            && r.spec.integrator.name().ends_with("verlet")
+    });
+    verlet.iter().any(|a| verlet.iter().any(|b| a.spec.scene == b.spec.scene && a.spec.dt != b.spec.dt))
+}
+
+/// The rule, with the pairs' largest error `pair_error` in t_c at it.
+fn rule_words(pair_error: Option<f64>) -> Option<String> {
+    let pairs = pair_error.map_or(String::new(), |error| format!(" On two particles it keeps t_c to {error:.1e}."));
+    Some(format!(
+        "One rule serves every scene: dt = t_c/50 with t_c the contact time of the stiffest pair of the network \
+         (π√(m/(2k)) undamped, π/√(2k/m − (γ/m)²) with its bond dashpot).{pairs}"
+    ))
+}
+
+/// The fastest mode of the `integrated` networks at the rule, and their order when `swept`.
+fn fastest_mode_words(integrated: &[&RunRecord], swept: bool) -> Option<String> {
+    let largest = integrated.iter().filter_map(|r| r.metrics.dt_omega_max).reduce(f64::max)?;
+    Some(format!(
+        "On the {} of this campaign it puts the fastest mode at dt·ω_max ≤ {} against the Verlet limit 2{}.",
+        words::listed(&kinds_of(integrated).into_iter().map(plural).collect::<Vec<_>>(), "and"),
+        sig(largest),
+        if swept { ", and errors fall as dt²" } else { "" }
+    ))
+}
+
+/// What the rule's dt is to the runs relaxed by a minimiser, `minimised`: no stability bound,
+/// since FIRE adapts its step (in the stiffness's metric, a step of its own) and CG has none.
+fn minimiser_words(minimised: &[&RunRecord]) -> Option<String> {
+    let uses = |method: RelaxMethod| minimised.iter().any(|r| r.spec.relax().is_some_and(|x| x.method == method));
+    let methods: Vec<String> = [(RelaxMethod::Fire, "FIRE"), (RelaxMethod::Cg, "conjugate gradients")]
+        .into_iter()
+        .filter(|&(method, _)| uses(method))
+        .map(|(_, name)| name.to_string())
+        .collect();
+    (!methods.is_empty()).then(|| {
+        format!(
+            "The {} of this campaign are relaxed by a minimiser ({}), not followed in time: for them dt·ω_max is no \
+             stability bound.",
+            words::listed(&kinds_of(minimised).into_iter().map(plural).collect::<Vec<_>>(), "and"),
+            words::listed(&methods, "or")
+        )
+    })
+}
+
+/// Where the power-law springs of `power` take their t_c: each run's expected deformation.
+fn power_law_words(power: &[&RunRecord]) -> Option<String> {
+    let mut expected: Vec<String> = Vec::new();
+    for deformation in power.iter().map(|r| deformation_words(r.spec.kind(), r.spec.deformation())) {
+        if !expected.contains(&deformation) {
+            expected.push(deformation);
         }
-        text += &format!(
-            " For Hertz springs t_c depends on the amplitude: mdsolids takes t_c at the deformation the scene \
-             expects ({}), so the same rule holds there.",
+    }
+    (!expected.is_empty()).then(|| {
+        format!(
+            "For Hertz springs t_c depends on the amplitude: mdsolids takes t_c at the deformation the scene expects \
+             ({}), so the same rule holds there.",
             words::listed(&expected, "or")
-        );
-    }
-    if swept {
-        text += " The work–precision figures give the largest dt for a stated error.";
-    }
-    text
+        )
+    })
 }
 
-/// The scene kinds of `runs`, each once, in the order of [`SceneKind::ALL`].
+/// The scenes of one kind in the plural, "chains", each kind of `runs` once, in the order of
+/// [`SceneKind::ALL`].
 fn kinds_of(runs: &[&RunRecord]) -> Vec<SceneKind> {
     SceneKind::ALL.into_iter().filter(|&k| runs.iter().any(|r| r.spec.kind() == k)).collect()
 }
@@ -246,16 +285,17 @@ fn plural(kind: SceneKind) -> String {
     format!("{}s", kind.name())
 }
 
-/// The deformations a power-law scene of `kind` takes t_c at (`spec::kind`'s `deformation`).
-fn expected_deformations(kind: SceneKind) -> Vec<String> {
-    match kind {
-        SceneKind::Pair => vec!["the impact speed".into()],
-        SceneKind::Chain => vec!["the impact speed".into(), "the walls' displacement".into()],
-        SceneKind::Lattice => vec!["the load per node".into(), "the driven strain".into(), "the impact speed".into()],
-        SceneKind::Packing => vec![format!(
+/// A run's expected deformation (`RunSpec::deformation`) in words, by its scene's kind.
+fn deformation_words(kind: SceneKind, deformation: Deformation) -> String {
+    match (kind, deformation) {
+        (_, Deformation::Collision(_)) => "the impact speed".into(),
+        (_, Deformation::Carrying(_)) => "the force a spring carries".into(),
+        (SceneKind::Chain, Deformation::Extension(_)) => "the walls' displacement".into(),
+        (SceneKind::Packing, Deformation::Extension(_)) => format!(
             "an overlap of {} % of a small diameter",
             words::number(crate::spec::PACKING_REFERENCE_OVERLAP * 100.0)
-        )],
+        ),
+        (_, Deformation::Extension(_)) => "the driven strain".into(),
     }
 }
 
