@@ -596,3 +596,35 @@ fn the_time_step_paragraph_speaks_only_of_what_the_campaign_has() {
     assert!(scene.contains("1.4 times as wide and 1.96 times as heavy") && scene.contains("by FIRE"), "{scene}");
     assert!(!scene.contains("x_e") && !scene.contains("v0") && !scene.contains("verlet"), "{scene}");
 }
+
+/// Chains of 9 between walls moved to `distances` (a YAML list), scene `walls` with contact
+/// law `law` (`linear` or `hertz`), in one campaign when both are given.
+fn walls(laws: &[&str]) -> String {
+    let scenes: String = laws
+        .iter()
+        .map(|law| {
+            format!(
+                "  - name: walls-{law}\n    kind: chain\n    n: 9\n    material: {{law: {law}}}\n    damping: {{restitution: 0.5}}\n    \
+                 time: {{integrator: velocity-verlet}}\n    relax: {{residual_force: 1.0e-9}}\n    grid:\n      \
+                 wall_distance: [9.9, 9.99, 10.01, 10.1]\n"
+            )
+        })
+        .collect();
+    format!("version: 1\nname: lh\nscenes:\n{scenes}")
+}
+
+#[test]
+fn linear_against_hertz_names_each_fitted_law_in_symbols_and_says_when_linear_has_none() {
+    // Hertz alone: its fits in the report's symbols, no linear sweep to set beside them.
+    let hertz = report_of("lh", &walls(&["hertz"]));
+    let paragraph = line_with(&hertz, "**Linear against non-linear springs.**");
+    assert!(paragraph.contains("here no sweep over the amplitude"), "{paragraph}");
+    let fitted = "the chain's secant stiffness ∝ the walls' displacement Δ^0.5";
+    assert!(paragraph.contains(fitted) && paragraph.contains("(walls-hertz)"), "{paragraph}");
+    assert!(!paragraph.contains("secant_stiffness") && !paragraph.contains("wall displacement^"), "{paragraph}");
+    // Beside a linear chain under the same sweep: its exponent 0 is named instead.
+    let both = report_of("lh", &walls(&["linear", "hertz"]));
+    let paragraph = line_with(&both, "**Linear against non-linear springs.**");
+    assert!(!paragraph.contains("no sweep over the amplitude"), "{paragraph}");
+    assert!(paragraph.contains("here the chain's secant stiffness ∝ the walls' displacement Δ^0"), "{paragraph}");
+}

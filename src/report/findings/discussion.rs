@@ -36,23 +36,13 @@ fn linear_against_hertz(e: &Evidence) -> Option<Paragraph> {
         .fits
         .iter()
         .filter(|f| f.law != "linear")
-        .map(|f| {
-            format!(
-                "{} ∝ {}^{:.3} ({})",
-                f.quantity.replace('_', " "),
-                f.against.replace('_', " "),
-                f.fit.exponent,
-                f.scene
-            )
-        })
+        .map(|f| format!("{} ∝ {}^{:.3} ({})", symbol(f.quantity), symbol(f.against), f.fit.exponent, f.scene))
         .collect();
     let linear: Vec<String> = e
         .fits
         .iter()
         .filter(|f| f.law == "linear")
-        .map(|f| {
-            format!("{} ∝ {}^{}", f.quantity.replace('_', " "), f.against.replace('_', " "), exponent(f.fit.exponent))
-        })
+        .map(|f| format!("{} ∝ {}^{}", symbol(f.quantity), symbol(f.against), exponent(f.fit.exponent)))
         .collect();
     (!hertz.is_empty()).then(|| Paragraph {
         title: "Linear against non-linear springs",
@@ -314,7 +304,7 @@ fn predicted_exponent(e: &Evidence, fit: &ScalingFit) -> Option<f64> {
 }
 
 /// A fitted quantity's symbol as the report writes it (E, G, c, F, v0, the walls' Δ, the
-/// chain's stiffness), its column name in words where it has none.
+/// chain's stiffness, each tangent one), its column name in words where it has none.
 fn symbol(column: &str) -> String {
     match column {
         "youngs_modulus" => "E".into(),
@@ -323,7 +313,10 @@ fn symbol(column: &str) -> String {
         "load_per_node" => "the load per node F".into(),
         "v0" => "the kick v0".into(),
         "wall_displacement" => "the walls' displacement Δ".into(),
+        "youngs_modulus_tangent" => "the tangent E".into(),
+        "shear_modulus_tangent" => "the tangent G".into(),
         "secant_stiffness" => "the chain's secant stiffness".into(),
+        "tangent_stiffness" => "the chain's tangent stiffness".into(),
         other => other.replace('_', " "),
     }
 }
