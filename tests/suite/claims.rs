@@ -628,3 +628,29 @@ fn linear_against_hertz_names_each_fitted_law_in_symbols_and_says_when_linear_ha
     assert!(!paragraph.contains("no sweep over the amplitude"), "{paragraph}");
     assert!(paragraph.contains("here the chain's secant stiffness ∝ the walls' displacement Δ^0"), "{paragraph}");
 }
+
+#[test]
+fn the_time_step_paragraph_states_the_share_of_each_runs_own_stability_limit() {
+    // A kicked chain of 10 without and with a bond dashpot: the dashpot lowers the run's
+    // stability limit (ω dt = 2 for undamped Verlet), so a similar dt·ω_max is a larger share
+    // of it. The stated share is the largest dt·ω_max / limit over the runs, recomputed from
+    // their records (4 significant digits).
+    let mut shares = Vec::new();
+    for damping in ["{}", "{restitution: 0.3}"] {
+        let yaml = format!(
+            "version: 1\nname: ch\nscenes:\n  - name: ch\n    kind: chain\n    n: 10\n    v0: 0.01\n    \
+             damping: {damping}\n    time: {{duration_tc: 20}}\n"
+        );
+        let expected = execute_all(&yaml)
+            .iter()
+            .filter_map(|r| Some(r.metrics.dt_omega_max? / r.metrics.stability_limit?))
+            .fold(0.0, f64::max);
+        let report = report_of("ch", &yaml);
+        let paragraph = line_with(&report, "**The time step.**");
+        let stated = number_after(paragraph, "at most ");
+        assert!((stated / expected - 1.0).abs() < 5e-4, "{damping}: {expected} in {paragraph}");
+        assert!(paragraph.contains("of the run's own stability limit"), "{paragraph}");
+        shares.push(expected);
+    }
+    assert!(shares[1] > 1.1 * shares[0], "the dashpot lowers the limit: {shares:?}");
+}

@@ -184,8 +184,11 @@ fn time_step(e: &Evidence) -> Option<Paragraph> {
         .filter_map(|r| relative(r.metrics.pair.contact_duration, r.metrics.pair.contact_duration_theory))
         .map(f64::abs)
         .reduce(f64::max);
-    let integrated: Vec<&RunRecord> =
-        linear.iter().copied().filter(|r| r.spec.kind() != SceneKind::Pair && !minimised(r)).collect();
+    let integrated: Vec<&RunRecord> = linear
+        .iter()
+        .copied()
+        .filter(|r| r.spec.kind() != SceneKind::Pair && !minimised(r) && !r.spec.static_only())
+        .collect();
     let text = [
         rule_words(pair_error),
         fastest_mode_words(&integrated, verlet_network_sweep(e)),
@@ -217,11 +220,23 @@ fn rule_words(pair_error: Option<f64>) -> Option<String> {
     ))
 }
 
-/// The fastest mode of the `integrated` networks at the rule, and their order when `swept`.
+/// The fastest mode of the `integrated` networks at the rule, against each run's own stability
+/// limit (2 for undamped Verlet, less with damping: `plan::stability`), and their order when
+/// `swept`.
 fn fastest_mode_words(integrated: &[&RunRecord], swept: bool) -> Option<String> {
     let largest = integrated.iter().filter_map(|r| r.metrics.dt_omega_max).reduce(f64::max)?;
+    let share = integrated
+        .iter()
+        .filter_map(|r| Some(r.metrics.dt_omega_max? / r.metrics.stability_limit?))
+        .reduce(f64::max)
+        .map_or(String::new(), |share| {
+            format!(
+                ", at most {} of the run's own stability limit (ω dt = 2 for undamped Verlet, less with damping)",
+                sig(share)
+            )
+        });
     Some(format!(
-        "On the {} of this campaign it puts the fastest mode at dt·ω_max ≤ {} against the Verlet limit 2{}.",
+        "On the {} of this campaign it puts the fastest mode at dt·ω_max ≤ {}{share}{}.",
         words::listed(&kinds_of(integrated).into_iter().map(plural).collect::<Vec<_>>(), "and"),
         sig(largest),
         if swept { ", and errors fall as dt²" } else { "" }
