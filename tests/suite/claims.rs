@@ -654,3 +654,29 @@ fn the_time_step_paragraph_states_the_share_of_each_runs_own_stability_limit() {
     }
     assert!(shares[1] > 1.1 * shares[0], "the dashpot lowers the limit: {shares:?}");
 }
+
+/// A chain of 5 kicked at its centre, over `grid` (a YAML map's lines, or nothing).
+fn kicked_chain(grid: &str) -> String {
+    format!(
+        "version: 1\nname: kc\nscenes:\n  - name: chain\n    kind: chain\n    n: 5\n    v0: 0.1\n    \
+         time: {{duration_tc: 10, samples: 100}}\n{grid}"
+    )
+}
+
+#[test]
+fn the_kicked_chain_is_judged_by_its_order_only_when_the_campaign_sweeps_dt() {
+    // One time step: the error against the normal modes is stated, its order is not measured,
+    // so the item is an observation (it had read "falls as dt^–", ✗ outside); no movie, no
+    // sentence about one.
+    let single = report_of("kc", &kicked_chain(""));
+    let line = line_with(&single, "[The chain of 11, kicked at its centre](#");
+    assert!(line.contains("•") && line.ends_with("observed |"), "{line}");
+    assert!(single.contains("its order in dt needs the scene at several time steps") && !single.contains("dt^–"));
+    assert!(!single.contains("The movie shows"));
+    // Swept over dt: the fitted order is stated and judged against Verlet's 2.
+    let swept = report_of("kc", &kicked_chain("    grid:\n      time.dt_per_tc: [50, 100, 200]\n"));
+    let sentence = line_with(&swept, "modes' phases drift and falls as dt^");
+    let order = number_after(sentence, "dt^");
+    let verdict = if (order - 2.0).abs() <= 0.2 { "✓" } else { "✗" };
+    assert!(line_with(&swept, "[The chain of 11, kicked at its centre](#").contains(verdict), "{order}");
+}

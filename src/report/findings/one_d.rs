@@ -443,7 +443,7 @@ pub(super) fn chain(e: &Evidence) -> Option<Answer> {
     let chain = reference.spec.chain()?;
     let order = order_of(e, reference, |r| r.metrics.chain.chain_mode_error);
     let movies = e.movies(|r| r.spec.chain().is_some_and(|c| c.n == chain.n && c.relax.is_none()));
-    let sentences = vec![
+    let mut sentences = vec![
         format!(
             "A chain of {} particles between fixed walls, particle {} given v0 = {} m/s: at dt = t_c/{:.0} the MD \
              positions and velocities follow the exact normal-mode sum u_j(t) = Σ B_n sin(ω_n t) sin(njπ/(N+1)), \
@@ -456,12 +456,22 @@ pub(super) fn chain(e: &Evidence) -> Option<Answer> {
             sig(reference.spec.duration / reference.spec.t_c),
             cell(reference.metrics.energy_error),
         ),
-        format!(
-            "The error grows with time as the modes' phases drift and falls as dt^{} with the step. The movie shows \
-             the kick splitting into two pulses that run to the walls and reflect, particles coloured by speed.",
-            order.map(|p| format!("{p:.2}")).unwrap_or_else(|| "–".into())
-        ),
+        match order {
+            Some(p) => {
+                format!("The error grows with time as the modes' phases drift and falls as dt^{p:.2} with the step.")
+            }
+            None => "The error grows with time as the modes' phases drift; its order in dt needs the scene at several \
+                     time steps, which this campaign does not run, so it is not judged."
+                .into(),
+        },
     ];
+    if !movies.is_empty() {
+        sentences.push(
+            "The movie shows the kick splitting into two pulses that run to the walls and reflect, particles coloured \
+             by speed."
+                .into(),
+        );
+    }
     let mut figures = e.figures(&[(&reference.spec.scene, FigureKind::Displacements)]);
     figures.extend(movies);
     Some(Answer {
@@ -477,7 +487,7 @@ pub(super) fn chain(e: &Evidence) -> Option<Answer> {
         reference:
             "The exact normal-mode solution; the error must fall at second order (fitted order within 0.2 of 2).".into(),
         see_also: None,
-        verdict: Verdict::of([order.is_some_and(|p| (p - 2.0).abs() <= 0.2)]),
+        verdict: order.map_or(Verdict::Observed, |p| Verdict::of([(p - 2.0).abs() <= 0.2])),
         figures,
         table: None,
     })
