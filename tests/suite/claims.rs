@@ -679,4 +679,16 @@ fn the_kicked_chain_is_judged_by_its_order_only_when_the_campaign_sweeps_dt() {
     let order = number_after(sentence, "dt^");
     let verdict = if (order - 2.0).abs() <= 0.2 { "✓" } else { "✗" };
     assert!(line_with(&swept, "[The chain of 11, kicked at its centre](#").contains(verdict), "{order}");
+    // The Hertz chain beside a Hertz pair: its energy's order in dt is stated only when swept.
+    for (grid, stated) in [("", false), ("    grid:\n      time.dt_per_tc: [50, 100, 200]\n", true)] {
+        let yaml = format!(
+            "version: 1\nname: hz\ndefaults:\n  material: {{law: hertz}}\nscenes:\n  - name: pair\n    kind: pair\n    \
+             material: {{contact: true}}\n    v0: 1.0\n  - name: chain\n    kind: chain\n    n: 5\n    v0: 0.1\n    \
+             time: {{duration_tc: 10}}\n{grid}"
+        );
+        let report = report_of("hz", &yaml);
+        let sentence = line_with(&report, "The Hertz chain of 5 kicked at its centre");
+        assert_eq!(sentence.contains("and improves as dt^"), stated, "{sentence}");
+        assert!(!sentence.contains("dt^–"), "{sentence}");
+    }
 }

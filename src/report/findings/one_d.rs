@@ -249,11 +249,10 @@ fn pair_case(e: &Evidence, r: &RunRecord) -> (String, bool) {
         r.metrics.energy_error.map(rel).unwrap_or_default(),
     );
     if !within {
-        let order = order_of(e, r, |x| pair_errors(x).1);
-        sentence += &format!(
-            ": outside {PAIR_TOLERANCE:e}; the error falls at order {} with dt",
-            order.map(|p| format!("{p:.2}")).unwrap_or_else(|| "–".into())
-        );
+        sentence += &format!(": outside {PAIR_TOLERANCE:e}");
+        if let Some(order) = order_of(e, r, |x| pair_errors(x).1) {
+            sentence += &format!("; the error falls at order {order:.2} with dt");
+        }
     }
     (sentence + ".", within)
 }
@@ -523,11 +522,11 @@ pub(super) fn hertz_pair_and_chain(e: &Evidence) -> Option<Answer> {
         let order = order_of(e, c, |r| r.metrics.energy_error);
         sentences.push(format!(
             "The Hertz chain of {} kicked at its centre has no normal modes to compare with; its energy balance holds \
-             to {} at t_c/{:.0} and improves as dt^{}.",
+             to {} at t_c/{:.0}{}.",
             c.spec.chain().map_or(0, |x| x.n),
             cell(c.metrics.energy_error),
             c.spec.dt_per_tc(),
-            order.map(|p| format!("{p:.2}")).unwrap_or_else(|| "–".into())
+            order.map_or(String::new(), |p| format!(" and improves as dt^{p:.2}"))
         ));
         checks.push(c.metrics.energy_error.is_some_and(|x| x.abs() <= 1e-3));
     }
