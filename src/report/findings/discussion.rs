@@ -172,7 +172,6 @@ fn exponent(p: f64) -> String {
 /// springs, a time-step sweep of a network by a Verlet scheme, work–precision figures.
 fn time_step(e: &Evidence) -> Option<Paragraph> {
     let at_rule = |r: &RunRecord| r.metrics.dt_omega_max.is_some() && (r.spec.dt_per_tc() - 50.0).abs() < 1.0;
-    let minimised = |r: &RunRecord| r.spec.relax().is_some_and(|relax| relax.method.is_minimiser());
     let linear = e.ok(|r| r.spec.law == LawSpec::Linear && at_rule(r));
     let power = e.ok(|r| r.spec.law != LawSpec::Linear && at_rule(r));
     if linear.is_empty() && power.is_empty() {
@@ -190,7 +189,7 @@ fn time_step(e: &Evidence) -> Option<Paragraph> {
         .filter(|r| r.spec.kind() != SceneKind::Pair && !minimised(r) && !r.spec.static_only())
         .collect();
     let text = [
-        rule_words(pair_error),
+        Some(rule_words(pair_error)),
         fastest_mode_words(&integrated, verlet_network_sweep(e)),
         minimiser_words(&e.ok(|r| at_rule(r) && minimised(r))),
         power_law_words(&power),
@@ -200,24 +199,29 @@ fn time_step(e: &Evidence) -> Option<Paragraph> {
     Some(Paragraph { title: "The time step", text: text.into_iter().flatten().collect::<Vec<_>>().join(" ") })
 }
 
+/// True for a run relaxed by a minimiser (FIRE, CG), which follows no trajectory in time.
+fn minimised(r: &RunRecord) -> bool {
+    r.spec.relax().is_some_and(|relax| relax.method.is_minimiser())
+}
+
 /// True when a network (chain or lattice) of the campaign ran at several dt by a Verlet scheme,
 /// whose second order the "errors fall as dt²" of [`fastest_mode_words`] stands on.
 fn verlet_network_sweep(e: &Evidence) -> bool {
     let verlet = e.ok(|r| {
         matches!(r.spec.kind(), SceneKind::Chain | SceneKind::Lattice)
-            && r.spec.relax().is_none_or(|relax| !relax.method.is_minimiser())
+            && !minimised(r)
             && r.spec.integrator.name().ends_with("verlet")
     });
     verlet.iter().any(|a| verlet.iter().any(|b| a.spec.scene == b.spec.scene && a.spec.dt != b.spec.dt))
 }
 
 /// The rule, with the pairs' largest error `pair_error` in t_c at it.
-fn rule_words(pair_error: Option<f64>) -> Option<String> {
+fn rule_words(pair_error: Option<f64>) -> String {
     let pairs = pair_error.map_or(String::new(), |error| format!(" On two particles it keeps t_c to {error:.1e}."));
-    Some(format!(
+    format!(
         "One rule serves every scene: dt = t_c/50 with t_c the contact time of the stiffest pair of the network \
          (π√(m/(2k)) undamped, π/√(2k/m − (γ/m)²) with its bond dashpot).{pairs}"
-    ))
+    )
 }
 
 /// The fastest mode of the `integrated` networks at the rule, against each run's own stability
@@ -237,16 +241,16 @@ fn fastest_mode_words(integrated: &[&RunRecord], swept: bool) -> Option<String> 
         });
     Some(format!(
         "On the {} of this campaign it puts the fastest mode at dt·ω_max ≤ {}{share}{}.",
-        words::listed(&kinds_of(integrated).into_iter().map(plural).collect::<Vec<_>>(), "and"),
+        kinds_in_words(integrated),
         sig(largest),
         if swept { ", and errors fall as dt²" } else { "" }
     ))
 }
 
-/// What the rule's dt is to the runs relaxed by a minimiser, `minimised`: no stability bound,
+/// What the rule's dt is to the `runs` relaxed by a minimiser: no stability bound,
 /// since FIRE adapts its step (in the stiffness's metric, a step of its own) and CG has none.
-fn minimiser_words(minimised: &[&RunRecord]) -> Option<String> {
-    let uses = |method: RelaxMethod| minimised.iter().any(|r| r.spec.relax().is_some_and(|x| x.method == method));
+fn minimiser_words(runs: &[&RunRecord]) -> Option<String> {
+    let uses = |method: RelaxMethod| runs.iter().any(|r| r.spec.relax().is_some_and(|x| x.method == method));
     let methods: Vec<String> = [(RelaxMethod::Fire, "FIRE"), (RelaxMethod::Cg, "conjugate gradients")]
         .into_iter()
         .filter(|&(method, _)| uses(method))
@@ -256,7 +260,7 @@ fn minimiser_words(minimised: &[&RunRecord]) -> Option<String> {
         format!(
             "The {} of this campaign are relaxed by a minimiser ({}), not followed in time: for them dt·ω_max is no \
              stability bound.",
-            words::listed(&kinds_of(minimised).into_iter().map(plural).collect::<Vec<_>>(), "and"),
+            kinds_in_words(runs),
             words::listed(&methods, "or")
         )
     })
@@ -279,15 +283,15 @@ fn power_law_words(power: &[&RunRecord]) -> Option<String> {
     })
 }
 
-/// The scenes of one kind in the plural, "chains", each kind of `runs` once, in the order of
-/// [`SceneKind::ALL`].
-fn kinds_of(runs: &[&RunRecord]) -> Vec<SceneKind> {
-    SceneKind::ALL.into_iter().filter(|&k| runs.iter().any(|r| r.spec.kind() == k)).collect()
-}
-
-/// A kind's scenes in the plural: "chains".
-fn plural(kind: SceneKind) -> String {
-    format!("{}s", kind.name())
+/// The scene kinds of `runs` in the plural, each once, in the order of [`SceneKind::ALL`]:
+/// "chains and lattices".
+fn kinds_in_words(runs: &[&RunRecord]) -> String {
+    let kinds: Vec<String> = SceneKind::ALL
+        .into_iter()
+        .filter(|&k| runs.iter().any(|r| r.spec.kind() == k))
+        .map(|k| format!("{}s", k.name()))
+        .collect();
+    words::listed(&kinds, "and")
 }
 
 /// A run's expected deformation (`RunSpec::deformation`) in words, by its scene's kind.

@@ -184,12 +184,7 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
     Some(Answer {
         title: "Jamming",
         question: "Where do random packings of discs jam, and how do p, z, K and G grow above it?",
-        short: format!(
-            "φ_J = {} (N = {}) against {PHI_J}{}",
-            plus_minus(largest.mean, largest.error),
-            largest.n,
-            outside_clause(&rows)
-        ),
+        short: summary_line(largest, &rows),
         sentences,
         reference: format!(
             "{CITATION}: φ_J ≈ {PHI_J} for 1:1.4 bidisperse discs, z_J = 4, and p, z − 4, K, G ∝ Δφ^(1, ½, 0, ½) for \
@@ -321,16 +316,16 @@ fn judged(row: &[String]) -> Option<bool> {
     }
 }
 
-/// For the summary, whose line states φ_J alone: "; outside: " and every judged number of
-/// `rows` outside its tolerance (law, N), so that the item's ✗ names what it is for; empty
-/// when none is.
-fn outside_clause(rows: &[Vec<String>]) -> String {
+/// The summary's line: φ_J of the `largest` N, then every judged number of `rows` outside its
+/// tolerance (law, N), so that the item's ✗ names what it is for.
+fn summary_line(largest: &Onset, rows: &[Vec<String>]) -> String {
     let outside: Vec<String> = rows
         .iter()
         .filter(|r| judged(r) == Some(false))
         .map(|r| format!("{} ({}, N = {})", r[2], r[0], r[1]))
         .collect();
-    if outside.is_empty() { String::new() } else { format!("; outside: {}", outside.join(", ")) }
+    let clause = if outside.is_empty() { String::new() } else { format!("; outside: {}", outside.join(", ")) };
+    format!("φ_J = {} (N = {}) against {PHI_J}{clause}", plus_minus(largest.mean, largest.error), largest.n)
 }
 
 /// The answer when no seed has two jammed linear packings: how many jammed, and, when none
