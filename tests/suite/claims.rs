@@ -92,6 +92,38 @@ fn the_lattice_time_step_states_the_formula_that_gives_its_number() {
     }
 }
 
+/// A free 6 × 6 lattice kicked at its upper-right node, undamped, with a `grid` line.
+fn kicked_lattice(grid: &str) -> String {
+    format!(
+        "version: 1\nname: kick\nscenes:\n  - name: kick\n    kind: lattice\n    lattice: {{size: 6}}\n    supports: free\n    \
+         impulse: {{node: top-right, velocity: [0.0, -0.01]}}\n    wave: {{}}\n    time: {{integrator: velocity-verlet}}\n    \
+         grid:\n      {grid}\n"
+    )
+}
+
+#[test]
+fn the_lattice_time_step_item_needs_a_sweep_over_dt_and_names_the_step_it_quotes() {
+    // Three kicked runs at one dt (swept over the diagonal springs) fit no order: no item.
+    let one_step = report_of("kick", &kicked_lattice("lattice.k_diag_ratio: [0.25, 0.5, 1.0]"));
+    assert!(!one_step.contains("The time step on a lattice"), "an order claimed from a single dt");
+    // Three steps, none of them t_c/50: the sentence quotes the one nearest it, t_c/40, with its
+    // own energy error and dt·ω_max (both from its row of the item's table).
+    let swept = report_of("kick", &kicked_lattice("time.dt_per_tc: [10, 20, 40]"));
+    let sentence = line_with(&swept, "The same kick on the lattice of scene kick");
+    assert!(sentence.contains("dt = t_c/40 keeps the energy to "), "{sentence}");
+    let row = line_with(&swept, "| 40 | ");
+    let error = number_after(sentence, "keeps the energy to ");
+    assert!(row.contains(&format!("| {} |", sentence_number(sentence, "keeps the energy to "))), "{row}\n{sentence}");
+    assert!(error > 0.0 && number_after(sentence, "fastest mode at dt·ω_max = ") > 0.0, "{sentence}");
+    assert!(!sentence.contains("the pair's rule"), "the old, unjudged claim");
+}
+
+/// The number written after `marker` in `text`, as written.
+fn sentence_number<'a>(text: &'a str, marker: &str) -> &'a str {
+    let rest = &text[text.find(marker).expect("marker") + marker.len()..];
+    rest.split([' ', ',']).next().unwrap_or("")
+}
+
 /// A 10 × 10 tensile block cut at `cuts` over six seeds, relaxed by FIRE.
 fn random_block(cuts: &str) -> String {
     format!(
