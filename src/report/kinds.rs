@@ -395,9 +395,15 @@ pub(super) fn physics_words(s: &RunSpec) -> String {
         Some(l) => {
             // Another type than square has one spring to every nearest neighbour, no diagonals.
             let network = if l.lattice_type.is_square() {
+                // The diagonals follow the same law: C_d in N/m^β for a power law.
+                let (symbol, unit) = match s.law {
+                    LawSpec::Linear => ("k_d", "N/m".to_string()),
+                    LawSpec::Power { beta } => ("C_d", format!("N/m^{}", number(beta))),
+                };
                 format!(
-                    "{law} along rows and columns, diagonals k_d = {} N/m (k_d/k = {})",
+                    "{law} along rows and columns, diagonals {symbol} = {} {unit} ({symbol}/{} = {})",
                     number(l.k_diag),
+                    if s.law.is_linear() { "k" } else { "C" },
                     number(l.k_diag / s.k)
                 )
             } else {

@@ -146,7 +146,7 @@ impl<'a> Block<'a> {
     }
 
     /// The run that fixes the block's material (its largest tensile block).
-    fn first(&self) -> &'a RunRecord {
+    pub(super) fn first(&self) -> &'a RunRecord {
         self.tensile[self.tensile.len() - 1]
     }
 

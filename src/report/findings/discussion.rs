@@ -11,7 +11,7 @@ use crate::report::figure::{background_damping_only, bond_damping_only};
 use crate::report::words;
 use crate::runner::RunRecord;
 use crate::sim::{RelaxMethod, RunStatus};
-use crate::spec::{Deformation, Diagonals, LoadCase, SceneKind};
+use crate::spec::{Deformation, Diagonals, LoadCase, SceneKind, Supports};
 use crate::summary::ScalingFit;
 
 /// One paragraph of the discussion.
@@ -82,13 +82,15 @@ fn two_d_numbers(e: &Evidence) -> Option<String> {
         hertz.iter().find_map(|h| linear.iter().find(|r| same(r, h) && load(r) == load(h)).map(|r| (*r, *h)))?;
     let l = twin.spec.lattice()?;
     Some(format!(
-        "In 2D: the linear {} × {} block on {} supports has E = {} Pa at every load; the Hertz block of the same \
-         constant {} has {} Pa at the same {} N per node, and from {} Pa at {} N to {} Pa at {} N: ×{} for ×{} \
-         the load.",
+        "In 2D: the linear {} × {} block on {} supports has E = {} Pa at every load; the Hertz block whose springs \
+         have the same constant (C = {} N/m^{} against k = {} N/m) has {} Pa at the same {} N per node, and from {} \
+         Pa at {} N to {} Pa at {} N: ×{} for ×{} the load.",
         l.nx,
         l.ny,
         l.supports.name(),
         cell(twin.metrics.lattice.youngs_modulus),
+        sig(at.spec.k),
+        at.spec.law.beta(),
         sig(twin.spec.k),
         cell(at.metrics.lattice.youngs_modulus),
         sig(load(at)),
@@ -117,17 +119,24 @@ fn diagonals(e: &Evidence) -> Option<Paragraph> {
         })
     };
     let (none, both) = (tensile(Diagonals::None), tensile(Diagonals::Both));
-    let (n, b): (&RunRecord, &RunRecord) = (largest(&none)?, largest(&both)?);
+    // The two runs compared are the same block but for the diagonals: the largest without
+    // them (the coursework's supports first), and with them on the same supports and size.
+    let n = largest(&none)?;
+    let alike =
+        |r: &&&RunRecord| r.spec.lattice().map(|l| (l.supports, l.nx)) == n.spec.lattice().map(|l| (l.supports, l.nx));
+    let b = *both.iter().filter(alike).find(|r| r.spec.scene == n.spec.scene).or_else(|| both.iter().find(alike))?;
+    let supports = n.spec.lattice().map_or("", |l| l.supports.name());
     let floppy = e
         .all(|r| r.status == RunStatus::Mechanism && r.spec.lattice().is_some_and(|l| l.diagonals == Diagonals::None))
         .len();
     Some(Paragraph {
         title: "With and without diagonals",
         text: format!(
-            "Without diagonals a square lattice is a set of independent chains: on {} × {}, E = {} Pa (k/d, up to the \
-             finite size), ν = {} and no shear stiffness at all ({floppy} shear runs end as mechanism), and a kick \
-             stays in its column. The diagonals tie rows to columns: E = {} Pa, ν = {} and G = k_d/d, a solid that \
-             contracts sideways and carries shear, and a kick spreads through the whole block.",
+            "Without diagonals a square lattice is a set of independent chains: on {} × {} ({supports} supports), \
+             E = {} Pa (k/d, up to the finite size), ν = {} and no shear stiffness at all ({floppy} shear runs end as \
+             mechanism), and a kick stays in its column. The diagonals tie rows to columns: on the same block, \
+             E = {} Pa, ν = {} and G = k_d/d, a solid that contracts sideways and carries shear, and a kick spreads \
+             through the whole block.",
             n.spec.lattice().map_or(0, |l| l.nx),
             n.spec.lattice().map_or(0, |l| l.ny),
             cell(n.metrics.lattice.youngs_modulus),
@@ -138,9 +147,12 @@ fn diagonals(e: &Evidence) -> Option<Paragraph> {
     })
 }
 
-/// The run of the largest lattice among `runs`.
+/// The run of the largest lattice among `runs`, on the coursework's supports where there is a
+/// choice.
 fn largest<'a>(runs: &[&'a RunRecord]) -> Option<&'a RunRecord> {
-    runs.iter().copied().max_by_key(|r| r.spec.lattice().map_or(0, |l| l.nx))
+    runs.iter()
+        .copied()
+        .max_by_key(|r| r.spec.lattice().map_or((0, false), |l| (l.nx, l.supports == Supports::Coursework)))
 }
 
 /// Bond damping against background damping.
@@ -219,8 +231,9 @@ fn verlet_network_sweep(e: &Evidence) -> bool {
 fn rule_words(pair_error: Option<f64>) -> String {
     let pairs = pair_error.map_or(String::new(), |error| format!(" On two particles it keeps t_c to {error:.1e}."));
     format!(
-        "One rule serves every scene: dt = t_c/50 with t_c the contact time of the stiffest pair of the network \
-         (π√(m/(2k)) undamped, π/√(2k/m − (γ/m)²) with its bond dashpot).{pairs}"
+        "One rule serves every scene: dt = t_c/50 with t_c the contact time of two of the scene's masses on its \
+         spring k (material.k; a power law's stiffness at its expected deformation): π√(m/(2k)) undamped, \
+         π/√(2k/m − (γ/m)²) with its bond dashpot.{pairs}"
     )
 }
 
@@ -240,7 +253,9 @@ fn fastest_mode_words(integrated: &[&RunRecord], swept: bool) -> Option<String> 
             )
         });
     Some(format!(
-        "On the {} of this campaign it puts the fastest mode at dt·ω_max ≤ {}{share}{}.",
+        "On the {} of this campaign it puts the fastest mode at dt·ω_max ≤ {}{share}{}; each run checks its \
+         fastest mode before it starts, which catches stiffer springs than k elsewhere in a network (k_y, the \
+         diagonals).",
         kinds_in_words(integrated),
         sig(largest),
         if swept { ", and errors fall as dt²" } else { "" }
@@ -324,7 +339,7 @@ fn predicted_exponent(e: &Evidence, fit: &ScalingFit) -> Option<f64> {
 
 /// A fitted quantity's symbol as the report writes it (E, G, c, F, v0, the walls' Δ, the
 /// chain's stiffness, each tangent one), its column name in words where it has none.
-fn symbol(column: &str) -> String {
+pub(super) fn symbol(column: &str) -> String {
     match column {
         "youngs_modulus" => "E".into(),
         "shear_modulus" => "G".into(),

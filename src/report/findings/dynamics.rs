@@ -43,7 +43,12 @@ pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
             error.map(rel).unwrap_or_default()
         )
     });
-    let short: Vec<String> = block.as_ref().map(Block::sound_short).into_iter().chain(chain_short).collect();
+    // The judged number first: the verdict is the chain's; the block's speed is an observation.
+    let block_short = block.as_ref().map(|b| match chain {
+        Some(_) => format!("observed: {}", b.sound_short()),
+        None => b.sound_short(),
+    });
+    let short: Vec<String> = chain_short.into_iter().chain(block_short).collect();
     Some(Answer {
         title: "The speed of sound",
         question: "(d) Estimate the sound speed from the arrival time at the bottom; which criterion, which others, \
@@ -52,7 +57,8 @@ pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
         sentences,
         reference: format!(
             "The exact front speed a√(k/m) of the linear chain; tolerance {SPEED_TOLERANCE} (the threshold catches \
-             the dispersive front early); without a chain, an observation."
+             the dispersive front early); the lattices' speeds are observations (over a few dozen spacings the \
+             threshold runs further ahead of the exact front); without a chain, an observation."
         ),
         see_also: None,
         verdict: match chain {

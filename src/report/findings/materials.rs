@@ -178,10 +178,9 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
     let mut checks = Vec::new();
     for f in &fits {
         sentences.push(format!(
-            "{} ({}): {} from {} to {} Pa over loads of {} to {} N per node, ∝ F^{:.3} (R² = {:.4}).",
-            f.quantity.replace('_', " "),
+            "{} of scene {}: from {} to {} Pa over loads of {} to {} N per node, ∝ F^{:.3} (R² = {:.4}).",
+            super::discussion::symbol(f.quantity),
             f.scene,
-            f.quantity.replace('_', " "),
             sig(f.points.first().map_or(0.0, |p| p.1)),
             sig(f.points.last().map_or(0.0, |p| p.1)),
             sig(f.points.first().map_or(0.0, |p| p.0)),
@@ -393,12 +392,20 @@ pub(super) fn random(e: &Evidence) -> Option<Answer> {
     let runs = e.all(|r| r.spec.lattice().is_some_and(|l| l.cut_fraction > 0.0 && l.lattice_type.is_square()));
     let rows = random_rows(&runs)?;
     let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
+    let unsettled = runs.iter().filter(|r| !matches!(r.status, RunStatus::Mechanism | RunStatus::Ok)).count();
     let sentences = vec![
         format!(
             "Cutting bonds at random softens the network and spreads its moduli over seeds; {} of the {} random runs \
-             lost their rigidity (status mechanism, found by the static solver before MD).",
+             lost their rigidity (status mechanism, found by the static solver before MD){}.",
             mechanisms,
-            runs.len()
+            runs.len(),
+            match unsettled {
+                0 => String::new(),
+                n => format!(
+                    ", and {n} more are rigid but did not end as relaxed (their status in the appendix), so they give \
+                     no modulus"
+                ),
+            }
         ),
         rigidity_sentence(&runs),
     ];
@@ -408,7 +415,9 @@ pub(super) fn random(e: &Evidence) -> Option<Answer> {
         question: "(b) Make the system random (cut springs at random, or vary their stiffness): what do you observe?",
         short: format!("{mechanisms} of {} cut networks lost rigidity", runs.len()),
         sentences,
-        reference: "Effective-medium theory's rigidity threshold at half the bonds kept; an observation.".into(),
+        reference:
+            "Effective-medium theory's rigidity threshold at half the interior bonds kept (p = 1/2); an observation."
+                .into(),
         see_also: Some(jammed_packings()),
         verdict: Verdict::Observed,
         figures: e.figure(&scene, FigureKind::Dilution).into_iter().collect(),
@@ -417,8 +426,8 @@ pub(super) fn random(e: &Evidence) -> Option<Answer> {
                 "load",
                 "cut fraction",
                 "rigid seeds",
-                "kept (rigid seeds)",
-                "modulus mean (Pa)",
+                "kept of all bonds (rigid seeds)",
+                "modulus mean over relaxed seeds (Pa)",
                 "standard deviation (Pa)",
             ]
             .map(String::from)
@@ -482,27 +491,34 @@ fn random_rows(runs: &[&RunRecord]) -> Option<Vec<Vec<String>>> {
 
 /// Where the cut networks lost rigidity against effective-medium theory's threshold: a
 /// central-force network is rigid while its mean coordination is above 2d = 4, half the 8 bonds
-/// per node of the square lattice with both diagonals. The sparsest network still rigid says on
-/// which side of 1/2 this campaign's networks held.
+/// per node of the square lattice with both diagonals. Measured, as in the dilution figure, by
+/// the kept fraction p = 1 − cut fraction of the interior bonds (the edges' bonds are never cut,
+/// so a network's share of all its bonds is larger): the sparsest network still rigid and the
+/// densest that lost rigidity say on which side of p = 1/2 this campaign's networks held.
 fn rigidity_sentence(runs: &[&RunRecord]) -> String {
-    let sparsest_rigid = runs
-        .iter()
-        .filter(|r| r.status == RunStatus::Ok)
-        .filter_map(|r| r.metrics.lattice.bond_fraction_kept)
-        .reduce(f64::min);
+    let kept = |r: &&RunRecord| r.spec.lattice().map_or(f64::NAN, |l| 1.0 - l.cut_fraction);
+    // Rigid as the static solver finds it (the table's "rigid seeds"), relaxed or not.
+    let lowest_rigid = runs.iter().filter(|r| r.status != RunStatus::Mechanism).map(kept).reduce(f64::min);
+    let highest_lost = runs.iter().filter(|r| r.status == RunStatus::Mechanism).map(kept).reduce(f64::max);
     let theory = "Effective-medium theory for central-force networks puts the loss of rigidity where the mean \
-                  coordination reaches 2d = 4, a kept fraction 4/8 = 1/2 of the square lattice with both diagonals.";
-    let rigid = match sparsest_rigid {
-        Some(k) if k < 0.5 => format!(
-            " The sparsest network still rigid here keeps {k:.3} of its bonds, below 1/2: a finite network whose \
-             edges are not cut keeps some rigidity beyond the threshold."
+                  coordination reaches 2d = 4, a kept fraction p = 4/8 = 1/2 of the square lattice with both \
+                  diagonals (p counts the interior bonds, which alone are cut, as in the figure).";
+    let held = match (lowest_rigid, highest_lost) {
+        (Some(p), _) if p < 0.5 => format!(
+            " A network kept at p = {p:.2}, below 1/2, still stayed rigid: a finite network whose edges are not cut \
+             keeps some rigidity beyond the threshold."
         ),
-        Some(k) => format!(
-            " No network keeping fewer than half its bonds stayed rigid here: the sparsest rigid one keeps {k:.3}."
+        (Some(p), Some(lost)) => format!(
+            " Here rigidity held down to p = {p:.2} and was first lost at p = {lost:.2}{}.",
+            if (lost - 0.5).abs() < 0.01 { ", the threshold itself" } else { "" }
         ),
-        None => " No cut network stayed rigid here.".into(),
+        (Some(p), None) => format!(
+            " Every network here stayed rigid, down to p = {p:.2}: the campaign cuts no network as far as the \
+             threshold."
+        ),
+        (None, _) => " No cut network stayed rigid here.".into(),
     };
-    format!("{theory}{rigid} A cut network must relax first: its soft, slow modes take longest.")
+    format!("{theory}{held} A cut network must relax first: its soft, slow modes take longest.")
 }
 
 /// Every relaxed lattice's |MD − static|/static of its modulus, with its run, and their median.

@@ -306,12 +306,14 @@ pub(super) fn time_step(e: &Evidence) -> Option<Answer> {
     let order = order_of(e, reference, |r: &RunRecord| pair_errors(r).0);
     let s = &reference.spec;
     let mut sentences = vec![format!(
-        "For two particles of mass m = {} kg and stiffness k = {} N/m, {}, so the coursework's dt = t_c/50 = {} s; \
-         choosing m and k so that t_c is a round number makes every time a simple multiple of it.",
+        "For two particles of mass m = {} kg and stiffness k = {} N/m, {}, so the coursework's dt = t_c/50 = {} s. \
+         Steps and durations are given in units of t_c (time.dt_per_tc, default 50, and time.duration_tc), so the \
+         step is easy to estimate whatever m and k are; t_c itself would be 1 s with k = π² m/2 = {} N/m.",
         sig(s.mass),
         sig(s.k),
         contact_time_words(s),
-        sig(s.t_c / 50.0)
+        sig(s.t_c / 50.0),
+        sig(std::f64::consts::PI.powi(2) * s.mass / 2.0)
     )];
     sentences.push(match order {
         Some(p) => sweep_sentence(&bonded, reference, p)?,

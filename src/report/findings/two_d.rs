@@ -47,40 +47,16 @@ fn distinct_steps(runs: &[&RunRecord], scene: &str) -> usize {
 /// Masses and stiffnesses of the lattice, the good time step and its stability margin.
 pub(super) fn units_and_time_step(e: &Evidence) -> Option<Answer> {
     let lattices = e.ok(|r| r.spec.lattice().is_some() && r.metrics.dt_omega_max.is_some());
-    let derived = lattices.iter().find(|r| r.spec.lattice().is_some_and(|l| l.derived_from.is_some()));
-    let example = derived.or(lattices.first())?;
-    let l = example.spec.lattice()?;
+    let (example, mut sentences) = node_sentences(e, &lattices)?;
     let s = &example.spec;
-    let mut sentences = Vec::new();
-    if let Some(note) = &l.derived_from {
-        sentences.push(format!("The masses and springs are derived from the solid: {note}."));
-    }
-    sentences.push(format!(
-        "A node of m = {} kg on springs k = {} N/m gives the pair's {}, so dt = t_c/50 = {} s; the whole {} × {} \
-         block weighs {} kg.",
-        sig(s.mass),
-        sig(s.k),
-        contact_time_words(s),
-        sig(s.t_c / 50.0),
-        l.nx,
-        l.ny,
-        sig(s.mass * (l.nx * l.ny) as f64)
-    ));
-    // (dt·ω_max, its stability limit) of each run at the coursework's step.
-    let margins: Vec<(f64, f64)> = lattices
-        .iter()
-        .filter(|r| !r.spec.allow_unstable && (r.spec.dt_per_tc() - 50.0).abs() < 1.0)
-        .filter_map(|r| Some((r.metrics.dt_omega_max?, r.metrics.stability_limit?)))
-        .collect();
-    let (worst_step, worst_limit) =
-        margins.iter().copied().max_by(|a, b| (a.0 / a.1).total_cmp(&(b.0 / b.1))).unwrap_or((0.0, 1.0));
+    let (runs, worst_step, worst_limit) = closest_to_stability_limit(&lattices);
     let worst = worst_step / worst_limit;
     sentences.push(format!(
         "The lattice's fastest mode is faster than the pair's (ω_max up to 2√((k + k_d)/m) with diagonals), so the \
          step is checked against it before every run: over the {} lattice runs at dt = t_c/50 it comes closest to \
          its integrator's stability limit at dt·ω_max = {} against a limit of {} (2 for Verlet, lower with \
          damping), {} of it.",
-        margins.len(),
+        runs,
         sig(worst_step),
         sig(worst_limit),
         sig(worst)
@@ -101,13 +77,70 @@ pub(super) fn units_and_time_step(e: &Evidence) -> Option<Answer> {
     })
 }
 
+/// The run whose node the item describes, and the sentences on its masses and springs: the
+/// block whose moduli the report gives (the abstract's), then a scene whose masses and springs
+/// are derived from the solid, when the campaign has one besides it.
+fn node_sentences<'a>(e: &Evidence<'a>, lattices: &[&'a RunRecord]) -> Option<(&'a RunRecord, Vec<String>)> {
+    let block = Block::of(e).map(|b| b.first()).filter(|r| r.metrics.dt_omega_max.is_some());
+    let derived = lattices.iter().copied().find(|r| r.spec.lattice().is_some_and(|l| l.derived_from.is_some()));
+    let example = block.or(derived).or(lattices.first().copied())?;
+    let s = &example.spec;
+    let mut sentences = vec![format!("The block of scene {}: {}", s.scene, node_words(example)?)];
+    if let Some(d) = derived.filter(|d| d.spec.scene != s.scene) {
+        let note = d.spec.lattice()?.derived_from.as_deref().unwrap_or_default();
+        sentences.push(format!(
+            "Scene {} derives its masses and springs from the solid instead: {note}; there {}",
+            d.spec.scene,
+            node_words(d)?
+        ));
+    }
+    let l = s.lattice()?;
+    match &l.derived_from {
+        Some(note) => sentences.insert(0, format!("The masses and springs are derived from the solid: {note}.")),
+        None => sentences[0].push_str(&format!(
+            " Each node carries the mass of its cell a × a × d (a = {} m, d = {} m): ρ = m/(a² d) = {} kg/m³.",
+            sig(s.spacing),
+            sig(l.depth),
+            sig(s.mass / (s.spacing * s.spacing * l.depth))
+        )),
+    }
+    Some((example, sentences))
+}
+
+/// Over the runs at the coursework's step dt = t_c/50: how many, and (dt·ω_max, its stability
+/// limit) of the one closest to its limit.
+fn closest_to_stability_limit(lattices: &[&RunRecord]) -> (usize, f64, f64) {
+    let margins: Vec<(f64, f64)> = lattices
+        .iter()
+        .filter(|r| !r.spec.allow_unstable && (r.spec.dt_per_tc() - 50.0).abs() < 1.0)
+        .filter_map(|r| Some((r.metrics.dt_omega_max?, r.metrics.stability_limit?)))
+        .collect();
+    let (step, limit) =
+        margins.iter().copied().max_by(|a, b| (a.0 / a.1).total_cmp(&(b.0 / b.1))).unwrap_or((0.0, 1.0));
+    (margins.len(), step, limit)
+}
+
+/// A lattice run's node in words: its mass and springs, the pair's t_c, dt = t_c/50 and the
+/// block's weight.
+fn node_words(r: &RunRecord) -> Option<String> {
+    let (s, l) = (&r.spec, r.spec.lattice()?);
+    Some(format!(
+        "a node of m = {} kg on springs k = {} N/m gives the pair's {}, so dt = t_c/50 = {} s; the whole {} × {} \
+         block weighs {} kg.",
+        sig(s.mass),
+        sig(s.k),
+        contact_time_words(s),
+        sig(s.t_c / 50.0),
+        l.nx,
+        l.ny,
+        sig(s.mass * (l.nx * l.ny) as f64)
+    ))
+}
+
 /// k_d/k for equal Young's modulus along the diagonal chain, and the choice made.
 pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
     let runs = e.ok(|r| regular(r).is_some_and(|l| l.diagonals == Diagonals::Both && l.load_case == LoadCase::Tensile));
-    let mut ratios: BTreeMap<String, &RunRecord> = BTreeMap::new();
-    for r in &runs {
-        ratios.entry(sig(r.spec.lattice()?.k_diag / r.spec.k)).or_insert(r);
-    }
+    let ratios = one_block_per_ratio(&runs);
     let first = *runs.first()?;
     let mut sentences = vec![
         "A chain of diagonal springs k_d of length a√2 carries, per unit width, the stiffness k_d/√2 … a row of \
@@ -118,8 +151,9 @@ pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
     for r in ratios.values() {
         let l = r.spec.lattice()?;
         sentences.push(format!(
-            "With k_d/k = {} the continuum has E = (C11 − C12²/C11)/d = {} Pa and ν = k_d/(k + k_d) = {}; MD measures \
-             ν = {} on {} × {} ({} supports).",
+            "With k = {} N/m and k_d/k = {} the continuum has E = (C11 − C12²/C11)/d = {} Pa and ν = k_d/(k + k_d) \
+             = {}; MD measures ν = {} on {} × {} ({} supports).",
+            sig(r.spec.k),
             sig(l.k_diag / r.spec.k),
             cell(r.metrics.lattice.youngs_modulus_theory),
             cell(r.metrics.lattice.poisson_ratio_theory),
@@ -146,6 +180,28 @@ pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
         figures: Vec::new(),
         table: None,
     })
+}
+
+/// One run for each ratio k_d/k among `runs`, compared on one block: the largest size every
+/// ratio was run at (else each ratio's largest), on the coursework's supports where there is a
+/// choice.
+fn one_block_per_ratio<'a>(runs: &[&'a RunRecord]) -> BTreeMap<String, &'a RunRecord> {
+    let mut by_ratio: BTreeMap<String, Vec<&RunRecord>> = BTreeMap::new();
+    for &r in runs {
+        let l = r.spec.lattice().expect("lattice runs");
+        by_ratio.entry(sig(l.k_diag / r.spec.k)).or_default().push(r);
+    }
+    let size = |r: &RunRecord| r.spec.lattice().map_or(0, |l| l.nx);
+    let shared = by_ratio.values().map(|rs| rs.iter().map(|r| size(r)).collect::<Vec<_>>());
+    let common = shared
+        .clone()
+        .next()
+        .and_then(|first| first.into_iter().filter(|n| shared.clone().all(|sizes| sizes.contains(n))).max());
+    let preference = |r: &&&RunRecord| {
+        let coursework = r.spec.lattice().is_some_and(|l| l.supports == Supports::Coursework);
+        (common.is_none_or(|n| size(r) == n), size(r), coursework)
+    };
+    by_ratio.into_iter().filter_map(|(ratio, rs)| Some((ratio, *rs.iter().max_by_key(preference)?))).collect()
 }
 
 /// A dt sweep on a kicked lattice: energy error and arrival time against dt.
@@ -322,10 +378,13 @@ type Modulus = (&'static str, Option<f64>, Option<f64>, Option<f64>);
 
 /// The modulus a run measures.
 fn modulus(r: &RunRecord) -> Option<Modulus> {
-    let m = &r.metrics.lattice;
-    match r.spec.lattice()?.load_case {
+    let (m, l) = (&r.metrics.lattice, r.spec.lattice()?);
+    // A periodic strip cannot contract sideways: its tensile test measures the modulus of
+    // uniaxial strain C11/d = (k + k_d)/d, not E.
+    let tensile = if l.supports == Supports::PeriodicX { "C11/d" } else { "E" };
+    match l.load_case {
         LoadCase::Tensile | LoadCase::TensileX => {
-            Some(("E", m.youngs_modulus, m.youngs_modulus_fem, m.youngs_modulus_theory))
+            Some((tensile, m.youngs_modulus, m.youngs_modulus_fem, m.youngs_modulus_theory))
         }
         LoadCase::Shear => Some(("G", m.shear_modulus, m.shear_modulus_fem, m.shear_modulus_theory)),
     }
