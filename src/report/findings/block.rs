@@ -280,6 +280,24 @@ impl<'a> Block<'a> {
     }
 }
 
+/// The coursework's estimate t_s = N_s t_c for the block's wave `w`, against its measured speed: with
+/// N_s the springs from the kicked node to the bottom row, and with the particles along that
+/// line (one more), as the coursework counts them.
+pub(super) fn estimate_words(w: &RunRecord) -> Option<String> {
+    let (v, distance, t_s) =
+        (w.metrics.recommended_sound_speed()?, w.metrics.wave_distance?, w.metrics.arrival_time_tc_estimate?);
+    let springs = (t_s / w.spec.t_c).round();
+    Some(format!(
+        "The coursework's estimate t_s = N_s t_c (N_s = {springs} springs down the block, t_c = {} s) gives V = {} m/s, \
+         {:.2} × slower than measured ({} m/s counting the {} particles instead).",
+        sig(w.spec.t_c),
+        sig(distance / t_s),
+        v / (distance / t_s),
+        sig(distance / ((springs + 1.0) * w.spec.t_c)),
+        springs + 1.0
+    ))
+}
+
 impl Block<'_> {
     /// Item 10's sentence on the extrapolation: how the moduli converge and to what.
     pub(super) fn extrapolation_sentence(&self) -> Option<String> {

@@ -35,6 +35,7 @@ pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
         );
     }
     sentences.extend(block.as_ref().map(Block::sound_sentence));
+    sentences.extend(block.as_ref().and_then(|b| b.wave).and_then(super::block::estimate_words));
     sentences.extend(precursor_sentence(&linear));
     let chain_short = chain.map(|c| {
         format!(

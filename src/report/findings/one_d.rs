@@ -289,10 +289,10 @@ fn energy_gain(e: &Evidence) -> Option<String> {
         a.metrics.pair.restitution.unwrap_or(0.0).total_cmp(&b.metrics.pair.restitution.unwrap_or(0.0))
     })?;
     Some(format!(
-        "{} of the undamped runs give r > 1, which no passive spring can: the largest, {} at t_c/{:.0} ({}), is the \
-         scheme's energy error over the collision, not physics; it shrinks with dt.",
+        "{} of the undamped runs give r > 1, which no passive spring can: the largest, r = 1 + {:.2e} at t_c/{:.0} \
+         ({}), is the scheme's energy error over the collision, not physics; it shrinks with dt.",
         gains.len(),
-        cell(worst.metrics.pair.restitution),
+        worst.metrics.pair.restitution? - 1.0,
         worst.spec.dt_per_tc(),
         case(worst)
     ))
