@@ -580,6 +580,20 @@ pub(super) fn fem_headline(e: &Evidence) -> Option<String> {
     ))
 }
 
+/// The diagonal bars' E_bar A = k_d a√2 of a square lattice with diagonals, in words: one E_bar A
+/// for every bar would give k_d/k = 1/√2, not the network's ratio.
+fn diagonal_bar_words(r: &RunRecord) -> String {
+    match r.spec.lattice() {
+        Some(l) if l.k_diag > 0.0 && l.lattice_type.is_square() => format!(
+            ", and a diagonal bar of length a√2 with k_d = {} N/m needs E_bar A = k_d a√2 = {} N (one E_bar A for \
+             every bar would give k_d/k = 1/√2)",
+            sig(l.k_diag),
+            sig(l.k_diag * r.spec.spacing * std::f64::consts::SQRT_2)
+        ),
+        _ => String::new(),
+    }
+}
+
 /// MD against the static truss (FEM) answer, and how k_FEM relates to k_MD.
 pub(super) fn md_and_fem(e: &Evidence) -> Option<Answer> {
     let (pairs, median) = md_against_static(e)?;
@@ -587,13 +601,14 @@ pub(super) fn md_and_fem(e: &Evidence) -> Option<Answer> {
     let s = &worst_run.spec;
     let mut sentences = vec![
         format!(
-            "Each spring with its masses is a truss bar: k = E_bar A/a. With k = {} N/m and a = {} m a bar of \
-             E_bar A = k a = {} N gives the same network, so k_FEM = k_MD and σ_FEM = (k_FEM/k_MD) σ_MD = σ_MD; the \
-             static solver here is that truss model, solved exactly (sparse Cholesky, then Newton for large \
-             rotations and non-linear springs).",
+            "Each spring with its masses is a truss bar: k = E_bar A/L over its length L. With k = {} N/m and a = {} m \
+             a bar of E_bar A = k a = {} N gives the same network{}, so k_FEM = k_MD and σ_FEM = (k_FEM/k_MD) σ_MD = \
+             σ_MD; the static solver here is that truss model, solved exactly (sparse Cholesky, then Newton for \
+             large rotations and non-linear springs).",
             sig(s.k),
             sig(s.spacing),
-            sig(s.k * s.spacing)
+            sig(s.k * s.spacing),
+            diagonal_bar_words(worst_run)
         ),
         format!(
             "Over {} relaxed lattice runs MD and the static answer differ by {} at the median and {} at worst \

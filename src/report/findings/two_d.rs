@@ -523,9 +523,10 @@ pub(super) fn shear(e: &Evidence) -> Option<Answer> {
         sentences.push(format!(
             "Only the periodic strip shears homogeneously: there G = {} Pa against k_d/d = {} Pa; with the \
              coursework supports the whole shear force passes through the single pinned corner, and a clamped \
-             bottom bends the block, so both fall short of G.",
+             bottom bends the block{}.",
             cell(r.metrics.lattice.shear_modulus),
-            cell(r.metrics.lattice.shear_modulus_theory)
+            cell(r.metrics.lattice.shear_modulus_theory),
+            supported_shear_words(e)
         ));
     }
     sentences.extend(e.ok(driven).into_iter().take(4).filter_map(|r| control_sentence(e, r)));
@@ -543,6 +544,43 @@ pub(super) fn shear(e: &Evidence) -> Option<Answer> {
         figures: scenes.iter().take(1).flat_map(|s| e.figures(&[(s, FigureKind::Size)])).collect(),
         table: Some(table),
     })
+}
+
+/// The apparent G of the largest sheared block with diagonals on the coursework's supports and
+/// on a clamped bottom, each as a share of k_d/d, and whether both fall short of it.
+fn supported_shear_words(e: &Evidence) -> String {
+    let largest = |supports: Supports| {
+        e.ok(|r| {
+            regular(r).is_some_and(|l| {
+                (l.load_case, l.supports, l.control, l.diagonals)
+                    == (LoadCase::Shear, supports, Control::Force, Diagonals::Both)
+            })
+        })
+        .into_iter()
+        .max_by_key(|r| r.spec.lattice().map_or(0, |l| l.nx))
+    };
+    let shares: Vec<(String, f64)> = [Supports::Coursework, Supports::ClampedBottom]
+        .into_iter()
+        .filter_map(largest)
+        .filter_map(|r| {
+            let (m, l) = (&r.metrics.lattice, r.spec.lattice()?);
+            let share = m.shear_modulus? / m.shear_modulus_theory?;
+            let words = format!(
+                "{} Pa on {} × {} {} supports ({share:.2} of k_d/d)",
+                cell(m.shear_modulus),
+                l.nx,
+                l.ny,
+                l.supports.name()
+            );
+            Some((words, share))
+        })
+        .collect();
+    if shares.is_empty() {
+        return String::new();
+    }
+    let verdict = if shares.iter().all(|s| s.1 < 1.0) { ", short of k_d/d" } else { "" };
+    let list: Vec<String> = shares.into_iter().map(|s| s.0).collect();
+    format!(": the apparent G is {}{verdict}", list.join(" and "))
 }
 
 /// Two static answers closer than this are the same modulus: the static solver's precision is
