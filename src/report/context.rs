@@ -97,7 +97,8 @@ struct SceneSection {
     name: String,
     kind: &'static str,
     physics: String,
-    t_c: String,
+    /// The two-body contact time t_c the scene's dt is set from, with its formula.
+    contact_time: String,
     dt_50: String,
     figures: Vec<FigureRef>,
     /// Every topic's rows, under the names the template reads.
@@ -194,7 +195,7 @@ fn section(scene: Scene, records: &[RunRecord], figures: &[Figure], side_by_side
     Some(SceneSection {
         kind: scene.kind.name(),
         physics: physics_words(s),
-        t_c: number(s.t_c),
+        contact_time: super::kinds::contact_time_words(s),
         dt_50: number(s.t_c / 50.0),
         figures: figures.iter().filter(|f| f.scene == scene.name).map(Figure::reference).collect(),
         movies: movie_refs(&scene.name, &mine, side_by_side),

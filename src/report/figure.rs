@@ -61,6 +61,8 @@ pub enum FigureKind {
     Envelope,
     /// A packing scene's p, z − 4, K and G against φ − φ_J with their power laws (`jamming.rs`).
     Jamming,
+    /// A packing scene's G/K against z − 4 with its power law and the theory's (`jamming.rs`).
+    JammingRatio,
 }
 
 /// A drawn figure.

@@ -118,6 +118,9 @@ pub(super) struct Scaling {
     pub(super) fit: PowerLawFit,
     pub(super) theory: f64,
     pub(super) points: Vec<(f64, f64)>,
+    /// Packings left out of the log–log fit because their value is not positive (a jammed
+    /// packing near φ_J may have G ≤ 0: unstable to shear in its fixed box).
+    pub(super) not_positive: usize,
 }
 
 /// The jammed packings of `n` discs with contact exponent `beta` whose Δφ = φ − φ_J is at
@@ -149,8 +152,9 @@ pub(super) fn scalings(
         .filter_map(|&(quantity, pick, theory)| {
             let points: Vec<(f64, f64)> =
                 mine.iter().filter_map(|&(d, r)| Some((d, pick(r).filter(|y| *y > 0.0)?))).collect();
+            let not_positive = mine.iter().filter(|(_, r)| pick(r).is_some_and(|y| y <= 0.0)).count();
             let fit = power_law_fit(&points)?;
-            Some(Scaling { quantity, fit, theory: theory(beta), points })
+            Some(Scaling { quantity, fit, theory: theory(beta), points, not_positive })
         })
         .collect()
 }
@@ -176,7 +180,7 @@ pub(super) fn ratio_against_contacts(
         })
         .collect();
     let fit = power_law_fit(&points)?;
-    Some(Scaling { quantity: "G/K against z − 4", fit, theory: 1.0, points })
+    Some(Scaling { quantity: "G/K against z − 4", fit, theory: 1.0, points, not_positive: 0 })
 }
 
 /// The packing scene's figure: p, z − 4, K and G of its largest N's jammed packings against
@@ -215,6 +219,7 @@ pub(super) fn part(records: &[RunRecord], scene: &str) -> anyhow::Result<Part<()
         y_label: "p, K, G (N/m); z − 4".into(),
         scale: Scale::LogLog,
     };
+    let ratio = ratio_figure(scene, &mine, &onsets, size.n, beta, size.fit_floor())?;
     let figure = Figure {
         scene: scene.into(),
         kind: FigureKind::Jamming,
@@ -228,5 +233,52 @@ pub(super) fn part(records: &[RunRecord], scene: &str) -> anyhow::Result<Part<()
         ),
         image: line_chart(&chart, &series)?,
     };
-    Ok(Part { figures: vec![figure], rows: () })
+    Ok(Part { figures: std::iter::once(figure).chain(ratio).collect(), rows: () })
+}
+
+/// The scene's G/K against z − 4 for its `n` discs on log–log axes with the fitted power law
+/// beside the theory's Δz¹ ([`ratio_against_contacts`]); none without packings to fit.
+fn ratio_figure(
+    scene: &str,
+    mine: &[&RunRecord],
+    onsets: &BTreeMap<(usize, u64), f64>,
+    n: usize,
+    beta: f64,
+    floor: f64,
+) -> anyhow::Result<Option<Figure>> {
+    let Some(s) = ratio_against_contacts(mine, onsets, n, beta, floor) else { return Ok(None) };
+    let (low, high) = s.points.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), p| (lo.min(p.0), hi.max(p.0)));
+    let line = |exponent: f64, prefactor: f64| {
+        vec![(low, prefactor * low.powf(exponent)), (high, prefactor * high.powf(exponent))]
+    };
+    // The theory's line through the packings' geometric mean, so only its slope compares.
+    let (mean_x, mean_y) = s.points.iter().fold((0.0, 0.0), |(x, y), p| (x + p.0.ln(), y + p.1.ln()));
+    let count = s.points.len() as f64;
+    let through_mean = (mean_y / count - s.theory * mean_x / count).exp();
+    let series = vec![
+        Series { label: "packings".into(), points: s.points.clone(), mark: Mark::Markers },
+        Series {
+            label: format!("fit Δz^{:.2}", s.fit.exponent),
+            points: line(s.fit.exponent, s.fit.prefactor),
+            mark: Mark::Line,
+        },
+        Series { label: format!("theory Δz^{:.0}", s.theory), points: line(s.theory, through_mean), mark: Mark::Line },
+    ];
+    let chart = Chart {
+        title: format!("{scene}: G/K against z − 4 (N = {n})"),
+        x_label: "Δz = z − 4".into(),
+        y_label: "G/K".into(),
+        scale: Scale::LogLog,
+    };
+    Ok(Some(Figure {
+        scene: scene.into(),
+        kind: FigureKind::JammingRatio,
+        file: format!("plots/{scene}-ratio.svg"),
+        caption: format!(
+            "{scene}: G/K of the jammed packings of {n} discs against their excess coordination Δz = z − 4 \
+             (rattlers removed), over Δφ ≥ {floor:.3}, on log–log axes, with the fitted power law and the theory's \
+             G/K ∝ Δz (its line drawn through the packings' geometric mean: only the slopes compare)."
+        ),
+        image: line_chart(&chart, &series)?,
+    }))
 }

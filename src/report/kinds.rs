@@ -490,10 +490,16 @@ pub(super) fn contact_time_words(spec: &RunSpec) -> String {
             number(spec.gamma),
             number(undamped)
         ),
-        LawSpec::Power { .. } => format!(
-            "t_c = {} s, the {} pair's contact time at the deformation the scene expects",
+        LawSpec::Power { .. } if spec.scene_kind.is_collision() => format!(
+            "t_c = {} s, the {} pair's contact duration at the scene's impact speed",
             number(spec.t_c),
-            spec.law.name()
+            law_name(spec.law)
+        ),
+        LawSpec::Power { .. } => format!(
+            "t_c = π√(m/(2k_t)) = {} s, the {} pair linearised at the deformation the scene expects (k_t its \
+             tangent stiffness there)",
+            number(spec.t_c),
+            law_name(spec.law)
         ),
     }
 }

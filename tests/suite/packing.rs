@@ -551,4 +551,20 @@ fn ratio_against_contacts_is_the_tables(frame: &DataFrame, report: &str, onsets:
     assert!(line.contains(&format!("over {} packings", points.len())), "{line}");
     let within = (stated - 1.0).abs() <= 0.15;
     assert!(line.contains(if within { "), within 0.15" } else { "), outside 0.15" }), "{line}");
+    // Its figure, with the theory's slope beside the fit's.
+    assert!(report.contains("jam: G/K of the jammed packings of 64 discs against their excess coordination"));
+    // The packings with G ≤ 0 at Δφ ≥ the floor are left out of G's log–log fit, and said so.
+    let not_positive = (0..frame.height())
+        .filter(|&i| states.get(i) == Some("jammed"))
+        .filter(|&i| {
+            let [phi, seed, _, g, _] = columns.each_ref().map(|c| c[i]);
+            phi.zip(seed).is_some_and(|(phi, seed)| phi - onsets[seed as usize - 1] >= floor)
+                && g.is_some_and(|g| g <= 0.0)
+        })
+        .count();
+    let scalings = line_with(report, "Linear contacts, N = 64, over");
+    match not_positive {
+        0 => assert!(!scalings.contains("left out"), "{scalings}"),
+        k => assert!(scalings.contains(&format!(", {k} with G ≤ 0 left out)")), "{scalings}"),
+    }
 }

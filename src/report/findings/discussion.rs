@@ -10,7 +10,7 @@ use crate::report::figure::FigureKind;
 use crate::report::figure::{background_damping_only, bond_damping_only};
 use crate::report::words;
 use crate::runner::RunRecord;
-use crate::sim::{RelaxMethod, RunStatus};
+use crate::sim::{PreconditionerKind, RelaxMethod, RunStatus};
 use crate::spec::{Deformation, Diagonals, LoadCase, SceneKind, Supports};
 use crate::summary::ScalingFit;
 
@@ -271,10 +271,28 @@ fn minimiser_words(runs: &[&RunRecord]) -> Option<String> {
         .filter(|&(method, _)| uses(method))
         .map(|(_, name)| name.to_string())
         .collect();
+    // FIRE in the masses' metric steps from dt up to 10 dt: its largest step meets ω_max there.
+    let fire_largest = runs
+        .iter()
+        .filter(|r| {
+            r.spec
+                .relax()
+                .is_some_and(|x| x.method == RelaxMethod::Fire && x.preconditioner == PreconditionerKind::None)
+        })
+        .filter_map(|r| r.metrics.dt_omega_max)
+        .reduce(f64::max);
+    let bound = match fire_largest {
+        Some(x) => format!(
+            ": FIRE's step grows from dt to at most Δt_max = 10 dt and is halved whenever the motion turns uphill; \
+             here ω_max Δt_max ≤ {}, {} the limit 2 of its semi-implicit Euler",
+            sig(10.0 * x),
+            if 10.0 * x < 2.0 { "inside" } else { "beyond (the halving keeps it stable)" }
+        ),
+        None => ": for them dt·ω_max is no stability bound".into(),
+    };
     (!methods.is_empty()).then(|| {
         format!(
-            "The {} of this campaign are relaxed by a minimiser ({}), not followed in time: for them dt·ω_max is no \
-             stability bound.",
+            "The {} of this campaign are relaxed by a minimiser ({}), not followed in time{bound}.",
             kinds_in_words(runs),
             words::listed(&methods, "or")
         )

@@ -21,9 +21,9 @@ const PHI_J: f64 = 0.842;
 /// The allowance for finite size beside 2 standard errors: the mean φ_J of small periodic
 /// packings moves with N (by +0.007 from N = 64 to 1024 in `campaigns/jamming.yaml`).
 const FINITE_SIZE: f64 = 0.01;
-/// The tolerance of z_J against 4: a finite periodic packing of N' discs jams at the
-/// isostatic count 2N' − 1 (z = 4 − 2/N'), and the extrapolation in √Δφ starts from the
-/// smallest Δφ measured (z − 4 ≈ 0.3 at Δφ ≈ 0.005 in `campaigns/jamming.yaml`).
+/// The tolerance of z_J against 4: the extrapolation in √Δφ starts from the smallest Δφ
+/// measured (z − 4 ≈ 0.3 at Δφ ≈ 0.005 in `campaigns/jamming.yaml`); a finite periodic
+/// packing of N' discs jams at its isostatic count 2N' − 1 (z = 4 − 2/N'), a smaller shift.
 const Z_TOLERANCE: f64 = 0.15;
 /// The tolerance of a fitted exponent against the theory's (judged on the largest N only):
 /// Δφ of the smallest fitted point is uncertain by up to 1/`FIT_FLOOR` of itself (ln 1.2 ≈
@@ -71,12 +71,17 @@ fn trend_sentence(sizes: &[Onset]) -> Option<String> {
     let (first, last) = (sizes.first()?, sizes.last()?);
     (sizes.len() > 1).then(|| {
         let toward = (last.mean - PHI_J).abs() < (first.mean - PHI_J).abs();
+        let across = (last.mean - PHI_J).signum() != (first.mean - PHI_J).signum();
         format!(
             "From N = {} to N = {} the mean φ_J moves by {}, {} 0.842.",
             first.n,
             last.n,
             signed(last.mean - first.mean),
-            if toward { "towards" } else { "away from" }
+            match (across, toward) {
+                (true, _) => "across",
+                (false, true) => "towards",
+                (false, false) => "away from",
+            }
         )
     })
 }
@@ -114,8 +119,12 @@ fn scalings_sentence(beta: f64, size: &Onset, fitted: &[Scaling], judged: bool) 
             } else {
                 ", outside"
             };
+            let left_out = match s.not_positive {
+                0 => String::new(),
+                k => format!(", {k} with {} ≤ 0 left out", s.quantity),
+            };
             format!(
-                "{} ∝ Δφ^{} (theory {}{verdict}; {} packings)",
+                "{} ∝ Δφ^{} (theory {}{verdict}; {} packings{left_out})",
                 s.quantity,
                 sig(s.fit.exponent),
                 sig(s.theory),
@@ -170,11 +179,12 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
         sentences.push(format!(
             "z at jamming (mean contacts per disc, rattlers removed), from z = z_J + c √Δφ fitted over the {points} \
              jammed linear packings of N = {}: z_J = {}, against the isostatic {ISOSTATIC}: {} (tolerance \
-             {Z_TOLERANCE}: a finite periodic packing of N' discs jams at the isostatic count 2N' − 1, z = 4 − 2/N', \
-             and the extrapolation starts from the smallest Δφ measured).",
+             {Z_TOLERANCE}, for the extrapolation in √Δφ from the smallest Δφ measured, where z − 4 is still a few \
+             tenths; a finite periodic packing's own isostatic count 2N' − 1, z = 4 − 2/N', lies only about {} below 4).",
             largest.n,
             sig(z_j),
-            if ok { "within" } else { "outside" }
+            if ok { "within" } else { "outside" },
+            sig(2.0 / largest.n as f64)
         ));
         rows.push(row("linear", largest.n, "z_J", &sig(z_j), ISOSTATIC, points, Some(ok)));
     }
@@ -281,7 +291,7 @@ fn ratio_sentence(beta: f64, n: usize, ratio: &Scaling, implied: Option<f64>) ->
 fn jamming_figures(e: &Evidence, runs: &[&RunRecord]) -> Vec<FigureRef> {
     packing_scenes(runs)
         .into_iter()
-        .filter_map(|scene| e.figure(scene, FigureKind::Jamming))
+        .flat_map(|scene| e.figures(&[(scene, FigureKind::Jamming), (scene, FigureKind::JammingRatio)]))
         .chain(e.movies(|r| r.spec.packing().is_some()))
         .collect()
 }

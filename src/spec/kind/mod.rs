@@ -130,7 +130,7 @@ impl KindSpec {
 
     /// True when the run is a collision (a pair, a hit chain), whose contact time is the
     /// exact two-body one of its law; a loaded or relaxing scene takes the linear one.
-    pub(super) fn is_collision(&self) -> bool {
+    pub fn is_collision(&self) -> bool {
         match self {
             KindSpec::Pair(_) => true,
             KindSpec::Chain(chain) => chain.is_collision(),
