@@ -55,6 +55,25 @@ pub(crate) fn fitted(r: &RunRecord) -> bool {
 /// φ_J of every (N, seed) with two jammed linear packings or more: p = a (φ − φ_J) fitted by
 /// least squares over them, φ_J = −intercept/a (none when the pressure does not rise with φ).
 pub(super) fn onsets(runs: &[&RunRecord]) -> BTreeMap<(usize, u64), f64> {
+    onsets_over(runs, |points| points)
+}
+
+/// [`onsets`] from the lower half of each seed's jammed fractions only (two at least): p(φ) is
+/// not quite straight, so where the line stops moves its intercept; the report states by how
+/// much.
+pub(super) fn lower_half_onsets(runs: &[&RunRecord]) -> BTreeMap<(usize, u64), f64> {
+    onsets_over(runs, |points| {
+        let kept = points.len().div_ceil(2).max(2);
+        &points[..kept.min(points.len())]
+    })
+}
+
+/// The part of a seed's (φ, p), by rising φ, its φ_J is fitted over.
+type Chosen = fn(&[(f64, f64)]) -> &[(f64, f64)];
+
+/// φ_J of every (N, seed) from the part `chosen` of its jammed linear packings' (φ, p), by
+/// rising φ.
+fn onsets_over(runs: &[&RunRecord], chosen: Chosen) -> BTreeMap<(usize, u64), f64> {
     let mut points: BTreeMap<(usize, u64), Vec<(f64, f64)>> = BTreeMap::new();
     for r in runs.iter().filter(|r| r.spec.law.is_linear() && jammed(r)) {
         let m = &r.metrics.packing;
@@ -64,7 +83,10 @@ pub(super) fn onsets(runs: &[&RunRecord]) -> BTreeMap<(usize, u64), f64> {
     }
     points
         .into_iter()
-        .filter_map(|(k, points)| line_fit(&points).filter(|l| l.slope > 0.0).map(|l| (k, -l.intercept / l.slope)))
+        .filter_map(|(k, mut points)| {
+            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            line_fit(chosen(&points)).filter(|l| l.slope > 0.0).map(|l| (k, -l.intercept / l.slope))
+        })
         .collect()
 }
 

@@ -10,7 +10,8 @@ use super::finding::{Answer, Evidence, Table, Verdict, plus_minus, sig};
 use crate::measure::line_fit;
 use crate::report::figure::{FigureKind, FigureRef};
 use crate::report::jamming::{
-    FIT_FLOOR, ISOSTATIC, Onset, Scaling, excess, fitted, jammed, key, onsets, ratio_against_contacts, scalings,
+    FIT_FLOOR, ISOSTATIC, Onset, Scaling, excess, fitted, jammed, key, lower_half_onsets, onsets,
+    ratio_against_contacts, scalings,
 };
 use crate::runner::RunRecord;
 
@@ -84,6 +85,23 @@ fn trend_sentence(sizes: &[Onset]) -> Option<String> {
             }
         )
     })
+}
+
+/// How far φ_J of the largest N moves when each seed's line is fitted over the lower half of
+/// its jammed fractions only: a systematic error of the straight line that its standard error
+/// over seeds leaves out.
+fn fit_range_sentence(runs: &[&RunRecord], largest: &Onset) -> Option<String> {
+    let lower = Onset::per_size(&lower_half_onsets(runs)).into_iter().find(|s| s.n == largest.n)?;
+    let shift = lower.mean - largest.mean;
+    Some(format!(
+        "Fitted over the lower half of each seed's jammed fractions only, N = {}'s mean φ_J is {} ({}): p(φ) is not \
+         quite straight, and this shift, {} its standard error, is a systematic error of the line's range that \
+         the ± above leaves out.",
+        largest.n,
+        plus_minus(lower.mean, lower.error),
+        signed(shift),
+        if shift.abs() > largest.error { "larger than" } else { "within" }
+    ))
 }
 
 /// z at jamming of the linear packings of `n` discs: z = z_J + c √Δφ fitted over the jammed
@@ -170,6 +188,7 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
     )];
     sentences.extend(sizes.iter().map(Onset::sentence));
     sentences.extend(trend_sentence(&sizes));
+    sentences.extend(fit_range_sentence(&runs, largest));
     let mut rows: Vec<Vec<String>> = sizes
         .iter()
         .map(|s| row("linear", s.n, "φ_J", &plus_minus(s.mean, s.error), PHI_J, s.seeds, Some(s.within())))
