@@ -35,12 +35,18 @@ fn background_damping_is_judged_against_its_critical_value() {
     let envelope = line_with(&across, "Below γ_crit");
     let (predicted, measured) = (number_after(envelope, "m/γ_g = "), number_after(envelope, "measured "));
     assert!((measured / predicted - 1.0).abs() < 0.05, "{envelope}");
+    // The item is judged on that envelope, within its stated 0.05; with no run below γ_crit
+    // (below) it has no reference and is an observation.
+    let reference = line_with(&across, "**Reference:** The underdamped envelope ln(1/θ) m/γ_g");
+    assert!(reference.contains("tolerance 0.05") && reference.contains("**Verdict: ✓ within.**"), "{reference}");
     assert!(line_with(&across, "above γ_crit").contains("more damping relaxes slower"));
     // All above γ_crit: no underdamped sentence, and the least damped run is the fastest.
     let above = report_of("bg", &background_sweep(&format!("[{}, {}, {}]", g(2.0), g(4.0), g(8.0))));
     assert!(!above.contains("Below γ_crit"));
     assert!(line_with(&above, "critical background damping is γ_crit").contains("= 2.00 γ_crit."));
     assert!(!above.contains("overdamped and creeps"), "the old, unconditional claim");
+    let reference = line_with(&above, "**Reference:** No analytical reference: the times are measured");
+    assert!(reference.contains("**Verdict: •") && reference.ends_with("observed.**"), "{reference}");
 }
 
 /// A linear chain of `n` hit at one end, timed at the far end.
