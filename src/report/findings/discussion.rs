@@ -4,14 +4,16 @@
 
 use serde::Serialize;
 
-use super::finding::{Answer, Evidence, Table, Verdict, cell, fastest_relaxation, noise, relative, sig};
+use super::finding::{
+    Answer, Evidence, Table, Verdict, cell, fastest_relaxation, noise, relative, sig, size_on_coursework_supports,
+};
 use crate::model::LawSpec;
 use crate::report::figure::FigureKind;
 use crate::report::figure::{background_damping_only, bond_damping_only};
 use crate::report::words;
 use crate::runner::RunRecord;
 use crate::sim::{PreconditionerKind, RelaxMethod, RunStatus};
-use crate::spec::{Deformation, Diagonals, LoadCase, SceneKind, Supports};
+use crate::spec::{Deformation, Diagonals, LoadCase, SceneKind};
 use crate::summary::ScalingFit;
 
 /// One paragraph of the discussion.
@@ -150,9 +152,7 @@ fn diagonals(e: &Evidence) -> Option<Paragraph> {
 /// The run of the largest lattice among `runs`, on the coursework's supports where there is a
 /// choice.
 fn largest<'a>(runs: &[&'a RunRecord]) -> Option<&'a RunRecord> {
-    runs.iter()
-        .copied()
-        .max_by_key(|r| r.spec.lattice().map_or((0, false), |l| (l.nx, l.supports == Supports::Coursework)))
+    runs.iter().copied().max_by_key(|r| size_on_coursework_supports(r))
 }
 
 /// Bond damping against background damping.
@@ -262,8 +262,9 @@ fn fastest_mode_words(integrated: &[&RunRecord], swept: bool) -> Option<String> 
     ))
 }
 
-/// What the rule's dt is to the `runs` relaxed by a minimiser: no stability bound,
-/// since FIRE adapts its step (in the stiffness's metric, a step of its own) and CG has none.
+/// What the rule's dt is to the `runs` relaxed by a minimiser: FIRE in the masses' metric
+/// steps from dt up to 10 dt, so its largest step is held against the limit 2; FIRE in the
+/// stiffness's metric takes a step of its own and CG none, so dt bounds nothing there.
 fn minimiser_words(runs: &[&RunRecord]) -> Option<String> {
     let uses = |method: RelaxMethod| runs.iter().any(|r| r.spec.relax().is_some_and(|x| x.method == method));
     let methods: Vec<String> = [(RelaxMethod::Fire, "FIRE"), (RelaxMethod::Cg, "conjugate gradients")]

@@ -9,7 +9,7 @@ use crate::model::{LatticeType, LawSpec};
 use crate::report::figure::{Figure, FigureKind, FigureRef, movie_refs};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
-use crate::spec::LatticeSpec;
+use crate::spec::{LatticeSpec, Supports};
 use crate::summary::ScalingFit;
 
 // Numbers in sentences: 4 significant digits, plain or scientific as reads best.
@@ -205,6 +205,12 @@ pub(super) fn regular(r: &RunRecord) -> Option<&LatticeSpec> {
     r.spec.lattice().filter(|l| {
         l.impulse.is_none() && !l.is_random() && l.k_x == l.k_y && !l.rotated && r.spec.law == LawSpec::Linear
     })
+}
+
+/// A lattice run's size, then whether it stands on the coursework's supports: the key that
+/// picks the largest block, on those supports where there is a choice ((0, false) off a lattice).
+pub(super) fn size_on_coursework_supports(r: &RunRecord) -> (usize, bool) {
+    r.spec.lattice().map_or((0, false), |l| (l.nx, l.supports == Supports::Coursework))
 }
 
 /// The shortest dissipation time (s) among `runs`; infinite when none relaxed.

@@ -6,7 +6,9 @@
 use std::collections::BTreeMap;
 
 use super::block::Block;
-use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, regular, rel, relative, sig};
+use super::finding::{
+    Answer, Evidence, Table, Verdict, cell, noise, regular, rel, relative, sig, size_on_coursework_supports,
+};
 use crate::measure::convergence_order;
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, representative};
@@ -188,19 +190,14 @@ pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
 fn one_block_per_ratio<'a>(runs: &[&'a RunRecord]) -> BTreeMap<String, &'a RunRecord> {
     let mut by_ratio: BTreeMap<String, Vec<&RunRecord>> = BTreeMap::new();
     for &r in runs {
-        let l = r.spec.lattice().expect("lattice runs");
-        by_ratio.entry(sig(l.k_diag / r.spec.k)).or_default().push(r);
+        if let Some(l) = r.spec.lattice() {
+            by_ratio.entry(sig(l.k_diag / r.spec.k)).or_default().push(r);
+        }
     }
-    let size = |r: &RunRecord| r.spec.lattice().map_or(0, |l| l.nx);
-    let shared = by_ratio.values().map(|rs| rs.iter().map(|r| size(r)).collect::<Vec<_>>());
-    let common = shared
-        .clone()
-        .next()
-        .and_then(|first| first.into_iter().filter(|n| shared.clone().all(|sizes| sizes.contains(n))).max());
-    let preference = |r: &&&RunRecord| {
-        let coursework = r.spec.lattice().is_some_and(|l| l.supports == Supports::Coursework);
-        (common.is_none_or(|n| size(r) == n), size(r), coursework)
-    };
+    let size = |r: &RunRecord| size_on_coursework_supports(r).0;
+    let run_at = |n: usize| by_ratio.values().all(|rs| rs.iter().any(|r| size(r) == n));
+    let common = runs.iter().map(|r| size(r)).filter(|&n| run_at(n)).max();
+    let preference = |r: &&&RunRecord| (common.is_none_or(|n| size(r) == n), size_on_coursework_supports(r));
     by_ratio.into_iter().filter_map(|(ratio, rs)| Some((ratio, *rs.iter().max_by_key(preference)?))).collect()
 }
 
