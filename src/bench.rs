@@ -150,7 +150,7 @@ fn network(config: &BenchConfig, lattice: SquareLattice) -> Network {
         None => lattice.bonds(),
     };
     if config.dilute > 0.0 {
-        Network::Bonds(bonds.randomised(config.dilute, 0.0, 0x5eed, |_, _| false))
+        Network::Bonds(bonds.randomised(config.dilute, 0.0, 0x5eed, |b| b as u64, |_, _| false))
     } else {
         Network::Bonds(bonds)
     }

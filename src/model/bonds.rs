@@ -61,7 +61,8 @@ impl Bonds {
 
     /// The bonds left after removing each with probability `cut_fraction`, the kept ones'
     /// stiffness times 1 + w·U with U uniform in [−1, 1] (w = `stiffness_spread`); the
-    /// random numbers are a hash of the bond's index and `seed`, one stream for the cut and
+    /// random numbers are a hash of the bond's key `key(b)` (its index, or the index of the
+    /// same bond in another listing of the network) and `seed`, one stream for the cut and
     /// another for the spread (reproducible on every machine, and a spread does not change
     /// which bonds are cut). Bonds for which `uncut(i, j)` holds are never cut.
     pub fn randomised(
@@ -69,14 +70,15 @@ impl Bonds {
         cut_fraction: f64,
         stiffness_spread: f64,
         seed: u64,
+        key: impl Fn(usize) -> u64,
         uncut: impl Fn(usize, usize) -> bool,
     ) -> Bonds {
         let mut kept = Bonds::default();
         for b in 0..self.len() {
-            if uncut(self.i[b], self.j[b]) || uniform(seed, b as u64) >= cut_fraction {
+            if uncut(self.i[b], self.j[b]) || uniform(seed, key(b)) >= cut_fraction {
                 self.copy_to(b, &mut kept);
                 if stiffness_spread > 0.0 {
-                    let u = 2.0 * uniform(!seed, b as u64) - 1.0;
+                    let u = 2.0 * uniform(!seed, key(b)) - 1.0;
                     *kept.stiffness.last_mut().expect("just pushed") *= 1.0 + stiffness_spread * u;
                 }
             }

@@ -200,6 +200,16 @@ pub enum Diagonals {
 }
 
 impl Diagonals {
+    /// The same diagonals after the block turns by 90°: a rising family falls, a falling one
+    /// rises (and back).
+    pub fn turned(self) -> Diagonals {
+        match self {
+            Diagonals::Rising => Diagonals::Falling,
+            Diagonals::Falling => Diagonals::Rising,
+            other => other,
+        }
+    }
+
     /// The name used in files and tables.
     pub fn name(self) -> &'static str {
         match self {

@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use std::collections::HashMap;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -220,9 +221,40 @@ fn bonds(spec: &RunSpec, l: &LatticeSpec) -> Bonds {
         beside_edge[i] |= edge[j];
         beside_edge[j] |= edge[i];
     }
-    all.randomised(l.cut_fraction, l.stiffness_spread, l.seed, |i, j| {
-        edge[i] || edge[j] || (beside_edge[i] && beside_edge[j])
-    })
+    let key = upright_keys(spec, l, &all);
+    all.randomised(
+        l.cut_fraction,
+        l.stiffness_spread,
+        l.seed,
+        |b| key[b],
+        |i, j| edge[i] || edge[j] || (beside_edge[i] && beside_edge[j]),
+    )
+}
+
+/// The key of each bond's random numbers: its index in the lattice as the campaign describes
+/// it, so that a `tensile-x` run (simulated turned by 90°) cuts and spreads the same bonds as
+/// the `tensile` and `shear` runs of its seed: one network, measured in both directions. The
+/// other types keep their bond list when turned (only the layout turns); the square lattice is
+/// rebuilt turned, node (ix', iy') of the turned block being the upright one's
+/// (ix, iy) = (iy', ny − 1 − ix') (`Layout::turned`: x' = L_y − y, y' = x).
+fn upright_keys(spec: &RunSpec, l: &LatticeSpec, all: &Bonds) -> Vec<u64> {
+    if !(l.rotated && l.planar(spec.spacing).is_none()) {
+        return (0..all.len() as u64).collect();
+    }
+    let upright = l.upright();
+    let node = |turned: usize| {
+        let (ix, iy) = (turned / l.nx, upright.ny - 1 - turned % l.nx);
+        iy * upright.nx + ix
+    };
+    let listed = springs(spec, &upright).bonds();
+    let index: HashMap<(usize, usize), u64> =
+        (0..listed.len()).map(|b| ((listed.i[b].min(listed.j[b]), listed.i[b].max(listed.j[b])), b as u64)).collect();
+    (0..all.len())
+        .map(|b| {
+            let (i, j) = (node(all.i[b]), node(all.j[b]));
+            index[&(i.min(j), i.max(j))]
+        })
+        .collect()
 }
 
 /// Holds what the supports hold of the bottom row: its first node fixed and the others

@@ -91,7 +91,11 @@ fn check(
     staggered: bool,
 ) {
     let (particles, lattice) = setup(nx, ny, supports, periodic_x, staggered);
-    let bonds = if dilute > 0.0 { lattice.bonds().randomised(dilute, 0.0, 7, |_, _| false) } else { lattice.bonds() };
+    let bonds = if dilute > 0.0 {
+        lattice.bonds().randomised(dilute, 0.0, 7, |b| b as u64, |_, _| false)
+    } else {
+        lattice.bonds()
+    };
     let network = if dilute > 0.0 { Network::Bonds(bonds.clone()) } else { Network::Lattice(lattice) };
     let scene = Scene::new(particles.clone(), network, law, sampling(particles.len()))
         .contact(matches!(springs, Springs::PowerContact { .. }))

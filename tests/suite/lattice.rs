@@ -398,3 +398,56 @@ fn a_static_runs_tangent_moduli_do_not_depend_on_a_shared_answer() {
     let after_fire = run_planned(&planned_block("{tangent_step: 0.001}", "      relax.method: [fire, static]\n"));
     assert_eq!(tangent(&alone), tangent(&after_fire));
 }
+
+/// The bonds of a lattice run by where their ends sit in the lattice as the campaign describes
+/// it, in whole spacings: a `tensile-x` run is simulated turned by +90° (x' = L − y, y' = x), so
+/// its nodes are turned back here from their positions, independently of how the program
+/// numbers them. Each bond: ((ix, iy), (ix, iy)) in order, and its stiffness.
+fn upright_bonds(spec: &mdsolids::spec::RunSpec) -> std::collections::BTreeMap<[(i64, i64); 2], f64> {
+    let scene = mdsolids::study::build_scene(spec);
+    let (x, y) = (&scene.particles.x, &scene.particles.y);
+    let turned = spec.lattice().expect("a lattice").rotated;
+    let side = x.iter().copied().fold(0.0, f64::max);
+    let cell = |n: usize| {
+        let (u, v) = if turned { (y[n], side - x[n]) } else { (x[n], y[n]) };
+        ((u / spec.spacing).round() as i64, (v / spec.spacing).round() as i64)
+    };
+    let mut bonds = std::collections::BTreeMap::new();
+    scene.network.for_each_bond(x, y, |i, j, _, k, _| {
+        let (a, b) = (cell(i), cell(j));
+        bonds.insert([a.min(b), a.max(b)], k);
+    });
+    bonds
+}
+
+/// "For random systems one has to measure the moduli in all directions" (coursework): a
+/// random network loaded along x (`tensile-x`, simulated turned) is the same network as its
+/// seed's loaded along y. Spread stiffnesses: every bond in both, with the same bits. Cut bonds:
+/// the same cuts wherever neither loading keeps its edge bands whole (both ends two spacings or
+/// more from every side). On an 11 × 8 block with one diagonal family, so that a turn that
+/// swapped the sides or the families wrongly fails.
+#[test]
+fn a_random_network_loaded_along_x_is_its_seeds_network_turned() {
+    let (nx, ny) = (11, 8);
+    let yaml = |lattice: &str| {
+        campaign(
+            &format!("{{nx: {nx}, ny: {ny}, k_diag_ratio: 0.5, diagonals: rising, {lattice}}}"),
+            "    load: {per_node: 1.0}\n",
+            "      load.case: [tensile, tensile-x]\n      seed: [3]\n",
+        )
+    };
+    let spread = runs(&yaml("stiffness_spread: 0.5"));
+    let (along_y, along_x) = (upright_bonds(&spread[0]), upright_bonds(&spread[1]));
+    assert_eq!(along_y.len(), (nx - 1) * ny + nx * (ny - 1) + (nx - 1) * (ny - 1), "rows, columns, rising diagonals");
+    assert_eq!(along_y, along_x, "one spread network, both directions");
+    let first = *along_y.values().next().unwrap();
+    assert!(along_y.values().any(|k| (k / first - 1.0).abs() > 0.1), "the stiffnesses are spread");
+    let inside = |(ix, iy): (i64, i64)| (2..nx as i64 - 2).contains(&ix) && (2..ny as i64 - 2).contains(&iy);
+    let interior = |b: &[(i64, i64); 2]| b.iter().all(|&end| inside(end));
+    let kept = |spec| upright_bonds(spec).into_keys().filter(interior).collect::<Vec<_>>();
+    let cut = runs(&yaml("cut_fraction: 0.4"));
+    let (y_kept, x_kept) = (kept(&cut[0]), kept(&cut[1]));
+    assert_eq!(y_kept, x_kept, "the same interior cuts");
+    let all = along_y.keys().filter(|b| interior(b)).count();
+    assert!(y_kept.len() > all / 4 && y_kept.len() < all * 3 / 4, "about 0.6 of {all} kept: {}", y_kept.len());
+}

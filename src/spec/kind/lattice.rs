@@ -131,6 +131,24 @@ impl ProbeLine {
 }
 
 impl LatticeSpec {
+    /// The lattice as its campaign describes it: a `tensile-x` square lattice turned back
+    /// (nx/ny, k_x/k_y and the diagonal families swapped again, see `turned`); any other as is.
+    pub fn upright(&self) -> LatticeSpec {
+        if !self.rotated || !self.lattice_type.is_square() {
+            return self.clone();
+        }
+        let diagonals = self.diagonals.turned();
+        LatticeSpec {
+            nx: self.ny,
+            ny: self.nx,
+            k_x: self.k_y,
+            k_y: self.k_x,
+            diagonals,
+            rotated: false,
+            ..self.clone()
+        }
+    }
+
     /// Total force on the top row under force control, load_per_node times its nodes (N).
     pub fn total_load(&self) -> f64 {
         self.load_per_node * self.top_row_len() as f64
@@ -585,12 +603,14 @@ fn turned(upright: Upright, probes: &[ProbeLine], supports: Supports, kind: Latt
         return Ok(Upright { load_case: Some(LoadCase::Tensile), ..upright });
     }
     let Upright { nx, ny, k_x, k_y, diagonals, .. } = upright;
-    let diagonals = match diagonals {
-        Diagonals::Rising => Diagonals::Falling,
-        Diagonals::Falling => Diagonals::Rising,
-        other => other,
-    };
-    Ok(Upright { nx: ny, ny: nx, k_x: k_y, k_y: k_x, diagonals, load_case: Some(LoadCase::Tensile) })
+    Ok(Upright {
+        nx: ny,
+        ny: nx,
+        k_x: k_y,
+        k_y: k_x,
+        diagonals: diagonals.turned(),
+        load_case: Some(LoadCase::Tensile),
+    })
 }
 
 /// Nodes per row and rows (nx, ny) of a lattice, each 2..=2000.
