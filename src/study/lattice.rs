@@ -16,7 +16,7 @@ use crate::measure::{
     modulus_error_bound, network_constants, plane_wave_speeds, row_extension, row_extension_weights, shear_modulus,
     tensile_moduli,
 };
-use crate::model::{Axes, Bonds, Edges, ForceLaw, LatticeType, LawVisitor, Layout, Particles, SquareLattice};
+use crate::model::{Axes, Bonds, Edges, ForceLaw, LatticeType, LawSpec, LawVisitor, Layout, Particles, SquareLattice};
 use crate::sim::{Drive, Load, Network, Outcome, ProbeTrace, Relaxation, Scene, SharedPreconditioner, Trace};
 use crate::spec::{
     Control, Diagonals, LatticeSpec, LoadCase, ProbeLine, RESIDUAL_OVER_ROUND_OFF, RunSpec, Supports, force_resolution,
@@ -77,6 +77,12 @@ pub struct LatticeMetrics {
     /// Random lattice: fraction of the bonds kept after cutting.
     #[serde(default)]
     pub bond_fraction_kept: Option<f64>,
+    /// Spread lattice in tension: the lower (Reuss) bound on its E (Pa), `spread_bounds`.
+    #[serde(default)]
+    pub youngs_modulus_reuss: Option<f64>,
+    /// Spread lattice in tension: the upper (Voigt) bound on its E (Pa).
+    #[serde(default)]
+    pub youngs_modulus_voigt: Option<f64>,
     /// Loaded lattice: the softest stiffness k_min (N/m), a lower bound on the smallest
     /// eigenvalue of the tangent stiffness at the static answer (`fem`).
     #[serde(default)]
@@ -205,10 +211,7 @@ fn springs(spec: &RunSpec, l: &LatticeSpec) -> SquareLattice {
 /// and 32 nodes to 0.71 at 128, away from the bulk's 0.660). Rigidity is lost, or not, in the
 /// interior.
 fn bonds(spec: &RunSpec, l: &LatticeSpec) -> Bonds {
-    let all = match l.planar(spec.spacing) {
-        Some(planar) => planar.bonds(),
-        None => springs(spec, l).bonds(),
-    };
+    let all = uniform_bonds(spec, l);
     if !l.is_random() {
         return all;
     }
@@ -229,6 +232,14 @@ fn bonds(spec: &RunSpec, l: &LatticeSpec) -> Bonds {
         |b| key[b],
         |i, j| edge[i] || edge[j] || (beside_edge[i] && beside_edge[j]),
     )
+}
+
+/// Every bond of the lattice, none cut or spread.
+fn uniform_bonds(spec: &RunSpec, l: &LatticeSpec) -> Bonds {
+    match l.planar(spec.spacing) {
+        Some(planar) => planar.bonds(),
+        None => springs(spec, l).bonds(),
+    }
 }
 
 /// The key of each bond's random numbers: its index in the lattice as the campaign describes
@@ -325,11 +336,7 @@ pub(super) fn static_answer(
 ) -> Result<Option<String>, Stopped> {
     let bonds = bonds(spec, l);
     if l.is_random() {
-        let full = match l.planar(spec.spacing) {
-            Some(planar) => planar.bonds().len(),
-            None => springs(spec, l).bond_count(),
-        };
-        metrics.bond_fraction_kept = Some(bonds.len() as f64 / full.max(1) as f64);
+        metrics.bond_fraction_kept = Some(bonds.len() as f64 / uniform_bonds(spec, l).len().max(1) as f64);
     }
     let (held_x, held_y, prescribed) = static_supports(spec, l, scene);
     let p = &scene.particles;
@@ -342,6 +349,15 @@ pub(super) fn static_answer(
         loads: &scene.loads,
         prescribed: &prescribed,
     };
+    if has_spread_bounds(spec, l) {
+        let uniform = uniform_bonds(spec, l);
+        let answer = Truss { bonds: &uniform, ..truss }.solver(&shared.analyses).solve_linear();
+        if let StaticSolution::Displacements { ux, uy } = answer {
+            let youngs_modulus = moduli(spec, l, l.total_load(), &ux, &uy).youngs_modulus;
+            let bounds = youngs_modulus.map(|e| spread_bounds(&truss, &uniform, (&ux, &uy), e));
+            (metrics.youngs_modulus_reuss, metrics.youngs_modulus_voigt) = bounds.unzip();
+        }
+    }
     let solver = truss.solver(&shared.analyses);
     let answers = &shared.answers;
     let ((top_row_force, solution), preconditioner) =
@@ -356,6 +372,39 @@ pub(super) fn static_answer(
         return Ok(Some(missing));
     }
     Ok(relaxation_from_static(spec, l, scene, top_row_force, metrics))
+}
+
+/// True for the networks [`spread_bounds`] holds for: linear springs spread at random, none cut,
+/// pulled by forces (E ∝ 1/F·u: equal loads on the top row, the bottom row held along them).
+fn has_spread_bounds(spec: &RunSpec, l: &LatticeSpec) -> bool {
+    l.stiffness_spread > 0.0
+        && l.cut_fraction == 0.0
+        && spec.law == LawSpec::Linear
+        && l.control == Control::Force
+        && matches!(l.load_case, LoadCase::Tensile | LoadCase::TensileX)
+        && matches!(l.supports, Supports::Coursework | Supports::ClampedBottom)
+}
+
+/// (E_Reuss, E_Voigt) (Pa): the bounds on E of the spread network `spread.bonds`, k_b =
+/// k0_b (1 + w U_b), from the answer `u0` of the same lattice with every spring k0_b (its
+/// modulus `uniform_modulus` = E0) under the same loads. With e_b the bonds' extensions under
+/// u0, the spread network's compliance C = F·u (= F ΔL, so E ∝ 1/C) is at least (Σ k0 e²)²/Σ k e²
+/// (minimum potential energy over the fields λ u0) and at most Σ f0²/k of the uniform network's
+/// bond forces f0 = k0 e, which balance the same loads (minimum complementary energy); with
+/// C0 = Σ k0 e² (Clapeyron): E0 Σ k0 e² / Σ (k0 e)²/k ≤ E ≤ E0 Σ k e² / Σ k0 e², the Reuss and
+/// Voigt averages of 1 + w U weighted by the uniform network's bond energies.
+fn spread_bounds(spread: &Truss, uniform: &Bonds, (ux, uy): (&[f64], &[f64]), uniform_modulus: f64) -> (f64, f64) {
+    let (mut energy, mut stiffened, mut softened) = (0.0, 0.0, 0.0);
+    for b in 0..uniform.len() {
+        let (i, j) = (uniform.i[b], uniform.j[b]);
+        let (dx, dy) = (spread.x[i] - spread.x[j] + uniform.shift_x[b], spread.y[i] - spread.y[j]);
+        let extension = ((ux[i] - ux[j]) * dx + (uy[i] - uy[j]) * dy) / dx.hypot(dy);
+        let (k0, k) = (uniform.stiffness[b], spread.bonds.stiffness[b]);
+        energy += k0 * extension * extension;
+        stiffened += k * extension * extension;
+        softened += k0 * k0 * extension * extension / k;
+    }
+    (uniform_modulus * energy / softened, uniform_modulus * stiffened / energy)
 }
 
 /// Hands FIRE the metric it asks for (`relax.preconditioner: stiffness`); returns why the run
@@ -869,11 +918,11 @@ fn lattice_columns() -> Vec<Column<LatticeMetrics>> {
         Number("stiffness_spread", |r| r.spec.lattice().map(|l| l.stiffness_spread)),
         Count("seed", |r| r.spec.lattice().map(|l| l.seed)),
         Number("bond_fraction_kept", |r| r.group.bond_fraction_kept),
+        Number("youngs_modulus_reuss", |r| r.group.youngs_modulus_reuss),
+        Number("youngs_modulus_voigt", |r| r.group.youngs_modulus_voigt),
         Number("depth", |r| r.spec.lattice().map(|l| l.depth)),
         Word("supports", |r| r.spec.lattice().map(|l| l.supports.name().into())),
-        Word("load_case", |r| {
-            r.spec.lattice().map(|l| if l.rotated { LoadCase::TensileX.name() } else { l.load_case.name() }.into())
-        }),
+        Word("load_case", |r| r.spec.lattice().map(|l| l.load_name().into())),
         Word("load_control", |r| r.spec.lattice().map(|l| l.control.name().into())),
         Number("drive_strain", |r| r.spec.lattice().filter(|l| l.control == Control::Velocity).map(|l| l.drive_strain)),
         Number("load_per_node", |r| r.spec.lattice().and_then(|l| l.force_per_node())),

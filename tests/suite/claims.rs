@@ -794,3 +794,46 @@ fn the_block_sentences_compare_like_with_like() {
     assert!(item.starts_with("The block of scene tensile: a node of m = 1.000 kg on springs k = 1.000 N/m"), "{item}");
     assert!(report.contains("- Scene solid derives its masses and springs from the solid instead: "));
 }
+
+/// An 8 × 8 block with its stiffnesses spread by w = 0.3, k_y/k_x = `k_y_ratio`, pulled along
+/// y and along x over six seeds, relaxed by FIRE.
+fn spread_block(k_y_ratio: f64) -> String {
+    format!(
+        "version: 1\nname: spr\nscenes:\n  - name: spread\n    kind: lattice\n    lattice: {{size: 8, k_diag_ratio: 0.5, \
+         k_y_ratio: {k_y_ratio}, stiffness_spread: 0.3}}\n    load: {{per_node: 0.001}}\n    relax: {{method: fire}}\n    \
+         grid:\n      load.case: [tensile, tensile-x]\n      seed: [1, 2, 3, 4, 5, 6]\n"
+    )
+}
+
+#[test]
+fn a_spread_networks_direction_and_bounds_are_judged_from_its_runs() {
+    // Spread alike in x and y, E_x/E_y scatters about 1 over the seeds; with k_y = 2 k_x every
+    // network is stiffer along y, E_x/E_y ≈ 0.6 (the continuum's (C11 − C12²/C22)/(C22 − C12²/C11)
+    // = 0.6 at k_d/k = 0.5), far more than 2 standard errors from 1. The standard error is
+    // computed here from the results table, independently of the report.
+    for (k_y_ratio, isotropic) in [(1.0, true), (2.0, false)] {
+        let yaml = spread_block(k_y_ratio);
+        let records = execute_all(&yaml);
+        let modulus = |seed: u64, rotated: bool| {
+            let r = records.iter().find(|r| {
+                let l = r.spec.lattice().unwrap();
+                l.seed == seed && l.rotated == rotated
+            });
+            r.and_then(|r| r.metrics.lattice.youngs_modulus).expect("relaxed")
+        };
+        let logs: Vec<f64> = (1..=6).map(|seed| (modulus(seed, true) / modulus(seed, false)).ln()).collect();
+        let mean = logs.iter().sum::<f64>() / 6.0;
+        let error = (logs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / 5.0 / 6.0).sqrt();
+        assert_eq!(mean.abs() <= 2.0 * error, isotropic, "k_y/k_x = {k_y_ratio}: {mean} ± {error}");
+        let report = report_of("spr", &yaml);
+        let sentence = line_with(&report, "Every spread network was pulled along y and along x");
+        let said = if isotropic { "within 2 standard errors of 1" } else { "more than 2 standard errors from 1" };
+        assert!(sentence.contains(said), "k_y/k_x = {k_y_ratio}: {sentence}");
+        let stated = number_after(sentence, "geometric mean of E_x/E_y is ");
+        assert!((stated / mean.exp() - 1.0).abs() < 1e-3, "4 digits: {stated} against {}", mean.exp());
+        let bounds = line_with(&report, "Spreading the stiffnesses instead");
+        assert!(bounds.contains("12 of the 12 spread runs in tension"), "{bounds}");
+        let summary = line_with(&report, "[Random networks](#");
+        assert!(summary.contains("| ✓") && summary.ends_with("within |"), "judged on the bounds: {summary}");
+    }
+}

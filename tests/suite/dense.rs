@@ -296,3 +296,28 @@ fn cholesky_solve(k: Vec<f64>, b: Vec<f64>) -> Option<(Vec<f64>, usize, f64)> {
     let residual: Vec<f64> = (0..n).map(|i| (0..n).map(|j| k[i * n + j] * u[j]).sum::<f64>() - b[i]).collect();
     (norm(&residual) <= 1e-6 * norm(&b)).then_some((u, zero.iter().filter(|z| **z).count(), smallest))
 }
+
+/// The bounds on E of the spread network of `spread` from the linear answer of `uniform`, the
+/// same lattice with every spring at its stiffness before the spread, solved densely here:
+/// with e_b the uniform answer's bond extensions, E0 its modulus, E0 Σ k0 e² / Σ (k0 e)²/k
+/// (Reuss) and E0 Σ k e² / Σ k0 e² (Voigt), each spread bond found by its two nodes.
+pub fn spread_bounds(spread: &RunSpec, uniform: &RunSpec) -> (f64, f64) {
+    let problem = Problem::of(uniform);
+    let (stiffness, force) = problem.assemble(&vec![0.0; 2 * problem.x.len()], 1.0);
+    let (free, zeros, _) = cholesky_solve(stiffness, force).expect("a rigid uniform network");
+    assert_eq!(zeros, 0);
+    let u = problem.expand(&free);
+    let (modulus, _) = moduli(uniform, &problem, 1.0, &u);
+    let spread_k: std::collections::HashMap<(usize, usize), f64> =
+        Problem::of(spread).springs.iter().map(|&(i, j, _, k, _)| ((i.min(j), i.max(j)), k)).collect();
+    let (mut energy, mut stiffened, mut softened) = (0.0, 0.0, 0.0);
+    for &(i, j, _, k0, shift) in &problem.springs {
+        let d = [problem.x[i] - problem.x[j] + shift, problem.y[i] - problem.y[j]];
+        let e = ((u[2 * i] - u[2 * j]) * d[0] + (u[2 * i + 1] - u[2 * j + 1]) * d[1]) / d[0].hypot(d[1]);
+        let k = spread_k[&(i.min(j), i.max(j))];
+        energy += k0 * e * e;
+        stiffened += k * e * e;
+        softened += k0 * k0 * e * e / k;
+    }
+    (modulus * energy / softened, modulus * stiffened / energy)
+}

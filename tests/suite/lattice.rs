@@ -451,3 +451,38 @@ fn a_random_network_loaded_along_x_is_its_seeds_network_turned() {
     let all = along_y.keys().filter(|b| interior(b)).count();
     assert!(y_kept.len() > all / 4 && y_kept.len() < all * 3 / 4, "about 0.6 of {all} kept: {}", y_kept.len());
 }
+
+/// A spread network's E (k_b = k (1 + w U_b), every bond kept) has exact bounds from the
+/// uniform network's answer (Voigt above, Reuss below; `study::lattice`'s `spread_bounds`).
+/// The run's bounds against the same bounds from a dense solve of the uniform lattice, each
+/// spread spring found by its nodes (1e-8: two linear solves of one 8 × 6 system agree to
+/// round-off), and the relaxed E between them with room to fail: the bounds lie percent apart
+/// at w = 0.5, and MD's E sits within ~1e-6 of the static answer. Along y and along x.
+#[test]
+fn a_spread_networks_e_lies_within_its_bounds_from_the_uniform_network() {
+    let yaml = |spread: f64| {
+        campaign(
+            &format!("{{nx: 8, ny: 6, k_diag_ratio: 0.5, stiffness_spread: {spread}}}"),
+            "    load: {per_node: 1.0}\n",
+            "      load.case: [tensile, tensile-x]\n      seed: [1, 2]\n",
+        )
+    };
+    let uniform = runs(&yaml(0.0));
+    let records = execute_all(&yaml(0.5));
+    assert_eq!(records.len(), 4);
+    for (r, uniform) in records.iter().zip(&uniform) {
+        let l = &r.metrics.lattice;
+        let (low, high) = crate::dense::spread_bounds(&r.spec, uniform);
+        let (reuss, voigt) = (l.youngs_modulus_reuss.expect("Reuss"), l.youngs_modulus_voigt.expect("Voigt"));
+        assert!(
+            (reuss / low - 1.0).abs() < 1e-8 && (voigt / high - 1.0).abs() < 1e-8,
+            "{}: {reuss} {voigt} against {low} {high}",
+            label(r)
+        );
+        let e = l.youngs_modulus.expect("relaxed");
+        assert!(high / low > 1.01, "{}: bounds {low} {high} a percent apart or more", label(r));
+        assert!(low < e && e < high, "{}: E = {e} outside [{low}, {high}]", label(r));
+    }
+    let records = execute_all(&yaml(0.0).replace("stiffness_spread: 0", "cut_fraction: 0.1"));
+    assert!(records.iter().all(|r| r.metrics.lattice.youngs_modulus_voigt.is_none()), "no bounds for cut networks");
+}

@@ -3,14 +3,12 @@
 //! truss (FEM) answer.
 
 use crate::report::figure::FigureKind;
-use crate::report::solids::mean_spread;
 use std::collections::BTreeMap;
 
 use super::block::Block;
-use super::finding::{Answer, Evidence, SeeAlso, Table, Verdict, cell, noise, percent, rel, relative, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, percent, rel, relative, sig};
 use crate::model::LawSpec;
 use crate::runner::RunRecord;
-use crate::sim::RunStatus;
 use crate::spec::{Diagonals, LoadCase};
 
 /// Homogeneity by block size (N_x, N_y).
@@ -384,141 +382,6 @@ fn free_shear_sentence(r: &RunRecord) -> Option<String> {
         l.ny,
         noise(r.metrics.lattice.poisson_ratio, 1.0)
     ))
-}
-
-/// Random networks: E and G against the fraction of bonds kept, over seeds.
-pub(super) fn random(e: &Evidence) -> Option<Answer> {
-    // Square lattices: the other types' dilution is `types::percolation`.
-    let runs = e.all(|r| r.spec.lattice().is_some_and(|l| l.cut_fraction > 0.0 && l.lattice_type.is_square()));
-    let rows = random_rows(&runs)?;
-    let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
-    let unsettled = runs.iter().filter(|r| !matches!(r.status, RunStatus::Mechanism | RunStatus::Ok)).count();
-    let sentences = vec![
-        format!(
-            "Cutting bonds at random softens the network and spreads its moduli over seeds; {} of the {} random runs \
-             lost their rigidity (status mechanism, found by the static solver before MD){}.",
-            mechanisms,
-            runs.len(),
-            match unsettled {
-                0 => String::new(),
-                n => format!(
-                    ", and {n} more are rigid but did not end as relaxed (their status in the appendix), so they give \
-                     no modulus"
-                ),
-            }
-        ),
-        rigidity_sentence(&runs),
-    ];
-    let scene = runs.first()?.spec.scene.clone();
-    Some(Answer {
-        title: "Random networks",
-        question: "(b) Make the system random (cut springs at random, or vary their stiffness): what do you observe?",
-        short: format!("{mechanisms} of {} cut networks lost rigidity", runs.len()),
-        sentences,
-        reference:
-            "Effective-medium theory's rigidity threshold at half the interior bonds kept (p = 1/2); an observation."
-                .into(),
-        see_also: Some(jammed_packings()),
-        verdict: Verdict::Observed,
-        figures: e.figure(&scene, FigureKind::Dilution).into_iter().collect(),
-        table: Some(Table {
-            header: [
-                "load",
-                "cut fraction",
-                "rigid seeds",
-                "kept of all bonds (rigid seeds)",
-                "modulus mean over relaxed seeds (Pa)",
-                "standard deviation (Pa)",
-            ]
-            .map(String::from)
-            .to_vec(),
-            rows,
-        }),
-    })
-}
-
-/// Where the random solid goes on: a granular material's random solid is a jammed packing of
-/// discs whose contacts come and go, the jamming campaign's subject.
-fn jammed_packings() -> SeeAlso {
-    SeeAlso {
-        text: "In granular matter the random solid is a jammed packing: discs whose contacts come and go, rigid \
-               above the jamming fraction φ_J ≈ 0.842 with z → 4 contacts each, the same threshold 2d as the cut \
-               networks' here. The jamming campaign quenches bidisperse discs across φ_J and states φ_J, z and the \
-               scalings of p, z − 4, K and G against O'Hern et al. (2003)."
-            .into(),
-        campaign: "campaigns/jamming.yaml",
-        page: "../jamming/index.html",
-        written: false,
-    }
-}
-
-/// One row per load case and cut fraction: how many seeds stayed rigid, their kept fraction and
-/// the moduli's mean and sample standard deviation over them only (a floppy seed has no modulus,
-/// and one seed no deviation: a dash).
-fn random_rows(runs: &[&RunRecord]) -> Option<Vec<Vec<String>>> {
-    let mut by_cut: BTreeMap<(String, u64), Vec<&RunRecord>> = BTreeMap::new();
-    for r in runs {
-        let l = r.spec.lattice()?;
-        by_cut.entry((l.load_case.name().to_string(), (l.cut_fraction * 1000.0).round() as u64)).or_default().push(r);
-    }
-    let kept = |rs: &[&&RunRecord]| {
-        let fractions: Vec<f64> = rs.iter().filter_map(|r| r.metrics.lattice.bond_fraction_kept).collect();
-        (!fractions.is_empty()).then(|| fractions.iter().sum::<f64>() / fractions.len() as f64)
-    };
-    let rows = by_cut
-        .iter()
-        .map(|((case, cut), rs)| {
-            // A mechanism stops before its bonds are counted: only rigid seeds know their kept fraction.
-            let rigid: Vec<&&RunRecord> = rs.iter().filter(|r| r.status != RunStatus::Mechanism).collect();
-            let (mean, spread) = mean_spread(
-                rigid
-                    .iter()
-                    .filter(|r| r.status == RunStatus::Ok)
-                    .map(|r| r.metrics.lattice.youngs_modulus.or(r.metrics.lattice.shear_modulus)),
-            );
-            vec![
-                case.clone(),
-                format!("{:.2}", *cut as f64 / 1000.0),
-                format!("{}/{}", rigid.len(), rs.len()),
-                kept(&rigid).map_or_else(|| "–".into(), |k| format!("{k:.3}")),
-                cell(mean),
-                cell(spread),
-            ]
-        })
-        .collect();
-    Some(rows)
-}
-
-/// Where the cut networks lost rigidity against effective-medium theory's threshold: a
-/// central-force network is rigid while its mean coordination is above 2d = 4, half the 8 bonds
-/// per node of the square lattice with both diagonals. Measured, as in the dilution figure, by
-/// the kept fraction p = 1 − cut fraction of the interior bonds (the edges' bonds are never cut,
-/// so a network's share of all its bonds is larger): the sparsest network still rigid and the
-/// densest that lost rigidity say on which side of p = 1/2 this campaign's networks held.
-fn rigidity_sentence(runs: &[&RunRecord]) -> String {
-    let kept = |r: &&RunRecord| r.spec.lattice().map_or(f64::NAN, |l| 1.0 - l.cut_fraction);
-    // Rigid as the static solver finds it (the table's "rigid seeds"), relaxed or not.
-    let lowest_rigid = runs.iter().filter(|r| r.status != RunStatus::Mechanism).map(kept).reduce(f64::min);
-    let highest_lost = runs.iter().filter(|r| r.status == RunStatus::Mechanism).map(kept).reduce(f64::max);
-    let theory = "Effective-medium theory for central-force networks puts the loss of rigidity where the mean \
-                  coordination reaches 2d = 4, a kept fraction p = 4/8 = 1/2 of the square lattice with both \
-                  diagonals (p counts the interior bonds, which alone are cut, as in the figure).";
-    let held = match (lowest_rigid, highest_lost) {
-        (Some(p), _) if p < 0.5 => format!(
-            " A network kept at p = {p:.2}, below 1/2, still stayed rigid: a finite network whose edges are not cut \
-             keeps some rigidity beyond the threshold."
-        ),
-        (Some(p), Some(lost)) => format!(
-            " Here rigidity held down to p = {p:.2} and was first lost at p = {lost:.2}{}.",
-            if (lost - 0.5).abs() < 0.01 { ", the threshold itself" } else { "" }
-        ),
-        (Some(p), None) => format!(
-            " Every network here stayed rigid, down to p = {p:.2}: the campaign cuts no network as far as the \
-             threshold."
-        ),
-        (None, _) => " No cut network stayed rigid here.".into(),
-    };
-    format!("{theory}{held} A cut network must relax first: its soft, slow modes take longest.")
 }
 
 /// Every relaxed lattice's |MD − static|/static of its modulus, with its run, and their median.

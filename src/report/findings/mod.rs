@@ -12,6 +12,7 @@ mod finding;
 mod jamming;
 mod materials;
 mod one_d;
+mod random;
 mod relaxation;
 mod two_d;
 mod types;
@@ -94,7 +95,7 @@ fn coursework(coursework: &Evidence) -> Vec<Answer> {
         materials::hertz_moduli,
         dynamics::hertz_kick,
         materials::anisotropic,
-        materials::random,
+        random::random,
         materials::md_and_fem,
         jamming::jamming,
         discussion::linear_and_hertz,

@@ -131,6 +131,11 @@ impl ProbeLine {
 }
 
 impl LatticeSpec {
+    /// The load case as the campaign names it: `tensile-x` for a lattice simulated turned.
+    pub fn load_name(&self) -> &'static str {
+        if self.rotated { LoadCase::TensileX.name() } else { self.load_case.name() }
+    }
+
     /// The lattice as its campaign describes it: a `tensile-x` square lattice turned back
     /// (nx/ny, k_x/k_y and the diagonal families swapped again, see `turned`); any other as is.
     pub fn upright(&self) -> LatticeSpec {

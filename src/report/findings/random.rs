@@ -1,0 +1,304 @@
+//! The coursework's random networks: bonds cut at random (rigidity against effective-medium
+//! theory) or their stiffnesses spread (E against its Voigt and Reuss bounds), each network
+//! measured in both directions.
+
+use crate::report::figure::FigureKind;
+use crate::report::solids::mean_spread;
+use std::collections::BTreeMap;
+
+use super::finding::{Answer, Evidence, SeeAlso, Table, Verdict, cell, sig};
+use crate::report::words::number;
+use crate::runner::RunRecord;
+use crate::sim::RunStatus;
+use crate::spec::LoadCase;
+
+/// Random networks: cut ones' E and G against the fraction of bonds kept, over seeds, and where
+/// they lost rigidity; spread ones' E against its bounds; both in each direction.
+pub(super) fn random(e: &Evidence) -> Option<Answer> {
+    // Square lattices: the other types' dilution is `types::percolation`.
+    let runs = e.all(|r| r.spec.lattice().is_some_and(|l| l.cut_fraction > 0.0 && l.lattice_type.is_square()));
+    let spread = e.all(|r| r.spec.lattice().is_some_and(|l| l.cut_fraction == 0.0 && l.stiffness_spread > 0.0));
+    let bounded = bounded_runs(&spread);
+    let within = bounded.iter().filter(|(_, e, (low, high))| low <= e && e <= high).count();
+    let scene = runs.first().or(spread.first())?.spec.scene.clone();
+    let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
+    let cut = format!("{mechanisms} of {} cut networks lost rigidity", runs.len());
+    let bounds = format!("E of {within} of {} spread runs within its Voigt and Reuss bounds", bounded.len());
+    let sentences = cut_sentences(&runs)
+        .into_iter()
+        .chain(directions_sentence(&runs, "cut"))
+        .chain(spread_sentence(&spread, &bounded))
+        .chain(directions_sentence(&spread, "spread"))
+        .collect();
+    let rows = random_rows(&runs)?;
+    Some(Answer {
+        title: "Random networks",
+        question: "(b) Make the system random (cut springs at random, or vary their stiffness): what do you observe?",
+        short: match (runs.is_empty(), bounded.is_empty()) {
+            (_, true) => cut,
+            (true, false) => bounds,
+            (false, false) => format!("{cut}; {bounds}"),
+        },
+        sentences,
+        reference: reference(!runs.is_empty(), !bounded.is_empty()),
+        see_also: Some(jammed_packings()),
+        verdict: if bounded.is_empty() { Verdict::Observed } else { Verdict::of([within == bounded.len()]) },
+        figures: e.figure(&scene, FigureKind::Dilution).into_iter().collect(),
+        table: (!rows.is_empty()).then(|| Table {
+            header: [
+                "load",
+                "cut fraction",
+                "rigid seeds",
+                "kept of all bonds (rigid seeds)",
+                "modulus mean over relaxed seeds (Pa)",
+                "standard deviation (Pa)",
+            ]
+            .map(String::from)
+            .to_vec(),
+            rows,
+        }),
+    })
+}
+
+/// How many cut networks lost rigidity or did not settle, and where rigidity held against
+/// effective-medium theory; nothing without cut networks.
+fn cut_sentences(runs: &[&RunRecord]) -> Vec<String> {
+    if runs.is_empty() {
+        return Vec::new();
+    }
+    let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
+    let unsettled = runs.iter().filter(|r| !matches!(r.status, RunStatus::Mechanism | RunStatus::Ok)).count();
+    vec![
+        format!(
+            "Cutting bonds at random softens the network and spreads its moduli over seeds; {} of the {} random runs \
+             lost their rigidity (status mechanism, found by the static solver before MD){}.",
+            mechanisms,
+            runs.len(),
+            match unsettled {
+                0 => String::new(),
+                n => format!(
+                    ", and {n} more are rigid but did not end as relaxed (their status in the appendix), so they give \
+                     no modulus"
+                ),
+            }
+        ),
+        rigidity_sentence(runs),
+    ]
+}
+
+/// The item's reference: effective-medium theory's threshold for cut networks, an observation,
+/// and for spread networks measured in tension their exact bounds.
+fn reference(cut: bool, bounds: bool) -> String {
+    let threshold = "Effective-medium theory's rigidity threshold at half the interior bonds kept (p = 1/2); an \
+                     observation.";
+    let spread = "Each spread network's own bounds on E (Voigt above, Reuss below), exact for linear springs at small \
+                  strain; no tolerance: MD's E is within its relaxation's error (~1e-6) of the static answer, the \
+                  bounds are percent apart.";
+    match (cut, bounds) {
+        (true, true) => format!("{threshold} {spread}"),
+        (_, true) => spread.into(),
+        _ => threshold.into(),
+    }
+}
+
+/// The relaxed spread networks pulled in tension: each with its E (Pa) and its bounds
+/// (E_Reuss, E_Voigt) (Pa), `study::lattice`'s `spread_bounds`.
+fn bounded_runs<'a>(spread: &[&'a RunRecord]) -> Vec<(&'a RunRecord, f64, (f64, f64))> {
+    spread
+        .iter()
+        .filter(|r| r.status == RunStatus::Ok)
+        .filter_map(|r| {
+            let l = &r.metrics.lattice;
+            Some((*r, l.youngs_modulus?, (l.youngs_modulus_reuss?, l.youngs_modulus_voigt?)))
+        })
+        .collect()
+}
+
+/// What spreading the springs does, and each network's E against its own bounds: the mean E
+/// and G per spread w over the relaxed networks (both directions), the count within the bounds
+/// and the nearest approach to one of them, relative to E.
+fn spread_sentence(spread: &[&RunRecord], bounded: &[(&RunRecord, f64, (f64, f64))]) -> Option<String> {
+    let (first, ..) = bounded.first()?;
+    let mut by_width: BTreeMap<u64, (Vec<f64>, Vec<f64>)> = BTreeMap::new();
+    for r in spread.iter().filter(|r| r.status == RunStatus::Ok) {
+        let w = r.spec.lattice()?.stiffness_spread;
+        let entry = by_width.entry(w.to_bits()).or_default();
+        entry.0.extend(r.metrics.lattice.youngs_modulus);
+        entry.1.extend(r.metrics.lattice.shear_modulus);
+    }
+    let mean = |v: &[f64]| cell((!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64));
+    let moduli: Vec<String> = by_width
+        .iter()
+        .map(|(w, (e, g))| format!("E = {} Pa and G = {} Pa at w = {}", mean(e), mean(g), number(f64::from_bits(*w))))
+        .collect();
+    let within = bounded.iter().filter(|(_, e, (low, high))| low <= e && e <= high).count();
+    let nearest =
+        bounded.iter().map(|(_, e, (low, high))| ((e - low) / e).min((high - e) / e)).fold(f64::INFINITY, f64::min);
+    Some(format!(
+        "Spreading the stiffnesses instead, k (1 + w U) with U uniform in [−1, 1] and every bond kept ({}): {} (means \
+         over the relaxed networks). Each network's E has bounds of its own, from the uniform network's answer under \
+         the same load: its bond forces balance the load in the spread network too (Reuss: E ≥ E0/⟨1/(1 + w U)⟩) and \
+         its deformation fits it (Voigt: E ≤ E0 ⟨1 + w U⟩), ⟨⟩ weighted by the uniform network's bond energies. \
+         {within} of the {} spread runs in tension (each network along y and along x) lie within their bounds{}, the \
+         nearest {} of E inside one.",
+        first.spec.scene,
+        moduli.join("; "),
+        bounded.len(),
+        if within == bounded.len() { "" } else { " (outside: the network or its measurement is wrong)" },
+        sig(nearest)
+    ))
+}
+
+/// One network loaded along y (`tensile`) and along x (`tensile-x`, the same bonds cut or
+/// spread): E_x/E_y per level of randomness (`kind`: cut fraction or spread w), its range over
+/// the seeds, and the geometric mean of E_x/E_y against 1 with the standard error over the
+/// seeds, each seed's ln(E_x/E_y) averaged over its levels first (a seed's networks at every
+/// level share its random numbers, so they are not independent samples): random bonds prefer
+/// no direction, so the ensemble should not either.
+fn directions_sentence(runs: &[&RunRecord], kind: &str) -> Option<String> {
+    let ratios = direction_ratios(runs);
+    let mut by_level: BTreeMap<u64, Vec<f64>> = BTreeMap::new();
+    let mut by_seed: BTreeMap<u64, Vec<f64>> = BTreeMap::new();
+    for (level, seed, ratio) in &ratios {
+        by_level.entry(level.to_bits()).or_default().push(*ratio);
+        by_seed.entry(*seed).or_default().push(ratio.ln());
+    }
+    if by_seed.len() < 2 {
+        return None;
+    }
+    let ranges: Vec<String> = by_level.iter().map(|(level, r)| range_at(f64::from_bits(*level), r, kind)).collect();
+    let seeds: Vec<f64> = by_seed.values().map(|logs| logs.iter().sum::<f64>() / logs.len() as f64).collect();
+    let n = seeds.len() as f64;
+    let mean = seeds.iter().sum::<f64>() / n;
+    let error = (seeds.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0) / n).sqrt();
+    let signed = |x: f64| format!("{}{}", if x < 0.0 { "−" } else { "" }, sig(x.abs()));
+    Some(format!(
+        "Every {kind} network was pulled along y and along x (tensile-x: the same bonds {kind}, the block turned), as \
+         the coursework asks of random systems: one network's E_x/E_y is {} ({} networks relaxed both ways). The \
+         geometric mean of E_x/E_y is {}, its logarithm {} ± {} (mean ± standard error over {} seeds, each seed's \
+         levels averaged first: they share its random numbers), {}.",
+        ranges.join(", "),
+        ratios.len(),
+        sig(mean.exp()),
+        signed(mean),
+        sig(error),
+        seeds.len(),
+        if mean.abs() <= 2.0 * error {
+            "within 2 standard errors of 1: each random network is anisotropic, their ensemble is not, as random \
+             bonds prefer no direction"
+        } else {
+            "more than 2 standard errors from 1: these networks lean one way on average, by chance (one time in \
+             20 for networks that prefer no direction) or by a preferred direction (the edge bands each loading \
+             keeps whole)"
+        }
+    ))
+}
+
+/// "a to b at cut 0.30" (or "a at w = 0.5" for one network) of the ratios `r` at `level`.
+fn range_at(level: f64, r: &[f64], kind: &str) -> String {
+    let (low, high) = r.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(*x), b.max(*x)));
+    let at = if kind == "cut" { format!("cut {level:.2}") } else { format!("w = {}", number(level)) };
+    if r.len() == 1 { format!("{} at {at}", sig(low)) } else { format!("{} to {} at {at}", sig(low), sig(high)) }
+}
+
+/// One random network: its level of randomness, its seed, and E loaded along y and along x.
+type Network = (f64, u64, [Option<f64>; 2]);
+
+/// (randomness level, seed, E_x/E_y) of each network relaxed in both directions: runs of one
+/// scene and the same grid values but the load case, one `tensile` and one `tensile-x`.
+fn direction_ratios(runs: &[&RunRecord]) -> Vec<(f64, u64, f64)> {
+    // (scene, grid values but the load case) → (level, seed, [E_y, E_x]).
+    let mut networks: BTreeMap<(String, String), Network> = BTreeMap::new();
+    for r in runs.iter().filter(|r| r.status == RunStatus::Ok) {
+        let Some(l) = r.spec.lattice().filter(|l| l.load_case == LoadCase::Tensile) else { continue };
+        let key = (r.spec.scene.clone(), r.spec.varied_in_words(|path| path != "load.case"));
+        let level = if l.cut_fraction > 0.0 { l.cut_fraction } else { l.stiffness_spread };
+        networks.entry(key).or_insert((level, l.seed, [None; 2])).2[usize::from(l.rotated)] =
+            r.metrics.lattice.youngs_modulus;
+    }
+    networks.values().filter_map(|(level, seed, [y, x])| Some((*level, *seed, x.as_ref()? / y.as_ref()?))).collect()
+}
+
+/// Where the random solid goes on: a granular material's random solid is a jammed packing of
+/// discs whose contacts come and go, the jamming campaign's subject.
+fn jammed_packings() -> SeeAlso {
+    SeeAlso {
+        text: "In granular matter the random solid is a jammed packing: discs whose contacts come and go, rigid \
+               above the jamming fraction φ_J ≈ 0.842 with z → 4 contacts each, the same threshold 2d as the cut \
+               networks' here. The jamming campaign quenches bidisperse discs across φ_J and states φ_J, z and the \
+               scalings of p, z − 4, K and G against O'Hern et al. (2003)."
+            .into(),
+        campaign: "campaigns/jamming.yaml",
+        page: "../jamming/index.html",
+        written: false,
+    }
+}
+
+/// One row per load case and cut fraction: how many seeds stayed rigid, their kept fraction and
+/// the moduli's mean and sample standard deviation over them only (a floppy seed has no modulus,
+/// and one seed no deviation: a dash).
+fn random_rows(runs: &[&RunRecord]) -> Option<Vec<Vec<String>>> {
+    let mut by_cut: BTreeMap<(String, u64), Vec<&RunRecord>> = BTreeMap::new();
+    for r in runs {
+        let l = r.spec.lattice()?;
+        by_cut.entry((l.load_name().to_string(), (l.cut_fraction * 1000.0).round() as u64)).or_default().push(r);
+    }
+    let kept = |rs: &[&&RunRecord]| {
+        let fractions: Vec<f64> = rs.iter().filter_map(|r| r.metrics.lattice.bond_fraction_kept).collect();
+        (!fractions.is_empty()).then(|| fractions.iter().sum::<f64>() / fractions.len() as f64)
+    };
+    let rows = by_cut
+        .iter()
+        .map(|((case, cut), rs)| {
+            // A mechanism stops before its bonds are counted: only rigid seeds know their kept fraction.
+            let rigid: Vec<&&RunRecord> = rs.iter().filter(|r| r.status != RunStatus::Mechanism).collect();
+            let (mean, spread) = mean_spread(
+                rigid
+                    .iter()
+                    .filter(|r| r.status == RunStatus::Ok)
+                    .map(|r| r.metrics.lattice.youngs_modulus.or(r.metrics.lattice.shear_modulus)),
+            );
+            vec![
+                case.clone(),
+                format!("{:.2}", *cut as f64 / 1000.0),
+                format!("{}/{}", rigid.len(), rs.len()),
+                kept(&rigid).map_or_else(|| "–".into(), |k| format!("{k:.3}")),
+                cell(mean),
+                cell(spread),
+            ]
+        })
+        .collect();
+    Some(rows)
+}
+
+/// Where the cut networks lost rigidity against effective-medium theory's threshold: a
+/// central-force network is rigid while its mean coordination is above 2d = 4, half the 8 bonds
+/// per node of the square lattice with both diagonals. Measured, as in the dilution figure, by
+/// the kept fraction p = 1 − cut fraction of the interior bonds (the edges' bonds are never cut,
+/// so a network's share of all its bonds is larger): the sparsest network still rigid and the
+/// densest that lost rigidity say on which side of p = 1/2 this campaign's networks held.
+fn rigidity_sentence(runs: &[&RunRecord]) -> String {
+    let kept = |r: &&RunRecord| r.spec.lattice().map_or(f64::NAN, |l| 1.0 - l.cut_fraction);
+    // Rigid as the static solver finds it (the table's "rigid seeds"), relaxed or not.
+    let lowest_rigid = runs.iter().filter(|r| r.status != RunStatus::Mechanism).map(kept).reduce(f64::min);
+    let highest_lost = runs.iter().filter(|r| r.status == RunStatus::Mechanism).map(kept).reduce(f64::max);
+    let theory = "Effective-medium theory for central-force networks puts the loss of rigidity where the mean \
+                  coordination reaches 2d = 4, a kept fraction p = 4/8 = 1/2 of the square lattice with both \
+                  diagonals (p counts the interior bonds, which alone are cut, as in the figure).";
+    let held = match (lowest_rigid, highest_lost) {
+        (Some(p), _) if p < 0.5 => format!(
+            " A network kept at p = {p:.2}, below 1/2, still stayed rigid: a finite network whose edges are not cut \
+             keeps some rigidity beyond the threshold."
+        ),
+        (Some(p), Some(lost)) => format!(
+            " Here rigidity held down to p = {p:.2} and was first lost at p = {lost:.2}{}.",
+            if (lost - 0.5).abs() < 0.01 { ", the threshold itself" } else { "" }
+        ),
+        (Some(p), None) => format!(
+            " Every network here stayed rigid, down to p = {p:.2}: the campaign cuts no network as far as the \
+             threshold."
+        ),
+        (None, _) => " No cut network stayed rigid here.".into(),
+    };
+    format!("{theory}{held} A cut network must relax first: its soft, slow modes take longest.")
+}
