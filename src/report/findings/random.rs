@@ -173,10 +173,15 @@ fn directions_sentence(runs: &[&RunRecord], kind: &str) -> Option<String> {
     let error = (seeds.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0) / n).sqrt();
     let signed = |x: f64| format!("{}{}", if x < 0.0 { "−" } else { "" }, sig(x.abs()));
     Some(format!(
-        "Every {kind} network was pulled along y and along x (tensile-x: the same bonds {kind}, the block turned), as \
-         the coursework asks of random systems: one network's E_x/E_y is {} ({} networks relaxed both ways). The \
+        "Every {kind} network was pulled along y and along x (tensile-x: {}, the block turned), as the coursework \
+         asks of random systems: one network's E_x/E_y is {} ({} networks relaxed both ways). The \
          geometric mean of E_x/E_y is {}, its logarithm {} ± {} (mean ± standard error over {} seeds, each seed's \
          levels averaged first: they share its random numbers), {}.",
+        if kind == "cut" {
+            "the same interior bonds cut, each loading keeping its own loaded and held edges whole"
+        } else {
+            "the same bonds spread"
+        },
         ranges.join(", "),
         ratios.len(),
         sig(mean.exp()),
