@@ -77,6 +77,9 @@ pub struct LatticeMetrics {
     /// Random lattice: fraction of the bonds kept after cutting.
     #[serde(default)]
     pub bond_fraction_kept: Option<f64>,
+    /// Spread lattice in tension: E0 (Pa), the static E of the same lattice unspread.
+    #[serde(default)]
+    pub youngs_modulus_uniform: Option<f64>,
     /// Spread lattice in tension: the lower (Reuss) bound on its E (Pa), `spread_bounds`.
     #[serde(default)]
     pub youngs_modulus_reuss: Option<f64>,
@@ -353,8 +356,8 @@ pub(super) fn static_answer(
         let uniform = uniform_bonds(spec, l);
         let answer = Truss { bonds: &uniform, ..truss }.solver(&shared.analyses).solve_linear();
         if let StaticSolution::Displacements { ux, uy } = answer {
-            let youngs_modulus = moduli(spec, l, l.total_load(), &ux, &uy).youngs_modulus;
-            let bounds = youngs_modulus.map(|e| spread_bounds(&truss, &uniform, (&ux, &uy), e));
+            metrics.youngs_modulus_uniform = moduli(spec, l, l.total_load(), &ux, &uy).youngs_modulus;
+            let bounds = metrics.youngs_modulus_uniform.map(|e| spread_bounds(&truss, &uniform, (&ux, &uy), e));
             (metrics.youngs_modulus_reuss, metrics.youngs_modulus_voigt) = bounds.unzip();
         }
     }
@@ -918,6 +921,7 @@ fn lattice_columns() -> Vec<Column<LatticeMetrics>> {
         Number("stiffness_spread", |r| r.spec.lattice().map(|l| l.stiffness_spread)),
         Count("seed", |r| r.spec.lattice().map(|l| l.seed)),
         Number("bond_fraction_kept", |r| r.group.bond_fraction_kept),
+        Number("youngs_modulus_uniform", |r| r.group.youngs_modulus_uniform),
         Number("youngs_modulus_reuss", |r| r.group.youngs_modulus_reuss),
         Number("youngs_modulus_voigt", |r| r.group.youngs_modulus_voigt),
         Number("depth", |r| r.spec.lattice().map(|l| l.depth)),

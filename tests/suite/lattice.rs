@@ -468,10 +468,16 @@ fn a_spread_networks_e_lies_within_its_bounds_from_the_uniform_network() {
         )
     };
     let uniform = runs(&yaml(0.0));
+    let unspread = execute_all(&yaml(0.0));
     let records = execute_all(&yaml(0.5));
     assert_eq!(records.len(), 4);
-    for (r, uniform) in records.iter().zip(&uniform) {
+    for ((r, uniform), unspread) in records.iter().zip(&uniform).zip(&unspread) {
         let l = &r.metrics.lattice;
+        // E0, the uniform twin's linear static E, against that twin's own (non-linear) static
+        // answer: they differ by the strain, ~1e-6.
+        let e0 = l.youngs_modulus_uniform.expect("E0");
+        let twin = unspread.metrics.lattice.youngs_modulus_fem.expect("the twin's static E");
+        assert!((e0 / twin - 1.0).abs() < 1e-5, "{}: E0 = {e0} against {twin}", label(r));
         let (low, high) = crate::dense::spread_bounds(&r.spec, uniform);
         let (reuss, voigt) = (l.youngs_modulus_reuss.expect("Reuss"), l.youngs_modulus_voigt.expect("Voigt"));
         assert!(

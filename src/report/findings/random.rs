@@ -6,7 +6,7 @@ use crate::report::figure::FigureKind;
 use crate::report::solids::mean_spread;
 use std::collections::BTreeMap;
 
-use super::finding::{Answer, Evidence, SeeAlso, Table, Verdict, cell, sig};
+use super::finding::{Answer, Evidence, SeeAlso, Table, Verdict, cell, percent, sig};
 use crate::report::words::number;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
@@ -115,21 +115,18 @@ fn bounded_runs<'a>(spread: &[&'a RunRecord]) -> Vec<(&'a RunRecord, f64, (f64, 
 }
 
 /// What spreading the springs does, and each network's E against its own bounds: the mean E
-/// and G per spread w over the relaxed networks (both directions), the count within the bounds
-/// and the nearest approach to one of them, relative to E.
+/// and G per spread w over the relaxed networks (both directions), E's mean change from the same
+/// networks unspread, the count within the bounds and the nearest approach to one of them,
+/// relative to E.
 fn spread_sentence(spread: &[&RunRecord], bounded: &[(&RunRecord, f64, (f64, f64))]) -> Option<String> {
     let (first, ..) = bounded.first()?;
-    let mut by_width: BTreeMap<u64, (Vec<f64>, Vec<f64>)> = BTreeMap::new();
-    for r in spread.iter().filter(|r| r.status == RunStatus::Ok) {
-        let w = r.spec.lattice()?.stiffness_spread;
-        let entry = by_width.entry(w.to_bits()).or_default();
-        entry.0.extend(r.metrics.lattice.youngs_modulus);
-        entry.1.extend(r.metrics.lattice.shear_modulus);
-    }
-    let mean = |v: &[f64]| cell((!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64));
-    let moduli: Vec<String> = by_width
+    let moduli: Vec<String> = spread_means(spread)
         .iter()
-        .map(|(w, (e, g))| format!("E = {} Pa and G = {} Pa at w = {}", mean(e), mean(g), number(f64::from_bits(*w))))
+        .map(|(w, m)| {
+            let change =
+                m.softening.map_or_else(String::new, |s| format!(" ({} from the uniform network's)", percent(s)));
+            format!("E = {} Pa{change} and G = {} Pa at w = {}", cell(m.youngs), cell(m.shear), number(*w))
+        })
         .collect();
     let within = bounded.iter().filter(|(_, e, (low, high))| low <= e && e <= high).count();
     let nearest =
@@ -147,6 +144,35 @@ fn spread_sentence(spread: &[&RunRecord], bounded: &[(&RunRecord, f64, (f64, f64
         if within == bounded.len() { "" } else { " (outside: the network or its measurement is wrong)" },
         sig(nearest)
     ))
+}
+
+/// The spread networks' mean moduli at one spread w.
+#[derive(Default)]
+struct SpreadMeans {
+    /// Mean E (Pa) of the relaxed runs in tension.
+    youngs: Option<f64>,
+    /// Mean G (Pa) of the relaxed runs in shear.
+    shear: Option<f64>,
+    /// Mean E/E0 − 1 over the runs in tension, E0 each network's uniform twin's.
+    softening: Option<f64>,
+}
+
+/// (w, its means) per spread w, in increasing w.
+fn spread_means(spread: &[&RunRecord]) -> Vec<(f64, SpreadMeans)> {
+    let mut by_width: BTreeMap<u64, [Vec<f64>; 3]> = BTreeMap::new();
+    for r in spread.iter().filter(|r| r.status == RunStatus::Ok) {
+        let Some(l) = r.spec.lattice() else { continue };
+        let m = &r.metrics.lattice;
+        let [youngs, shear, softening] = by_width.entry(l.stiffness_spread.to_bits()).or_default();
+        youngs.extend(m.youngs_modulus);
+        shear.extend(m.shear_modulus);
+        softening.extend(m.youngs_modulus.zip(m.youngs_modulus_uniform).map(|(e, e0)| e / e0 - 1.0));
+    }
+    let mean = |v: &[f64]| (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64);
+    by_width
+        .iter()
+        .map(|(w, [e, g, s])| (f64::from_bits(*w), SpreadMeans { youngs: mean(e), shear: mean(g), softening: mean(s) }))
+        .collect()
 }
 
 /// One network loaded along y (`tensile`) and along x (`tensile-x`, the same bonds cut or
