@@ -833,14 +833,16 @@ fn a_spread_networks_direction_and_bounds_are_judged_from_its_runs() {
         assert!((stated / mean.exp() - 1.0).abs() < 1e-3, "4 digits: {stated} against {}", mean.exp());
         let bounds = line_with(&report, "Spreading the stiffnesses instead");
         assert!(bounds.contains("12 of the 12 spread runs in tension"), "{bounds}");
-        // Spreading softens: every network's E/E0 − 1 is negative here, and so is their mean.
+        // Spreading softens on average (a network whose stiff bonds fall where the load runs is
+        // stiffer than its uniform twin: the Voigt bound allows it): the mean E/E0 − 1 is
+        // negative here, and the sentence says so.
         let softening: Vec<f64> = records
             .iter()
             .map(|r| {
                 r.metrics.lattice.youngs_modulus.unwrap() / r.metrics.lattice.youngs_modulus_uniform.unwrap() - 1.0
             })
             .collect();
-        assert!(softening.iter().all(|s| *s < 0.0), "{softening:?}");
+        assert!(softening.iter().sum::<f64>() < 0.0 && softening.iter().any(|s| *s > 0.0), "{softening:?}");
         assert!(bounds.contains(" Pa (−") && bounds.contains(" % from the uniform network's)"), "{bounds}");
         let summary = line_with(&report, "[Random networks](#");
         assert!(summary.contains("| ✓") && summary.ends_with("within |"), "judged on the bounds: {summary}");
