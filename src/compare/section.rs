@@ -9,6 +9,7 @@ use super::plots::{PlotGroup, plot_groups};
 use super::quantity::{Class, NOISE, class};
 use super::table::Side;
 use super::words::{fixed, value};
+use crate::measure::median;
 
 #[derive(Serialize)]
 pub(super) struct SceneSection {
@@ -78,16 +79,6 @@ pub(super) struct Stats {
     pub(super) noise: f64,
     /// One side's values take both signs (a wall force through ΔW = 0): their medians say little.
     pub(super) signed: bool,
-}
-
-fn median(mut values: Vec<f64>) -> Option<f64> {
-    values.sort_by(f64::total_cmp);
-    let n = values.len();
-    match n {
-        0 => None,
-        _ if n % 2 == 1 => Some(values[n / 2]),
-        _ => Some(0.5 * (values[n / 2 - 1] + values[n / 2])),
-    }
 }
 
 /// The report section of one scene: the statuses of rows not `ok` on both sides, the metrics

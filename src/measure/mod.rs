@@ -20,6 +20,17 @@ mod moduli;
 mod packing;
 mod wave;
 
+/// The median of `values` (the mean of the middle two for an even count); `None` when empty.
+pub fn median(mut values: Vec<f64>) -> Option<f64> {
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    match n {
+        0 => None,
+        _ if n % 2 == 1 => Some(values[n / 2]),
+        _ => Some(0.5 * (values[n / 2 - 1] + values[n / 2])),
+    }
+}
+
 /// Relative error (measured − reference)/reference, when both exist.
 pub fn relative_error(measured: Option<f64>, reference: Option<f64>) -> Option<f64> {
     match (measured, reference) {

@@ -458,10 +458,29 @@ fn the_jamming_item_states_phi_j_as_the_results_table_gives_it() {
     let within = (stated - 0.842).abs() <= 2.0 * error + 0.01;
     assert!(line.contains(if within { ": within" } else { ": outside" }), "{line}");
     assert!(report.contains("Linear contacts, N = 64"), "the scalings are fitted");
+    strained_moduli_are_counted_as_the_table_gives_them(&frame, &report);
     ratio_against_contacts_is_the_tables(&frame, &report, &onsets);
     summary_names_what_is_outside(&report);
     // No lattice, no homogeneity item (it had shown an empty table).
     assert!(!report.contains("Homogeneity of the deformation"));
+}
+
+/// The jammed packings whose moduli by strain agree with the stiffness matrix's within 1 %,
+/// counted from the results table, as the item states them.
+fn strained_moduli_are_counted_as_the_table_gives_them(frame: &DataFrame, report: &str) {
+    let states = frame.column("packing_state").unwrap().str().unwrap().clone();
+    let count = |modulus: &str| {
+        let (matrix, strained) = (numbers(frame, modulus), numbers(frame, &format!("{modulus}_strained")));
+        let pairs: Vec<f64> = (0..frame.height())
+            .filter(|&i| states.get(i) == Some("jammed"))
+            .filter_map(|i| Some((strained[i]? / matrix[i].filter(|m| *m > 0.0)? - 1.0).abs()))
+            .collect();
+        (pairs.iter().filter(|d| **d <= 0.01).count(), pairs.len())
+    };
+    let ((k, k_all), (g, g_all)) = (count("bulk_modulus_2d"), count("shear_modulus_2d"));
+    assert!(k_all > 0 && g_all > 0);
+    let line = line_with(report, "The same moduli by strain, beside the stiffness matrix's");
+    assert!(line.contains(&format!("linear contacts, K {k} of {k_all} and G {g} of {g_all}")), "{line}");
 }
 
 #[test]
