@@ -22,7 +22,7 @@ pub(super) fn random(e: &Evidence) -> Option<Answer> {
     let within = bounded.iter().filter(|(_, e, (low, high))| low <= e && e <= high).count();
     let scene = runs.first().or(spread.first())?.spec.scene.clone();
     let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
-    let cut = format!("{mechanisms} of {} cut networks lost rigidity", runs.len());
+    let cut = format!("{mechanisms} of {} cut runs lost rigidity", runs.len());
     let bounds = format!("E of {within} of {} spread runs within its Voigt and Reuss bounds", bounded.len());
     let sentences = cut_sentences(&runs)
         .into_iter()
@@ -68,19 +68,24 @@ fn cut_sentences(runs: &[&RunRecord]) -> Vec<String> {
     }
     let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
     let unsettled = runs.iter().filter(|r| !matches!(r.status, RunStatus::Mechanism | RunStatus::Ok)).count();
+    let carried: Vec<&&RunRecord> = runs.iter().filter(|r| r.status == RunStatus::Ok).collect();
+    let floppy = carried.iter().filter(|r| r.metrics.lattice.stiffness_min == Some(0.0)).count();
     vec![
         format!(
             "Cutting bonds at random softens the network and spreads its moduli over seeds; {} of the {} random runs \
-             lost their rigidity (status mechanism, found by the static solver before MD){}.",
+             lost their rigidity: their load drives a mechanism (status mechanism, found by the static solver before \
+             MD){}. Rigid here means carrying the load: {floppy} of the {} relaxed runs still have floppy modes that \
+             their load leaves alone (k_min = 0).",
             mechanisms,
             runs.len(),
             match unsettled {
                 0 => String::new(),
                 n => format!(
-                    ", and {n} more are rigid but did not end as relaxed (their status in the appendix), so they give \
-                     no modulus"
+                    ", and {n} more carry it statically but did not end as relaxed (their status in the appendix), so \
+                     they give no modulus"
                 ),
-            }
+            },
+            carried.len()
         ),
         rigidity_sentence(runs),
     ]
@@ -91,8 +96,8 @@ fn cut_sentences(runs: &[&RunRecord]) -> Vec<String> {
 fn reference(cut: bool, bounds: bool) -> String {
     let threshold = "Effective-medium theory's rigidity threshold at half the interior bonds kept (p = 1/2); an \
                      observation.";
-    let spread = "Each spread network's own bounds on E (Voigt above, Reuss below), exact for linear springs at small \
-                  strain; no tolerance: MD's E is within its relaxation's error (~1e-6) of the static answer, the \
+    let spread = "Each spread network's own bounds on E (Voigt above, Reuss below), rigorous for linear springs at \
+                  small strain; no tolerance: MD's E is within its relaxation's error (~1e-6) of the static answer, the \
                   bounds are percent apart.";
     match (cut, bounds) {
         (true, true) => format!("{threshold} {spread}"),
@@ -135,7 +140,8 @@ fn spread_sentence(spread: &[&RunRecord], bounded: &[(&RunRecord, f64, (f64, f64
         "Spreading the stiffnesses instead, k (1 + w U) with U uniform in [−1, 1] and every bond kept ({}): {} (means \
          over the relaxed networks). Each network's E has bounds of its own, from the uniform network's answer under \
          the same load: its bond forces balance the load in the spread network too (Reuss: E ≥ E0/⟨1/(1 + w U)⟩) and \
-         its deformation fits it (Voigt: E ≤ E0 ⟨1 + w U⟩), ⟨⟩ weighted by the uniform network's bond energies. \
+         its deformation fits it (Voigt: E ≤ E0 ⟨1 + w U⟩), ⟨⟩ weighted by the uniform network's bond energies under \
+         this load (so the Voigt bound too may lie below E0). \
          {within} of the {} spread runs in tension (each network along y and along x) lie within their bounds{}, the \
          nearest {} of E inside one.",
         first.spec.scene,
@@ -197,32 +203,60 @@ fn directions_sentence(runs: &[&RunRecord], kind: &str) -> Option<String> {
     let n = seeds.len() as f64;
     let mean = seeds.iter().sum::<f64>() / n;
     let error = (seeds.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0) / n).sqrt();
-    let signed = |x: f64| format!("{}{}", if x < 0.0 { "−" } else { "" }, sig(x.abs()));
     Some(format!(
-        "Every {kind} network was pulled along y and along x (tensile-x: {}, the block turned), as the coursework \
-         asks of random systems: one network's E_x/E_y is {} ({} networks relaxed both ways). The \
-         geometric mean of E_x/E_y is {}, its logarithm {} ± {} (mean ± standard error over {} seeds, each seed's \
-         levels averaged first: they share its random numbers), {}.",
+        "Every {kind} network was pulled along y and along x (tensile-x, the block turned), as the coursework asks of \
+         random systems: {}; E_x/E_y is {} ({} pairs relaxed both ways){}. By symmetry (tensile-x is the tensile \
+         set-up turned by 90°) ln(E_x/E_y) averages 0 over seeds; here the geometric mean of E_x/E_y is {}, its \
+         logarithm {} ± {} (mean ± standard error over {} seeds, each seed's levels averaged first: they share its \
+         random numbers), {}.",
         if kind == "cut" {
-            "the same interior bonds cut, each loading keeping its own loaded and held edges whole"
+            "the same interior bonds are cut, but each loading keeps its own loaded and held edges whole, so a seed's \
+             two are one network only in the interior and their ratio mixes its anisotropy with their edges' \
+             difference (the spread networks keep every bond, and are one network both ways)"
         } else {
-            "the same bonds spread"
+            "the same bonds spread, one network both ways"
         },
         ranges.join(", "),
         ratios.len(),
+        poisson_words(runs),
         sig(mean.exp()),
         signed(mean),
         sig(error),
         seeds.len(),
         if mean.abs() <= 2.0 * error {
-            "within 2 standard errors of 1: each random network is anisotropic, their ensemble is not, as random \
-             bonds prefer no direction"
+            "within 2 standard errors of 0: one network differs by direction, and on average none is preferred"
         } else {
-            "more than 2 standard errors from 1: these networks lean one way on average, by chance (one time in \
-             20 for networks that prefer no direction) or by a preferred direction (the edge bands each loading \
-             keeps whole)"
+            "more than 2 standard errors from 0: these networks lean one way on average, by chance (one time in 20 \
+             for networks that prefer no direction) or by a preferred direction (the edge bands each loading keeps \
+             whole)"
         }
     ))
+}
+
+/// Poisson's ratio by direction: ν_yx (pulled along y) and ν_xy (along x) over every relaxed
+/// run in tension, as their ranges.
+fn poisson_words(runs: &[&RunRecord]) -> String {
+    let mut along: [Vec<f64>; 2] = Default::default();
+    for r in runs.iter().filter(|r| r.status == RunStatus::Ok) {
+        if let (Some(l), Some(nu)) = (r.spec.lattice(), r.metrics.lattice.poisson_ratio) {
+            along[usize::from(l.rotated)].push(nu);
+        }
+    }
+    let range = |v: &[f64]| {
+        let (low, high) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(*x), b.max(*x)));
+        format!("{} to {}", signed(low), signed(high))
+    };
+    match along {
+        [y, x] if !y.is_empty() && !x.is_empty() => {
+            format!(", and Poisson's ratio ν_yx {} against ν_xy {}", range(&y), range(&x))
+        }
+        _ => String::new(),
+    }
+}
+
+/// `x` to 4 significant digits, negative with a minus sign (−), not a hyphen.
+fn signed(x: f64) -> String {
+    format!("{}{}", if x < 0.0 { "−" } else { "" }, sig(x.abs()))
 }
 
 /// "a to b at cut 0.30" (or "a at w = 0.5" for one network) of the ratios `r` at `level`.
@@ -315,7 +349,8 @@ fn rigidity_sentence(runs: &[&RunRecord]) -> String {
     let highest_lost = runs.iter().filter(|r| r.status == RunStatus::Mechanism).map(kept).reduce(f64::max);
     let theory = "Effective-medium theory for central-force networks puts the loss of rigidity where the mean \
                   coordination reaches 2d = 4, a kept fraction p = 4/8 = 1/2 of the square lattice with both \
-                  diagonals (p counts the interior bonds, which alone are cut, as in the figure).";
+                  diagonals (p counts the interior bonds, which alone are cut, as in the figure; it is the \
+                  probability that each is kept, and a network's own share scatters about it).";
     let held = match (lowest_rigid, highest_lost) {
         (Some(p), _) if p < 0.5 => format!(
             " A network kept at p = {p:.2}, below 1/2, still stayed rigid: a finite network whose edges are not cut \
