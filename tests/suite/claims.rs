@@ -169,6 +169,28 @@ fn random_networks_average_the_rigid_seeds_and_say_where_rigidity_held() {
 }
 
 #[test]
+fn the_cut_networks_relaxation_is_counted_in_steps_per_cut_fraction() {
+    // The medians of the relaxed runs' steps per cut fraction, from the records, as stated.
+    let yaml = random_block("[0.0, 0.1, 0.2]");
+    let records = execute_all(&yaml);
+    let median = |cut: f64| {
+        let mut steps: Vec<u64> = records
+            .iter()
+            .filter(|r| r.status == mdsolids::sim::RunStatus::Ok && r.spec.lattice().unwrap().cut_fraction == cut)
+            .map(|r| r.steps)
+            .collect();
+        steps.sort_unstable();
+        let n = steps.len();
+        assert!(n > 0, "cut {cut}");
+        if n % 2 == 1 { steps[n / 2] as f64 } else { 0.5 * (steps[n / 2 - 1] + steps[n / 2]) as f64 }
+    };
+    let report = report_of("rnd", &yaml);
+    let sentence = line_with(&report, "Cut from a stress-free lattice");
+    let stated = format!("{:.0} uncut, {:.0} at cut 0.10, {:.0} at cut 0.20", median(0.0), median(0.1), median(0.2));
+    assert!(sentence.contains(&stated), "{stated}: {sentence}");
+}
+
+#[test]
 fn the_random_networks_point_to_the_jamming_report_and_link_it_once_it_is_there() {
     // The pointed page is where `mdsolids run` writes the jamming campaign,
     // `<reports>/<campaign name>/index.html`, beside this report's folder: not there yet, the
