@@ -246,8 +246,9 @@ fn uniform_bonds(spec: &RunSpec, l: &LatticeSpec) -> Bonds {
 }
 
 /// The key of each bond's random numbers: its index in the lattice as the campaign describes
-/// it, so that a `tensile-x` run (simulated turned by 90°) cuts and spreads the same bonds as
-/// the `tensile` and `shear` runs of its seed: one network, measured in both directions. The
+/// it, so that a `tensile-x` run (simulated turned by 90°) spreads the same bonds as the
+/// `tensile` and `shear` runs of its seed, and cuts the same ones but for the edge bands each
+/// loading keeps whole ([`bonds`]): one network measured in both directions. The
 /// other types keep their bond list when turned (only the layout turns); the square lattice is
 /// rebuilt turned, node (ix', iy') of the turned block being the upright one's
 /// (ix, iy) = (iy', ny − 1 − ix') (`Layout::turned`: x' = L_y − y, y' = x).
