@@ -339,8 +339,9 @@ pub(super) fn static_answer(
     metrics: &mut LatticeMetrics,
 ) -> Result<Option<String>, Stopped> {
     let bonds = bonds(spec, l);
-    if l.is_random() {
-        metrics.bond_fraction_kept = Some(bonds.len() as f64 / uniform_bonds(spec, l).len().max(1) as f64);
+    let uniform = l.is_random().then(|| uniform_bonds(spec, l));
+    if let Some(all) = &uniform {
+        metrics.bond_fraction_kept = Some(bonds.len() as f64 / all.len().max(1) as f64);
     }
     let (held_x, held_y, prescribed) = static_supports(spec, l, scene);
     let p = &scene.particles;
@@ -353,12 +354,11 @@ pub(super) fn static_answer(
         loads: &scene.loads,
         prescribed: &prescribed,
     };
-    if has_spread_bounds(spec, l) {
-        let uniform = uniform_bonds(spec, l);
-        let answer = Truss { bonds: &uniform, ..truss }.solver(&shared.analyses).solve_linear();
+    if let Some(uniform) = uniform.as_ref().filter(|_| has_spread_bounds(spec, l)) {
+        let answer = Truss { bonds: uniform, ..truss }.solver(&shared.analyses).solve_linear();
         if let StaticSolution::Displacements { ux, uy } = answer {
             metrics.youngs_modulus_uniform = moduli(spec, l, l.total_load(), &ux, &uy).youngs_modulus;
-            let bounds = metrics.youngs_modulus_uniform.map(|e| spread_bounds(&truss, &uniform, (&ux, &uy), e));
+            let bounds = metrics.youngs_modulus_uniform.map(|e| spread_bounds(&truss, uniform, (&ux, &uy), e));
             (metrics.youngs_modulus_reuss, metrics.youngs_modulus_voigt) = bounds.unzip();
         }
     }

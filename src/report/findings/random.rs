@@ -20,7 +20,7 @@ pub(super) fn random(e: &Evidence) -> Option<Answer> {
     let runs = e.all(|r| r.spec.lattice().is_some_and(|l| l.cut_fraction > 0.0 && l.lattice_type.is_square()));
     let spread = e.all(|r| r.spec.lattice().is_some_and(|l| l.cut_fraction == 0.0 && l.stiffness_spread > 0.0));
     let bounded = bounded_runs(&spread);
-    let within = bounded.iter().filter(|(_, e, (low, high))| low <= e && e <= high).count();
+    let within = within_bounds(&bounded);
     let scene = runs.first().or(spread.first())?.spec.scene.clone();
     let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
     let cut = format!("{mechanisms} of {} cut runs lost rigidity", runs.len());
@@ -124,7 +124,7 @@ fn relaxation_sentence(e: &Evidence, runs: &[&RunRecord]) -> Option<String> {
 }
 
 /// The item's reference: effective-medium theory's threshold for cut networks, an observation,
-/// and for spread networks measured in tension their exact bounds.
+/// and for spread networks measured in tension their rigorous bounds.
 fn reference(cut: bool, bounds: bool) -> String {
     let threshold = "Effective-medium theory's rigidity threshold at half the interior bonds kept (p = 1/2); an \
                      observation.";
@@ -151,6 +151,11 @@ fn bounded_runs<'a>(spread: &[&'a RunRecord]) -> Vec<(&'a RunRecord, f64, (f64, 
         .collect()
 }
 
+/// How many of the `bounded` runs have their E within their bounds.
+fn within_bounds(bounded: &[(&RunRecord, f64, (f64, f64))]) -> usize {
+    bounded.iter().filter(|(_, e, (low, high))| low <= e && e <= high).count()
+}
+
 /// What spreading the springs does, and each network's E against its own bounds: the mean E
 /// and G per spread w over the relaxed networks (both directions), E's mean change from the same
 /// networks unspread, the count within the bounds and the nearest approach to one of them,
@@ -165,7 +170,7 @@ fn spread_sentence(spread: &[&RunRecord], bounded: &[(&RunRecord, f64, (f64, f64
             format!("E = {} Pa{change} and G = {} Pa at w = {}", cell(m.youngs), cell(m.shear), number(*w))
         })
         .collect();
-    let within = bounded.iter().filter(|(_, e, (low, high))| low <= e && e <= high).count();
+    let within = within_bounds(bounded);
     let nearest =
         bounded.iter().map(|(_, e, (low, high))| ((e - low) / e).min((high - e) / e)).fold(f64::INFINITY, f64::min);
     Some(format!(
@@ -206,7 +211,7 @@ fn spread_means(spread: &[&RunRecord]) -> Vec<(f64, SpreadMeans)> {
         shear.extend(m.shear_modulus);
         softening.extend(m.youngs_modulus.zip(m.youngs_modulus_uniform).map(|(e, e0)| e / e0 - 1.0));
     }
-    let mean = |v: &[f64]| (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64);
+    let mean = |v: &[f64]| mean_spread(v.iter().map(|x| Some(*x))).0;
     by_width
         .iter()
         .map(|(w, [e, g, s])| (f64::from_bits(*w), SpreadMeans { youngs: mean(e), shear: mean(g), softening: mean(s) }))
@@ -231,10 +236,9 @@ fn directions_sentence(runs: &[&RunRecord], kind: &str) -> Option<String> {
         return None;
     }
     let ranges: Vec<String> = by_level.iter().map(|(level, r)| range_at(f64::from_bits(*level), r, kind)).collect();
-    let seeds: Vec<f64> = by_seed.values().map(|logs| logs.iter().sum::<f64>() / logs.len() as f64).collect();
-    let n = seeds.len() as f64;
-    let mean = seeds.iter().sum::<f64>() / n;
-    let error = (seeds.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0) / n).sqrt();
+    let seeds = by_seed.values().map(|logs| mean_spread(logs.iter().map(|x| Some(*x))).0);
+    let (mean, spread) = mean_spread(seeds);
+    let (mean, error) = (mean?, spread? / (by_seed.len() as f64).sqrt());
     Some(format!(
         "Every {kind} network was pulled along y and along x (tensile-x, the block turned), as the coursework asks of \
          random systems: {}; E_x/E_y is {} ({} pairs relaxed both ways){}. By symmetry (tensile-x is the tensile \
@@ -254,7 +258,7 @@ fn directions_sentence(runs: &[&RunRecord], kind: &str) -> Option<String> {
         sig(mean.exp()),
         signed(mean),
         sig(error),
-        seeds.len(),
+        by_seed.len(),
         if mean.abs() <= 2.0 * error {
             "within 2 standard errors of 0: one network differs by direction, and on average none is preferred"
         } else {
@@ -275,7 +279,7 @@ fn poisson_words(runs: &[&RunRecord]) -> String {
         }
     }
     let range = |v: &[f64]| {
-        let (low, high) = v.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(*x), b.max(*x)));
+        let (low, high) = extremes(v);
         format!("{} to {}", signed(low), signed(high))
     };
     match along {
@@ -286,6 +290,11 @@ fn poisson_words(runs: &[&RunRecord]) -> String {
     }
 }
 
+/// (smallest, largest) of `values` ((∞, −∞) when empty).
+fn extremes(values: &[f64]) -> (f64, f64) {
+    values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), x| (low.min(*x), high.max(*x)))
+}
+
 /// `x` to 4 significant digits, negative with a minus sign (−), not a hyphen.
 fn signed(x: f64) -> String {
     format!("{}{}", if x < 0.0 { "−" } else { "" }, sig(x.abs()))
@@ -293,19 +302,19 @@ fn signed(x: f64) -> String {
 
 /// "a to b at cut 0.30" (or "a at w = 0.5" for one network) of the ratios `r` at `level`.
 fn range_at(level: f64, r: &[f64], kind: &str) -> String {
-    let (low, high) = r.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(*x), b.max(*x)));
+    let (low, high) = extremes(r);
     let at = if kind == "cut" { format!("cut {level:.2}") } else { format!("w = {}", number(level)) };
     if r.len() == 1 { format!("{} at {at}", sig(low)) } else { format!("{} to {} at {at}", sig(low), sig(high)) }
 }
 
 /// One random network: its level of randomness, its seed, and E loaded along y and along x.
-type Network = (f64, u64, [Option<f64>; 2]);
+type DirectionPair = (f64, u64, [Option<f64>; 2]);
 
 /// (randomness level, seed, E_x/E_y) of each network relaxed in both directions: runs of one
 /// scene and the same grid values but the load case, one `tensile` and one `tensile-x`.
 fn direction_ratios(runs: &[&RunRecord]) -> Vec<(f64, u64, f64)> {
     // (scene, grid values but the load case) → (level, seed, [E_y, E_x]).
-    let mut networks: BTreeMap<(String, String), Network> = BTreeMap::new();
+    let mut networks: BTreeMap<(String, String), DirectionPair> = BTreeMap::new();
     for r in runs.iter().filter(|r| r.status == RunStatus::Ok) {
         let Some(l) = r.spec.lattice().filter(|l| l.load_case == LoadCase::Tensile) else { continue };
         let key = (r.spec.scene.clone(), r.spec.varied_in_words(|path| path != "load.case"));
