@@ -209,15 +209,39 @@ impl<'a> Truss<'a> {
     /// steel block (k = 2e9 N/m) at 10 N per node then never met Newton's 1e-10 of the load.
     /// δ₀ = |d₀| − rest is a spring's pre-stretch ([`pre_stretch`]).
     fn bond_state<L: ForceLaw>(&self, law: &L, b: usize, ux: &[f64], uy: &[f64]) -> ([f64; 2], f64, f64, f64) {
-        let (i, j, k, rest) = (self.bonds.i[b], self.bonds.j[b], self.bonds.stiffness[b], self.bonds.rest[b]);
+        let k = self.bonds.stiffness[b];
+        let ([dx, dy], r, extension) = self.bond_geometry(b, ux, uy);
+        ([dx / r, dy / r], r, law.elastic_force(k, extension), law.tangent_stiffness(k, extension))
+    }
+
+    /// Vector d from j to i, length r and extension δ of bond `b` at `(ux, uy)`, as
+    /// [`Truss::bond_state`] explains.
+    fn bond_geometry(&self, b: usize, ux: &[f64], uy: &[f64]) -> ([f64; 2], f64, f64) {
+        let (i, j, rest) = (self.bonds.i[b], self.bonds.j[b], self.bonds.rest[b]);
         let (rest_x, rest_y) = (self.x[i] - self.x[j] + self.bonds.shift_x[b], self.y[i] - self.y[j]);
         let (move_x, move_y) = (ux[i] - ux[j], uy[i] - uy[j]);
         let (dx, dy) = (rest_x + move_x, rest_y + move_y);
         let (r, r0) = (dx.hypot(dy), rest_x.hypot(rest_y));
         let stretch = (2.0 * (rest_x * move_x + rest_y * move_y) + move_x * move_x + move_y * move_y) / (r + r0);
         let resolution = f64::EPSILON * (self.x[i].abs() + self.x[j].abs() + self.y[i].abs() + self.y[j].abs());
-        let extension = stretch + pre_stretch(r0, rest, resolution);
-        ([dx / r, dy / r], r, law.elastic_force(k, extension), law.tangent_stiffness(k, extension))
+        ([dx, dy], r, stretch + pre_stretch(r0, rest, resolution))
+    }
+
+    /// The total potential energy Π = Σ U(δ_b) − f·u (J) at displacements `(ux, uy)`: the
+    /// springs' energy less the loads' work on the free degrees of freedom (a held one does not
+    /// move under its load). The static answer is a stationary point of Π, stable where Π is
+    /// least.
+    fn potential<L: ForceLaw>(&self, law: &L, ux: &[f64], uy: &[f64], dofs: &Dofs) -> f64 {
+        let stored: f64 =
+            (0..self.bonds.len()).map(|b| law.energy(self.bonds.stiffness[b], self.bond_geometry(b, ux, uy).2)).sum();
+        let work: f64 = self.load_vector(dofs).iter().zip(dofs.gather(ux, uy)).map(|(f, u)| f * u).sum();
+        stored - work
+    }
+
+    /// The largest |δ|/rest over the bonds at displacements `(ux, uy)`: how far a state is from
+    /// small strains.
+    fn largest_strain(&self, ux: &[f64], uy: &[f64]) -> f64 {
+        (0..self.bonds.len()).map(|b| (self.bond_geometry(b, ux, uy).2 / self.bonds.rest[b]).abs()).fold(0.0, f64::max)
     }
 
     fn dofs(&self) -> Dofs {

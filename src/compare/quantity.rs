@@ -82,7 +82,7 @@ pub fn class(name: &str) -> Class {
 /// first match counts, so longer names come first. k and its kin are C in N/m^β for power-law
 /// springs: written N/m^β for both. Pure numbers (ratios, counts, relative errors) are listed
 /// as "1" like any other unit: a column not listed has no unit shown, never a wrong one.
-const UNITS: [(&str, &str); 73] = [
+const UNITS: [(&str, &str); 74] = [
     // Costs and counts.
     ("wall_s", "s"),
     ("loop_s", "s"),
@@ -158,6 +158,7 @@ const UNITS: [(&str, &str); 73] = [
     ("homogeneity", "1"),
     ("static_nonlinearity", "1"),
     ("static_residual", "1"),
+    ("static_descent_steps", "1"),
     ("threshold", "1"),
 ];
 

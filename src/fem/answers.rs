@@ -18,6 +18,8 @@ pub struct StaticAnswer {
     pub nonlinear: Option<StaticSolution>,
     /// ‖R‖/‖f‖ where Newton's iteration stopped, as [`super::Convergence::residual`].
     pub residual: f64,
+    /// Steps down the potential energy on the way, as [`super::Convergence::descents`].
+    pub descents: usize,
 }
 
 impl StaticAnswer {

@@ -23,6 +23,18 @@ pub const NEWTON_TOLERANCE: f64 = 1e-12;
 const NEWTON_STEP_TOLERANCE: f64 = 1e-14;
 /// Newton–Raphson gives up after this many iterations (it converges quadratically: a handful).
 const NEWTON_ITERATIONS: usize = 50;
+/// A descent from an unstable state ([`Solver::descend`]) first shifts K_t by this fraction of
+/// its largest diagonal entry: a floppy mode's only stiffness is the pre-stress s/r, 5e-6 of a
+/// steel lattice's k at 1 kN per node (1e3 N / 0.1 m against 2e9 N/m).
+const SMALLEST_DESCENT_SHIFT: f64 = 1e-8;
+/// Newton–Raphson gives up after this many steps down Π from unstable states: a buckled
+/// network of the coursework (10 × 10) settles in 4 to 6; networks at their rigidity threshold
+/// that take more are left with no answer, as before the descent.
+const DESCENT_STEPS: usize = 8;
+/// A descent stays within this strain of every bond (|δ|/rest): it finds the buckled state of
+/// small strains, not one of large rotations and bonds passed through each other, which a
+/// network near a mechanism could otherwise fall to under its load.
+const DESCENT_STRAIN: f64 = 0.01;
 /// A response K_t Δu = f (the tangent moduli, the sensitivity) is solved to this fraction of ‖f‖.
 const RESPONSE_TOLERANCE: f64 = 1e-12;
 /// A Newton correction is solved to at most this fraction of its ‖R‖ (see [`forcing`]).
@@ -56,6 +68,9 @@ pub struct Convergence {
     pub factorisations: usize,
     /// Solves with a factor (pairs of triangular solves), conjugate gradients' included.
     pub solves: usize,
+    /// Steps down the potential energy from states whose tangent was not positive definite
+    /// ([`Solver::descend`]); 0 where Newton–Raphson alone found the answer.
+    pub descents: usize,
 }
 
 /// The static problems of one [`Truss`] ([`Truss::solver`]).
@@ -102,7 +117,7 @@ impl<'a> Solver<'a> {
             (StaticSolution::Displacements { .. }, false) => self.solve_nonlinear(law, linearised_at, Some(deadline)),
             _ => None,
         };
-        StaticAnswer { linear, nonlinear, residual: self.convergence.residual }
+        StaticAnswer { linear, nonlinear, residual: self.convergence.residual, descents: self.convergence.descents }
     }
 
     /// Solves the linear problem K u = f (springs at their rest geometry) with a fresh factor
@@ -183,7 +198,8 @@ impl<'a> Solver<'a> {
         deadline: Option<Instant>,
     ) -> Option<StaticSolution> {
         let load_norm = euclidean_norm(self.truss.load_vector(&self.dofs).iter());
-        for _ in 0..NEWTON_ITERATIONS {
+        let (mut iterations, mut shift) = (0, SMALLEST_DESCENT_SHIFT);
+        while iterations < NEWTON_ITERATIONS {
             let residual = self.assemble(law, &ux, &uy);
             let norm = euclidean_norm(residual.iter());
             self.convergence.residual = norm / load_norm;
@@ -193,7 +209,22 @@ impl<'a> Solver<'a> {
             if deadline.is_some_and(|deadline| Instant::now() > deadline) {
                 return Some(StaticSolution::PastDeadline);
             }
-            let step = self.solve(&residual, forcing(norm / load_norm))?;
+            // Once the iteration has met an unstable state, each Newton step needs K_t itself
+            // factored (positive definite): conjugate gradients on an older factor could step
+            // back up to the saddle.
+            let solved = if self.convergence.descents == 0 {
+                self.solve(&residual, forcing(norm / load_norm))
+            } else {
+                self.solve_fresh(&residual)
+            };
+            let Some(step) = solved else {
+                if self.convergence.descents == DESCENT_STEPS {
+                    return None;
+                }
+                self.descend(law, (&mut ux, &mut uy), &residual, &mut shift)?;
+                continue;
+            };
+            iterations += 1;
             let (dx, dy) = self.dofs.expand(&step);
             for i in 0..ux.len() {
                 ux[i] += dx[i];
@@ -204,6 +235,45 @@ impl<'a> Solver<'a> {
             {
                 return Some(StaticSolution::Displacements { ux, uy });
             }
+        }
+        None
+    }
+
+    /// One step down the total potential energy Π from `(ux, uy)`, where the tangent K_t
+    /// (assembled there) is not positive definite: an unstable state, such as a floppy mode
+    /// under compression at the linear answer, which a Newton step would only find again. The
+    /// step solves (K_t + μ s I) Δu = R (R = −∇Π the out-of-balance force, s the largest diagonal
+    /// entry) with the least μ of `shift` · 4ⁿ that factors, lowers Π and keeps every bond's
+    /// strain within [`DESCENT_STRAIN`]: a trust region, each larger μ a shorter step more nearly
+    /// along R. The next step starts from μ/2. `None` when no μ up to 1 does.
+    fn descend<L: ForceLaw>(
+        &mut self,
+        law: &L,
+        (ux, uy): (&mut Vec<f64>, &mut Vec<f64>),
+        residual: &[f64],
+        shift: &mut f64,
+    ) -> Option<()> {
+        let before = self.truss.potential(law, ux, uy, &self.dofs);
+        let analysis = self.analysis.clone()?;
+        let Solver { truss, dofs, factor, stiffness, convergence, .. } = self;
+        let factor = factor.get_or_insert_with(|| Factor::new(analysis));
+        self.fresh = false;
+        convergence.descents += 1;
+        while *shift <= 1.0 {
+            convergence.factorisations += 1;
+            if factor.factorise(stiffness, *shift) {
+                convergence.solves += 1;
+                let (dx, dy) = dofs.expand(&factor.solve(residual)?);
+                let tried_x: Vec<f64> = ux.iter().zip(&dx).map(|(u, d)| u + d).collect();
+                let tried_y: Vec<f64> = uy.iter().zip(&dy).map(|(u, d)| u + d).collect();
+                if truss.potential(law, &tried_x, &tried_y, dofs) < before
+                    && truss.largest_strain(&tried_x, &tried_y) <= DESCENT_STRAIN
+                {
+                    (*ux, *uy, *shift) = (tried_x, tried_y, (*shift / 2.0).max(SMALLEST_DESCENT_SHIFT));
+                    return Some(());
+                }
+            }
+            *shift *= 4.0;
         }
         None
     }
@@ -277,7 +347,7 @@ impl<'a> Solver<'a> {
         let Some(analysis) = &self.analysis else { return false };
         let factor = self.factor.get_or_insert_with(|| Factor::new(analysis.clone()));
         self.convergence.factorisations += 1;
-        self.fresh = factor.factorise(&self.stiffness);
+        self.fresh = factor.factorise(&self.stiffness, 0.0);
         self.fresh
     }
 

@@ -166,9 +166,10 @@ impl Factor {
         }
     }
 
-    /// Factors K + εI (ε = 1e-12 of the largest diagonal entry), K's lower triangle given by
-    /// `stiffness`; `false` when K is not positive (semi-)definite or not finite.
-    pub(super) fn factorise(&mut self, stiffness: &[f64]) -> bool {
+    /// Factors K + εI (ε = `shift` times the largest diagonal entry, at least
+    /// [`REGULARISATION`]), K's lower triangle given by `stiffness`; `false` when K + εI is not
+    /// positive definite or not finite.
+    pub(super) fn factorise(&mut self, stiffness: &[f64], shift: f64) -> bool {
         self.scale = 0.0;
         let largest = self.analysis.diagonal(stiffness).fold(0.0f64, f64::max);
         if !(largest > 0.0 && largest.is_finite()) {
@@ -177,7 +178,7 @@ impl Factor {
         let scale = 2.0f64.powi(largest.log2().round() as i32);
         self.shifted.iter_mut().zip(stiffness).for_each(|(shifted, k)| *shifted = k / scale);
         for start in &self.analysis.col_ptr[..self.analysis.size()] {
-            self.shifted[*start] += REGULARISATION * largest / scale;
+            self.shifted[*start] += shift.max(REGULARISATION) * largest / scale;
         }
         let analysis = &*self.analysis;
         let size = analysis.size();

@@ -44,6 +44,12 @@ pub struct LatticeMetrics {
     /// out-of-balance force left over the load (at most 1e-12 unless round-off ended it).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub static_residual: Option<f64>,
+    /// Lattice: the steps the static solve took down the potential energy from states whose
+    /// tangent stiffness was not positive definite (`fem::Solver::descend`): 0 where Newton–
+    /// Raphson alone found the answer; more where the answer of small displacements is an
+    /// unstable equilibrium, a floppy mode under compression that the load buckles.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub static_descent_steps: Option<u64>,
     /// Lattice: E of the static solution of the same network, solved non-linearly like MD (Pa).
     pub youngs_modulus_fem: Option<f64>,
     /// Lattice: ν of the static solution.
@@ -594,6 +600,7 @@ impl StaticSolve<'_> {
             _ => return Ok(linear_answer),
         };
         self.metrics.static_residual = Some(answer.residual).filter(|r| r.is_finite());
+        self.metrics.static_descent_steps = Some(answer.descents as u64);
         let top_row_force = self.top_row_force(law, &ux, &uy);
         let fem = moduli(self.spec, self.l, top_row_force, &ux, &uy);
         if self.spec.law.is_linear() {
@@ -949,6 +956,7 @@ fn lattice_columns() -> Vec<Column<LatticeMetrics>> {
         Number("shear_modulus_tangent_fem", |r| r.group.shear_modulus_tangent_fem),
         Number("static_nonlinearity", |r| r.group.static_nonlinearity),
         Number("static_residual", |r| r.group.static_residual),
+        Count("static_descent_steps", |r| r.group.static_descent_steps),
         Number("homogeneity", |r| r.group.homogeneity),
         Number("dissipation_time", |r| r.dissipation_time),
         Word("dissipation_criterion", |r| r.dissipation_criterion.map(str::to_string)),

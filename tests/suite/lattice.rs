@@ -492,3 +492,36 @@ fn a_spread_networks_e_lies_within_its_bounds_from_the_uniform_network() {
     let records = execute_all(&yaml(0.0).replace("stiffness_spread: 0", "cut_fraction: 0.1"));
     assert!(records.iter().all(|r| r.metrics.lattice.youngs_modulus_voigt.is_none()), "no bounds for cut networks");
 }
+
+/// A network its load buckles: the coursework's steel block (10 × 10, k_d/k = 0.5), cut 0.3,
+/// seed 3, pulled along x at 1 kN per node. Its answer of small displacements (E_linear, the
+/// linear solve) is an unstable equilibrium, a floppy mode under compression, which
+/// Newton–Raphson alone would only find again. The static solver descends from it to a stable
+/// state (k_min > 0 there) 20 % softer, and MD, which needs no solver to leave an unstable
+/// state, settles in the same one: within its relaxation's rigorous error bound (~1e-5). Seed 1
+/// does not buckle: no descent, and its static E is E_linear but for the strain (~1e-5).
+#[test]
+fn a_network_its_load_buckles_settles_by_md_and_statically_in_one_softer_state() {
+    let yaml = "version: 1\nname: t\nscenes:\n  - name: l\n    kind: lattice\n    material: {mass: 0.785, k: 2.0e9}\n    \
+                geometry: {spacing: 0.1, depth: 0.01}\n    damping: {restitution: 0.5, background: 1000.0}\n    \
+                time: {integrator: velocity-verlet}\n    lattice: {size: 10, k_diag_ratio: 0.5, cut_fraction: 0.3}\n    \
+                load: {case: tensile-x, per_node: 1000.0}\n    relax: {residual_force: 1.0e-6, max_tc: 20000}\n    \
+                grid:\n      seed: [1, 3]\n";
+    let records = execute_all(yaml);
+    let [upright, buckled] = [&records[0], &records[1]];
+    for r in [upright, buckled] {
+        let l = &r.metrics.lattice;
+        assert_eq!(r.status, RunStatus::Ok, "{}", label(r));
+        assert!(l.static_residual.is_some_and(|r| r <= 1e-12) && l.stiffness_min.is_some_and(|k| k > 0.0));
+        let bound = l.relax_error_bound.expect("a stable answer bounds MD's error");
+        let (md, fem) = (l.youngs_modulus, l.youngs_modulus_fem);
+        assert!(relative(md, fem) <= bound, "{}: MD {md:?} against {fem:?} (bound {bound})", label(r));
+    }
+    let l = &upright.metrics.lattice;
+    assert_eq!(l.static_descent_steps, Some(0), "{}", label(upright));
+    assert!(relative(l.youngs_modulus_fem, l.youngs_modulus_linear) < 1e-4, "{}", label(upright));
+    let l = &buckled.metrics.lattice;
+    assert!(l.static_descent_steps.is_some_and(|n| n > 0), "{}: descended", label(buckled));
+    let (fem, linear) = (l.youngs_modulus_fem, l.youngs_modulus_linear);
+    assert!(relative(fem, linear) > 0.1 && fem < linear, "{fem:?} against the saddle's {linear:?}");
+}

@@ -89,10 +89,87 @@ fn cut_sentences(e: &Evidence, runs: &[&RunRecord]) -> Vec<String> {
             carried.len()
         ),
         rigidity_sentence(runs),
+        buckling_sentence(&carried),
     ]
     .into_iter()
     .chain(relaxation_sentence(e, runs))
     .collect()
+}
+
+/// A relaxed run whose load buckles its network: the static answer left an unstable
+/// equilibrium (`static_descent_steps` > 0) for a stable one.
+struct Buckled {
+    /// Its run id, cut fraction, seed and load case.
+    label: String,
+    /// The static answer's modulus over that of the answer of small displacements, less 1.
+    softening: f64,
+    /// MD's modulus over the static answer's, less 1.
+    departure: f64,
+    /// Whether MD's modulus lies within its relaxation's error bound of the static answer's.
+    within_bound: Option<bool>,
+}
+
+/// The relaxed runs among `carried` whose static solve descended from an unstable state, with
+/// the modulus each measures (E pulled, G sheared).
+fn buckled_runs(carried: &[&&RunRecord]) -> Vec<Buckled> {
+    let descended = |r: &&&&RunRecord| r.metrics.lattice.static_descent_steps.is_some_and(|n| n > 0);
+    carried
+        .iter()
+        .filter(descended)
+        .filter_map(|r| {
+            let m = &r.metrics.lattice;
+            let (md, fem, linear) = match (m.youngs_modulus_fem, m.shear_modulus_fem) {
+                (Some(fem), _) => (m.youngs_modulus?, fem, m.youngs_modulus_linear?),
+                (None, Some(fem)) => (m.shear_modulus?, fem, m.shear_modulus_linear?),
+                (None, None) => return None,
+            };
+            let departure = md / fem - 1.0;
+            let within_bound = m.relax_error_bound.map(|bound| departure.abs() <= bound);
+            let l = r.spec.lattice()?;
+            let label = format!("{} (cut {:.2}, seed {}, {})", r.run_id, l.cut_fraction, l.seed, l.load_name());
+            Some(Buckled { label, softening: fem / linear - 1.0, departure, within_bound })
+        })
+        .collect()
+}
+
+/// Which relaxed cut networks their load buckles: the answer of small displacements is then an
+/// unstable equilibrium (a floppy mode under compression), and the static solver and MD each
+/// leave it for a stable state; how much softer that state is, and how near MD settles to the
+/// static one. Says so when no network buckles.
+fn buckling_sentence(carried: &[&&RunRecord]) -> String {
+    let buckled = buckled_runs(carried);
+    let relaxed = match carried.len() {
+        1 => "the one relaxed run".to_string(),
+        n => format!("the {n} relaxed runs"),
+    };
+    if buckled.is_empty() {
+        return format!(
+            "None of {relaxed} buckles under its load: each static answer came from the answer of small \
+             displacements by Newton–Raphson, the tangent stiffness positive definite on the way."
+        );
+    }
+    let names: Vec<&str> = buckled.iter().map(|b| b.label.as_str()).collect();
+    let (softest, least) = extremes(&buckled.iter().map(|b| b.softening).collect::<Vec<f64>>());
+    let change =
+        if buckled.len() == 1 { percent(softest) } else { format!("{} to {}", percent(softest), percent(least)) };
+    let furthest = buckled.iter().map(|b| b.departure.abs()).fold(0.0, f64::max);
+    let bounded = buckled.iter().filter(|b| b.within_bound == Some(true)).count();
+    let verdict = match (bounded, buckled.len()) {
+        (1, 1) => ", within its relaxation's error bound".to_string(),
+        (n, all) if n == all => ", each within its relaxation's error bound".to_string(),
+        (n, all) => format!(", {n} of {all} within their relaxation's error bound"),
+    };
+    format!(
+        "{} of {relaxed} {} under {} load ({}): the answer of small displacements is an unstable equilibrium, a \
+         floppy mode under compression (the tangent stiffness there is not positive definite), so the static solver \
+         descends the potential energy from it to a stable state whose modulus is {change} against it; MD leaves the \
+         unstable state by itself and settles in the same one, within {} of its modulus{verdict}.",
+        buckled.len(),
+        if buckled.len() == 1 { "buckles" } else { "buckle" },
+        if buckled.len() == 1 { "its" } else { "their" },
+        names.join("; "),
+        sig(furthest),
+    )
 }
 
 /// What "relax the system first" means here, and how long the cut networks' relaxation under

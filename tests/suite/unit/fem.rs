@@ -248,6 +248,7 @@ fn an_answer_cut_short_by_a_deadline_is_solved_again() {
         linear: StaticSolution::Displacements { ux: vec![0.0], uy: vec![1.0] },
         nonlinear: Some(nonlinear),
         residual: 1e-13,
+        descents: 0,
     };
     let mut solved = 0;
     let key = [7; 32];
