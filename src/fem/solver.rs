@@ -25,11 +25,15 @@ const NEWTON_STEP_TOLERANCE: f64 = 1e-14;
 const NEWTON_ITERATIONS: usize = 50;
 /// A descent from an unstable state ([`Solver::descend`]) first shifts K_t by this fraction of
 /// its largest diagonal entry: a floppy mode's only stiffness is the pre-stress s/r, 5e-6 of a
-/// steel lattice's k at 1 kN per node (1e3 N / 0.1 m against 2e9 N/m).
+/// steel lattice's k at 1 kN per node (1e3 N / 0.1 m against 2e9 N/m), so the first shift lies
+/// well below the negative curvatures met in practice and the factors climb to them (×4 each)
+/// in a few tries, and no lower than needed: a shift of 1e-12 (the factor's own) is round-off.
 const SMALLEST_DESCENT_SHIFT: f64 = 1e-8;
-/// Newton–Raphson gives up after this many steps down Π from unstable states: a buckled
-/// network of the coursework (10 × 10) settles in 4 to 6; networks at their rigidity threshold
-/// that take more are left with no answer, as before the descent.
+/// Newton–Raphson gives up after this many steps down Π from unstable states: the buckled
+/// networks of the coursework (10 × 10) settle in 4 and 6, 30 diluted networks of the
+/// lattice-types study in 1 to 8; the 152 others there that Newton leaves without an answer
+/// keep their linear one, as before the descent. Each step costs a factorisation or more: the
+/// 8 steps cost that campaign ~10 of its ~16 CPU-s.
 const DESCENT_STEPS: usize = 8;
 /// A descent stays within this strain of every bond (|δ|/rest): it finds the buckled state of
 /// small strains, not one of large rotations and bonds passed through each other, which a
@@ -199,6 +203,8 @@ impl<'a> Solver<'a> {
     ) -> Option<StaticSolution> {
         let load_norm = euclidean_norm(self.truss.load_vector(&self.dofs).iter());
         let (mut iterations, mut shift) = (0, SMALLEST_DESCENT_SHIFT);
+        // The descents of this solve: they choose its solves and count against its cap.
+        self.convergence.descents = 0;
         while iterations < NEWTON_ITERATIONS {
             let residual = self.assemble(law, &ux, &uy);
             let norm = euclidean_norm(residual.iter());
@@ -257,8 +263,12 @@ impl<'a> Solver<'a> {
         let analysis = self.analysis.clone()?;
         let Solver { truss, dofs, factor, stiffness, convergence, .. } = self;
         let factor = factor.get_or_insert_with(|| Factor::new(analysis));
+        // The factor is about to hold K_t + μ s I, not K_t: no solve may take it for K_t's.
         self.fresh = false;
         convergence.descents += 1;
+        // A state already strained beyond the limit (a power law's, a pre-stretched bond's)
+        // may keep its strain, not grow it.
+        let strain_limit = DESCENT_STRAIN.max(truss.largest_strain(ux, uy));
         while *shift <= 1.0 {
             convergence.factorisations += 1;
             if factor.factorise(stiffness, *shift) {
@@ -267,7 +277,7 @@ impl<'a> Solver<'a> {
                 let tried_x: Vec<f64> = ux.iter().zip(&dx).map(|(u, d)| u + d).collect();
                 let tried_y: Vec<f64> = uy.iter().zip(&dy).map(|(u, d)| u + d).collect();
                 if truss.potential(law, &tried_x, &tried_y, dofs) < before
-                    && truss.largest_strain(&tried_x, &tried_y) <= DESCENT_STRAIN
+                    && truss.largest_strain(&tried_x, &tried_y) <= strain_limit
                 {
                     (*ux, *uy, *shift) = (tried_x, tried_y, (*shift / 2.0).max(SMALLEST_DESCENT_SHIFT));
                     return Some(());

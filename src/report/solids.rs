@@ -173,10 +173,14 @@ const SHEAR: usize = 1;
 const POISSON: usize = 2;
 
 /// E, G and ν of a run at rest: MD's, or for a run set to its static answer (`relax.method:
-/// static`, no MD) the static answer's, E and G the linear ones where no non-linear one exists.
+/// static`, no MD) the static answer's, E and G the linear ones where no non-linear one exists
+/// or where the load buckled the network (`static_descent_steps` > 0: the buckled state's
+/// moduli are the load's, not the network's linear elasticity the ensembles are set against).
 fn at_rest(r: &RunRecord) -> [Option<f64>; 3] {
     let l = &r.metrics.lattice;
-    if r.spec.static_only() {
+    if r.spec.static_only() && l.static_descent_steps.is_some_and(|n| n > 0) {
+        [l.youngs_modulus_linear, l.shear_modulus_linear, None]
+    } else if r.spec.static_only() {
         [
             l.youngs_modulus_fem.or(l.youngs_modulus_linear),
             l.shear_modulus_fem.or(l.shear_modulus_linear),

@@ -89,9 +89,9 @@ fn cut_sentences(e: &Evidence, runs: &[&RunRecord]) -> Vec<String> {
             carried.len()
         ),
         rigidity_sentence(runs),
-        buckling_sentence(&carried),
     ]
     .into_iter()
+    .chain(buckling_sentence(&carried))
     .chain(relaxation_sentence(e, runs))
     .collect()
 }
@@ -101,11 +101,13 @@ fn cut_sentences(e: &Evidence, runs: &[&RunRecord]) -> Vec<String> {
 struct Buckled {
     /// Its run id, cut fraction, seed and load case.
     label: String,
-    /// The static answer's modulus over that of the answer of small displacements, less 1.
-    softening: f64,
+    /// The static answer's modulus over that of the answer of small displacements, less 1
+    /// (mostly softer: a negative number).
+    change: f64,
     /// MD's modulus over the static answer's, less 1.
     departure: f64,
-    /// Whether MD's modulus lies within its relaxation's error bound of the static answer's.
+    /// Whether MD's modulus lies within its relaxation's error bound of the static answer's;
+    /// `None` where the run has no bound (k_min = 0, or velocity control).
     within_bound: Option<bool>,
 }
 
@@ -127,49 +129,84 @@ fn buckled_runs(carried: &[&&RunRecord]) -> Vec<Buckled> {
             let within_bound = m.relax_error_bound.map(|bound| departure.abs() <= bound);
             let l = r.spec.lattice()?;
             let label = format!("{} (cut {:.2}, seed {}, {})", r.run_id, l.cut_fraction, l.seed, l.load_name());
-            Some(Buckled { label, softening: fem / linear - 1.0, departure, within_bound })
+            Some(Buckled { label, change: fem / linear - 1.0, departure, within_bound })
         })
         .collect()
 }
 
 /// Which relaxed cut networks their load buckles: the answer of small displacements is then an
 /// unstable equilibrium (a floppy mode under compression), and the static solver and MD each
-/// leave it for a stable state; how much softer that state is, and how near MD settles to the
-/// static one. Says so when no network buckles.
-fn buckling_sentence(carried: &[&&RunRecord]) -> String {
-    let buckled = buckled_runs(carried);
+/// leave it; how far the static answer's modulus moved, and how near MD ended to it. Says so
+/// when no network buckles, and how many have no non-linear static answer at all; nothing
+/// without relaxed runs.
+fn buckling_sentence(carried: &[&&RunRecord]) -> Option<String> {
     let relaxed = match carried.len() {
+        0 => return None,
         1 => "the one relaxed run".to_string(),
         n => format!("the {n} relaxed runs"),
     };
+    let newton = carried.iter().filter(|r| r.metrics.lattice.static_descent_steps == Some(0)).count();
+    let unanswered = match carried.iter().filter(|r| r.metrics.lattice.static_descent_steps.is_none()).count() {
+        0 => String::new(),
+        1 => "; 1 relaxed run has no non-linear static answer (Newton–Raphson did not converge, even by descent), \
+              and its linear one stands"
+            .to_string(),
+        n => format!(
+            "; {n} relaxed runs have no non-linear static answer (Newton–Raphson did not converge, even by descent), \
+             and their linear ones stand"
+        ),
+    };
+    let buckled = buckled_runs(carried);
     if buckled.is_empty() {
-        return format!(
-            "None of {relaxed} buckles under its load: each static answer came from the answer of small \
-             displacements by Newton–Raphson, the tangent stiffness positive definite on the way."
-        );
+        let how = match (newton, carried.len()) {
+            (1, 1) => "its static answer came".to_string(),
+            (n, all) if n == all => "every static answer came".to_string(),
+            (n, _) => format!("{n} of the static answers came"),
+        };
+        return Some(format!(
+            "None of {relaxed} buckles under its load: {how} from the answer of small displacements by \
+             Newton–Raphson alone{unanswered}."
+        ));
     }
     let names: Vec<&str> = buckled.iter().map(|b| b.label.as_str()).collect();
-    let (softest, least) = extremes(&buckled.iter().map(|b| b.softening).collect::<Vec<f64>>());
-    let change =
-        if buckled.len() == 1 { percent(softest) } else { format!("{} to {}", percent(softest), percent(least)) };
-    let furthest = buckled.iter().map(|b| b.departure.abs()).fold(0.0, f64::max);
-    let bounded = buckled.iter().filter(|b| b.within_bound == Some(true)).count();
-    let verdict = match (bounded, buckled.len()) {
-        (1, 1) => ", within its relaxation's error bound".to_string(),
-        (n, all) if n == all => ", each within its relaxation's error bound".to_string(),
-        (n, all) => format!(", {n} of {all} within their relaxation's error bound"),
-    };
-    format!(
+    let (most, least) = extremes(&buckled.iter().map(|b| b.change).collect::<Vec<f64>>());
+    let change = if buckled.len() == 1 { percent(most) } else { format!("{} to {}", percent(most), percent(least)) };
+    Some(format!(
         "{} of {relaxed} {} under {} load ({}): the answer of small displacements is an unstable equilibrium, a \
          floppy mode under compression (the tangent stiffness there is not positive definite), so the static solver \
-         descends the potential energy from it to a stable state whose modulus is {change} against it; MD leaves the \
-         unstable state by itself and settles in the same one, within {} of its modulus{verdict}.",
+         descends the potential energy from it to a stable state whose modulus is {change} against it; {}{unanswered}.",
         buckled.len(),
         if buckled.len() == 1 { "buckles" } else { "buckle" },
         if buckled.len() == 1 { "its" } else { "their" },
         names.join("; "),
-        sig(furthest),
-    )
+        md_clause(&buckled),
+    ))
+}
+
+/// How near MD ended to the buckled runs' static answers: "settles in the same one" only where
+/// every run is within its relaxation's error bound.
+fn md_clause(buckled: &[Buckled]) -> String {
+    let furthest = sig(buckled.iter().map(|b| b.departure.abs()).fold(0.0, f64::max));
+    let within = buckled.iter().filter(|b| b.within_bound == Some(true)).count();
+    let unbounded = buckled.iter().filter(|b| b.within_bound.is_none()).count();
+    match (within, buckled.len()) {
+        (1, 1) => format!(
+            "MD leaves the unstable state by itself and settles in the same one, within {furthest} of its modulus, \
+             within its relaxation's error bound"
+        ),
+        (n, all) if n == all => format!(
+            "MD leaves the unstable state by itself and settles in the same ones, within {furthest} of their \
+             moduli, each within its relaxation's error bound"
+        ),
+        (n, all) => format!(
+            "MD ends within {furthest} of their moduli: {n} of {all} within their relaxation's error bound{}",
+            if unbounded > 0 {
+                format!(", {unbounded} without one (k_min = 0 or velocity control)")
+            } else {
+                String::new()
+            }
+        ),
+    }
 }
 
 /// What "relax the system first" means here, and how long the cut networks' relaxation under
