@@ -1,7 +1,7 @@
 //! The report's sentences are claims computed from the data: each test builds small campaigns
 //! on both sides of a claim and sees the sentence flip with the data.
 
-use crate::common::{execute_all, line_with, mdsolids_ok, number_after, report_of};
+use crate::common::{cut_steel_block, execute_all, line_with, mdsolids_ok, number_after, report_of};
 
 /// A 4 × 4 loaded lattice, m = k = 1, with `damping` (a YAML flow map) and a `grid` line.
 fn loaded_lattice(damping: &str, grid: &str) -> String {
@@ -190,23 +190,11 @@ fn the_cut_networks_relaxation_is_counted_in_steps_per_cut_fraction() {
     assert!(sentence.contains(&stated), "{stated}: {sentence}");
 }
 
-/// The coursework's cut steel block pulled along x at 1 kN per node: seed 3's load buckles its
-/// network, seed 1's does not (`lattice::a_network_its_load_buckles_settles_by_md_and_statically_in_one_softer_state`).
-fn buckling_block(seeds: &str) -> String {
-    format!(
-        "version: 1\nname: rnd\nscenes:\n  - name: random\n    kind: lattice\n    material: {{mass: 0.785, k: 2.0e9}}\n    \
-         geometry: {{spacing: 0.1, depth: 0.01}}\n    damping: {{restitution: 0.5, background: 1000.0}}\n    \
-         time: {{integrator: velocity-verlet}}\n    lattice: {{size: 10, k_diag_ratio: 0.5, cut_fraction: 0.3}}\n    \
-         load: {{case: tensile-x, per_node: 1000.0}}\n    relax: {{residual_force: 1.0e-6, max_tc: 20000}}\n    \
-         grid:\n      seed: {seeds}\n"
-    )
-}
-
 #[test]
 fn a_buckled_network_is_named_with_its_softening_from_the_records() {
     // With seed 3 the sentence names its run and states its softening and MD's departure as the
     // records give them; with seed 1 alone nothing buckles, and the sentence says so.
-    let yaml = buckling_block("[1, 3]");
+    let yaml = cut_steel_block("linear", "[1, 3]");
     let records = execute_all(&yaml);
     let l = &records[1].metrics.lattice;
     let fem = l.youngs_modulus_fem.unwrap();
@@ -222,7 +210,7 @@ fn a_buckled_network_is_named_with_its_softening_from_the_records() {
     let md = number_after(sentence, "settles in the same one, within ");
     assert!((md / departure - 1.0).abs() < 1e-3, "{md} against {departure}");
     assert!(sentence.ends_with("of its modulus, within its relaxation's error bound."), "{sentence}");
-    let alone = report_of("rnd", &buckling_block("[1]"));
+    let alone = report_of("rnd", &cut_steel_block("linear", "[1]"));
     let sentence = line_with(&alone, "buckles under its load");
     assert!(sentence.starts_with("- None of the one relaxed run buckles under its load"), "{sentence}");
 }

@@ -129,3 +129,16 @@ pub fn number_after(text: &str, marker: &str) -> f64 {
 pub fn line_with<'a>(report: &'a str, marker: &str) -> &'a str {
     report.lines().find(|l| l.contains(marker)).unwrap_or_else(|| panic!("no line with {marker:?}"))
 }
+
+/// The coursework's steel block (10 × 10, k_d/k = 0.5) cut at 0.3 and pulled along x at 1 kN
+/// per node, with springs of `law`, over `seeds`: seed 3's load buckles its network, seed 1's
+/// does not (`lattice::a_network_its_load_buckles_settles_by_md_and_statically_in_one_softer_state`).
+pub fn cut_steel_block(law: &str, seeds: &str) -> String {
+    format!(
+        "version: 1\nname: rnd\nscenes:\n  - name: random\n    kind: lattice\n    material: {{mass: 0.785, k: 2.0e9, law: {law}}}\n    \
+         geometry: {{spacing: 0.1, depth: 0.01}}\n    damping: {{restitution: 0.5, background: 1000.0}}\n    \
+         time: {{integrator: velocity-verlet}}\n    lattice: {{size: 10, k_diag_ratio: 0.5, cut_fraction: 0.3}}\n    \
+         load: {{case: tensile-x, per_node: 1000.0}}\n    relax: {{residual_force: 1.0e-6, max_tc: 20000}}\n    \
+         grid:\n      seed: {seeds}\n"
+    )
+}

@@ -1,7 +1,7 @@
 //! Lattices under load: MD relaxed against the static truss answer of the same network, the
 //! static answer against hand-derived and continuum values, mechanisms and relaxation outcomes.
 
-use crate::common::{assert_table_finite, execute_all, runs};
+use crate::common::{assert_table_finite, cut_steel_block, execute_all, runs};
 use mdsolids::runner::RunRecord;
 use mdsolids::sim::RunStatus;
 
@@ -502,20 +502,10 @@ fn a_spread_networks_e_lies_within_its_bounds_from_the_uniform_network() {
 /// does not buckle: no descent, and its static E is E_linear but for the strain (~1e-5).
 #[test]
 fn a_network_its_load_buckles_settles_by_md_and_statically_in_one_softer_state() {
-    let yaml = "version: 1\nname: t\nscenes:\n  - name: l\n    kind: lattice\n    material: {mass: 0.785, k: 2.0e9}\n    \
-                geometry: {spacing: 0.1, depth: 0.01}\n    damping: {restitution: 0.5, background: 1000.0}\n    \
-                time: {integrator: velocity-verlet}\n    lattice: {size: 10, k_diag_ratio: 0.5, cut_fraction: 0.3}\n    \
-                load: {case: tensile-x, per_node: 1000.0}\n    relax: {residual_force: 1.0e-6, max_tc: 20000}\n    \
-                grid:\n      seed: [1, 3]\n";
-    let records = execute_all(yaml);
+    let records = execute_all(&cut_steel_block("linear", "[1, 3]"));
     let [upright, buckled] = [&records[0], &records[1]];
     for r in [upright, buckled] {
-        let l = &r.metrics.lattice;
-        assert_eq!(r.status, RunStatus::Ok, "{}", label(r));
-        assert!(l.static_residual.is_some_and(|r| r <= 1e-12) && l.stiffness_min.is_some_and(|k| k > 0.0));
-        let bound = l.relax_error_bound.expect("a stable answer bounds MD's error");
-        let (md, fem) = (l.youngs_modulus, l.youngs_modulus_fem);
-        assert!(relative(md, fem) <= bound, "{}: MD {md:?} against {fem:?} (bound {bound})", label(r));
+        settles_by_md_in_its_static_answer(r);
     }
     let l = &upright.metrics.lattice;
     assert_eq!(l.static_descent_steps, Some(0), "{}", label(upright));
@@ -524,4 +514,26 @@ fn a_network_its_load_buckles_settles_by_md_and_statically_in_one_softer_state()
     assert!(l.static_descent_steps.is_some_and(|n| n > 0), "{}: descended", label(buckled));
     let (fem, linear) = (l.youngs_modulus_fem, l.youngs_modulus_linear);
     assert!(relative(fem, linear) > 0.1 && fem < linear, "{fem:?} against the saddle's {linear:?}");
+}
+
+/// A relaxed run whose static answer is a stable equilibrium (Newton's residual ≤ 1e-12 of the
+/// load, k_min > 0), and MD's E within its relaxation's rigorous error bound of it.
+fn settles_by_md_in_its_static_answer(r: &RunRecord) {
+    let l = &r.metrics.lattice;
+    assert_eq!(r.status, RunStatus::Ok, "{}", label(r));
+    assert!(l.static_residual.is_some_and(|r| r <= 1e-12) && l.stiffness_min.is_some_and(|k| k > 0.0));
+    let bound = l.relax_error_bound.expect("a stable answer bounds MD's error");
+    let (md, fem) = (l.youngs_modulus, l.youngs_modulus_fem);
+    assert!(relative(md, fem) <= bound, "{}: MD {md:?} against {fem:?} (bound {bound})", label(r));
+}
+
+/// The same network with Hertz springs (a power law, linearised at the load's deformation for
+/// Newton's start): its load buckles it too, the static solver descends, and MD settles in the
+/// same state within its error bound (~1e-6).
+#[test]
+fn a_hertz_network_its_load_buckles_settles_by_md_and_statically_in_one_state() {
+    let records = execute_all(&cut_steel_block("hertz", "[3]"));
+    let buckled = &records[0];
+    assert!(buckled.metrics.lattice.static_descent_steps.is_some_and(|n| n > 0), "{}: descended", label(buckled));
+    settles_by_md_in_its_static_answer(buckled);
 }
