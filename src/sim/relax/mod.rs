@@ -30,7 +30,7 @@ pub enum RelaxMethod {
     /// Non-linear conjugate gradients, Polak–Ribière+, with a secant line search.
     Cg,
     /// No relaxation: the positions are set to the static solution of the same network
-    /// ([`crate::fem::Truss::solve_nonlinear`], which every loaded lattice solves beside its
+    /// ([`crate::fem::Solver::solve_static`], which every loaded lattice solves beside its
     /// run) and measured there, for scenes that ask what a network does at rest (isotropy,
     /// rigidity percolation) and gain nothing from MD.
     Static,
