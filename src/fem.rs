@@ -229,19 +229,18 @@ impl<'a> Truss<'a> {
 
     /// The total potential energy Π = Σ U(δ_b) − f·u (J) at displacements `(ux, uy)`: the
     /// springs' energy less the loads' work on the free degrees of freedom (a held one does not
-    /// move under its load). The static answer is a stationary point of Π, stable where Π is
-    /// least.
-    fn potential<L: ForceLaw>(&self, law: &L, ux: &[f64], uy: &[f64], dofs: &Dofs) -> f64 {
-        let stored: f64 =
-            (0..self.bonds.len()).map(|b| law.energy(self.bonds.stiffness[b], self.bond_geometry(b, ux, uy).2)).sum();
+    /// move under its load), and the largest |δ|/rest over the bonds (how far the state is from
+    /// small strains), in one pass over them. The static answer is a stationary point of Π,
+    /// stable where Π is least.
+    fn potential<L: ForceLaw>(&self, law: &L, ux: &[f64], uy: &[f64], dofs: &Dofs) -> (f64, f64) {
+        let (mut stored, mut largest_strain) = (0.0, 0.0f64);
+        for b in 0..self.bonds.len() {
+            let extension = self.bond_geometry(b, ux, uy).2;
+            stored += law.energy(self.bonds.stiffness[b], extension);
+            largest_strain = largest_strain.max((extension / self.bonds.rest[b]).abs());
+        }
         let work: f64 = self.load_vector(dofs).iter().zip(dofs.gather(ux, uy)).map(|(f, u)| f * u).sum();
-        stored - work
-    }
-
-    /// The largest |δ|/rest over the bonds at displacements `(ux, uy)`: how far a state is from
-    /// small strains.
-    fn largest_strain(&self, ux: &[f64], uy: &[f64]) -> f64 {
-        (0..self.bonds.len()).map(|b| (self.bond_geometry(b, ux, uy).2 / self.bonds.rest[b]).abs()).fold(0.0, f64::max)
+        (stored - work, largest_strain)
     }
 
     fn dofs(&self) -> Dofs {

@@ -259,7 +259,7 @@ impl<'a> Solver<'a> {
         residual: &[f64],
         shift: &mut f64,
     ) -> Option<()> {
-        let before = self.truss.potential(law, ux, uy, &self.dofs);
+        let (before, strained) = self.truss.potential(law, ux, uy, &self.dofs);
         let analysis = self.analysis.clone()?;
         let Solver { truss, dofs, factor, stiffness, convergence, .. } = self;
         let factor = factor.get_or_insert_with(|| Factor::new(analysis));
@@ -268,7 +268,7 @@ impl<'a> Solver<'a> {
         convergence.descents += 1;
         // A state already strained beyond the limit (a power law's, a pre-stretched bond's)
         // may keep its strain, not grow it.
-        let strain_limit = DESCENT_STRAIN.max(truss.largest_strain(ux, uy));
+        let strain_limit = DESCENT_STRAIN.max(strained);
         while *shift <= 1.0 {
             convergence.factorisations += 1;
             if factor.factorise(stiffness, *shift) {
@@ -276,9 +276,8 @@ impl<'a> Solver<'a> {
                 let (dx, dy) = dofs.expand(&factor.solve(residual)?);
                 let tried_x: Vec<f64> = ux.iter().zip(&dx).map(|(u, d)| u + d).collect();
                 let tried_y: Vec<f64> = uy.iter().zip(&dy).map(|(u, d)| u + d).collect();
-                if truss.potential(law, &tried_x, &tried_y, dofs) < before
-                    && truss.largest_strain(&tried_x, &tried_y) <= strain_limit
-                {
+                let (after, strain) = truss.potential(law, &tried_x, &tried_y, dofs);
+                if after < before && strain <= strain_limit {
                     (*ux, *uy, *shift) = (tried_x, tried_y, (*shift / 2.0).max(SMALLEST_DESCENT_SHIFT));
                     return Some(());
                 }

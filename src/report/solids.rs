@@ -178,16 +178,14 @@ const POISSON: usize = 2;
 /// moduli are the load's, not the network's linear elasticity the ensembles are set against).
 fn at_rest(r: &RunRecord) -> [Option<f64>; 3] {
     let l = &r.metrics.lattice;
-    if r.spec.static_only() && l.static_descent_steps.is_some_and(|n| n > 0) {
-        [l.youngs_modulus_linear, l.shear_modulus_linear, None]
-    } else if r.spec.static_only() {
-        [
+    match (r.spec.static_only(), l.buckled()) {
+        (true, true) => [l.youngs_modulus_linear, l.shear_modulus_linear, None],
+        (true, false) => [
             l.youngs_modulus_fem.or(l.youngs_modulus_linear),
             l.shear_modulus_fem.or(l.shear_modulus_linear),
             l.poisson_ratio_fem,
-        ]
-    } else {
-        [l.youngs_modulus, l.shear_modulus, l.poisson_ratio]
+        ],
+        (false, _) => [l.youngs_modulus, l.shear_modulus, l.poisson_ratio],
     }
 }
 

@@ -131,6 +131,14 @@ pub struct LatticeMetrics {
     pub edge_displacements: Option<EdgeDisplacements>,
 }
 
+impl LatticeMetrics {
+    /// Whether its load buckled the network: the static solve descended from an unstable
+    /// state (`static_descent_steps` > 0), so its `*_fem` twins are those of a buckled state.
+    pub fn buckled(&self) -> bool {
+        self.static_descent_steps.is_some_and(|n| n > 0)
+    }
+}
+
 /// The relaxed displacements (m) of a lattice's edge nodes: 2 N_y + N_x numbers, where a
 /// homogeneous strain makes each profile a straight line (the top row flat under tension).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]

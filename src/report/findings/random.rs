@@ -114,10 +114,9 @@ struct Buckled {
 /// The relaxed runs among `carried` whose static solve descended from an unstable state, with
 /// the modulus each measures (E pulled, G sheared).
 fn buckled_runs(carried: &[&&RunRecord]) -> Vec<Buckled> {
-    let descended = |r: &&&&RunRecord| r.metrics.lattice.static_descent_steps.is_some_and(|n| n > 0);
     carried
         .iter()
-        .filter(descended)
+        .filter(|r| r.metrics.lattice.buckled())
         .filter_map(|r| {
             let m = &r.metrics.lattice;
             let (md, fem, linear) = match (m.youngs_modulus_fem, m.shear_modulus_fem) {
@@ -148,13 +147,17 @@ fn buckling_sentence(carried: &[&&RunRecord]) -> Option<String> {
     let newton = carried.iter().filter(|r| r.metrics.lattice.static_descent_steps == Some(0)).count();
     let unanswered = match carried.iter().filter(|r| r.metrics.lattice.static_descent_steps.is_none()).count() {
         0 => String::new(),
-        1 => "; 1 relaxed run has no non-linear static answer (Newton–Raphson did not converge, even by descent), \
-              and its linear one stands"
-            .to_string(),
-        n => format!(
-            "; {n} relaxed runs have no non-linear static answer (Newton–Raphson did not converge, even by descent), \
-             and their linear ones stand"
-        ),
+        n => {
+            let (runs, have, its) = if n == 1 {
+                ("run", "has", "its linear one stands")
+            } else {
+                ("runs", "have", "their linear ones stand")
+            };
+            format!(
+                "; {n} relaxed {runs} {have} no non-linear static answer (Newton–Raphson did not converge, even by \
+                 descent), and {its}"
+            )
+        }
     };
     let buckled = buckled_runs(carried);
     if buckled.is_empty() {
@@ -190,14 +193,14 @@ fn md_clause(buckled: &[Buckled]) -> String {
     let within = buckled.iter().filter(|b| b.within_bound == Some(true)).count();
     let unbounded = buckled.iter().filter(|b| b.within_bound.is_none()).count();
     match (within, buckled.len()) {
-        (1, 1) => format!(
-            "MD leaves the unstable state by itself and settles in the same one, within {furthest} of its modulus, \
-             within its relaxation's error bound"
-        ),
-        (n, all) if n == all => format!(
-            "MD leaves the unstable state by itself and settles in the same ones, within {furthest} of their \
-             moduli, each within its relaxation's error bound"
-        ),
+        (n, all) if n == all => {
+            let (ones, moduli, each) =
+                if all == 1 { ("one", "its modulus", "") } else { ("ones", "their moduli", "each ") };
+            format!(
+                "MD leaves the unstable state by itself and settles in the same {ones}, within {furthest} of {moduli}, \
+                 {each}within its relaxation's error bound"
+            )
+        }
         (n, all) => format!(
             "MD ends within {furthest} of their moduli: {n} of {all} within their relaxation's error bound{}",
             if unbounded > 0 {
