@@ -15,6 +15,7 @@ use crate::report::jamming::{
 };
 use crate::report::words::number;
 use crate::runner::RunRecord;
+use crate::study::packing::{ROUND_OFF_MARGIN, STRAIN, STRAINED_RESIDUAL};
 
 /// The reference of every number here.
 const CITATION: &str = "O'Hern, Silbert, Liu & Nagel, Phys. Rev. E 68, 011306 (2003)";
@@ -37,60 +38,110 @@ const EXPONENT_TOLERANCE: f64 = 0.15;
 /// How far a modulus by strain may be from the stiffness matrix's and agree with it (relative).
 const STRAINED_AGREEMENT: f64 = 0.01;
 
-/// A modulus of a packing, both ways: (its name, from the stiffness matrix, by strain).
-type Twin = (&'static str, fn(&RunRecord) -> Option<f64>, fn(&RunRecord) -> Option<f64>);
+/// A modulus of a packing, both ways: (its name, from the stiffness matrix, by strain, the
+/// contacts made or broken by its strains).
+type Twin = (&'static str, fn(&RunRecord) -> Option<f64>, fn(&RunRecord) -> Option<f64>, fn(&RunRecord) -> Option<u64>);
 
 /// K and G, each from the stiffness matrix and by strain and relaxation.
 const TWINS: [Twin; 2] = [
-    ("K", |r| r.metrics.packing.bulk_modulus_2d, |r| r.metrics.packing.bulk_modulus_2d_strained),
-    ("G", |r| r.metrics.packing.shear_modulus_2d, |r| r.metrics.packing.shear_modulus_2d_strained),
+    (
+        "K",
+        |r| r.metrics.packing.bulk_modulus_2d,
+        |r| r.metrics.packing.bulk_modulus_2d_strained,
+        |r| r.metrics.packing.bulk_strain_contact_changes,
+    ),
+    (
+        "G",
+        |r| r.metrics.packing.shear_modulus_2d,
+        |r| r.metrics.packing.shear_modulus_2d_strained,
+        |r| r.metrics.packing.shear_strain_contact_changes,
+    ),
 ];
+
+/// A modulus by strain beside the stiffness matrix's: its packing, whether it parts from it
+/// (by more than [`STRAINED_AGREEMENT`]) and whether a contact was made or broken within its
+/// strain.
+struct Compared<'a> {
+    packing: &'a RunRecord,
+    parted: bool,
+    changed: bool,
+}
 
 /// The moduli by strain (the issue's "by MD under a small strain beside them") against the
 /// stiffness matrix's, per contact law: in how many jammed packings they agree within
-/// [`STRAINED_AGREEMENT`], and where they part, by the median G/K and p of those packings
-/// against all: the strain's energy ε² U'' is smallest beside the relaxation's floor there.
+/// [`STRAINED_AGREEMENT`], and where they part, why ([`parted_words`]).
 fn strained_sentence(runs: &[&RunRecord]) -> Option<String> {
     let jammed: Vec<&RunRecord> = runs.iter().copied().filter(|r| jammed(r)).collect();
     let mut betas: Vec<f64> = jammed.iter().map(|r| r.spec.law.beta()).collect();
     betas.sort_by(f64::total_cmp);
     betas.dedup();
-    let (mut laws, mut compared, mut apart) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut laws, mut compared) = (Vec::new(), Vec::new());
     for beta in betas {
         let mut counts = Vec::new();
-        for (name, matrix, strained) in TWINS {
-            let pairs: Vec<(&RunRecord, f64)> = jammed
+        for (name, matrix, strained, changes) in TWINS {
+            let of_law: Vec<Compared> = jammed
                 .iter()
                 .filter(|r| r.spec.law.beta() == beta)
-                .filter_map(|r| Some((*r, (strained(r)? / matrix(r).filter(|m| *m > 0.0)? - 1.0).abs())))
+                .filter_map(|r| {
+                    let apart = (strained(r)? / matrix(r).filter(|m| *m > 0.0)? - 1.0).abs();
+                    Some(Compared { packing: r, parted: apart > STRAINED_AGREEMENT, changed: changes(r)? > 0 })
+                })
                 .collect();
-            let parted: Vec<&RunRecord> =
-                pairs.iter().filter(|(_, d)| *d > STRAINED_AGREEMENT).map(|(r, _)| *r).collect();
-            counts.push(format!("{name} {} of {}", pairs.len() - parted.len(), pairs.len()));
-            compared.extend(pairs.iter().map(|(r, _)| *r));
-            apart.extend(parted);
+            let agree = of_law.iter().filter(|c| !c.parted).count();
+            counts.push(format!("{name} {agree} of {}", of_law.len()));
+            compared.extend(of_law);
         }
         laws.push(format!("{} contacts, {}", law_words(beta), counts.join(" and ")));
     }
-    let agreement = format!(
-        "The same moduli by strain, beside the stiffness matrix's (each packing strained by ±1e-6, relaxed again, and K \
-         and G from its relaxed energies), agree with them within {} % in: {} (jammed packings with both)",
+    if compared.is_empty() {
+        return None;
+    }
+    Some(format!(
+        "The same moduli by strain, beside the stiffness matrix's (each packing relaxed again to forces below \
+         {STRAINED_RESIDUAL:e} k d^β, or {ROUND_OFF_MARGIN} times their round-off where that is larger, strained by \
+         ±{STRAIN:e}, relaxed again, and K and G from its relaxed energies), agree with them within {} % in: {} \
+         (jammed packings with both){}",
         number(100.0 * STRAINED_AGREEMENT),
-        laws.join("; ")
+        laws.join("; "),
+        parted_words(&compared)
+    ))
+}
+
+/// Where the moduli by strain part from the stiffness matrix's, from the records: how many
+/// of them, and of those that agree, have a contact made or broken within their strain (U is
+/// not smooth there: its second difference is no stiffness, unless the contact carries next
+/// to nothing), and the median G/K and p of the packings of the others that part against
+/// those of all. Only the full stop when none parts.
+fn parted_words(compared: &[Compared]) -> String {
+    let count =
+        |parted: bool, changed: bool| compared.iter().filter(|c| c.parted == parted && c.changed == changed).count();
+    let (apart, agree) = (count(true, true) + count(true, false), count(false, true) + count(false, false));
+    if apart == 0 {
+        return ".".into();
+    }
+    let across = format!(
+        ". Of the {apart} that part, the strains of {} make or break a contact (columns bulk_strain_contact_changes \
+         and shear_strain_contact_changes), against those of {} of the {agree} that agree: U is not smooth across \
+         it, and its second difference is no stiffness unless the contact carries next to nothing",
+        count(true, true),
+        count(false, true)
     );
-    Some(match (softness(&apart), softness(&compared)) {
+    let packings = |keep: &dyn Fn(&Compared) -> bool| compared.iter().filter(|c| keep(c)).map(|c| c.packing).collect();
+    let smooth: Vec<&RunRecord> = packings(&|c| c.parted && !c.changed);
+    let others = match (softness(&smooth), softness(&packings(&|_| true))) {
         (Some((ratio, p)), Some((ratio_all, p_all))) => format!(
-            "{agreement}. The packings where they part are the softest and nearest φ_J: their median G/K is {} and \
-             their median p {} N/m, against {} and {} N/m over all: there a strain of 1e-6 stores the least energy \
-             against the floor the minimiser relaxes to, so the fits and figures use the stiffness matrix's moduli.",
+            "; the {} without one {} G/K is {} and {}p {} N/m, against medians of {} and {} N/m over all",
+            smooth.len(),
+            if smooth.len() == 1 { "is of a packing whose" } else { "are of packings whose median" },
             sig(ratio),
+            if smooth.len() == 1 { "" } else { "median " },
             sig(p),
             sig(ratio_all),
             sig(p_all)
         ),
-        _ if compared.is_empty() => return None,
-        _ => format!("{agreement}."),
-    })
+        _ => String::new(),
+    };
+    format!("{across}{others}. The fits and figures use the stiffness matrix's moduli.")
 }
 
 /// The median G/K and median p (N/m) of `packings`, each counted once; `None` without any.
