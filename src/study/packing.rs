@@ -12,15 +12,15 @@ use super::columns::{Block, Column, Slot};
 use super::common::{relaxation, scene};
 use crate::fem::{Entry, factor_and_solve};
 use crate::measure::{ContactForces, DiscFrame, Discs};
-use crate::model::{Axes, Particles, PeriodicBox, random_bidisperse};
+use crate::model::{Axes, Contacts, Particles, PeriodicBox, random_bidisperse};
 use crate::sim::{Network, Outcome, Packing, Scene};
 use crate::spec::{PackingRun, PackingSpec, RunSpec};
 
 /// The skin of the contact list, in small diameters (LAMMPS's `neighbor 0.2 bin` at d = 1).
 const SKIN: f64 = 0.2;
-/// The strain of the strained relaxations, either way: small enough that no contact opens
-/// or closes at φ − φ_J ≳ 1e-5, large enough that ε² U'' stands above the floor of the
-/// strained relaxations ([`STRAINED_RESIDUAL`]).
+/// The strain of the strained relaxations, either way: small enough that few contacts open or
+/// close (the columns `*_strain_contact_changes` count them), large enough that ε² U'' stands
+/// above the floor of the strained relaxations ([`STRAINED_RESIDUAL`]).
 pub const STRAIN: f64 = 1e-6;
 /// The largest static force the strained relaxations (and the rest state they are compared
 /// with) relax to, a fraction of k d^β. A state relaxed to forces f_r holds an energy error of
@@ -64,13 +64,14 @@ pub struct PackingMetrics {
     pub bulk_modulus_2d: Option<f64>,
     /// G = (1/A) d²U/dγ² (N/m) under x → x + γ y, from the stiffness matrix.
     pub shear_modulus_2d: Option<f64>,
-    /// K from relaxed energies at ε = ±1e-6.
+    /// K from relaxed energies at ε = ±1e-6 ([`strained_second_derivative`]; jammed packings).
     pub bulk_modulus_2d_strained: Option<f64>,
-    /// G from relaxed energies at γ = ±1e-6.
+    /// G from relaxed energies at γ = ±1e-6 (jammed packings).
     pub shear_modulus_2d_strained: Option<f64>,
-    /// Pairs of discs that touch in one of the relaxed states at compression ±ε and not at
-    /// rest, or the other way round (summed over the two): where any is, U is not smooth
-    /// within the strain, and its second difference is no stiffness.
+    /// Pairs of discs that touch in one of the relaxed states at compression ±ε and not in
+    /// the run's state (where the stiffness matrix is taken), or the other way round, summed
+    /// over the two: where any is, U is not smooth within the strain, and its second
+    /// difference is no stiffness unless the contact carries next to nothing.
     pub bulk_strain_contact_changes: Option<u64>,
     /// The same under shear ±γ.
     pub shear_strain_contact_changes: Option<u64>,
@@ -167,7 +168,8 @@ pub(super) fn movie_discs(spec: &RunSpec, scene: &Scene, outcome: &Outcome) -> O
 }
 
 /// Measures the packing where its run stopped (relaxed or not): its geometry, contacts and
-/// pressure, whether it jammed, and its moduli both ways (relaxed runs only).
+/// pressure, whether it jammed, and its moduli from the stiffness matrix (relaxed runs) and by
+/// strain (jammed packings).
 pub(super) fn measure(spec: &RunSpec, scene: &Scene, outcome: &Outcome, m: &mut PackingMetrics) {
     let Network::Packing(packing) = &scene.network else { return };
     let p = &outcome.state.particles;
@@ -208,10 +210,13 @@ pub(super) fn measure(spec: &RunSpec, scene: &Scene, outcome: &Outcome, m: &mut 
     if relaxed {
         (m.bulk_modulus_2d, m.shear_modulus_2d) = stiffness_moduli(&forces, n, area);
         if let Some((rest, energy)) = jammed.then(|| polished(spec, scene, outcome)).flatten() {
-            let strained = |strain| strained_second_derivative(&rest, energy, strain);
-            let (bulk, shear) = (strained(BULK).unzip(), strained(SHEAR).unzip());
-            (m.bulk_modulus_2d_strained, m.bulk_strain_contact_changes) = (bulk.0.map(|u| u / (4.0 * area)), bulk.1);
-            (m.shear_modulus_2d_strained, m.shear_strain_contact_changes) = (shear.0.map(|u| u / area), shear.1);
+            let touching = pair_set(&forces.pairs);
+            let strained = |strain| strained_second_derivative(&rest, energy, &touching, strain);
+            let (bulk, bulk_changes) = strained(BULK).unzip();
+            let (shear, shear_changes) = strained(SHEAR).unzip();
+            (m.bulk_modulus_2d_strained, m.bulk_strain_contact_changes) =
+                (bulk.map(|u| u / (4.0 * area)), bulk_changes);
+            (m.shear_modulus_2d_strained, m.shear_strain_contact_changes) = (shear.map(|u| u / area), shear_changes);
         }
     }
 }
@@ -227,12 +232,18 @@ fn polished(spec: &RunSpec, scene: &Scene, outcome: &Outcome) -> Option<(Scene, 
     let relaxation = rest.sampling.relaxation.as_mut()?;
     relaxation.residual_force = Some(relaxation.residual_force.map_or(limit, |run| run.min(limit)));
     rest.particles = outcome.state.particles.clone();
+    at_rest(&mut rest.particles);
     let polished = rest.clone().run();
     let energy = polished.trace.relaxed_at.and(polished.trace.potential.last().copied())?;
     rest.particles = polished.state.particles;
-    rest.particles.vx.fill(0.0);
-    rest.particles.vy.fill(0.0);
+    at_rest(&mut rest.particles);
     Some((rest, energy))
+}
+
+/// `particles` brought to rest where they are (a minimiser starts from rest).
+fn at_rest(particles: &mut Particles) {
+    particles.vx.fill(0.0);
+    particles.vy.fill(0.0);
 }
 
 /// The largest static force (N) the strained relaxations relax to: [`STRAINED_RESIDUAL`] of
@@ -302,18 +313,23 @@ fn stiffness_modulus(forces: &ContactForces, backbone: &[usize], rattler: &[bool
 
 /// d²U/dε² (J) by relaxed energies: the packing at rest `rest` (energy `at_rest`, J) strained
 /// by ±ε along `strain` and relaxed again ([`strained_state`]), (U(+ε) − 2U(0) + U(−ε))/ε²,
-/// with the contacts made or broken on the way, over both. `None` when either does not relax.
-fn strained_second_derivative(rest: &Scene, at_rest: f64, strain: [f64; 4]) -> Option<(f64, u64)> {
-    let touching = touching_pairs(rest, &rest.particles)?;
-    let (plus, made_plus) = strained_state(rest, &touching, STRAIN, strain)?;
-    let (minus, made_minus) = strained_state(rest, &touching, -STRAIN, strain)?;
+/// with the pairs of discs that touch in either strained state and not in `touching` (the
+/// run's state's pairs), or the other way round, over both. `None` when either does not relax.
+fn strained_second_derivative(
+    rest: &Scene,
+    at_rest: f64,
+    touching: &BTreeSet<(usize, usize)>,
+    strain: [f64; 4],
+) -> Option<(f64, u64)> {
+    let (plus, made_plus) = strained_state(rest, touching, STRAIN, strain)?;
+    let (minus, made_minus) = strained_state(rest, touching, -STRAIN, strain)?;
     Some(((plus - 2.0 * at_rest + minus) / (STRAIN * STRAIN), made_plus + made_minus))
 }
 
 /// The packing at rest `rest` strained by `epsilon` along `strain` (positions and box
 /// together), relaxed again by its minimiser and criterion: its energy (J) and how many pairs
-/// of discs touch there but not in `touching` (the rest state's pairs), or the other way
-/// round. `None` when it does not relax.
+/// of discs touch there but not in `touching`, or the other way round. `None` when it does
+/// not relax.
 fn strained_state(
     rest: &Scene,
     touching: &BTreeSet<(usize, usize)>,
@@ -335,16 +351,15 @@ fn strained_state(
     }
     let relaxed = strained.clone().run();
     let energy = relaxed.trace.relaxed_at.and(relaxed.trace.potential.last().copied())?;
-    let changed = touching.symmetric_difference(&touching_pairs(&strained, &relaxed.state.particles)?).count();
-    Some((energy, changed as u64))
+    let Network::Packing(packing) = &strained.network else { return None };
+    let now = pair_set(&packing.overlapping(&relaxed.state.particles.x, &relaxed.state.particles.y));
+    Some((energy, touching.symmetric_difference(&now).count() as u64))
 }
 
-/// The pairs of discs (i < j) of `scene`'s packing that overlap at the positions of
-/// `particles`; `None` for another network.
-fn touching_pairs(scene: &Scene, particles: &Particles) -> Option<BTreeSet<(usize, usize)>> {
-    let Network::Packing(packing) = &scene.network else { return None };
-    let pairs = packing.overlapping(&particles.x, &particles.y);
-    Some(pairs.i.iter().zip(&pairs.j).map(|(&i, &j)| (i.min(j), i.max(j))).collect())
+/// The pairs of discs of `contacts` as (i, j), i < j (a pair touching through two images at
+/// once, possible only in a box under two large diameters wide, counts once).
+fn pair_set(contacts: &Contacts) -> BTreeSet<(usize, usize)> {
+    contacts.i.iter().zip(&contacts.j).map(|(&i, &j)| (i.min(j), i.max(j))).collect()
 }
 
 /// The packing's result columns: what was asked, what it became, and its moduli both ways.

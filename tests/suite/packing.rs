@@ -271,6 +271,7 @@ fn relaxed_packings_agree_on_their_moduli_and_are_recomputed_from_their_files() 
                 // ±1e-6 from that state relaxed again to 1e-13 k d^β. Observed: within
                 // 5.6e-6 of K (1.8e-4 when the strained relaxations stopped at 1e-9, the
                 // energy error f_r²/λ then a larger share of ε² U''); 2e-5 allows 3× that.
+                // Relative to K for both: G/K is ~0.1 here, so G's allowance is ~2e-4 of G.
                 let (a, b) = (numbers(&frame, affine)[row].unwrap(), numbers(&frame, strained)[row].unwrap());
                 let scale = numbers(&frame, "bulk_modulus_2d")[row].unwrap();
                 assert!((a - b).abs() < 2e-5 * scale, "{affine} {a} against {b}, row {row}");
@@ -468,12 +469,11 @@ fn the_jamming_item_states_phi_j_as_the_results_table_gives_it() {
 }
 
 /// A modulus by strain beside the stiffness matrix's, from the results table: G or K, whether
-/// it parts by more than 1 %, whether its strains made or broke a contact, and its row.
+/// it parts by more than 1 %, and whether its strains made or broke a contact.
 struct Twin {
     shear: bool,
     parted: bool,
     changed: bool,
-    row: usize,
 }
 
 /// Every modulus of a jammed packing that has both, recomputed from the results table.
@@ -488,7 +488,7 @@ fn twins(frame: &DataFrame) -> Vec<Twin> {
             let (Some(m), Some(s), Some(c)) = (matrix[row].filter(|m| *m > 0.0), strained[row], changes[row]) else {
                 continue;
             };
-            twins.push(Twin { shear, parted: (s / m - 1.0).abs() > 0.01, changed: c > 0.0, row });
+            twins.push(Twin { shear, parted: (s / m - 1.0).abs() > 0.01, changed: c > 0.0 });
         }
     }
     twins
@@ -515,52 +515,38 @@ fn strained_moduli_are_counted_as_the_table_gives_them(frame: &DataFrame, report
         return;
     }
     let stated = format!(
-        "Of the {apart} that part, the strains of {} make or break a contact (columns bulk_strain_contact_changes and \
+        "Of the {apart} that part{}, the strains of {} make or break a contact (columns bulk_strain_contact_changes and \
          shear_strain_contact_changes), against those of {} of the {} that agree",
+        if apart == 1 { "s" } else { "" },
         count(true, true),
         count(false, true),
         count(false, true) + count(false, false)
     );
     assert!(line.contains(&stated), "{line}: the table's {stated}");
+    // Why they part is said only where a contact was made or broken.
+    assert_eq!(line.contains("U is not smooth across such a contact"), count(true, true) > 0, "{line}");
 }
 
 #[test]
 fn moduli_by_strain_that_part_are_told_apart_by_the_contacts_their_strains_make_or_break() {
-    // Two packings whose G by strain parts from the stiffness matrix's (found in
-    // campaigns/jamming.yaml): 1024 discs at φ = 0.85 (seed 3), where the shear makes a
-    // contact (−17 %), and 256 at 0.90 (seed 7), near a shear instability (G/K ≈ 1e-3, +1.4 %),
-    // where it makes none; with one more fraction each, so that each seed has a φ_J.
+    // 64 linear discs at φ = 0.84, seed 19, whose K and G by strain part from the stiffness
+    // matrix's (−2 % and −36 %) across a contact their strains make or break (found by
+    // campaigns/jamming.yaml's scene over seeds 9 to 24: of its 1 120 moduli only this
+    // packing's two part, and in jamming.yaml itself the 3 of 707 that part all make or break
+    // one); with two more fractions, so that the seed has a φ_J. These states are FIRE's,
+    // which move with the forces' last bits: a change to the force loop may need the seed
+    // re-found. The other tests' campaigns have no modulus that parts: there the item says
+    // nothing of it (`strained_moduli_are_counted_as_the_table_gives_them`).
     let dir = crate::common::scratch();
-    let scene = |name: &str, n: u32, seed: u32, fractions: &str| {
-        format!(
-            "  - name: {name}\n    kind: packing\n    packing: {{n: {n}, fraction: 0.86}}\n    seed: {seed}\n    grid:\n      \
-             packing.fraction: {fractions}\n"
-        )
-    };
-    let yaml = format!(
-        "version: 1\nname: jam\nscenes:\n{}{}",
-        scene("wide", 1024, 3, "[0.85, 0.86]"),
-        scene("sheared", 256, 7, "[0.88, 0.90]")
-    );
-    let (frame, folder) = run_jam(dir.path(), &yaml);
+    let yaml = "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    packing: {n: 64, fraction: 0.86}\n    \
+                seed: 19\n    grid:\n      packing.fraction: [0.84, 0.86, 0.88]\n";
+    let (frame, folder) = run_jam(dir.path(), yaml);
     let report = std::fs::read_to_string(folder.join("report.md")).unwrap();
     let twins = twins(&frame);
-    let parted: Vec<&Twin> = twins.iter().filter(|t| t.parted).collect();
-    // The claim flips here: both kinds of parting are present (the other tests' campaigns
-    // have none, and their item says nothing of it).
-    assert!(parted.iter().any(|t| t.changed) && parted.iter().any(|t| !t.changed), "{}", parted.len());
+    assert!(twins.iter().any(|t| t.parted && t.changed), "a modulus parts across a contact change");
     strained_moduli_are_counted_as_the_table_gives_them(&frame, &report);
-    // The one without a contact made or broken: its G/K and p, from the table.
-    let [smooth] = parted.iter().filter(|t| !t.changed).collect::<Vec<_>>()[..] else { panic!("one smooth") };
-    let (g, k, p) =
-        (numbers(&frame, "shear_modulus_2d"), numbers(&frame, "bulk_modulus_2d"), numbers(&frame, "pressure"));
-    let line = line_with(&report, "the 1 without one is of a packing whose G/K is ");
-    let line = &line[line.find("the 1 without one").unwrap()..];
-    let ratio = g[smooth.row].unwrap() / k[smooth.row].unwrap();
-    // sig() writes 4 significant digits: within 1e-3 relative.
-    assert!((number_after(line, "whose G/K is ") / ratio - 1.0).abs() < 1e-3, "{line}: the table's {ratio}");
-    let pressure = p[smooth.row].unwrap();
-    assert!((number_after(line, " and p ") / pressure - 1.0).abs() < 1e-3, "{line}: the table's {pressure}");
+    let line = line_with(&report, "The same moduli by strain, beside the stiffness matrix's");
+    assert!(line.contains("U is not smooth across such a contact"), "{line}");
 }
 
 #[test]

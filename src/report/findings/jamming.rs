@@ -7,7 +7,7 @@
 use std::collections::BTreeMap;
 
 use super::finding::{Answer, Evidence, Table, Verdict, plus_minus, sig};
-use crate::measure::{line_fit, median};
+use crate::measure::line_fit;
 use crate::report::figure::{FigureKind, FigureRef};
 use crate::report::jamming::{
     FIT_FLOOR, ISOSTATIC, Onset, Scaling, excess, fitted, jammed, key, lower_half_onsets, onsets,
@@ -38,33 +38,40 @@ const EXPONENT_TOLERANCE: f64 = 0.15;
 /// How far a modulus by strain may be from the stiffness matrix's and agree with it (relative).
 const STRAINED_AGREEMENT: f64 = 0.01;
 
-/// A modulus of a packing, both ways: (its name, from the stiffness matrix, by strain, the
-/// contacts made or broken by its strains).
-type Twin = (&'static str, fn(&RunRecord) -> Option<f64>, fn(&RunRecord) -> Option<f64>, fn(&RunRecord) -> Option<u64>);
+/// A modulus of a packing, both ways.
+struct Twin {
+    /// K or G.
+    name: &'static str,
+    /// From the stiffness matrix (N/m).
+    matrix: fn(&RunRecord) -> Option<f64>,
+    /// By strain and relaxation (N/m).
+    strained: fn(&RunRecord) -> Option<f64>,
+    /// The pairs of discs its strains made or broke.
+    changes: fn(&RunRecord) -> Option<u64>,
+}
 
 /// K and G, each from the stiffness matrix and by strain and relaxation.
 const TWINS: [Twin; 2] = [
-    (
-        "K",
-        |r| r.metrics.packing.bulk_modulus_2d,
-        |r| r.metrics.packing.bulk_modulus_2d_strained,
-        |r| r.metrics.packing.bulk_strain_contact_changes,
-    ),
-    (
-        "G",
-        |r| r.metrics.packing.shear_modulus_2d,
-        |r| r.metrics.packing.shear_modulus_2d_strained,
-        |r| r.metrics.packing.shear_strain_contact_changes,
-    ),
+    Twin {
+        name: "K",
+        matrix: |r| r.metrics.packing.bulk_modulus_2d,
+        strained: |r| r.metrics.packing.bulk_modulus_2d_strained,
+        changes: |r| r.metrics.packing.bulk_strain_contact_changes,
+    },
+    Twin {
+        name: "G",
+        matrix: |r| r.metrics.packing.shear_modulus_2d,
+        strained: |r| r.metrics.packing.shear_modulus_2d_strained,
+        changes: |r| r.metrics.packing.shear_strain_contact_changes,
+    },
 ];
 
-/// A modulus by strain beside the stiffness matrix's: its packing, whether it parts from it
-/// (by more than [`STRAINED_AGREEMENT`]) and whether a contact was made or broken within its
-/// strain.
-struct Compared<'a> {
-    packing: &'a RunRecord,
+/// A modulus by strain beside the stiffness matrix's: whether it parts from it (by more than
+/// [`STRAINED_AGREEMENT`]) and whether a contact was made or broken within its strain (`None`
+/// in a record from before that was counted).
+struct Compared {
     parted: bool,
-    changed: bool,
+    changed: Option<bool>,
 }
 
 /// The moduli by strain (the issue's "by MD under a small strain beside them") against the
@@ -78,17 +85,18 @@ fn strained_sentence(runs: &[&RunRecord]) -> Option<String> {
     let (mut laws, mut compared) = (Vec::new(), Vec::new());
     for beta in betas {
         let mut counts = Vec::new();
-        for (name, matrix, strained, changes) in TWINS {
+        for twin in &TWINS {
             let of_law: Vec<Compared> = jammed
                 .iter()
                 .filter(|r| r.spec.law.beta() == beta)
                 .filter_map(|r| {
-                    let apart = (strained(r)? / matrix(r).filter(|m| *m > 0.0)? - 1.0).abs();
-                    Some(Compared { packing: r, parted: apart > STRAINED_AGREEMENT, changed: changes(r)? > 0 })
+                    let apart = ((twin.strained)(r)? / (twin.matrix)(r).filter(|m| *m > 0.0)? - 1.0).abs();
+                    let changed = (twin.changes)(r).map(|c| c > 0);
+                    Some(Compared { parted: apart > STRAINED_AGREEMENT, changed })
                 })
                 .collect();
             let agree = of_law.iter().filter(|c| !c.parted).count();
-            counts.push(format!("{name} {agree} of {}", of_law.len()));
+            counts.push(format!("{} {agree} of {}", twin.name, of_law.len()));
             compared.extend(of_law);
         }
         laws.push(format!("{} contacts, {}", law_words(beta), counts.join(" and ")));
@@ -108,50 +116,37 @@ fn strained_sentence(runs: &[&RunRecord]) -> Option<String> {
 }
 
 /// Where the moduli by strain part from the stiffness matrix's, from the records: how many
-/// of them, and of those that agree, have a contact made or broken within their strain (U is
-/// not smooth there: its second difference is no stiffness, unless the contact carries next
-/// to nothing), and the median G/K and p of the packings of the others that part against
-/// those of all. Only the full stop when none parts.
+/// of them, and of those that agree, have a contact made or broken within their strain, and
+/// where any has, why that parts them (U is not smooth there: its second difference is no
+/// stiffness, unless the contact carries next to nothing). Only the full stop when none parts.
 fn parted_words(compared: &[Compared]) -> String {
-    let count =
-        |parted: bool, changed: bool| compared.iter().filter(|c| c.parted == parted && c.changed == changed).count();
-    let (apart, agree) = (count(true, true) + count(true, false), count(false, true) + count(false, false));
+    let count = |keep: &dyn Fn(&Compared) -> bool| compared.iter().filter(|c| keep(c)).count();
+    let (apart, agree) = (count(&|c| c.parted), count(&|c| !c.parted));
     if apart == 0 {
         return ".".into();
     }
-    let across = format!(
-        ". Of the {apart} that part, the strains of {} make or break a contact (columns bulk_strain_contact_changes \
-         and shear_strain_contact_changes), against those of {} of the {agree} that agree: U is not smooth across \
-         it, and its second difference is no stiffness unless the contact carries next to nothing",
-        count(true, true),
-        count(false, true)
-    );
-    let packings = |keep: &dyn Fn(&Compared) -> bool| compared.iter().filter(|c| keep(c)).map(|c| c.packing).collect();
-    let smooth: Vec<&RunRecord> = packings(&|c| c.parted && !c.changed);
-    let others = match (softness(&smooth), softness(&packings(&|_| true))) {
-        (Some((ratio, p)), Some((ratio_all, p_all))) => format!(
-            "; the {} without one {} G/K is {} and {}p {} N/m, against medians of {} and {} N/m over all",
-            smooth.len(),
-            if smooth.len() == 1 { "is of a packing whose" } else { "are of packings whose median" },
-            sig(ratio),
-            if smooth.len() == 1 { "" } else { "median " },
-            sig(p),
-            sig(ratio_all),
-            sig(p_all)
+    let changed = count(&|c| c.parted && c.changed == Some(true));
+    let against = match agree {
+        0 => String::new(),
+        _ => format!(
+            ", against those of {} of the {agree} that agree{}",
+            count(&|c| !c.parted && c.changed == Some(true)),
+            if agree == 1 { "s" } else { "" }
         ),
-        _ => String::new(),
     };
-    format!("{across}{others}. The fits and figures use the stiffness matrix's moduli.")
-}
-
-/// The median G/K and median p (N/m) of `packings`, each counted once; `None` without any.
-fn softness(packings: &[&RunRecord]) -> Option<(f64, f64)> {
-    let mut once: Vec<&RunRecord> = packings.to_vec();
-    once.sort_by(|a, b| a.run_id.cmp(&b.run_id));
-    once.dedup_by(|a, b| a.run_id == b.run_id);
-    let ratio = |r: &&RunRecord| Some(r.metrics.packing.shear_modulus_2d? / r.metrics.packing.bulk_modulus_2d?);
-    let ratio = median(once.iter().filter_map(ratio).collect())?;
-    Some((ratio, median(once.iter().filter_map(|r| r.metrics.packing.pressure).collect())?))
+    let why = match changed {
+        0 => "",
+        _ => {
+            ": U is not smooth across such a contact, and its second difference is no stiffness unless the contact \
+             carries next to nothing"
+        }
+    };
+    format!(
+        ". Of the {apart} that part{}, the strains of {changed} make or break a contact (columns \
+         bulk_strain_contact_changes and shear_strain_contact_changes){against}{why}. The fits and figures use the \
+         stiffness matrix's moduli.",
+        if apart == 1 { "s" } else { "" }
+    )
 }
 
 /// The contact law in words, from its exponent β.
