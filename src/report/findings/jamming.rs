@@ -35,6 +35,9 @@ const Z_TOLERANCE: f64 = 0.15;
 /// theory's exponents leave out.
 const EXPONENT_TOLERANCE: f64 = 0.15;
 
+/// Packings quenched in a fixed box that are unstable to shear (G < 0) though jammed.
+const SHEAR_UNSTABLE: &str = "Dagois-Bohy, Tighe, Simon, Henkes & van Hecke, Phys. Rev. Lett. 109, 095703 (2012)";
+
 /// How far a modulus by strain may be from the stiffness matrix's and agree with it (relative).
 const STRAINED_AGREEMENT: f64 = 0.01;
 
@@ -147,6 +150,52 @@ fn parted_words(compared: &[Compared]) -> String {
          stiffness matrix's moduli.",
         if apart == 1 { "s" } else { "" }
     )
+}
+
+/// The jammed packings whose G from the stiffness matrix is negative, per N (both laws): a
+/// minimum of U for their discs in their box, yet a shear of the box lowers U; how many of
+/// them the route by strain finds the same G < 0 for, within [`STRAINED_AGREEMENT`]. `None`
+/// without a jammed packing with a G.
+fn unstable_sentence(runs: &[&RunRecord]) -> Option<String> {
+    let shear = |r: &&RunRecord| r.metrics.packing.shear_modulus_2d;
+    let with_g: Vec<&RunRecord> = runs.iter().copied().filter(|r| jammed(r) && shear(r).is_some()).collect();
+    let unstable: Vec<&RunRecord> = with_g.iter().copied().filter(|r| shear(r).is_some_and(|g| g < 0.0)).collect();
+    let mut sizes: Vec<usize> = with_g.iter().filter_map(|r| r.spec.packing().map(|p| p.n)).collect();
+    sizes.sort_unstable();
+    sizes.dedup();
+    let of_size = |packings: &[&RunRecord], n: usize| {
+        packings.iter().filter(|r| r.spec.packing().is_some_and(|p| p.n == n)).count()
+    };
+    let per_size: Vec<String> =
+        sizes.iter().map(|&n| format!("{} of {} at N = {n}", of_size(&unstable, n), of_size(&with_g, n))).collect();
+    let first = format!(
+        "Unstable to shear: {} of the {} jammed packings with a G from the stiffness matrix {} G < 0 ({})",
+        unstable.len(),
+        with_g.len(),
+        if unstable.len() == 1 { "has" } else { "have" },
+        per_size.join(", ")
+    );
+    if with_g.is_empty() {
+        return None;
+    }
+    if unstable.is_empty() {
+        return Some(format!("{first}."));
+    }
+    let confirmed = unstable
+        .iter()
+        .filter(|r| {
+            let strained = r.metrics.packing.shear_modulus_2d_strained;
+            strained.zip(shear(r)).is_some_and(|(s, g)| (s / g - 1.0).abs() <= STRAINED_AGREEMENT)
+        })
+        .count();
+    Some(format!(
+        "{first}: {} a minimum of U for its discs in its box (its stiffness matrix over them factors, positive \
+         definite), yet a shear of the box lowers U, and the route by strain finds the same G < 0 within {} % in \
+         {confirmed} of them. {SHEAR_UNSTABLE} found such packings among those made in a fixed box, their number \
+         growing as φ_J is approached; the log–log fits of G leave them out.",
+        if unstable.len() == 1 { "it is" } else { "each is" },
+        number(100.0 * STRAINED_AGREEMENT)
+    ))
 }
 
 /// The contact law in words, from its exponent β.
@@ -325,7 +374,7 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
     }
     let (scaling_sentences, scaling_rows) = all_scalings(&runs, &onsets, &sizes);
     sentences.extend(scaling_sentences);
-    sentences.extend(strained_sentence(&runs));
+    sentences.extend(strained_sentence(&runs).into_iter().chain(unstable_sentence(&runs)));
     rows.extend(scaling_rows);
     Some(Answer {
         title: "Jamming",
