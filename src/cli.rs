@@ -1,4 +1,7 @@
 //! Command line: `run`, `plan`, `report` and `slurm` on a campaign file.
+// The doc comments of the commands are their `--help` text, where <name> is a placeholder,
+// not an HTML tag.
+#![allow(rustdoc::invalid_html_tags)]
 
 use anyhow::Context;
 use clap::{Parser, Subcommand};

@@ -65,7 +65,7 @@ pub struct Truss<'a> {
 }
 
 /// What bounds a relaxation's error, from the tangent stiffness K_t at the static answer
-/// ([`Truss::error_bounds`]).
+/// ([`Solver::error_bounds`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ErrorBounds {
     /// k_min (N/m): a lower bound on the smallest eigenvalue of K_t, the softest stiffness

@@ -25,6 +25,9 @@
 //! its result column in that kind's `columns` (same file).
 
 #![warn(missing_docs)]
+// These docs are for those who extend mdsolids: read them with `cargo doc --no-deps
+// --document-private-items`, where links to private items resolve.
+#![allow(rustdoc::private_intra_doc_links)]
 
 pub mod alloc;
 pub mod bench;

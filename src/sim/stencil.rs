@@ -4,7 +4,7 @@
 //! Bonds between two rows (vertical and both diagonals) join element t of one row slice to
 //! element t of another, so each loop writes distinct elements and vectorises (sqrt and
 //! division four at a time). Bonds within a row join t and t+1; their forces go to a scratch
-//! row first and are then added as h[t] − h[t−1]. Rows are grouped in fixed blocks: a block's
+//! row first and are then added as `h[t] − h[t−1]`. Rows are grouped in fixed blocks: a block's
 //! thread handles its rows and the bonds between them, and the bonds between blocks follow.
 //! The blocking does not depend on the thread count, so neither do the results.
 //!
@@ -128,7 +128,7 @@ impl<L: ForceLaw, D: Dashpot, const CONTACT: bool> LatticeNetwork<L, D, CONTACT>
     }
 
     /// Horizontal bonds of one row: forces into the scratch row `(hx, hy)`, then added as
-    /// f[t] += h[t] − h[t−1]; dissipated power into the scratch's [`Family::Within`] row.
+    /// `f[t] += h[t] − h[t−1]`; dissipated power into the scratch's [`Family::Within`] row.
     #[inline(always)]
     fn within_row(&self, row: Nodes, scratch: &mut Scratch, fx: &mut [f64], fy: &mut [f64]) {
         let nx = row.x.len();
@@ -363,7 +363,7 @@ fn family_row(loss: &mut [f64], family: Family, nx: usize) -> &mut [f64] {
 /// AVX2 registers, two AVX-512), so the sum runs at the adders' throughput, not their latency.
 const LANES: usize = 16;
 
-/// Σ term(a[t], b[t]) over t, in [`LANES`] partial sums (t into lane t mod 16) folded pairwise
+/// Σ `term(a[t], b[t])` over t, in [`LANES`] partial sums (t into lane t mod 16) folded pairwise
 /// at the end: the order the adders want, not the order of t. Chunks of known length, so no
 /// bounds checks stop the compiler from vectorising.
 #[inline(always)]

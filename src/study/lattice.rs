@@ -340,7 +340,7 @@ fn top_row_drive(spec: &RunSpec, l: &LatticeSpec) -> Drive {
 }
 
 /// The static answer of a loaded lattice, before its MD run: the fraction of bonds a random
-/// lattice kept, the moduli of the static solution (see [`solve`]), and what the scene's
+/// lattice kept, the moduli of the static solution (see [`StaticSolve::solve`]), and what the scene's
 /// relaxation needs from it ([`relaxation_from_static`]), on the network's symbolic analysis in
 /// `shared` (made there if it is new), and from the answer another run of the campaign found
 /// for the same network, load and law, if one did. Returns why the run has no criterion to stop

@@ -15,7 +15,7 @@ pub fn chain_mode_frequency(n_particles: usize, k: f64, m: f64, mode: usize) -> 
 pub struct ChainModes {
     omega: Vec<f64>,
     amplitudes: Vec<f64>,
-    /// shape[mode][j] = sin((mode+1)(j+1)π/(N+1)).
+    /// `shape[mode][j]` = sin((mode+1)(j+1)π/(N+1)).
     shape: Vec<Vec<f64>>,
 }
 
