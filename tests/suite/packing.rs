@@ -515,13 +515,17 @@ fn strained_moduli_are_counted_as_the_table_gives_them(frame: &DataFrame, report
         assert!(!line.contains("that part"), "{line}");
         return;
     }
+    let agree = count(false, true) + count(false, false);
+    let against = match agree {
+        0 => String::new(),
+        1 => format!(", against those of {} of the 1 that agrees", count(false, true)),
+        _ => format!(", against those of {} of the {agree} that agree", count(false, true)),
+    };
     let stated = format!(
-        "Of the {apart} that part{}, the strains of {} make or break a contact (columns bulk_strain_contact_changes and \
-         shear_strain_contact_changes), against those of {} of the {} that agree",
+        "Of the {apart} that part{}, the strains of {} make or break a contact (columns \
+         bulk_strain_contact_changes and shear_strain_contact_changes){against}",
         if apart == 1 { "s" } else { "" },
         count(true, true),
-        count(false, true),
-        count(false, true) + count(false, false)
     );
     assert!(line.contains(&stated), "{line}: the table's {stated}");
     // Why they part is said only where a contact was made or broken.
@@ -539,8 +543,8 @@ fn moduli_by_strain_that_part_are_told_apart_by_the_contacts_their_strains_make_
     // re-found. The other tests' campaigns have no modulus that parts: there the item says
     // nothing of it (`strained_moduli_are_counted_as_the_table_gives_them`).
     let dir = crate::common::scratch();
-    let yaml = "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    packing: {n: 64, fraction: 0.86}\n    \
-                seed: 19\n    grid:\n      packing.fraction: [0.84, 0.86, 0.88]\n";
+    let yaml = "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    \
+                packing: {n: 64, fraction: 0.86}\n    seed: 19\n    grid:\n      packing.fraction: [0.84, 0.86, 0.88]\n";
     let (frame, folder) = run_jam(dir.path(), yaml);
     let report = std::fs::read_to_string(folder.join("report.md")).unwrap();
     let twins = twins(&frame);
@@ -551,9 +555,9 @@ fn moduli_by_strain_that_part_are_told_apart_by_the_contacts_their_strains_make_
 }
 
 /// The jammed packings with G < 0 from the stiffness matrix, counted from the results table
-/// (64 discs), as the item states them; the route by strain, independent of the matrix, finds
-/// each of them unstable to shear too, within 1 %, the item's agreement (observed: 32 of
-/// jamming.yaml's 33 within 0.52 %, one apart by 34 % across a contact its shear made).
+/// (64 discs), as the item states them, with how many the route by strain, independent of the
+/// matrix, finds unstable to shear too, within 1 % (observed: 32 of jamming.yaml's 33 within
+/// 0.52 %, one apart by 34 % across contacts its shear made or broke); here, every one.
 fn unstable_packings_are_counted_as_the_table_gives_them(frame: &DataFrame, report: &str) {
     let states = frame.column("packing_state").unwrap().str().unwrap().clone();
     let (matrix, strained) = (numbers(frame, "shear_modulus_2d"), numbers(frame, "shear_modulus_2d_strained"));
@@ -562,32 +566,31 @@ fn unstable_packings_are_counted_as_the_table_gives_them(frame: &DataFrame, repo
     let unstable: Vec<usize> = with_g.iter().copied().filter(|&i| matrix[i].unwrap() < 0.0).collect();
     let line = line_with(report, "Unstable to shear: ");
     let verb = if unstable.len() == 1 { "has" } else { "have" };
+    let (n, all) = (unstable.len(), with_g.len());
     let counts = format!(
-        "Unstable to shear: {} of the {} jammed packings with a G from the stiffness matrix {verb} G \\< 0 ({} of {} at N = 64)",
-        unstable.len(),
-        with_g.len(),
-        unstable.len(),
-        with_g.len()
+        "Unstable to shear: {n} of the {all} jammed packings with a G from the stiffness matrix {verb} G \\< 0 ({n} of \
+         {all} at N = 64)"
     );
     assert!(line.contains(&counts), "{line}: the table's {counts}");
     if unstable.is_empty() {
         assert!(!line.contains(" found such packings"), "{line}");
         return;
     }
-    for &i in &unstable {
-        let (g, by_strain) = (matrix[i].unwrap(), strained[i].unwrap());
-        assert!((by_strain / g - 1.0).abs() <= 0.01, "row {i}: G {g} by the matrix, {by_strain} by strain");
-    }
-    assert!(line.contains(&format!("within 1 % in {} of them", unstable.len())), "{line}");
+    let confirmed =
+        unstable.iter().filter(|&&i| (strained[i].unwrap() / matrix[i].unwrap() - 1.0).abs() <= 0.01).count();
+    assert_eq!(confirmed, n, "every packing unstable to shear here is so by strain too");
+    assert!(line.contains(&format!("within 1 % of it in {confirmed} of the {n}")), "{line}");
 }
 
 #[test]
 fn a_campaign_without_packings_unstable_to_shear_says_so() {
     // Seeds 3 and 4 of 64 linear discs have G > 0 at every fraction here (seeds 1 and 2, in
     // `the_jamming_item_states_phi_j_as_the_results_table_gives_it`, have 4 of 8 with G < 0).
+    // These states are FIRE's, which move with the forces' last bits: a change to the force
+    // loop may need the seeds re-found.
     let dir = crate::common::scratch();
-    let yaml = "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    packing: {n: 64, fraction: 0.86}\n    \
-                material: {law: linear}\n    grid:\n      packing.fraction: [0.86, 0.88, 0.90]\n      seed: [3, 4]\n";
+    let yaml = "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    \
+                packing: {n: 64, fraction: 0.86}\n    material: {law: linear}\n    grid:\n      packing.fraction: [0.86, 0.88, 0.90]\n      seed: [3, 4]\n";
     let (frame, folder) = run_jam(dir.path(), yaml);
     let report = std::fs::read_to_string(folder.join("report.md")).unwrap();
     unstable_packings_are_counted_as_the_table_gives_them(&frame, &report);

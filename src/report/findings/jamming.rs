@@ -93,9 +93,9 @@ fn strained_sentence(runs: &[&RunRecord]) -> Option<String> {
                 .iter()
                 .filter(|r| r.spec.law.beta() == beta)
                 .filter_map(|r| {
-                    let apart = ((twin.strained)(r)? / (twin.matrix)(r).filter(|m| *m > 0.0)? - 1.0).abs();
+                    let matrix = (twin.matrix)(r).filter(|m| *m > 0.0)?;
                     let changed = (twin.changes)(r).map(|c| c > 0);
-                    Some(Compared { parted: apart > STRAINED_AGREEMENT, changed })
+                    Some(Compared { parted: !agrees((twin.strained)(r)?, matrix), changed })
                 })
                 .collect();
             let agree = of_law.iter().filter(|c| !c.parted).count();
@@ -111,7 +111,7 @@ fn strained_sentence(runs: &[&RunRecord]) -> Option<String> {
         "The same moduli by strain, beside the stiffness matrix's (each packing relaxed again to forces below \
          {STRAINED_RESIDUAL:e} k d^β, or {ROUND_OFF_MARGIN} times their round-off where that is larger, strained by \
          ±{STRAIN:e}, relaxed again, and K and G from its relaxed energies), agree with them within {} % in: {} \
-         (jammed packings with both){}",
+         (jammed packings with both, the matrix's positive){}",
         number(100.0 * STRAINED_AGREEMENT),
         laws.join("; "),
         parted_words(&compared)
@@ -144,58 +144,78 @@ fn parted_words(compared: &[Compared]) -> String {
              carries next to nothing"
         }
     };
+    let uncounted = match count(&|c| c.changed.is_none()) {
+        0 => String::new(),
+        k => format!(" ({k} in records of a build that did not count them)"),
+    };
     format!(
         ". Of the {apart} that part{}, the strains of {changed} make or break a contact (columns \
-         bulk_strain_contact_changes and shear_strain_contact_changes){against}{why}. The fits and figures use the \
-         stiffness matrix's moduli.",
+         bulk_strain_contact_changes and shear_strain_contact_changes){against}{uncounted}{why}. The fits and figures \
+         use the stiffness matrix's moduli.",
         if apart == 1 { "s" } else { "" }
     )
 }
 
 /// The jammed packings whose G from the stiffness matrix is negative, per N (both laws): a
-/// minimum of U for their discs in their box, yet a shear of the box lowers U; how many of
-/// them the route by strain finds the same G < 0 for, within [`STRAINED_AGREEMENT`]. `None`
-/// without a jammed packing with a G.
+/// minimum of U for their backbone's discs in their box (the matrix has a Cholesky factor),
+/// yet U curves down along a shear of the box; how many of them the route by strain finds
+/// the same G < 0 for ([`agrees`]), and how many jammed packings have no G. `None` without a
+/// jammed packing with a G.
 fn unstable_sentence(runs: &[&RunRecord]) -> Option<String> {
-    let shear = |r: &&RunRecord| r.metrics.packing.shear_modulus_2d;
-    let with_g: Vec<&RunRecord> = runs.iter().copied().filter(|r| jammed(r) && shear(r).is_some()).collect();
+    let shear = |r: &RunRecord| r.metrics.packing.shear_modulus_2d;
+    let jammed: Vec<&RunRecord> = runs.iter().copied().filter(|r| jammed(r)).collect();
+    let with_g: Vec<&RunRecord> = jammed.iter().copied().filter(|r| shear(r).is_some()).collect();
+    if with_g.is_empty() {
+        return None;
+    }
     let unstable: Vec<&RunRecord> = with_g.iter().copied().filter(|r| shear(r).is_some_and(|g| g < 0.0)).collect();
-    let mut sizes: Vec<usize> = with_g.iter().filter_map(|r| r.spec.packing().map(|p| p.n)).collect();
-    sizes.sort_unstable();
-    sizes.dedup();
-    let of_size = |packings: &[&RunRecord], n: usize| {
-        packings.iter().filter(|r| r.spec.packing().is_some_and(|p| p.n == n)).count()
+    let without = match jammed.len() - with_g.len() {
+        0 => String::new(),
+        k => format!(
+            " {k} more jammed {} no G: the matrix has no Cholesky factor, a backbone with a floppy mode.",
+            if k == 1 { "packing has" } else { "packings have" }
+        ),
     };
-    let per_size: Vec<String> =
-        sizes.iter().map(|&n| format!("{} of {} at N = {n}", of_size(&unstable, n), of_size(&with_g, n))).collect();
     let first = format!(
         "Unstable to shear: {} of the {} jammed packings with a G from the stiffness matrix {} G < 0 ({})",
         unstable.len(),
         with_g.len(),
         if unstable.len() == 1 { "has" } else { "have" },
-        per_size.join(", ")
+        per_size(&unstable, &with_g)
     );
-    if with_g.is_empty() {
-        return None;
-    }
     if unstable.is_empty() {
-        return Some(format!("{first}."));
+        return Some(format!("{first}.{without}"));
     }
-    let confirmed = unstable
-        .iter()
-        .filter(|r| {
-            let strained = r.metrics.packing.shear_modulus_2d_strained;
-            strained.zip(shear(r)).is_some_and(|(s, g)| (s / g - 1.0).abs() <= STRAINED_AGREEMENT)
-        })
-        .count();
+    let by_strain = |r: &&RunRecord| r.metrics.packing.shear_modulus_2d_strained.zip(shear(r));
+    let confirmed = unstable.iter().filter(|r| by_strain(r).is_some_and(|(s, g)| agrees(s, g))).count();
     Some(format!(
-        "{first}: {} a minimum of U for its discs in its box (its stiffness matrix over them factors, positive \
-         definite), yet a shear of the box lowers U, and the route by strain finds the same G < 0 within {} % in \
-         {confirmed} of them. {SHEAR_UNSTABLE} found such packings among those made in a fixed box, their number \
-         growing as φ_J is approached; the log–log fits of G leave them out.",
-        if unstable.len() == 1 { "it is" } else { "each is" },
-        number(100.0 * STRAINED_AGREEMENT)
+        "{first}. For {} the stiffness matrix over the backbone's discs (one held) has a Cholesky factor, so no motion \
+         of theirs lowers U at second order (to 1e-12 of its largest entry), yet U curves down along a shear of the \
+         box (d²U/dγ² < 0, the discs relaxed); the route by strain, independent of the matrix, finds G < 0 within {} \
+         % of it in {confirmed} of the {}. {SHEAR_UNSTABLE} found such packings among those made in a fixed box, \
+         their number growing as φ_J is approached; the log–log fits of G leave them out.{without}",
+        if unstable.len() == 1 { "it".to_string() } else { format!("each of the {}", unstable.len()) },
+        number(100.0 * STRAINED_AGREEMENT),
+        unstable.len()
     ))
+}
+
+/// "a of b at N = n" for each N of `whole`: how many of its packings are in `part`.
+fn per_size(part: &[&RunRecord], whole: &[&RunRecord]) -> String {
+    let size = |r: &&RunRecord| r.spec.packing().map(|p| p.n);
+    let mut sizes: Vec<usize> = whole.iter().filter_map(size).collect();
+    sizes.sort_unstable();
+    sizes.dedup();
+    let of_size = |packings: &[&RunRecord], n: usize| packings.iter().filter(|r| size(r) == Some(n)).count();
+    let counts: Vec<String> =
+        sizes.iter().map(|&n| format!("{} of {} at N = {n}", of_size(part, n), of_size(whole, n))).collect();
+    counts.join(", ")
+}
+
+/// Whether a modulus by strain agrees with the stiffness matrix's, within
+/// [`STRAINED_AGREEMENT`] of it (both of either sign).
+fn agrees(strained: f64, matrix: f64) -> bool {
+    (strained / matrix - 1.0).abs() <= STRAINED_AGREEMENT
 }
 
 /// The contact law in words, from its exponent β.
