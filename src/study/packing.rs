@@ -186,13 +186,16 @@ pub(super) fn measure(spec: &RunSpec, scene: &Scene, outcome: &Outcome, m: &mut 
     let floor = spec.relax().and_then(|r| r.residual_force).unwrap_or(0.0) * force_scale(spec);
     let pressure_floor = 3.0 * n as f64 * floor * 2.0 * largest / (2.0 * area);
     let relaxed = outcome.trace.relaxed_at.is_some();
-    let jammed = relaxed && pressure > pressure_floor && !backbone.is_empty();
-    let state = if !relaxed {
-        "not relaxed"
-    } else if jammed {
-        "jammed"
-    } else {
-        "unjammed"
+    let (bulk, shear) = if relaxed { stiffness_moduli(&forces, n, area) } else { (None, None) };
+    // Jammed: a pressure above the floor, carried by a rigid backbone. A backbone with a floppy
+    // mode (its matrix has no Cholesky factor: no K) is not rigid, and its pressure is the
+    // relaxation's doing: 1000 times tighter a criterion took it 1000 times lower, or to zero
+    // (jamming.yaml's 22 such packings, all at φ ≤ 0.84, hypostatic: z 3.4 to 4.0).
+    let jammed = relaxed && pressure > pressure_floor && !backbone.is_empty() && bulk.is_some();
+    let state = match (relaxed, jammed) {
+        (false, _) => "not relaxed",
+        (true, true) => "jammed",
+        (true, false) => "unjammed",
     };
     let kept = n - rattler.iter().filter(|&&r| r).count();
     *m = PackingMetrics {
@@ -207,17 +210,14 @@ pub(super) fn measure(spec: &RunSpec, scene: &Scene, outcome: &Outcome, m: &mut 
         energy: Some(forces.total_energy()),
         ..PackingMetrics::default()
     };
-    if relaxed {
-        (m.bulk_modulus_2d, m.shear_modulus_2d) = stiffness_moduli(&forces, n, area);
-        if let Some((rest, energy)) = jammed.then(|| polished(spec, scene, outcome)).flatten() {
-            let touching = pair_set(&forces.pairs);
-            let strained = |strain| strained_second_derivative(&rest, energy, &touching, strain);
-            let (bulk, bulk_changes) = strained(BULK).unzip();
-            let (shear, shear_changes) = strained(SHEAR).unzip();
-            (m.bulk_modulus_2d_strained, m.bulk_strain_contact_changes) =
-                (bulk.map(|u| u / (4.0 * area)), bulk_changes);
-            (m.shear_modulus_2d_strained, m.shear_strain_contact_changes) = (shear.map(|u| u / area), shear_changes);
-        }
+    (m.bulk_modulus_2d, m.shear_modulus_2d) = (bulk, shear);
+    if let Some((rest, energy)) = jammed.then(|| polished(spec, scene, outcome)).flatten() {
+        let touching = pair_set(&forces.pairs);
+        let strained = |strain| strained_second_derivative(&rest, energy, &touching, strain);
+        let (bulk, bulk_changes) = strained(BULK).unzip();
+        let (shear, shear_changes) = strained(SHEAR).unzip();
+        (m.bulk_modulus_2d_strained, m.bulk_strain_contact_changes) = (bulk.map(|u| u / (4.0 * area)), bulk_changes);
+        (m.shear_modulus_2d_strained, m.shear_strain_contact_changes) = (shear.map(|u| u / area), shear_changes);
     }
 }
 

@@ -159,23 +159,14 @@ fn parted_words(compared: &[Compared]) -> String {
 /// The jammed packings whose G from the stiffness matrix is negative, per N (both laws): a
 /// minimum of U for their backbone's discs in their box (the matrix has a Cholesky factor),
 /// yet U curves down along a shear of the box; how many of them the route by strain finds
-/// the same G < 0 for ([`agrees`]), and how many jammed packings have no G. `None` without a
-/// jammed packing with a G.
+/// the same G < 0 for ([`agrees`]). `None` without a jammed packing with a G.
 fn unstable_sentence(runs: &[&RunRecord]) -> Option<String> {
     let shear = |r: &RunRecord| r.metrics.packing.shear_modulus_2d;
-    let jammed: Vec<&RunRecord> = runs.iter().copied().filter(|r| jammed(r)).collect();
-    let with_g: Vec<&RunRecord> = jammed.iter().copied().filter(|r| shear(r).is_some()).collect();
+    let with_g: Vec<&RunRecord> = runs.iter().copied().filter(|r| jammed(r) && shear(r).is_some()).collect();
     if with_g.is_empty() {
         return None;
     }
     let unstable: Vec<&RunRecord> = with_g.iter().copied().filter(|r| shear(r).is_some_and(|g| g < 0.0)).collect();
-    let without = match jammed.len() - with_g.len() {
-        0 => String::new(),
-        k => format!(
-            " {k} more jammed {} no G: the matrix has no Cholesky factor, a backbone with a floppy mode.",
-            if k == 1 { "packing has" } else { "packings have" }
-        ),
-    };
     let first = format!(
         "Unstable to shear: {} of the {} jammed packings with a G from the stiffness matrix {} G < 0 ({})",
         unstable.len(),
@@ -184,7 +175,7 @@ fn unstable_sentence(runs: &[&RunRecord]) -> Option<String> {
         per_size(&unstable, &with_g)
     );
     if unstable.is_empty() {
-        return Some(format!("{first}.{without}"));
+        return Some(format!("{first}."));
     }
     let by_strain = |r: &&RunRecord| r.metrics.packing.shear_modulus_2d_strained.zip(shear(r));
     let confirmed = unstable.iter().filter(|r| by_strain(r).is_some_and(|(s, g)| agrees(s, g))).count();
@@ -193,7 +184,7 @@ fn unstable_sentence(runs: &[&RunRecord]) -> Option<String> {
          of theirs lowers U at second order (to 1e-12 of its largest entry), yet U curves down along a shear of the \
          box (d²U/dγ² < 0, the discs relaxed); the route by strain, independent of the matrix, finds G < 0 within {} \
          % of it in {confirmed} of the {}. {SHEAR_UNSTABLE} found such packings among those made in a fixed box, \
-         their number growing as φ_J is approached; the log–log fits of G leave them out.{without}",
+         their number growing as φ_J is approached; the log–log fits of G leave them out.",
         if unstable.len() == 1 { "it".to_string() } else { format!("each of the {}", unstable.len()) },
         number(100.0 * STRAINED_AGREEMENT),
         unstable.len()
@@ -368,7 +359,8 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
     let Some(largest) = sizes.last() else { return Some(unjammed(&any)) };
     let mut sentences = vec![format!(
         "Each seed's φ_J is where the pressure of its linear packings extrapolates to zero: p = a (φ − φ_J) fitted \
-         by least squares over its jammed packings (p above the relaxation's floor, a backbone left), {} seeds in all.",
+         by least squares over its jammed packings (p above the relaxation's floor, carried by a rigid backbone), {} \
+         seeds in all.",
         onsets.len()
     )];
     sentences.extend(sizes.iter().map(Onset::sentence));
