@@ -39,7 +39,7 @@ pub(super) fn key(r: &RunRecord) -> Option<(usize, u64)> {
     r.spec.packing().map(|p| (p.n, p.seed))
 }
 
-/// Whether the packing jammed (p above its floor with a backbone, relaxed).
+/// Whether the packing jammed (relaxed, p above its floor, carried by a rigid backbone).
 pub(super) fn jammed(r: &RunRecord) -> bool {
     r.metrics.packing.packing_state.as_deref() == Some("jammed")
 }

@@ -50,7 +50,8 @@ pub struct PackingMetrics {
     pub pressure: Option<f64>,
     /// The pressure the relaxation's floor leaves (N/m): p below it is p = 0.
     pub pressure_floor: Option<f64>,
-    /// `jammed`, `unjammed` (p = 0 within the floor) or `not relaxed` (within its budget).
+    /// `jammed` (p above the floor on a rigid backbone), `unjammed` (p = 0 within the floor, no
+    /// backbone, or a floppy one) or `not relaxed` (within its budget).
     pub packing_state: Option<String>,
     /// Overlapping pairs.
     pub contacts: Option<u64>,
@@ -189,8 +190,9 @@ pub(super) fn measure(spec: &RunSpec, scene: &Scene, outcome: &Outcome, m: &mut 
     let (bulk, shear) = if relaxed { stiffness_moduli(&forces, n, area) } else { (None, None) };
     // Jammed: a pressure above the floor, carried by a rigid backbone. A backbone with a floppy
     // mode (its matrix has no Cholesky factor: no K) is not rigid, and its pressure is the
-    // relaxation's doing: 1000 times tighter a criterion took it 550 to 2·10⁵ times lower
-    // (jamming.yaml's 22 such packings, all at φ ≤ 0.84, hypostatic: z 3.4 to 4.0).
+    // relaxation's doing: 1000 times tighter a criterion took it 550 to 2·10⁵ times lower in 10
+    // of jamming.yaml's 22 such packings (all at φ ≤ 0.84, hypostatic: z 3.4 to 4.0; 2 more
+    // tried did not relax there).
     let jammed = relaxed && pressure > pressure_floor && !backbone.is_empty() && bulk.is_some();
     let state = match (relaxed, jammed) {
         (false, _) => "not relaxed",

@@ -607,9 +607,9 @@ fn a_pressure_above_the_floor_on_a_floppy_backbone_is_not_jamming() {
     // 256 linear discs at φ = 0.84, seed 2 (found in campaigns/jamming.yaml; FIRE's state, so a
     // change to the force loop may need it re-found): relaxed to forces of 1e-9 k d, its
     // contacts carry p above the floor, but its backbone has a floppy mode (no K). Relaxed
-    // 1000 times tighter, the same packing's pressure falls at least 1000 times (2·10⁵ observed;
-    // 550 to 2·10⁵ over 10 such packings of jamming.yaml): it was the
-    // relaxation's, not a jammed state's (whose p does not depend on the criterion).
+    // 1000 times tighter, the same packing's pressure must fall 1000 times too (2·10⁵ observed;
+    // 550 to 2·10⁵ over 10 such packings of jamming.yaml): it was the relaxation's, not a
+    // jammed state's (whose p does not depend on the criterion).
     let dir = crate::common::scratch();
     let yaml = "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    \
                 packing: {n: 256, fraction: 0.84}\n    seed: 2\n    grid:\n      \
