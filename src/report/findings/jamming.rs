@@ -193,7 +193,7 @@ fn unstable_sentence(runs: &[&RunRecord]) -> Option<String> {
 
 /// "a of b at N = n" for each N of `whole`: how many of its packings are in `part`.
 fn per_size(part: &[&RunRecord], whole: &[&RunRecord]) -> String {
-    let size = |r: &&RunRecord| r.spec.packing().map(|p| p.n);
+    let size = |r: &&RunRecord| key(r).map(|(n, _)| n);
     let mut sizes: Vec<usize> = whole.iter().filter_map(size).collect();
     sizes.sort_unstable();
     sizes.dedup();
@@ -370,19 +370,9 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
         .iter()
         .map(|s| row("linear", s.n, "φ_J", &plus_minus(s.mean, s.error), PHI_J, s.seeds, Some(s.within())))
         .collect();
-    if let Some((z_j, points)) = coordination_at_jamming(&runs, &onsets, largest.n) {
-        let ok = (z_j - ISOSTATIC).abs() <= Z_TOLERANCE;
-        sentences.push(format!(
-            "z at jamming (mean contacts per disc, rattlers removed), from z = z_J + c √Δφ fitted over the {points} \
-             jammed linear packings of N = {}: z_J = {}, against the isostatic {ISOSTATIC}: {} (tolerance \
-             {Z_TOLERANCE}, for the extrapolation in √Δφ from the smallest Δφ measured, where z − 4 is still a few \
-             tenths; a finite periodic packing's own isostatic count 2N' − 1, z = 4 − 2/N', lies only about {} below 4).",
-            largest.n,
-            sig(z_j),
-            if ok { "within" } else { "outside" },
-            sig(2.0 / largest.n as f64)
-        ));
-        rows.push(row("linear", largest.n, "z_J", &sig(z_j), ISOSTATIC, points, Some(ok)));
+    if let Some((sentence, z_row)) = isostatic_words(&runs, &onsets, largest.n) {
+        sentences.push(sentence);
+        rows.push(z_row);
     }
     let (scaling_sentences, scaling_rows) = all_scalings(&runs, &onsets, &sizes);
     sentences.extend(scaling_sentences);
@@ -408,6 +398,27 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
             rows,
         }),
     })
+}
+
+/// z at jamming of the linear packings of `n` discs ([`coordination_at_jamming`]) against the
+/// isostatic 4, in a sentence and a table row; `None` where it cannot be fitted.
+fn isostatic_words(
+    runs: &[&RunRecord],
+    onsets: &BTreeMap<(usize, u64), f64>,
+    n: usize,
+) -> Option<(String, Vec<String>)> {
+    let (z_j, points) = coordination_at_jamming(runs, onsets, n)?;
+    let ok = (z_j - ISOSTATIC).abs() <= Z_TOLERANCE;
+    let sentence = format!(
+        "z at jamming (mean contacts per disc, rattlers removed), from z = z_J + c √Δφ fitted over the {points} \
+         jammed linear packings of N = {n}: z_J = {}, against the isostatic {ISOSTATIC}: {} (tolerance \
+         {Z_TOLERANCE}, for the extrapolation in √Δφ from the smallest Δφ measured, where z − 4 is still a few \
+         tenths; a finite periodic packing's own isostatic count 2N' − 1, z = 4 − 2/N', lies only about {} below 4).",
+        sig(z_j),
+        if ok { "within" } else { "outside" },
+        sig(2.0 / n as f64)
+    );
+    Some((sentence, row("linear", n, "z_J", &sig(z_j), ISOSTATIC, points, Some(ok))))
 }
 
 /// The scalings of every contact law at every N of `sizes`, in sentences and table rows (the
