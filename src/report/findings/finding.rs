@@ -257,5 +257,15 @@ pub(super) fn plus_minus(x: f64, u: f64) -> String {
 
 /// A relative difference in per cent with its sign (`+4.577 %`).
 pub(super) fn percent(x: f64) -> String {
-    format!("{}{} %", if x < 0.0 { "−" } else { "+" }, sig(100.0 * x.abs()))
+    format!("{} %", signed(100.0 * x))
+}
+
+/// `x` to 4 significant digits with its sign, + or − (a minus sign, not a hyphen): `+0.0017`.
+pub(super) fn signed(x: f64) -> String {
+    format!("{}{}", if x < 0.0 { "−" } else { "+" }, sig(x.abs()))
+}
+
+/// `x` to 4 significant digits, negative with a minus sign (−), not a hyphen.
+pub(super) fn minus(x: f64) -> String {
+    format!("{}{}", if x < 0.0 { "−" } else { "" }, sig(x.abs()))
 }

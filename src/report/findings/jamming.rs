@@ -6,7 +6,7 @@
 
 use std::collections::BTreeMap;
 
-use super::finding::{Answer, Evidence, Table, Verdict, plus_minus, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, plus_minus, sig, signed};
 use crate::measure::line_fit;
 use crate::report::figure::{FigureKind, FigureRef};
 use crate::report::jamming::{
@@ -236,11 +236,6 @@ impl Onset {
             if self.within() { "within" } else { "outside" },
         )
     }
-}
-
-/// A difference with its sign and 4 significant digits.
-fn signed(x: f64) -> String {
-    format!("{}{}", if x < 0.0 { "−" } else { "+" }, sig(x.abs()))
 }
 
 /// How the mean φ_J moves from the smallest N to the largest, if the campaign has two sizes.

@@ -6,7 +6,7 @@ use crate::report::figure::FigureKind;
 use crate::report::solids::mean_spread;
 use std::collections::BTreeMap;
 
-use super::finding::{Answer, Evidence, SeeAlso, Table, Verdict, cell, percent, sig};
+use super::finding::{Answer, Evidence, SeeAlso, Table, Verdict, cell, extremes, minus, percent, sig};
 use crate::measure::median;
 use crate::report::words::number;
 use crate::runner::RunRecord;
@@ -373,7 +373,7 @@ fn directions_sentence(runs: &[&RunRecord], kind: &str) -> Option<String> {
         ratios.len(),
         poisson_words(runs),
         sig(mean.exp()),
-        signed(mean),
+        minus(mean),
         sig(error),
         by_seed.len(),
         if mean.abs() <= 2.0 * error {
@@ -397,7 +397,7 @@ fn poisson_words(runs: &[&RunRecord]) -> String {
     }
     let range = |v: &[f64]| {
         let (low, high) = extremes(v);
-        format!("{} to {}", signed(low), signed(high))
+        format!("{} to {}", minus(low), minus(high))
     };
     match along {
         [y, x] if !y.is_empty() && !x.is_empty() => {
@@ -405,16 +405,6 @@ fn poisson_words(runs: &[&RunRecord]) -> String {
         }
         _ => String::new(),
     }
-}
-
-/// (smallest, largest) of `values` ((∞, −∞) when empty).
-fn extremes(values: &[f64]) -> (f64, f64) {
-    values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), x| (low.min(*x), high.max(*x)))
-}
-
-/// `x` to 4 significant digits, negative with a minus sign (−), not a hyphen.
-fn signed(x: f64) -> String {
-    format!("{}{}", if x < 0.0 { "−" } else { "" }, sig(x.abs()))
 }
 
 /// "a to b at cut 0.30" (or "a at w = 0.5" for one network) of the ratios `r` at `level`.
