@@ -275,7 +275,7 @@ fn inputs_sentence(all: &[Entry]) -> String {
 
 /// `values` as their smallest and largest, written by `write`; one value where they agree.
 fn span(values: &[f64], write: fn(Option<f64>) -> String) -> String {
-    let (lo, hi) = values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| (l.min(v), h.max(v)));
+    let (lo, hi) = crate::measure::extremes(values);
     match values.len() {
         0 => "–".to_string(),
         _ if lo == hi => write(Some(lo)),

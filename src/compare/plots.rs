@@ -106,8 +106,7 @@ fn series(label: String, points: Vec<(f64, f64)>) -> Series {
 /// Logarithmic along each axis whose values are positive and span more than a decade.
 fn scale(points: &[(f64, f64)]) -> Scale {
     let spans_decades = |get: fn(&(f64, f64)) -> f64| {
-        let (lo, hi) =
-            points.iter().map(get).fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
+        let (lo, hi) = crate::measure::extremes(points.iter().map(get));
         lo > 0.0 && hi > 10.0 * lo
     };
     match (spans_decades(|p| p.0), spans_decades(|p| p.1)) {

@@ -141,7 +141,7 @@ fn stats(rows: &SceneRows, both: &[usize], name: &str) -> Option<Stats> {
         return None;
     }
     let ratios: Vec<f64> = with_ratio.iter().filter_map(|&r| rows.metric(name, "ratio").number(r)).collect();
-    let (lo, hi) = ratios.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| (lo.min(x), hi.max(x)));
+    let (lo, hi) = crate::measure::extremes(&ratios);
     let class = class(name);
     let signed = [&va, &vb].iter().any(|v| v.iter().any(|&x| x < 0.0) && v.iter().any(|&x| x > 0.0));
     let pair = |r: usize| (rows.metric(name, "a").number(r), rows.metric(name, "b").number(r));

@@ -277,7 +277,7 @@ fn frame<'a, 'b, DB: DrawingBackend>(
 
 /// Bounds of `values` with a 5 % margin (a factor 1.5 on a log axis); a flat range is widened.
 fn bounds(values: impl Iterator<Item = f64>, log: bool) -> std::ops::Range<f64> {
-    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)));
+    let (lo, hi) = crate::measure::extremes(values);
     if !lo.is_finite() {
         return if log { 0.1..10.0 } else { 0.0..1.0 };
     }

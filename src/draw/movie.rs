@@ -9,7 +9,7 @@ use plotters::prelude::*;
 use std::path::Path;
 
 use super::chart::{diverging, draw_error, ensure_font};
-use crate::measure::Discs;
+use crate::measure::{Discs, extremes};
 use crate::sim::Frame;
 
 /// What a movie shows: the frames, the bonds between the particles, the size.
@@ -149,8 +149,8 @@ impl View {
         let (width, height) = (panel_width * panels.len() as u32 + BAR_WIDTH, spec.height);
         let (plot_w, plot_h) = (f64::from(panel_width), f64::from(height - HEADER));
         let all = || panels.iter().flat_map(|m| m.frames.iter());
-        let (x0, x1) = extent(all().flat_map(|f| f.x.iter().copied()));
-        let (y0, y1) = extent(all().flat_map(|f| f.y.iter().copied()));
+        let (x0, x1) = extremes(all().flat_map(|f| f.x.iter().copied()));
+        let (y0, y1) = extremes(all().flat_map(|f| f.y.iter().copied()));
         anyhow::ensure!(x0.is_finite() && y0.is_finite(), "a movie's positions must be finite");
         // All particles on one line (a chain or a pair): its held particles are walls.
         let one_dimensional = y1 == y0;
@@ -169,8 +169,8 @@ impl View {
         let magnification = if largest_disc > 0.0 { 1.0 } else { magnification(largest_displacement, spacing) };
         let shown = shown_positions(panels, magnification);
         let drawn = || shown.iter().flatten();
-        let (x0, x1) = extent(drawn().flat_map(|(x, _)| x.iter().copied()));
-        let (y0, y1) = extent(drawn().flat_map(|(_, y)| y.iter().copied()));
+        let (x0, x1) = extremes(drawn().flat_map(|(x, _)| x.iter().copied()));
+        let (y0, y1) = extremes(drawn().flat_map(|(_, y)| y.iter().copied()));
         let pad = if largest_disc > 0.0 { largest_disc } else { 0.6 * spacing };
         let scale = (((x1 - x0) / 2.0 + pad) / plot_w * 2.0).max(((y1 - y0) / 2.0 + pad) / plot_h * 2.0);
         let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
@@ -205,11 +205,6 @@ fn shown_positions(panels: &[&Movie], magnification: f64) -> Vec<Vec<(Vec<f64>, 
             }
         })
         .collect()
-}
-
-/// The smallest and largest of `values` (∞, −∞ when there are none).
-fn extent(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    values.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| (a.min(v), b.max(v)))
 }
 
 /// The shortest bond (m) at the start of any panel, which sets the disc size and the margin;

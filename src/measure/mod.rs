@@ -20,6 +20,13 @@ mod moduli;
 mod packing;
 mod wave;
 
+/// The smallest and largest of `values` (∞ and −∞ when there are none).
+pub fn extremes<T: std::borrow::Borrow<f64>>(values: impl IntoIterator<Item = T>) -> (f64, f64) {
+    values
+        .into_iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), x| (low.min(*x.borrow()), high.max(*x.borrow())))
+}
+
 /// The median of `values` (the mean of the middle two for an even count); `None` when empty.
 pub fn median(mut values: Vec<f64>) -> Option<f64> {
     values.sort_by(f64::total_cmp);

@@ -130,7 +130,7 @@ fn measure_equilibrium(spec: &RunSpec, chain: &ChainRun, outcome: &Outcome, metr
     let x = &outcome.state.particles.x;
     let gaps: Vec<f64> = x.windows(2).map(|w| w[1] - w[0]).collect();
     let inner = &gaps[..gaps.len() - 1];
-    let (shortest, longest) = gaps.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), g| (a.min(*g), b.max(*g)));
+    let (shortest, longest) = crate::measure::extremes(&gaps);
     let (delta, force, secant, tangent) = equilibrium(spec, chain);
     let extension = spec.chain_wall_extension();
     let measured_force = wall_force(spec, x);

@@ -218,10 +218,8 @@ pub(super) fn fastest_relaxation(runs: &[&RunRecord]) -> f64 {
     runs.iter().filter_map(|r| r.metrics.dissipation_time).fold(f64::INFINITY, f64::min)
 }
 
-/// The smallest and largest of `values` (∞ and −∞ when there are none).
-pub(super) fn extremes(values: &[f64]) -> (f64, f64) {
-    values.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), &x| (low.min(x), high.max(x)))
-}
+/// The smallest and largest of a list of numbers, for the findings' ranges.
+pub(super) use crate::measure::extremes;
 
 /// `x` when present, a dash otherwise.
 pub(super) fn cell(x: Option<f64>) -> String {

@@ -3,6 +3,7 @@
 //! truss (FEM) answer.
 
 use crate::report::figure::FigureKind;
+use crate::report::words::number;
 use std::collections::BTreeMap;
 
 use super::block::Block;
@@ -153,7 +154,12 @@ fn homogeneity_sentence(case: &str, supports: &str, sizes: &BySize) -> Option<St
     } else if *large.1 > 1.25 * small.1 {
         ", growing with the block: the supports bend it as a whole".to_string()
     } else {
-        ", about the same at every size".to_string()
+        format!(
+            ", {} times the smallest's on a block {} times as wide: a disturbance in proportion to the block, not a \
+             boundary layer of fixed thickness",
+            sig(large.1 / small.1),
+            number(large.0.0 as f64 / small.0.0 as f64)
+        )
     };
     let at = |((nx, ny), h): (&(usize, usize), &f64)| format!("{} on {nx} × {ny}", sig(*h));
     let measured = if sizes.len() < 2 { at(small) } else { format!("{} and {}", at(small), at(large)) };
@@ -341,7 +347,8 @@ fn anisotropic_rows(groups: &BTreeMap<String, Vec<&RunRecord>>) -> (Vec<Vec<Stri
 /// relaxed sides. With u_x = γ y and the strain ε = ΔL_y/L_y, a diagonal along (1, ±1)/√2 is
 /// strained by (ε_xx + ε_yy ± γ)/2 = (ε ± γ)/2 (ε_xx = 0 when ν = 0): a shear γ = ∓ε leaves it
 /// at its rest length, carrying nothing, so E_y is the vertical springs' k_y/d alone and ν = 0;
-/// a block of N rows under point loads on its top row is N/(N − 1) stiffer than that.
+/// N_x columns of vertical springs carry the load, but the stress divides it over the block's
+/// width L_x = (N_x − 1) a, so the measured E_y is N_x/(N_x − 1) times k_y/d, exactly.
 fn free_shear_sentence(r: &RunRecord) -> Option<String> {
     let l = r.spec.lattice()?;
     let sign = match l.diagonals {
@@ -364,12 +371,12 @@ fn free_shear_sentence(r: &RunRecord) -> Option<String> {
         format!("are strained by {} of ε and carry part of the load", sig(diagonal / strain))
     };
     let (measured, theory) = (r.metrics.lattice.youngs_modulus?, r.metrics.lattice.youngs_modulus_theory?);
-    let rows = l.ny as f64;
+    let columns = l.nx as f64;
     Some(format!(
         "With {} diagonals alone the pulled block shears freely: with the strain ε = {} its sides lean by \
          Δu_x/L_y = {}, so the diagonals, strained by (ε {} γ)/2 = {}, {carried}; E_y = {} Pa is the vertical \
-         springs' k_y/d = {} Pa times {} (N/(N − 1) = {} for {} rows: the point loads on the top row, as \
-         without diagonals), and ν = {}.",
+         springs' k_y/d = {} Pa times {} (N_x/(N_x − 1) = {} for {} columns: they all carry the load, but the \
+         stress divides it over the width (N_x − 1) a, as without diagonals), and ν = {}.",
         l.diagonals.name(),
         sig(strain),
         sig(lean),
@@ -378,8 +385,8 @@ fn free_shear_sentence(r: &RunRecord) -> Option<String> {
         sig(measured),
         sig(theory),
         sig(measured / theory),
-        sig(rows / (rows - 1.0)),
-        l.ny,
+        sig(columns / (columns - 1.0)),
+        l.nx,
         noise(r.metrics.lattice.poisson_ratio, 1.0)
     ))
 }

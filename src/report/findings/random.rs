@@ -172,7 +172,7 @@ fn buckling_sentence(carried: &[&&RunRecord]) -> Option<String> {
         ));
     }
     let names: Vec<&str> = buckled.iter().map(|b| b.label.as_str()).collect();
-    let (most, least) = extremes(&buckled.iter().map(|b| b.change).collect::<Vec<f64>>());
+    let (most, least) = extremes(buckled.iter().map(|b| b.change));
     let change = if buckled.len() == 1 { percent(most) } else { format!("{} to {}", percent(most), percent(least)) };
     Some(format!(
         "{} of {relaxed} {} under {} load ({}): the answer of small displacements is an unstable equilibrium, a \
@@ -504,10 +504,7 @@ fn rigidity_sentence(runs: &[&RunRecord]) -> String {
             " A network kept at p = {p:.2}, below 1/2, still stayed rigid: a finite network whose edges are not cut \
              keeps some rigidity beyond the threshold."
         ),
-        (Some(p), Some(lost)) => format!(
-            " Here rigidity held down to p = {p:.2} and was first lost at p = {lost:.2}{}.",
-            if (lost - 0.5).abs() < 0.01 { ", the threshold itself" } else { "" }
-        ),
+        (Some(p), Some(lost)) => mixed_words(runs, p, lost),
         (Some(p), None) => format!(
             " Every network here stayed rigid, down to p = {p:.2}: the campaign cuts no network as far as the \
              threshold."
@@ -515,4 +512,31 @@ fn rigidity_sentence(runs: &[&RunRecord]) -> String {
         (None, _) => " No cut network stayed rigid here.".into(),
     };
     format!("{theory}{held}")
+}
+
+/// Where rigidity was lost, as a kept fraction p falls: the sparsest rigid network at p, the
+/// densest that lost rigidity at `lost`; where the two levels meet, how many of that level's
+/// networks went each way.
+fn mixed_words(runs: &[&RunRecord], p: f64, lost: f64) -> String {
+    let at_threshold = |x: f64| if (x - 0.5).abs() < 0.01 { " (the threshold itself)" } else { "" };
+    if lost < p - 1e-9 {
+        return format!(
+            " Here rigidity held down to p = {p:.2} and was first lost at p = {lost:.2}{}.",
+            at_threshold(lost)
+        );
+    }
+    let at_p = |r: &&&RunRecord| r.spec.lattice().is_some_and(|l| (1.0 - l.cut_fraction - p).abs() < 1e-9);
+    let level: Vec<_> = runs.iter().filter(at_p).collect();
+    let rigid = level.iter().filter(|r| r.status != RunStatus::Mechanism).count();
+    let denser = if lost > p + 1e-9 {
+        format!("; denser networks lost it too, up to p = {lost:.2}")
+    } else {
+        "; every denser network stayed rigid".into()
+    };
+    format!(
+        " At p = {p:.2}{}, {rigid} of {} networks stayed rigid and {} lost rigidity{denser}.",
+        at_threshold(p),
+        level.len(),
+        level.len() - rigid
+    )
 }

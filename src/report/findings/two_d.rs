@@ -475,7 +475,8 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
             format!(
                 "1 kN up on every top-row node of the {}: E = (F/d/L_x)/(ΔL_y/L_y) = {} Pa (continuum {} Pa), \
                  ν = −(ΔL_x/L_x)/(ΔL_y/L_y) = {} (continuum {continuum_nu}{}); without diagonals E = k/d and \
-                 ν = 0: nothing ties the columns to the rows.",
+                 ν = 0: nothing ties the columns to the rows (a block of N columns measures N/(N − 1) k/d: they \
+                 all carry the load, but the stress divides it over the width (N − 1) a).",
                 r.spec.lattice().map(lattice_words).unwrap_or_default(),
                 cell(r.metrics.lattice.youngs_modulus),
                 cell(r.metrics.lattice.youngs_modulus_theory),
