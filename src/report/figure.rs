@@ -196,6 +196,11 @@ pub fn background_damping_only(r: &RunRecord) -> bool {
     r.spec.gamma == 0.0 && r.spec.gamma_background > 0.0
 }
 
+/// A run relaxed by background damping γ_g added to bond damping γ.
+pub fn both_dampings(r: &RunRecord) -> bool {
+    r.spec.gamma > 0.0 && r.spec.gamma_background > 0.0
+}
+
 /// The label of a run's grid values other than the time step: runs with the same group label
 /// differ only in dt, so they form one convergence curve.
 pub fn group_label(record: &RunRecord) -> String {

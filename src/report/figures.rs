@@ -3,7 +3,9 @@
 //! analytical values (which kind draws which: `kinds.rs`), and the dissipation time against the
 //! damping across scenes.
 
-use super::figure::{Figure, FigureKind, background_damping_only, bond_damping_only, group_label, representative};
+use super::figure::{
+    Figure, FigureKind, background_damping_only, bond_damping_only, both_dampings, group_label, representative,
+};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::measure::relative_error;
 use crate::runner::RunRecord;
@@ -65,6 +67,11 @@ pub(super) fn dissipation_figure(records: &[RunRecord]) -> anyhow::Result<Option
         curve("background γ_g, force criterion", &|r| background_damping_only(r) && force_criterion(r), |r| {
             r.spec.gamma_background
         }),
+        curve(
+            "background γ_g added to bond γ, energy criterion",
+            &|r| both_dampings(r) && !force_criterion(r),
+            |r| r.spec.gamma_background,
+        ),
     ]
     .into_iter()
     .filter(|s| !s.points.is_empty())
@@ -83,7 +90,8 @@ pub(super) fn dissipation_figure(records: &[RunRecord]) -> anyhow::Result<Option
         kind: FigureKind::Damping,
         file: "plots/dissipation-damping.svg".into(),
         caption: "Time until each loaded lattice counts as relaxed, against its damping coefficient: bond damping \
-                  alone, and background damping alone by either stopping criterion."
+                  alone, background damping alone by either stopping criterion, and background damping added to bond \
+                  damping (against γ_g)."
             .into(),
         image: line_chart(&chart, &series)?,
     }))

@@ -16,6 +16,70 @@ fn background_sweep(gammas: &str) -> String {
     loaded_lattice("{}", &format!("damping.background: {gammas}"))
 }
 
+/// [`background_sweep`]'s lattice three ways: background damping `gammas` alone (scene bg),
+/// bond damping r = 0.5 alone (bond), and both (both).
+fn added_background(gammas: &str) -> String {
+    let scene = |name: &str, damping: &str, grid: &str| {
+        let yaml = loaded_lattice(damping, grid);
+        yaml.split_once("scenes:\n").unwrap().1.replace("- name: bg", &format!("- name: {name}"))
+    };
+    format!(
+        "version: 1\nname: bg\nscenes:\n{}{}{}",
+        scene("bg", "{}", &format!("damping.background: {gammas}")),
+        scene("bond", "{}", "damping.restitution: [0.5]"),
+        scene("both", "{restitution: 0.5}", &format!("damping.background: {gammas}"))
+    )
+}
+
+/// The dissipation table's (γ_g as written, time in s) of `scene`'s rows.
+fn dissipation_rows(report: &str, scene: &str) -> Vec<(String, f64)> {
+    report
+        .lines()
+        .filter(|l| l.starts_with(&format!("| {scene} | ")) && l.contains("E_kin/E_pot"))
+        .map(|l| {
+            let cells: Vec<&str> = l.split(" | ").collect();
+            (cells[2].to_string(), cells[4].parse::<f64>().unwrap())
+        })
+        .collect()
+}
+
+#[test]
+fn background_damping_added_to_bond_damping_is_set_against_each_alone() {
+    let critical = execute_all(&loaded_lattice("{background: critical}", "seed: [1]"))[0]
+        .metrics
+        .lattice
+        .gamma_background_critical
+        .unwrap();
+    let g = |x: f64| format!("{}", x * critical);
+    // Across γ_crit: below it the slowest mode is underdamped and the bond dashpot adds to its
+    // damping, so the time is shorter than with the background alone; from γ_crit up the
+    // background alone sets the pace (within the sentence's 2 %).
+    let across = report_of("bg", &added_background(&format!("[{}, {}, {}, {}]", g(0.25), g(0.5), g(2.0), g(6.0))));
+    let sentence = line_with(&across, "Background damping added to the bond damping");
+    let (both, alone) = (dissipation_rows(&across, "both"), dissipation_rows(&across, "bg"));
+    assert_eq!(both.len(), 4, "{across}");
+    // The changes it lists are the table's, recounted: t(both)/t(background alone) − 1.
+    let listed = sentence.split("the time changes by ").nth(1).unwrap().replace('−', "-");
+    let changes: Vec<f64> = both.iter().zip(&alone).map(|(b, a)| b.1 / a.1 - 1.0).collect();
+    for (stated, change) in listed.split(", ").zip(&changes) {
+        let stated: f64 = stated.split(" %").next().unwrap().parse().unwrap();
+        // The table's times have 4 digits: each ratio is good to ~1e-3.
+        assert!((stated / 100.0 - change).abs() < 1e-3, "{stated} % against {change}");
+    }
+    assert!(changes[..2].iter().all(|c| *c < -0.02) && changes[2..].iter().all(|c| c.abs() <= 0.02), "{changes:?}");
+    assert!(sentence.contains("it shortens the relaxation below γ_crit"), "{sentence}");
+    let bond = dissipation_rows(&across, "bond")[0].1;
+    assert!((number_after(sentence, "faster than the bond damping alone (") / bond - 1.0).abs() < 1e-3, "{sentence}");
+    // From γ_crit up only: the sentence says the background alone sets the pace, and nothing of
+    // a shortening below γ_crit.
+    let above = report_of("bg", &added_background(&format!("[{}, {}]", g(2.0), g(6.0))));
+    let sentence = line_with(&above, "Background damping added to the bond damping");
+    assert!(sentence.contains(": from γ_crit = ") && sentence.contains("the background damping alone sets"));
+    assert!(!sentence.contains("shortens"), "{sentence}");
+    // No run with both: no sentence.
+    assert!(!report_of("bg", &background_sweep(&format!("[{}, {}]", g(0.5), g(2.0)))).contains("added to the bond"));
+}
+
 #[test]
 fn background_damping_is_judged_against_its_critical_value() {
     // γ_crit = 2√(k_min m) as the program computes it for `background: critical`.

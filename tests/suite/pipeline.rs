@@ -153,7 +153,7 @@ fn plan_lists_runs_and_simulates_nothing() {
     assert!(out.status.success(), "{}", text(&out.stderr));
     let stdout = text(&out.stdout);
     assert!(stdout.contains("pair-contact-") && stdout.contains("dt_per_tc=500"), "{stdout}");
-    assert!(stdout.contains("307 runs") && stdout.contains("dt·ω_max"), "{stdout}");
+    assert!(stdout.contains("312 runs") && stdout.contains("dt·ω_max"), "{stdout}");
     assert!(!reports.path().join("coursework").exists(), "plan wrote output");
 }
 

@@ -3,9 +3,10 @@
 //! the Hertz lattice kicked over decades of v0.
 
 use super::block::Block;
+use super::combined_damping;
 use super::finding::{Answer, Evidence, Table, Verdict, cell, fastest_relaxation, percent, rel, relative, sig};
 use crate::model::LawSpec;
-use crate::report::figure::{FigureKind, background_damping_only, bond_damping_only};
+use crate::report::figure::{FigureKind, background_damping_only, bond_damping_only, both_dampings};
 use crate::runner::RunRecord;
 use crate::spec::Diagonals;
 
@@ -202,10 +203,11 @@ fn lattice_speed_rows(linear: &[&RunRecord]) -> Vec<Vec<String>> {
 
 /// (e): the dissipation time against bond damping and background damping.
 pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
-    let DampingStudy { relaxed, bond, background, energy } = DampingStudy::of(e);
+    let DampingStudy { relaxed, bond, background, energy, both } = DampingStudy::of(e);
     let first = *relaxed.first()?;
     let sweep = BackgroundSweep::of(&energy);
-    let sentences = damping_sentences(first, &bond, &background, &energy, sweep.as_ref());
+    let mut sentences = damping_sentences(first, &bond, &background, &energy, sweep.as_ref());
+    sentences.extend(combined_damping::sentence(&both, &bond, &energy, sweep.as_ref().map(|s| s.critical)));
     let envelope_error = sweep.as_ref().and_then(BackgroundSweep::envelope_error);
     let scenes: Vec<String> = relaxed.iter().map(|r| r.spec.scene.clone()).collect();
     let mut shown: Vec<_> = e.figure("dissipation", FigureKind::Damping).into_iter().collect();
@@ -241,12 +243,13 @@ pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
 /// The dissipation study's runs: every relaxed lattice swept over a damping, those with bond
 /// damping alone, with background damping alone, and of these the energy criterion's (the
 /// background sweep judged against γ_crit: the force criterion stops a creep at another time,
-/// which the figure shows apart).
+/// which the figure shows apart), and those with both (background damping added to bond damping).
 struct DampingStudy<'a> {
     relaxed: Vec<&'a RunRecord>,
     bond: Vec<&'a RunRecord>,
     background: Vec<&'a RunRecord>,
     energy: Vec<&'a RunRecord>,
+    both: Vec<&'a RunRecord>,
 }
 
 impl<'a> DampingStudy<'a> {
@@ -260,7 +263,8 @@ impl<'a> DampingStudy<'a> {
         let background: Vec<&RunRecord> = relaxed.iter().copied().filter(|r| background_damping_only(r)).collect();
         let energy: Vec<&RunRecord> =
             background.iter().copied().filter(|r| r.spec.relax().is_some_and(|x| x.residual_force.is_none())).collect();
-        DampingStudy { relaxed, bond, background, energy }
+        let both: Vec<&RunRecord> = relaxed.iter().copied().filter(|r| both_dampings(r)).collect();
+        DampingStudy { relaxed, bond, background, energy, both }
     }
 }
 

@@ -5,6 +5,7 @@
 //! left out. This file lists the questions; `finding.rs` is the vocabulary they answer in.
 
 mod block;
+mod combined_damping;
 mod curves;
 mod discussion;
 mod dynamics;
