@@ -1028,3 +1028,19 @@ fn a_freely_shearing_block_is_stiffer_than_its_springs_by_its_columns_not_its_ro
     assert!((measured / springs / 1.25 - 1.0).abs() < 1e-3, "{line}");
     assert!((number_after(line, " Pa times ") / 1.25 - 1.0).abs() < 1e-3, "{line}");
 }
+
+#[test]
+fn the_time_step_sets_its_cost_in_steps_against_its_error() {
+    // Verlet's error of t_c is second order: a step 5 times larger errs 5² = 25 times more, one 10
+    // times smaller 10² = 100 times less (within 5 %: the next order, (ω dt)² ≈ 0.1 at t_c/10,
+    // moves the coarsest ratio by a few per cent). The cost is the number of steps.
+    let yaml = "version: 1\nname: dt\nscenes:\n  - name: pair-bonded\n    kind: pair\n    v0: 1.0\n    grid:\n      \
+                time.dt_per_tc: [10, 50, 500]\n";
+    let report = report_of("dt", yaml);
+    let sentence = line_with(&report, "Over the sweep the error of t_c falls as");
+    assert!(sentence.contains("Performance is the number of steps, 50 per t_c at t_c/50: t_c/10 takes 5 times fewer"));
+    assert!((number_after(sentence, "fewer for an error ") / 25.0 - 1.0).abs() < 0.05, "{sentence}");
+    assert!(sentence.contains("t_c/500 10 times more for an error "), "{sentence}");
+    assert!((number_after(sentence, "more for an error ") / 100.0 - 1.0).abs() < 0.05, "{sentence}");
+    assert!(!sentence.contains("nobody needs"), "the old, unmeasured claim");
+}
