@@ -188,9 +188,12 @@ fn lattice_speed_rows(linear: &[&RunRecord]) -> Vec<Vec<String>> {
         .iter()
         .filter(|r| r.spec.lattice().is_some() && (r.spec.dt_per_tc() - 50.0).abs() < 1.0)
         .map(|r| {
+            // The size leads: the threshold's lead over c falls with the distance crossed.
+            let size = r.spec.lattice().map(|l| format!("{} × {}", l.nx, l.ny)).unwrap_or_default();
+            let varied = r.spec.varied_in_words(|_| true);
             vec![
                 r.spec.scene.clone(),
-                r.spec.varied_in_words(|_| true),
+                if varied.is_empty() { size } else { format!("{size}, {varied}") },
                 cell(r.metrics.recommended_sound_speed()),
                 cell(r.metrics.sound_speed_theory),
                 relative(r.metrics.recommended_sound_speed(), r.metrics.sound_speed_theory)
