@@ -408,10 +408,10 @@ fn missed_restitution(all: &[Entry]) -> Vec<String> {
 /// One side's restitution `r` that misses its target `goal`, in words.
 fn missed_sentence(side: &str, scene: &str, r: f64, goal: f64) -> String {
     format!(
-        "In {side}, {scene}'s restitution r = {} misses the target it was set for, {} ({:+.1} %): its damping γ \
+        "In {side}, {scene}'s restitution r = {} misses the target it was set for, {} ({}): its damping γ \
          comes from the linear two-body formula, which this contact does not follow.",
         short(r),
         short(goal),
-        100.0 * (r / goal - 1.0)
+        crate::report::words::percent(r / goal - 1.0)
     )
 }

@@ -280,7 +280,7 @@ fn chain_row(r: &RunRecord) -> ChainRow {
 
 /// Relative difference (a − b)/b as a signed percentage.
 fn percent(a: Option<f64>, b: Option<f64>) -> String {
-    relative_error(a, b).map(|e| format!("{:+.3} %", 100.0 * e)).unwrap_or_else(|| "–".into())
+    relative_error(a, b).map(super::words::percent).unwrap_or_else(|| "–".into())
 }
 
 fn wall_row(r: &RunRecord) -> WallRow {

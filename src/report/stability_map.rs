@@ -137,7 +137,7 @@ fn limit_row(mine: &[&RunRecord], integrator: &'static str, y: String) -> Option
         // Gear's limit bounds its growth over the run (≤ RUN_GROWTH), not where it
         // blows up (energy × 1000): it holds when nothing at or below it blew up.
         if predicted < first_blown {
-            format!("a bound: first blow-up {:+.1} % above it", 100.0 * (first_blown - predicted) / predicted)
+            format!("a bound: first blow-up {} above it", super::words::percent((first_blown - predicted) / predicted))
         } else {
             "bound violated: blew up at or below it".to_string()
         }
@@ -145,7 +145,7 @@ fn limit_row(mine: &[&RunRecord], integrator: &'static str, y: String) -> Option
         "inside the observed bracket".to_string()
     } else {
         let nearest = if predicted < last_bounded { last_bounded } else { first_blown };
-        format!("outside by {:+.2} %", 100.0 * (predicted - nearest) / nearest)
+        format!("outside by {}", super::words::percent((predicted - nearest) / nearest))
     };
     Some(LimitRow {
         integrator,

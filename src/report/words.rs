@@ -3,8 +3,23 @@
 
 use crate::spec::ImpulseSpec;
 
+/// `text`, a formatted number, with a minus sign (−, U+2212) where Rust writes a hyphen before
+/// it: the sign a reader sees in print. The exponent's sign stays a hyphen (`−1.6e-4`), the
+/// form code and spreadsheets read.
+pub fn minus_sign(text: String) -> String {
+    match text.strip_prefix('-') {
+        Some(magnitude) => format!("−{magnitude}"),
+        None => text,
+    }
+}
+
 /// A number with 6 significant digits, plain where that reads well, scientific otherwise.
 pub(super) fn number(x: f64) -> String {
+    minus_sign(plain_or_scientific(x))
+}
+
+/// [`number`] with Rust's hyphen for a minus.
+fn plain_or_scientific(x: f64) -> String {
     if x == 0.0 {
         return "0".into();
     }
@@ -20,6 +35,11 @@ pub(super) fn number(x: f64) -> String {
 
 /// A number in a sentence: 4 significant digits, plain from 1e-3 to 1e5, scientific otherwise.
 pub fn short(x: f64) -> String {
+    minus_sign(short_with_hyphen(x))
+}
+
+/// [`short`] with Rust's hyphen for a minus.
+fn short_with_hyphen(x: f64) -> String {
     if x == 0.0 || !x.is_finite() {
         return format!("{x}");
     }
@@ -44,6 +64,16 @@ pub fn exponent(x: f64, decimals: usize) -> String {
     }
 }
 
+/// A relative difference in per cent with its sign (`+4.577 %`).
+pub fn percent(x: f64) -> String {
+    format!("{} %", signed(100.0 * x))
+}
+
+/// `x` to 4 significant digits with its sign, + or − (a minus sign, not a hyphen): `+0.0017`.
+pub fn signed(x: f64) -> String {
+    format!("{}{}", if x < 0.0 { "−" } else { "+" }, short(x.abs()))
+}
+
 /// A number as [`number`] writes it, or a dash when there is none.
 pub(super) fn optional(x: Option<f64>) -> String {
     x.map(number).unwrap_or_else(|| "–".into())
@@ -51,7 +81,7 @@ pub(super) fn optional(x: Option<f64>) -> String {
 
 /// A relative error in scientific notation with its sign, or a dash when there is none.
 pub(super) fn error(x: Option<f64>) -> String {
-    x.map(|e| format!("{e:+.2e}")).unwrap_or_else(|| "–".into())
+    x.map(|e| minus_sign(format!("{e:+.2e}"))).unwrap_or_else(|| "–".into())
 }
 
 /// An impulse in words: the kick's velocity or the top row's step force.

@@ -120,9 +120,13 @@ pub fn text(bytes: &[u8]) -> String {
 /// The first number in `text` after `marker` (the report writes 4 to 6 significant digits).
 pub fn number_after(text: &str, marker: &str) -> f64 {
     let rest = &text[text.find(marker).unwrap_or_else(|| panic!("no {marker:?} in {text}")) + marker.len()..];
+    // The report writes a minus sign (−), not a hyphen, before a negative number.
+    let (sign, rest) = rest.strip_prefix('−').map_or((1.0, rest), |magnitude| (-1.0, magnitude));
     let end = rest.find(|c: char| !(c.is_ascii_digit() || ".e-+".contains(c))).unwrap_or(rest.len());
     // A sentence's full stop is not a decimal point.
-    rest[..end].trim_end_matches('.').parse().unwrap_or_else(|_| panic!("no number after {marker:?}: {rest}"))
+    let magnitude: f64 =
+        rest[..end].trim_end_matches('.').parse().unwrap_or_else(|_| panic!("no number after {marker:?}: {rest}"));
+    sign * magnitude
 }
 
 /// The report line that contains `marker`.

@@ -388,7 +388,7 @@ pub(super) fn linear_and_hertz(e: &Evidence) -> Option<Answer> {
         rows.push(vec![
             fit.scene.clone(),
             if fit.law == "linear" { "linear".into() } else { "Hertz".into() },
-            format!("{} against {}", symbol(&fit.quantity), symbol(&fit.against)),
+            format!("{} against {}", symbol(fit.quantity), symbol(fit.against)),
             exponent(fit.fit.exponent),
             format!("{predicted:.3}"),
             format!("{:.4}", fit.fit.r_squared),

@@ -197,7 +197,7 @@ impl<'a> Evidence<'a> {
 
 /// A relative error as a signed number with 2 digits (`+1.6e-4`).
 pub fn rel(e: f64) -> String {
-    format!("{e:+.1e}")
+    crate::report::words::minus_sign(format!("{e:+.1e}"))
 }
 
 /// A loaded (not kicked), regular, linear lattice: the coursework's moduli runs.
@@ -253,17 +253,5 @@ pub(super) fn plus_minus(x: f64, u: f64) -> String {
     }
 }
 
-/// A relative difference in per cent with its sign (`+4.577 %`).
-pub(super) fn percent(x: f64) -> String {
-    format!("{} %", signed(100.0 * x))
-}
-
-/// `x` to 4 significant digits with its sign, + or − (a minus sign, not a hyphen): `+0.0017`.
-pub(super) fn signed(x: f64) -> String {
-    format!("{}{}", if x < 0.0 { "−" } else { "+" }, sig(x.abs()))
-}
-
-/// `x` to 4 significant digits, negative with a minus sign (−), not a hyphen.
-pub(super) fn minus(x: f64) -> String {
-    format!("{}{}", if x < 0.0 { "−" } else { "" }, sig(x.abs()))
-}
+/// Signed numbers and per cents, as the whole report writes them.
+pub(super) use crate::report::words::{percent, signed};

@@ -6,7 +6,7 @@ use crate::report::figure::FigureKind;
 use crate::report::solids::mean_spread;
 use std::collections::BTreeMap;
 
-use super::finding::{Answer, Evidence, SeeAlso, Table, Verdict, cell, extremes, minus, percent, sig};
+use super::finding::{Answer, Evidence, SeeAlso, Table, Verdict, cell, extremes, percent, sig};
 use crate::measure::median;
 use crate::report::words::number;
 use crate::runner::RunRecord;
@@ -373,7 +373,7 @@ fn directions_sentence(runs: &[&RunRecord], kind: &str) -> Option<String> {
         ratios.len(),
         poisson_words(runs),
         sig(mean.exp()),
-        minus(mean),
+        sig(mean),
         sig(error),
         by_seed.len(),
         if mean.abs() <= 2.0 * error {
@@ -397,7 +397,7 @@ fn poisson_words(runs: &[&RunRecord]) -> String {
     }
     let range = |v: &[f64]| {
         let (low, high) = extremes(v);
-        format!("{} to {}", minus(low), minus(high))
+        format!("{} to {}", sig(low), sig(high))
     };
     match along {
         [y, x] if !y.is_empty() && !x.is_empty() => {

@@ -125,7 +125,7 @@ impl TypeModuli {
                 cell(md),
                 cell(fem),
                 cell(theory),
-                relative(fem, theory).map(|x| format!("{x:+.2e}")).unwrap_or_else(|| "–".into()),
+                crate::report::words::error(relative(fem, theory)),
             ]);
         }
         moduli.sentence = format!(
@@ -891,7 +891,7 @@ fn against(
         return largest(&|_| true).map(|r| format!("no {name} ({}, {})", r.status.as_str(), block_in_words(r)));
     };
     let (x, reference) = (measured(&r.metrics.lattice), theory(&r.metrics.lattice));
-    let off = relative(x, reference).map_or_else(|| "no reference".into(), |d| format!("{:+.2} %", 100.0 * d));
+    let off = relative(x, reference).map_or_else(|| "no reference".into(), super::finding::percent);
     Some(format!("{name} = {}{unit} against {}{unit} ({off}, {})", cell(x), cell(reference), block_in_words(r)))
 }
 
