@@ -16,6 +16,16 @@ fn background_sweep(gammas: &str) -> String {
     loaded_lattice("{}", &format!("damping.background: {gammas}"))
 }
 
+/// γ_crit = 2√(k_min m) (N s/m) of [`loaded_lattice`], as the program computes it for
+/// `background: critical`.
+fn loaded_lattice_critical() -> f64 {
+    execute_all(&loaded_lattice("{background: critical}", "seed: [1]"))[0]
+        .metrics
+        .lattice
+        .gamma_background_critical
+        .unwrap()
+}
+
 /// [`background_sweep`]'s lattice three ways: background damping `gammas` alone (scene bg),
 /// bond damping r = 0.5 alone (bond), and both (both).
 fn added_background(gammas: &str) -> String {
@@ -45,11 +55,7 @@ fn dissipation_rows(report: &str, scene: &str) -> Vec<(String, f64)> {
 
 #[test]
 fn background_damping_added_to_bond_damping_is_set_against_each_alone() {
-    let critical = execute_all(&loaded_lattice("{background: critical}", "seed: [1]"))[0]
-        .metrics
-        .lattice
-        .gamma_background_critical
-        .unwrap();
+    let critical = loaded_lattice_critical();
     let g = |x: f64| format!("{}", x * critical);
     // Across γ_crit: below it the slowest mode is underdamped and the bond dashpot adds to its
     // damping, so the time is shorter than with the background alone; from γ_crit up the
@@ -82,12 +88,7 @@ fn background_damping_added_to_bond_damping_is_set_against_each_alone() {
 
 #[test]
 fn background_damping_is_judged_against_its_critical_value() {
-    // γ_crit = 2√(k_min m) as the program computes it for `background: critical`.
-    let critical = execute_all(&loaded_lattice("{background: critical}", "seed: [1]"))[0]
-        .metrics
-        .lattice
-        .gamma_background_critical
-        .unwrap();
+    let critical = loaded_lattice_critical();
     let g = |x: f64| format!("{}", x * critical);
     // Across γ_crit: the fastest run is the one nearest it, and the least damped follows the
     // underdamped envelope ln(1/θ) m/γ_g within 5 % (the load ramp and the window of checks
@@ -529,11 +530,7 @@ fn the_relaxation_follows_its_slowest_envelope() {
     // Below γ_crit every mode's energy falls as e^(−γ_g t/m), above it the slowest mode's as
     // e^(−2λt): the sentence names the regimes the sweep has, and the late decay rate meets
     // γ_g/m − Re √((γ_g/m)² − 4k_min/m) within 5 % in both.
-    let critical = execute_all(&loaded_lattice("{background: critical}", "seed: [1]"))[0]
-        .metrics
-        .lattice
-        .gamma_background_critical
-        .unwrap();
+    let critical = loaded_lattice_critical();
     let g = |x: f64| format!("{}", x * critical);
     // Sampled every 0.25 t_c (the slowest mode rings at ~6 t_c): the crests are seen.
     let sampled = |gammas: String| {
