@@ -60,7 +60,7 @@ pub fn exponent(x: f64, decimals: usize) -> String {
     if x.abs() < 0.5 * 10f64.powi(-(decimals as i32)) {
         format!("{:.decimals$}", 0.0)
     } else {
-        format!("{x:.decimals$}")
+        minus_sign(format!("{x:.decimals$}"))
     }
 }
 

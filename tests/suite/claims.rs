@@ -67,7 +67,9 @@ fn background_damping_added_to_bond_damping_is_set_against_each_alone() {
     // The changes it lists are the table's, recounted: t(both)/t(background alone) − 1.
     let listed = sentence.split("the time changes by ").nth(1).unwrap().replace('−', "-");
     let changes: Vec<f64> = both.iter().zip(&alone).map(|(b, a)| b.1 / a.1 - 1.0).collect();
-    for (stated, change) in listed.split(", ").zip(&changes) {
+    let listed: Vec<&str> = listed.split(": ").next().unwrap().split(", ").collect();
+    assert_eq!(listed.len(), changes.len(), "{sentence}");
+    for (stated, change) in listed.iter().zip(&changes) {
         let stated: f64 = stated.split(" %").next().unwrap().parse().unwrap();
         // The table's times have 4 digits: each ratio is good to ~1e-3.
         assert!((stated / 100.0 - change).abs() < 1e-3, "{stated} % against {change}");
@@ -223,6 +225,21 @@ fn random_networks_average_the_rigid_seeds_and_say_where_rigidity_held() {
         !sentence.contains("held down to p = 0.50 and was first lost at p = 0.50"),
         "the old, self-contradicting claim"
     );
+    // The same networks pulled both ways: one count per direction, each the table's.
+    let both_ways = random_block("[0.5]")
+        .replace("seed: [1, 2, 3, 4, 5, 6]\n", "seed: [1, 2, 3, 4, 5, 6]\n      load.case: [tensile, tensile-x]\n");
+    let report = report_of("rnd", &both_ways);
+    let rigid = |case: &str| {
+        let row = line_with(&report, &format!("| {case} | 0.50 | "));
+        row.split(" | ").nth(2).unwrap().split('/').next().unwrap().parse::<usize>().unwrap()
+    };
+    let sentence = line_with(&report, "Effective-medium theory for central-force networks");
+    let counts = format!(
+        "the networks stayed rigid in {} of 6 pulled along y, {} of 6 pulled along x",
+        rigid("tensile"),
+        rigid("tensile-x")
+    );
+    assert!(sentence.contains(&counts), "{sentence}");
     // Levels apart: rigid at p = 0.70, none rigid at p = 0.40.
     let apart = report_of("rnd", &random_block("[0.3, 0.6]"));
     let sentence = line_with(&apart, "Effective-medium theory for central-force networks");
@@ -1036,8 +1053,14 @@ fn the_time_step_sets_its_cost_in_steps_against_its_error() {
     let report = report_of("dt", yaml);
     let sentence = line_with(&report, "Over the sweep the error of t_c falls as");
     assert!(sentence.contains("Performance is the number of steps, 50 per t_c at t_c/50: t_c/10 takes 5 times fewer"));
-    assert!((number_after(sentence, "fewer for an error ") / 25.0 - 1.0).abs() < 0.05, "{sentence}");
-    assert!(sentence.contains("t_c/500 10 times more for an error "), "{sentence}");
-    assert!((number_after(sentence, "more for an error ") / 100.0 - 1.0).abs() < 0.05, "{sentence}");
+    assert!((number_after(sentence, "fewer steps for an error ") / 25.0 - 1.0).abs() < 0.05, "{sentence}");
+    assert!(sentence.contains("times larger, t_c/500 takes 10 times more steps for an error "), "{sentence}");
+    assert!((number_after(sentence, "more steps for an error ") / 100.0 - 1.0).abs() < 0.05, "{sentence}");
+    assert!(sentence.contains("times smaller (the work–precision"), "{sentence}");
+    // Swept only at t_c/50 and finer: no coarser half.
+    let finer = report_of("dt", &yaml.replace("[10, 50, 500]", "[50, 500]"));
+    let sentence = line_with(&finer, "Over the sweep the error of t_c falls as");
+    assert!(sentence.contains("t_c/50: t_c/500 takes 10 times more steps"), "{sentence}");
+    assert!(!sentence.contains("takes 1 times"), "{sentence}");
     assert!(!sentence.contains("nobody needs"), "the old, unmeasured claim");
 }

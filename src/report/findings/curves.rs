@@ -102,9 +102,10 @@ fn overlap_sentence(r: &RunRecord) -> Option<(String, bool)> {
 /// (`worst`), or the verdict alone where no pair was drawn.
 fn motion_short(worst: Option<f64>, agree: Option<bool>) -> String {
     match (worst, agree) {
-        (Some(w), _) => format!(
-            "pair's δ(t) off the oscillator's by {} of its largest overlap at worst (tolerance {OVERLAP_TOLERANCE:e})",
-            rel(w).trim_start_matches('+')
+        (Some(w), agree) => format!(
+            "pair's δ(t) off the oscillator's by {} of its largest overlap at worst (tolerance {OVERLAP_TOLERANCE:e}){}",
+            rel(w).trim_start_matches('+'),
+            if w <= OVERLAP_TOLERANCE && agree == Some(false) { "; another curve outside its tolerance" } else { "" }
         ),
         (None, Some(true)) => "within the analytical curves' tolerances".into(),
         (None, Some(false)) => "outside the analytical curves' tolerances".into(),

@@ -38,7 +38,7 @@ fn linear_against_hertz(e: &Evidence) -> Option<Paragraph> {
         .fits
         .iter()
         .filter(|f| f.law != "linear")
-        .map(|f| format!("{} ∝ {}^{:.3} ({})", symbol(f.quantity), symbol(f.against), f.fit.exponent, f.scene))
+        .map(|f| format!("{} ∝ {}^{} ({})", symbol(f.quantity), symbol(f.against), exponent(f.fit.exponent), f.scene))
         .collect();
     let linear: Vec<String> = e
         .fits
@@ -390,7 +390,7 @@ pub(super) fn linear_and_hertz(e: &Evidence) -> Option<Answer> {
             if fit.law == "linear" { "linear".into() } else { "Hertz".into() },
             format!("{} against {}", symbol(fit.quantity), symbol(fit.against)),
             exponent(fit.fit.exponent),
-            format!("{predicted:.3}"),
+            exponent(predicted),
             format!("{:.4}", fit.fit.r_squared),
         ]);
     }

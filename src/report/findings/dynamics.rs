@@ -190,7 +190,7 @@ fn lattice_speed_rows(linear: &[&RunRecord]) -> Vec<Vec<String>> {
         .map(|r| {
             // The size leads: the threshold's lead over c falls with the distance crossed.
             let size = r.spec.lattice().map(|l| format!("{} × {}", l.nx, l.ny)).unwrap_or_default();
-            let varied = r.spec.varied_in_words(|_| true);
+            let varied = r.spec.varied_in_words(|path| path != "lattice.size");
             vec![
                 r.spec.scene.clone(),
                 if varied.is_empty() { size } else { format!("{size}, {varied}") },
@@ -210,7 +210,7 @@ pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
     let first = *relaxed.first()?;
     let sweep = BackgroundSweep::of(&energy);
     let mut sentences = damping_sentences(first, &bond, &background, &energy, sweep.as_ref());
-    sentences.extend(combined_damping::sentence(&both, &bond, &energy, sweep.as_ref().map(|s| s.critical)));
+    sentences.extend(combined_damping::sentence(&both, &bond, &energy));
     let envelope_error = sweep.as_ref().and_then(BackgroundSweep::envelope_error);
     let scenes: Vec<String> = relaxed.iter().map(|r| r.spec.scene.clone()).collect();
     let mut shown: Vec<_> = e.figure("dissipation", FigureKind::Damping).into_iter().collect();
@@ -266,7 +266,13 @@ impl<'a> DampingStudy<'a> {
         let background: Vec<&RunRecord> = relaxed.iter().copied().filter(|r| background_damping_only(r)).collect();
         let energy: Vec<&RunRecord> =
             background.iter().copied().filter(|r| r.spec.relax().is_some_and(|x| x.residual_force.is_none())).collect();
-        let both: Vec<&RunRecord> = relaxed.iter().copied().filter(|r| both_dampings(r)).collect();
+        // Background damping swept on top of a bond damping, stopped by the energy criterion.
+        let both: Vec<&RunRecord> = relaxed
+            .iter()
+            .copied()
+            .filter(|r| both_dampings(r) && r.spec.varied.contains_key("damping.background"))
+            .filter(|r| r.spec.relax().is_some_and(|x| x.residual_force.is_none()))
+            .collect();
         DampingStudy { relaxed, bond, background, energy, both }
     }
 }

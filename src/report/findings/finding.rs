@@ -246,11 +246,8 @@ pub(super) fn plus_minus(x: f64, u: f64) -> String {
     let power = if (-3..5).contains(&magnitude) { 0 } else { magnitude };
     let (x, u) = (x / 10f64.powi(power), u / 10f64.powi(power));
     let decimals = (1 - u.log10().floor() as i32).clamp(0, 8) as usize;
-    if power == 0 {
-        format!("{x:.decimals$} ± {u:.decimals$}")
-    } else {
-        format!("({x:.decimals$} ± {u:.decimals$})e{power}")
-    }
+    let x = crate::report::words::minus_sign(format!("{x:.decimals$}"));
+    if power == 0 { format!("{x} ± {u:.decimals$}") } else { format!("({x} ± {u:.decimals$})e{power}") }
 }
 
 /// Signed numbers and per cents, as the whole report writes them.

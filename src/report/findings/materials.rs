@@ -350,7 +350,7 @@ fn anisotropic_rows(groups: &BTreeMap<String, Vec<&RunRecord>>) -> (Vec<Vec<Stri
 /// N_x columns of vertical springs carry the load, but the stress divides it over the block's
 /// width L_x = (N_x − 1) a, so the measured E_y is N_x/(N_x − 1) times k_y/d, exactly.
 fn free_shear_sentence(r: &RunRecord) -> Option<String> {
-    let l = r.spec.lattice()?;
+    let l = r.spec.lattice().filter(|l| l.nx >= 2 && l.ny >= 2)?;
     let sign = match l.diagonals {
         Diagonals::Rising => 1.0,
         Diagonals::Falling => -1.0,

@@ -381,23 +381,36 @@ fn cost_words(
     finest: &RunRecord,
     t_error: impl Fn(&RunRecord) -> Option<f64>,
 ) -> String {
-    let error_ratio = |a: &RunRecord, b: &RunRecord| Some(t_error(a)?.abs() / t_error(b)?.abs());
-    let (Some(larger), Some(smaller)) = (error_ratio(coarsest, reference), error_ratio(reference, finest)) else {
-        return String::new();
-    };
     let steps = |r: &RunRecord| r.spec.dt_per_tc();
+    // (steps against the reference's, error against the reference's), for a run at another step
+    // with a non-zero error.
+    let against = |r: &RunRecord| {
+        let (error, reference_error) = (t_error(r)?.abs(), t_error(reference)?.abs());
+        (steps(r) != steps(reference) && error > 0.0 && reference_error > 0.0)
+            .then(|| (steps(r) / steps(reference), error / reference_error))
+    };
+    // "5 times fewer": a ratio x as a factor above 1, the word saying which way.
+    let times = |x: f64, write: fn(f64) -> String, [up, down]: [&str; 2]| {
+        if x >= 1.0 { format!("{} times {up}", write(x)) } else { format!("{} times {down}", write(1.0 / x)) }
+    };
+    let words = |r: &RunRecord, (cost, error): (f64, f64)| {
+        format!(
+            "t_c/{:.0} takes {} steps for an error {}",
+            steps(r),
+            times(cost, number, ["more", "fewer"]),
+            times(error, sig, ["larger", "smaller"])
+        )
+    };
+    let parts: Vec<String> = [coarsest, finest].into_iter().filter_map(|r| Some(words(r, against(r)?))).collect();
+    if parts.is_empty() {
+        return String::new();
+    }
     format!(
-        " Performance is the number of steps, {:.0} per t_c at t_c/{:.0}: t_c/{:.0} takes {} times fewer for an \
-         error {} times larger, t_c/{:.0} {} times more for an error {} times smaller (the work–precision figures \
-         set the error against the measured run time).",
+        " Performance is the number of steps, {:.0} per t_c at t_c/{:.0}: {} (the work–precision figures set the \
+         error against the measured run time).",
         steps(reference),
         steps(reference),
-        steps(coarsest),
-        number(steps(reference) / steps(coarsest)),
-        sig(larger),
-        steps(finest),
-        number(steps(finest) / steps(reference)),
-        sig(smaller)
+        parts.join(", ")
     )
 }
 
@@ -468,6 +481,21 @@ pub(super) fn chain_as_row(e: &Evidence) -> Option<Answer> {
     })
 }
 
+/// The coursework's choice of masses and springs for a chain of `n` particles: the chain's
+/// total mass M is n m, so m = M/n; n + 1 springs of length a = L/(n + 1) in series are as stiff
+/// as a rod of Young's modulus E and cross-section A, E A/L, when k = E A/a.
+fn chain_mass_words(r: &RunRecord, n: usize) -> String {
+    format!(
+        "Its {n} particles of m = {} kg weigh n m = {} kg in all: a chain of given mass M and length L between the \
+         walls takes m = M/n and, to be as stiff as a rod of Young's modulus E and cross-section A, springs k = E A/a \
+         with a = L/(n + 1) (n + 1 springs in series, k/(n + 1) = E A/L); here a = {} m, so L = {} m.",
+        number(r.spec.mass),
+        number(r.spec.mass * n as f64),
+        number(r.spec.spacing),
+        number(r.spec.spacing * (n + 1) as f64)
+    )
+}
+
 /// The chain of N kicked at its centre against its exact normal-mode solution.
 pub(super) fn chain(e: &Evidence) -> Option<Answer> {
     let reference = normal_mode_chain(e)?;
@@ -496,6 +524,7 @@ pub(super) fn chain(e: &Evidence) -> Option<Answer> {
                 .into(),
         },
     ];
+    sentences.push(chain_mass_words(reference, chain.n));
     if !movies.is_empty() {
         sentences.push(
             "The movie shows the kick splitting into two pulses that run to the walls and reflect, particles coloured \

@@ -526,17 +526,38 @@ fn mixed_words(runs: &[&RunRecord], p: f64, lost: f64) -> String {
         );
     }
     let at_p = |r: &&&RunRecord| r.spec.lattice().is_some_and(|l| (1.0 - l.cut_fraction - p).abs() < 1e-9);
-    let level: Vec<_> = runs.iter().filter(at_p).collect();
-    let rigid = level.iter().filter(|r| r.status != RunStatus::Mechanism).count();
+    let level: Vec<&RunRecord> = runs.iter().filter(at_p).copied().collect();
     let denser = if lost > p + 1e-9 {
-        format!("; denser networks lost it too, up to p = {lost:.2}")
+        let also = if level.iter().any(|r| r.status == RunStatus::Mechanism) { " too" } else { "" };
+        format!("; denser networks lost it{also}, up to p = {lost:.2}")
     } else {
         "; every denser network stayed rigid".into()
     };
-    format!(
-        " At p = {p:.2}{}, {rigid} of {} networks stayed rigid and {} lost rigidity{denser}.",
-        at_threshold(p),
-        level.len(),
-        level.len() - rigid
-    )
+    format!(" At p = {p:.2}{}, {}{denser}.", at_threshold(p), rigid_counts(&level))
+}
+
+/// "the networks stayed rigid in 2 of 4 pulled along y, 1 of 4 pulled along x": one count per
+/// load case, since each network is loaded in every case of the campaign and may hold in one only.
+fn rigid_counts(level: &[&RunRecord]) -> String {
+    let mut by_case: BTreeMap<&str, (usize, usize)> = BTreeMap::new();
+    for r in level {
+        let case = r.spec.lattice().map_or("", |l| l.load_name());
+        let (rigid, all) = by_case.entry(case).or_default();
+        *rigid += usize::from(r.status != RunStatus::Mechanism);
+        *all += 1;
+    }
+    let loaded = |case: &str| match case {
+        "tensile" => "pulled along y",
+        "tensile-x" => "pulled along x",
+        _ => "sheared",
+    };
+    let counts: Vec<String> =
+        by_case.iter().map(|(case, (rigid, all))| format!("{rigid} of {all} {}", loaded(case))).collect();
+    let single = by_case.len() == 1;
+    match by_case.values().next() {
+        Some(&(rigid, all)) if single => {
+            format!("{rigid} of {all} networks stayed rigid and {} lost rigidity", all - rigid)
+        }
+        _ => format!("the networks stayed rigid in {}", counts.join(", ")),
+    }
 }

@@ -15,7 +15,7 @@ use crate::report::figure::{FigureKind, representative};
 use crate::report::kinds::contact_time_words;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
-use crate::spec::{Control, Diagonals, LatticeSpec, LoadCase, Supports};
+use crate::spec::{Control, Diagonals, LatticeSpec, LoadCase, RunSpec, Supports};
 
 /// Largest |MD − static|/static of a relaxed lattice's modulus that counts as agreement: the
 /// relaxation stops at E_kin/E_pot < 1e-8 or a residual force of 1e-6 of the load, which leaves
@@ -24,7 +24,7 @@ pub(super) const STATIC_TOLERANCE: f64 = 2e-3;
 
 /// The fitted order, as text.
 fn order_text(order: Option<f64>) -> String {
-    order.map(|p| format!("{p:.2}")).unwrap_or_else(|| "–".into())
+    order.map(|p| crate::report::words::exponent(p, 2)).unwrap_or_else(|| "–".into())
 }
 
 /// The scenes of `runs`, each once, in order.
@@ -99,22 +99,35 @@ fn node_sentences<'a>(e: &Evidence<'a>, lattices: &[&'a RunRecord]) -> Option<(&
     let l = s.lattice()?;
     match &l.derived_from {
         Some(note) => sentences.insert(0, format!("The masses and springs are derived from the solid: {note}.")),
-        // N_x N_y cells of a² d hold more than the solid of width (N_x − 1) a and height (N_y − 1) a
-        // that the moduli measure (its edge nodes carry whole cells): 5 % more on 40 × 40.
         None => sentences[0].push_str(&format!(
-            " Each node carries the mass of its cell a × a × d (a = {} m, d = {} m): ρ = m/(a² d) = {} kg/m³. The \
-             solid whose moduli the block measures, (N_x − 1) a wide and (N_y − 1) a high, weighs (N_x − 1)(N_y − \
-             1) m = {} kg at that ρ: the lattice's edge nodes carry whole cells, {} more{}.",
+            " Each node carries the mass of its cell a × a × d (a = {} m, d = {} m): ρ = m/(a² d) = {} kg/m³.{}",
             sig(s.spacing),
             sig(l.depth),
             sig(s.mass / (s.spacing * s.spacing * l.depth)),
-            sig(s.mass * ((l.nx - 1) * (l.ny - 1)) as f64),
-            super::finding::percent((l.nx * l.ny) as f64 / ((l.nx - 1) * (l.ny - 1)) as f64 - 1.0)
-                .trim_start_matches('+'),
-            derived.map_or_else(String::new, |d| format!("; scene {} below makes the two equal", d.spec.scene)),
+            solid_mass_words(s, l, derived),
         )),
     }
     Some((example, sentences))
+}
+
+/// N_x N_y square cells of a² d hold more than the solid of width (N_x − 1) a and height
+/// (N_y − 1) a whose moduli the block measures (its edge nodes carry whole cells): 5 % more on
+/// 40 × 40. Said of square lattices of at least 2 × 2, with the scene whose masses come from the
+/// solid's density, if there is one.
+fn solid_mass_words(s: &RunSpec, l: &LatticeSpec, derived: Option<&RunRecord>) -> String {
+    if !(l.lattice_type.is_square() && l.nx >= 2 && l.ny >= 2) {
+        return String::new();
+    }
+    let solid = s.mass * ((l.nx - 1) * (l.ny - 1)) as f64;
+    let from_density = derived
+        .filter(|d| d.spec.lattice().and_then(|l| l.derived_from.as_deref()).is_some_and(|n| n.contains("m = ρ")));
+    format!(
+        " The solid whose moduli the block measures, (N_x − 1) a wide and (N_y − 1) a high, weighs (N_x − 1)(N_y − 1) m \
+         = {} kg at that ρ: the lattice's edge nodes carry whole cells, {} more{}.",
+        sig(solid),
+        super::finding::percent(s.mass * (l.nx * l.ny) as f64 / solid - 1.0).trim_start_matches('+'),
+        from_density.map_or_else(String::new, |d| format!("; scene {} below makes the two equal", d.spec.scene)),
+    )
 }
 
 /// Over the runs at the coursework's step dt = t_c/50: how many, and (dt·ω_max, its stability
