@@ -330,9 +330,8 @@ pub fn split_appendix(body: &str) -> (String, Option<String>) {
     let main = linked_across(main, appendix, APPENDIX_PAGE);
     let appendix = linked_across(appendix, main.as_str(), MAIN_PAGE);
     let main = format!(
-        "{main}<p class=\"appendix-link\"><strong>Appendix:</strong> the methods, every scene with its figures, \
-         movies and tables, and every run's numbers are on a page of their own, \
-         <a href=\"{APPENDIX_PAGE}\">{APPENDIX_PAGE}</a>.</p>\n"
+        "{main}<p class=\"appendix-link\"><strong>Appendix</strong> (the methods, every scene's figures, movies \
+         and tables, every run's numbers): <a href=\"{APPENDIX_PAGE}\">{APPENDIX_PAGE}</a>.</p>\n"
     );
     let appendix = format!("<p class=\"back\"><a href=\"{MAIN_PAGE}\">← the report</a></p>\n{appendix}");
     (main, Some(appendix))

@@ -221,9 +221,9 @@ fn ensemble_figure(ensembles: &[Ensemble], scene: &str) -> anyhow::Result<Option
         file: format!("plots/{scene}-dilution.svg"),
         caption: format!(
             "{scene}: {} of randomly diluted lattices (mean over seeds, its error bar ± one \
-             standard deviation) against the kept fraction p of the interior bonds, beside the effective-medium line for \
-             central-force networks, falling linearly to zero at p = 2d/z = {threshold:.3}. Networks that lost rigidity \
-             (status mechanism) have no stiffness and count as 0; runs that did not settle are left out.{}",
+             standard deviation) against the kept fraction p of the interior bonds, beside the effective-medium line, \
+             zero at p = 2d/z = {threshold:.3}. Networks that lost rigidity (status mechanism) count as 0; runs that did \
+             not settle are left out.{}",
             match (series.iter().any(|s| s.label.starts_with('E')), series.iter().any(|s| s.label.starts_with('G'))) {
                 (true, true) => "Young's and shear moduli",
                 (true, false) => "Young's modulus",

@@ -303,9 +303,9 @@ impl Block<'_> {
     pub(super) fn extrapolation_sentence(&self) -> Option<String> {
         (self.tensile.len() >= 2).then(|| {
             format!(
-                "A finite block departs from the continuum by its edges, a share ∝ 1/N of its modulus to first order: its N columns \
-             of nodes carry the load over a width of only (N − 1) a (without diagonals E = N/(N − 1) k/d exactly), \
-             and a boundary layer of fixed thickness at the point loads and the supports adds to that; Richardson's v∞ = (N₂ v₂ − N₁ v₁)/(N₂ − N₁) over \
+                "A finite block departs from the continuum by a share ∝ 1/N (to first order): its N columns carry the \
+             load over a width of only (N − 1) a (without diagonals E = N/(N − 1) k/d exactly), and the loads and \
+             supports disturb a boundary layer; Richardson's v∞ = (N₂ v₂ − N₁ v₁)/(N₂ − N₁) over \
              the two largest of {} on the {} gives E = {} Pa and ν = {} (the uncertainty: the change when the next \
              smaller pair of blocks is used, or the whole correction with two sizes), against the continuum's {} Pa \
              and {}.",

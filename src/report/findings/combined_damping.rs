@@ -37,8 +37,8 @@ pub(super) fn sentence(both: &[&RunRecord], bond: &[&RunRecord], background: &[&
     let against_bond = bond_words(&added);
     let against_background = background_words(&added, critical);
     Some(format!(
-        "Background damping added to the bond damping (γ = {} N s/m{}): γ_g = {} N s/m give {times} s (energy \
-         criterion){against_bond}{against_background}.",
+        "Background damping added to the bond damping (γ = {} N s/m{}): γ_g = {} N s/m give {times} \
+         s{against_bond}{against_background}.",
         sig(first.spec.gamma),
         first.spec.restitution_target.map_or_else(String::new, |r| format!(", r = {}", number(r))),
         added.iter().map(|a| sig(a.background)).collect::<Vec<_>>().join(", "),
@@ -85,7 +85,7 @@ fn bond_words(added: &[Added]) -> String {
     let (low, high) = crate::measure::extremes(speedups.iter().map(|s| s.1));
     let factor = if low == high { sig(low) } else { format!("{} to {}", sig(low), sig(high)) };
     let than = if low > 1.0 { "faster than" } else { "as fast as" };
-    format!("; adding it relaxes the block {factor} times {than} the bond damping alone ({} s)", sig(alone))
+    format!(", {factor} times {than} the bond damping alone ({} s)", sig(alone))
 }
 
 /// How the bond damping changes the background damping's time at each γ_g, and what that shows
@@ -106,27 +106,22 @@ fn background_words(added: &[Added], critical: Option<f64>) -> String {
         let same_above = above.iter().all(|c| c.1.abs() <= c.2);
         match (below.is_empty(), above.is_empty()) {
             (false, false) if helps_below && same_above => Some(format!(
-                ": it shortens the relaxation below γ_crit = {} N s/m, where the slowest mode is underdamped and the \
-                 bond dashpot adds to its damping, and changes it by at most {} % (or two checks) from γ_crit up, \
-                 where the background damping alone sets the pace",
+                ": below γ_crit = {} N s/m the dashpot adds to the underdamped slowest mode's damping; from γ_crit up \
+                 (within {} % or two checks) the background sets the pace",
                 sig(critical),
                 number(100.0 * SAME_TIME)
             )),
             (false, true) if helps_below => Some(format!(
-                ": it shortens the relaxation at every γ_g here, all below γ_crit = {} N s/m, where the slowest mode \
-                 is underdamped and the bond dashpot adds to its damping",
+                ": all below γ_crit = {} N s/m, where the dashpot adds to the underdamped slowest mode's damping",
                 sig(critical)
             )),
             (true, false) if same_above => Some(format!(
-                ": from γ_crit = {} N s/m up, within {} % (or two checks), the background damping alone sets the pace",
+                ": from γ_crit = {} N s/m up (within {} % or two checks) the background sets the pace",
                 sig(critical),
                 number(100.0 * SAME_TIME)
             )),
             _ => None,
         }
     });
-    format!(
-        "; against the background damping alone at the same γ_g the time changes by {listed}{}",
-        pattern.unwrap_or_default()
-    )
+    format!(", and {listed} against the background alone{}", pattern.unwrap_or_default())
 }

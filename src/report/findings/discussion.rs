@@ -32,29 +32,37 @@ pub fn discussion(e: &Evidence) -> Vec<Paragraph> {
     [linear_against_hertz(e), diagonals(e), damping(e), time_step(e)].into_iter().flatten().collect()
 }
 
+/// The fitted laws of `fits` in words, one per variable and exponent as written, with the
+/// quantities that share it and (`scenes`) their scenes: "E and G ∝ the load per node F^0.333 (a, b)".
+fn shared_laws<'a>(fits: impl Iterator<Item = &'a ScalingFit>, scenes: bool) -> Vec<String> {
+    let mut laws: Vec<(String, Vec<String>, Vec<&str>)> = Vec::new();
+    for f in fits {
+        let against = format!("{}^{}", symbol(f.against), exponent(f.fit.exponent));
+        let (quantity, scene) = (symbol(f.quantity), f.scene.as_str());
+        match laws.iter_mut().find(|(a, _, _)| *a == against) {
+            Some((_, quantities, shared)) => {
+                (!quantities.contains(&quantity)).then(|| quantities.push(quantity));
+                (!shared.contains(&scene)).then(|| shared.push(scene));
+            }
+            None => laws.push((against, vec![quantity], vec![scene])),
+        }
+    }
+    let named = |s: &[&str]| if scenes { format!(" ({})", s.join(", ")) } else { String::new() };
+    laws.iter().map(|(against, q, s)| format!("{} ∝ {against}{}", words::listed(q, "and"), named(s))).collect()
+}
+
 /// Exponents of the fitted scaling laws, linear against power-law springs.
 fn linear_against_hertz(e: &Evidence) -> Option<Paragraph> {
-    let hertz: Vec<String> = e
-        .fits
-        .iter()
-        .filter(|f| f.law != "linear")
-        .map(|f| format!("{} ∝ {}^{} ({})", symbol(f.quantity), symbol(f.against), exponent(f.fit.exponent), f.scene))
-        .collect();
-    let linear: Vec<String> = e
-        .fits
-        .iter()
-        .filter(|f| f.law == "linear")
-        .map(|f| format!("{} ∝ {}^{}", symbol(f.quantity), symbol(f.against), exponent(f.fit.exponent)))
-        .collect();
+    let hertz = shared_laws(e.fits.iter().filter(|f| f.law != "linear"), true);
+    let linear = shared_laws(e.fits.iter().filter(|f| f.law == "linear"), false);
     (!hertz.is_empty()).then(|| Paragraph {
         title: "Linear against non-linear springs",
         text: format!(
             "A linear spring's stiffness does not depend on how far it is stretched, so nothing a linear network \
              does depends on the amplitude: here {}. A Hertz spring stiffens as it deforms and has no stiffness at \
              rest: its contact duration shortens with the impact speed, a chain between walls stiffens as the walls \
-             move, the lattice's moduli grow with the load and its waves speed up with the kick: here {}. In 1D and \
-             2D alike, the non-linear network's response is set by its state of deformation, which a linear \
-             network's is not; superposition, normal modes and one sound speed are linear ideas.",
+             move, the lattice's moduli grow with the load and its waves speed up with the kick: here {}. Superposition, \
+             normal modes and one sound speed are linear ideas.",
             if linear.is_empty() { "no sweep over the amplitude".to_string() } else { linear.join(", ") },
             hertz.join(", ")
         ) + &two_d_numbers(e).map_or_else(String::new, |s| format!(" {s}")),
@@ -135,10 +143,9 @@ fn diagonals(e: &Evidence) -> Option<Paragraph> {
         title: "With and without diagonals",
         text: format!(
             "Without diagonals a square lattice is a set of independent chains: on {} × {} ({supports} supports), \
-             E = {} Pa (k/d, up to the finite size), ν = {} and no shear stiffness at all ({floppy} shear runs end as \
-             mechanism), and a kick stays in its column. The diagonals tie rows to columns: on the same block, \
-             E = {} Pa, ν = {} and G = k_d/d, a solid that contracts sideways and carries shear, and a kick spreads \
-             through the whole block.",
+             E = {} Pa (k/d up to the finite size), ν = {}, no shear stiffness ({floppy} shear runs end as mechanism), \
+             and a kick stays in its column. The diagonals tie rows to columns: on the same block, E = {} Pa, ν = {} \
+             and G = k_d/d, a solid that contracts sideways, carries shear and spreads a kick.",
             n.spec.lattice().map_or(0, |l| l.nx),
             n.spec.lattice().map_or(0, |l| l.ny),
             cell(n.metrics.lattice.youngs_modulus),
@@ -162,11 +169,10 @@ fn damping(e: &Evidence) -> Option<Paragraph> {
     (bond.is_finite() && background.is_finite()).then(|| Paragraph {
         title: "Bond against background damping",
         text: format!(
-            "Bond damping is physical (it sets the restitution of each spring) but acts only on relative motion, so \
-             the slow, nearly rigid modes of a large block barely feel it: the fastest bond-damped relaxation here \
-             takes {} s. Background damping acts on every node's velocity and every mode: {} s, {:.0}× faster. For \
-             static answers (moduli) use background damping near the slowest mode's critical value; for dynamics \
-             (restitution, dissipation) keep the bond damping and no background.",
+            "Bond damping is physical (it sets each spring's restitution) but acts only on relative motion, which the \
+             slow, nearly rigid modes of a block barely have: the fastest bond-damped relaxation here takes {} s; \
+             background damping, on every node's velocity, {} s, {:.0}× faster. Static answers (moduli) want \
+             background damping near the slowest mode's critical value, dynamics (restitution) the bond damping alone.",
             sig(bond),
             sig(background),
             bond / background
@@ -232,7 +238,7 @@ fn rule_words(pair_error: Option<f64>) -> String {
     let pairs = pair_error.map_or(String::new(), |error| format!(" On two particles it keeps t_c to {error:.1e}."));
     format!(
         "One rule serves every scene: dt = t_c/50 with t_c the contact time of two of the scene's masses on its \
-         spring k (material.k; a power law's stiffness at its expected deformation): π√(m/(2k)) undamped, \
+         spring k (material.k): π√(m/(2k)) undamped, \
          π/√(2k/m − (γ/m)²) with its bond dashpot.{pairs}"
     )
 }
@@ -247,15 +253,11 @@ fn fastest_mode_words(integrated: &[&RunRecord], swept: bool) -> Option<String> 
         .filter_map(|r| Some(r.metrics.dt_omega_max? / r.metrics.stability_limit?))
         .reduce(f64::max)
         .map_or(String::new(), |share| {
-            format!(
-                ", at most {} of the run's own stability limit (ω dt = 2 for undamped Verlet, less with damping)",
-                sig(share)
-            )
+            format!(", at most {} of the run's own stability limit (2 for undamped Verlet)", sig(share))
         });
     Some(format!(
         "On the {} of this campaign it puts the fastest mode at dt·ω_max ≤ {}{share}{}; each run checks its \
-         fastest mode before it starts, which catches stiffer springs than k elsewhere in a network (k_y, the \
-         diagonals).",
+         fastest mode first, so stiffer springs than k (k_y, the diagonals) are caught.",
         kinds_in_words(integrated),
         sig(largest),
         if swept { ", and errors fall as dt²" } else { "" }
@@ -310,8 +312,7 @@ fn power_law_words(power: &[&RunRecord]) -> Option<String> {
     }
     (!expected.is_empty()).then(|| {
         format!(
-            "For Hertz springs t_c depends on the amplitude: mdsolids takes t_c at the deformation the scene expects \
-             ({}), so the same rule holds there.",
+            "A Hertz spring's t_c depends on the amplitude: it is taken at the deformation the scene expects ({}).",
             words::listed(&expected, "or")
         )
     })

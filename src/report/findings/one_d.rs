@@ -406,8 +406,7 @@ fn cost_words(
         return String::new();
     }
     format!(
-        " Performance is the number of steps, {:.0} per t_c at t_c/{:.0}: {} (the work–precision figures set the \
-         error against the measured run time).",
+        " The cost is the steps, {:.0} per t_c at t_c/{:.0}: {} (the work–precision figures: error against run time).",
         steps(reference),
         steps(reference),
         parts.join(", ")
@@ -486,9 +485,8 @@ pub(super) fn chain_as_row(e: &Evidence) -> Option<Answer> {
 /// as a rod of Young's modulus E and cross-section A, E A/L, when k = E A/a.
 fn chain_mass_words(r: &RunRecord, n: usize) -> String {
     format!(
-        "Its {n} particles of m = {} kg weigh n m = {} kg in all: a chain of given mass M and length L between the \
-         walls takes m = M/n and, to be as stiff as a rod of Young's modulus E and cross-section A, springs k = E A/a \
-         with a = L/(n + 1) (n + 1 springs in series, k/(n + 1) = E A/L); here a = {} m, so L = {} m.",
+        "Its {n} particles of m = {} kg weigh n m = {} kg: a chain of mass M and length L takes m = M/n, and k = E A/a \
+         (a = L/(n + 1), n + 1 springs in series) to be as stiff as a rod E A/L; here a = {} m, L = {} m.",
         number(r.spec.mass),
         number(r.spec.mass * n as f64),
         number(r.spec.spacing),

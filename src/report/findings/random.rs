@@ -358,14 +358,13 @@ fn directions_sentence(runs: &[&RunRecord], kind: &str) -> Option<String> {
     let (mean, error) = (mean?, spread? / (by_seed.len() as f64).sqrt());
     Some(format!(
         "Every {kind} network was pulled along y and along x (tensile-x, the block turned), as the coursework asks of \
-         random systems: {}; E_x/E_y is {} ({} pairs relaxed both ways){}. By symmetry (tensile-x is the tensile \
-         set-up turned by 90°) ln(E_x/E_y) averages 0 over seeds; here the geometric mean of E_x/E_y is {}, its \
-         logarithm {} ± {} (mean ± standard error over {} seeds, each seed's levels averaged first: they share its \
-         random numbers), {}.",
+         random systems: {}; E_x/E_y is {} ({} pairs relaxed both ways){}. By symmetry ln(E_x/E_y) averages 0 over \
+         seeds; here the geometric mean of E_x/E_y is {}, its logarithm {} ± {} (mean ± standard error over {} \
+         seeds, each seed's levels averaged first: they share its random numbers), {}.",
         if kind == "cut" {
             "the same interior bonds are cut, but each loading keeps its own loaded and held edges whole, so a seed's \
              two are one network only in the interior and their ratio mixes its anisotropy with their edges' \
-             difference (the spread networks keep every bond, and are one network both ways)"
+             difference"
         } else {
             "the same bonds spread, one network both ways"
         },
@@ -436,10 +435,9 @@ fn direction_ratios(runs: &[&RunRecord]) -> Vec<(f64, u64, f64)> {
 /// discs whose contacts come and go, the jamming campaign's subject.
 fn jammed_packings() -> SeeAlso {
     SeeAlso {
-        text: "In granular matter the random solid is a jammed packing: discs whose contacts come and go, rigid \
-               above the jamming fraction φ_J ≈ 0.842 with z → 4 contacts each, the same threshold 2d as the cut \
-               networks' here. The jamming campaign quenches bidisperse discs across φ_J and states φ_J, z and the \
-               scalings of p, z − 4, K and G against O'Hern et al. (2003)."
+        text: "In granular matter the random solid is a jammed packing of discs whose contacts come and go, rigid \
+               above φ_J ≈ 0.842 with z → 4 contacts each (the cut networks' threshold 2d); the jamming campaign \
+               states φ_J, z and the scalings of p, z − 4, K and G against O'Hern et al. (2003)."
             .into(),
         campaign: "campaigns/jamming.yaml",
         page: "../jamming/index.html",

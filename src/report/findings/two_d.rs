@@ -122,8 +122,7 @@ fn solid_mass_words(s: &RunSpec, l: &LatticeSpec, derived: Option<&RunRecord>) -
     let from_density = derived
         .filter(|d| d.spec.lattice().and_then(|l| l.derived_from.as_deref()).is_some_and(|n| n.contains("m = ρ")));
     format!(
-        " The solid whose moduli the block measures, (N_x − 1) a wide and (N_y − 1) a high, weighs (N_x − 1)(N_y − 1) m \
-         = {} kg at that ρ: the lattice's edge nodes carry whole cells, {} more{}.",
+        " The solid it measures, (N_x − 1) a by (N_y − 1) a, weighs {} kg: the edge nodes' whole cells add {}{}.",
         sig(solid),
         super::finding::percent(s.mass * (l.nx * l.ny) as f64 / solid - 1.0).trim_start_matches('+'),
         from_density.map_or_else(String::new, |d| format!("; scene {} below makes the two equal", d.spec.scene)),
@@ -496,8 +495,7 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
             format!(
                 "1 kN up on every top-row node of the {}: E = (F/d/L_x)/(ΔL_y/L_y) = {} Pa (continuum {} Pa), \
                  ν = −(ΔL_x/L_x)/(ΔL_y/L_y) = {} (continuum {continuum_nu}{}); without diagonals E = k/d and \
-                 ν = 0: nothing ties the columns to the rows (a block of N columns measures N/(N − 1) k/d: they \
-                 all carry the load, but the stress divides it over the width (N − 1) a).",
+                 ν = 0: nothing ties the columns to the rows.",
                 r.spec.lattice().map(lattice_words).unwrap_or_default(),
                 cell(r.metrics.lattice.youngs_modulus),
                 cell(r.metrics.lattice.youngs_modulus_theory),
