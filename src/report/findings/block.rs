@@ -168,7 +168,7 @@ impl<'a> Block<'a> {
 
     /// The sizes extrapolated from, in words (`5 × 5 … 40 × 40`).
     pub(super) fn sizes(&self) -> String {
-        let size = |r: &RunRecord| r.spec.lattice().map(|l| format!("{} × {}", l.nx, l.ny)).unwrap_or_default();
+        let size = super::finding::lattice_size;
         match self.tensile.as_slice() {
             [one] => size(one),
             [first, .., last] => format!("{} … {}", size(first), size(last)),

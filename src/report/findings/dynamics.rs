@@ -4,7 +4,9 @@
 
 use super::block::Block;
 use super::combined_damping;
-use super::finding::{Answer, Evidence, Table, Verdict, cell, fastest_relaxation, percent, rel, relative, sig};
+use super::finding::{
+    Answer, Evidence, Table, Verdict, cell, fastest_relaxation, lattice_size, percent, rel, relative, sig,
+};
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, background_damping_only, bond_damping_only, both_dampings};
 use crate::runner::RunRecord;
@@ -189,7 +191,7 @@ fn lattice_speed_rows(linear: &[&RunRecord]) -> Vec<Vec<String>> {
         .filter(|r| r.spec.lattice().is_some() && (r.spec.dt_per_tc() - 50.0).abs() < 1.0)
         .map(|r| {
             // The size leads: the threshold's lead over c falls with the distance crossed.
-            let size = r.spec.lattice().map(|l| format!("{} × {}", l.nx, l.ny)).unwrap_or_default();
+            let size = lattice_size(r);
             let varied = r.spec.varied_in_words(|path| path != "lattice.size");
             vec![
                 r.spec.scene.clone(),
@@ -264,14 +266,14 @@ impl<'a> DampingStudy<'a> {
         });
         let bond: Vec<&RunRecord> = relaxed.iter().copied().filter(|r| bond_damping_only(r)).collect();
         let background: Vec<&RunRecord> = relaxed.iter().copied().filter(|r| background_damping_only(r)).collect();
-        let energy: Vec<&RunRecord> =
-            background.iter().copied().filter(|r| r.spec.relax().is_some_and(|x| x.residual_force.is_none())).collect();
+        let by_energy = |r: &&RunRecord| r.spec.relax().is_some_and(|x| x.residual_force.is_none());
+        let energy: Vec<&RunRecord> = background.iter().copied().filter(by_energy).collect();
         // Background damping swept on top of a bond damping, stopped by the energy criterion.
         let both: Vec<&RunRecord> = relaxed
             .iter()
             .copied()
             .filter(|r| both_dampings(r) && r.spec.varied.contains_key("damping.background"))
-            .filter(|r| r.spec.relax().is_some_and(|x| x.residual_force.is_none()))
+            .filter(by_energy)
             .collect();
         DampingStudy { relaxed, bond, background, energy, both }
     }
@@ -296,7 +298,7 @@ pub(super) fn dissipation_headline(e: &Evidence) -> Option<String> {
     Some(format!(
         "Loaded, the {} block counts as relaxed ({}) fastest with background damping near its critical value \
          γ_crit = 2√(k_min m) = {} N s/m: {} s at γ_g = {} N s/m = {:.2} γ_crit{bracket}{}.",
-        fastest.spec.lattice().map(|l| format!("{} × {}", l.nx, l.ny)).unwrap_or_default(),
+        lattice_size(fastest),
         fastest.metrics.dissipation_criterion.as_deref().unwrap_or("–"),
         sig(sweep.critical),
         sig(time),
@@ -346,7 +348,7 @@ fn damping_sentences(
             "Bond damping alone: γ = {} N s/m relax the {} lattice in {} s; stronger bond damping relaxes faster, \
              but it damps only relative motion, so the slowest, nearly rigid modes of the block ring longest.",
             bond.iter().map(|r| sig(r.spec.gamma)).collect::<Vec<_>>().join(", "),
-            first.spec.lattice().map(|l| format!("{} × {}", l.nx, l.ny)).unwrap_or_default(),
+            lattice_size(first),
             bond.iter().map(|r| cell(r.metrics.dissipation_time)).collect::<Vec<_>>().join(", ")
         ));
     }

@@ -221,6 +221,11 @@ pub(super) fn fastest_relaxation(runs: &[&RunRecord]) -> f64 {
 /// The smallest and largest of a list of numbers, for the findings' ranges.
 pub(super) use crate::measure::extremes;
 
+/// A lattice run's size in words (`40 × 40`); empty off a lattice.
+pub(super) fn lattice_size(r: &RunRecord) -> String {
+    r.spec.lattice().map(|l| format!("{} × {}", l.nx, l.ny)).unwrap_or_default()
+}
+
 /// `x` when present, a dash otherwise.
 pub(super) fn cell(x: Option<f64>) -> String {
     x.map(sig).unwrap_or_else(|| "–".into())

@@ -310,7 +310,7 @@ fn anisotropic_rows(groups: &BTreeMap<String, Vec<&RunRecord>>) -> (Vec<Vec<Stri
             .find(|r| r.spec.lattice().is_some_and(|l| l.load_case == case && l.rotated == rotated))
             .and_then(|r| pick(r))
     };
-    let (mut rows, mut sentences) = (Vec::new(), Vec::new());
+    let (mut rows, mut sentences, mut free_shear_said) = (Vec::new(), Vec::new(), false);
     for (key, rs) in groups {
         let e_y = modulus(rs, LoadCase::Tensile, false, |r| r.metrics.lattice.youngs_modulus);
         let e_x = modulus(rs, LoadCase::Tensile, true, |r| r.metrics.lattice.youngs_modulus);
@@ -331,8 +331,9 @@ fn anisotropic_rows(groups: &BTreeMap<String, Vec<&RunRecord>>) -> (Vec<Vec<Stri
             ));
         }
         // Said once: every one-family network shears freely for the same reason.
-        if !sentences.iter().any(|s| s.contains("shears freely")) {
-            sentences.extend(rs.iter().find_map(|r| free_shear_sentence(r)));
+        if let Some(free) = rs.iter().find_map(|r| free_shear_sentence(r)).filter(|_| !free_shear_said) {
+            sentences.push(free);
+            free_shear_said = true;
         }
         rows.push(vec![
             key.clone(),
