@@ -2,6 +2,7 @@
 //! every figure of the report and of the comparison is drawn, as SVG, or as PNG where the SVG
 //! would be heavy ([`Image`]).
 
+use super::legend;
 use plotters::chart::SeriesAnno;
 use plotters::coord::Shift;
 use plotters::coord::ranged1d::{Ranged, ValueFormatter};
@@ -207,32 +208,69 @@ fn line_chart_on<DB: DrawingBackend>(
         series.iter().flat_map(|s| s.points.iter().copied().chain(bar_ends(s))).filter(|&p| scale.shows(p)).collect();
     let x_range = bounds(shown.iter().map(|p| p.0), scale.log_x());
     let y_range = bounds(shown.iter().map(|p| p.1), scale.log_y());
+    let placement = legend_placement(&root, chart, series, &shown, (&x_range, &y_range))?;
+    let y_range = legend::grown(y_range, placement.taller, scale.log_y());
     {
         root.fill(&WHITE).map_err(draw_error)?;
         let builder = || frame(&root, chart);
+        let corner = placement.corner;
         match scale {
             Scale::Linear => {
-                draw(&mut builder()?.build_cartesian_2d(x_range, y_range).map_err(draw_error)?, chart, series)?
+                draw(&mut builder()?.build_cartesian_2d(x_range, y_range).map_err(draw_error)?, chart, series, corner)?
             }
             Scale::LogLog => draw(
                 &mut builder()?.build_cartesian_2d(log_axis(x_range), log_axis(y_range)).map_err(draw_error)?,
                 chart,
                 series,
+                corner,
             )?,
             Scale::LogY => draw(
                 &mut builder()?.build_cartesian_2d(x_range, log_axis(y_range)).map_err(draw_error)?,
                 chart,
                 series,
+                corner,
             )?,
             Scale::LogX => draw(
                 &mut builder()?.build_cartesian_2d(log_axis(x_range), y_range).map_err(draw_error)?,
                 chart,
                 series,
+                corner,
             )?,
         }
         root.present().map_err(draw_error)?;
     }
     Ok(())
+}
+
+/// Where the legend of `series` goes among the `shown` points on axes over `ranges`
+/// ([`legend::place`]). The plotting area's size in pixels is plotters' to lay out (the caption
+/// and the label areas around it); it is read off the same frame built on a scratch bitmap of
+/// `root`'s size, the axes' ranges changing nothing of it.
+fn legend_placement<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    chart: &Chart,
+    series: &[Series],
+    shown: &[(f64, f64)],
+    (x_range, y_range): (&std::ops::Range<f64>, &std::ops::Range<f64>),
+) -> anyhow::Result<legend::Placement> {
+    let labels: Vec<&str> = series.iter().map(|s| s.label.as_str()).filter(|l| !l.is_empty()).collect();
+    if labels.is_empty() {
+        return Ok(legend::Placement { corner: SeriesLabelPosition::UpperRight, taller: 1.0 });
+    }
+    let (width, height) = root.dim_in_pixel();
+    let mut scratch = vec![0u8; width as usize * height as usize * 3];
+    let scratch_area = BitMapBackend::with_buffer(&mut scratch, (width, height)).into_drawing_area();
+    let plot = frame(&scratch_area, chart)?.build_cartesian_2d(0.0..1.0, 0.0..1.0).map_err(draw_error)?;
+    let (x_pixels, y_pixels) = plot.plotting_area().get_pixel_range();
+    let (box_width, box_height) = legend::legend_pixels(&labels, LABEL_TEXT)?;
+    let size =
+        (box_width / f64::from(x_pixels.end - x_pixels.start), box_height / f64::from(y_pixels.end - y_pixels.start));
+    let scale = chart.scale;
+    let fractions: Vec<(f64, f64)> = shown
+        .iter()
+        .map(|&(x, y)| (legend::along(x, x_range, scale.log_x()), 1.0 - legend::along(y, y_range, scale.log_y())))
+        .collect();
+    Ok(legend::place(&fractions, size))
 }
 
 /// A logarithmic axis over `range` with ticks a reader can use: 1, 2, 3, 5 and 7 times each
@@ -289,11 +327,12 @@ fn bounds(values: impl Iterator<Item = f64>, log: bool) -> std::ops::Range<f64> 
     }
 }
 
-/// Draws the axes, `series` and their legend (in the corner where it covers the fewest points).
+/// Draws the axes, `series` and their legend in `legend_corner`.
 fn draw<'a, DB: DrawingBackend + 'a, X, Y>(
     ctx: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
     chart: &Chart,
     series: &[Series],
+    legend_corner: SeriesLabelPosition,
 ) -> anyhow::Result<()>
 where
     X: Ranged<ValueType = f64> + ValueFormatter<f64>,
@@ -308,13 +347,11 @@ where
             legend_entry(drawn, s, color);
         }
     }
-    let labels = series.iter().filter(|s| !s.label.is_empty()).count();
-    let corner = emptiest_corner(ctx, series, labels);
     ctx.configure_series_labels()
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .label_font(("sans-serif", LABEL_TEXT))
-        .position(corner)
+        .position(legend_corner)
         .draw()
         .map_err(draw_error)
 }
@@ -440,46 +477,6 @@ pub fn bar_ends(s: &Series) -> impl Iterator<Item = (f64, f64)> + '_ {
         _ => &[],
     };
     s.points.iter().zip(half_widths).flat_map(|(&(x, y), &h)| [(x, y - h), (x, y + h)])
-}
-
-/// The corner of the plotting area where the legend of `labels` entries covers the fewest
-/// drawn points (ties: upper right), so the legend stays off the data.
-fn emptiest_corner<'a, DB: DrawingBackend + 'a, X, Y>(
-    ctx: &ChartContext<'a, DB, Cartesian2d<X, Y>>,
-    series: &[Series],
-    labels: usize,
-) -> SeriesLabelPosition
-where
-    X: Ranged<ValueType = f64>,
-    Y: Ranged<ValueType = f64>,
-{
-    let (x_pixels, y_pixels) = ctx.plotting_area().get_pixel_range();
-    let (width, height) = ((x_pixels.end - x_pixels.start) as f64, (y_pixels.end - y_pixels.start) as f64);
-    // The legend box: about 45 % of the width, 24 px per entry plus its frame.
-    let (box_w, box_h) = (0.45 * width, (24 * labels + 16) as f64);
-    let corners = [
-        (SeriesLabelPosition::UpperRight, true, false),
-        (SeriesLabelPosition::UpperLeft, true, true),
-        (SeriesLabelPosition::LowerRight, false, false),
-        (SeriesLabelPosition::LowerLeft, false, true),
-    ];
-    let covered = |upper: bool, left: bool| {
-        series
-            .iter()
-            .flat_map(|s| s.points.iter().copied().chain(bar_ends(s)))
-            .map(|p| ctx.backend_coord(&p))
-            .filter(|&(px, py)| {
-                let (x, y) = ((px - x_pixels.start) as f64, (py - y_pixels.start) as f64);
-                let in_x = if left { x <= box_w } else { x >= width - box_w };
-                let in_y = if upper { y <= box_h } else { y >= height - box_h };
-                in_x && in_y
-            })
-            .count()
-    };
-    corners
-        .into_iter()
-        .min_by_key(|(_, upper, left)| covered(*upper, *left))
-        .map_or(SeriesLabelPosition::UpperRight, |(position, _, _)| position)
 }
 
 /// Labels of a linear axis over `range` where plotters' own do not fit: they never use an

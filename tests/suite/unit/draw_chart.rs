@@ -77,3 +77,72 @@ fn heavy_figures_are_drawn_as_png() {
     let values: Vec<Vec<f64>> = (0..400).map(|s| (0..60).map(|j| ((s + j) as f64 * 0.05).sin()).collect()).collect();
     assert!(matches!(heatmap(&chart, &times, &values).unwrap(), Image::Png(_)), "15 000 cells");
 }
+
+/// The numbers of `attribute="…"` in each of `svg`'s `<element …>` tags that carry `marker`.
+fn tag_numbers(svg: &str, element: &str, marker: &str, attributes: &[&str]) -> Vec<Vec<f64>> {
+    let number = |tag: &str, name: &str| {
+        let start = tag.find(&format!(" {name}=\"")).map(|i| i + name.len() + 3).expect(name);
+        tag[start..].split('"').next().and_then(|v| v.parse().ok()).expect(name)
+    };
+    svg.split(&format!("<{element} "))
+        .skip(1)
+        .map(|rest| &rest[..rest.find('>').unwrap_or(rest.len())])
+        .filter(|tag| tag.contains(marker))
+        .map(|tag| attributes.iter().map(|name| number(&format!(" {tag}"), name)).collect())
+        .collect()
+}
+
+/// The legend's box (x, y, width, height, px) and the centres of the discs drawn under it and
+/// outside it, of a chart of three marker series drawn as an SVG.
+fn legend_and_discs(series: &[Series]) -> ([f64; 4], usize, Vec<(f64, f64)>) {
+    let chart = Chart { title: "t".into(), x_label: "x".into(), y_label: "y".into(), scale: Scale::Linear };
+    let Image::Svg(svg) = line_chart(&chart, series).unwrap() else { panic!("a few points are an SVG") };
+    let boxes = tag_numbers(&svg, "rect", "opacity=\"0.85\"", &["x", "y", "width", "height"]);
+    assert_eq!(boxes.len(), 1, "one legend: {svg}");
+    let b = [boxes[0][0], boxes[0][1], boxes[0][2], boxes[0][3]];
+    let discs = tag_numbers(&svg, "circle", "r=\"4\"", &["cx", "cy"]);
+    // A disc is under the box when any of it is: its centre within its 4 px radius of the box.
+    let under =
+        |d: &&Vec<f64>| d[0] > b[0] - 4.0 && d[0] < b[0] + b[2] + 4.0 && d[1] > b[1] - 4.0 && d[1] < b[1] + b[3] + 4.0;
+    let inside = discs.iter().filter(under).count();
+    let outside = discs.iter().filter(|d| !under(d)).map(|d| (d[0], d[1])).collect();
+    (b, inside, outside)
+}
+
+/// The legend covers no data point. With every corner of the plot occupied (a point in each,
+/// which the old corner-only choice had to cover), the y axis grows upwards to make room above
+/// the data: the only discs under the box are the legend's own three, and every data disc lies
+/// below it. With the upper-left corner empty the legend goes there, and the axes are not
+/// stretched: the highest point stays within the top tenth of the plot (the 5 % margin).
+#[test]
+fn the_legend_covers_no_point_and_takes_room_above_the_data_only_when_no_corner_is_free() {
+    let markers = |label: &str, points: Vec<(f64, f64)>| Series { label: label.into(), points, mark: Mark::Markers };
+    let crowded = [
+        markers("lower corners", vec![(0.0, 0.0), (10.0, 0.0)]),
+        markers("upper corners, with a long label that makes the box wide", vec![(0.0, 10.0), (10.0, 10.0)]),
+        markers("middle", vec![(5.0, 5.0)]),
+    ];
+    let (legend, inside, outside) = legend_and_discs(&crowded);
+    assert_eq!(inside, 3, "only the legend's own discs under {legend:?}: {outside:?}");
+    assert_eq!(outside.len(), 5, "{outside:?}");
+    assert!(
+        outside.iter().all(|d| d.1 > legend[1] + legend[3]),
+        "every point below the legend {legend:?}: {outside:?}"
+    );
+    let free_upper_left = [
+        markers("lower corners", vec![(0.0, 0.0), (10.0, 0.0)]),
+        markers("upper right", vec![(10.0, 10.0)]),
+        markers("middle", vec![(5.0, 5.0)]),
+    ];
+    let (legend, inside, outside) = legend_and_discs(&free_upper_left);
+    assert_eq!(inside, 3, "only the legend's own discs under {legend:?}: {outside:?}");
+    assert!(legend[0] < 410.0 - legend[2] / 2.0, "the legend in the left half: {legend:?}");
+    let top = outside.iter().map(|d| d.1).fold(f64::INFINITY, f64::min);
+    let bottom = outside.iter().map(|d| d.1).fold(0.0, f64::max);
+    // Data span 0 … 10 with 5 % margins: the highest disc is 0.05/1.1 of the plot's height
+    // below the top of the data area (~400 px), about 18 px below the legend's top edge.
+    assert!(
+        top - legend[1] < 0.1 * (bottom - top),
+        "the axis is not stretched: top disc at {top}, legend at {legend:?}"
+    );
+}
