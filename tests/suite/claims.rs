@@ -436,18 +436,47 @@ fn the_summary_states_the_blocks_own_moduli_and_sound_speed() {
     assert!((v4 / v1 - 2.0).abs() < 2e-3 && (c4 / c1 - 2.0).abs() < 2e-3, "{v1} {v4} {c1} {c4}");
 }
 
-/// A 4 × 4 steel-like block with both diagonals, sheared on `supports` by a force and by an
-/// imposed velocity.
-fn controlled_shear(supports: &str) -> String {
+/// A 4 × 4 steel-like block with both diagonals, loaded on `supports` in each of `cases` by a
+/// force and by an imposed velocity.
+fn controlled(supports: &str, cases: &[&str]) -> String {
     let common = format!(
         "    kind: lattice\n    material: {{mass: 0.785, k: 2.0e9}}\n    geometry: {{spacing: 0.1, depth: 0.01}}\n    \
          damping: {{restitution: 0.5, background: 12000.0}}\n    time: {{integrator: velocity-verlet}}\n    \
          lattice: {{size: 4, k_diag_ratio: 0.5}}\n    supports: {supports}\n"
     );
-    format!(
-        "version: 1\nname: ctl\nscenes:\n  - name: force\n{common}    load: {{case: shear, per_node: 1000.0}}\n  \
-         - name: velocity\n{common}    load: {{case: shear, control: velocity, strain: 1.0e-4}}\n"
-    )
+    let scenes: String = cases
+        .iter()
+        .map(|case| {
+            format!(
+                "  - name: force-{case}\n{common}    load: {{case: {case}, per_node: 1000.0}}\n  \
+                 - name: velocity-{case}\n{common}    load: {{case: {case}, control: velocity, strain: 1.0e-4}}\n"
+            )
+        })
+        .collect();
+    format!("version: 1\nname: ctl\nscenes:\n{scenes}")
+}
+
+fn controlled_shear(supports: &str) -> String {
+    controlled(supports, &["shear"])
+}
+
+/// The velocity boundary condition is answered where its modulus is asked for: the tensile
+/// drive under Young's modulus (E from the supports' force), the shear drive under the shear
+/// modulus (G), and neither in the other's item.
+#[test]
+fn each_velocity_drive_is_answered_in_the_item_of_its_modulus() {
+    let report = report_of("ctl", &controlled("coursework", &["tensile", "shear"]));
+    let item = |title: &str| {
+        let start = report.find(&format!(". {title}\n")).unwrap_or_else(|| panic!("no item {title}: {report}"));
+        let rest = &report[start..];
+        rest[..rest[1..].find("\n### ").map_or(rest.len(), |end| end + 1)].to_string()
+    };
+    let (youngs, shear) = (item("Young's modulus and Poisson's ratio"), item("The shear modulus"));
+    assert!(
+        youngs.contains("E from the supports' force") && !youngs.contains("G from the supports' force"),
+        "{youngs}"
+    );
+    assert!(shear.contains("G from the supports' force") && !shear.contains("E from the supports' force"), "{shear}");
 }
 
 #[test]

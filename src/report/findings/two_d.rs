@@ -476,7 +476,7 @@ fn moduli(e: &Evidence, case: LoadCase) -> Option<Moduli> {
     })
 }
 
-/// (a) and (b): Young's modulus and Poisson's ratio.
+/// (a) and (b): Young's modulus and Poisson's ratio, and the velocity boundary condition under tension.
 pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
     let Moduli { mut sentences, table, checks, scenes } = moduli(e, LoadCase::Tensile)?;
     let both = e.ok(|r| regular(r).is_some_and(|l| l.load_case == LoadCase::Tensile && l.diagonals == Diagonals::Both));
@@ -506,6 +506,7 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
     }
     let block = Block::of(e);
     sentences.extend(block.as_ref().and_then(Block::extrapolation_sentence));
+    sentences.extend(control_sentences(e, LoadCase::Tensile));
     Some(Answer {
         title: "Young's modulus and Poisson's ratio",
         question: "(a, b) Measure E and ν under 1 kN up on every top-row node.",
@@ -528,7 +529,7 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
     })
 }
 
-/// (c): the shear modulus, and the velocity boundary condition.
+/// (c): the shear modulus, and the velocity boundary condition under shear.
 pub(super) fn shear(e: &Evidence) -> Option<Answer> {
     let Moduli { mut sentences, table, checks, scenes } = moduli(e, LoadCase::Shear)?;
     let periodic = e.ok(|r| {
@@ -546,7 +547,7 @@ pub(super) fn shear(e: &Evidence) -> Option<Answer> {
             supported_shear_words(e)
         ));
     }
-    sentences.extend(e.ok(driven).into_iter().take(4).filter_map(|r| control_sentence(e, r)));
+    sentences.extend(control_sentences(e, LoadCase::Shear));
     Some(Answer {
         title: "The shear modulus",
         question: "(c) Measure G under a horizontal load on every top-row node.",
@@ -645,7 +646,10 @@ fn control_sentence(e: &Evidence, driven: &RunRecord) -> Option<String> {
     Some(format!("{head}; force control gives {} Pa (static {} Pa): {why}.", cell(md_f), cell(fem_f)))
 }
 
-/// A lattice driven at constant velocity (the coursework's velocity boundary condition).
-fn driven(r: &RunRecord) -> bool {
-    regular(r).is_some_and(|l| l.control == Control::Velocity)
+/// The velocity-driven runs of `load_case` (at most two, the item's answer is E or G) each
+/// against its force-loaded twin ([`control_sentence`]): the tensile ones under E and ν, the
+/// sheared ones under G.
+fn control_sentences(e: &Evidence, load_case: LoadCase) -> Vec<String> {
+    let driven = e.ok(|r| regular(r).is_some_and(|l| l.control == Control::Velocity && l.load_case == load_case));
+    driven.into_iter().take(2).filter_map(|r| control_sentence(e, r)).collect()
 }
