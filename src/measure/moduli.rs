@@ -189,8 +189,7 @@ pub fn constrained_modulus_y(k_x: f64, k_y: f64, k_rising: f64, k_falling: f64, 
 /// assert!(one.poisson_ratio_yx.is_sign_positive() && one.poisson_ratio_xy.is_sign_positive());
 /// ```
 pub fn anisotropic_moduli(k_x: f64, k_y: f64, k_rising: f64, k_falling: f64, depth: f64) -> ContinuumModuli {
-    let c = lattice_constants(k_x, k_y, k_rising, k_falling);
-    if c.c66 == 0.0 {
+    let Some(s) = compliance(&lattice_constants(k_x, k_y, k_rising, k_falling)) else {
         return ContinuumModuli {
             youngs_modulus_x: k_x / depth,
             youngs_modulus_y: k_y / depth,
@@ -198,23 +197,44 @@ pub fn anisotropic_moduli(k_x: f64, k_y: f64, k_rising: f64, k_falling: f64, dep
             poisson_ratio_yx: 0.0,
             shear_modulus: None,
         };
+    };
+    ContinuumModuli {
+        youngs_modulus_x: 1.0 / (s[0][0] * depth),
+        youngs_modulus_y: 1.0 / (s[1][1] * depth),
+        // 0 − S12, not −S12: S12 = 0 (one diagonal family) gives 0, not −0.
+        poisson_ratio_xy: (0.0 - s[0][1]) / s[0][0],
+        poisson_ratio_yx: (0.0 - s[0][1]) / s[1][1],
+        shear_modulus: Some(1.0 / (s[2][2] * depth)),
+    }
+}
+
+/// The compliance S = C⁻¹ (m/N per unit depth; Voigt order xx, yy, xy with the engineering
+/// shear γ = 2ε_xy) of a square lattice's constants, by cofactors (C is symmetric); `None`
+/// without diagonals (C66 = 0: no shear stiffness, C singular).
+fn compliance(c: &ElasticConstants) -> Option<[[f64; 3]; 3]> {
+    if c.c66 == 0.0 {
+        return None;
     }
     let m = [[c.c11, c.c12, c.c16], [c.c12, c.c22, c.c16], [c.c16, c.c16, c.c66]];
-    // S = C⁻¹ by cofactors: S_ij = cof_ji / det (C is symmetric).
     let cofactor = |i: usize, j: usize| {
         let (r, s) = ([(i + 1) % 3, (i + 2) % 3], [(j + 1) % 3, (j + 2) % 3]);
         m[r[0]][s[0]] * m[r[1]][s[1]] - m[r[0]][s[1]] * m[r[1]][s[0]]
     };
     let det = (0..3).map(|j| m[0][j] * cofactor(0, j)).sum::<f64>();
-    let s = |i: usize, j: usize| cofactor(j, i) / det;
-    ContinuumModuli {
-        youngs_modulus_x: 1.0 / (s(0, 0) * depth),
-        youngs_modulus_y: 1.0 / (s(1, 1) * depth),
-        // 0 − S12, not −S12: S12 = 0 (one diagonal family) gives 0, not −0.
-        poisson_ratio_xy: (0.0 - s(0, 1)) / s(0, 0),
-        poisson_ratio_yx: (0.0 - s(0, 1)) / s(1, 1),
-        shear_modulus: Some(1.0 / (s(2, 2) * depth)),
-    }
+    Some(std::array::from_fn(|i| std::array::from_fn(|j| cofactor(j, i) / det)))
+}
+
+/// Young's modulus (Pa) of a square lattice's continuum pulled along the direction at `angle`
+/// (radians from x): a uniaxial stress σ along n = (cos θ, sin θ) is σ v with
+/// v = (cos²θ, sin²θ, cos θ sin θ) in Voigt order, and strains the continuum along n by
+/// vᵀ S v σ, so E(θ) = 1/(vᵀ S v d). `None` without diagonals: off the axes such a network
+/// has no stiffness.
+pub fn youngs_modulus_along(k_x: f64, k_y: f64, k_rising: f64, k_falling: f64, depth: f64, angle: f64) -> Option<f64> {
+    let s = compliance(&lattice_constants(k_x, k_y, k_rising, k_falling))?;
+    let (sin, cos) = angle.sin_cos();
+    let v = [cos * cos, sin * sin, cos * sin];
+    let strain: f64 = (0..3).map(|i| (0..3).map(|j| v[i] * s[i][j] * v[j]).sum::<f64>()).sum();
+    Some(1.0 / (strain * depth))
 }
 
 /// Lamé constants per unit depth (N/m) of an isotropic network of central springs k with

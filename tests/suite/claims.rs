@@ -698,11 +698,19 @@ fn anisotropy_is_set_against_the_continuums_ratio_and_flips_with_it() {
     // One rising family with k_y = k_x: the block is the same turned by 90°, ratio 1. A 6 × 6
     // block keeps a finite-size share of a few per cent (1.691 on the coursework's 10 × 10):
     // tolerance 5 % on the measured ratio; the stated continuum's to its 4 digits.
+    //
+    // Whether the network is isotropic is judged over every direction, not from E_y/E_x: both
+    // families with k_d = k/2 are isotropic (C66 = (C11 − C12)/2), E = C11 − C12²/C11 = 4/3 in
+    // every direction (k = d = 1); one rising family (k_r = k/2) has E_y = E_x but pulled along
+    // its missing diagonal (135°) e_xx = e_yy = σ/k and γ = −σ/k_r − 2σ/k, so ε = σ (2/k +
+    // 1/(2k_r)) and E = 1/3. Stated to 4 digits: tolerance 5e-4.
     let (c11, c22, c12) = (1.5f64, 2.5f64, 0.5f64);
     let stiff_y = (c22 - c12 * c12 / c11) / (c11 - c12 * c12 / c22);
-    for (diagonals, ratio, expected, words) in
-        [("both", 2.0, stiff_y, "the directions differ"), ("rising", 1.0, 1.0, "isotropic in E")]
-    {
+    for (diagonals, ratio, expected, words, continuum_e) in [
+        ("both", 2.0, stiff_y, "the directions differ (the continuum's E from ", None),
+        ("both", 1.0, 1.0, "isotropic (the continuum's E = ", Some(4.0 / 3.0)),
+        ("rising", 1.0, 1.0, "E_y = E_x, yet anisotropic: the continuum's E falls to ", Some(1.0 / 3.0)),
+    ] {
         let report = report_of("an", &anisotropic_block(diagonals, ratio));
         let marker = format!("{diagonals} diagonals, k_y/k = {ratio:.0}: E_y/E_x = ");
         let line = line_with(&report, &marker);
@@ -710,7 +718,12 @@ fn anisotropy_is_set_against_the_continuums_ratio_and_flips_with_it() {
         assert!((measured / expected - 1.0).abs() < 0.05, "{line}");
         assert!((number_after(line, "against the continuum's ") / expected - 1.0).abs() < 5e-4, "{line}");
         assert!(line.contains(words), "{line}");
+        if let Some(e) = continuum_e {
+            assert!((number_after(line, words) / e - 1.0).abs() < 5e-4, "{line}");
+        }
     }
+    let rising = report_of("an", &anisotropic_block("rising", 1.0));
+    assert!(line_with(&rising, "rising diagonals, k_y/k = 1: E_y/E_x").contains("Pa at 135° from x"), "{rising}");
 }
 
 #[test]
@@ -946,7 +959,7 @@ fn the_block_sentences_compare_like_with_like() {
     let quoted = number_after(paragraph, "on the same block, E = ");
     let e = with.metrics.lattice.youngs_modulus.unwrap();
     assert!((quoted / e - 1.0).abs() < 1e-3, "{quoted} against {e}: {paragraph}");
-    assert!((number_after(paragraph, "Pa, ν = ") - nu(with)).abs() < 1e-3, "{paragraph}");
+    assert!((number_after(paragraph, "Pa and ν = ") - nu(with)).abs() < 1e-3, "{paragraph}");
     // The diagonal springs: each ratio on the one size both were run at, with its own k.
     for ratio in [0.5, std::f64::consts::FRAC_1_SQRT_2] {
         let r = run("solid", 4, true, "coursework", ratio);
@@ -1095,4 +1108,41 @@ fn the_time_step_sets_its_cost_in_steps_against_its_error() {
     assert!(sentence.contains("t_c/50: t_c/500 takes 10 times more steps"), "{sentence}");
     assert!(!sentence.contains("takes 1 times"), "{sentence}");
     assert!(!sentence.contains("nobody needs"), "the old, unmeasured claim");
+}
+
+/// The chain between walls states its worst errors against the static answer with their signs:
+/// each is the run's relative error (measured − exact)/exact of the largest magnitude, recomputed
+/// here from the records. Linear springs relaxed to a residual force of 1e-9 N: the secant
+/// stiffness comes out a hair below k/(n+1) (the relaxation stops short of the last stretch), so
+/// a sign lost to an absolute value shows as "+".
+#[test]
+fn the_walls_sentence_gives_each_worst_error_with_its_sign() {
+    let yaml = "version: 1\nname: w\nscenes:\n  - name: walls\n    kind: chain\n    n: 9\n    \
+                damping: {restitution: 0.5}\n    time: {integrator: velocity-verlet}\n    \
+                relax: {residual_force: 1.0e-9, tangent_step: 0.001}\n    grid:\n      wall_distance: [9.5, 10.5]\n";
+    let records = execute_all(yaml);
+    let worst = |pick: fn(&mdsolids::runner::RunRecord) -> (Option<f64>, Option<f64>)| {
+        records
+            .iter()
+            .filter_map(|r| match pick(r) {
+                (Some(m), Some(t)) => Some((m - t) / t),
+                _ => None,
+            })
+            .max_by(|a, b| a.abs().total_cmp(&b.abs()))
+            .expect("both runs measured")
+    };
+    let secant = worst(|r| (r.metrics.chain.secant_stiffness, r.metrics.chain.secant_stiffness_theory));
+    let tangent = worst(|r| (r.metrics.chain.tangent_stiffness, r.metrics.chain.tangent_stiffness_theory));
+    let report = report_of("w", yaml);
+    let line = line_with(&report, "Linear springs: the 9 particles relax");
+    let errors = &line[line.find("(errors ").expect(line)..];
+    let (stated_secant, stated_tangent) = (number_after(errors, "(errors "), number_after(errors, " and "));
+    assert!(secant < 0.0, "the case where a lost sign shows: {secant}");
+    // Stated to two significant digits: tolerance 5 % of the value, and the same sign.
+    for (stated, exact) in [(stated_secant, secant), (stated_tangent, tangent)] {
+        assert!(
+            stated.signum() == exact.signum() && (stated / exact - 1.0).abs() < 0.05,
+            "{stated} against {exact}: {line}"
+        );
+    }
 }

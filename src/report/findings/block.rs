@@ -280,21 +280,27 @@ impl<'a> Block<'a> {
     }
 }
 
-/// The coursework's estimate t_s = N_s t_c for the block's wave `w`, against its measured speed: with
-/// N_s the springs from the kicked node to the bottom row, and with the particles along that
-/// line (one more), as the coursework counts them.
-pub(super) fn estimate_words(w: &RunRecord) -> Option<String> {
-    let (v, distance, t_s) =
-        (w.metrics.recommended_sound_speed()?, w.metrics.wave_distance?, w.metrics.arrival_time_tc_estimate?);
+/// The coursework's estimate t_s = N_s t_c of run `w`'s arrival time, with N_s the particles
+/// along the wave's path as the coursework counts them (the springs crossed, one fewer, are
+/// the `arrival_time_tc_estimate` column): (N_s, V = L/(N_s t_c), V counting the springs), m/s.
+pub(super) fn coursework_estimate(w: &RunRecord) -> Option<(f64, f64, f64)> {
+    let (distance, t_s) = (w.metrics.wave_distance?, w.metrics.arrival_time_tc_estimate?);
     let springs = (t_s / w.spec.t_c).round();
+    Some((springs + 1.0, distance / ((springs + 1.0) * w.spec.t_c), distance / t_s))
+}
+
+/// The coursework's estimate t_s = N_s t_c for the block's wave `w`, against its measured speed.
+pub(super) fn estimate_words(w: &RunRecord) -> Option<String> {
+    let v = w.metrics.recommended_sound_speed()?;
+    let (particles, by_particles, by_springs) = coursework_estimate(w)?;
     Some(format!(
-        "The coursework's estimate t_s = N_s t_c (N_s = {springs} springs down the block, t_c = {} s) gives V = {} m/s, \
-         {:.2} × slower than measured ({} m/s counting the {} particles instead).",
+        "The coursework's estimate t_s = N_s t_c (N_s = {particles} particles down the block, t_c = {} s) gives \
+         V = {} m/s, {:.2} × slower than measured ({} m/s counting the {} springs instead).",
         sig(w.spec.t_c),
-        sig(distance / t_s),
-        v / (distance / t_s),
-        sig(distance / ((springs + 1.0) * w.spec.t_c)),
-        springs + 1.0
+        sig(by_particles),
+        v / by_particles,
+        sig(by_springs),
+        particles - 1.0
     ))
 }
 

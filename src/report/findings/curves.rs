@@ -10,6 +10,7 @@ use crate::report::curves::{
     Dispersion, Envelope, dispersion, envelope, is_power_contact, overlap_deviation, restitution_reference,
 };
 use crate::report::figure::{FigureKind, FigureRef, representative};
+use crate::report::words::exponent;
 use crate::runner::RunRecord;
 use crate::theory;
 
@@ -45,7 +46,8 @@ pub(super) fn motion(e: &Evidence) -> Option<Answer> {
     if let Some(chain) = (!chains.is_empty()).then(|| representative(&chains)) {
         sentences.push(format!(
             "The chain's kicked particle and its neighbour are drawn over the exact normal-mode sum at dt = t_c/{:.0}: \
-             over {} s the whole chain stays within {} of its largest displacement and speed.",
+             over {} s the whole chain stays within {} of its largest displacement and speed (an error that grows \
+             with time as the modes' phases drift: item 4 judges it by its order in dt).",
             chain.spec.dt_per_tc(),
             sig(chain.spec.duration),
             cell(chain.metrics.chain.chain_mode_error),
@@ -66,7 +68,7 @@ pub(super) fn motion(e: &Evidence) -> Option<Answer> {
         sentences,
         reference: format!(
             "The damped oscillator of the reduced mass m/2; tolerance {OVERLAP_TOLERANCE:e} of the largest overlap (a \
-             second-order scheme drifts by (π/50)²/24 · 3π ≈ 1.5e-3 over 3 t_c at t_c/50)."
+             second-order scheme drifts by (π/50)²/24 · 3π ≈ 1.5e-3 over a bonded pair's 3 t_c at t_c/50)."
         ),
         see_also: None,
         verdict: if checks.is_empty() { Verdict::Observed } else { Verdict::of(checks) },
@@ -226,7 +228,7 @@ fn representatives<'a>(runs: &[&'a RunRecord]) -> Vec<&'a RunRecord> {
 /// The summary's words: the exponent of t_c against v0 if swept.
 fn sentences_short(runs: &[&RunRecord]) -> String {
     match exponent_fit(runs) {
-        Some((fitted, exact)) => format!("t_c ∝ v0^{fitted:.3} (exact {exact:.3})"),
+        Some((fitted, exact)) => format!("t_c ∝ v0^{} (exact {})", exponent(fitted, 3), exponent(exact, 3)),
         None => "restitution against its own integration".into(),
     }
 }
@@ -250,10 +252,12 @@ fn duration_exponent(runs: &[&RunRecord]) -> Option<(String, bool)> {
     Some((
         format!(
             "Undamped, the contact lasts longer the slower the impact: over v0 = {} to {} m/s the MD contact \
-             duration falls as v0^{fitted:.4}, against the exact exponent (1 − β)/(1 + β) = {exact:.4} (δ_max ∝ \
+             duration falls as v0^{}, against the exact exponent (1 − β)/(1 + β) = {} (δ_max ∝ \
              v0^(2/(β+1)), t_c ∝ δ_max/v0), {} the tolerance {EXPONENT_TOLERANCE}.",
             sig(low),
             sig(high),
+            exponent(fitted, 4),
+            exponent(exact, 4),
             if within { "within" } else { "outside" }
         ),
         within,

@@ -129,7 +129,7 @@ fn chain_speed_sentences(chain: &RunRecord, error: Option<f64>) -> Vec<String> {
         .keys()
         .filter_map(|c| chain.metrics.sound_speed(c).map(|v| (c.replace('_', " "), v)))
         .collect();
-    let estimate = chain.metrics.wave_distance.zip(chain.metrics.arrival_time_tc_estimate).map(|(l, t)| l / t);
+    let estimate = super::block::coursework_estimate(chain);
     vec![
         format!(
             "A chain of {} hit at one end with v0 = {} m/s: the front reaches the far end, {} m away, at {} m/s by the \
@@ -144,12 +144,13 @@ fn chain_speed_sentences(chain: &RunRecord, error: Option<f64>) -> Vec<String> {
         ),
         criteria_sentence(&criteria),
         format!(
-            "The coursework's estimate t_s = N_s t_c gives V = {} m/s: the front travels {} × faster, because t_c is \
-             half a period of one pair, not the time a signal needs to cross a spring.",
-            cell(estimate),
+            "The coursework's estimate t_s = N_s t_c (N_s = {} particles) gives V = {} m/s: the front travels {} × \
+             faster, because t_c is half a period of one pair, not the time a signal needs to cross a spring.",
+            estimate.map_or_else(|| "–".into(), |e| format!("{}", e.0)),
+            cell(estimate.map(|e| e.1)),
             estimate
                 .zip(chain.metrics.recommended_sound_speed())
-                .map(|(a, b)| format!("{:.2}", b / a))
+                .map(|(a, b)| format!("{:.2}", b / a.1))
                 .unwrap_or_else(|| "–".into())
         ),
     ]
@@ -507,7 +508,7 @@ fn dissipation_table(relaxed: &[&RunRecord]) -> Table {
         })
         .collect();
     Table {
-        header: ["scene", "γ (N s/m)", "γ_g (N s/m)", "criterion", "relaxed at (s)", "steps"]
+        header: ["scene", "γ (N s/m)", "γ_g (N s/m)", "criterion", "relaxed at (s)", "steps (to the last check)"]
             .map(String::from)
             .to_vec(),
         rows,
@@ -526,10 +527,10 @@ fn trend(name: &str, symbol: &str, runs: &[&RunRecord], damping: fn(&RunRecord) 
         "the damping hardly matters here"
     };
     Some(format!(
-        "With {name} from {symbol} = {} to {} N s/m the dissipation time goes as {symbol}^{:.2}: {words}.",
+        "With {name} from {symbol} = {} to {} N s/m the dissipation time goes as {symbol}^{}: {words}.",
         sig(points.iter().map(|p| p.0).fold(f64::INFINITY, f64::min)),
         sig(points.iter().map(|p| p.0).fold(0.0, f64::max)),
-        fit.exponent
+        crate::report::words::exponent(fit.exponent, 2)
     ))
 }
 

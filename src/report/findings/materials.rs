@@ -7,7 +7,9 @@ use crate::report::words::number;
 use std::collections::BTreeMap;
 
 use super::block::Block;
+use super::discussion::EXPONENT_TOLERANCE;
 use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, percent, rel, relative, sig};
+use crate::measure::youngs_modulus_along;
 use crate::model::LawSpec;
 use crate::runner::RunRecord;
 use crate::spec::{Diagonals, LoadCase};
@@ -192,7 +194,7 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
             f.fit.exponent,
             f.fit.r_squared
         ));
-        checks.push((f.fit.exponent - 1.0 / 3.0).abs() <= 0.03);
+        checks.push((f.fit.exponent - 1.0 / 3.0).abs() <= EXPONENT_TOLERANCE);
     }
     let runs = e.ok(|r| r.spec.law != LawSpec::Linear && r.spec.lattice().is_some_and(|l| l.impulse.is_none()));
     let ratios: Vec<f64> = runs
@@ -215,7 +217,7 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
                    equilibria.",
         short: format!("E ∝ F^{:.3} (Hertz: 1/3)", first.fit.exponent),
         sentences,
-        reference: "The Hertz scaling F^(1/3); fitted exponents within 0.03.".into(),
+        reference: format!("The Hertz scaling F^(1/3); fitted exponents within {EXPONENT_TOLERANCE}."),
         see_also: None,
         verdict: Verdict::of(checks),
         figures: load_figures.into_iter().flatten().take(2).collect(),
@@ -327,7 +329,7 @@ fn anisotropic_rows(groups: &BTreeMap<String, Vec<&RunRecord>>) -> (Vec<Vec<Stri
                 continuum.map_or_else(|| "–".into(), |c| percent((y / x - c) / c)),
                 noise(nu_y, 1.0),
                 noise(nu_x, 1.0),
-                if (y / x - 1.0).abs() > 1e-3 { ": the directions differ" } else { ": isotropic in E" }
+                direction_words(rs, y / x)
             ));
         }
         // Said once: every one-family network shears freely for the same reason.
@@ -345,6 +347,35 @@ fn anisotropic_rows(groups: &BTreeMap<String, Vec<&RunRecord>>) -> (Vec<Vec<Stri
         ]);
     }
     (rows, sentences)
+}
+
+/// Directions closer than this in E (relative) are the same.
+const SAME_E: f64 = 1e-3;
+
+/// Whether the network of `rs` is isotropic, from its continuum's E in every direction (the
+/// extremes over θ in steps of 0.5°, from x towards y), and where its measured `e_ratio`
+/// E_y/E_x alone would mislead: one diagonal family with k_y = k_x has E_y = E_x, yet is
+/// three times softer along its missing diagonal (k_r = k/2).
+fn direction_words(rs: &[&RunRecord], e_ratio: f64) -> String {
+    let along_y = rs.iter().find_map(|r| r.spec.lattice().filter(|l| !l.rotated));
+    let Some(l) = along_y else { return String::new() };
+    let (rising, falling) = l.diagonal_stiffness();
+    let e_at = |degrees: f64| youngs_modulus_along(l.k_x, l.k_y, rising, falling, l.depth, degrees.to_radians());
+    let angles = (0..360).map(|i| 0.5 * f64::from(i));
+    let by_e = |a: &f64, b: &f64| e_at(*a).unwrap_or(0.0).total_cmp(&e_at(*b).unwrap_or(0.0));
+    let (Some(low), Some(high)) = (angles.clone().min_by(by_e), angles.max_by(by_e)) else { return String::new() };
+    let (Some(e_low), Some(e_high)) = (e_at(low), e_at(high)) else { return String::new() };
+    if e_high / e_low - 1.0 <= SAME_E {
+        format!(": isotropic (the continuum's E = {} Pa in every direction)", cell(Some(e_low)))
+    } else if (e_ratio - 1.0).abs() <= SAME_E {
+        format!(": E_y = E_x, yet anisotropic: the continuum's E falls to {} Pa at {low:.0}° from x", cell(Some(e_low)))
+    } else {
+        format!(
+            ": the directions differ (the continuum's E from {} Pa at {low:.0}° to {} Pa at {high:.0}° from x)",
+            cell(Some(e_low)),
+            cell(Some(e_high))
+        )
+    }
 }
 
 /// A block with one diagonal family pulled along y: whether it shears freely, read from its

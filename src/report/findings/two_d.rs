@@ -67,7 +67,7 @@ pub(super) fn units_and_time_step(e: &Evidence) -> Option<Answer> {
         title: "Masses, stiffnesses and the lattice's time step",
         question: "Choose masses and stiffnesses so the lattice weighs what the solid weighs and dt is easy to \
                    estimate; what is a good time step?",
-        short: format!("dt = t_c/50 = {} s, {} of the stability limit", sig(s.t_c / 50.0), sig(worst)),
+        short: format!("dt = t_c/50 (e.g. {} s), at most {} of the stability limit", sig(s.t_c / 50.0), sig(worst)),
         sentences,
         reference: "The integrator's stability limit dt·ω_max ≤ 2 (Verlet), measured per run; verdict: every run \
                     below it."
@@ -165,9 +165,9 @@ pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
     let ratios = one_block_per_ratio(&runs);
     let first = *runs.first()?;
     let mut sentences = vec![
-        "A chain of diagonal springs k_d of length a√2 carries, per unit width, the stiffness k_d/√2 … a row of \
-         springs k of length a carries k: the two have the same Young's modulus when k_d a√2 = k a, i.e. \
-         k_d/k = 1/√2 ≈ 0.7071."
+        "A spring of stiffness k and length L is a bar of E A = k L: a row of springs k of length a has \
+         E A = k a, a chain of diagonal springs k_d of length a√2 has E A = k_d a√2; the two have the same Young's \
+         modulus when k_d a√2 = k a, i.e. k_d/k = 1/√2 ≈ 0.7071."
             .to_string(),
     ];
     for r in ratios.values() {
@@ -494,8 +494,9 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
             0,
             format!(
                 "1 kN up on every top-row node of the {}: E = (F/d/L_x)/(ΔL_y/L_y) = {} Pa (continuum {} Pa), \
-                 ν = −(ΔL_x/L_x)/(ΔL_y/L_y) = {} (continuum {continuum_nu}{}); without diagonals E = k/d and \
-                 ν = 0: nothing ties the columns to the rows.",
+                 ν = −(ΔL_x/L_x)/(ΔL_y/L_y) = {} (continuum {continuum_nu}{}; the coursework's ΔL_x/ΔL_y with \
+                 the sign that makes a sideways contraction positive); without diagonals E = k/d (of an infinite \
+                 block) and ν = 0: nothing ties the columns to the rows.",
                 r.spec.lattice().map(lattice_words).unwrap_or_default(),
                 cell(r.metrics.lattice.youngs_modulus),
                 cell(r.metrics.lattice.youngs_modulus_theory),
@@ -539,7 +540,8 @@ pub(super) fn shear(e: &Evidence) -> Option<Answer> {
     });
     if let Some(r) = periodic.first() {
         sentences.push(format!(
-            "Only the periodic strip shears homogeneously: there G = {} Pa against k_d/d = {} Pa; with the \
+            "Only the periodic strip (bonds wrapped from the right edge to the left, the bottom row held: a strip \
+             of an infinite block) shears homogeneously: there G = {} Pa against k_d/d = {} Pa; with the \
              coursework supports the whole shear force passes through the single pinned corner, and a clamped \
              bottom bends the block{}.",
             cell(r.metrics.lattice.shear_modulus),

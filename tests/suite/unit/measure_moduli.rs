@@ -1,6 +1,8 @@
 //! Unit tests of `src/measure/moduli.rs`, moved out of the library (one test binary).
 
-use mdsolids::measure::{LatticeShape, homogeneity, network_constants, plane_wave_speeds};
+use mdsolids::measure::{
+    LatticeShape, anisotropic_moduli, homogeneity, network_constants, plane_wave_speeds, youngs_modulus_along,
+};
 use mdsolids::model::LatticeType;
 use mdsolids::model::{Edges, Layout};
 
@@ -165,4 +167,32 @@ fn plane_wave_speeds_are_the_slopes_of_the_bloch_branches() {
     let (kagome_l, kagome_t) = plane_wave_speeds(LatticeType::Kagome, k, a, m).unwrap();
     assert_eq!(kagome_l, c_l);
     assert!((kagome_t.unwrap() / c_t - 2.0_f64.sqrt()).abs() < 1e-15);
+}
+
+/// Young's modulus along any direction of a square lattice's continuum, against closed forms
+/// solved by hand from C (per unit depth, k = d = 1) for a uniaxial stress σ along n:
+/// - one rising family k_r (C11 = C22 = k + h, C12 = C66 = C16 = C26 = h = k_r/2): along the
+///   family (45°) e_xx = e_yy = 0 and γ = σ/(2h), so E = 2k_r, the springs alone; along the
+///   missing diagonal (135°) e_xx = e_yy = σ/k and γ = −σ/(2h) − 2σ/k, so
+///   E = 1/(2/k + 1/(2k_r));
+/// - both families k_d = k/2: isotropic, E = C11 − C12²/C11 = 4/3 in every direction;
+/// - along x and y, what `anisotropic_moduli` gives (k_y = 2k, one family).
+///
+/// Round-off only: tolerance 1e-12. Without diagonals there is no answer off the axes.
+#[test]
+fn youngs_modulus_along_any_direction_meets_the_hand_solved_cases() {
+    let close = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-12;
+    let along = |k_y: f64, rising: f64, falling: f64, degrees: f64| {
+        youngs_modulus_along(1.0, k_y, rising, falling, 1.0, f64::to_radians(degrees)).unwrap()
+    };
+    let k_r = 0.5;
+    assert!(close(along(1.0, k_r, 0.0, 45.0), 2.0 * k_r));
+    assert!(close(along(1.0, k_r, 0.0, 135.0), 1.0 / (2.0 + 1.0 / (2.0 * k_r))));
+    for degrees in [0.0, 17.0, 45.0, 90.0, 133.0] {
+        assert!(close(along(1.0, 0.5, 0.5, degrees), 4.0 / 3.0), "{degrees}°");
+    }
+    let turned = anisotropic_moduli(1.0, 2.0, k_r, 0.0, 1.0);
+    assert!(close(along(2.0, k_r, 0.0, 0.0), turned.youngs_modulus_x));
+    assert!(close(along(2.0, k_r, 0.0, 90.0), turned.youngs_modulus_y));
+    assert!(youngs_modulus_along(1.0, 1.0, 0.0, 0.0, 1.0, 0.3).is_none());
 }
