@@ -192,6 +192,11 @@ fn the_lattice_time_step_item_needs_a_sweep_over_dt_and_names_the_step_it_quotes
     assert!(row.contains(&format!("| {} |", sentence_number(sentence, "keeps the energy to "))), "{row}\n{sentence}");
     assert!(error > 0.0 && number_after(sentence, "fastest mode at dt·ω_max = ") > 0.0, "{sentence}");
     assert!(!sentence.contains("the pair's rule"), "the old, unjudged claim");
+    // Its cost against its accuracy, as for the pair: t_c/10 takes 4 times fewer steps than t_c/40
+    // for an energy error (second order) about 4² = 16 times larger (within 20 %: at t_c/10 the
+    // lattice's fastest mode is at dt·ω_max ≈ 0.5, where the next order shows).
+    assert!(sentence.contains("The cost is the steps, 40 per t_c at t_c/40: t_c/10 takes 4 times fewer"), "{sentence}");
+    assert!((number_after(sentence, "fewer steps for an error ") / 16.0 - 1.0).abs() < 0.2, "{sentence}");
 }
 
 /// The number written after `marker` in `text`, as written.

@@ -269,11 +269,11 @@ fn the_lattice_types_report_states_the_count_and_what_was_observed() {
         assert!(report.contains(&format!(". Lattice types: {title}\n")), "no section {title}");
     }
     for line in [
-        "honeycomb: z = 3, below 2d = 4: floppy by counting. It carried tensile on periodic-x; the static solver's \
+        "honeycomb: z = 3, below twice the dimension, 4: floppy by counting. It carried tensile on periodic-x; the static solver's \
          rigidity test found a mechanism (before MD) under tensile on coursework, shear on coursework, shear on \
          periodic-x.",
-        "kagome: z = 4, equal to 2d = 4: isostatic, marginal. It carried tensile on periodic-x;",
-        "triangular: z = 6, above 2d = 4: rigid by counting. It carried tensile on coursework, tensile on \
+        "kagome: z = 4, equal to twice the dimension, 4: isostatic, marginal. It carried tensile on periodic-x;",
+        "triangular: z = 6, above twice the dimension, 4: rigid by counting. It carried tensile on coursework, tensile on \
          periodic-x, shear on coursework, shear on periodic-x; it was never a mechanism.",
         "sends a plane transverse wave: by the same criterion its speed is 1.039 of c_T",
         "The kagome's acoustic Bloch branch along y that moves sideways has the slope a√(k/(2m)) = √2 c_T",

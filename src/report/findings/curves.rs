@@ -138,7 +138,7 @@ fn envelope_sentence(e: &Evidence) -> Option<(String, bool, String)> {
         (below < measured.len()).then(|| format!("{} above it at the slowest mode's 2λ", measured.len() - below)),
     ];
     let sentence = format!(
-        "Relaxed by background damping alone (γ_g = {} to {} N s/m; γ_crit = 2√(k_min m) = {} N s/m), E_kin/E_pot \
+        "Relaxed by background damping alone (γ_g = {} to {} N s/m; γ_crit = 2√(k_min m) = {} N s/m, k_min the slowest mode's stiffness), E_kin/E_pot \
          falls over the second half of its decay at the predicted rate γ_g/m − Re √((γ_g/m)² − 4k_min/m) to {} at \
          worst, {} the tolerance {ENVELOPE_TOLERANCE}: {}.",
         sig(low),
@@ -364,7 +364,7 @@ pub(super) fn dispersion_relation(e: &Evidence) -> Option<Answer> {
     let mut sentences = vec![format!(
         "A step force on the top row of a strip periodic in x with a free bottom sends a plane wave along y: the \
          motion is uniform in x, so each column moves as a free chain of stiffness k_eff and masses m, whose \
-         standing modes q = nπ/(N a) are a discrete cosine transform of the column's velocity away. The dynamical \
+         standing modes q = nπ/(N a) are read off the column's velocity by a discrete cosine transform. The dynamical \
          matrix gives k_eff = k + k_d for the longitudinal branch and k_d for the transverse one \
          (m = {} kg, k = {} N/m, a = {} m): ω(q) = 2√(k_eff/m)|sin(qa/2)|.",
         sig(first.spec.mass),

@@ -382,8 +382,9 @@ fn sweep_sentence(bonded: &[&RunRecord], reference: &RunRecord, order: f64) -> O
 
 /// Performance against accuracy over the sweep: the cost of a run is its number of steps (one
 /// force evaluation each, the same work per step at every dt), so a step n times smaller costs n
-/// times as much; against that, how many times the error of t_c grows or shrinks.
-fn cost_words(
+/// times as much; against that, how many times the error (`t_error`: of t_c, or a lattice's
+/// energy) grows or shrinks.
+pub(super) fn cost_words(
     coarsest: &RunRecord,
     reference: &RunRecord,
     finest: &RunRecord,
@@ -678,7 +679,7 @@ fn walls_sentence(first: &RunRecord, runs: &[&RunRecord], linear: bool) -> Optio
     let n = first.spec.chain().map_or(0, |c| c.n);
     let sentence = if linear {
         format!(
-            "Linear springs: the {n} particles relax to equal gaps W/(n+1) (largest error {}), and the chain's \
+            "Linear springs: the {n} particles relax to equal gaps W/(n+1) (W the walls' distance; largest error {}), and the chain's \
              secant and tangent stiffness equal k/(n+1) = {} N/m at every wall displacement (errors {} and {}).",
             rel(sp),
             sig(first.spec.k / (n as f64 + 1.0)),
@@ -688,7 +689,7 @@ fn walls_sentence(first: &RunRecord, runs: &[&RunRecord], linear: bool) -> Optio
     } else {
         format!(
             "Hertz springs: equal gaps again (error {}), but the stiffness depends on how far the walls moved: \
-             secant and tangent follow s(δ)/ΔW and s′(δ)/(n+1) (errors {} and {}); the tangent is 3/2 × the \
+             secant and tangent follow s(δ)/ΔW (ΔW the walls' displacement) and s′(δ)/(n+1) (errors {} and {}); the tangent is 3/2 × the \
              secant and an unloaded Hertz chain has no stiffness at all.",
             rel(sp),
             rel(se),

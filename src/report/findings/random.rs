@@ -494,7 +494,7 @@ fn rigidity_sentence(runs: &[&RunRecord]) -> String {
     let lowest_rigid = runs.iter().filter(|r| r.status != RunStatus::Mechanism).map(kept).reduce(f64::min);
     let highest_lost = runs.iter().filter(|r| r.status == RunStatus::Mechanism).map(kept).reduce(f64::max);
     let theory = "Effective-medium theory for central-force networks puts the loss of rigidity where the mean \
-                  coordination reaches 2d = 4, a kept fraction p = 4/8 = 1/2 of the square lattice with both \
+                  coordination reaches twice the dimension, 4, a kept fraction p = 4/8 = 1/2 of the square lattice with both \
                   diagonals (p counts the interior bonds, which alone are cut, as in the figure; it is the \
                   probability that each is kept, and a network's own share scatters about it).";
     let held = match (lowest_rigid, highest_lost) {

@@ -245,11 +245,12 @@ pub(super) fn lattice_time_step(e: &Evidence) -> Option<Answer> {
         })
         .collect();
     let (coarsest, usual) = (*sweep.first()?, representative(&sweep));
+    let cost = super::one_d::cost_words(coarsest, usual, finest, |r| r.metrics.energy_error);
     let sentences = vec![format!(
         "The same kick on the lattice of scene {scene}, undamped, from dt = t_c/{:.0} to t_c/{:.0}: the energy error \
          falls as dt^{} ({} at the largest step, {} at the smallest), and the arrival time at the bottom row moves \
          by {} between the largest and the smallest step. dt = t_c/{:.0} keeps the energy to {} here, with the \
-         lattice's fastest mode at dt·ω_max = {}.",
+         lattice's fastest mode at dt·ω_max = {}.{cost}",
         coarsest.spec.dt_per_tc(),
         finest.spec.dt_per_tc(),
         order_text(order),

@@ -27,9 +27,9 @@ fn kind(r: &RunRecord) -> LatticeType {
 /// Maxwell's count in words: z against 2d = 4.
 fn maxwell(kind: LatticeType) -> &'static str {
     match kind.coordination().total_cmp(&4.0) {
-        std::cmp::Ordering::Greater => "above 2d = 4: rigid by counting",
-        std::cmp::Ordering::Equal => "equal to 2d = 4: isostatic, marginal",
-        std::cmp::Ordering::Less => "below 2d = 4: floppy by counting",
+        std::cmp::Ordering::Greater => "above twice the dimension, 4: rigid by counting",
+        std::cmp::Ordering::Equal => "equal to twice the dimension, 4: isostatic, marginal",
+        std::cmp::Ordering::Less => "below twice the dimension, 4: floppy by counting",
     }
 }
 
@@ -74,7 +74,7 @@ pub(super) fn moduli(e: &Evidence) -> Option<Answer> {
         sentences,
         reference: "The static answer of the same network within 5e-3 (MD relaxed to rest); the continuum \
                     λ = μ = √3k/(4d) (triangular), √3k/(8d) (kagome), λ = k/(2√3 d), μ = 0 (honeycomb); \
-                    Maxwell's count z against 2d = 4."
+                    Maxwell's count z against twice the dimension, 4."
             .into(),
         see_also: None,
         verdict: Verdict::of([worst < 5e-3]),
