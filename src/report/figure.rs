@@ -142,7 +142,7 @@ pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> 
 fn packing_movie_caption(scene: &str, r: &RunRecord) -> String {
     format!(
         "Movie of {scene} ({}): the discs drawn to scale in their periodic box (red), each coloured by its load, \
-         the sum of its contact forces Σ|f| (colour bar in N; rattlers, with no contacts, dark), and every contact \
+         the sum of its contact forces Σ|f| (colour bar in N; discs that carry nothing, rattlers among them, dark), and every contact \
          as a black line from centre to centre whose width grows with its force: the force chains that carry the \
          pressure. The scales are those of the frames after the start; the random start's larger overlaps are drawn at full colour \
          and width.{}",

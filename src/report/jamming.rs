@@ -1,4 +1,4 @@
-//! The packings' jamming (issue 34): φ_J of each (N, seed) from p → 0 of its linear packings,
+//! The packings' jamming (issue 34): φ_J of each (N, seed) from p → 0 of its packings (per law),
 //! its mean and spread per N, Δφ = φ − φ_J of every packing, and the scalings of p, z − 4, K
 //! and G against Δφ fitted on log–log axes and drawn, one figure per packing scene. The report's
 //! item "Jamming" (`findings/jamming.rs`) states them against the literature.
@@ -55,14 +55,22 @@ pub(crate) fn fitted(r: &RunRecord) -> bool {
 /// φ_J of every (N, seed) with two jammed linear packings or more: p = a (φ − φ_J) fitted by
 /// least squares over them, φ_J = −intercept/a (none when the pressure does not rise with φ).
 pub(super) fn onsets(runs: &[&RunRecord]) -> BTreeMap<(usize, u64), f64> {
-    onsets_over(runs, |points| points)
+    onsets_of(runs, 1.0)
+}
+
+/// φ_J of every (N, seed) from its own jammed packings of contact law β (forces ∝ δ^β):
+/// p ∝ Δφ^β near jamming, so p^(1/β) = a (φ − φ_J) is the line fitted. A Hertz packing is a
+/// quench of its own (the same random start relaxes into another state than with linear
+/// contacts), so its Δφ is measured from its own φ_J.
+pub(super) fn onsets_of(runs: &[&RunRecord], beta: f64) -> BTreeMap<(usize, u64), f64> {
+    onsets_over(runs, beta, |points| points)
 }
 
 /// [`onsets`] from the lower half of each seed's jammed fractions only (two at least): p(φ) is
 /// not quite straight, so where the line stops moves its intercept; the report states by how
 /// much.
 pub(super) fn lower_half_onsets(runs: &[&RunRecord]) -> BTreeMap<(usize, u64), f64> {
-    onsets_over(runs, |points| {
+    onsets_over(runs, 1.0, |points| {
         let kept = points.len().div_ceil(2).max(2);
         &points[..kept.min(points.len())]
     })
@@ -71,14 +79,14 @@ pub(super) fn lower_half_onsets(runs: &[&RunRecord]) -> BTreeMap<(usize, u64), f
 /// The part of a seed's (φ, p), by rising φ, its φ_J is fitted over.
 type Chosen = fn(&[(f64, f64)]) -> &[(f64, f64)];
 
-/// φ_J of every (N, seed) from the part `chosen` of its jammed linear packings' (φ, p), by
-/// rising φ.
-fn onsets_over(runs: &[&RunRecord], chosen: Chosen) -> BTreeMap<(usize, u64), f64> {
+/// φ_J of every (N, seed) from the part `chosen` of its jammed packings' (φ, p^(1/β)) of law
+/// β, by rising φ.
+fn onsets_over(runs: &[&RunRecord], beta: f64, chosen: Chosen) -> BTreeMap<(usize, u64), f64> {
     let mut points: BTreeMap<(usize, u64), Vec<(f64, f64)>> = BTreeMap::new();
-    for r in runs.iter().filter(|r| r.spec.law.is_linear() && jammed(r)) {
+    for r in runs.iter().filter(|r| r.spec.law.beta() == beta && jammed(r)) {
         let m = &r.metrics.packing;
         if let (Some(k), Some(phi), Some(p)) = (key(r), m.packing_fraction, m.pressure) {
-            points.entry(k).or_default().push((phi, p));
+            points.entry(k).or_default().push((phi, p.powf(1.0 / beta)));
         }
     }
     points
@@ -206,12 +214,12 @@ pub(super) fn ratio_against_contacts(
 }
 
 /// The packing scene's figure: p, z − 4, K and G of its largest N's jammed packings against
-/// Δφ on log–log axes (φ_J from the linear packings of the whole campaign), each with its
-/// fitted power law; none without a φ_J.
+/// Δφ on log–log axes (φ_J from the packings of the whole campaign with the scene's contact
+/// law, [`onsets_of`]), each with its fitted power law; none without a φ_J.
 pub(super) fn part(records: &[RunRecord], scene: &str) -> anyhow::Result<Part<()>> {
     let runs: Vec<&RunRecord> = records.iter().filter(|r| fitted(r)).collect();
-    let onsets = onsets(&runs);
     let mine: Vec<&RunRecord> = runs.iter().copied().filter(|r| r.spec.scene == scene).collect();
+    let onsets = onsets_of(&runs, mine.first().map_or(1.0, |r| r.spec.law.beta()));
     let sizes = Onset::per_size(&onsets);
     let (Some(first), Some(size)) =
         (mine.first(), sizes.iter().rev().find(|s| mine.iter().any(|r| key(r).is_some_and(|k| k.0 == s.n))))
@@ -248,8 +256,8 @@ pub(super) fn part(records: &[RunRecord], scene: &str) -> anyhow::Result<Part<()
         file: format!("plots/{scene}-jamming.svg"),
         caption: format!(
             "{scene}: pressure p, excess coordination z − 4 and moduli K, G of the jammed packings of {} discs \
-             against Δφ = φ − φ_J (φ_J per seed from p → 0 of the linear packings), over Δφ ≥ {:.3}, on log–log axes \
-             with fitted power laws.",
+             against Δφ = φ − φ_J (φ_J per seed where p^(1/β) of its packings with these contacts extrapolates to \
+             zero), over Δφ ≥ {:.3}, on log–log axes with fitted power laws.",
             size.n,
             size.fit_floor()
         ),

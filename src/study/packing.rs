@@ -61,7 +61,8 @@ pub struct PackingMetrics {
     pub rattler_fraction: Option<f64>,
     /// Overlap energy Σ e(δ) (J).
     pub energy: Option<f64>,
-    /// K = (1/4A) d²U/dε² (N/m) under x → (1 + ε) x, from the stiffness matrix.
+    /// K = −A dp/dA = (1/4A) d²U/dε² + p/2 (N/m) under x → (1 + ε) x, from the stiffness
+    /// matrix ([`bulk_modulus`]).
     pub bulk_modulus_2d: Option<f64>,
     /// G = (1/A) d²U/dγ² (N/m) under x → x + γ y, from the stiffness matrix.
     pub shear_modulus_2d: Option<f64>,
@@ -218,7 +219,8 @@ pub(super) fn measure(spec: &RunSpec, scene: &Scene, outcome: &Outcome, m: &mut 
         let strained = |strain| strained_second_derivative(&rest, energy, &touching, strain);
         let (bulk, bulk_changes) = strained(BULK).unzip();
         let (shear, shear_changes) = strained(SHEAR).unzip();
-        (m.bulk_modulus_2d_strained, m.bulk_strain_contact_changes) = (bulk.map(|u| u / (4.0 * area)), bulk_changes);
+        (m.bulk_modulus_2d_strained, m.bulk_strain_contact_changes) =
+            (bulk.map(|u| bulk_modulus(u, area, pressure)), bulk_changes);
         (m.shear_modulus_2d_strained, m.shear_strain_contact_changes) = (shear.map(|u| u / area), shear_changes);
     }
 }
@@ -257,9 +259,9 @@ fn strained_residual(spec: &RunSpec, side: f64) -> f64 {
     (STRAINED_RESIDUAL * scale).max(ROUND_OFF_MARGIN * scale / spec.spacing * side * f64::EPSILON)
 }
 
-/// K = (1/4A) d²U/dε² and G = (1/A) d²U/dγ² (N/m) of a packing at rest with contacts `forces`
-/// among `discs` discs in a box of area `area` (m²), from its stiffness matrix
-/// ([`stiffness_modulus`]); 0 without a backbone, `None` for a floppy one.
+/// K = (1/4A) d²U/dε² + p/2 ([`bulk_modulus`]) and G = (1/A) d²U/dγ² (N/m) of a packing at rest
+/// with contacts `forces` among `discs` discs in a box of area `area` (m²), from its stiffness
+/// matrix ([`stiffness_modulus`]); `None` for a floppy backbone.
 pub fn stiffness_moduli(forces: &ContactForces, discs: usize, area: f64) -> (Option<f64>, Option<f64>) {
     let rattler = forces.rattlers(discs);
     backbone_moduli(forces, &forces.backbone(&rattler), &rattler, area)
@@ -273,7 +275,17 @@ fn backbone_moduli(
     area: f64,
 ) -> (Option<f64>, Option<f64>) {
     let moduli = |strain| stiffness_modulus(forces, backbone, rattler, strain);
-    (moduli(BULK).map(|u| u / (4.0 * area)), moduli(SHEAR).map(|u| u / area))
+    let pressure = forces.pressure(area);
+    (moduli(BULK).map(|u| bulk_modulus(u, area, pressure)), moduli(SHEAR).map(|u| u / area))
+}
+
+/// The bulk modulus K = −A dp/dA (N/m; O'Hern et al.'s B) of a packing at pressure `pressure`
+/// (N/m) in a box of area `area` (m²), from U_εε = d²U/dε² (J) under x → (1 + ε) x: there
+/// A = A₀ (1 + ε)² and p = −dU/dA, so U_εε = 4A² d²U/dA² − 2A p and K = A d²U/dA² =
+/// U_εε/(4A) + p/2. (U_εε/(4A) alone is K − p/2: the pre-stress's share left out.) Simple shear
+/// keeps the area, so G = (1/A) d²U/dγ² needs no such term.
+fn bulk_modulus(u_eps: f64, area: f64, pressure: f64) -> f64 {
+    u_eps / (4.0 * area) + 0.5 * pressure
 }
 
 /// d²U/dε² (J) of the relaxed packing under the strain gradient `strain`, from its stiffness
