@@ -25,7 +25,7 @@ pub(super) fn legend_pixels(labels: &[&str], font_px: u32) -> anyhow::Result<(f6
     for label in labels {
         text.push_line(*label);
     }
-    let (width, height) = text.estimate_dimension().map_err(super::chart::draw_error)?;
+    let (width, height) = text.estimate_dimension().map_err(|e| anyhow::anyhow!("cannot measure a legend: {e:?}"))?;
     let (edge, marker) = (5.0, 4.0);
     Ok((f64::from(width) + 50.0 + edge + marker, f64::from(height) + 20.0 + edge + marker))
 }
