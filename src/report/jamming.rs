@@ -39,6 +39,11 @@ pub(super) fn key(r: &RunRecord) -> Option<(usize, u64)> {
     r.spec.packing().map(|p| (p.n, p.seed))
 }
 
+/// The packing's seed (0 for a run that is not a packing).
+fn seed(r: &RunRecord) -> u64 {
+    key(r).map_or(0, |k| k.1)
+}
+
 /// Whether the packing jammed (relaxed, p above its floor, carried by a rigid backbone).
 pub(super) fn jammed(r: &RunRecord) -> bool {
     r.metrics.packing.packing_state.as_deref() == Some("jammed")
@@ -151,6 +156,35 @@ pub(super) struct Scaling {
     /// Packings left out of the log–log fit because their value is not positive (a jammed
     /// packing near φ_J may have G ≤ 0: unstable to shear in its fixed box).
     pub(super) not_positive: usize,
+    /// The exponent's standard error over the seeds ([`seed_jackknife`]); `None` with fewer
+    /// than three seeds.
+    pub(super) error: Option<f64>,
+}
+
+/// Fewest seeds a jackknife error is given for: with two, each leave-one-out fit is one seed's.
+const JACKKNIFE_SEEDS: usize = 3;
+
+/// The standard error of the exponent fitted over `points` whose packings came from `seeds`
+/// (one per point), by the jackknife over seeds: a seed's packings share its random start, so
+/// the seed, not the packing, is the independent sample. With x₍ᵢ₎ the exponent fitted without
+/// seed i's points and x̄ their mean over the S seeds, SE = √((S − 1)/S · Σ (x₍ᵢ₎ − x̄)²).
+/// `None` with fewer than [`JACKKNIFE_SEEDS`] seeds.
+fn seed_jackknife(points: &[(f64, f64)], seeds: &[u64]) -> Option<f64> {
+    let mut distinct = seeds.to_vec();
+    distinct.sort_unstable();
+    distinct.dedup();
+    if distinct.len() < JACKKNIFE_SEEDS {
+        return None;
+    }
+    let without = |left_out: u64| {
+        let kept: Vec<(f64, f64)> =
+            points.iter().zip(seeds).filter(|(_, s)| **s != left_out).map(|(p, _)| *p).collect();
+        power_law_fit(&kept).map(|fit| fit.exponent)
+    };
+    let exponents: Vec<f64> = distinct.iter().map(|&s| without(s)).collect::<Option<_>>()?;
+    let count = exponents.len() as f64;
+    let mean = exponents.iter().sum::<f64>() / count;
+    Some(((count - 1.0) / count * exponents.iter().map(|x| (x - mean).powi(2)).sum::<f64>()).sqrt())
 }
 
 /// The jammed packings of `n` discs with contact exponent `beta` whose Δφ = φ − φ_J is at
@@ -180,11 +214,12 @@ pub(super) fn scalings(
     SCALINGS
         .iter()
         .filter_map(|&(quantity, pick, theory)| {
-            let points: Vec<(f64, f64)> =
-                mine.iter().filter_map(|&(d, r)| Some((d, pick(r).filter(|y| *y > 0.0)?))).collect();
+            let (points, seeds): (Vec<(f64, f64)>, Vec<u64>) =
+                mine.iter().filter_map(|&(d, r)| Some(((d, pick(r).filter(|y| *y > 0.0)?), seed(r)))).unzip();
             let not_positive = mine.iter().filter(|(_, r)| pick(r).is_some_and(|y| y <= 0.0)).count();
             let fit = power_law_fit(&points)?;
-            Some(Scaling { quantity, fit, theory: theory(beta), points, not_positive })
+            let error = seed_jackknife(&points, &seeds);
+            Some(Scaling { quantity, fit, theory: theory(beta), points, not_positive, error })
         })
         .collect()
 }
@@ -200,17 +235,18 @@ pub(super) fn ratio_against_contacts(
     beta: f64,
     floor: f64,
 ) -> Option<Scaling> {
-    let points: Vec<(f64, f64)> = fitted_packings(runs, onsets, (n, beta), floor)
+    let (points, seeds): (Vec<(f64, f64)>, Vec<u64>) = fitted_packings(runs, onsets, (n, beta), floor)
         .into_iter()
         .filter_map(|(_, r)| {
             let m = &r.metrics.packing;
             let dz = m.coordination? - ISOSTATIC;
             let ratio = m.shear_modulus_2d? / m.bulk_modulus_2d?;
-            (dz > 0.0 && ratio > 0.0).then_some((dz, ratio))
+            (dz > 0.0 && ratio > 0.0).then_some(((dz, ratio), seed(r)))
         })
-        .collect();
+        .unzip();
     let fit = power_law_fit(&points)?;
-    Some(Scaling { quantity: "G/K against z − 4", fit, theory: 1.0, points, not_positive: 0 })
+    let error = seed_jackknife(&points, &seeds);
+    Some(Scaling { quantity: "G/K against z − 4", fit, theory: 1.0, points, not_positive: 0, error })
 }
 
 /// The packing scene's figure: p, z − 4, K and G of its largest N's jammed packings against

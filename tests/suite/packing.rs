@@ -461,6 +461,54 @@ fn hertz_packings_are_measured_from_their_own_jamming_point() {
     assert!((hertz - linear).abs() > 1e-3, "the linear φ_J {linear} would pass too: {line}");
 }
 
+/// The least-squares slope of ln y against ln x over `points`.
+fn log_slope(points: &[(f64, f64)]) -> f64 {
+    let logs: Vec<(f64, f64)> = points.iter().map(|(x, y)| (x.ln(), y.ln())).collect();
+    let n = logs.len() as f64;
+    let (sx, sy) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x, b + y));
+    let (sxx, sxy) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x * x, b + x * y));
+    (n * sxy - sx * sy) / (n * sxx - sx * sx)
+}
+
+/// Each exponent carries its standard error over the seeds, recomputed here from the results
+/// table by its definition: three seeds' φ_J (p = a (φ − φ_J) each), the fit floor 5 times their
+/// spread (the sample standard deviation), the packings with Δφ at or above it, p's log–log slope
+/// refitted without each seed in turn, SE = √((S − 1)/S Σ (x₍ᵢ₎ − x̄)²). Stated to two digits:
+/// within 5 % of itself.
+#[test]
+fn the_scalings_carry_their_standard_error_over_the_seeds() {
+    let dir = crate::common::scratch();
+    let yaml = "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    packing: {n: 64, fraction: 0.86}\n    \
+                grid:\n      packing.fraction: [0.84, 0.86, 0.88, 0.90, 0.92]\n      seed: [1, 2, 3]\n";
+    let (frame, folder) = run_jam(dir.path(), yaml);
+    let report = std::fs::read_to_string(folder.join("report.md")).unwrap();
+    let seeds = [1.0, 2.0, 3.0];
+    let onsets: Vec<f64> = seeds.iter().map(|&s| seed_onset(&frame, "linear", 1.0, s)).collect();
+    let mean = onsets.iter().sum::<f64>() / 3.0;
+    let spread = (onsets.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / 2.0).sqrt();
+    let states = frame.column("packing_state").unwrap().str().unwrap().clone();
+    let (phi, p, seed) = (numbers(&frame, "packing_fraction"), numbers(&frame, "pressure"), numbers(&frame, "seed"));
+    // (seed's index, Δφ, p) of every jammed packing at or above the floor.
+    let fitted: Vec<(usize, f64, f64)> = (0..frame.height())
+        .filter(|&i| states.get(i) == Some("jammed"))
+        .filter_map(|i| {
+            let k = seeds.iter().position(|&s| seed[i] == Some(s))?;
+            let excess = phi[i]? - onsets[k];
+            (excess >= 5.0 * spread).then_some((k, excess, p[i]?))
+        })
+        .collect();
+    let without: Vec<f64> = (0..3)
+        .map(|k| log_slope(&fitted.iter().filter(|f| f.0 != k).map(|f| (f.1, f.2)).collect::<Vec<_>>()))
+        .collect();
+    let x_bar = without.iter().sum::<f64>() / 3.0;
+    let error = (2.0 / 3.0 * without.iter().map(|x| (x - x_bar).powi(2)).sum::<f64>()).sqrt();
+    let line = line_with(&report, "Linear contacts, N = 64, over");
+    let stated = number_after(line, " ± ");
+    assert!((stated / error - 1.0).abs() < 0.05, "{line}: independent {error} from {without:?}");
+    let all: Vec<(f64, f64)> = fitted.iter().map(|f| (f.1, f.2)).collect();
+    assert!((number_after(line, "p ∝ Δφ^") - log_slope(&all)).abs() < 1e-3 + 0.01 * error, "{line}");
+}
+
 #[test]
 fn the_jamming_item_states_phi_j_as_the_results_table_gives_it() {
     let (frame, report) = jamming_campaign("linear", "[0.84, 0.86, 0.88, 0.90]");

@@ -332,6 +332,14 @@ impl Scaling {
     fn within(&self) -> bool {
         (self.fit.exponent - self.theory).abs() <= EXPONENT_TOLERANCE
     }
+
+    /// The fitted exponent, ± its standard error over the seeds where there is one.
+    fn exponent_words(&self) -> String {
+        match self.error {
+            Some(error) if error > 0.0 => plus_minus(self.fit.exponent, error),
+            _ => sig(self.fit.exponent),
+        }
+    }
 }
 
 /// The sentence of one law and N's scalings.
@@ -353,7 +361,7 @@ fn scalings_sentence(beta: f64, size: &Onset, fitted: &[Scaling], judged: bool) 
             format!(
                 "{} ∝ Δφ^{} (theory {}{verdict}; {} packings{left_out})",
                 s.quantity,
-                sig(s.fit.exponent),
+                s.exponent_words(),
                 sig(s.theory),
                 s.points.len()
             )
@@ -420,7 +428,8 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
         reference: format!(
             "{CITATION}: φ_J ≈ {PHI_J} for 1:1.4 bidisperse discs, z_J = 4, and p, z − 4, K, G ∝ Δφ^(1, ½, 0, ½) for \
              linear and ^(3/2, ½, ½, 1) for Hertz contacts; exponents judged on the largest N within \
-             {EXPONENT_TOLERANCE}."
+             {EXPONENT_TOLERANCE}, each ± its standard error over the seeds (the jackknife: refitted without each seed \
+             in turn, from three seeds)."
         ),
         see_also: None,
         verdict: Verdict::of(rows.iter().filter_map(|r| judged(r))),
@@ -479,7 +488,7 @@ fn all_scalings(runs: &[&RunRecord]) -> (Vec<String>, Vec<Vec<String>>) {
                     &law_words(beta),
                     size.n,
                     s.quantity,
-                    &sig(s.fit.exponent),
+                    &s.exponent_words(),
                     s.theory,
                     s.points.len(),
                     judged.then(|| s.within()),
@@ -494,7 +503,7 @@ fn all_scalings(runs: &[&RunRecord]) -> (Vec<String>, Vec<Vec<String>>) {
                 &law_words(beta),
                 size.n,
                 ratio.quantity,
-                &sig(ratio.fit.exponent),
+                &ratio.exponent_words(),
                 1.0,
                 ratio.points.len(),
                 Some(ratio.within()),
@@ -522,7 +531,7 @@ fn ratio_sentence(beta: f64, n: usize, ratio: &Scaling, implied: Option<f64>) ->
         "{} contacts, N = {n}: G/K ∝ (z − 4)^{} over {} packings, against the theory's 1 (G ∝ K Δz: shear costs what \
          the contacts beyond the isostatic 4 give), {} {EXPONENT_TOLERANCE}{implied}.",
         capitalised(&law_words(beta)),
-        sig(ratio.fit.exponent),
+        ratio.exponent_words(),
         ratio.points.len(),
         if ratio.within() { "within" } else { "outside" }
     )
