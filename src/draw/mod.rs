@@ -1,6 +1,7 @@
 //! Drawing, below both the runner and the report: the generic line chart and heat map every
-//! figure is drawn with (`chart.rs`, its legend placed by `legend.rs`), the animated GIFs of runs (`movie.rs`), which the
-//! runner writes beside each run's record, and a movie's frames on paper (`filmstrip.rs`).
+//! figure is drawn with (`chart.rs`, its legend placed by `legend.rs`), the animated GIFs of
+//! runs (`movie.rs`), which the runner writes beside each run's record, and a movie's frames on
+//! paper (`filmstrip.rs`).
 
 pub mod chart;
 pub mod filmstrip;

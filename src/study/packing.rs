@@ -188,7 +188,8 @@ pub(super) fn measure(spec: &RunSpec, scene: &Scene, outcome: &Outcome, m: &mut 
     let floor = spec.relax().and_then(|r| r.residual_force).unwrap_or(0.0) * force_scale(spec);
     let pressure_floor = 3.0 * n as f64 * floor * 2.0 * largest / (2.0 * area);
     let relaxed = outcome.trace.relaxed_at.is_some();
-    let (bulk, shear) = if relaxed { backbone_moduli(&forces, &backbone, &rattler, area) } else { (None, None) };
+    let (bulk, shear) =
+        if relaxed { backbone_moduli(&forces, &backbone, &rattler, (area, pressure)) } else { (None, None) };
     // Jammed: a pressure above the floor, carried by a rigid backbone. A backbone with a floppy
     // mode (its matrix has no Cholesky factor: no K) is not rigid, and its pressure is the
     // relaxation's doing: 1000 times tighter a criterion took it 550 to 2·10⁵ times lower in 10
@@ -264,18 +265,18 @@ fn strained_residual(spec: &RunSpec, side: f64) -> f64 {
 /// matrix ([`stiffness_modulus`]); `None` for a floppy backbone.
 pub fn stiffness_moduli(forces: &ContactForces, discs: usize, area: f64) -> (Option<f64>, Option<f64>) {
     let rattler = forces.rattlers(discs);
-    backbone_moduli(forces, &forces.backbone(&rattler), &rattler, area)
+    backbone_moduli(forces, &forces.backbone(&rattler), &rattler, (area, forces.pressure(area)))
 }
 
-/// [`stiffness_moduli`] of the backbone's contacts `backbone`, rattlers `rattler`, found.
+/// [`stiffness_moduli`] of the backbone's contacts `backbone`, rattlers `rattler`, found, in a
+/// box of area `area` at the pressure `pressure` of `forces` (the caller has it already).
 fn backbone_moduli(
     forces: &ContactForces,
     backbone: &[usize],
     rattler: &[bool],
-    area: f64,
+    (area, pressure): (f64, f64),
 ) -> (Option<f64>, Option<f64>) {
     let moduli = |strain| stiffness_modulus(forces, backbone, rattler, strain);
-    let pressure = forces.pressure(area);
     (moduli(BULK).map(|u| bulk_modulus(u, area, pressure)), moduli(SHEAR).map(|u| u / area))
 }
 

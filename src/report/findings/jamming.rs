@@ -210,17 +210,13 @@ fn agrees(strained: f64, matrix: f64) -> bool {
     (strained / matrix - 1.0).abs() <= STRAINED_AGREEMENT
 }
 
-/// The contact law in words, from its exponent β.
 /// The packings of every other contact law than linear are quenches of their own: a sentence
 /// each with their φ_J at their largest N, where p^(1/β) extrapolates to zero, from which their
 /// Δφ is measured ([`onsets_of`]).
 fn own_onset_sentences(runs: &[&RunRecord]) -> Vec<String> {
-    let mut laws: Vec<u64> =
-        runs.iter().map(|r| r.spec.law.beta().to_bits()).filter(|b| *b != 1f64.to_bits()).collect();
-    laws.sort_unstable();
-    laws.dedup();
-    laws.into_iter()
-        .map(f64::from_bits)
+    contact_laws(runs)
+        .into_iter()
+        .filter(|&beta| beta != 1.0)
         .filter_map(|beta| {
             let largest = Onset::per_size(&onsets_of(runs, beta)).pop()?;
             Some(format!(
@@ -236,6 +232,15 @@ fn own_onset_sentences(runs: &[&RunRecord]) -> Vec<String> {
         .collect()
 }
 
+/// The contact laws' exponents β among `runs`, each once, rising.
+fn contact_laws(runs: &[&RunRecord]) -> Vec<f64> {
+    let mut laws: Vec<u64> = runs.iter().map(|r| r.spec.law.beta().to_bits()).collect();
+    laws.sort_unstable();
+    laws.dedup();
+    laws.into_iter().map(f64::from_bits).collect()
+}
+
+/// The contact law in words, from its exponent β.
 fn law_words(beta: f64) -> String {
     match beta {
         1.0 => "linear".into(),
@@ -468,11 +473,8 @@ fn isostatic_words(
 /// The scalings of every contact law at every N, each against the φ_J of its own law's packings
 /// ([`onsets_of`]), in sentences and table rows (the largest N of each law judged).
 fn all_scalings(runs: &[&RunRecord]) -> (Vec<String>, Vec<Vec<String>>) {
-    let mut laws: Vec<u64> = runs.iter().map(|r| r.spec.law.beta().to_bits()).collect();
-    laws.sort_unstable();
-    laws.dedup();
     let (mut sentences, mut rows) = (Vec::new(), Vec::new());
-    for beta in laws.into_iter().map(f64::from_bits) {
+    for beta in contact_laws(runs) {
         let onsets = &onsets_of(runs, beta);
         let sizes = Onset::per_size(onsets);
         let fitted: Vec<(&Onset, Vec<Scaling>)> = sizes

@@ -360,11 +360,18 @@ fn direction_words(rs: &[&RunRecord], e_ratio: f64) -> String {
     let along_y = rs.iter().find_map(|r| r.spec.lattice().filter(|l| !l.rotated));
     let Some(l) = along_y else { return String::new() };
     let (rising, falling) = l.diagonal_stiffness();
-    let e_at = |degrees: f64| youngs_modulus_along(l.k_x, l.k_y, rising, falling, l.depth, degrees.to_radians());
-    let angles = (0..360).map(|i| 0.5 * f64::from(i));
-    let by_e = |a: &f64, b: &f64| e_at(*a).unwrap_or(0.0).total_cmp(&e_at(*b).unwrap_or(0.0));
-    let (Some(low), Some(high)) = (angles.clone().min_by(by_e), angles.max_by(by_e)) else { return String::new() };
-    let (Some(e_low), Some(e_high)) = (e_at(low), e_at(high)) else { return String::new() };
+    // (E, angle in degrees) every 0.5°; none without diagonals (no stiffness off the axes).
+    let along: Option<Vec<(f64, f64)>> = (0..360)
+        .map(|i| 0.5 * f64::from(i))
+        .map(|degrees| {
+            youngs_modulus_along(l.k_x, l.k_y, rising, falling, l.depth, degrees.to_radians()).map(|e| (e, degrees))
+        })
+        .collect();
+    let by_e = |a: &&(f64, f64), b: &&(f64, f64)| a.0.total_cmp(&b.0);
+    let Some(along) = along else { return String::new() };
+    let (Some(&(e_low, low)), Some(&(e_high, high))) = (along.iter().min_by(by_e), along.iter().max_by(by_e)) else {
+        return String::new();
+    };
     if e_high / e_low - 1.0 <= SAME_E {
         format!(": isotropic (the continuum's E = {} Pa in every direction)", cell(Some(e_low)))
     } else if (e_ratio - 1.0).abs() <= SAME_E {
