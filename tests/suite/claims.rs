@@ -224,7 +224,7 @@ fn random_networks_average_the_rigid_seeds_and_say_where_rigidity_held() {
     // At the threshold p = 1/2 two of these six seeds are mechanisms (the static solver's
     // verdict), and the other four rigid; cut further, one of six is still rigid, below 1/2.
     let at = report_of("rnd", &random_block("[0.5]"));
-    assert!(line_with(&at, "| tensile | 0.50 |").contains("| 4/6 |"));
+    assert!(line_with(&at, "| tensile: E | 0.50 |").contains("| 4/6 |"));
     let sentence = line_with(&at, "Effective-medium theory for central-force networks");
     let split = "At p = 0.50 (the threshold itself), 4 of 6 networks stayed rigid and 2 lost rigidity; every denser \
                  network stayed rigid.";
@@ -238,7 +238,7 @@ fn random_networks_average_the_rigid_seeds_and_say_where_rigidity_held() {
         .replace("seed: [1, 2, 3, 4, 5, 6]\n", "seed: [1, 2, 3, 4, 5, 6]\n      load.case: [tensile, tensile-x]\n");
     let report = report_of("rnd", &both_ways);
     let rigid = |case: &str| {
-        let row = line_with(&report, &format!("| {case} | 0.50 | "));
+        let row = line_with(&report, &format!("| {case}: E | 0.50 | "));
         row.split(" | ").nth(2).unwrap().split('/').next().unwrap().parse::<usize>().unwrap()
     };
     let sentence = line_with(&report, "Effective-medium theory for central-force networks");
@@ -253,17 +253,37 @@ fn random_networks_average_the_rigid_seeds_and_say_where_rigidity_held() {
     let sentence = line_with(&apart, "Effective-medium theory for central-force networks");
     assert!(sentence.contains("Here rigidity held down to p = 0.70 and was first lost at p = 0.40."), "{sentence}");
     let beyond = report_of("rnd", &random_block("[0.55]"));
-    assert!(line_with(&beyond, "| tensile | 0.55 |").contains("| 1/6 |"));
+    assert!(line_with(&beyond, "| tensile: E | 0.55 |").contains("| 1/6 |"));
     let sentence = line_with(&beyond, "Effective-medium theory for central-force networks");
     assert!(sentence.contains("A network kept at p = 0.45, below 1/2, still stayed rigid"), "{sentence}");
-    assert!(line_with(&light, "| tensile | 0.20 |").contains("| 6/6 |"));
+    assert!(line_with(&light, "| tensile: E | 0.20 |").contains("| 6/6 |"));
     let heavy = report_of("rnd", &random_block("[0.6, 0.7]"));
     let sentence = line_with(&heavy, "Effective-medium theory for central-force networks");
     assert!(sentence.contains("No cut network stayed rigid here."), "{sentence}");
     assert!(!sentence.contains("a little beyond it"), "the old, unconditional claim");
     // A mechanism has no kept fraction and no modulus: its row says so instead of averaging 0.
-    let row = line_with(&heavy, "| tensile | 0.60 |");
-    assert_eq!(row, "| tensile | 0.60 | 0/6 | – | – | – |");
+    let row = line_with(&heavy, "| tensile: E | 0.60 |");
+    assert_eq!(row, "| tensile: E | 0.60 | 0/6 | – | – | – |");
+}
+
+#[test]
+fn a_sheared_network_is_named_apparent_g_unless_it_is_a_periodic_strip() {
+    // Item 16: only the periodic strip shears homogeneously; on the coursework supports the
+    // block bends and its G is apparent (0.40 of k_d/d at 40 × 40). The same cut networks
+    // sheared on both supports: one row each, named for what it measures; the spread
+    // networks' sentence names the supports' G the same way.
+    let sheared = random_block("[0.2]")
+        .replace("case: tensile", "case: shear")
+        .replace("seed: [1, 2, 3, 4, 5, 6]\n", "seed: [1, 2]\n      supports: [coursework, periodic-x]\n");
+    let report = report_of("rnd", &sheared);
+    assert!(line_with(&report, "| shear: G | 0.20 |").contains("| 2/2 |"));
+    assert!(line_with(&report, "| shear: apparent G (coursework supports) | 0.20 |").contains("| 2/2 |"));
+    let spread = random_block("[0.2]")
+        .replace("lattice.cut_fraction: [0.2]", "lattice.stiffness_spread: [0.25]")
+        .replace("seed: [1, 2, 3, 4, 5, 6]\n", "seed: [1, 2]\n      load.case: [tensile, shear]\n");
+    // The bounds hold on the coursework and clamped supports only, so the sentence is theirs.
+    let sentence = line_with(&report_of("rnd", &spread), "Spreading the stiffnesses instead").to_string();
+    assert!(sentence.contains(" and apparent G (coursework supports) = "), "{sentence}");
 }
 
 #[test]

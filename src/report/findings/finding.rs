@@ -4,12 +4,13 @@
 //! questions (`one_d.rs`, `two_d.rs`, …) so they import it rather than the list that asks them.
 
 use serde::Serialize;
+use std::collections::BTreeSet;
 
 use crate::model::{LatticeType, LawSpec};
 use crate::report::figure::{Figure, FigureKind, FigureRef, movie_refs};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
-use crate::spec::{LatticeSpec, Supports};
+use crate::spec::{LatticeSpec, LoadCase, Supports};
 use crate::summary::ScalingFit;
 
 // Numbers in sentences: 4 significant digits, plain or scientific as reads best.
@@ -205,6 +206,29 @@ pub(super) fn regular(r: &RunRecord) -> Option<&LatticeSpec> {
     r.spec.lattice().filter(|l| {
         l.impulse.is_none() && !l.is_random() && l.k_x == l.k_y && !l.rotated && r.spec.law == LawSpec::Linear
     })
+}
+
+/// The modulus a loaded lattice run measures, named for what it is: E in tension, G in shear
+/// on a periodic strip (homogeneous shear), and on other supports the whole block's apparent G,
+/// which the supports bend (item 16: 0.40 of k_d/d on the 40 × 40 coursework supports).
+pub(super) fn modulus_name(l: &LatticeSpec) -> String {
+    match l.load_case {
+        LoadCase::Shear if !l.supports.periodic_x() => format!("apparent G ({} supports)", l.supports.name()),
+        LoadCase::Shear => "G".into(),
+        LoadCase::Tensile | LoadCase::TensileX => "E".into(),
+    }
+}
+
+/// What the shear runs among `runs` measure ([`modulus_name`]), each name once (`G / apparent G
+/// (coursework supports)` where they stand on both); G when there are none.
+pub(super) fn shear_name(runs: &[&RunRecord]) -> String {
+    let names: BTreeSet<String> = runs
+        .iter()
+        .filter_map(|r| r.spec.lattice())
+        .filter(|l| l.load_case == LoadCase::Shear)
+        .map(modulus_name)
+        .collect();
+    if names.is_empty() { "G".into() } else { names.into_iter().collect::<Vec<_>>().join(" / ") }
 }
 
 /// A lattice run's size, then whether it stands on the coursework's supports: the key that

@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 
 use super::block::Block;
 use super::discussion::EXPONENT_TOLERANCE;
-use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, percent, rel, relative, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, percent, rel, relative, shear_name, sig};
 use crate::measure::youngs_modulus_along;
 use crate::model::LawSpec;
 use crate::runner::RunRecord;
@@ -268,9 +268,16 @@ pub(super) fn anisotropic(e: &Evidence) -> Option<Answer> {
         verdict: Verdict::of([worst <= 2e-3]),
         figures: Vec::new(),
         table: Some(Table {
-            header: ["network", "E_y (Pa)", "E_x (Pa)", "ν (load y)", "ν (load x)", "G (Pa)"]
-                .map(String::from)
-                .to_vec(),
+            header: [
+                "network",
+                "E_y (Pa)",
+                "E_x (Pa)",
+                "ν (load y)",
+                "ν (load x)",
+                &format!("{} (Pa)", shear_name(&runs)),
+            ]
+            .map(String::from)
+            .to_vec(),
             rows,
         }),
     })

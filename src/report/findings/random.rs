@@ -6,7 +6,9 @@ use crate::report::figure::FigureKind;
 use crate::report::solids::mean_spread;
 use std::collections::BTreeMap;
 
-use super::finding::{Answer, Evidence, SeeAlso, Table, Verdict, cell, extremes, percent, sig};
+use super::finding::{
+    Answer, Evidence, SeeAlso, Table, Verdict, cell, extremes, modulus_name, percent, shear_name, sig,
+};
 use crate::measure::median;
 use crate::report::words::number;
 use crate::runner::RunRecord;
@@ -279,12 +281,13 @@ fn within_bounds(bounded: &[(&RunRecord, f64, (f64, f64))]) -> usize {
 /// relative to E.
 fn spread_sentence(spread: &[&RunRecord], bounded: &[(&RunRecord, f64, (f64, f64))]) -> Option<String> {
     let (first, ..) = bounded.first()?;
+    let shear = shear_name(spread);
     let moduli: Vec<String> = spread_means(spread)
         .iter()
         .map(|(w, m)| {
             let change =
                 m.softening.map_or_else(String::new, |s| format!(" ({} from the uniform network's)", percent(s)));
-            format!("E = {} Pa{change} and G = {} Pa at w = {}", cell(m.youngs), cell(m.shear), number(*w))
+            format!("E = {} Pa{change} and {shear} = {} Pa at w = {}", cell(m.youngs), cell(m.shear), number(*w))
         })
         .collect();
     let within = within_bounds(bounded);
@@ -449,10 +452,12 @@ fn jammed_packings() -> SeeAlso {
 /// the moduli's mean and sample standard deviation over them only (a floppy seed has no modulus,
 /// and one seed no deviation: a dash).
 fn random_rows(runs: &[&RunRecord]) -> Option<Vec<Vec<String>>> {
+    // Keyed by what the runs measure too: a campaign's shear on two kinds of supports is two rows.
     let mut by_cut: BTreeMap<(String, u64), Vec<&RunRecord>> = BTreeMap::new();
     for r in runs {
         let l = r.spec.lattice()?;
-        by_cut.entry((l.load_name().to_string(), (l.cut_fraction * 1000.0).round() as u64)).or_default().push(r);
+        let measured = format!("{}: {}", l.load_name(), modulus_name(l));
+        by_cut.entry((measured, (l.cut_fraction * 1000.0).round() as u64)).or_default().push(r);
     }
     let kept = |rs: &[&&RunRecord]| {
         let fractions: Vec<f64> = rs.iter().filter_map(|r| r.metrics.lattice.bond_fraction_kept).collect();

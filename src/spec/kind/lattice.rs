@@ -384,7 +384,7 @@ pub(super) fn derive_from_solid(
             _ => lattice.k_diag_ratio.unwrap_or(DEFAULT_K_DIAG_RATIO),
         };
         solid.k = Some(modulus * depth / (1.0 + r - r * r / (1.0 + r)));
-        notes.push(format!("k = E d / (1 + r − r²/(1 + r)) with E = {modulus} Pa, r = k_d/k = {r} (the lattice's continuum E is the solid's)"));
+        notes.push(format!("k = E d / (1 + r − r²/(1 + r)) with E = {modulus:e} Pa, r = k_d/k = {r} (the lattice's continuum E is the solid's)"));
     }
     solid.note = Some(notes.join("; "));
     Ok(solid)
