@@ -1,5 +1,6 @@
-//! The packings' jamming (issue 34): φ_J of each (N, seed) from p → 0 of its packings (per law),
-//! its mean and spread per N, Δφ = φ − φ_J of every packing, and the scalings of p, z − 4, K
+//! The packings' jamming (issue 34): φ_J of each (N, seed), the mean of its packings' own (per
+//! law), its mean and standard error per N, Δφ = φ − φ_J of every packing from its own φ_J, and
+//! the scalings of p, z − 4, K
 //! and G against Δφ fitted on log–log axes and drawn, one figure per packing scene. The report's
 //! item "Jamming" (`findings/jamming.rs`) states them against the literature.
 
@@ -7,15 +8,16 @@ use std::collections::BTreeMap;
 
 use super::figure::{Figure, FigureKind, Part};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
-use crate::measure::{PowerLawFit, line_fit, power_law_fit};
+use crate::measure::{PowerLawFit, power_law_fit};
 use crate::report::solids::mean_spread;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
+use crate::study::packing::ONSET_PRECISION;
 
 /// z at jamming in 2D: isostatic, 2d contacts per disc.
 pub(super) const ISOSTATIC: f64 = 4.0;
 
-/// The scalings are fitted from Δφ ≥ this many times the spread of φ_J between seeds.
+/// The scalings are fitted from Δφ ≥ this many times the precision of a packing's own φ_J.
 pub(super) const FIT_FLOOR: f64 = 5.0;
 
 /// A packing's value, if measured.
@@ -57,56 +59,30 @@ pub(crate) fn fitted(r: &RunRecord) -> bool {
     r.status == RunStatus::Ok && quenched && r.spec.movie.is_none()
 }
 
-/// φ_J of every (N, seed) with two jammed linear packings or more: p = a (φ − φ_J) fitted by
-/// least squares over them, φ_J = −intercept/a (none when the pressure does not rise with φ).
+/// φ_J of every (N, seed) of the linear packings ([`onsets_of`]).
 pub(super) fn onsets(runs: &[&RunRecord]) -> BTreeMap<(usize, u64), f64> {
     onsets_of(runs, 1.0)
 }
 
-/// φ_J of every (N, seed) from its own jammed packings of contact law β (forces ∝ δ^β):
-/// p ∝ Δφ^β near jamming, so p^(1/β) = a (φ − φ_J) is the line fitted. A Hertz packing is a
-/// quench of its own (the same random start relaxes into another state than with linear
-/// contacts), so its Δφ is measured from its own φ_J.
+/// φ_J of every (N, seed) from its jammed packings of contact law β (forces ∝ δ^β): the mean of
+/// their own φ_J, each where its pressure vanishes as it is decompressed (`own_jamming_fraction`,
+/// O'Hern et al.'s jamming point of one state). The packings of a seed are quenches from one
+/// random start at different φ, each jamming at its own φ_J; their mean is the seed's, and the
+/// seed the independent sample of [`Onset::per_size`].
 pub(super) fn onsets_of(runs: &[&RunRecord], beta: f64) -> BTreeMap<(usize, u64), f64> {
-    onsets_over(runs, beta, |points| points)
-}
-
-/// [`onsets`] from the lower half of each seed's jammed fractions only (two at least): p(φ) is
-/// not quite straight, so where the line stops moves its intercept; the report states by how
-/// much.
-pub(super) fn lower_half_onsets(runs: &[&RunRecord]) -> BTreeMap<(usize, u64), f64> {
-    onsets_over(runs, 1.0, |points| {
-        let kept = points.len().div_ceil(2).max(2);
-        &points[..kept.min(points.len())]
-    })
-}
-
-/// The part of a seed's (φ, p), by rising φ, its φ_J is fitted over.
-type Chosen = fn(&[(f64, f64)]) -> &[(f64, f64)];
-
-/// φ_J of every (N, seed) from the part `chosen` of its jammed packings' (φ, p^(1/β)) of law
-/// β, by rising φ.
-fn onsets_over(runs: &[&RunRecord], beta: f64, chosen: Chosen) -> BTreeMap<(usize, u64), f64> {
-    let mut points: BTreeMap<(usize, u64), Vec<(f64, f64)>> = BTreeMap::new();
+    let mut own: BTreeMap<(usize, u64), Vec<f64>> = BTreeMap::new();
     for r in runs.iter().filter(|r| r.spec.law.beta() == beta && jammed(r)) {
-        let m = &r.metrics.packing;
-        if let (Some(k), Some(phi), Some(p)) = (key(r), m.packing_fraction, m.pressure) {
-            points.entry(k).or_default().push((phi, p.powf(1.0 / beta)));
+        if let (Some(k), Some(phi_j)) = (key(r), r.metrics.packing.own_jamming_fraction) {
+            own.entry(k).or_default().push(phi_j);
         }
     }
-    points
-        .into_iter()
-        .filter_map(|(k, mut points)| {
-            points.sort_by(|a, b| a.0.total_cmp(&b.0));
-            line_fit(chosen(&points)).filter(|l| l.slope > 0.0).map(|l| (k, -l.intercept / l.slope))
-        })
-        .collect()
+    own.into_iter().map(|(k, phis)| (k, phis.iter().sum::<f64>() / phis.len() as f64)).collect()
 }
 
-/// Δφ = φ − φ_J of a packing, from its (N, seed)'s φ_J, when positive.
-pub(super) fn excess(onsets: &BTreeMap<(usize, u64), f64>, r: &RunRecord) -> Option<f64> {
-    let phi_j = onsets.get(&key(r)?)?;
-    Some(r.metrics.packing.packing_fraction? - phi_j).filter(|d| *d > 0.0)
+/// Δφ = φ − φ_J of a packing from its own φ_J, when positive.
+pub(super) fn excess(r: &RunRecord) -> Option<f64> {
+    let m = &r.metrics.packing;
+    Some(m.packing_fraction? - m.own_jamming_fraction?).filter(|d| *d > 0.0)
 }
 
 /// The campaign's φ_J of one N: mean and standard error over its seeds, and how it stands.
@@ -116,8 +92,6 @@ pub(super) struct Onset {
     pub(super) mean: f64,
     /// The standard error of the mean (0 with one seed).
     pub(super) error: f64,
-    /// The standard deviation between seeds (0 with one seed).
-    pub(super) spread: f64,
 }
 
 impl Onset {
@@ -131,18 +105,17 @@ impl Onset {
             .into_iter()
             .map(|(n, phis)| {
                 let (mean, spread) = mean_spread(phis.iter().map(|p| Some(*p)));
-                let spread = spread.unwrap_or(0.0);
-                let error = spread / (phis.len() as f64).sqrt();
-                Onset { n, seeds: phis.len(), mean: mean.unwrap_or(f64::NAN), error, spread }
+                let error = spread.unwrap_or(0.0) / (phis.len() as f64).sqrt();
+                Onset { n, seeds: phis.len(), mean: mean.unwrap_or(f64::NAN), error }
             })
             .collect()
     }
 
-    /// The smallest Δφ the scalings are fitted from: each packing is its own quench, whose own
-    /// φ_J scatters about its seed's by about the spread σ between seeds, so Δφ ≥ `FIT_FLOOR` σ
-    /// keeps that error of ln Δφ below ln(1 + 1/`FIT_FLOOR`) ≈ 0.18.
+    /// The smallest Δφ the scalings are fitted from: each packing's own φ_J is known to
+    /// [`ONSET_PRECISION`] of φ, so Δφ ≥ `FIT_FLOOR` times that keeps its error of ln Δφ below
+    /// ln(1 + 1/`FIT_FLOOR`) ≈ 0.18.
     pub(super) fn fit_floor(&self) -> f64 {
-        FIT_FLOOR * self.spread
+        FIT_FLOOR * ONSET_PRECISION * self.mean
     }
 }
 
@@ -189,28 +162,17 @@ fn seed_jackknife(points: &[(f64, f64)], seeds: &[u64]) -> Option<f64> {
 
 /// The jammed packings of `n` discs with contact exponent `beta` whose Δφ = φ − φ_J is at
 /// least `floor`, each with its Δφ: what the scalings are fitted over.
-fn fitted_packings<'a>(
-    runs: &[&'a RunRecord],
-    onsets: &BTreeMap<(usize, u64), f64>,
-    (n, beta): (usize, f64),
-    floor: f64,
-) -> Vec<(f64, &'a RunRecord)> {
+fn fitted_packings<'a>(runs: &[&'a RunRecord], (n, beta): (usize, f64), floor: f64) -> Vec<(f64, &'a RunRecord)> {
     runs.iter()
         .filter(|r| jammed(r) && r.spec.law.beta() == beta && key(r).is_some_and(|k| k.0 == n))
-        .filter_map(|r| Some((excess(onsets, r).filter(|d| *d >= floor)?, *r)))
+        .filter_map(|r| Some((excess(r).filter(|d| *d >= floor)?, *r)))
         .collect()
 }
 
 /// The scalings of the jammed packings of `n` discs with contact exponent `beta`, each fitted
 /// on log–log axes against Δφ over the packings with Δφ ≥ `floor` and a positive value.
-pub(super) fn scalings(
-    runs: &[&RunRecord],
-    onsets: &BTreeMap<(usize, u64), f64>,
-    n: usize,
-    beta: f64,
-    floor: f64,
-) -> Vec<Scaling> {
-    let mine = fitted_packings(runs, onsets, (n, beta), floor);
+pub(super) fn scalings(runs: &[&RunRecord], n: usize, beta: f64, floor: f64) -> Vec<Scaling> {
+    let mine = fitted_packings(runs, (n, beta), floor);
     SCALINGS
         .iter()
         .filter_map(|&(quantity, pick, theory)| {
@@ -228,14 +190,8 @@ pub(super) fn scalings(
 /// coordination Δz = z − 4, fitted on log–log axes over the packings with Δφ ≥ `floor`: the
 /// theory's G ∝ K Δz makes it Δz¹ for every contact law (the shear modulus is the bulk
 /// modulus thinned by how far the contact network is above isostatic).
-pub(super) fn ratio_against_contacts(
-    runs: &[&RunRecord],
-    onsets: &BTreeMap<(usize, u64), f64>,
-    n: usize,
-    beta: f64,
-    floor: f64,
-) -> Option<Scaling> {
-    let (points, seeds): (Vec<(f64, f64)>, Vec<u64>) = fitted_packings(runs, onsets, (n, beta), floor)
+pub(super) fn ratio_against_contacts(runs: &[&RunRecord], n: usize, beta: f64, floor: f64) -> Option<Scaling> {
+    let (points, seeds): (Vec<(f64, f64)>, Vec<u64>) = fitted_packings(runs, (n, beta), floor)
         .into_iter()
         .filter_map(|(_, r)| {
             let m = &r.metrics.packing;
@@ -264,7 +220,7 @@ pub(super) fn part(records: &[RunRecord], scene: &str) -> anyhow::Result<Part<()
     };
     let beta = first.spec.law.beta();
     let mut series = Vec::new();
-    for s in scalings(&mine, &onsets, size.n, beta, size.fit_floor()) {
+    for s in scalings(&mine, size.n, beta, size.fit_floor()) {
         series.push(Series {
             label: format!("{}: packings", s.quantity),
             points: s.points.clone(),
@@ -285,15 +241,15 @@ pub(super) fn part(records: &[RunRecord], scene: &str) -> anyhow::Result<Part<()
         y_label: "p, K, G (N/m); z − 4".into(),
         scale: Scale::LogLog,
     };
-    let ratio = ratio_figure(scene, &mine, &onsets, size.n, beta, size.fit_floor())?;
+    let ratio = ratio_figure(scene, &mine, size.n, beta, size.fit_floor())?;
     let figure = Figure {
         scene: scene.into(),
         kind: FigureKind::Jamming,
         file: format!("plots/{scene}-jamming.svg"),
         caption: format!(
             "{scene}: pressure p, excess coordination z − 4 and moduli K, G of the jammed packings of {} discs \
-             against Δφ = φ − φ_J (φ_J per seed where p^(1/β) of its packings with these contacts extrapolates to \
-             zero), over Δφ ≥ {:.3}, on log–log axes with fitted power laws.",
+             against Δφ = φ − φ_J (φ_J each packing's own, where its pressure vanishes as it is decompressed), \
+             over Δφ ≥ {:.3}, on log–log axes with fitted power laws.",
             size.n,
             size.fit_floor()
         ),
@@ -304,15 +260,8 @@ pub(super) fn part(records: &[RunRecord], scene: &str) -> anyhow::Result<Part<()
 
 /// The scene's G/K against z − 4 for its `n` discs on log–log axes with the fitted power law
 /// beside the theory's Δz¹ ([`ratio_against_contacts`]); none without packings to fit.
-fn ratio_figure(
-    scene: &str,
-    mine: &[&RunRecord],
-    onsets: &BTreeMap<(usize, u64), f64>,
-    n: usize,
-    beta: f64,
-    floor: f64,
-) -> anyhow::Result<Option<Figure>> {
-    let Some(s) = ratio_against_contacts(mine, onsets, n, beta, floor) else { return Ok(None) };
+fn ratio_figure(scene: &str, mine: &[&RunRecord], n: usize, beta: f64, floor: f64) -> anyhow::Result<Option<Figure>> {
+    let Some(s) = ratio_against_contacts(mine, n, beta, floor) else { return Ok(None) };
     let (low, high) = s.points.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), p| (lo.min(p.0), hi.max(p.0)));
     let line = |exponent: f64, prefactor: f64| {
         vec![(low, prefactor * low.powf(exponent)), (high, prefactor * high.powf(exponent))]

@@ -77,6 +77,11 @@ pub struct PackingMetrics {
     pub bulk_strain_contact_changes: Option<u64>,
     /// The same under shear ±γ.
     pub shear_strain_contact_changes: Option<u64>,
+    /// The packing's own jamming fraction φ_J (jammed packings): where its pressure vanishes as
+    /// it is decompressed, relaxed after each step ([`own_onset`]).
+    pub own_jamming_fraction: Option<f64>,
+    /// The decompressions (each a relaxation) that found it.
+    pub decompressions: Option<u64>,
 }
 
 /// The discs of a packing run as the spec places them: the field's geometry and the particles
@@ -110,9 +115,27 @@ fn force_scale(spec: &RunSpec) -> f64 {
 /// the largest static force is below `relax.residual_force` k d^β.
 pub(super) fn build(spec: &RunSpec, run: &PackingRun) -> Scene {
     let (packing, particles) = discs(spec, run);
+    packing_scene(spec, packing, particles)
+}
+
+/// The scene of the discs `particles` in `packing`, relaxed as `spec` asks.
+fn packing_scene(spec: &RunSpec, packing: Packing, particles: Particles) -> Scene {
+    let n = particles.len();
     let mut scene = scene(spec, particles, Network::Packing(packing), None);
-    scene.sampling.relaxation = relaxation(spec, Some(force_scale(spec)), run.packing.n);
+    scene.sampling.relaxation = relaxation(spec, Some(force_scale(spec)), n);
     scene
+}
+
+/// The own φ_J ([`own_onset`]) of the discs `particles` placed in `packing`, relaxed by `spec`'s
+/// minimiser first, and the decompressions it took; `None` where they are not jammed there. The
+/// packing runs' measurement, for discs placed by hand.
+pub fn own_jamming_fraction(spec: &RunSpec, packing: Packing, particles: Particles) -> Option<(f64, u64)> {
+    let mut placed = packing_scene(spec, packing, particles);
+    let outcome = placed.clone().run();
+    outcome.trace.relaxed_at?;
+    placed.particles = outcome.state.particles.clone();
+    let start = jammed_at(spec, &placed)?;
+    Some(own_onset(spec, &placed, &outcome, start))
 }
 
 /// Relaxes the packing's `scene` at each of its stages ([`PackingSpec::stage_fractions`]): at
@@ -129,7 +152,7 @@ pub(super) fn relax(spec: &RunSpec, scene: Scene) -> (Scene, Outcome) {
         if outcome.trace.relaxed_at.is_none() {
             break;
         }
-        stage = squeezed(&stage, &outcome, (pair[0] / pair[1]).sqrt());
+        stage = squeezed(&stage, &outcome.state.particles, (pair[0] / pair[1]).sqrt());
         outcome = stage.clone().run();
         frames.extend(outcome.frames.pop());
         evaluations += outcome.trace.steps;
@@ -138,15 +161,16 @@ pub(super) fn relax(spec: &RunSpec, scene: Scene) -> (Scene, Outcome) {
     (stage, outcome)
 }
 
-/// `scene` with the discs where `outcome` left them, at rest, their positions and the box
-/// shrunk by `factor` (L ∝ 1/√φ: the ratio √(φ/φ′) of two stages' fractions).
-fn squeezed(scene: &Scene, outcome: &Outcome, factor: f64) -> Scene {
+/// `scene` with the discs at `particles`' positions, at rest, their positions and the box
+/// scaled by `factor` (L ∝ 1/√φ: the ratio √(φ/φ′) of two fractions; below 1 a squeeze, above
+/// 1 a decompression).
+fn squeezed(scene: &Scene, particles: &Particles, factor: f64) -> Scene {
     let mut next = scene.clone();
     if let Network::Packing(packing) = &mut next.network {
         packing.periodic.side *= factor;
         packing.periodic.tilt *= factor;
     }
-    let (x, y) = (&outcome.state.particles.x, &outcome.state.particles.y);
+    let (x, y) = (&particles.x, &particles.y);
     let p = &mut next.particles;
     for i in 0..x.len() {
         (p.x[i], p.y[i], p.vx[i], p.vy[i]) = (factor * x[i], factor * y[i], 0.0, 0.0);
@@ -181,12 +205,8 @@ pub(super) fn measure(spec: &RunSpec, scene: &Scene, outcome: &Outcome, m: &mut 
     let rattler = forces.rattlers(n);
     let backbone = forces.backbone(&rattler);
     let discs_area: f64 = packing.radius.iter().map(|r| std::f64::consts::PI * r * r).sum();
-    let largest = packing.radius.iter().fold(0.0f64, |a, r| a.max(*r));
     let pressure = forces.pressure(area);
-    // Every contact carrying at most the residual force f_r (z ≤ 6: at most 3n contacts)
-    // gives p ≤ 3 n f_r (2 r_max) / 2A.
-    let floor = spec.relax().and_then(|r| r.residual_force).unwrap_or(0.0) * force_scale(spec);
-    let pressure_floor = 3.0 * n as f64 * floor * 2.0 * largest / (2.0 * area);
+    let pressure_floor = pressure_floor(spec, packing);
     let relaxed = outcome.trace.relaxed_at.is_some();
     let (bulk, shear) =
         if relaxed { backbone_moduli(&forces, &backbone, &rattler, (area, pressure)) } else { (None, None) };
@@ -224,6 +244,90 @@ pub(super) fn measure(spec: &RunSpec, scene: &Scene, outcome: &Outcome, m: &mut 
             (bulk.map(|u| bulk_modulus(u, area, pressure)), bulk_changes);
         (m.shear_modulus_2d_strained, m.shear_strain_contact_changes) = (shear.map(|u| u / area), shear_changes);
     }
+    if let Some(start) = bulk.filter(|_| jammed).map(|k| Jammed { fraction: discs_area / area, pressure, bulk: k }) {
+        let (fraction, steps) = own_onset(spec, scene, outcome, start);
+        (m.own_jamming_fraction, m.decompressions) = (Some(fraction), Some(steps));
+    }
+}
+
+/// The pressure a packing's relaxation leaves (N/m), below which p is p = 0: every contact
+/// carrying at most the residual force f_r (z ≤ 6: at most 3n contacts) gives
+/// p ≤ 3 n f_r (2 r_max) / 2A.
+fn pressure_floor(spec: &RunSpec, packing: &Packing) -> f64 {
+    let residual = spec.relax().and_then(|r| r.residual_force).unwrap_or(0.0) * force_scale(spec);
+    let largest = packing.radius.iter().fold(0.0f64, |a, r| a.max(*r));
+    3.0 * packing.radius.len() as f64 * residual * 2.0 * largest / (2.0 * packing.periodic.area())
+}
+
+/// A jammed packing at rest: its area fraction, pressure p (N/m) and bulk modulus K (N/m).
+#[derive(Clone, Copy, Debug)]
+struct Jammed {
+    fraction: f64,
+    pressure: f64,
+    bulk: f64,
+}
+
+/// The most decompressions [`own_onset`] makes: Newton's steps take a packing from φ = 0.92 to
+/// its φ_J within [`ONSET_PRECISION`] in 2 to 6 (jamming.yaml).
+const MAX_DECOMPRESSIONS: u64 = 16;
+/// [`own_onset`] stops when φ_J is known to this fraction of φ: its Newton step, or its bracket
+/// [unjammed, jammed], is narrower. A finite packing unjams at a small finite p (a contact
+/// opens and its backbone turns floppy: p ~ 1e-5 k/d at N = 1024, a Newton step of ~3e-5 left),
+/// so each halving of the bracket below that costs a relaxation; 5e-5 of φ (4e-5) is 4 % of the
+/// smallest Δφ of jamming.yaml's packings (~1e-3), and the fits start at 5 times it.
+pub const ONSET_PRECISION: f64 = 5e-5;
+
+/// The packing's own φ_J and the decompressions it took: O'Hern et al.'s jamming point of one
+/// state, where its pressure vanishes as it is decompressed (box and positions grown together,
+/// relaxed after each step). Newton's method on p^(1/β)(φ) = 0, p ∝ Δφ^β near φ_J: with
+/// K = −A dp/dA = φ dp/dφ (A ∝ 1/φ), d p^(1/β)/dφ = p^(1/β − 1) K/(βφ), so the step is
+/// Δφ = β p φ/K. A step that unjams the packing bounds φ_J below; the next stays above that
+/// bound (halfway to it at least). The answer is the last jammed state's Newton estimate, within
+/// the bracket [unjammed, jammed].
+fn own_onset(spec: &RunSpec, scene: &Scene, outcome: &Outcome, start: Jammed) -> (f64, u64) {
+    let beta = spec.law.beta();
+    let (mut rest, mut at, mut below) = (scene.clone(), start, 0.0f64);
+    rest.particles = outcome.state.particles.clone();
+    for step in 0..MAX_DECOMPRESSIONS {
+        let estimate = (at.fraction - beta * at.pressure * at.fraction / at.bulk).max(below);
+        if at.fraction - estimate < ONSET_PRECISION * at.fraction {
+            return (estimate, step);
+        }
+        let target = estimate.max(0.5 * (at.fraction + below));
+        let (next, relaxed) = decompressed(&rest, target / at.fraction);
+        match relaxed.then(|| jammed_at(spec, &next)).flatten() {
+            Some(state) => (rest, at) = (next, state),
+            None => below = target,
+        }
+    }
+    ((at.fraction - beta * at.pressure * at.fraction / at.bulk).max(below), MAX_DECOMPRESSIONS)
+}
+
+/// `rest` with its box and positions grown to the fraction `ratio` times its own (L ∝ 1/√φ) and
+/// relaxed again from rest, and whether it relaxed.
+fn decompressed(rest: &Scene, ratio: f64) -> (Scene, bool) {
+    let mut next = squeezed(rest, &rest.particles, ratio.sqrt().recip());
+    let outcome = next.clone().run();
+    next.particles = outcome.state.particles;
+    (next, outcome.trace.relaxed_at.is_some())
+}
+
+/// The packing of `scene` where its discs are, when jammed there: p above the relaxation's
+/// floor, carried by a rigid backbone (one with a K).
+fn jammed_at(spec: &RunSpec, scene: &Scene) -> Option<Jammed> {
+    let Network::Packing(packing) = &scene.network else { return None };
+    let p = &scene.particles;
+    let forces = ContactForces::of(packing, spec.law, &p.x, &p.y);
+    let rattler = forces.rattlers(p.len());
+    let backbone = forces.backbone(&rattler);
+    let area = packing.periodic.area();
+    let pressure = forces.pressure(area);
+    if pressure <= pressure_floor(spec, packing) || backbone.is_empty() {
+        return None;
+    }
+    let u_eps = stiffness_modulus(&forces, &backbone, &rattler, BULK)?;
+    let fraction = packing.radius.iter().map(|r| std::f64::consts::PI * r * r).sum::<f64>() / area;
+    Some(Jammed { fraction, pressure, bulk: bulk_modulus(u_eps, area, pressure) })
 }
 
 /// The packing of `scene` at rest where `outcome` left it, relaxed again by the run's own
@@ -408,6 +512,8 @@ pub(super) fn columns() -> Vec<Block<PackingMetrics>> {
         Count("bulk_strain_contact_changes", |r| r.group.bulk_strain_contact_changes),
         Count("shear_strain_contact_changes", |r| r.group.shear_strain_contact_changes),
         Count("packing_relax_steps", |r| r.spec.packing().map(|_| r.steps)),
+        Number("own_jamming_fraction", |r| r.group.own_jamming_fraction),
+        Count("decompressions", |r| r.group.decompressions),
     ];
     vec![Block { slot: Slot::Tail, shown: Some(|spec| spec.packing().is_some()), columns }]
 }

@@ -1,8 +1,8 @@
 //! Issue 34's item "Jamming": where the campaign's packings jam and how they scale above it,
-//! against O'Hern, Silbert, Liu & Nagel, Phys. Rev. E 68, 011306 (2003). φ_J of each seed from
-//! p → 0 of its linear packings (p = a (φ − φ_J) fitted over its jammed ones), their mean and
-//! standard error per N; z at jamming from z = z_J + c √Δφ; and log–log fits of p, z − 4, K
-//! and G against Δφ = φ − φ_J per contact law and N.
+//! against O'Hern, Silbert, Liu & Nagel, Phys. Rev. E 68, 011306 (2003). Each packing's own φ_J
+//! (where its pressure vanishes as it is decompressed), their mean per seed and the seeds' mean
+//! and standard error per N; z at jamming from z = z_J + c √Δφ; and log–log fits of p, z − 4, K
+//! and G against each packing's Δφ = φ − φ_J per contact law and N.
 
 use std::collections::BTreeMap;
 
@@ -10,12 +10,12 @@ use super::finding::{Answer, Evidence, Table, Verdict, plus_minus, sig, signed};
 use crate::measure::line_fit;
 use crate::report::figure::{FigureKind, FigureRef};
 use crate::report::jamming::{
-    FIT_FLOOR, ISOSTATIC, Onset, Scaling, excess, fitted, jammed, key, lower_half_onsets, onsets, onsets_of,
-    ratio_against_contacts, scalings,
+    FIT_FLOOR, ISOSTATIC, Onset, Scaling, excess, fitted, jammed, key, onsets, onsets_of, ratio_against_contacts,
+    scalings,
 };
 use crate::report::words::number;
 use crate::runner::RunRecord;
-use crate::study::packing::{ROUND_OFF_MARGIN, STRAIN, STRAINED_RESIDUAL};
+use crate::study::packing::{ONSET_PRECISION, ROUND_OFF_MARGIN, STRAIN, STRAINED_RESIDUAL};
 
 /// The reference of every number here.
 const CITATION: &str = "O'Hern, Silbert, Liu & Nagel, Phys. Rev. E 68, 011306 (2003)";
@@ -211,22 +211,27 @@ fn agrees(strained: f64, matrix: f64) -> bool {
 }
 
 /// The packings of every other contact law than linear are quenches of their own: a sentence
-/// each with their φ_J at their largest N, where p^(1/β) extrapolates to zero, from which their
-/// Δφ is measured ([`onsets_of`]).
-fn own_onset_sentences(runs: &[&RunRecord]) -> Vec<String> {
+/// each with their φ_J at the largest N ([`onsets_of`]) against the linear packings', whose
+/// difference O'Hern et al. found none of (φ_J does not depend on the potential).
+fn own_onset_sentences(runs: &[&RunRecord], linear: &Onset) -> Vec<String> {
     contact_laws(runs)
         .into_iter()
         .filter(|&beta| beta != 1.0)
         .filter_map(|beta| {
-            let largest = Onset::per_size(&onsets_of(runs, beta)).pop()?;
+            let other = Onset::per_size(&onsets_of(runs, beta)).into_iter().find(|s| s.n == linear.n)?;
+            let gap = other.mean - linear.mean;
+            let errors = gap.abs() / other.error.hypot(linear.error);
             Some(format!(
-                "The {} packings relax from the same random starts into states of their own, so their Δφ is measured \
-                 from their own φ_J, where p^(1/β) = p^{} extrapolates to zero: {} at N = {} ({} seeds).",
+                "The {} packings, quenches of their own from the same random starts, jam at φ_J = {} at N = {} ({} \
+                 seeds): {} from the linear packings', {} standard errors of the difference ({}; {CITATION} found \
+                 φ_J independent of the potential).",
                 law_words(beta),
-                sig(1.0 / beta),
-                plus_minus(largest.mean, largest.error),
-                largest.n,
-                largest.seeds
+                plus_minus(other.mean, other.error),
+                other.n,
+                other.seeds,
+                signed(gap),
+                sig(errors),
+                if errors <= 2.0 { "the same φ_J within 2" } else { "more than 2: a different φ_J" },
             ))
         })
         .collect()
@@ -273,10 +278,10 @@ impl Onset {
     /// that only the finite-size allowance covers says so.
     fn in_errors(&self) -> String {
         let errors = (self.mean - PHI_J).abs() / self.error;
-        if self.error > 0.0 && errors > 2.0 {
-            format!(" ({} standard errors: more than the seeds' scatter)", sig(errors))
-        } else {
-            String::new()
+        match (self.error > 0.0 && errors > 2.0, self.within()) {
+            (false, _) => String::new(),
+            (true, true) => format!(" ({} standard errors: within only by the allowance for finite size)", sig(errors)),
+            (true, false) => format!(" ({} standard errors)", sig(errors)),
         }
     }
 }
@@ -301,34 +306,41 @@ fn trend_sentence(sizes: &[Onset]) -> Option<String> {
     })
 }
 
-/// How far φ_J of the largest N moves when each seed's line is fitted over the lower half of
-/// its jammed fractions only: a systematic error of the straight line that its standard error
-/// over seeds leaves out.
-fn fit_range_sentence(runs: &[&RunRecord], largest: &Onset) -> Option<String> {
-    let lower = Onset::per_size(&lower_half_onsets(runs)).into_iter().find(|s| s.n == largest.n)?;
-    let shift = lower.mean - largest.mean;
-    Some(format!(
-        "Fitted over the lower half of each seed's jammed fractions only, N = {}'s mean φ_J is {} ({}): p(φ) is not \
-         quite straight, and this shift, {} its standard error, is a systematic error of the line's range that \
-         the ± above leaves out.",
-        largest.n,
-        plus_minus(lower.mean, lower.error),
-        signed(shift),
-        if shift.abs() > largest.error { "larger than" } else { "within" }
-    ))
+/// How a state's own φ_J depends on the fraction it was quenched at, at the largest N: the mean
+/// own φ_J of the linear packings quenched at the lowest and at the highest fraction that
+/// jammed. `None` with one fraction.
+fn preparation_sentence(runs: &[&RunRecord], n: usize) -> Option<String> {
+    let mut by_fraction: BTreeMap<u64, Vec<f64>> = BTreeMap::new();
+    for r in runs.iter().filter(|r| r.spec.law.is_linear() && jammed(r) && key(r).is_some_and(|k| k.0 == n)) {
+        if let (Some(p), Some(phi_j)) = (r.spec.packing(), r.metrics.packing.own_jamming_fraction) {
+            by_fraction.entry(p.fraction.to_bits()).or_default().push(phi_j);
+        }
+    }
+    let mean = |v: &Vec<f64>| v.iter().sum::<f64>() / v.len() as f64;
+    let ((low, at_low), (high, at_high)) = (by_fraction.first_key_value()?, by_fraction.last_key_value()?);
+    (by_fraction.len() > 1).then(|| {
+        format!(
+            "A state's own φ_J depends on where it was quenched: at N = {n}, {} for the linear packings quenched at \
+             φ = {} ({} packings) and {} for those quenched at φ = {} ({}). Chaudhuri, Berthier & Sastry, Phys. Rev. \
+             Lett. 104, 165701 (2010) found jamming spread over a range of φ with the preparation likewise; the φ_J \
+             above is the mean over this campaign's quench fractions.",
+            sig(mean(at_low)),
+            number(f64::from_bits(*low)),
+            at_low.len(),
+            sig(mean(at_high)),
+            number(f64::from_bits(*high)),
+            at_high.len()
+        )
+    })
 }
 
 /// z at jamming of the linear packings of `n` discs: z = z_J + c √Δφ fitted over the jammed
 /// ones, with the number of packings.
-fn coordination_at_jamming(
-    runs: &[&RunRecord],
-    onsets: &BTreeMap<(usize, u64), f64>,
-    n: usize,
-) -> Option<(f64, usize)> {
+fn coordination_at_jamming(runs: &[&RunRecord], n: usize) -> Option<(f64, usize)> {
     let points: Vec<(f64, f64)> = runs
         .iter()
         .filter(|r| r.spec.law.is_linear() && jammed(r) && key(r).is_some_and(|k| k.0 == n))
-        .filter_map(|r| Some((excess(onsets, r)?.sqrt(), r.metrics.packing.coordination?)))
+        .filter_map(|r| Some((excess(r)?.sqrt(), r.metrics.packing.coordination?)))
         .collect();
     line_fit(&points).map(|l| (l.intercept, points.len()))
 }
@@ -378,7 +390,7 @@ fn scalings_sentence(beta: f64, size: &Onset, fitted: &[Scaling], judged: bool) 
         "a smaller N, not judged".into()
     };
     format!(
-        "{} contacts, N = {}, over Δφ ≥ {} ({FIT_FLOOR} times the spread of φ_J between seeds; {how}): {}.",
+        "{} contacts, N = {}, over Δφ ≥ {} ({FIT_FLOOR} times the precision of each packing's own φ_J; {how}): {}.",
         capitalised(&law_words(beta)),
         size.n,
         sig(size.fit_floor()),
@@ -404,20 +416,21 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
     let sizes = Onset::per_size(&onsets);
     let Some(largest) = sizes.last() else { return Some(unjammed(&any)) };
     let mut sentences = vec![format!(
-        "Each seed's φ_J is where the pressure of its linear packings extrapolates to zero: p = a (φ − φ_J) fitted \
-         by least squares over its jammed packings (p above the relaxation's floor, carried by a rigid backbone), {} \
-         seeds in all.",
+        "Each jammed packing (p above the relaxation's floor, carried by a rigid backbone) has its own φ_J, where \
+         its pressure vanishes as it is decompressed, box and positions grown together and relaxed after each step \
+         (O'Hern et al.'s protocol; the steps are Newton's on p^(1/β) = 0 with dp/dφ = K/φ, to {ONSET_PRECISION:e} of φ); a \
+         seed's φ_J is the mean over its jammed linear packings, {} seeds in all.",
         onsets.len()
     )];
     sentences.extend(sizes.iter().map(Onset::sentence));
-    sentences.extend(own_onset_sentences(&runs));
+    sentences.extend(own_onset_sentences(&runs, largest));
     sentences.extend(trend_sentence(&sizes));
-    sentences.extend(fit_range_sentence(&runs, largest));
+    sentences.extend(preparation_sentence(&runs, largest.n));
     let mut rows: Vec<Vec<String>> = sizes
         .iter()
         .map(|s| row("linear", s.n, "φ_J", &plus_minus(s.mean, s.error), PHI_J, s.seeds, Some(s.within())))
         .collect();
-    if let Some((sentence, z_row)) = isostatic_words(&runs, &onsets, largest.n) {
+    if let Some((sentence, z_row)) = isostatic_words(&runs, largest.n) {
         sentences.push(sentence);
         rows.push(z_row);
     }
@@ -450,12 +463,8 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
 
 /// z at jamming of the linear packings of `n` discs ([`coordination_at_jamming`]) against the
 /// isostatic 4, in a sentence and a table row; `None` where it cannot be fitted.
-fn isostatic_words(
-    runs: &[&RunRecord],
-    onsets: &BTreeMap<(usize, u64), f64>,
-    n: usize,
-) -> Option<(String, Vec<String>)> {
-    let (z_j, points) = coordination_at_jamming(runs, onsets, n)?;
+fn isostatic_words(runs: &[&RunRecord], n: usize) -> Option<(String, Vec<String>)> {
+    let (z_j, points) = coordination_at_jamming(runs, n)?;
     let ok = (z_j - ISOSTATIC).abs() <= Z_TOLERANCE;
     let sentence = format!(
         "z at jamming (mean contacts per disc, rattlers removed), from z = z_J + c √Δφ fitted over the {points} \
@@ -479,7 +488,7 @@ fn all_scalings(runs: &[&RunRecord]) -> (Vec<String>, Vec<Vec<String>>) {
         let sizes = Onset::per_size(onsets);
         let fitted: Vec<(&Onset, Vec<Scaling>)> = sizes
             .iter()
-            .map(|size| (size, scalings(runs, onsets, size.n, beta, size.fit_floor())))
+            .map(|size| (size, scalings(runs, size.n, beta, size.fit_floor())))
             .filter(|(_, fitted)| !fitted.is_empty())
             .collect();
         for (i, (size, scalings)) in fitted.iter().enumerate() {
@@ -498,7 +507,7 @@ fn all_scalings(runs: &[&RunRecord]) -> (Vec<String>, Vec<Vec<String>>) {
             }
         }
         if let Some((size, largest)) = fitted.last()
-            && let Some(ratio) = ratio_against_contacts(runs, onsets, size.n, beta, size.fit_floor())
+            && let Some(ratio) = ratio_against_contacts(runs, size.n, beta, size.fit_floor())
         {
             sentences.push(ratio_sentence(beta, size.n, &ratio, implied_ratio_exponent(largest)));
             rows.push(row(
