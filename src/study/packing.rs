@@ -380,6 +380,11 @@ fn backbone_moduli(
     rattler: &[bool],
     (area, pressure): (f64, f64),
 ) -> (Option<f64>, Option<f64>) {
+    // Without a backbone nothing carries a strain or a pressure: K = G = 0 (the pressure's
+    // p/2 would be the relaxation floor's round-off).
+    if backbone.is_empty() {
+        return (Some(0.0), Some(0.0));
+    }
     let moduli = |strain| stiffness_modulus(forces, backbone, rattler, strain);
     (moduli(BULK).map(|u| bulk_modulus(u, area, pressure)), moduli(SHEAR).map(|u| u / area))
 }
@@ -397,7 +402,7 @@ fn bulk_modulus(u_eps: f64, area: f64, pressure: f64) -> f64 {
 /// matrix: the affine part less Ξᵀ H⁻¹ Ξ, H = Σ over the backbone's contacts of the blocks
 /// k_t n̂n̂ᵀ + (s/l)(I − n̂n̂ᵀ) (the second the pre-stress), over the discs that are not
 /// rattlers, one of them held (H's null space is the two translations, to which Ξ is
-/// orthogonal). 0 without a backbone (nothing carries a strain); `None` when H is singular
+/// orthogonal); its callers give a packing without a backbone 0. `None` when H is singular
 /// beyond the translations (a floppy backbone).
 fn stiffness_modulus(forces: &ContactForces, backbone: &[usize], rattler: &[bool], strain: [f64; 4]) -> Option<f64> {
     let discs = rattler.len();
@@ -408,9 +413,6 @@ fn stiffness_modulus(forces: &ContactForces, backbone: &[usize], rattler: &[bool
     for p in (0..discs).filter(|&p| !rattler[p]).skip(1) {
         (dof[2 * p], dof[2 * p + 1]) = (free, free + 1);
         free += 2;
-    }
-    if backbone.is_empty() {
-        return Some(0.0);
     }
     let mut entries: Vec<Entry> = Vec::with_capacity(16 * backbone.len());
     for &c in backbone {

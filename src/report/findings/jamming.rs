@@ -419,7 +419,9 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
         "Each jammed packing (p above the relaxation's floor, carried by a rigid backbone) has its own φ_J, where \
          its pressure vanishes as it is decompressed, box and positions grown together and relaxed after each step \
          (O'Hern et al.'s protocol; the steps are Newton's on p^(1/β) = 0 with dp/dφ = K/φ, to {ONSET_PRECISION:e} of φ); a \
-         seed's φ_J is the mean over its jammed linear packings, {} seeds in all.",
+         seed's φ_J is the mean over its jammed linear packings, {} seeds in all. p is the virial pressure \
+         Σ f_c l_c/2A; K = −A dp/dA and G = (1/A) d²U/dγ² come from the stiffness matrix of the backbone's \
+         contacts, with the discs' non-affine relaxation and the pre-stress.",
         onsets.len()
     )];
     sentences.extend(sizes.iter().map(Onset::sentence));
