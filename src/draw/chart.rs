@@ -47,6 +47,9 @@ pub enum Mark {
     /// deviation of an ensemble), capped at both ends; one half-width per point (in the units of
     /// y, ≥ 0). On a logarithmic y axis a bar reaching 0 or below is cut at the axis' bottom.
     ErrorBars(Vec<f64>),
+    /// A disc at each, and a line through the points given here (a curve fitted to them), in
+    /// one colour under one legend entry: a disc on a stroke.
+    Fitted(Vec<(f64, f64)>),
 }
 
 /// Titles and axis kinds of a chart.
@@ -203,9 +206,12 @@ fn line_chart_on<DB: DrawingBackend>(
     series: &[Series],
 ) -> anyhow::Result<()> {
     let scale = chart.scale;
-    // The axes hold the points and the ends of their error bars.
-    let shown: Vec<(f64, f64)> =
-        series.iter().flat_map(|s| s.points.iter().copied().chain(bar_ends(s))).filter(|&p| scale.shows(p)).collect();
+    // The axes hold the points, the ends of their error bars and their fitted curves.
+    let shown: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|s| s.points.iter().copied().chain(bar_ends(s)).chain(fit_points(s)))
+        .filter(|&p| scale.shows(p))
+        .collect();
     let x_range = bounds(shown.iter().map(|p| p.0), scale.log_x());
     let y_range = bounds(shown.iter().map(|p| p.1), scale.log_y());
     let placement = legend_placement(&root, chart, series, &shown, (&x_range, &y_range))?;
@@ -421,6 +427,12 @@ where
         Mark::Markers => ctx
             .draw_series(s.points.iter().copied().filter(shown).map(|p| Circle::new(p, 4, color.filled())))
             .map_err(draw_error),
+        Mark::Fitted(fit) => {
+            let line = thin_line(fit.iter().copied().filter(shown).collect(), LINE_POINTS);
+            ctx.draw_series(LineSeries::new(line, color.stroke_width(2))).map_err(draw_error)?;
+            ctx.draw_series(s.points.iter().copied().filter(shown).map(|p| Circle::new(p, 4, color.filled())))
+                .map_err(draw_error)
+        }
         Mark::ErrorBars(half_widths) => {
             let bars = s.points.iter().zip(half_widths).filter(|(p, _)| shown(p)).map(|(&(x, y), &h)| {
                 let low = if scale.log_y() && y - h <= 0.0 { y_floor } else { y - h };
@@ -440,6 +452,7 @@ fn legend_entry<'a, DB: DrawingBackend + 'a>(drawn: &mut SeriesAnno<'a, DB>, s: 
         Mark::Line => (true, false, false),
         Mark::Markers => (false, true, false),
         Mark::ErrorBars(_) => (false, true, true),
+        Mark::Fitted(_) => (true, true, false),
     };
     drawn.label(s.label.clone()).legend(move |(x, y)| {
         let stroke = if stroke { vec![(-9, 0), (9, 0)] } else { Vec::new() };
@@ -468,6 +481,15 @@ const SERIES_COLOURS: [RGBColor; 10] = [
 
 fn series_colour(index: usize) -> RGBColor {
     SERIES_COLOURS[index % SERIES_COLOURS.len()]
+}
+
+/// The points of a series' fitted curve; none for other marks.
+fn fit_points(s: &Series) -> impl Iterator<Item = (f64, f64)> + '_ {
+    let fit = match &s.mark {
+        Mark::Fitted(fit) => fit.as_slice(),
+        _ => &[],
+    };
+    fit.iter().copied()
 }
 
 /// The ends (x, y ± half-width) of a series' error bars; none for other marks.

@@ -221,18 +221,13 @@ pub(super) fn part(records: &[RunRecord], scene: &str) -> anyhow::Result<Part<()
     let beta = first.spec.law.beta();
     let mut series = Vec::new();
     for s in scalings(&mine, size.n, beta, size.fit_floor()) {
-        series.push(Series {
-            label: format!("{}: packings", s.quantity),
-            points: s.points.clone(),
-            mark: Mark::Markers,
-        });
         let mut xs: Vec<f64> = s.points.iter().map(|p| p.0).collect();
         xs.sort_by(f64::total_cmp);
         let line = xs.iter().map(|&x| (x, s.fit.prefactor * x.powf(s.fit.exponent))).collect();
         series.push(Series {
-            label: format!("{}: fit Δφ^{:.2} (theory {:.2})", s.quantity, s.fit.exponent, s.theory),
-            points: line,
-            mark: Mark::Line,
+            label: format!("{}: packings, fit Δφ^{:.2} (theory {:.2})", s.quantity, s.fit.exponent, s.theory),
+            points: s.points.clone(),
+            mark: Mark::Fitted(line),
         });
     }
     let chart = Chart {

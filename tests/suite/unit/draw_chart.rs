@@ -146,3 +146,28 @@ fn the_legend_covers_no_point_and_takes_room_above_the_data_only_when_no_corner_
         "the axis is not stretched: top disc at {top}, legend at {legend:?}"
     );
 }
+
+/// A fitted series is one colour and one legend entry: its discs at the points, its line
+/// through the fit's points (which the axes hold too: the fit's far end at y = 20 lies above
+/// every point), and in the legend a disc on a stroke beside its one label.
+#[test]
+fn a_fitted_series_draws_discs_and_its_line_in_one_colour_under_one_label() {
+    let chart = Chart { title: "t".into(), x_label: "x".into(), y_label: "y".into(), scale: Scale::Linear };
+    let fitted = Series {
+        label: "points, fit".into(),
+        points: vec![(1.0, 1.0), (2.0, 2.5), (3.0, 2.0)],
+        mark: Mark::Fitted(vec![(1.0, 0.5), (3.0, 20.0)]),
+    };
+    let Image::Svg(svg) = line_chart(&chart, &[fitted]).unwrap() else { panic!("a few points are an SVG") };
+    // Three data discs and the legend's, all in the first colour.
+    let discs = tag_numbers(&svg, "circle", "fill=\"#1F77B4\"", &["cx", "cy"]);
+    assert_eq!(discs.len(), 4, "{svg}");
+    // The fit's line and the legend's stroke, in the same colour (an entry's unused bar is an
+    // empty path).
+    let strokes =
+        |points: &str| svg.matches(&format!("stroke=\"#1F77B4\" stroke-width=\"2\" points=\"{points}")).count();
+    assert_eq!(strokes("") - strokes("\""), 2, "{svg}");
+    assert_eq!(svg.matches("points, fit").count(), 1, "{svg}");
+    // The y axis reaches the fit's end at 20, beyond the points' 2.5.
+    assert!(svg.contains("\n20\n") || svg.contains("\n20.0\n"), "{svg}");
+}
