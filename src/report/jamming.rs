@@ -42,7 +42,7 @@ pub(super) fn key(r: &RunRecord) -> Option<(usize, u64)> {
 }
 
 /// The packing's seed (0 for a run that is not a packing).
-fn seed(r: &RunRecord) -> u64 {
+pub(super) fn seed(r: &RunRecord) -> u64 {
     key(r).map_or(0, |k| k.1)
 }
 
@@ -138,11 +138,21 @@ pub(super) struct Scaling {
 const JACKKNIFE_SEEDS: usize = 3;
 
 /// The standard error of the exponent fitted over `points` whose packings came from `seeds`
-/// (one per point), by the jackknife over seeds: a seed's packings share its random start, so
-/// the seed, not the packing, is the independent sample. With x₍ᵢ₎ the exponent fitted without
-/// seed i's points and x̄ their mean over the S seeds, SE = √((S − 1)/S · Σ (x₍ᵢ₎ − x̄)²).
-/// `None` with fewer than [`JACKKNIFE_SEEDS`] seeds.
+/// (one per point), by the jackknife over seeds ([`seed_jackknife_of`]).
 fn seed_jackknife(points: &[(f64, f64)], seeds: &[u64]) -> Option<f64> {
+    seed_jackknife_of(points, seeds, |kept| power_law_fit(kept).map(|fit| fit.exponent))
+}
+
+/// The standard error of `estimate` over `points` whose packings came from `seeds` (one per
+/// point), by the jackknife over seeds: a seed's packings share its random start, so the seed,
+/// not the packing, is the independent sample. With x₍ᵢ₎ the estimate without seed i's points
+/// and x̄ their mean over the S seeds, SE = √((S − 1)/S · Σ (x₍ᵢ₎ − x̄)²). `None` with fewer
+/// than [`JACKKNIFE_SEEDS`] seeds.
+pub(super) fn seed_jackknife_of(
+    points: &[(f64, f64)],
+    seeds: &[u64],
+    estimate: fn(&[(f64, f64)]) -> Option<f64>,
+) -> Option<f64> {
     let mut distinct = seeds.to_vec();
     distinct.sort_unstable();
     distinct.dedup();
@@ -152,12 +162,12 @@ fn seed_jackknife(points: &[(f64, f64)], seeds: &[u64]) -> Option<f64> {
     let without = |left_out: u64| {
         let kept: Vec<(f64, f64)> =
             points.iter().zip(seeds).filter(|(_, s)| **s != left_out).map(|(p, _)| *p).collect();
-        power_law_fit(&kept).map(|fit| fit.exponent)
+        estimate(&kept)
     };
-    let exponents: Vec<f64> = distinct.iter().map(|&s| without(s)).collect::<Option<_>>()?;
-    let count = exponents.len() as f64;
-    let mean = exponents.iter().sum::<f64>() / count;
-    Some(((count - 1.0) / count * exponents.iter().map(|x| (x - mean).powi(2)).sum::<f64>()).sqrt())
+    let estimates: Vec<f64> = distinct.iter().map(|&s| without(s)).collect::<Option<_>>()?;
+    let count = estimates.len() as f64;
+    let mean = estimates.iter().sum::<f64>() / count;
+    Some(((count - 1.0) / count * estimates.iter().map(|x| (x - mean).powi(2)).sum::<f64>()).sqrt())
 }
 
 /// The jammed packings of `n` discs with contact exponent `beta` whose Δφ = φ − φ_J is at

@@ -542,6 +542,26 @@ fn the_scalings_carry_their_standard_error_over_the_seeds() {
     assert!((stated / error - 1.0).abs() < 0.05, "{line}: independent {error} from {without:?}");
     let all: Vec<(f64, f64)> = fitted.iter().map(|f| (f.1, f.2)).collect();
     assert!((number_after(line, "p ∝ Δφ^") - log_slope(&all)).abs() < 1e-3 + 0.01 * error, "{line}");
+    // z_J, the intercept of z = z_J + c √Δφ over every jammed packing (Δφ > 0), and its
+    // jackknife over the seeds in the same way.
+    let z = numbers(&frame, "backbone_coordination");
+    let rows: Vec<(f64, f64, f64)> = (0..frame.height())
+        .filter(|&i| states.get(i) == Some("jammed"))
+        .filter_map(|i| Some((seed[i]?, (phi[i]? - own[i]?).sqrt(), z[i]?)).filter(|r| r.1 > 0.0))
+        .collect();
+    let intercept = |kept: Vec<&(f64, f64, f64)>| {
+        let n = kept.len() as f64;
+        let (sx, sy) = kept.iter().fold((0.0, 0.0), |(a, b), r| (a + r.1, b + r.2));
+        let (sxx, sxy) = kept.iter().fold((0.0, 0.0), |(a, b), r| (a + r.1 * r.1, b + r.1 * r.2));
+        (sy - (n * sxy - sx * sy) / (n * sxx - sx * sx) * sx) / n
+    };
+    let without: Vec<f64> =
+        [1.0, 2.0, 3.0].iter().map(|&k| intercept(rows.iter().filter(|r| r.0 != k).collect())).collect();
+    let x_bar = without.iter().sum::<f64>() / 3.0;
+    let z_error = (2.0 / 3.0 * without.iter().map(|x| (x - x_bar).powi(2)).sum::<f64>()).sqrt();
+    let z_line = line_with(&report, "z at jamming (mean contacts per disc");
+    assert!((number_after(z_line, "z_J = ") - intercept(rows.iter().collect())).abs() < 1e-3, "{z_line}");
+    assert!((number_after(z_line, " ± ") / z_error - 1.0).abs() < 0.05, "{z_line}: independent {z_error}");
     // The floor is 5 times the precision of each packing's own φ_J, 5e-5 of it.
     let mean_own = own.iter().flatten().sum::<f64>() / own.iter().flatten().count() as f64;
     assert!((floor / (5.0 * 5e-5 * 0.84) - 1.0).abs() < 0.02, "{line}: mean own φ_J {mean_own}");

@@ -11,7 +11,7 @@ use crate::measure::line_fit;
 use crate::report::figure::{FigureKind, FigureRef};
 use crate::report::jamming::{
     FIT_FLOOR, ISOSTATIC, Onset, Scaling, excess, fitted, jammed, key, onsets, onsets_of, ratio_against_contacts,
-    scalings,
+    scalings, seed, seed_jackknife_of,
 };
 use crate::report::words::number;
 use crate::runner::RunRecord;
@@ -335,14 +335,15 @@ fn preparation_sentence(runs: &[&RunRecord], n: usize) -> Option<String> {
 }
 
 /// z at jamming of the linear packings of `n` discs: z = z_J + c √Δφ fitted over the jammed
-/// ones, with the number of packings.
-fn coordination_at_jamming(runs: &[&RunRecord], n: usize) -> Option<(f64, usize)> {
-    let points: Vec<(f64, f64)> = runs
+/// ones, its standard error over the seeds (the jackknife) and the number of packings.
+fn coordination_at_jamming(runs: &[&RunRecord], n: usize) -> Option<(f64, Option<f64>, usize)> {
+    let (points, seeds): (Vec<(f64, f64)>, Vec<u64>) = runs
         .iter()
         .filter(|r| r.spec.law.is_linear() && jammed(r) && key(r).is_some_and(|k| k.0 == n))
-        .filter_map(|r| Some((excess(r)?.sqrt(), r.metrics.packing.coordination?)))
-        .collect();
-    line_fit(&points).map(|l| (l.intercept, points.len()))
+        .filter_map(|r| Some(((excess(r)?.sqrt(), r.metrics.packing.coordination?), seed(r))))
+        .unzip();
+    let intercept = |kept: &[(f64, f64)]| line_fit(kept).map(|l| l.intercept);
+    Some((intercept(&points)?, seed_jackknife_of(&points, &seeds, intercept), points.len()))
 }
 
 impl Scaling {
@@ -466,19 +467,25 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
 /// z at jamming of the linear packings of `n` discs ([`coordination_at_jamming`]) against the
 /// isostatic 4, in a sentence and a table row; `None` where it cannot be fitted.
 fn isostatic_words(runs: &[&RunRecord], n: usize) -> Option<(String, Vec<String>)> {
-    let (z_j, points) = coordination_at_jamming(runs, n)?;
+    let (z_j, error, points) = coordination_at_jamming(runs, n)?;
+    let (measured, apart) = match error.filter(|e| *e > 0.0) {
+        Some(e) => (
+            plus_minus(z_j, e),
+            format!(", {} standard errors over the seeds from it", sig((z_j - ISOSTATIC).abs() / e)),
+        ),
+        None => (sig(z_j), String::new()),
+    };
     let ok = (z_j - ISOSTATIC).abs() <= Z_TOLERANCE;
     let sentence = format!(
         "z at jamming (mean contacts per disc, rattlers removed), from z = z_J + c √Δφ fitted over the {points} \
-         jammed linear packings of N = {n}: z_J = {}, against the isostatic {ISOSTATIC}: {} (tolerance \
-         {Z_TOLERANCE}, for the extrapolation in √Δφ from the smallest Δφ measured, where z − 4 is still a few \
-         tenths; a finite periodic packing's own isostatic count 2N' − 1, z = 4 − 2/N' over its N' discs that are not \
-         rattlers, lies only about 2/N = {} below 4, a little more with the rattlers out).",
-        sig(z_j),
+         jammed linear packings of N = {n}: z_J = {measured}, against the isostatic {ISOSTATIC}{apart}: {} \
+         (tolerance {Z_TOLERANCE}, for the extrapolation in √Δφ from the smallest Δφ measured; a finite periodic \
+         packing's own isostatic count 2N' − 1, z = 4 − 2/N' over its N' discs that are not rattlers, lies only \
+         about 2/N = {} below 4, a little more with the rattlers out).",
         if ok { "within" } else { "outside" },
         sig(2.0 / n as f64)
     );
-    Some((sentence, row("linear", n, "z_J", &sig(z_j), ISOSTATIC, points, Some(ok))))
+    Some((sentence, row("linear", n, "z_J", &measured, ISOSTATIC, points, Some(ok))))
 }
 
 /// The scalings of every contact law at every N, each against the φ_J of its own law's packings
