@@ -724,6 +724,22 @@ fn unstable_packings_are_counted_as_the_table_gives_them(frame: &DataFrame, repo
         unstable.iter().filter(|&&i| (strained[i].unwrap() / matrix[i].unwrap() - 1.0).abs() <= 0.01).count();
     assert_eq!(confirmed, n, "every packing unstable to shear here is so by strain too");
     assert!(line.contains(&format!("within 1 % of it in {confirmed} of the {n}")), "{line}");
+    // Their share by Δφ N² (N = 64 here: Δφ · 4096), below 10², from 10² to 10³ and above.
+    let [phi, own] = ["packing_fraction", "own_jamming_fraction"].map(|c| numbers(frame, c));
+    let range = |i: usize| {
+        let scaled = (phi[i].unwrap() - own[i].unwrap()).max(0.0) * 4096.0;
+        usize::from(scaled >= 1e2) + usize::from(scaled >= 1e3)
+    };
+    let count = |rows: &[usize], k: usize| rows.iter().filter(|&&i| range(i) == k).count();
+    let shares: Vec<(usize, usize)> = (0..3).map(|k| (count(&unstable, k), count(&with_g, k))).collect();
+    let stated = format!(
+        "{} of {} of the jammed packings with a G below Δφ N² = 10², {} of {} from 10² to 10³, {} of {} above",
+        shares[0].0, shares[0].1, shares[1].0, shares[1].1, shares[2].0, shares[2].1
+    );
+    assert!(line.contains(&stated), "{line}: the table's {stated}");
+    let share = |(a, b): (usize, usize)| a as f64 / b as f64;
+    let falls = shares.windows(2).all(|w| w[0].1 == 0 || w[1].1 == 0 || share(w[1]) < share(w[0]));
+    assert!(line.contains(if falls { "the share falls" } else { "does not fall steadily" }), "{line}");
 }
 
 #[test]

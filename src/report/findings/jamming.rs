@@ -184,12 +184,39 @@ fn unstable_sentence(runs: &[&RunRecord]) -> Option<String> {
          of theirs lowers U at second order (to 1e-12 of its largest entry), yet U curves down along a shear of the \
          box (d²U/dγ² < 0, the discs relaxed); the route by strain, independent of the matrix, finds G < 0 within {} \
          % of it in {confirmed} of the {}. {SHEAR_UNSTABLE} found packings unstable to shear among those made in a \
-         fixed box; whether these are of that kind (or hold a residual shear stress of the box) is not tested here. \
-         The log–log fits of G leave them out; those of p, z − 4 and K keep them.",
+         fixed box, fewer the larger p N². {} The log–log fits of G leave them out; those of p, z − 4 and K keep \
+         them.",
         if unstable.len() == 1 { "it".to_string() } else { format!("each of the {}", unstable.len()) },
         number(100.0 * STRAINED_AGREEMENT),
-        unstable.len()
+        unstable.len(),
+        finite_size_words(&unstable, &with_g)
     ))
+}
+
+/// Where the finite-size crossover is counted from: Δφ N² in decades from 10² to 10³.
+const CROSSOVER: [f64; 2] = [1e2, 1e3];
+
+/// How the share of packings with G < 0 (`unstable` of `with_g`) goes with Δφ N², the
+/// finite-size scaling variable of jamming (∝ p N² for linear contacts; Goodrich, Liu & Nagel,
+/// Phys. Rev. Lett. 109, 095704 (2012)): the counts below 10², from 10² to 10³ and above, and
+/// whether the share falls from each range to the next.
+fn finite_size_words(unstable: &[&RunRecord], with_g: &[&RunRecord]) -> String {
+    let range = |r: &&RunRecord| {
+        let scaled = excess(r).map_or(0.0, |d| d * key(r).map_or(0.0, |(n, _)| (n * n) as f64));
+        CROSSOVER.iter().filter(|&&edge| scaled >= edge).count()
+    };
+    let count = |packings: &[&RunRecord], i: usize| packings.iter().filter(|r| range(r) == i).count();
+    let shares: Vec<(usize, usize)> = (0..=CROSSOVER.len()).map(|i| (count(unstable, i), count(with_g, i))).collect();
+    let share = |(a, b): (usize, usize)| if b == 0 { f64::NAN } else { a as f64 / b as f64 };
+    let falls = shares.windows(2).all(|w| share(w[1]) < share(w[0]) || w[1].1 == 0 || w[0].1 == 0);
+    let [below, between, above] = [shares[0], shares[1], shares[2]].map(|(a, b)| format!("{a} of {b}"));
+    format!(
+        "Here the share {} as Δφ N² grows (the finite-size scaling variable of jamming, ∝ p N² for linear contacts, \
+         Goodrich, Liu & Nagel, Phys. Rev. Lett. 109, 095704 (2012)): {below} of the jammed packings with a G below \
+         Δφ N² = 10², {between} from 10² to 10³, {above} above{}.",
+        if falls { "falls" } else { "does not fall steadily" },
+        if falls { ": a finite-size effect, of that kind" } else { "" }
+    )
 }
 
 /// "a of b at N = n" for each N of `whole`: how many of its packings are in `part`.
