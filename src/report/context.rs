@@ -3,7 +3,7 @@
 use serde::Serialize;
 
 use super::figure::{Figure, FigureRef, movie_refs};
-use super::findings::{Evidence, Finding, Paragraph, discussion, findings, overview};
+use super::findings::{AppendixWords, Evidence, Finding, Paragraph, appendix_words, discussion, findings, overview};
 use super::kinds::{KindsPresent, physics_words};
 use super::scene::{Scene, SceneTables, Scenes};
 use super::words::number;
@@ -62,6 +62,8 @@ pub struct ReportContext {
     discussion: Vec<Paragraph>,
     /// Which methods the scenes' tables need explained (once, not per scene).
     explains: Explains,
+    /// The appendix's sentences that state this campaign's numbers.
+    appendix: AppendixWords,
     scenes: Vec<SceneSection>,
     failures: Vec<FailureRow>,
 }
@@ -165,6 +167,7 @@ pub fn build(
         findings: findings(&evidence),
         discussion: discussion(&evidence),
         explains: Explains::of(&scenes),
+        appendix: appendix_words(&evidence),
         scenes,
         failures: records
             .iter()

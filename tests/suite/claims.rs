@@ -1171,3 +1171,28 @@ fn the_walls_sentence_gives_each_worst_error_with_its_sign() {
         );
     }
 }
+
+/// The restitution the damped pair would have with its full mass m used consistently in place
+/// of m/2 (ω = √(k/m − (γ/2m)²), r = exp(−γ t_c/(2m))), recomputed here from the campaign's k,
+/// m and target r, in the item's sentence and in the appendix.
+#[test]
+fn the_full_mass_restitution_is_computed_from_the_pairs_gamma() {
+    for (mass, k, target) in [(0.5_f64, 2.0_f64, 0.3_f64), (1.0, 1.0, 0.5)] {
+        let yaml = format!(
+            "version: 1\nname: fm\nscenes:\n  - name: p\n    kind: pair\n    v0: 1.0\n    \
+             material: {{mass: {mass}, k: {k}}}\n    damping: {{restitution: {target}}}\n    \
+             time: {{integrator: velocity-verlet}}\n    grid:\n      time.dt_per_tc: [50]\n"
+        );
+        let ln_r = target.ln();
+        let gamma = -ln_r * (2.0 * k * mass).sqrt() / (std::f64::consts::PI.powi(2) + ln_r * ln_r).sqrt();
+        let omega = (k / mass - (gamma / (2.0 * mass)).powi(2)).sqrt();
+        let full = (-gamma * (std::f64::consts::PI / omega) / (2.0 * mass)).exp();
+        let report = report_of("fm", &yaml);
+        for marker in ["The damping for r ≈", "about 0.55; using the full mass"] {
+            let line = line_with(&report, marker);
+            let stated = number_after(line, "(2m))) would give r = ");
+            assert!((stated - full).abs() <= 5e-4, "{stated} against {full}: {line}");
+            assert!((number_after(line, "reduced mass's r = ") - target).abs() <= 5e-4, "{line}");
+        }
+    }
+}
