@@ -1196,3 +1196,29 @@ fn the_full_mass_restitution_is_computed_from_the_pairs_gamma() {
         }
     }
 }
+
+/// The first maximum against the exact front speed a√(k/m): a short linear chain's first crest
+/// arrives later than x = c t would, a long one's earlier (the dispersive front steepens its
+/// lead over distance); item 17 and the appendix say which, with the record's speed.
+#[test]
+fn the_first_maximum_leads_or_trails_the_exact_front_as_measured() {
+    for (n, side) in [(20, "trails"), (200, "leads")] {
+        let yaml = format!(
+            "version: 1\nname: crest\nscenes:\n  - name: w\n    kind: chain\n    n: {n}\n    node: first\n    \
+             v0: 0.01\n    wave: {{}}\n    time: {{duration_tc: 100, samples: 50}}\n"
+        );
+        let record = &execute_all(&yaml)[0];
+        let (crest, exact) =
+            (record.metrics.sound_speed("first_maximum").unwrap(), record.metrics.sound_speed_theory.unwrap());
+        assert_eq!(crest > exact, side == "leads", "n = {n}: {crest} against {exact}");
+        let report = report_of("crest", &yaml);
+        for marker in
+            ["the receiver's first crest, travels at ", "in this campaign's linear chain (w) the crest travels at "]
+        {
+            let line = line_with(&report, marker);
+            assert!(line.contains(&format!("and so {side} the exact front x = c t")), "{line}");
+            let stated = number_after(line, marker);
+            assert!((stated / crest - 1.0).abs() < 1e-3, "{stated} against {crest}: {line}");
+        }
+    }
+}

@@ -5,17 +5,19 @@
 use serde::Serialize;
 
 use super::finding::Evidence;
-use super::one_d;
+use super::{dynamics, one_d};
 
 /// The appendix's data-dependent sentences (each `None` when the campaign lacks its runs).
 #[derive(Default, Serialize)]
 pub struct AppendixWords {
     /// The damped pair's restitution with the full mass in place of the reduced mass.
     full_mass: Option<String>,
+    /// The linear chain's first maximum against the exact front speed.
+    first_maximum: Option<String>,
 }
 
 /// The appendix's sentences from the coursework evidence of `evidence`.
 pub fn appendix_words(evidence: &Evidence) -> AppendixWords {
     let e = evidence.coursework();
-    AppendixWords { full_mass: one_d::full_mass_sentence(&e) }
+    AppendixWords { full_mass: one_d::full_mass_sentence(&e), first_maximum: dynamics::first_maximum_words(&e) }
 }
