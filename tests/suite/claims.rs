@@ -1222,3 +1222,27 @@ fn the_first_maximum_leads_or_trails_the_exact_front_as_measured() {
         }
     }
 }
+
+/// Item 11's ν of a block that several scenes load alike is the first such scene's (the
+/// campaign's moduli scene before its sweeps), named, with that run's value: swapping the
+/// scenes swaps the run the sentence reads.
+#[test]
+fn the_diagonal_items_poisson_ratio_names_the_first_scene_of_its_block() {
+    let scene = |name: &str, relax: &str| {
+        format!(
+            "  - name: {name}\n    kind: lattice\n    lattice: {{size: 4, k_diag_ratio: 0.5}}\n    \
+             load: {{case: tensile, per_node: 0.01}}\n    damping: {{background: critical}}\n    relax: {relax}\n"
+        )
+    };
+    let (tight, loose) = (scene("tight", "{max_tc: 20000}"), scene("loose", "{max_tc: 20000, residual_force: 1.0e-3}"));
+    for (first, second, named) in [(&tight, &loose, "tight"), (&loose, &tight, "loose")] {
+        let yaml = format!("version: 1\nname: nu\nscenes:\n{first}{second}");
+        let records = execute_all(&yaml);
+        let nu = records.iter().find(|r| r.spec.scene == named).unwrap().metrics.lattice.poisson_ratio.unwrap();
+        let report = report_of("nu", &yaml);
+        let line = line_with(&report, "MD measures ν = ");
+        assert!(line.contains(&format!("(coursework supports, scene {named})")), "{line}");
+        let stated = number_after(line, "MD measures ν = ");
+        assert!((stated - nu).abs() <= 5e-5 * nu.abs().max(1.0), "{stated} against {nu}: {line}");
+    }
+}
