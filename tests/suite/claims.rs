@@ -1246,3 +1246,38 @@ fn the_diagonal_items_poisson_ratio_names_the_first_scene_of_its_block() {
         assert!((stated - nu).abs() <= 5e-5 * nu.abs().max(1.0), "{stated} against {nu}: {line}");
     }
 }
+
+/// The background damping each moduli scene fixes, against its runs' own γ_crit = 2√(k_min m),
+/// recomputed here from the records' k_min: one scene below critical, one above, and a scene
+/// that sweeps γ_g (the dissipation study's) left out.
+#[test]
+fn each_moduli_scenes_background_damping_is_set_against_its_critical_value() {
+    let critical = loaded_lattice_critical();
+    let scene = |name: &str, damping: String, grid: &str| {
+        let yaml = loaded_lattice(&damping, grid);
+        yaml.split_once("scenes:\n").unwrap().1.replace("- name: bg", &format!("- name: {name}"))
+    };
+    let yaml = format!(
+        "version: 1\nname: bg\nscenes:\n{}{}{}",
+        scene("under", format!("{{background: {}}}", 0.5 * critical), "seed: [1]"),
+        scene("over", format!("{{background: {}}}", 3.0 * critical), "seed: [1]"),
+        scene("swept", "{}".into(), &format!("damping.background: [{}, {}]", critical, 2.0 * critical))
+    );
+    let records = execute_all(&yaml);
+    let report = report_of("bg", &yaml);
+    for line in
+        [line_with(&report, "- The moduli scenes relax"), line_with(&report, "figures). The moduli scenes relax")]
+    {
+        for (name, below) in [("under", true), ("over", false)] {
+            let r = records.iter().find(|r| r.spec.scene == name).unwrap();
+            let k_min = r.metrics.lattice.stiffness_min.unwrap();
+            let ratio = r.spec.gamma_background / (2.0 * (k_min * r.spec.mass).sqrt());
+            assert_eq!(ratio < 1.0, below, "{name}: {ratio}");
+            let clause = &line[line.find(&format!("{name} γ_g = ")).unwrap_or_else(|| panic!("{name}: {line}"))..];
+            assert!((number_after(clause, " γ_g = ") / r.spec.gamma_background - 1.0).abs() < 1e-3, "{clause}");
+            let stated = number_after(clause, "N s/m, ");
+            assert!((stated / ratio - 1.0).abs() < 1e-3, "{name}: {stated} against {ratio}: {clause}");
+        }
+        assert!(!line.contains("swept γ_g"), "{line}");
+    }
+}

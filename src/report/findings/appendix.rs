@@ -5,7 +5,7 @@
 use serde::Serialize;
 
 use super::finding::Evidence;
-use super::{dynamics, one_d};
+use super::{dynamics, moduli_damping, one_d};
 
 /// The appendix's data-dependent sentences (each `None` when the campaign lacks its runs).
 #[derive(Default, Serialize)]
@@ -14,10 +14,16 @@ pub struct AppendixWords {
     full_mass: Option<String>,
     /// The linear chain's first maximum against the exact front speed.
     first_maximum: Option<String>,
+    /// The moduli scenes' background damping against their critical values.
+    moduli_damping: Option<String>,
 }
 
 /// The appendix's sentences from the coursework evidence of `evidence`.
 pub fn appendix_words(evidence: &Evidence) -> AppendixWords {
     let e = evidence.coursework();
-    AppendixWords { full_mass: one_d::full_mass_sentence(&e), first_maximum: dynamics::first_maximum_words(&e) }
+    AppendixWords {
+        full_mass: one_d::full_mass_sentence(&e),
+        first_maximum: dynamics::first_maximum_words(&e),
+        moduli_damping: moduli_damping::moduli_damping_sentence(&e),
+    }
 }

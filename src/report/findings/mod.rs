@@ -13,6 +13,7 @@ mod dynamics;
 mod finding;
 mod jamming;
 mod materials;
+mod moduli_damping;
 mod one_d;
 mod random;
 mod relaxation;
