@@ -990,7 +990,7 @@ fn the_block_sentences_compare_like_with_like() {
         let r = run("solid", 4, true, "coursework", ratio);
         let line = line_with(&report, &format!("and k_d/k = {ratio:.4} the continuum has"));
         assert!((number_after(line, "With k = ") / r.spec.k - 1.0).abs() < 1e-3, "{line}");
-        assert!(line.contains("on 4 × 4 (coursework supports)"), "{line}");
+        assert!(line.contains("on 4 × 4 (coursework supports, scene solid)"), "{line}");
     }
     // The lattice's time step: the block of the moduli (m = k = 1 here), then the derived one.
     let item = line_with(&report, "The block of scene ");

@@ -207,8 +207,9 @@ pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
 
 /// One run for each ratio k_d/k among `runs`, compared on one block: the largest size every
 /// ratio was run at (else each ratio's largest), on the coursework's supports where there is a
-/// choice; of runs alike in these, the first in the campaign (its moduli scene before the
-/// damping sweeps and ensembles that load the same block, whose ν differs in the sixth digit).
+/// choice, from a scene that runs every ratio where one does (the ratios then compare like with
+/// like); of runs alike in these, the first in the campaign (a moduli scene before the damping
+/// sweeps and ensembles that load the same block, whose ν differs in the sixth digit).
 fn one_block_per_ratio<'a>(runs: &[&'a RunRecord]) -> BTreeMap<String, &'a RunRecord> {
     let mut by_ratio: BTreeMap<String, Vec<&RunRecord>> = BTreeMap::new();
     for &r in runs {
@@ -219,7 +220,15 @@ fn one_block_per_ratio<'a>(runs: &[&'a RunRecord]) -> BTreeMap<String, &'a RunRe
     let size = |r: &RunRecord| size_on_coursework_supports(r).0;
     let run_at = |n: usize| by_ratio.values().all(|rs| rs.iter().any(|r| size(r) == n));
     let common = runs.iter().map(|r| size(r)).filter(|&n| run_at(n)).max();
-    let preference = |r: &&&RunRecord| (common.is_none_or(|n| size(r) == n), size_on_coursework_supports(r));
+    let complete: Vec<&str> = runs
+        .iter()
+        .map(|r| r.spec.scene.as_str())
+        .filter(|scene| by_ratio.values().all(|rs| rs.iter().any(|r| r.spec.scene == *scene)))
+        .collect();
+    let every_ratio = |scene: &str| complete.contains(&scene);
+    let preference = |r: &&&RunRecord| {
+        (common.is_none_or(|n| size(r) == n), every_ratio(&r.spec.scene), size_on_coursework_supports(r))
+    };
     // `max_by_key` keeps the last of equals: reversed, the first.
     by_ratio.into_iter().filter_map(|(ratio, rs)| Some((ratio, *rs.iter().rev().max_by_key(preference)?))).collect()
 }
