@@ -31,6 +31,8 @@ pub struct ReportContext {
     name: String,
     title: String,
     description: String,
+    /// Which scenes use which masses, springs and spacings, from their specs.
+    units: Option<String>,
     /// This build (version + source fingerprint).
     build: &'static str,
     runs: usize,
@@ -145,6 +147,7 @@ pub fn build(
         name: campaign.name.clone(),
         title: campaign.title.clone(),
         description: campaign.description.clone(),
+        units: super::units::units_sentence(records),
         build: BUILD,
         runs: records.len(),
         campaign_runs: campaign.runs.len(),

@@ -1281,3 +1281,37 @@ fn each_moduli_scenes_background_damping_is_set_against_its_critical_value() {
         assert!(!line.contains("swept γ_g"), "{line}");
     }
 }
+
+/// The opening's scales of the scenes, from their specs: each scene in the clause of its own
+/// mass, springs and spacing, reduced units named as such, and a lattice's density m/(a² d)
+/// recomputed here; swapping the materials of two scenes swaps their clauses.
+#[test]
+fn the_scenes_scales_name_which_scenes_use_reduced_units() {
+    let lattice = |name: &str, material: &str| {
+        format!(
+            "  - name: {name}\n    kind: lattice\n    {material}\n    lattice: {{size: 4, k_diag_ratio: 0.5}}\n    \
+             load: {{case: tensile, per_node: 0.01}}\n    damping: {{background: critical}}\n    relax: {{max_tc: 20000}}\n"
+        )
+    };
+    let (steel, reduced) = (
+        "material: {mass: 0.785, k: 2.0e9}\n    geometry: {spacing: 0.1, depth: 0.01}",
+        "material: {mass: 1.0, k: 1.0}\n    geometry: {spacing: 1.0}",
+    );
+    for (steel_scene, reduced_scene) in [("first", "second"), ("second", "first")] {
+        let material = |name: &str| if name == steel_scene { steel } else { reduced };
+        let yaml = format!(
+            "version: 1\nname: units\nscenes:\n{}{}",
+            lattice("first", material("first")),
+            lattice("second", material("second"))
+        );
+        let line = line_with(&report_of("units", &yaml), "The scenes' scales, from their specs: ").to_string();
+        let clauses: Vec<&str> = line.split("; ").collect();
+        let clause =
+            |scene: &str| *clauses.iter().find(|c| c.trim_end_matches('.').ends_with(&format!(" in {scene}"))).unwrap();
+        let (steel_clause, reduced_clause) = (clause(steel_scene), clause(reduced_scene));
+        assert!(reduced_clause.contains("reduced units, m = 1.000 kg, k = 1.000 N/m, a = 1.000 m"), "{line}");
+        assert!(!steel_clause.contains("reduced units") && steel_clause.contains("m = 0.7850 kg"), "{line}");
+        let density = number_after(steel_clause, "ρ = m/(a² d) = ");
+        assert!((density / (0.785 / (0.1 * 0.1 * 0.01)) - 1.0).abs() < 1e-3, "{steel_clause}");
+    }
+}
