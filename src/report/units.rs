@@ -21,7 +21,7 @@ fn material_of(r: &RunRecord) -> Key {
     let s = &r.spec;
     let spring = match s.law {
         LawSpec::Linear => format!("k = {} N/m", number(s.k)),
-        LawSpec::Power { beta } => format!("C = {} N/m^{}", number(s.k), number(beta)),
+        LawSpec::Power { beta } => format!("C = {} N/m^{}", number(s.k), super::words::number(beta)),
     };
     let density =
         s.lattice().map(|l| format!("ρ = m/(a² d) = {} kg/m³", number(s.mass / (s.spacing * s.spacing * l.depth))));
