@@ -3,7 +3,7 @@
 use serde::Serialize;
 
 use super::figure::{Figure, FigureRef, movie_refs};
-use super::findings::{Evidence, Finding, Paragraph, discussion, findings, overview};
+use super::findings::{AppendixWords, Evidence, Finding, Paragraph, appendix_words, discussion, findings, overview};
 use super::kinds::{KindsPresent, physics_words};
 use super::scene::{Scene, SceneTables, Scenes};
 use super::words::number;
@@ -31,6 +31,8 @@ pub struct ReportContext {
     name: String,
     title: String,
     description: String,
+    /// Which scenes use which masses, springs and spacings, from their specs.
+    units: Option<String>,
     /// This build (version + source fingerprint).
     build: &'static str,
     runs: usize,
@@ -62,6 +64,8 @@ pub struct ReportContext {
     discussion: Vec<Paragraph>,
     /// Which methods the scenes' tables need explained (once, not per scene).
     explains: Explains,
+    /// The appendix's sentences that state this campaign's numbers.
+    appendix: AppendixWords,
     scenes: Vec<SceneSection>,
     failures: Vec<FailureRow>,
 }
@@ -143,6 +147,7 @@ pub fn build(
         name: campaign.name.clone(),
         title: campaign.title.clone(),
         description: campaign.description.clone(),
+        units: super::units::units_sentence(records),
         build: BUILD,
         runs: records.len(),
         campaign_runs: campaign.runs.len(),
@@ -165,6 +170,7 @@ pub fn build(
         findings: findings(&evidence),
         discussion: discussion(&evidence),
         explains: Explains::of(&scenes),
+        appendix: appendix_words(&evidence),
         scenes,
         failures: records
             .iter()

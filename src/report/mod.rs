@@ -22,6 +22,7 @@ mod probes;
 mod scene;
 mod solids;
 mod stability_map;
+mod units;
 mod waves;
 pub mod words;
 

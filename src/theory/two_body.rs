@@ -43,6 +43,20 @@ pub fn linear_restitution(k: f64, m: f64, gamma: f64) -> Result<f64, Overdamped>
     Ok((-(gamma / m) * linear_contact_duration(k, m, gamma)?).exp())
 }
 
+/// Restitution with the full mass m in place of the pair's reduced mass m/2, used consistently:
+/// m δ̈ = −k δ − γ δ̇, so ω = √(k/m − (γ/2m)²), t_c = π/ω and r = exp(−γ t_c/(2m)) (the
+/// pair's formulas with mass 2m). What a pair would give if its mass were mistaken for m.
+///
+/// ```
+/// // The γ the reduced mass sets for r = 0.5 (m = k = 1) gives 0.616 with the full mass.
+/// let g = mdsolids::theory::gamma_for_restitution(0.5, 1.0, 1.0);
+/// let r = mdsolids::theory::full_mass_restitution(1.0, 1.0, g).unwrap();
+/// assert!((r - 0.616146).abs() < 1e-6);
+/// ```
+pub fn full_mass_restitution(k: f64, m: f64, gamma: f64) -> Result<f64, Overdamped> {
+    linear_restitution(k, 2.0 * m, gamma)
+}
+
 /// Dashpot γ = −ln r · √(2km) / √(π² + ln² r) (N s/m) that gives restitution `r` in (0, 1].
 ///
 /// ```

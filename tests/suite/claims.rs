@@ -990,7 +990,7 @@ fn the_block_sentences_compare_like_with_like() {
         let r = run("solid", 4, true, "coursework", ratio);
         let line = line_with(&report, &format!("and k_d/k = {ratio:.4} the continuum has"));
         assert!((number_after(line, "With k = ") / r.spec.k - 1.0).abs() < 1e-3, "{line}");
-        assert!(line.contains("on 4 × 4 (coursework supports)"), "{line}");
+        assert!(line.contains("on 4 × 4 (coursework supports, scene solid)"), "{line}");
     }
     // The lattice's time step: the block of the moduli (m = k = 1 here), then the derived one.
     let item = line_with(&report, "The block of scene ");
@@ -1169,5 +1169,149 @@ fn the_walls_sentence_gives_each_worst_error_with_its_sign() {
             stated.signum() == exact.signum() && (stated / exact - 1.0).abs() < 0.05,
             "{stated} against {exact}: {line}"
         );
+    }
+}
+
+/// The restitution the damped pair would have with its full mass m used consistently in place
+/// of m/2 (ω = √(k/m − (γ/2m)²), r = exp(−γ t_c/(2m))), recomputed here from the campaign's k,
+/// m and target r, in the item's sentence and in the appendix.
+#[test]
+fn the_full_mass_restitution_is_computed_from_the_pairs_gamma() {
+    for (mass, k, target) in [(0.5_f64, 2.0_f64, 0.3_f64), (1.0, 1.0, 0.5)] {
+        let yaml = format!(
+            "version: 1\nname: fm\nscenes:\n  - name: p\n    kind: pair\n    v0: 1.0\n    \
+             material: {{mass: {mass}, k: {k}}}\n    damping: {{restitution: {target}}}\n    \
+             time: {{integrator: velocity-verlet}}\n    grid:\n      time.dt_per_tc: [50]\n"
+        );
+        let ln_r = target.ln();
+        let gamma = -ln_r * (2.0 * k * mass).sqrt() / (std::f64::consts::PI.powi(2) + ln_r * ln_r).sqrt();
+        let omega = (k / mass - (gamma / (2.0 * mass)).powi(2)).sqrt();
+        let full = (-gamma * (std::f64::consts::PI / omega) / (2.0 * mass)).exp();
+        let report = report_of("fm", &yaml);
+        for marker in ["The damping for r ≈", "about 0.55; using the full mass"] {
+            let line = line_with(&report, marker);
+            let stated = number_after(line, "(2m))) would give r = ");
+            assert!((stated - full).abs() <= 5e-4, "{stated} against {full}: {line}");
+            assert!((number_after(line, "reduced mass's r = ") - target).abs() <= 5e-4, "{line}");
+        }
+    }
+}
+
+/// The first maximum against the exact front speed a√(k/m): a short linear chain's first crest
+/// arrives later than x = c t would, a long one's earlier (the dispersive front steepens its
+/// lead over distance); item 17 and the appendix say which, with the record's speed.
+#[test]
+fn the_first_maximum_leads_or_trails_the_exact_front_as_measured() {
+    for (n, side) in [(20, "trails"), (200, "leads")] {
+        let yaml = format!(
+            "version: 1\nname: crest\nscenes:\n  - name: w\n    kind: chain\n    n: {n}\n    node: first\n    \
+             v0: 0.01\n    wave: {{}}\n    time: {{duration_tc: 100, samples: 50}}\n"
+        );
+        let record = &execute_all(&yaml)[0];
+        let (crest, exact) =
+            (record.metrics.sound_speed("first_maximum").unwrap(), record.metrics.sound_speed_theory.unwrap());
+        assert_eq!(crest > exact, side == "leads", "n = {n}: {crest} against {exact}");
+        let report = report_of("crest", &yaml);
+        for marker in
+            ["the receiver's first crest, travels at ", "in this campaign's linear chain (w) the crest travels at "]
+        {
+            let line = line_with(&report, marker);
+            assert!(line.contains(&format!("and so {side} the exact front x = c t")), "{line}");
+            let stated = number_after(line, marker);
+            assert!((stated / crest - 1.0).abs() < 1e-3, "{stated} against {crest}: {line}");
+        }
+    }
+}
+
+/// Item 11's ν of a block that several scenes load alike is the first such scene's (the
+/// campaign's moduli scene before its sweeps), named, with that run's value: swapping the
+/// scenes swaps the run the sentence reads.
+#[test]
+fn the_diagonal_items_poisson_ratio_names_the_first_scene_of_its_block() {
+    let scene = |name: &str, relax: &str| {
+        format!(
+            "  - name: {name}\n    kind: lattice\n    lattice: {{size: 4, k_diag_ratio: 0.5}}\n    \
+             load: {{case: tensile, per_node: 0.01}}\n    damping: {{background: critical}}\n    relax: {relax}\n"
+        )
+    };
+    let (tight, loose) = (scene("tight", "{max_tc: 20000}"), scene("loose", "{max_tc: 20000, residual_force: 1.0e-3}"));
+    for (first, second, named) in [(&tight, &loose, "tight"), (&loose, &tight, "loose")] {
+        let yaml = format!("version: 1\nname: nu\nscenes:\n{first}{second}");
+        let records = execute_all(&yaml);
+        let nu = records.iter().find(|r| r.spec.scene == named).unwrap().metrics.lattice.poisson_ratio.unwrap();
+        let report = report_of("nu", &yaml);
+        let line = line_with(&report, "MD measures ν = ");
+        assert!(line.contains(&format!("(coursework supports, scene {named})")), "{line}");
+        let stated = number_after(line, "MD measures ν = ");
+        assert!((stated - nu).abs() <= 5e-5 * nu.abs().max(1.0), "{stated} against {nu}: {line}");
+    }
+}
+
+/// The background damping each moduli scene fixes, against its runs' own γ_crit = 2√(k_min m),
+/// recomputed here from the records' k_min: one scene below critical, one above, and a scene
+/// that sweeps γ_g (the dissipation study's) left out.
+#[test]
+fn each_moduli_scenes_background_damping_is_set_against_its_critical_value() {
+    let critical = loaded_lattice_critical();
+    let scene = |name: &str, damping: String, grid: &str| {
+        let yaml = loaded_lattice(&damping, grid);
+        yaml.split_once("scenes:\n").unwrap().1.replace("- name: bg", &format!("- name: {name}"))
+    };
+    let yaml = format!(
+        "version: 1\nname: bg\nscenes:\n{}{}{}",
+        scene("under", format!("{{background: {}}}", 0.5 * critical), "seed: [1]"),
+        scene("over", format!("{{background: {}}}", 3.0 * critical), "seed: [1]"),
+        scene("swept", "{}".into(), &format!("damping.background: [{}, {}]", critical, 2.0 * critical))
+    );
+    let records = execute_all(&yaml);
+    let report = report_of("bg", &yaml);
+    for line in
+        [line_with(&report, "- The moduli scenes relax"), line_with(&report, "figures). The moduli scenes relax")]
+    {
+        for (name, below) in [("under", true), ("over", false)] {
+            let r = records.iter().find(|r| r.spec.scene == name).unwrap();
+            let k_min = r.metrics.lattice.stiffness_min.unwrap();
+            let ratio = r.spec.gamma_background / (2.0 * (k_min * r.spec.mass).sqrt());
+            assert_eq!(ratio < 1.0, below, "{name}: {ratio}");
+            let clause = &line[line.find(&format!("{name} γ_g = ")).unwrap_or_else(|| panic!("{name}: {line}"))..];
+            assert!((number_after(clause, " γ_g = ") / r.spec.gamma_background - 1.0).abs() < 1e-3, "{clause}");
+            let stated = number_after(clause, "N s/m, ");
+            assert!((stated / ratio - 1.0).abs() < 1e-3, "{name}: {stated} against {ratio}: {clause}");
+        }
+        assert!(!line.contains("swept γ_g"), "{line}");
+    }
+}
+
+/// The opening's scales of the scenes, from their specs: each scene in the clause of its own
+/// mass, springs and spacing, reduced units named as such, and a lattice's density m/(a² d)
+/// recomputed here; swapping the materials of two scenes swaps their clauses.
+#[test]
+fn the_scenes_scales_name_which_scenes_use_reduced_units() {
+    let lattice = |name: &str, material: &str| {
+        format!(
+            "  - name: {name}\n    kind: lattice\n    {material}\n    lattice: {{size: 4, k_diag_ratio: 0.5}}\n    \
+             load: {{case: tensile, per_node: 0.01}}\n    damping: {{background: critical}}\n    relax: {{max_tc: 20000}}\n"
+        )
+    };
+    let (steel, reduced) = (
+        "material: {mass: 0.785, k: 2.0e9}\n    geometry: {spacing: 0.1, depth: 0.01}",
+        "material: {mass: 1.0, k: 1.0}\n    geometry: {spacing: 1.0}",
+    );
+    for (steel_scene, reduced_scene) in [("first", "second"), ("second", "first")] {
+        let material = |name: &str| if name == steel_scene { steel } else { reduced };
+        let yaml = format!(
+            "version: 1\nname: units\nscenes:\n{}{}",
+            lattice("first", material("first")),
+            lattice("second", material("second"))
+        );
+        let line = line_with(&report_of("units", &yaml), "The scenes' scales, from their specs: ").to_string();
+        let clauses: Vec<&str> = line.split("; ").collect();
+        let clause =
+            |scene: &str| *clauses.iter().find(|c| c.trim_end_matches('.').ends_with(&format!(" in {scene}"))).unwrap();
+        let (steel_clause, reduced_clause) = (clause(steel_scene), clause(reduced_scene));
+        assert!(reduced_clause.contains("reduced units, m = 1.000 kg, k = 1.000 N/m, a = 1.000 m"), "{line}");
+        assert!(!steel_clause.contains("reduced units") && steel_clause.contains("m = 0.7850 kg"), "{line}");
+        let density = number_after(steel_clause, "ρ = m/(a² d) = ");
+        assert!((density / (0.785 / (0.1 * 0.1 * 0.01)) - 1.0).abs() < 1e-3, "{steel_clause}");
     }
 }

@@ -237,3 +237,73 @@ fn free_pair_conserves_momentum_with_damping() {
         assert!((px - px0).abs() < 1e-10 && (py - py0).abs() < 1e-10, "{integrator:?}: ({px}, {py}) vs ({px0}, {py0})");
     }
 }
+
+/// What the contact clock sees, as the report's appendix states it: every step's end, and for
+/// a damped contact also each switch, where the time loop splits the step at the Taylor
+/// polynomial's root (δ ≈ 0); every crossing is placed by linear interpolation between two of
+/// these states.
+#[derive(Default)]
+struct Seen {
+    /// (time, δ, at a switch) of every state shown.
+    states: Vec<(f64, f64, bool)>,
+}
+
+impl Seen {
+    fn delta(state: &mdsolids::sim::State) -> f64 {
+        let p = &state.particles;
+        (p.x[1] - p.x[0]).hypot(p.y[1] - p.y[0]) - 1.0
+    }
+}
+
+impl mdsolids::sim::StepProbe for Seen {
+    fn observe(&mut self, state: &mdsolids::sim::State) {
+        self.states.push((state.time, Self::delta(state), false));
+    }
+    fn observe_switch(&mut self, state: &mdsolids::sim::State) {
+        self.states.push((state.time, Self::delta(state), true));
+    }
+}
+
+/// The crossings of a contact pair closing at 1 m/s from a gap of 0.05 m (k = m = 1, dt =
+/// 0.03 s: the contact closes inside the second step) with `dashpot`, and the states seen.
+fn clocked_contact<D: mdsolids::model::Dashpot>(dashpot: D) -> (Vec<mdsolids::sim::Crossing>, Seen) {
+    let mut particles = Particles::default();
+    particles.push(0.0, 0.0, 1.0, Axes::FREE);
+    particles.push(1.05, 0.0, 1.0, Axes::FREE);
+    particles.vx = vec![0.5, -0.5];
+    let mut bonds = Bonds::default();
+    bonds.push(0, 1, 1.0, 1.0);
+    let mut field = BondNetwork::new(Spring::<Linear, D, true>::new(Linear, dashpot), &bonds, 2, 0.0);
+    let mut state = mdsolids::sim::State::new(particles);
+    let mut probes = (mdsolids::sim::ContactClock::new(0, 1, 1.0), Seen::default());
+    mdsolids::sim::simulate_with(
+        IntegratorKind::VelocityVerlet,
+        &mut state,
+        &mut field,
+        &Sampling::new(0.03, 150),
+        &mut probes,
+    );
+    (probes.0.crossings, probes.1)
+}
+
+#[test]
+fn the_contact_clock_interpolates_between_step_ends_and_at_damped_switches() {
+    let dt = 0.03;
+    // Damped: each crossing is a switch the step was split at, δ ≈ 0 there.
+    let (crossings, seen) = clocked_contact(BondDashpot { gamma: 0.3 });
+    assert_eq!(crossings.len(), 2, "{crossings:?}");
+    for c in &crossings {
+        let at = seen.states.iter().find(|s| s.2 && (s.0 - c.time).abs() < 1e-9 * dt);
+        assert!(at.is_some_and(|s| s.1.abs() < 1e-9), "{c:?} at no switch: {:?}", seen.states);
+    }
+    // Free flight closes the contact at t = 0.05 s exactly (straight paths meet).
+    assert!((crossings[0].time - 0.05).abs() < 1e-12, "{:?}", crossings[0]);
+    // Undamped: whole steps, no switch shown; the crossings fall inside steps, interpolated.
+    let (crossings, seen) = clocked_contact(NoDashpot);
+    assert!(seen.states.iter().all(|s| !s.2), "an undamped contact's step was split");
+    assert_eq!(crossings.len(), 2, "{crossings:?}");
+    for c in &crossings {
+        let steps = c.time / dt;
+        assert!((steps - steps.round()).abs() > 1e-6, "{c:?} on a step's end");
+    }
+}

@@ -5,7 +5,7 @@
 use super::block::Block;
 use super::combined_damping;
 use super::finding::{
-    Answer, Evidence, Table, Verdict, cell, fastest_relaxation, lattice_size, percent, rel, relative, sig,
+    Answer, Evidence, Table, Verdict, cell, extremes, fastest_relaxation, lattice_size, percent, rel, relative, sig,
 };
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, background_damping_only, bond_damping_only, both_dampings};
@@ -142,7 +142,7 @@ fn chain_speed_sentences(chain: &RunRecord, error: Option<f64>) -> Vec<String> {
             cell(chain.metrics.sound_speed_theory),
             error.map(rel).unwrap_or_default()
         ),
-        criteria_sentence(&criteria),
+        criteria_sentence(&criteria, chain.metrics.sound_speed_theory),
         format!(
             "The coursework's estimate t_s = N_s t_c (N_s = {} particles) gives V = {} m/s: the front travels {} × \
              faster, because t_c is half a period of one pair, not the time a signal needs to cross a spring.",
@@ -159,8 +159,9 @@ fn chain_speed_sentences(chain: &RunRecord, error: Option<f64>) -> Vec<String> {
 /// The other arrival criteria's front speeds, each compared with the speed threshold's: a
 /// criterion that gives the higher speed saw the front first. Each threshold is relative to
 /// its own source peak (θ × the source's largest speed, displacement or kinetic energy), so
-/// which one fires first is measured, not assumed.
-fn criteria_sentence(criteria: &[(String, f64)]) -> String {
+/// which one fires first is measured, not assumed; the first maximum is held against the
+/// `exact` front speed a√(k/m) too.
+fn criteria_sentence(criteria: &[(String, f64)], exact: Option<f64>) -> String {
     let by_speed = criteria.iter().find(|(c, _)| c == "speed threshold").map(|(_, v)| *v);
     let compared: Vec<String> = criteria
         .iter()
@@ -177,12 +178,88 @@ fn criteria_sentence(criteria: &[(String, f64)]) -> String {
     if compared.is_empty() {
         return "No other arrival criterion fired.".into();
     }
+    let first_maximum = criteria.iter().find(|(c, _)| c == "first maximum").map(|(_, v)| *v);
+    let crest = match first_maximum.zip(exact) {
+        Some((v, c)) => format!("the first maximum, the receiver's first crest, {}", against_front(v, c)),
+        None => "the first maximum is the receiver's first crest".into(),
+    };
     format!(
         "Other criteria give {}. Each threshold is a fraction of its own source peak, so their order is measured, \
-         not given: an energy threshold θ is a speed threshold √θ, and the first maximum is the crest behind the \
-         dispersive front.",
+         not given: an energy threshold θ is a speed threshold √θ, and {crest}.",
         compared.join("; ")
     )
+}
+
+/// A first maximum's speed `v` against the exact front speed `c` = a√(k/m), in words: whether
+/// the crest leads or trails the front that travels at c, as measured.
+fn against_front(v: f64, c: f64) -> String {
+    let side = if v > c {
+        "leads"
+    } else if v < c {
+        "trails"
+    } else {
+        "keeps pace with"
+    };
+    format!(
+        "travels at {} m/s and so {side} the exact front x = c t, c = a√(k/m) = {} m/s ({})",
+        sig(v),
+        sig(c),
+        rel(v / c - 1.0)
+    )
+}
+
+/// The appendix's words on the first maximum: where the campaign has a linear chain's front
+/// timed by it, its speed against the exact front speed a√(k/m) (the chain item 17 shows).
+pub(super) fn first_maximum_words(e: &Evidence) -> Option<String> {
+    let chain = e.ok(|r| {
+        r.spec.chain().is_some()
+            && r.spec.law == LawSpec::Linear
+            && r.metrics.sound_speed_theory.is_some()
+            && r.metrics.recommended_sound_speed().is_some()
+    });
+    let linear = chain.first().and_then(|chain| {
+        let v = chain.metrics.sound_speed("first_maximum")?;
+        let words = against_front(v, chain.metrics.sound_speed_theory?);
+        Some(format!("in this campaign's linear chain ({}) the crest {words}", chain.spec.scene))
+    });
+    let words: Vec<String> = linear.into_iter().chain(power_law_crests(e)).collect();
+    (!words.is_empty()).then(|| words.join("; "))
+}
+
+/// The power-law chains' first maxima against their speed threshold's front (no exact front
+/// speed there): which side of it the crest arrives, and by how much, over the chains' runs.
+fn power_law_crests(e: &Evidence) -> Option<String> {
+    let timed: Vec<(&str, f64)> = e
+        .ok(|r| r.spec.chain().is_some() && r.spec.law != LawSpec::Linear)
+        .into_iter()
+        .filter_map(|r| {
+            let lag = r.metrics.sound_speed("first_maximum")? / r.metrics.sound_speed("speed_threshold")? - 1.0;
+            Some((r.spec.scene.as_str(), lag))
+        })
+        .collect();
+    if timed.is_empty() {
+        return None;
+    }
+    let (least, most) = extremes(timed.iter().map(|t| t.1));
+    let mut scenes: Vec<&str> = timed.iter().map(|t| t.0).collect();
+    scenes.dedup();
+    let side = if most < 0.0 {
+        "trails"
+    } else if least > 0.0 {
+        "leads"
+    } else {
+        "trails or leads"
+    };
+    Some(format!(
+        "in the power-law chains ({}) it {side} the speed threshold's front in all {} runs ({} in speed)",
+        scenes.join(", "),
+        timed.len(),
+        if percent(least) == percent(most) {
+            percent(least)
+        } else {
+            format!("{} to {}", percent(least), percent(most))
+        }
+    ))
 }
 
 /// The linear lattices' front speeds at t_c/50 against c_L, one row each.
@@ -214,6 +291,7 @@ pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
     let sweep = BackgroundSweep::of(&energy);
     let mut sentences = damping_sentences(first, &bond, &background, &energy, sweep.as_ref());
     sentences.extend(combined_damping::sentence(&both, &bond, &energy));
+    sentences.extend(super::moduli_damping::moduli_damping_sentence(e));
     let envelope_error = sweep.as_ref().and_then(BackgroundSweep::envelope_error);
     let scenes: Vec<String> = relaxed.iter().map(|r| r.spec.scene.clone()).collect();
     let mut shown: Vec<_> = e.figure("dissipation", FigureKind::Damping).into_iter().collect();

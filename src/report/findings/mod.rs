@@ -4,6 +4,7 @@
 //! number is read from the records at render time; an item whose runs the campaign lacks is
 //! left out. This file lists the questions; `finding.rs` is the vocabulary they answer in.
 
+mod appendix;
 mod block;
 mod combined_damping;
 mod curves;
@@ -12,6 +13,7 @@ mod dynamics;
 mod finding;
 mod jamming;
 mod materials;
+mod moduli_damping;
 mod one_d;
 mod random;
 mod relaxation;
@@ -24,6 +26,7 @@ use self::finding::Answer;
 use crate::model::LatticeType;
 use crate::sim::RelaxMethod;
 
+pub use self::appendix::{AppendixWords, appendix_words};
 pub use self::discussion::Paragraph;
 pub use self::finding::{Evidence, Finding, Table, Verdict, rel};
 

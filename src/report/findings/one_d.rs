@@ -199,10 +199,10 @@ pub(super) fn two_particles(e: &Evidence) -> Option<Answer> {
     if let Some(damped) = cases.iter().find(|r| r.spec.gamma > 0.0) {
         sentences.push(format!(
             "The damping for r ≈ {} is γ = −ln r · √(2km)/√(π² + ln² r) = {} N s/m; the contact force is not clamped \
-             to stay repulsive (clamping would raise r), and using the full mass m instead of m/2 in these formulas \
-             would give a different r.",
+             to stay repulsive (clamping would raise r){}.",
             sig(damped.spec.restitution_target.unwrap_or(0.5)),
-            sig(damped.spec.gamma)
+            sig(damped.spec.gamma),
+            full_mass_words(damped).map_or_else(String::new, |words| format!(", and {words}"))
         ));
     }
     let table = pair_table(&cases);
@@ -229,6 +229,28 @@ pub(super) fn two_particles(e: &Evidence) -> Option<Answer> {
         ]),
         table: Some(table),
     })
+}
+
+/// What the full mass m in place of the reduced mass m/2 would make of the damped linear pair
+/// among `e`'s runs at t_c/50 ([`full_mass_words`]), for the methods' appendix.
+pub(super) fn full_mass_sentence(e: &Evidence) -> Option<String> {
+    let cases = pair_cases(&e.ok(|r| is_pair(r) && r.spec.law == LawSpec::Linear));
+    full_mass_words(cases.into_iter().find(|r| r.spec.gamma > 0.0)?)
+}
+
+/// The restitution a damped linear pair's γ would give with the full mass m used consistently
+/// instead of m/2, against the reduced mass's: computed from the run's k, m and γ.
+fn full_mass_words(r: &RunRecord) -> Option<String> {
+    let (k, m, gamma) = (r.spec.k, r.spec.mass, r.spec.gamma);
+    let reduced = crate::theory::linear_restitution(k, m, gamma).ok()?;
+    let full = crate::theory::full_mass_restitution(k, m, gamma).ok()?;
+    Some(format!(
+        "using the full mass m instead of m/2 consistently (ω = √(k/m − (γ/2m)²), r = exp(−γ t_c/(2m))) would \
+         give r = {:.3} for γ = {} N s/m, not the reduced mass's r = {:.3}",
+        full,
+        sig(gamma),
+        reduced
+    ))
 }
 
 /// One pair case at t_c/50 in a sentence, and whether it is within the tolerance (if not, the

@@ -174,7 +174,7 @@ pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
         let l = r.spec.lattice()?;
         sentences.push(format!(
             "With k = {} N/m and k_d/k = {} the continuum has E = (C11 − C12²/C11)/d = {} Pa and ν = k_d/(k + k_d) \
-             = {}; MD measures ν = {} on {} × {} ({} supports).",
+             = {}; MD measures ν = {} on {} × {} ({} supports, scene {}).",
             sig(r.spec.k),
             sig(l.k_diag / r.spec.k),
             cell(r.metrics.lattice.youngs_modulus_theory),
@@ -182,7 +182,8 @@ pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
             cell(r.metrics.lattice.poisson_ratio),
             l.nx,
             l.ny,
-            l.supports.name()
+            l.supports.name(),
+            r.spec.scene
         ));
     }
     sentences.push(format!(
@@ -206,7 +207,9 @@ pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
 
 /// One run for each ratio k_d/k among `runs`, compared on one block: the largest size every
 /// ratio was run at (else each ratio's largest), on the coursework's supports where there is a
-/// choice.
+/// choice, from a scene that runs every ratio where one does (the ratios then compare like with
+/// like); of runs alike in these, the first in the campaign (a moduli scene before the damping
+/// sweeps and ensembles that load the same block, whose ν differs in the sixth digit).
 fn one_block_per_ratio<'a>(runs: &[&'a RunRecord]) -> BTreeMap<String, &'a RunRecord> {
     let mut by_ratio: BTreeMap<String, Vec<&RunRecord>> = BTreeMap::new();
     for &r in runs {
@@ -217,8 +220,17 @@ fn one_block_per_ratio<'a>(runs: &[&'a RunRecord]) -> BTreeMap<String, &'a RunRe
     let size = |r: &RunRecord| size_on_coursework_supports(r).0;
     let run_at = |n: usize| by_ratio.values().all(|rs| rs.iter().any(|r| size(r) == n));
     let common = runs.iter().map(|r| size(r)).filter(|&n| run_at(n)).max();
-    let preference = |r: &&&RunRecord| (common.is_none_or(|n| size(r) == n), size_on_coursework_supports(r));
-    by_ratio.into_iter().filter_map(|(ratio, rs)| Some((ratio, *rs.iter().max_by_key(preference)?))).collect()
+    let complete: Vec<&str> = runs
+        .iter()
+        .map(|r| r.spec.scene.as_str())
+        .filter(|scene| by_ratio.values().all(|rs| rs.iter().any(|r| r.spec.scene == *scene)))
+        .collect();
+    let every_ratio = |scene: &str| complete.contains(&scene);
+    let preference = |r: &&&RunRecord| {
+        (common.is_none_or(|n| size(r) == n), every_ratio(&r.spec.scene), size_on_coursework_supports(r))
+    };
+    // `max_by_key` keeps the last of equals: reversed, the first.
+    by_ratio.into_iter().filter_map(|(ratio, rs)| Some((ratio, *rs.iter().rev().max_by_key(preference)?))).collect()
 }
 
 /// A dt sweep on a kicked lattice: energy error and arrival time against dt.
