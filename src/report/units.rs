@@ -6,9 +6,9 @@ use super::words::short as number;
 use crate::model::LawSpec;
 use crate::runner::RunRecord;
 
-/// A material in words: m, the spring, a, a lattice's ρ = m/(a² d), and whether m, the spring
-/// constant and a are all 1 (reduced units).
-type Key = (String, String, String, Option<String>, bool);
+/// A material in words: m, the spring, a and a lattice's ρ = m/(a² d); [`REDUCED`] alone for
+/// reduced units.
+type Key = (String, String, String, Option<String>);
 
 /// One material and the scenes that use it, in the campaign's order.
 struct Material {
@@ -16,17 +16,22 @@ struct Material {
     scenes: Vec<String>,
 }
 
-/// A run's material ([`Key`]).
+/// The one clause of every scene in reduced units, whatever its law or dimension.
+const REDUCED: &str = "reduced units (m = 1 kg, a spring constant of 1, a = 1 m)";
+
+/// A run's material ([`Key`]); every run in reduced units has the same.
 fn material_of(r: &RunRecord) -> Key {
     let s = &r.spec;
+    if s.mass == 1.0 && s.k == 1.0 && s.spacing == 1.0 {
+        return (REDUCED.into(), String::new(), String::new(), None);
+    }
     let spring = match s.law {
         LawSpec::Linear => format!("k = {} N/m", number(s.k)),
         LawSpec::Power { beta } => format!("C = {} N/m^{}", number(s.k), super::words::number(beta)),
     };
     let density =
         s.lattice().map(|l| format!("ρ = m/(a² d) = {} kg/m³", number(s.mass / (s.spacing * s.spacing * l.depth))));
-    let reduced = s.mass == 1.0 && s.k == 1.0 && s.spacing == 1.0;
-    (format!("m = {} kg", number(s.mass)), spring, format!("a = {} m", number(s.spacing)), density, reduced)
+    (format!("m = {} kg", number(s.mass)), spring, format!("a = {} m", number(s.spacing)), density)
 }
 
 /// The campaign's materials, each with the scenes that use it (a scene whose grid varies its
@@ -52,11 +57,10 @@ pub(super) fn units_sentence(records: &[RunRecord]) -> Option<String> {
     let clauses: Vec<String> = materials
         .iter()
         .map(|m| {
-            let (mass, spring, spacing, density, reduced) = &m.key;
+            let (mass, spring, spacing, density) = &m.key;
             let words = [Some(mass.clone()), Some(spring.clone()), Some(spacing.clone()), density.clone()];
-            let words: Vec<String> = words.into_iter().flatten().collect();
-            let name = if *reduced { "reduced units, " } else { "" };
-            format!("{name}{} in {}", words.join(", "), m.scenes.join(", "))
+            let words: Vec<String> = words.into_iter().flatten().filter(|w| !w.is_empty()).collect();
+            format!("{} in {}", words.join(", "), m.scenes.join(", "))
         })
         .collect();
     Some(format!("The scenes' scales, from their specs: {}.", clauses.join("; ")))

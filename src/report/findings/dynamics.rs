@@ -291,7 +291,6 @@ pub(super) fn dissipation(e: &Evidence) -> Option<Answer> {
     let sweep = BackgroundSweep::of(&energy);
     let mut sentences = damping_sentences(first, &bond, &background, &energy, sweep.as_ref());
     sentences.extend(combined_damping::sentence(&both, &bond, &energy));
-    sentences.extend(super::moduli_damping::moduli_damping_sentence(e));
     let envelope_error = sweep.as_ref().and_then(BackgroundSweep::envelope_error);
     let scenes: Vec<String> = relaxed.iter().map(|r| r.spec.scene.clone()).collect();
     let mut shown: Vec<_> = e.figure("dissipation", FigureKind::Damping).into_iter().collect();
