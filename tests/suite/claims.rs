@@ -1316,3 +1316,27 @@ fn the_scenes_scales_name_which_scenes_use_reduced_units() {
         assert!((density / (0.785 / (0.1 * 0.1 * 0.01)) - 1.0).abs() < 1e-3, "{steel_clause}");
     }
 }
+
+/// The lead of the speed threshold over the exact front along lines of springs: a trend with
+/// the distance is stated only between lines with the same ends. Two chains between walls (20
+/// and 200 particles) share theirs, and the lead shrinks; a free column of a lattice beside the
+/// long chain differs in its ends as well, and the sentence says so instead of a trend.
+#[test]
+fn the_fronts_lead_is_compared_along_lines_with_the_same_ends() {
+    let chain = |name: &str, n: usize| {
+        format!(
+            "  - name: {name}\n    kind: chain\n    n: {n}\n    node: first\n    v0: 0.01\n    wave: {{}}\n    \
+             time: {{duration_tc: 100, samples: 50}}\n"
+        )
+    };
+    let column = "  - name: column\n    kind: lattice\n    lattice: {size: 20, diagonals: none}\n    supports: free\n    \
+                  impulse: {node: top-right, velocity: [0.0, -0.001]}\n    wave: {}\n";
+    let campaign = |scenes: String| format!("version: 1\nname: lead\nscenes:\n{scenes}");
+    let chains = report_of("lead", &campaign(chain("short", 20) + &chain("long", 200)));
+    let line = line_with(&chains, "Measured along lines of springs here: ");
+    assert!(line.contains("(short)") && line.contains("(long); the lead shrinks with the distance."), "{line}");
+    let mixed = report_of("lead", &campaign(column.to_string() + &chain("long", 200)));
+    let line = line_with(&mixed, "Measured along lines of springs here: ");
+    assert!(line.contains("their ends differ (free ends against fixed walls)"), "{line}");
+    assert!(!line.contains("shrinks"), "{line}");
+}

@@ -83,23 +83,19 @@ pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
 }
 
 /// Why the speed threshold runs ahead of the exact front speed, and how the lead changes with
-/// the distance, from the runs whose front runs along a line of springs: the chains and the
-/// kicked column of a lattice without diagonals (a chain of its own). The discrete line is
-/// dispersive, ω = 2√(k/m) sin(qa/2): its front spreads out as t^(1/3) ahead of x = c t, so a
-/// threshold at 1 % of the source's peak fires early by a time that grows slower than the
-/// distance, and the relative lead shrinks with it.
+/// the distance, from the runs whose front runs along a line of springs: the chains (between
+/// fixed walls) and the kicked column of a lattice without diagonals (free ends). The discrete
+/// line is dispersive, ω = 2√(k/m) sin(qa/2): its front spreads out as t^(1/3) ahead of
+/// x = c t, so a threshold at 1 % of the source's peak fires early by a time that grows slower
+/// than the distance, and the relative lead shrinks with it. Its ends move the lead too, so the
+/// trend is stated only between two lines with the same ends.
 fn precursor_sentence(linear: &[&RunRecord]) -> Option<String> {
-    let mut leads: Vec<(f64, f64)> = linear
+    let mut leads: Vec<(f64, f64, &str, &str)> = linear
         .iter()
-        .filter(|r| {
-            r.spec.chain().is_some()
-                || r.spec.lattice().is_some_and(|l| {
-                    l.diagonals == Diagonals::None && l.impulse.is_some_and(|i| i.top_row_force.is_none())
-                })
-        })
         .filter_map(|r| {
+            let ends = line_of_springs_ends(r)?;
             let lead = relative(r.metrics.recommended_sound_speed(), r.metrics.sound_speed_theory)?;
-            Some((r.metrics.wave_distance? / r.spec.spacing, lead))
+            Some((r.metrics.wave_distance? / r.spec.spacing, lead, r.spec.scene.as_str(), ends))
         })
         .collect();
     leads.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -108,17 +104,37 @@ fn precursor_sentence(linear: &[&RunRecord]) -> Option<String> {
     if leads.len() < 2 {
         return None;
     }
-    let trend = if far.1.abs() < near.1.abs() { "shrinks" } else { "does not shrink" };
+    let trend = match (near.3 == far.3, far.1.abs() < near.1.abs()) {
+        (true, true) => "the lead shrinks with the distance".to_string(),
+        (true, false) => "the lead does not shrink with the distance".to_string(),
+        (false, _) => {
+            format!("their ends differ ({} against {}) as well as their lengths, and move the lead too", near.3, far.3)
+        }
+    };
     Some(format!(
         "The threshold runs ahead of the exact speed because a line of springs is dispersive (ω = 2√(k/m) \
          sin(qa/2)): short waves lag, and the front spreads out ahead of x = c t as t^(1/3), so 1 % of the \
          source's peak arrives early by a time that grows slower than the distance. Measured along lines of \
-         springs here the lead {trend} with the distance: {} over {:.0} spacings, {} over {:.0}.",
+         springs here: {} over {:.0} spacings ({}), {} over {:.0} ({}); {trend}.",
         percent(near.1),
         near.0,
+        near.2,
         percent(far.1),
-        far.0
+        far.0,
+        far.2
     ))
+}
+
+/// The ends of a run's line of springs, if its front runs along one: a chain's fixed walls, or
+/// the free ends of the kicked column of a lattice without diagonals.
+fn line_of_springs_ends(r: &RunRecord) -> Option<&'static str> {
+    if r.spec.chain().is_some() {
+        return Some("fixed walls");
+    }
+    r.spec
+        .lattice()
+        .filter(|l| l.diagonals == Diagonals::None && l.impulse.is_some_and(|i| i.top_row_force.is_none()))
+        .map(|_| "free ends")
 }
 
 /// The chain's front: its speed against a√(k/m), the other criteria, the N_s t_c estimate.
