@@ -506,11 +506,13 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
         sentences.insert(
             0,
             format!(
-                "1 kN up on every top-row node of the {}: E = (F/d/L_x)/(ΔL_y/L_y) = {} Pa (continuum {} Pa), \
-                 ν = −(ΔL_x/L_x)/(ΔL_y/L_y) = {} (continuum {continuum_nu}{}; the coursework's ΔL_x/ΔL_y with \
-                 the sign that makes a sideways contraction positive); without diagonals E = k/d (of an infinite \
-                 block) and ν = 0: nothing ties the columns to the rows.",
+                "{} N up on every top-row node of the {}, F = {} N in all: E = (F/d/L_x)/(ΔL_y/L_y) = {} Pa \
+                 (continuum {} Pa), ν = −(ΔL_x/L_x)/(ΔL_y/L_y) = {} (continuum {continuum_nu}{}; the coursework's \
+                 ΔL_x/ΔL_y with the sign that makes a sideways contraction positive); without diagonals E = k/d \
+                 (of an infinite block) and ν = 0: nothing ties the columns to the rows.",
+                sig(r.spec.lattice().map_or(0.0, |l| l.load_per_node)),
                 r.spec.lattice().map(lattice_words).unwrap_or_default(),
+                sig(r.spec.lattice().map_or(0.0, |l| l.total_load())),
                 cell(r.metrics.lattice.youngs_modulus),
                 cell(r.metrics.lattice.youngs_modulus_theory),
                 noise(r.metrics.lattice.poisson_ratio, 1.0),
