@@ -27,6 +27,11 @@ pub struct Packing {
 }
 
 impl Packing {
+    /// Σ π r² / A: the share of the box's area the discs cover.
+    pub fn area_fraction(&self) -> f64 {
+        self.radius.iter().map(|r| std::f64::consts::PI * r * r).sum::<f64>() / self.periodic.area()
+    }
+
     /// The pairs of discs that overlap (δ < 0) at positions `(x, y)`.
     pub fn overlapping(&self, x: &[f64], y: &[f64]) -> Contacts {
         let near = contacts_within(x, y, &self.radius, &self.periodic, 0.0);

@@ -133,9 +133,9 @@ pub fn own_jamming_fraction(spec: &RunSpec, packing: Packing, particles: Particl
     let mut placed = packing_scene(spec, packing, particles);
     let outcome = placed.clone().run();
     outcome.trace.relaxed_at?;
-    placed.particles = outcome.state.particles.clone();
+    placed.particles = outcome.state.particles;
     let start = jammed_at(spec, &placed)?;
-    Some(own_onset(spec, &placed, &outcome, start))
+    Some(own_onset(spec, placed, start))
 }
 
 /// Relaxes the packing's `scene` at each of its stages ([`PackingSpec::stage_fractions`]): at
@@ -204,7 +204,6 @@ pub(super) fn measure(spec: &RunSpec, scene: &Scene, outcome: &Outcome, m: &mut 
     let forces = ContactForces::of(packing, spec.law, &p.x, &p.y);
     let rattler = forces.rattlers(n);
     let backbone = forces.backbone(&rattler);
-    let discs_area: f64 = packing.radius.iter().map(|r| std::f64::consts::PI * r * r).sum();
     let pressure = forces.pressure(area);
     let pressure_floor = pressure_floor(spec, packing);
     let relaxed = outcome.trace.relaxed_at.is_some();
@@ -215,7 +214,7 @@ pub(super) fn measure(spec: &RunSpec, scene: &Scene, outcome: &Outcome, m: &mut 
     // relaxation's doing: 1000 times tighter a criterion took it 550 to 2·10⁵ times lower in 10
     // of jamming.yaml's 22 such packings (all at φ ≤ 0.84, hypostatic: z 3.4 to 4.0; 2 more
     // tried did not relax there).
-    let jammed = relaxed && pressure > pressure_floor && !backbone.is_empty() && bulk.is_some();
+    let jammed = relaxed && carried(pressure, pressure_floor, &backbone) && bulk.is_some();
     let state = match (relaxed, jammed) {
         (false, _) => "not relaxed",
         (true, true) => "jammed",
@@ -223,7 +222,7 @@ pub(super) fn measure(spec: &RunSpec, scene: &Scene, outcome: &Outcome, m: &mut 
     };
     let kept = n - rattler.iter().filter(|&&r| r).count();
     *m = PackingMetrics {
-        packing_fraction: Some(discs_area / area),
+        packing_fraction: Some(packing.area_fraction()),
         box_side: Some(packing.periodic.side),
         pressure: Some(pressure),
         pressure_floor: Some(pressure_floor),
@@ -244,10 +243,19 @@ pub(super) fn measure(spec: &RunSpec, scene: &Scene, outcome: &Outcome, m: &mut 
             (bulk.map(|u| bulk_modulus(u, area, pressure)), bulk_changes);
         (m.shear_modulus_2d_strained, m.shear_strain_contact_changes) = (shear.map(|u| u / area), shear_changes);
     }
-    if let Some(start) = bulk.filter(|_| jammed).map(|k| Jammed { fraction: discs_area / area, pressure, bulk: k }) {
-        let (fraction, steps) = own_onset(spec, scene, outcome, start);
+    if let Some(start) =
+        bulk.filter(|_| jammed).map(|k| Jammed { fraction: packing.area_fraction(), pressure, bulk: k })
+    {
+        let rest = Scene { particles: p.clone(), ..scene.clone() };
+        let (fraction, steps) = own_onset(spec, rest, start);
         (m.own_jamming_fraction, m.decompressions) = (Some(fraction), Some(steps));
     }
+}
+
+/// A pressure above the relaxation's floor, carried by a backbone: the part of "jammed" that
+/// needs no stiffness matrix (the rest: the backbone is rigid, it has a K).
+fn carried(pressure: f64, floor: f64, backbone: &[usize]) -> bool {
+    pressure > floor && !backbone.is_empty()
 }
 
 /// The pressure a packing's relaxation leaves (N/m), below which p is p = 0: every contact
@@ -267,6 +275,14 @@ struct Jammed {
     bulk: f64,
 }
 
+impl Jammed {
+    /// Newton's estimate of its own φ_J for contact forces ∝ δ^β ([`own_onset`]):
+    /// φ − β p φ/K, no lower than `below`, a fraction known to be unjammed.
+    fn onset_estimate(&self, beta: f64, below: f64) -> f64 {
+        (self.fraction - beta * self.pressure * self.fraction / self.bulk).max(below)
+    }
+}
+
 /// The most decompressions [`own_onset`] makes: Newton's steps take a packing from φ = 0.92 to
 /// its φ_J within [`ONSET_PRECISION`] in 2 to 6 (jamming.yaml).
 const MAX_DECOMPRESSIONS: u64 = 16;
@@ -284,12 +300,11 @@ pub const ONSET_PRECISION: f64 = 5e-5;
 /// Δφ = β p φ/K. A step that unjams the packing bounds φ_J below; the next stays above that
 /// bound (halfway to it at least). The answer is the last jammed state's Newton estimate, within
 /// the bracket [unjammed, jammed].
-fn own_onset(spec: &RunSpec, scene: &Scene, outcome: &Outcome, start: Jammed) -> (f64, u64) {
+fn own_onset(spec: &RunSpec, mut rest: Scene, start: Jammed) -> (f64, u64) {
     let beta = spec.law.beta();
-    let (mut rest, mut at, mut below) = (scene.clone(), start, 0.0f64);
-    rest.particles = outcome.state.particles.clone();
+    let (mut at, mut below) = (start, 0.0f64);
     for step in 0..MAX_DECOMPRESSIONS {
-        let estimate = (at.fraction - beta * at.pressure * at.fraction / at.bulk).max(below);
+        let estimate = at.onset_estimate(beta, below);
         if at.fraction - estimate < ONSET_PRECISION * at.fraction {
             return (estimate, step);
         }
@@ -300,7 +315,7 @@ fn own_onset(spec: &RunSpec, scene: &Scene, outcome: &Outcome, start: Jammed) ->
             None => below = target,
         }
     }
-    ((at.fraction - beta * at.pressure * at.fraction / at.bulk).max(below), MAX_DECOMPRESSIONS)
+    (at.onset_estimate(beta, below), MAX_DECOMPRESSIONS)
 }
 
 /// `rest` with its box and positions grown to the fraction `ratio` times its own (L ∝ 1/√φ) and
@@ -322,12 +337,11 @@ fn jammed_at(spec: &RunSpec, scene: &Scene) -> Option<Jammed> {
     let backbone = forces.backbone(&rattler);
     let area = packing.periodic.area();
     let pressure = forces.pressure(area);
-    if pressure <= pressure_floor(spec, packing) || backbone.is_empty() {
+    if !carried(pressure, pressure_floor(spec, packing), &backbone) {
         return None;
     }
     let u_eps = stiffness_modulus(&forces, &backbone, &rattler, BULK)?;
-    let fraction = packing.radius.iter().map(|r| std::f64::consts::PI * r * r).sum::<f64>() / area;
-    Some(Jammed { fraction, pressure, bulk: bulk_modulus(u_eps, area, pressure) })
+    Some(Jammed { fraction: packing.area_fraction(), pressure, bulk: bulk_modulus(u_eps, area, pressure) })
 }
 
 /// The packing of `scene` at rest where `outcome` left it, relaxed again by the run's own
