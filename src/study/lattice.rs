@@ -22,6 +22,7 @@ use crate::spec::{
     Control, Diagonals, LatticeSpec, LoadCase, ProbeLine, RESIDUAL_OVER_ROUND_OFF, RunSpec, Supports, force_resolution,
     reference_extension, round_off_words,
 };
+use crate::theory::critical_damping;
 
 /// What a lattice measures, with its static and continuum twins.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -484,7 +485,7 @@ fn relaxation_from_static(
             ));
         };
         // γ_g = 2 m ω_min with ω_min² = k_min/m.
-        scene.background_gamma = 2.0 * (k_min * spec.mass).sqrt();
+        scene.background_gamma = critical_damping(k_min, spec.mass);
         metrics.gamma_background_critical = Some(scene.background_gamma);
     }
     let unbounded =

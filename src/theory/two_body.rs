@@ -69,6 +69,17 @@ pub fn gamma_for_restitution(r: f64, k: f64, m: f64) -> f64 {
     ln_r.abs() * (2.0 * k * m).sqrt() / (PI * PI + ln_r * ln_r).sqrt()
 }
 
+/// Critical damping γ_crit = 2√(k m) = 2 m ω (N s/m) of a mass `m` (kg) on a stiffness `k`
+/// (N/m), ω² = k/m: a dashpot of γ_crit on that mode neither rings nor creeps. The lattices'
+/// `damping.background: critical` and the reports' γ/γ_crit take it at the slowest mode's k_min.
+///
+/// ```
+/// assert_eq!(mdsolids::theory::critical_damping(4.0, 1.0), 4.0);
+/// ```
+pub fn critical_damping(k: f64, m: f64) -> f64 {
+    2.0 * (k * m).sqrt()
+}
+
 /// Largest overlap δ_max = ((β+1) μ v² / (2C))^(1/(β+1)) (m) of an undamped power-law
 /// collision of two masses `m` at relative speed `v` (energy balance μv²/2 = C δ^(β+1)/(β+1)).
 pub fn power_law_max_overlap(c: f64, beta_exp: f64, m: f64, v: f64) -> f64 {

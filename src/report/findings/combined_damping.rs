@@ -5,6 +5,7 @@
 use super::finding::{percent, sig};
 use crate::report::words::number;
 use crate::runner::RunRecord;
+use crate::theory::critical_damping;
 
 /// A change of the dissipation time by at most this share, or by two of the checks (one t_c
 /// apart) that time it, whichever is larger, is no change: the load's ramp and the envelope's
@@ -32,7 +33,8 @@ pub(super) fn sentence(both: &[&RunRecord], bond: &[&RunRecord], background: &[&
         .filter(|r| r.spec.gamma == first.spec.gamma && r.spec.lattice() == first.spec.lattice())
         .collect();
     let added = matched(&swept, bond, background);
-    let critical = first.metrics.lattice.stiffness_min.filter(|k| *k > 0.0).map(|k| 2.0 * (k * first.spec.mass).sqrt());
+    let critical =
+        first.metrics.lattice.stiffness_min.filter(|k| *k > 0.0).map(|k| critical_damping(k, first.spec.mass));
     let times = added.iter().map(|a| sig(a.both)).collect::<Vec<_>>().join(", ");
     let against_bond = bond_words(&added);
     let against_background = background_words(&added, critical);

@@ -127,7 +127,8 @@ fn envelope_sentence(e: &Evidence) -> Option<(String, bool, String)> {
     let measured: Vec<(&RunRecord, Envelope)> =
         e.ok(|_| true).into_iter().filter_map(|r| Some((r, envelope(r)?))).collect();
     let (first, _) = measured.first()?;
-    let critical = |r: &RunRecord| 2.0 * (r.metrics.lattice.stiffness_min.unwrap_or(0.0) * r.spec.mass).sqrt();
+    let critical =
+        |r: &RunRecord| theory::critical_damping(r.metrics.lattice.stiffness_min.unwrap_or(0.0), r.spec.mass);
     let below = measured.iter().filter(|(r, _)| r.spec.gamma_background < critical(r)).count();
     let worst = measured.iter().map(|(_, v)| (v.measured / v.predicted - 1.0).abs()).fold(0.0, f64::max);
     let gammas: Vec<f64> = measured.iter().map(|(r, _)| r.spec.gamma_background).collect();

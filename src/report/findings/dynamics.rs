@@ -11,6 +11,7 @@ use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, background_damping_only, bond_damping_only, both_dampings};
 use crate::runner::RunRecord;
 use crate::spec::Diagonals;
+use crate::theory::critical_damping;
 
 /// Relative tolerance of the least background-damped run's dissipation time against the
 /// underdamped envelope ln(1/θ) m/γ_g (see the item's reference).
@@ -516,7 +517,7 @@ impl<'a> BackgroundSweep<'a> {
             runs.iter().filter_map(|r| Some((*r, r.metrics.dissipation_time?))).collect();
         timed.sort_by(|a, b| a.0.spec.gamma_background.total_cmp(&b.0.spec.gamma_background));
         (timed.len() >= 2).then(|| BackgroundSweep {
-            critical: 2.0 * (stiffness_min * mass).sqrt(),
+            critical: critical_damping(stiffness_min, mass),
             stiffness_min,
             runs: timed,
         })

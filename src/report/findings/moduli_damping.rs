@@ -6,6 +6,7 @@
 use super::finding::{Evidence, sig};
 use crate::runner::RunRecord;
 use crate::sim::RelaxMethod;
+use crate::theory::critical_damping;
 
 /// A loaded lattice brought to rest by damped MD with a background damping its scene fixes.
 fn fixed_background(r: &RunRecord) -> bool {
@@ -75,7 +76,7 @@ pub(super) fn moduli_damping_sentence(e: &Evidence) -> Option<String> {
             s.gammas.push(gamma);
         }
         match r.metrics.lattice.stiffness_min {
-            Some(k_min) if k_min > 0.0 => s.ratios.push(r.spec.gamma_background / (2.0 * (k_min * r.spec.mass).sqrt())),
+            Some(k_min) if k_min > 0.0 => s.ratios.push(r.spec.gamma_background / critical_damping(k_min, r.spec.mass)),
             Some(_) => s.floppy += 1,
             None => s.unknown += 1,
         }
