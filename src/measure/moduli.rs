@@ -208,6 +208,28 @@ pub fn anisotropic_moduli(k_x: f64, k_y: f64, k_rising: f64, k_falling: f64, dep
     }
 }
 
+/// Poisson's ratio of the continuum of a square lattice of power-law springs s = C |δ|^β sign δ,
+/// both diagonals (C_d = r C, r = `k_diag_ratio`), pulled along y with no stress along x.
+///
+/// Every node is a centre of inversion of its bonds, so the strain is affine (ε_xx = −ν ε,
+/// ε_yy = ε): the horizontal spring's extension is −ν ε a, each diagonal's (1 − ν) ε a/√2. No
+/// stress along x, σ_xx a² = f_h a + 2 f_d (a√2)(1/2) = 0, gives −f_h = √2 f_d, that is
+/// ν^β = √2 r ((1 − ν)/√2)^β, so ν/(1 − ν) = q = (r 2^((1−β)/2))^(1/β) and ν = q/(1 + q). It
+/// does not depend on the load (scaling the strain by λ scales every force by λ^β); β = 1 gives
+/// the linear lattice's ν = k_d/(k + k_d).
+///
+/// ```
+/// use mdsolids::measure::power_law_poisson_ratio;
+/// assert!((power_law_poisson_ratio(0.5, 1.0) - 1.0 / 3.0).abs() < 1e-15);
+/// // Hertz, r = 1/2: q = (2^(−5/4))^(2/3) = 2^(−5/6).
+/// let q = 2f64.powf(-5.0 / 6.0);
+/// assert!((power_law_poisson_ratio(0.5, 1.5) - q / (1.0 + q)).abs() < 1e-15);
+/// ```
+pub fn power_law_poisson_ratio(k_diag_ratio: f64, beta: f64) -> f64 {
+    let q = (k_diag_ratio * 2f64.powf((1.0 - beta) / 2.0)).powf(1.0 / beta);
+    q / (1.0 + q)
+}
+
 /// The compliance S = C⁻¹ (m/N per unit depth; Voigt order xx, yy, xy with the engineering
 /// shear γ = 2ε_xy) of a square lattice's constants, by cofactors (C is symmetric); `None`
 /// without diagonals (C66 = 0: no shear stiffness, C singular).

@@ -62,8 +62,7 @@ fn scaling_figures(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Vec<Figur
             file: format!("plots/{scene}-{against}.svg"),
             caption: format!(
                 "{scene}: {what} on log–log axes, secant (from the total deformation) and tangent (from a small \
-                 extra step), with fitted power laws. Linear springs: flat (exponent 0). Hertz springs: exponent 1/3 \
-                 against the load, 1/2 against the wall displacement."
+                 extra step), with fitted power laws (their exponents in the text)."
             ),
             image: line_chart(&chart, &series)?,
         });

@@ -13,8 +13,8 @@ use super::common::{Stopped, relaxation, scene, sound_speed};
 use crate::fem::{Answers, Shared, Solver, StaticAnswer, StaticSolution, Truss};
 use crate::measure::{
     LatticeShape, anisotropic_moduli, constrained_modulus_y, extension_error_allowed, homogeneity, lattice_constants,
-    modulus_error_bound, network_constants, plane_wave_speeds, row_extension, row_extension_weights, shear_modulus,
-    tensile_moduli,
+    modulus_error_bound, network_constants, plane_wave_speeds, power_law_poisson_ratio, row_extension,
+    row_extension_weights, shear_modulus, tensile_moduli,
 };
 use crate::model::{Axes, Bonds, Edges, ForceLaw, LatticeType, LawSpec, LawVisitor, Layout, Particles, SquareLattice};
 use crate::sim::{Drive, Load, Network, Outcome, ProbeTrace, Relaxation, Scene, SharedPreconditioner, Trace};
@@ -810,6 +810,18 @@ pub(super) fn measure(
     }
     if spec.law.is_linear() {
         continuum(spec, l, metrics);
+    } else {
+        power_law_continuum(spec, l, metrics);
+    }
+}
+
+/// The continuum's ν of a regular square lattice of power-law springs with both diagonals,
+/// free to contract sideways ([`power_law_poisson_ratio`]; its E grows with the load and has no
+/// one value). Only for that network: the derivation needs k_x = k_y and both diagonals.
+fn power_law_continuum(spec: &RunSpec, l: &LatticeSpec, metrics: &mut LatticeMetrics) {
+    let square_symmetric = l.lattice_type.is_square() && l.diagonals == Diagonals::Both && l.k_x == l.k_y;
+    if square_symmetric && !l.is_random() && l.supports != Supports::PeriodicX {
+        metrics.poisson_ratio_theory = Some(power_law_poisson_ratio(l.k_diag / l.k_x, spec.law.beta()));
     }
 }
 

@@ -348,7 +348,7 @@ fn deformation_words(kind: SceneKind, deformation: Deformation) -> String {
 /// the fit's scene): the solitary wave's speed ∝ v0^((β−1)/(β+1)) (Nesterenko), moduli
 /// ∝ F^((β−1)/β) and a chain's stiffness ∝ |ΔW|^(β−1), since s′ ∝ δ^(β−1) and F ∝ δ^β.
 /// Hertz (β = 3/2): 1/5, 1/3 and 1/2; linear (β = 1): 0.
-fn predicted_exponent(e: &Evidence, fit: &ScalingFit) -> Option<f64> {
+pub(super) fn predicted_exponent(e: &Evidence, fit: &ScalingFit) -> Option<f64> {
     let beta = e.all(|r| r.spec.scene == fit.scene).first()?.spec.law.beta();
     match fit.quantity {
         "sound_speed" => Some((beta - 1.0) / (beta + 1.0)),
@@ -394,7 +394,8 @@ pub(super) fn linear_and_hertz(e: &Evidence) -> Option<Answer> {
             format!("{} against {}", symbol(fit.quantity), symbol(fit.against)),
             exponent(fit.fit.exponent),
             exponent(predicted),
-            format!("{:.4}", fit.fit.r_squared),
+            // About a constant, R² compares the scatter with itself: no measure of the fit.
+            if predicted == 0.0 { "– (flat)".into() } else { format!("{:.4}", fit.fit.r_squared) },
         ]);
     }
     let linear = e.fits.iter().filter(|f| f.law == "linear").count();

@@ -3,13 +3,13 @@
 //! truss (FEM) answer.
 
 use crate::report::figure::FigureKind;
-use crate::report::words::number;
+use crate::report::words::{self, number};
 use std::collections::BTreeMap;
 
 use super::block::Block;
-use super::discussion::EXPONENT_TOLERANCE;
+use super::discussion::{EXPONENT_TOLERANCE, predicted_exponent, symbol};
 use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, percent, rel, relative, shear_name, sig};
-use crate::measure::youngs_modulus_along;
+use crate::measure::{power_law_poisson_ratio, youngs_modulus_along};
 use crate::model::LawSpec;
 use crate::runner::RunRecord;
 use crate::spec::{Diagonals, LoadCase};
@@ -168,7 +168,8 @@ fn homogeneity_sentence(case: &str, supports: &str, sizes: &BySize) -> Option<St
     Some(format!("{case}, {supports} supports: {measured}{trend}."))
 }
 
-/// Non-linear 2D: Hertz lattice moduli against the load.
+/// Non-linear 2D: moduli of power-law lattices (Hertz, β = 3/2) against the load, each fitted
+/// exponent held against its own β's (β − 1)/β, and their Poisson ratio.
 pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
     let fits: Vec<_> = e
         .fits
@@ -176,16 +177,15 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
         .filter(|f| f.law != "linear" && f.against == "load_per_node" && !f.quantity.ends_with("tangent"))
         .collect();
     let first = fits.first()?;
-    let mut sentences = vec![
-        "A Hertz spring s = C δ^(3/2) stiffens as it is stretched: under a load F its bonds stretch by δ ∝ F^(2/3), \
-         so the secant and tangent moduli, ∝ C δ^(1/2), grow as F^(1/3), the tangent 3/2 × the secant."
-            .to_string(),
-    ];
+    let runs = e.ok(|r| r.spec.law != LawSpec::Linear && r.spec.lattice().is_some_and(|l| l.impulse.is_none()));
+    let mut sentences = vec![power_law_words(&runs)];
     let mut checks = Vec::new();
     for f in &fits {
+        let predicted = predicted_exponent(e, f)?;
         sentences.push(format!(
-            "{} of scene {}: from {} to {} Pa over loads of {} to {} N per node, ∝ F^{:.3} (R² = {:.4}).",
-            super::discussion::symbol(f.quantity),
+            "{} of scene {}: from {} to {} Pa over loads of {} to {} N per node, ∝ F^{:.3} (R² = {:.4}; predicted \
+             {predicted:.3}).",
+            symbol(f.quantity),
             f.scene,
             sig(f.points.first().map_or(0.0, |p| p.1)),
             sig(f.points.last().map_or(0.0, |p| p.1)),
@@ -194,19 +194,10 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
             f.fit.exponent,
             f.fit.r_squared
         ));
-        checks.push((f.fit.exponent - 1.0 / 3.0).abs() <= EXPONENT_TOLERANCE);
+        checks.push((f.fit.exponent - predicted).abs() <= EXPONENT_TOLERANCE);
     }
-    let runs = e.ok(|r| r.spec.law != LawSpec::Linear && r.spec.lattice().is_some_and(|l| l.impulse.is_none()));
-    let ratios: Vec<f64> = runs
-        .iter()
-        .filter_map(|r| Some(r.metrics.lattice.youngs_modulus_tangent? / r.metrics.lattice.youngs_modulus?))
-        .collect();
-    if !ratios.is_empty() {
-        sentences.push(format!(
-            "Tangent over secant Young's modulus: {} (Hertz: 1.5).",
-            ratios.iter().map(|x| format!("{x:.3}")).collect::<Vec<_>>().join(", ")
-        ));
-    }
+    sentences.extend(tangent_over_secant(&runs));
+    sentences.extend(power_law_poisson(e, &runs));
     // One figure per scene draws all of its moduli against the load.
     let mut scenes: Vec<&str> = fits.iter().map(|f| f.scene.as_str()).collect();
     scenes.dedup();
@@ -215,14 +206,169 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
         title: "Hertz lattices: moduli against the load",
         question: "Non-linear 2D: set the load to different values and analyse the moduli of the different \
                    equilibria.",
-        short: format!("E ∝ F^{:.3} (Hertz: 1/3)", first.fit.exponent),
+        short: format!(
+            "{} ∝ F^{:.3} (predicted {:.3})",
+            symbol(first.quantity),
+            first.fit.exponent,
+            predicted_exponent(e, first)?
+        ),
         sentences,
-        reference: format!("The Hertz scaling F^(1/3); fitted exponents within {EXPONENT_TOLERANCE}."),
+        reference: format!(
+            "The power law F^((β − 1)/β) of springs s = C δ^β (Hertz: F^(1/3)); fitted exponents within \
+             {EXPONENT_TOLERANCE}."
+        ),
         see_also: None,
         verdict: Verdict::of(checks),
         figures: load_figures.into_iter().flatten().take(2).collect(),
         table: None,
     })
+}
+
+/// The exponents of the loaded power-law runs (sorted, each once).
+fn exponents_of(runs: &[&RunRecord]) -> Vec<f64> {
+    let mut betas: Vec<f64> = runs.iter().map(|r| r.spec.law.beta()).collect();
+    betas.sort_by(f64::total_cmp);
+    betas.dedup();
+    betas
+}
+
+/// Why a power-law lattice's moduli grow with the load, with this campaign's exponents.
+fn power_law_words(runs: &[&RunRecord]) -> String {
+    let betas = exponents_of(runs);
+    let each = |f: &dyn Fn(f64) -> String| words::listed(&betas.iter().map(|&b| f(b)).collect::<Vec<_>>(), "and");
+    format!(
+        "A spring s = C δ^β with β > 1 (Hertz: 3/2) stiffens as it is stretched: under a load F its bonds stretch by \
+         δ ∝ F^(1/β), so the secant and tangent moduli, ∝ C δ^(β − 1), grow as F^((β − 1)/β), the tangent β × the \
+         secant; here β = {}: F^{}.",
+        each(&|b| number(b)),
+        each(&|b| format!("{:.3}", (b - 1.0) / b)),
+    )
+}
+
+/// Tangent over secant Young's modulus of each run, by exponent: β for springs s ∝ δ^β.
+fn tangent_over_secant(runs: &[&RunRecord]) -> Option<String> {
+    let groups: Vec<String> = exponents_of(runs)
+        .into_iter()
+        .filter_map(|beta| {
+            let ratios: Vec<String> = runs
+                .iter()
+                .filter(|r| r.spec.law.beta() == beta)
+                .filter_map(|r| Some(r.metrics.lattice.youngs_modulus_tangent? / r.metrics.lattice.youngs_modulus?))
+                .map(|x| format!("{x:.3}"))
+                .collect();
+            (!ratios.is_empty()).then(|| format!("{} (β = {})", ratios.join(", "), number(beta)))
+        })
+        .collect();
+    (!groups.is_empty()).then(|| format!("Tangent over secant Young's modulus: {}.", groups.join("; ")))
+}
+
+/// ν of each loaded power-law scene over its loads, against the continuum of its springs and
+/// the linear springs' ν on the same block.
+fn power_law_poisson(e: &Evidence, runs: &[&RunRecord]) -> Vec<String> {
+    let tensile: Vec<&RunRecord> = runs
+        .iter()
+        .copied()
+        .filter(|r| r.spec.lattice().is_some_and(|l| l.load_case == LoadCase::Tensile))
+        .filter(|r| r.metrics.lattice.poisson_ratio.is_some())
+        .collect();
+    let mut scenes: Vec<&str> = tensile.iter().map(|r| r.spec.scene.as_str()).collect();
+    scenes.dedup();
+    let load = |r: &RunRecord| r.spec.lattice().map_or(0.0, |l| l.load_per_node);
+    scenes
+        .iter()
+        .filter_map(|scene| {
+            let mut own: Vec<&RunRecord> = tensile.iter().copied().filter(|r| r.spec.scene == *scene).collect();
+            own.sort_by(|a, b| load(a).total_cmp(&load(b)));
+            Some(format!("{}{}", load_independence(&own)?, continuum_poisson(e, own[0]).unwrap_or_default()))
+        })
+        .collect()
+}
+
+/// The block's strain ε = σ/E of a force-controlled square lattice run, σ = N_x F/(d L_x) with
+/// L_x = (N_x − 1) a (the coursework's E).
+fn strain_of(r: &RunRecord) -> Option<f64> {
+    let l = r.spec.lattice().filter(|l| l.lattice_type.is_square() && l.nx > 1)?;
+    let stress = l.nx as f64 * l.force_per_node()? / (l.depth * (l.nx - 1) as f64 * r.spec.spacing);
+    Some(stress / r.metrics.lattice.youngs_modulus?)
+}
+
+/// ν of one scene over its loads (sorted by load). Springs of one exponent β scale every force
+/// by λ^β when the displacements scale by λ, so ν does not depend on the load but through the
+/// block's change of shape, whose share is of the order of the strain.
+fn load_independence(own: &[&RunRecord]) -> Option<String> {
+    let nu: Vec<f64> = own.iter().filter_map(|r| r.metrics.lattice.poisson_ratio).collect();
+    let (low, high) = crate::measure::extremes(&nu);
+    let strain = own.iter().filter_map(|r| strain_of(r)).fold(0.0, f64::max);
+    let (first, last) = (own.first()?, own.last()?);
+    let change = if high - low <= strain {
+        format!(
+            "a change of {} within the largest strain, {} (the block's change of shape): springs of one exponent \
+             scale every force by λ^β when the displacements scale by λ, so ν does not depend on the load",
+            sig(high - low),
+            sig(strain)
+        )
+    } else {
+        format!("a change of {}, more than the largest strain ({}) explains", sig(high - low), sig(strain))
+    };
+    Some(format!(
+        "ν of scene {}: {} at {} N and {} at {} N per node, {change}.",
+        first.spec.scene,
+        cell(first.metrics.lattice.poisson_ratio),
+        sig(first.spec.lattice()?.load_per_node),
+        cell(last.metrics.lattice.poisson_ratio),
+        sig(last.spec.lattice()?.load_per_node),
+    ))
+}
+
+/// The continuum's ν of a power-law run's springs against the linear springs' of the same
+/// k_d/k, and MD's against a linear run on the same block where the campaign has one.
+fn continuum_poisson(e: &Evidence, r: &RunRecord) -> Option<String> {
+    let l = r.spec.lattice()?;
+    let continuum = r.metrics.lattice.poisson_ratio_theory?;
+    let ratio = l.k_diag / l.k_x;
+    let linear = power_law_poisson_ratio(ratio, 1.0);
+    let mut words = format!(
+        " The continuum of these springs has ν = {} (ν/(1 − ν) = (r 2^((1 − β)/2))^(1/β), r = k_d/k = {}), {} the \
+         linear springs' {} (a larger β raises ν for r < 1/√2, lowers it above)",
+        cell(Some(continuum)),
+        sig(ratio),
+        side(continuum, linear),
+        cell(Some(linear)),
+    );
+    let same_block = |x: &RunRecord| {
+        super::finding::regular(x).is_some_and(|xl| {
+            xl.load_case == LoadCase::Tensile
+                && (xl.lattice_type, xl.nx, xl.ny, xl.supports, xl.diagonals)
+                    == (l.lattice_type, l.nx, l.ny, l.supports, l.diagonals)
+                && (xl.k_diag / xl.k_x - ratio).abs() < 1e-9
+        })
+    };
+    if let (Some(md), Some(lin)) = (r.metrics.lattice.poisson_ratio, e.ok(same_block).first()) {
+        let lin_nu = lin.metrics.lattice.poisson_ratio?;
+        let agrees =
+            if side(md, lin_nu) == side(continuum, linear) { "as in the continuum" } else { "unlike the continuum" };
+        words += &format!(
+            "; on this {} × {} block MD gives {} against the linear springs' {} (scene {}): {}, {agrees}",
+            l.nx,
+            l.ny,
+            cell(Some(md)),
+            cell(Some(lin_nu)),
+            lin.spec.scene,
+            side(md, lin_nu),
+        );
+    }
+    Some(words + ".")
+}
+
+/// Where `a` lies against `b`, in words.
+fn side(a: f64, b: f64) -> &'static str {
+    if (a - b).abs() <= 1e-12 * b.abs() {
+        "equal to"
+    } else if a > b {
+        "above"
+    } else {
+        "below"
+    }
 }
 
 /// Anisotropic networks: moduli in both directions.

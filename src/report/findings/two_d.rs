@@ -9,6 +9,7 @@ use super::block::Block;
 use super::finding::{
     Answer, Evidence, Table, Verdict, cell, noise, regular, rel, relative, sig, size_on_coursework_supports,
 };
+use super::types::square_diagonal_stiffening;
 use crate::measure::convergence_order;
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, representative};
@@ -173,12 +174,13 @@ pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
     for r in ratios.values() {
         let l = r.spec.lattice()?;
         sentences.push(format!(
-            "With k = {} N/m and k_d/k = {} the continuum has E = (C11 − C12²/C11)/d = {} Pa and ν = k_d/(k + k_d) \
-             = {}; MD measures ν = {} on {} × {} ({} supports, scene {}).",
+            "With k = {} N/m and k_d/k = {} the continuum has E = (C11 − C12²/C11)/d = {} Pa, ν = k_d/(k + k_d) \
+             = {} and E(45°)/E(0°) = {}; MD measures ν = {} on {} × {} ({} supports, scene {}).",
             sig(r.spec.k),
             sig(l.k_diag / r.spec.k),
             cell(r.metrics.lattice.youngs_modulus_theory),
             cell(r.metrics.lattice.poisson_ratio_theory),
+            cell(square_diagonal_stiffening(l)),
             cell(r.metrics.lattice.poisson_ratio),
             l.nx,
             l.ny,
@@ -186,16 +188,18 @@ pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
             r.spec.scene
         ));
     }
-    sentences.push(format!(
-        "This campaign's moduli runs use k_d/k = {}: it gives ν = 1/3, the Poisson ratio of many metals, and keeps \
-         the diagonals clearly softer than the axial springs so their role stays visible.",
-        sig(first.spec.lattice()?.k_diag / first.spec.k)
-    ));
+    let chosen = first.spec.lattice()?.k_diag / first.spec.k;
+    let isotropic = (2.0 * chosen - 1.0).abs() < 1e-9;
+    sentences.push(choice_words(chosen, isotropic));
     Some(Answer {
         title: "The diagonal springs",
         question: "Choose k_diag so the diagonal chain has the same Young's modulus as the axial one: what is \
                    k_diag/k? Choose one and argue for it.",
-        short: "k_d/k = 1/√2 ≈ 0.7071 for equal E; 0.5 chosen (ν = 1/3)".into(),
+        short: format!(
+            "k_d/k = 1/√2 ≈ 0.7071 for equal E; {} chosen{}",
+            crate::report::words::number(chosen),
+            if isotropic { " (isotropic, ν = 1/3)" } else { " (anisotropic)" }
+        ),
         sentences,
         reference: "The continuum constants C11 = k + k_d, C12 = C44 = k_d (per unit depth).".into(),
         see_also: None,
@@ -203,6 +207,26 @@ pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
         figures: Vec::new(),
         table: None,
     })
+}
+
+/// Why the moduli runs' k_d/k: with both diagonals C11 = k + k_d and C12 = C44 = k_d, so the
+/// Zener ratio 2C44/(C11 − C12) = 2k_d/k is 1, and the lattice isotropic, only at k_d = k/2.
+fn choice_words(chosen: f64, isotropic: bool) -> String {
+    if isotropic {
+        format!(
+            "This campaign's moduli runs use k_d/k = {}, the one ratio at which the lattice is isotropic: its Zener \
+             ratio 2C44/(C11 − C12) = 2k_d/k is 1, so E and ν are the same in every direction, as in the isotropic \
+             solid it stands for, with ν = 1/3.",
+            crate::report::words::number(chosen)
+        )
+    } else {
+        format!(
+            "This campaign's moduli runs use k_d/k = {}: its Zener ratio 2C44/(C11 − C12) = 2k_d/k is {}, so its E \
+             depends on the direction (isotropic only at k_d/k = 1/2).",
+            sig(chosen),
+            sig(2.0 * chosen)
+        )
+    }
 }
 
 /// One run for each ratio k_d/k among `runs`, compared on one block: the largest size every

@@ -262,7 +262,7 @@ fn diagonal_stiffening(youngs: f64, poisson: f64, shear: f64) -> f64 {
 /// [`diagonal_stiffening`] of a square lattice's continuum: C per unit depth C11 = k + k_d,
 /// C12 = C66 = k_d (both diagonals), so E = C11 − C12²/C11, ν = C12/C11, G = C66 (all per unit
 /// depth: the depth cancels); `None` for another type.
-fn square_diagonal_stiffening(l: &LatticeSpec) -> Option<f64> {
+pub(super) fn square_diagonal_stiffening(l: &LatticeSpec) -> Option<f64> {
     if !l.lattice_type.is_square() {
         return None;
     }
