@@ -170,19 +170,29 @@ pub(super) fn seed_jackknife_of(
     Some(((count - 1.0) / count * estimates.iter().map(|x| (x - mean).powi(2)).sum::<f64>()).sqrt())
 }
 
-/// The jammed packings of `n` discs with contact exponent `beta` whose Δφ = φ − φ_J is at
-/// least `floor`, each with its Δφ: what the scalings are fitted over.
-fn fitted_packings<'a>(runs: &[&'a RunRecord], (n, beta): (usize, f64), floor: f64) -> Vec<(f64, &'a RunRecord)> {
+/// The jammed packings of `n` discs with contact exponent `beta` whose Δφ = φ − φ_J lies in
+/// `window` (floor and ceiling, both included), each with its Δφ: what the scalings are fitted
+/// over.
+fn fitted_packings<'a>(
+    runs: &[&'a RunRecord],
+    (n, beta): (usize, f64),
+    window: (f64, f64),
+) -> Vec<(f64, &'a RunRecord)> {
     runs.iter()
         .filter(|r| jammed(r) && r.spec.law.beta() == beta && key(r).is_some_and(|k| k.0 == n))
-        .filter_map(|r| Some((excess(r).filter(|d| *d >= floor)?, *r)))
+        .filter_map(|r| Some((excess(r).filter(|d| (window.0..=window.1).contains(d))?, *r)))
         .collect()
 }
 
 /// The scalings of the jammed packings of `n` discs with contact exponent `beta`, each fitted
 /// on log–log axes against Δφ over the packings with Δφ ≥ `floor` and a positive value.
 pub(super) fn scalings(runs: &[&RunRecord], n: usize, beta: f64, floor: f64) -> Vec<Scaling> {
-    let mine = fitted_packings(runs, (n, beta), floor);
+    scalings_over(runs, n, beta, (floor, f64::INFINITY))
+}
+
+/// [`scalings`] over the packings whose Δφ lies in `window` (floor and ceiling).
+pub(super) fn scalings_over(runs: &[&RunRecord], n: usize, beta: f64, window: (f64, f64)) -> Vec<Scaling> {
+    let mine = fitted_packings(runs, (n, beta), window);
     SCALINGS
         .iter()
         .filter_map(|&(quantity, pick, theory)| {
@@ -201,7 +211,7 @@ pub(super) fn scalings(runs: &[&RunRecord], n: usize, beta: f64, floor: f64) -> 
 /// theory's G ∝ K Δz makes it Δz¹ for every contact law (the shear modulus is the bulk
 /// modulus thinned by how far the contact network is above isostatic).
 pub(super) fn ratio_against_contacts(runs: &[&RunRecord], n: usize, beta: f64, floor: f64) -> Option<Scaling> {
-    let (points, seeds): (Vec<(f64, f64)>, Vec<u64>) = fitted_packings(runs, (n, beta), floor)
+    let (points, seeds): (Vec<(f64, f64)>, Vec<u64>) = fitted_packings(runs, (n, beta), (floor, f64::INFINITY))
         .into_iter()
         .filter_map(|(_, r)| {
             let m = &r.metrics.packing;

@@ -519,7 +519,7 @@ fn log_slope(points: &[(f64, f64)]) -> f64 {
 fn the_scalings_carry_their_standard_error_over_the_seeds() {
     let dir = crate::common::scratch();
     let yaml = "version: 1\nname: jam\nscenes:\n  - name: jam\n    kind: packing\n    packing: {n: 64, fraction: 0.86}\n    \
-                grid:\n      packing.fraction: [0.84, 0.86, 0.88, 0.90, 0.92]\n      seed: [1, 2, 3]\n";
+                grid:\n      packing.fraction: [0.84, 0.85, 0.86, 0.87, 0.88, 0.90, 0.92]\n      seed: [1, 2, 3]\n";
     let (frame, folder) = run_jam(dir.path(), yaml);
     let report = std::fs::read_to_string(folder.join("report.md")).unwrap();
     let line = line_with(&report, "Linear contacts, N = 64, over");
@@ -542,6 +542,7 @@ fn the_scalings_carry_their_standard_error_over_the_seeds() {
     assert!((stated / error - 1.0).abs() < 0.05, "{line}: independent {error} from {without:?}");
     let all: Vec<(f64, f64)> = fitted.iter().map(|f| (f.1, f.2)).collect();
     assert!((number_after(line, "p ∝ Δφ^") - log_slope(&all)).abs() < 1e-3 + 0.01 * error, "{line}");
+    lower_decades_refit_is_the_tables(&report, &all);
     // z_J, the intercept of z = z_J + c √Δφ over every jammed packing (Δφ > 0), and its
     // jackknife over the seeds in the same way.
     let z = numbers(&frame, "backbone_coordination");
@@ -565,6 +566,22 @@ fn the_scalings_carry_their_standard_error_over_the_seeds() {
     // The floor is 5 times the precision of each packing's own φ_J, 5e-5 of it.
     let mean_own = own.iter().flatten().sum::<f64>() / own.iter().flatten().count() as f64;
     assert!((floor / (5.0 * 5e-5 * 0.84) - 1.0).abs() < 0.02, "{line}: mean own φ_J {mean_own}");
+}
+
+/// p refitted over the lower half of the decades of Δφ, recomputed from `all` (Δφ, p) of the
+/// whole fit: up to √(Δφ_min Δφ_max), and said to move towards the theory's 1 exactly when it
+/// does (stated to its standard error's second digit: within 5e-3 at SE < 0.1).
+fn lower_decades_refit_is_the_tables(report: &str, all: &[(f64, f64)]) {
+    let line = line_with(report, "Linear contacts, N = 64, refitted over the lower half");
+    let (low, high) = all.iter().fold((f64::INFINITY, 0.0f64), |(l, h), p| (l.min(p.0), h.max(p.0)));
+    let lower: Vec<(f64, f64)> = all.iter().copied().filter(|p| p.0 <= (low * high).sqrt()).collect();
+    assert!((number_after(line, "Δφ ≤ ") / (low * high).sqrt() - 1.0).abs() < 1e-3, "{line}");
+    let (refit, whole) = (log_slope(&lower), log_slope(all));
+    assert!((number_after(line, ": p ") - refit).abs() < 5e-3, "{line}: independent {refit} over {lower:?}");
+    let towards = (refit - 1.0).abs() < (whole - 1.0).abs();
+    let said = line.contains("every one moves towards") || line.contains("p move towards") || line.contains("p and ");
+    let listed_away = line.split(" move towards the theory's, ").nth(1).is_some_and(|rest| rest.starts_with("p "));
+    assert_eq!(towards, said && !listed_away, "{line}: p {whole} → {refit}");
 }
 
 #[test]

@@ -11,9 +11,9 @@ use crate::measure::line_fit;
 use crate::report::figure::{FigureKind, FigureRef};
 use crate::report::jamming::{
     FIT_FLOOR, ISOSTATIC, Onset, Scaling, excess, fitted, jammed, key, onsets, onsets_of, ratio_against_contacts,
-    scalings, seed, seed_jackknife_of,
+    scalings, scalings_over, seed, seed_jackknife_of,
 };
-use crate::report::words::number;
+use crate::report::words::{self, number};
 use crate::runner::RunRecord;
 use crate::study::packing::{ONSET_PRECISION, ROUND_OFF_MARGIN, STRAIN, STRAINED_RESIDUAL};
 
@@ -542,6 +542,9 @@ fn all_scalings(runs: &[&RunRecord]) -> (Vec<String>, Vec<Vec<String>>) {
                 ));
             }
         }
+        if let Some((size, largest)) = fitted.last() {
+            sentences.extend(correction_sentence(runs, beta, size, largest));
+        }
         if let Some((size, largest)) = fitted.last()
             && let Some(ratio) = ratio_against_contacts(runs, size.n, beta, size.fit_floor())
         {
@@ -558,6 +561,59 @@ fn all_scalings(runs: &[&RunRecord]) -> (Vec<String>, Vec<Vec<String>>) {
         }
     }
     (sentences, rows)
+}
+
+/// Fewest packings a refit over the lower decades of Δφ is made from.
+const LOWER_DECADES_PACKINGS: usize = 6;
+
+/// Whether the judged exponents' distance from the theory's is a correction to scaling, which
+/// fades as Δφ → 0: refitted over the lower half of the decades of Δφ measured (up to the
+/// geometric mean √(Δφ_min Δφ_max) of the whole fit's), such an exponent moves towards the
+/// theory's. Said with the largest distance in standard errors over the whole range.
+fn correction_sentence(runs: &[&RunRecord], beta: f64, size: &Onset, whole: &[Scaling]) -> Option<String> {
+    let spans = whole.iter().flat_map(|s| s.points.iter().map(|p| p.0));
+    let (low, high) = crate::measure::extremes(spans);
+    let ceiling = (low * high).sqrt();
+    let lower = scalings_over(runs, size.n, beta, (size.fit_floor(), ceiling));
+    let pairs: Vec<(&Scaling, &Scaling)> = lower
+        .iter()
+        .filter(|s| s.points.len() >= LOWER_DECADES_PACKINGS)
+        .filter_map(|s| Some((s, whole.iter().find(|w| w.quantity == s.quantity)?)))
+        .collect();
+    if pairs.is_empty() {
+        return None;
+    }
+    let gap = |s: &Scaling| (s.fit.exponent - s.theory).abs();
+    let names = |closer: bool| -> Vec<String> {
+        pairs.iter().filter(|(l, w)| (gap(l) < gap(w)) == closer).map(|(l, _)| l.quantity.to_string()).collect()
+    };
+    let (towards, away) = (names(true), names(false));
+    let widest = whole.iter().filter_map(|w| Some(gap(w) / w.error.filter(|e| *e > 0.0)?)).fold(0.0, f64::max);
+    let verdict = match (towards.is_empty(), away.is_empty()) {
+        (false, true) => format!(
+            "every one moves towards the theory's: the distance over the whole range (up to {widest:.0} standard \
+             errors) is a correction to scaling at larger Δφ, which the tolerance {EXPONENT_TOLERANCE} allows for"
+        ),
+        (true, _) => "none moves towards the theory's: the distance is not a correction at larger Δφ".into(),
+        (false, false) => format!(
+            "{} move towards the theory's, {} do not: a correction to scaling at larger Δφ explains the distance of \
+             the former only",
+            words::listed(&towards, "and"),
+            words::listed(&away, "and")
+        ),
+    };
+    let parts: Vec<String> = pairs
+        .iter()
+        .map(|(l, w)| format!("{} {} (from {})", l.quantity, l.exponent_words(), sig(w.fit.exponent)))
+        .collect();
+    Some(format!(
+        "{} contacts, N = {}, refitted over the lower half of the decades of Δφ ({} ≤ Δφ ≤ {}): {}; {verdict}.",
+        capitalised(&law_words(beta)),
+        size.n,
+        sig(size.fit_floor()),
+        sig(ceiling),
+        parts.join(", ")
+    ))
 }
 
 /// The exponent of G/K against z − 4 that the fits against Δφ imply: (g − k)/ζ for G ∝ Δφ^g,
