@@ -154,7 +154,7 @@ pub struct BondForce {
 ///
 /// The contact force is not clamped to stay repulsive: near the end of a damped contact the
 /// dashpot pulls (s + γ δ̇ < 0). Clamping it would change the restitution of r = 0.5 into
-/// about 0.55 (DESIGN.md), so the law is kept as the coursework writes it.
+/// 0.550 (`theory::clamped_restitution`), so the law is kept as the coursework writes it.
 #[derive(Clone, Copy, Debug)]
 pub struct Spring<L, D, const CONTACT: bool> {
     /// Elastic law.

@@ -7,8 +7,8 @@ pub use self::collision::{
 };
 pub use self::lattice::{branch_frequency, square_branch_stiffnesses};
 pub use self::two_body::{
-    Overdamped, critical_damping, full_mass_restitution, gamma_for_restitution, linear_contact_duration,
-    linear_restitution, pair_omega, power_law_contact_duration, power_law_max_overlap,
+    Overdamped, clamped_restitution, critical_damping, full_mass_restitution, gamma_for_restitution,
+    linear_contact_duration, linear_restitution, pair_omega, power_law_contact_duration, power_law_max_overlap,
 };
 
 mod chain;

@@ -57,6 +57,26 @@ pub fn full_mass_restitution(k: f64, m: f64, gamma: f64) -> Result<f64, Overdamp
     linear_restitution(k, 2.0 * m, gamma)
 }
 
+/// Restitution of the damped linear pair if its contact force k δ + γ δ̇ were clamped to stay
+/// repulsive (δ the overlap): the pair then parts where that force first vanishes, before δ
+/// does. With α = γ/m and ω_d = [`pair_omega`], δ = (v/ω_d) e^(−αt) sin ω_d t and
+/// δ̇ = v e^(−αt) (cos ω_d t − (α/ω_d) sin ω_d t), so k δ + γ δ̇ = 0 at the phase θ = ω_d t in
+/// (0, π] with tan θ = −γ ω_d/(k − γ α), θ = π + atan2(−γ ω_d, k − γ α); r = −δ̇/v there,
+/// r = −e^(−αθ/ω_d) (cos θ − (α/ω_d) sin θ). Undamped, θ = π and r = 1.
+///
+/// ```
+/// // The γ that gives r = 0.5 unclamped (m = k = 1) gives 0.550 clamped.
+/// let g = mdsolids::theory::gamma_for_restitution(0.5, 1.0, 1.0);
+/// let r = mdsolids::theory::clamped_restitution(1.0, 1.0, g).unwrap();
+/// assert!((r - 0.550281).abs() < 1e-6);
+/// assert_eq!(mdsolids::theory::clamped_restitution(1.0, 1.0, 0.0).unwrap(), 1.0);
+/// ```
+pub fn clamped_restitution(k: f64, m: f64, gamma: f64) -> Result<f64, Overdamped> {
+    let (decay, omega) = (gamma / m, pair_omega(k, m, gamma)?);
+    let phase = PI + (-gamma * omega).atan2(k - gamma * decay);
+    Ok(-(-decay * phase / omega).exp() * (phase.cos() - decay / omega * phase.sin()))
+}
+
 /// Dashpot γ = −ln r · √(2km) / √(π² + ln² r) (N s/m) that gives restitution `r` in (0, 1].
 ///
 /// ```

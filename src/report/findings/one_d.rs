@@ -199,9 +199,10 @@ pub(super) fn two_particles(e: &Evidence) -> Option<Answer> {
     if let Some(damped) = cases.iter().find(|r| r.spec.gamma > 0.0) {
         sentences.push(format!(
             "The damping for r ≈ {} is γ = −ln r · √(2km)/√(π² + ln² r) = {} N s/m; the contact force is not clamped \
-             to stay repulsive (clamping would raise r){}.",
+             to stay repulsive (clamping would raise r{}){}.",
             sig(damped.spec.restitution_target.unwrap_or(0.5)),
             sig(damped.spec.gamma),
+            clamped(damped).map_or_else(String::new, |(_, clamped)| format!(" to {clamped:.3}")),
             full_mass_words(damped).map_or_else(String::new, |words| format!(", and {words}"))
         ));
     }
@@ -236,6 +237,24 @@ pub(super) fn two_particles(e: &Evidence) -> Option<Answer> {
 pub(super) fn full_mass_sentence(e: &Evidence) -> Option<String> {
     let cases = pair_cases(&e.ok(|r| is_pair(r) && r.spec.law == LawSpec::Linear));
     full_mass_words(cases.into_iter().find(|r| r.spec.gamma > 0.0)?)
+}
+
+/// The damped linear pair among `e`'s runs at t_c/50 with its contact force clamped to stay
+/// repulsive ([`crate::theory::clamped_restitution`]), for the methods' appendix.
+pub(super) fn clamped_sentence(e: &Evidence) -> Option<String> {
+    let cases = pair_cases(&e.ok(|r| is_pair(r) && r.spec.law == LawSpec::Linear));
+    let (reduced, clamped) = clamped(cases.into_iter().find(|r| r.spec.gamma > 0.0)?)?;
+    Some(format!(
+        "Clamping it would turn r = {reduced:.3} into {clamped:.3}: the pair would part where k δ + γ δ̇ first \
+         vanishes, at the phase θ = ω_d t with tan θ = −γ ω_d/(k − γ²/m), before δ does"
+    ))
+}
+
+/// The damped linear pair's restitution (r = exp(−γ t_c/m)) and what clamping its contact
+/// force would make of it, from the run's k, m and γ.
+fn clamped(r: &RunRecord) -> Option<(f64, f64)> {
+    let (k, m, gamma) = (r.spec.k, r.spec.mass, r.spec.gamma);
+    Some((crate::theory::linear_restitution(k, m, gamma).ok()?, crate::theory::clamped_restitution(k, m, gamma).ok()?))
 }
 
 /// The restitution a damped linear pair's γ would give with the full mass m used consistently
