@@ -79,13 +79,25 @@ pub struct PowerLawFit {
 }
 
 /// Fits y = c x^p to the positive, finite `points` (x, y); `None` with fewer than two of them
-/// or a single x.
+/// or a single x, x values within 1e-9 of each other counting as one (walls moved in and out
+/// by 0.2 give |ΔW| = 0.19999999999999930 and 0.20000000000000018: a slope through their
+/// round-off would be any number).
+///
+/// ```
+/// use mdsolids::measure::power_law_fit;
+/// assert!(power_law_fit(&[(0.19999999999999930, 1.0), (0.20000000000000018, 2.0)]).is_none());
+/// assert!((power_law_fit(&[(1.0, 1.0), (4.0, 2.0)]).unwrap().exponent - 0.5).abs() < 1e-15);
+/// ```
 pub fn power_law_fit(points: &[(f64, f64)]) -> Option<PowerLawFit> {
     let logs: Vec<(f64, f64)> = points
         .iter()
         .filter(|(x, y)| *x > 0.0 && *y > 0.0 && x.is_finite() && y.is_finite())
         .map(|(x, y)| (x.ln(), y.ln()))
         .collect();
+    let (low, high) = extremes(logs.iter().map(|p| p.0));
+    if high - low <= 1e-9 {
+        return None;
+    }
     line_fit(&logs).map(|line| PowerLawFit {
         exponent: line.slope,
         r_squared: line.r_squared,

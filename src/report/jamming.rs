@@ -264,9 +264,9 @@ pub(super) fn part(records: &[RunRecord], scene: &str) -> anyhow::Result<Part<()
         caption: format!(
             "{scene}: pressure p, excess coordination z − 4 and moduli K, G of the jammed packings of {} discs \
              against Δφ = φ − φ_J (φ_J each packing's own, where its pressure vanishes as it is decompressed), \
-             over Δφ ≥ {:.3}, on log–log axes with fitted power laws.",
+             over Δφ ≥ {}, on log–log axes with fitted power laws.",
             size.n,
-            size.fit_floor()
+            crate::report::words::short(size.fit_floor())
         ),
         image: line_chart(&chart, &series)?,
     };
@@ -306,8 +306,9 @@ fn ratio_figure(scene: &str, mine: &[&RunRecord], n: usize, beta: f64, floor: f6
         file: format!("plots/{scene}-ratio.svg"),
         caption: format!(
             "{scene}: G/K of the jammed packings of {n} discs against their excess coordination Δz = z − 4 \
-             (rattlers removed), over Δφ ≥ {floor:.3}, on log–log axes, with the fitted power law and the theory's \
-             G/K ∝ Δz (its line drawn through the packings' geometric mean: only the slopes compare)."
+             (rattlers removed), over Δφ ≥ {}, on log–log axes, with the fitted power law and the theory's \
+             G/K ∝ Δz (its line drawn through the packings' geometric mean: only the slopes compare).",
+            crate::report::words::short(floor)
         ),
         image: line_chart(&chart, &series)?,
     }))

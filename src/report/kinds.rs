@@ -495,11 +495,18 @@ pub(super) fn contact_time_words(spec: &RunSpec) -> String {
             number(spec.t_c),
             law_name(spec.law)
         ),
-        LawSpec::Power { .. } => format!(
+        LawSpec::Power { .. } if spec.gamma == 0.0 => format!(
             "t_c = π√(m/(2k_t)) = {} s, the {} pair linearised at the deformation the scene expects (k_t its \
              tangent stiffness there)",
             number(spec.t_c),
             law_name(spec.law)
+        ),
+        LawSpec::Power { .. } => format!(
+            "t_c = π/√(2k_t/m − (γ/m)²) = {} s, the {} pair linearised at the deformation the scene expects (k_t its \
+             tangent stiffness there) with the bond dashpot γ = {} N s/m",
+            number(spec.t_c),
+            law_name(spec.law),
+            number(spec.gamma)
         ),
     }
 }

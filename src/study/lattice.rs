@@ -815,12 +815,15 @@ pub(super) fn measure(
     }
 }
 
-/// The continuum's ν of a regular square lattice of power-law springs with both diagonals,
-/// free to contract sideways ([`power_law_poisson_ratio`]; its E grows with the load and has no
-/// one value). Only for that network: the derivation needs k_x = k_y and both diagonals.
+/// The continuum's ν of a lattice of power-law springs (its E grows with the load and has no
+/// one value): 0 on a periodic strip, which cannot contract sideways (as for linear springs);
+/// free to contract, [`power_law_poisson_ratio`] of a regular square lattice with both
+/// diagonals, whose derivation needs k_x = k_y and both diagonals.
 fn power_law_continuum(spec: &RunSpec, l: &LatticeSpec, metrics: &mut LatticeMetrics) {
     let square_symmetric = l.lattice_type.is_square() && l.diagonals == Diagonals::Both && l.k_x == l.k_y;
-    if square_symmetric && !l.is_random() && l.supports != Supports::PeriodicX {
+    if l.supports == Supports::PeriodicX {
+        metrics.poisson_ratio_theory = Some(0.0);
+    } else if square_symmetric && !l.is_random() {
         metrics.poisson_ratio_theory = Some(power_law_poisson_ratio(l.k_diag / l.k_x, spec.law.beta()));
     }
 }

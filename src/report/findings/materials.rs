@@ -598,9 +598,7 @@ fn md_against_static<'a>(e: &Evidence<'a>) -> Option<(Vec<(f64, &'a RunRecord)>,
             relative(md, fem).map(|x| (x.abs(), r))
         })
         .collect();
-    let mut sorted: Vec<f64> = pairs.iter().map(|p| p.0).collect();
-    sorted.sort_by(f64::total_cmp);
-    let median = *sorted.get(sorted.len() / 2)?;
+    let median = crate::measure::median(pairs.iter().map(|p| p.0).collect())?;
     Some((pairs, median))
 }
 

@@ -34,7 +34,8 @@ impl SceneDamping {
         let range = match (ratios.first(), ratios.last()) {
             (Some(low), Some(high)) if sig(*low) == sig(*high) => format!("{} γ_crit", sig(*low)),
             (Some(low), Some(high)) => {
-                format!("{} to {} γ_crit (median {})", sig(*low), sig(*high), sig(ratios[ratios.len() / 2]))
+                let median = crate::measure::median(ratios.clone()).unwrap_or(f64::NAN);
+                format!("{} to {} γ_crit (median {})", sig(*low), sig(*high), sig(median))
             }
             _ => String::new(),
         };

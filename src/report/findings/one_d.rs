@@ -608,11 +608,13 @@ pub(super) fn hertz_pair_and_chain(e: &Evidence) -> Option<Answer> {
     let (t_err, _) = pair_errors(pair);
     let beta = pair.spec.law.beta();
     let mut sentences = vec![format!(
-        "A Hertz contact s = C δ^{} hit at v = {} m/s lasts t_c = 2 (δ_max/v) B(1/(β+1), ½)/(β+1) with \
-         δ_max = ((β+1)(m/2)v²/(2C))^(1/(β+1)), i.e. 2.9432 δ_max/v for β = 3/2: MD gives {} s against {} s \
+        "A power-law contact s = C δ^{} (Hertz: β = 3/2) hit at v = {} m/s lasts t_c = 2 (δ_max/v) B(1/(β+1), ½)/(β+1) \
+         with δ_max = ((β+1)(m/2)v²/(2C))^(1/(β+1)), i.e. {:.4} δ_max/v for β = {}: MD gives {} s against {} s \
          ({}) at t_c/{:.0}, and r = {} (no damping: 1).",
         sig(beta),
         sig(pair.spec.v0),
+        duration_over_overlap(beta),
+        number(beta),
         cell(pair.metrics.pair.contact_duration),
         cell(pair.metrics.pair.contact_duration_theory),
         t_err.map(rel).unwrap_or_default(),
@@ -645,8 +647,10 @@ pub(super) fn hertz_pair_and_chain(e: &Evidence) -> Option<Answer> {
         title: "Hertz springs in 1D",
         question: "Repeat the steps with a non-linear contact f ∝ C δ^β (Hertz, β = 3/2).",
         short: format!(
-            "Hertz t_c within {} of 2.9432 δ_max/v",
-            t_err.map(|x| rel(x.abs())).unwrap_or_default().trim_start_matches('+')
+            "{} t_c within {} of {:.4} δ_max/v",
+            if beta == 1.5 { "Hertz".to_string() } else { format!("β = {}:", number(beta)) },
+            t_err.map(|x| rel(x.abs())).unwrap_or_default().trim_start_matches('+'),
+            duration_over_overlap(beta)
         ),
         sentences,
         reference: format!(
@@ -660,45 +664,54 @@ pub(super) fn hertz_pair_and_chain(e: &Evidence) -> Option<Answer> {
     })
 }
 
+/// A power-law contact's undamped duration over δ_max/v: 2 B(1/(β+1), ½)/(β+1) (2.9432 for
+/// Hertz, π/2 for linear springs).
+fn duration_over_overlap(beta: f64) -> f64 {
+    2.0 * crate::theory::special::beta(1.0 / (beta + 1.0), 0.5) / (beta + 1.0)
+}
+
 /// The chain between walls moved in and out: equal gaps, secant and tangent stiffness.
 pub(super) fn walls(e: &Evidence) -> Option<Answer> {
     let relaxed =
         e.ok(|r| r.spec.chain().is_some_and(|c| c.relax.is_some()) && r.metrics.chain.secant_stiffness.is_some());
     let first = *relaxed.first()?;
-    let mut sentences = Vec::new();
-    let mut checks = Vec::new();
-    for linear in [true, false] {
-        let law: Vec<&RunRecord> =
-            relaxed.iter().copied().filter(|r| (r.spec.law == LawSpec::Linear) == linear).collect();
-        if let Some((sentence, within)) = walls_sentence(first, &law, linear) {
+    let mut betas: Vec<f64> = relaxed.iter().map(|r| r.spec.law.beta()).collect();
+    betas.sort_by(f64::total_cmp);
+    betas.dedup();
+    let (mut sentences, mut checks) = (Vec::new(), Vec::new());
+    for &beta in &betas {
+        let law: Vec<&RunRecord> = relaxed.iter().copied().filter(|r| r.spec.law.beta() == beta).collect();
+        if let Some((sentence, within)) = walls_sentence(first, &law, beta) {
             sentences.push(sentence);
             checks.push(within);
         }
     }
-    let scenes: Vec<String> = relaxed.iter().map(|r| r.spec.scene.clone()).collect();
-    if let Some(fit) = scenes.iter().find_map(|s| e.fit(s, "secant_stiffness").filter(|f| f.law != "linear")) {
+    let mut scenes: Vec<String> = relaxed.iter().map(|r| r.spec.scene.clone()).collect();
+    scenes.dedup();
+    for fit in scenes.iter().filter_map(|s| e.fit(s, "secant_stiffness").filter(|f| f.law != "linear")) {
+        let Some(predicted) = super::discussion::predicted_exponent(e, fit) else { continue };
         sentences.push(format!(
-            "Fitted over |ΔW| from {} to {} m: secant stiffness ∝ |ΔW|^{:.3} (R² = {:.4}) against the predicted 1/2.",
+            "Fitted over |ΔW| from {} to {} m: {}'s secant stiffness ∝ |ΔW|^{:.3} (R² = {:.4}) against the predicted \
+             β − 1 = {predicted:.3}.",
             sig(fit.points.first().map_or(0.0, |p| p.0)),
             sig(fit.points.last().map_or(0.0, |p| p.0)),
+            fit.scene,
             fit.fit.exponent,
             fit.fit.r_squared
         ));
-        checks.push((fit.fit.exponent - 0.5).abs() <= 0.05);
+        checks.push((fit.fit.exponent - predicted).abs() <= super::discussion::EXPONENT_TOLERANCE);
     }
-    let mut figures: Vec<_> = Vec::new();
-    for s in scenes.iter().collect::<std::collections::BTreeSet<_>>() {
-        figures.extend(e.figure(s, FigureKind::AgainstWallDisplacement));
-    }
+    let figures = scenes.iter().filter_map(|s| e.figure(s, FigureKind::AgainstWallDisplacement)).collect();
     Some(Answer {
         title: "The chain between moved walls",
         question: "Move the walls of the chain to different distances and analyse the equilibria (linear and \
                    non-linear).",
-        short: "equal gaps; linear stiffness k/(n+1), Hertz ∝ |ΔW|^½".into(),
+        short: walls_short(&betas),
         sentences,
         reference: format!(
             "Static equilibrium of n+1 equal springs; tolerance {WALL_TOLERANCE:e} (the relaxation stops at a \
-             residual force of 1e-9 N); the Hertz exponent within 0.05 of 1/2."
+             residual force of 1e-9 N); power-law springs s ∝ δ^β: the exponent within {} of β − 1 (Hertz: 1/2).",
+            super::discussion::EXPONENT_TOLERANCE
         ),
         see_also: None,
         verdict: Verdict::of(checks),
@@ -707,9 +720,22 @@ pub(super) fn walls(e: &Evidence) -> Option<Answer> {
     })
 }
 
-/// The relaxed chains of one law (`linear` or not) against the static answer in a sentence,
-/// and whether spacing and stiffness are within [`WALL_TOLERANCE`].
-fn walls_sentence(first: &RunRecord, runs: &[&RunRecord], linear: bool) -> Option<(String, bool)> {
+/// The summary's line of the walls: equal gaps, and each law's stiffness against |ΔW|.
+fn walls_short(betas: &[f64]) -> String {
+    let laws: Vec<String> = betas
+        .iter()
+        .map(|&beta| match beta {
+            1.0 => "linear stiffness k/(n+1)".to_string(),
+            1.5 => "Hertz ∝ |ΔW|^½".to_string(),
+            _ => format!("β = {} ∝ |ΔW|^{}", number(beta), number(beta - 1.0)),
+        })
+        .collect();
+    format!("equal gaps; {}", laws.join(", "))
+}
+
+/// The relaxed chains of one law (springs s ∝ δ^`beta`) against the static answer in a
+/// sentence, and whether spacing and stiffness are within [`WALL_TOLERANCE`].
+fn walls_sentence(first: &RunRecord, runs: &[&RunRecord], beta: f64) -> Option<(String, bool)> {
     // The error of the largest magnitude, with its sign (a chain softer than k/(n+1) is −).
     let worst = |pair: fn(&RunRecord) -> PairErrors| {
         runs.iter().filter_map(|r| relative(pair(r).0, pair(r).1)).max_by(|a, b| a.abs().total_cmp(&b.abs()))
@@ -718,7 +744,7 @@ fn walls_sentence(first: &RunRecord, runs: &[&RunRecord], linear: bool) -> Optio
     let se = worst(|r| (r.metrics.chain.secant_stiffness, r.metrics.chain.secant_stiffness_theory)).unwrap_or(0.0);
     let ta = worst(|r| (r.metrics.chain.tangent_stiffness, r.metrics.chain.tangent_stiffness_theory)).unwrap_or(0.0);
     let n = first.spec.chain().map_or(0, |c| c.n);
-    let sentence = if linear {
+    let sentence = if beta == 1.0 {
         format!(
             "Linear springs: the {n} particles relax to equal gaps W/(n+1) (W the walls' distance; largest error {}), and the chain's \
              secant and tangent stiffness equal k/(n+1) = {} N/m at every wall displacement (errors {} and {}).",
@@ -729,12 +755,15 @@ fn walls_sentence(first: &RunRecord, runs: &[&RunRecord], linear: bool) -> Optio
         )
     } else {
         format!(
-            "Hertz springs: equal gaps again (error {}), but the stiffness depends on how far the walls moved: \
-             secant and tangent follow s(δ)/ΔW (ΔW the walls' displacement) and s′(δ)/(n+1) (errors {} and {}); the tangent is 3/2 × the \
-             secant and an unloaded Hertz chain has no stiffness at all.",
+            "{} springs (β = {}): equal gaps again (error {}), but the stiffness depends on how far the walls moved: \
+             secant and tangent follow s(δ)/ΔW (ΔW the walls' displacement) and s′(δ)/(n+1) (errors {} and {}); the \
+             tangent is {} × the secant (β) and an unloaded chain of them has no stiffness at all.",
+            if beta == 1.5 { "Hertz" } else { "Power-law" },
+            number(beta),
             rel(sp),
             rel(se),
-            rel(ta)
+            rel(ta),
+            number(beta)
         )
     };
     Some((sentence, sp.abs().max(se.abs()).max(ta.abs()) <= WALL_TOLERANCE))

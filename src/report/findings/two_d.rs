@@ -214,9 +214,9 @@ pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
 fn choice_words(chosen: f64, isotropic: bool) -> String {
     if isotropic {
         format!(
-            "This campaign's moduli runs use k_d/k = {}, the one ratio at which the lattice is isotropic: its Zener \
-             ratio 2C44/(C11 − C12) = 2k_d/k is 1, so E and ν are the same in every direction, as in the isotropic \
-             solid it stands for, with ν = 1/3.",
+            "This campaign's moduli runs use k_d/k = {}, the one ratio at which the square lattice with both \
+             diagonals and k_y = k is isotropic: its Zener ratio 2C44/(C11 − C12) = 2k_d/k is 1, so E and ν are the \
+             same in every direction, as in the isotropic solid it stands for, with ν = 1/3.",
             crate::report::words::number(chosen)
         )
     } else {
