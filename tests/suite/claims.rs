@@ -1542,3 +1542,24 @@ fn walls_moved_in_and_out_by_the_same_distance_are_not_fitted() {
     let report = std::fs::read_to_string(dir.path().join("one").join("report.md")).unwrap();
     assert!(!report.contains("Δ^−") && !report.contains("Fitted over |ΔW|"), "{report}");
 }
+
+#[test]
+fn homogeneity_keeps_networks_of_different_diagonals_apart() {
+    // A block with one diagonal family shears freely under a pull, its edges straight lines; with
+    // both families the supports and point loads bend them (0.19 on 6 × 6). Set-ups had been
+    // keyed by load and supports alone, so the first network's number spoke for both. Each is
+    // now its own line, named by its diagonals where the campaign has more than one kind, with
+    // the value of its own run (stated to 4 digits: 5e-4 relative).
+    let yaml = "version: 1\nname: hom\nscenes:\n  - name: block\n    kind: lattice\n    lattice: {size: 6, k_diag_ratio: 0.5}\n    \
+                load: {case: tensile, per_node: 0.001}\n    relax: {method: fire}\n    grid:\n      lattice.diagonals: [rising, both]\n";
+    let records = execute_all(yaml);
+    let report = report_of("hom", yaml);
+    for (diagonals, record) in ["rising", "both"].iter().zip(&records) {
+        let line = line_with(&report, &format!("tensile, coursework supports, {diagonals} diagonals: "));
+        let stated = number_after(line, "diagonals: ");
+        let measured = record.metrics.lattice.homogeneity.unwrap();
+        assert!((stated / measured - 1.0).abs() < 5e-4, "{line}: {measured}");
+        // Straight below the relaxation's precision, 2e-3 (the moduli's static tolerance).
+        assert_eq!(line.contains("straight lines"), measured < 2e-3, "{line}");
+    }
+}

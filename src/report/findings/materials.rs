@@ -17,6 +17,9 @@ use crate::spec::{Diagonals, LoadCase};
 /// Homogeneity by block size (N_x, N_y).
 type BySize = BTreeMap<(usize, usize), f64>;
 
+/// A set-up whose homogeneity is compared over sizes: load case, supports and diagonals (names).
+type Setup = (&'static str, &'static str, &'static str);
+
 /// After relaxation: are the left and right edges straight lines?
 pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
     let regular = |r: &RunRecord| {
@@ -35,12 +38,14 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
             .to_string(),
     ];
     let mut rows = Vec::new();
-    for ((case, supports), sizes) in &by_size {
-        sentences.extend(homogeneity_sentence(case, supports, sizes));
+    // The diagonals are named only where the campaign measures more than one kind.
+    let mixed = by_size.keys().any(|k| k.2 != by_size.keys().next().map_or(k.2, |f| f.2));
+    for ((case, supports, diagonals), sizes) in &by_size {
+        let diagonals = if mixed { format!(", {diagonals} diagonals") } else { String::new() };
+        sentences.extend(homogeneity_sentence(case, &format!("{supports} supports{diagonals}"), sizes));
+        let cell = format!("{supports}{diagonals}");
         rows.extend(
-            sizes
-                .iter()
-                .map(|((nx, ny), h)| vec![case.to_string(), supports.to_string(), format!("{nx} × {ny}"), sig(*h)]),
+            sizes.iter().map(|((nx, ny), h)| vec![case.to_string(), cell.clone(), format!("{nx} × {ny}"), sig(*h)]),
         );
     }
     if !undefined.is_empty() {
@@ -77,25 +82,27 @@ pub(super) fn homogeneity(e: &Evidence) -> Option<Answer> {
     })
 }
 
-/// Per (load case, supports): homogeneity by lattice size, the first run of each size.
-fn homogeneity_by_setup(measured: &[&RunRecord]) -> Option<BTreeMap<(&'static str, &'static str), BySize>> {
-    let mut by_size: BTreeMap<(&'static str, &'static str), BySize> = BTreeMap::new();
+/// Per set-up (load case, supports, diagonals): homogeneity by lattice size, the first run of
+/// each size.
+fn homogeneity_by_setup(measured: &[&RunRecord]) -> Option<BTreeMap<Setup, BySize>> {
+    let mut by_size: BTreeMap<Setup, BySize> = BTreeMap::new();
     for r in measured {
         let l = r.spec.lattice()?;
         let value = r.metrics.lattice.homogeneity?;
-        by_size.entry((l.load_case.name(), l.supports.name())).or_default().entry((l.nx, l.ny)).or_insert(value);
+        let setup = (l.load_case.name(), l.supports.name(), l.diagonals.name());
+        by_size.entry(setup).or_default().entry((l.nx, l.ny)).or_insert(value);
     }
     Some(by_size)
 }
 
 /// The summary's homogeneity: the largest lattice of the coursework's set-up (tension on its
 /// supports), or of the first set-up when the campaign lacks it.
-fn homogeneity_short(by_size: &BTreeMap<(&'static str, &'static str), BySize>) -> String {
+fn homogeneity_short(by_size: &BTreeMap<Setup, BySize>) -> String {
     by_size
         .iter()
-        .find(|((case, supports), _)| *case == "tensile" && *supports == "coursework")
+        .find(|((case, supports, _), _)| *case == "tensile" && *supports == "coursework")
         .or_else(|| by_size.iter().next())
-        .and_then(|((case, supports), sizes)| {
+        .and_then(|((case, supports, _), sizes)| {
             sizes.iter().next_back().map(|((nx, ny), h)| format!("{case}, {supports}, {nx} × {ny}: {}", sig(*h)))
         })
         .unwrap_or_default()
@@ -119,8 +126,11 @@ fn top_row_sentence(tensile: &[&RunRecord]) -> Option<String> {
         let mean = top.iter().sum::<f64>() / top.len() as f64;
         let spread =
             top.iter().fold(f64::NEG_INFINITY, |m, &u| m.max(u)) - top.iter().fold(f64::INFINITY, |m, &u| m.min(u));
-        let diagonals =
-            if l.diagonals == crate::spec::Diagonals::None { "without diagonals" } else { "with diagonals" };
+        let diagonals = match l.diagonals {
+            Diagonals::None => "without diagonals".to_string(),
+            Diagonals::Both => "with diagonals".to_string(),
+            one => format!("with {} diagonals", one.name()),
+        };
         // A spread below 1e-9 of the lift is round-off: the row is flat.
         let relative = spread / mean.abs();
         let shape = if relative < 1e-9 {
@@ -141,8 +151,8 @@ fn top_row_sentence(tensile: &[&RunRecord]) -> Option<String> {
 /// an edge departs from its line by as much.
 const STRAIGHT: f64 = super::two_d::STATIC_TOLERANCE;
 
-/// How far one set-up's edges depart from straight lines, smallest against largest lattice,
-/// with the trend in words.
+/// How far one set-up's edges (`supports` in words, with its diagonals where they differ)
+/// depart from straight lines, smallest against largest lattice, with the trend in words.
 fn homogeneity_sentence(case: &str, supports: &str, sizes: &BySize) -> Option<String> {
     let (small, large) = (sizes.iter().next()?, sizes.iter().next_back()?);
     let trend = if sizes.values().all(|&h| h < STRAIGHT) {
@@ -165,7 +175,7 @@ fn homogeneity_sentence(case: &str, supports: &str, sizes: &BySize) -> Option<St
     };
     let at = |((nx, ny), h): (&(usize, usize), &f64)| format!("{} on {nx} × {ny}", sig(*h));
     let measured = if sizes.len() < 2 { at(small) } else { format!("{} and {}", at(small), at(large)) };
-    Some(format!("{case}, {supports} supports: {measured}{trend}."))
+    Some(format!("{case}, {supports}: {measured}{trend}."))
 }
 
 /// Non-linear 2D: moduli of power-law lattices (Hertz, β = 3/2) against the load, each fitted
