@@ -288,12 +288,16 @@ struct Race<'a> {
 /// Every [`Race`] among the bounded `runs`, the one that matters most last: the largest block
 /// (by node count), then the most methods (of equal ones, in campaign order).
 fn races<'a>(runs: &[&'a RunRecord]) -> Vec<Race<'a>> {
+    // Everything but the method: the network (type, diagonals, stiffnesses, law, cut seed), its
+    // supports and load, the material and the tolerance.
     let setup = |r: &RunRecord| {
         let l = r.spec.lattice().expect("a bounded run is a lattice's");
         let tolerance = r.spec.relax().and_then(|relax| relax.tolerance);
+        let network = (l.lattice_type, l.diagonals, l.k_x, l.k_y, l.k_diag, r.spec.law.beta(), l.seed);
         format!(
-            "{} {:?} {} {} {} {} {:?}",
+            "{} {network:?} {:?} {:?} {} {} {} {} {:?}",
             block(r),
+            l.supports,
             l.load_case,
             l.load_per_node,
             r.spec.k,
@@ -322,13 +326,15 @@ fn races<'a>(runs: &[&'a RunRecord]) -> Vec<Race<'a>> {
     races
 }
 
-/// What a race holds fixed besides its block and method, in words, (what, value): the load,
-/// the springs, the masses, the spacing and the tolerance ([`races`] groups by them exactly).
-fn setting(r: &RunRecord) -> [(&'static str, String); 5] {
+/// What a race holds fixed besides its block and method, in words, (what, value): the supports,
+/// the load, the springs, the masses, the spacing and the tolerance ([`races`] groups by them
+/// exactly, and by the network, which the scene's name tells).
+fn setting(r: &RunRecord) -> [(&'static str, String); 6] {
     let l = r.spec.lattice().expect("a bounded run is a lattice's");
     let tolerance = r.spec.relax().and_then(|relax| relax.tolerance).map_or_else(|| "none".to_string(), sig);
     let case = format!("{:?}", l.load_case).to_lowercase();
     [
+        ("supports", l.supports.name().to_string()),
         ("load", format!("{case}, {} N per node", sig(l.load_per_node))),
         ("k", format!("{} N/m", sig(r.spec.k))),
         ("m", format!("{} kg", sig(r.spec.mass))),
