@@ -1585,3 +1585,23 @@ fn a_relaxation_race_sets_a_method_only_against_others_on_the_same_supports() {
     let winners = line_with(&report, "The cheapest method block by block: ");
     assert!(winners.contains("supports clamped-bottom") && winners.contains("supports periodic-x"), "{winners}");
 }
+
+#[test]
+fn the_time_step_paragraph_names_the_minimised_scenes_where_others_run_in_time() {
+    // A campaign that relaxes one lattice scene by damped MD and another by FIRE had its
+    // lattices all called "relaxed by a minimiser, not followed in time".
+    let block = |name: &str, relax: &str, damping: &str| {
+        format!(
+            "  - name: {name}\n    kind: lattice\n    lattice: {{size: 4, k_diag_ratio: 0.5}}\n    \
+             load: {{case: tensile, per_node: 0.01}}\n    damping: {damping}\n    relax: {relax}\n"
+        )
+    };
+    let fire = block("fire", "{method: fire}", "{}");
+    let md = block("md", "{max_tc: 20000}", "{background: critical}");
+    let mixed = report_of("tsm", &format!("version: 1\nname: tsm\nscenes:\n{fire}{md}"));
+    let line = line_with(&mixed, "relaxed by a minimiser");
+    assert!(line.contains("The lattices of scene fire are relaxed by a minimiser (FIRE)"), "{line}");
+    let alone = report_of("tsm", &format!("version: 1\nname: tsm\nscenes:\n{fire}"));
+    let line = line_with(&alone, "relaxed by a minimiser");
+    assert!(line.contains("The lattices of this campaign are relaxed by a minimiser (FIRE)"), "{line}");
+}

@@ -210,7 +210,10 @@ fn time_step(e: &Evidence) -> Option<Paragraph> {
     let text = [
         Some(rule_words(pair_error)),
         fastest_mode_words(&integrated, verlet_network_sweep(e)),
-        minimiser_words(&e.ok(|r| at_rule(r) && minimised(r))),
+        minimiser_words(
+            &e.ok(|r| at_rule(r) && minimised(r)),
+            &e.ok(|r| at_rule(r) && !minimised(r) && matches!(r.spec.kind(), SceneKind::Chain | SceneKind::Lattice)),
+        ),
         power_law_words(&power),
         e.has_figure(FigureKind::WorkPrecision)
             .then(|| "The work–precision figures give the largest dt for a stated error.".to_string()),
@@ -267,8 +270,9 @@ fn fastest_mode_words(integrated: &[&RunRecord], swept: bool) -> Option<String> 
 
 /// What the rule's dt is to the `runs` relaxed by a minimiser: FIRE in the masses' metric
 /// steps from dt up to 10 dt, so its largest step is held against the limit 2; FIRE in the
-/// stiffness's metric takes a step of its own and CG none, so dt bounds nothing there.
-fn minimiser_words(runs: &[&RunRecord]) -> Option<String> {
+/// stiffness's metric takes a step of its own and CG none, so dt bounds nothing there. Where
+/// networks of the same kind are `integrated` in time, the minimised ones are named by scene.
+fn minimiser_words(runs: &[&RunRecord], integrated: &[&RunRecord]) -> Option<String> {
     let uses = |method: RelaxMethod| runs.iter().any(|r| r.spec.relax().is_some_and(|x| x.method == method));
     let methods: Vec<String> = [(RelaxMethod::Fire, "FIRE"), (RelaxMethod::Cg, "conjugate gradients")]
         .into_iter()
@@ -294,10 +298,17 @@ fn minimiser_words(runs: &[&RunRecord]) -> Option<String> {
         ),
         None => ": for them dt·ω_max is no stability bound".into(),
     };
+    let kinds = kinds_in_words(runs);
+    let whose = if integrated.iter().any(|r| runs.iter().any(|m| m.spec.kind() == r.spec.kind())) {
+        let mut scenes: Vec<String> = runs.iter().map(|r| r.spec.scene.clone()).collect();
+        scenes.dedup();
+        format!("{kinds} of scene{} {}", if scenes.len() > 1 { "s" } else { "" }, words::listed(&scenes, "and"))
+    } else {
+        format!("{kinds} of this campaign")
+    };
     (!methods.is_empty()).then(|| {
         format!(
-            "The {} of this campaign are relaxed by a minimiser ({}), not followed in time{bound}.",
-            kinds_in_words(runs),
+            "The {whose} are relaxed by a minimiser ({}), not followed in time{bound}.",
             words::listed(&methods, "or")
         )
     })
