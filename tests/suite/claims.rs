@@ -1605,3 +1605,18 @@ fn the_time_step_paragraph_names_the_minimised_scenes_where_others_run_in_time()
     let line = line_with(&alone, "relaxed by a minimiser");
     assert!(line.contains("The lattices of this campaign are relaxed by a minimiser (FIRE)"), "{line}");
 }
+
+#[test]
+fn diluted_networks_without_a_located_threshold_say_so() {
+    // Two cut fractions per seed cannot bracket a threshold (it takes three, rigid and floppy
+    // among them): the item had an empty answer and a table of its header alone, and the
+    // discussion a type with nothing after its name ("kagome (z = 4): .").
+    let yaml = "version: 1\nname: nothr\nscenes:\n  - name: kagome-cut\n    kind: lattice\n    lattice: {type: kagome, nx: 8, ny: 9}\n    \
+                relax: {method: fire}\n    supports: clamped-bottom\n    grid:\n      lattice.cut_fraction: [0.0, 0.1]\n      seed: [1, 2]\n";
+    let report = report_of("nothr", yaml);
+    let item = line_with(&report, "Lattice types: rigidity percolation](#");
+    assert!(item.contains("| no threshold located |"), "{item}");
+    assert!(line_with(&report, "No threshold is located: ").contains("diluted runs"), "{report}");
+    assert!(!report.contains("| type | N | seeds | p_c (± s.e.) |"), "{report}");
+    assert!(!report.contains("(z = 4): ."), "{report}");
+}

@@ -441,6 +441,9 @@ pub(super) fn percolation(e: &Evidence) -> Option<Answer> {
         .collect();
     diluted_scenes.dedup();
     let (thresholds, stiffness) = dilution(&runs)?;
+    if thresholds.is_empty() {
+        return Some(no_threshold(e, &runs, &diluted_scenes));
+    }
     let (rows, mut sentences) = threshold_rows(&thresholds);
     sentences.extend(largest_triangular_sentence(&thresholds));
     sentences.extend(unstable_sentence(&runs));
@@ -466,6 +469,30 @@ pub(super) fn percolation(e: &Evidence) -> Option<Answer> {
             rows,
         }),
     })
+}
+
+/// The item when no seed's threshold could be located: what a threshold needs, and what the
+/// diluted runs were.
+fn no_threshold(e: &Evidence, runs: &[&RunRecord], scenes: &[&str]) -> Answer {
+    let diluted: Vec<&&RunRecord> =
+        runs.iter().filter(|r| r.spec.lattice().is_some_and(|l| l.cut_fraction > 0.0)).collect();
+    let floppy = diluted.iter().filter(|r| r.status == RunStatus::Mechanism).count();
+    Answer {
+        title: "Lattice types: rigidity percolation",
+        question: "Where does a randomly diluted network lose its rigidity, against effective-medium theory?",
+        short: "no threshold located".into(),
+        sentences: vec![format!(
+            "No threshold is located: a seed's lies between its largest cut fraction still rigid and its smallest \
+             that is a mechanism, which takes at least three cut fractions of one network and seed with both \
+             kinds among them. Here {} diluted runs, {floppy} of them a mechanism.",
+            diluted.len()
+        )],
+        reference: "Effective-medium theory: p_c = 2d/z; an observation.".into(),
+        see_also: None,
+        verdict: Verdict::Observed,
+        figures: scenes.iter().filter_map(|scene| e.figure(scene, FigureKind::Dilution)).collect(),
+        table: None,
+    }
 }
 
 /// The tensile runs of the dilution study that say whether their network is rigid.
@@ -843,8 +870,11 @@ pub(super) fn against_continuum(e: &Evidence) -> Option<Paragraph> {
     let types: Vec<String> = LatticeType::ALL
         .into_iter()
         .filter(|&t| e.records.iter().any(|r| r.spec.lattice().is_some() && kind(r) == t))
-        .map(|t| type_against_continuum(e, t, &waves))
+        .filter_map(|t| type_against_continuum(e, t, &waves))
         .collect();
+    if types.is_empty() {
+        return None;
+    }
     Some(Paragraph {
         title: "The networks against their continuum",
         text: format!(
@@ -856,8 +886,9 @@ pub(super) fn against_continuum(e: &Evidence) -> Option<Paragraph> {
     })
 }
 
-/// One type's sentence of [`against_continuum`].
-fn type_against_continuum(e: &Evidence, t: LatticeType, waves: &[Wave]) -> String {
+/// One type's sentence of [`against_continuum`]; `None` where the campaign loaded no block of
+/// it (only diluted ones, say) and sent no wave through it.
+fn type_against_continuum(e: &Evidence, t: LatticeType, waves: &[Wave]) -> Option<String> {
     let tension = loaded_runs(e, t, LoadCase::Tensile, Supports::Coursework);
     let shear = loaded_runs(e, t, LoadCase::Shear, Supports::PeriodicX);
     let mut said: Vec<String> = [
@@ -872,7 +903,7 @@ fn type_against_continuum(e: &Evidence, t: LatticeType, waves: &[Wave]) -> Strin
     if !longitudinal.is_empty() {
         said.push(format!("its longitudinal wave at {} × c_L", span(&longitudinal)));
     }
-    format!("{} (z = {}): {}", t.name(), t.coordination(), said.join(", "))
+    (!said.is_empty()).then(|| format!("{} (z = {}): {}", t.name(), t.coordination(), said.join(", ")))
 }
 
 /// A modulus `name` (in `unit`) of the largest of `runs` that has one, against its continuum;
