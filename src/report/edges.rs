@@ -91,7 +91,10 @@ fn sideways_figure(scene: &str, shown: &[&RunRecord]) -> anyhow::Result<Figure> 
              colour per set-up) against their height, the largest lattice of each set-up. A homogeneous strain keeps \
              each edge a straight line: upright under tension (u_x = −ν ε x), leaning under shear (u_x = γ y); where \
              a line bends, the supports or the point loads on the top row disturb the strain.{}",
-            if shown.iter().any(|r| r.spec.lattice().is_some_and(|l| l.diagonals == Diagonals::None)) {
+            if shown
+                .iter()
+                .any(|r| r.spec.lattice().is_some_and(|l| l.lattice_type.is_square() && l.diagonals == Diagonals::None))
+            {
                 " Without diagonals (ν = 0) the edges do not move sideways under tension: their lines lie on u_x = 0."
             } else {
                 ""

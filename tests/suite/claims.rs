@@ -1620,3 +1620,15 @@ fn diluted_networks_without_a_located_threshold_say_so() {
     assert!(!report.contains("| type | N | seeds | p_c (± s.e.) |"), "{report}");
     assert!(!report.contains("(z = 4): ."), "{report}");
 }
+
+#[test]
+fn an_edge_figure_of_other_lattice_types_says_nothing_of_missing_diagonals() {
+    // Triangular and honeycomb networks have no diagonals to leave out (their `diagonals` is
+    // `none`): the edge figure's caption had told of the square lattice without them (ν = 0).
+    let yaml = "version: 1\nname: tri\nscenes:\n  - name: tri\n    kind: lattice\n    lattice: {type: triangular, nx: 8, ny: 8}\n    \
+                load: {per_node: 0.001}\n    relax: {method: fire}\n    grid:\n      load.case: [tensile, shear]\n      \
+                supports: [coursework, periodic-x]\n";
+    let report = report_of("tri", yaml);
+    assert!(report.contains("tri: the relaxed sideways displacement u_x"), "the edge figure is drawn");
+    assert!(!report.contains("Without diagonals (ν = 0)"), "{report}");
+}
