@@ -1504,7 +1504,7 @@ fn duration_over_overlap(beta: f64) -> f64 {
 #[test]
 fn power_law_chains_and_contacts_are_held_against_their_own_exponent() {
     // Items 6 and 8 had Hertz's numbers written in: a β = 2 contact was said to last
-    // 2.9432 δ_max/v (Hertz's; β = 2 gives 2.8043), and the β = 2 chain between walls was judged
+    // 2.9433 δ_max/v (Hertz's; β = 2 gives 2.8043), and the β = 2 chain between walls was judged
     // against |ΔW|^(1/2) (✗) where springs s ∝ δ^β give a secant stiffness ∝ |ΔW|^(β − 1) and a
     // tangent β times the secant. Stated to 4 decimals and 3 decimals: tolerances 5e-5 and 5e-3.
     for (law, beta) in [("hertz", 1.5), ("power, beta: 2.0", 2.0)] {

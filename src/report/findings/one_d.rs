@@ -664,7 +664,7 @@ pub(super) fn hertz_pair_and_chain(e: &Evidence) -> Option<Answer> {
     })
 }
 
-/// A power-law contact's undamped duration over δ_max/v: 2 B(1/(β+1), ½)/(β+1) (2.9432 for
+/// A power-law contact's undamped duration over δ_max/v: 2 B(1/(β+1), ½)/(β+1) (2.9433 for
 /// Hertz, π/2 for linear springs).
 fn duration_over_overlap(beta: f64) -> f64 {
     2.0 * crate::theory::special::beta(1.0 / (beta + 1.0), 0.5) / (beta + 1.0)
