@@ -607,20 +607,7 @@ pub(super) fn hertz_pair_and_chain(e: &Evidence) -> Option<Answer> {
     let pair = at_50(&pairs)?;
     let (t_err, _) = pair_errors(pair);
     let beta = pair.spec.law.beta();
-    let mut sentences = vec![format!(
-        "A power-law contact s = C δ^{} (Hertz: β = 3/2) hit at v = {} m/s lasts t_c = 2 (δ_max/v) B(1/(β+1), ½)/(β+1) \
-         with δ_max = ((β+1)(m/2)v²/(2C))^(1/(β+1)), i.e. {:.4} δ_max/v for β = {}: MD gives {} s against {} s \
-         ({}) at t_c/{:.0}, and r = {} (no damping: 1).",
-        sig(beta),
-        sig(pair.spec.v0),
-        duration_over_overlap(beta),
-        number(beta),
-        cell(pair.metrics.pair.contact_duration),
-        cell(pair.metrics.pair.contact_duration_theory),
-        t_err.map(rel).unwrap_or_default(),
-        pair.spec.dt_per_tc(),
-        cell(pair.metrics.pair.restitution),
-    )];
+    let mut sentences = vec![power_contact_words(pair, t_err)];
     let chains = e.ok(|r| {
         r.spec.chain().is_some_and(|c| c.relax.is_none() && c.wave.is_none())
             && r.spec.movie.is_none()
@@ -668,6 +655,25 @@ pub(super) fn hertz_pair_and_chain(e: &Evidence) -> Option<Answer> {
 /// Hertz, π/2 for linear springs).
 fn duration_over_overlap(beta: f64) -> f64 {
     2.0 * crate::theory::special::beta(1.0 / (beta + 1.0), 0.5) / (beta + 1.0)
+}
+
+/// The power-law pair's contact duration against the exact one, in a sentence.
+fn power_contact_words(pair: &RunRecord, t_err: Option<f64>) -> String {
+    let beta = pair.spec.law.beta();
+    format!(
+        "A power-law contact s = C δ^{} (Hertz: β = 3/2) hit at v = {} m/s lasts t_c = 2 (δ_max/v) B(1/(β+1), ½)/(β+1) \
+         with δ_max = ((β+1)(m/2)v²/(2C))^(1/(β+1)), i.e. {:.4} δ_max/v for β = {}: MD gives {} s against {} s \
+         ({}) at t_c/{:.0}, and r = {} (no damping: 1).",
+        sig(beta),
+        sig(pair.spec.v0),
+        duration_over_overlap(beta),
+        number(beta),
+        cell(pair.metrics.pair.contact_duration),
+        cell(pair.metrics.pair.contact_duration_theory),
+        t_err.map(rel).unwrap_or_default(),
+        pair.spec.dt_per_tc(),
+        cell(pair.metrics.pair.restitution),
+    )
 }
 
 /// The chain between walls moved in and out: equal gaps, secant and tangent stiffness.
