@@ -68,7 +68,7 @@ pub fn full_mass_restitution(k: f64, m: f64, gamma: f64) -> Result<f64, Overdamp
 /// // The γ that gives r = 0.5 unclamped (m = k = 1) gives 0.550 clamped.
 /// let g = mdsolids::theory::gamma_for_restitution(0.5, 1.0, 1.0);
 /// let r = mdsolids::theory::clamped_restitution(1.0, 1.0, g).unwrap();
-/// assert!((r - 0.550281).abs() < 1e-6);
+/// assert!((r - 0.550283).abs() < 1e-6);
 /// assert_eq!(mdsolids::theory::clamped_restitution(1.0, 1.0, 0.0).unwrap(), 1.0);
 /// ```
 pub fn clamped_restitution(k: f64, m: f64, gamma: f64) -> Result<f64, Overdamped> {
