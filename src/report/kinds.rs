@@ -122,6 +122,8 @@ pub(super) struct KindsPresent {
     has_pair: bool,
     has_chain: bool,
     has_lattice: bool,
+    /// A square lattice among them: the methods' continuum is its C11, C12, C44.
+    has_square_lattice: bool,
 }
 
 impl KindsPresent {
@@ -132,6 +134,7 @@ impl KindsPresent {
             has_pair: has(SceneKind::Pair),
             has_chain: has(SceneKind::Chain),
             has_lattice: has(SceneKind::Lattice),
+            has_square_lattice: campaign.runs.iter().any(|r| r.lattice().is_some_and(|l| l.lattice_type.is_square())),
         }
     }
 }

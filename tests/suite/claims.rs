@@ -1622,7 +1622,7 @@ fn diluted_networks_without_a_located_threshold_say_so() {
 }
 
 #[test]
-fn an_edge_figure_of_other_lattice_types_says_nothing_of_missing_diagonals() {
+fn other_lattice_types_are_not_described_as_square_ones() {
     // Triangular and honeycomb networks have no diagonals to leave out (their `diagonals` is
     // `none`): the edge figure's caption had told of the square lattice without them (ν = 0).
     let yaml = "version: 1\nname: tri\nscenes:\n  - name: tri\n    kind: lattice\n    lattice: {type: triangular, nx: 8, ny: 8}\n    \
@@ -1631,4 +1631,27 @@ fn an_edge_figure_of_other_lattice_types_says_nothing_of_missing_diagonals() {
     let report = report_of("tri", yaml);
     assert!(report.contains("tri: the relaxed sideways displacement u_x"), "the edge figure is drawn");
     assert!(!report.contains("Without diagonals (ν = 0)"), "{report}");
+    // Nor do the methods describe a square lattice's network and continuum.
+    assert!(
+        !report.contains("square lattice of spacing a") && !report.contains("square lattice's elastic"),
+        "{report}"
+    );
+    assert!(report.contains("elastic constants of the network's type"), "{report}");
+}
+
+#[test]
+fn a_mechanism_is_not_a_stalled_method() {
+    // A network the load moves at zero stiffness runs no method (the static test stops it
+    // first): "Where a method stalls" had listed such runs among the stalls.
+    let yaml = relaxation_race(6).replace(
+        "  - name: minimisers\n",
+        "  - name: floppy\n    kind: lattice\n    lattice: {size: 6, diagonals: none}\n    load: {case: shear, per_node: 0.01}\n    \
+         relax: {method: fire, tolerance: 1.0e-4}\n  - name: minimisers\n",
+    );
+    let report = report_of("race", &yaml);
+    assert!(!report.contains("floppy 6 × 6 (FIRE) ended"), "{report}");
+    assert!(
+        report.contains("1 run is a mechanism: the load drives a zero-stiffness motion, and no method ran."),
+        "{report}"
+    );
 }

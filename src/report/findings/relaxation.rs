@@ -219,10 +219,20 @@ fn minimiser_sentences(e: &Evidence) -> Vec<String> {
     sentences
 }
 
-/// The runs that did not relax, grouped by how they ended (one message, many runs).
+/// The runs that did not relax, grouped by how they ended (one message, many runs); a mechanism
+/// ran no method at all (the load drives a zero-stiffness motion), so it is counted apart.
 fn stalled_sentence(runs: &[&RunRecord]) -> Option<String> {
+    let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
+    let mechanism_words = match mechanisms {
+        0 => String::new(),
+        n => format!(
+            " {n} run{} {} a mechanism: the load drives a zero-stiffness motion, and no method ran.",
+            if n == 1 { "" } else { "s" },
+            if n == 1 { "is" } else { "are" }
+        ),
+    };
     let mut stalled: Vec<(String, Vec<String>)> = Vec::new();
-    for r in runs.iter().filter(|r| r.status != RunStatus::Ok) {
+    for r in runs.iter().filter(|r| !matches!(r.status, RunStatus::Ok | RunStatus::Mechanism)) {
         let how = format!("{}: {}", r.status.as_str(), r.message);
         let which = format!("{} {} ({})", r.spec.scene, block(r), method(r));
         match stalled.iter_mut().find(|(said, _)| *said == how) {
@@ -231,10 +241,10 @@ fn stalled_sentence(runs: &[&RunRecord]) -> Option<String> {
         }
     }
     if stalled.is_empty() {
-        return None;
+        return (mechanisms > 0).then(|| mechanism_words.trim_start().to_string());
     }
     let said: Vec<String> = stalled.iter().map(|(how, runs)| format!("{} ended {how}", runs.join(", "))).collect();
-    Some(format!("Where a method stalls: {}.", said.join("; ")))
+    Some(format!("Where a method stalls: {}.{mechanism_words}", said.join("; ")))
 }
 
 /// One row per bounded run: how it came to rest, its cost and its error against its bound.
