@@ -1627,8 +1627,17 @@ fn other_lattice_types_are_not_described_as_square_ones() {
     // `none`): the edge figure's caption had told of the square lattice without them (ν = 0).
     let yaml = "version: 1\nname: tri\nscenes:\n  - name: tri\n    kind: lattice\n    lattice: {type: triangular, nx: 8, ny: 8}\n    \
                 load: {per_node: 0.001}\n    relax: {method: fire}\n    grid:\n      load.case: [tensile, shear]\n      \
-                supports: [coursework, periodic-x]\n";
+                supports: [coursework, periodic-x]\n      relax.method: [fire, cg]\n";
     let report = report_of("tri", yaml);
+    // Each set-up it carried is named once, though two methods ran it.
+    let carried = line_with(&report, "It carried ");
+    let named: Vec<&str> =
+        carried.split("It carried ").nth(1).unwrap().split(';').next().unwrap().split(", ").collect();
+    let mut once = named.clone();
+    once.sort_unstable();
+    once.dedup();
+    assert_eq!(named.len(), 4, "{carried}");
+    assert_eq!(once.len(), named.len(), "{carried}");
     assert!(report.contains("tri: the relaxed sideways displacement u_x"), "the edge figure is drawn");
     assert!(!report.contains("Without diagonals (ν = 0)"), "{report}");
     // Nor do the methods describe a square lattice's network and continuum.

@@ -105,10 +105,10 @@ impl TypeModuli {
             let l = r.spec.lattice()?;
             let m = &r.metrics.lattice;
             let what = format!("{} on {}", l.load_case.name(), l.supports.name());
-            if r.status == RunStatus::Mechanism {
-                mechanisms.push(what.clone());
-            } else {
-                carried.push(what.clone());
+            // Each set-up once, however many runs (methods, seeds) it had.
+            let said = if r.status == RunStatus::Mechanism { &mut mechanisms } else { &mut carried };
+            if !said.contains(&what) {
+                said.push(what.clone());
             }
             let (md, fem, theory) = match l.load_case {
                 LoadCase::Shear => (m.shear_modulus, m.shear_modulus_fem, m.shear_modulus_theory),
