@@ -24,7 +24,7 @@ pub enum Class {
 }
 
 /// Timings and step counts.
-const COSTS: [&str; 4] = ["wall_s", "loop_s", "steps", "relax_steps"];
+const COSTS: [&str; 5] = ["wall_s", "loop_s", "solve_s", "steps", "relax_steps"];
 
 /// The inputs and the values resolved from them before a run (besides `*_theory`).
 const SETUP: [&str; 31] = [

@@ -122,9 +122,9 @@ pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> 
                 packing_movie_caption(scene, r)
             } else {
                 format!(
-                    "Movie of {scene} ({}): particles coloured by speed (colour bar in m/s), {}{}; \
+                    "Movie of {scene}{}: particles coloured by speed (colour bar in m/s), {}{}; \
                  displacements are drawn to scale unless the frame states a magnification × M.{}",
-                    r.spec.varied_in_words(|_| true),
+                    grid_values(r),
                     match r.spec.movie {
                         Some(movie) if movie.bond_strain => "bonds coloured by strain (red stretched, blue compressed)",
                         _ => "bonds in grey",
@@ -137,16 +137,23 @@ pub fn movie_refs(scene: &str, mine: &[&RunRecord], side_by_side: &[String]) -> 
         .collect()
 }
 
+/// A run's grid values in parentheses, after its scene's name in a caption; nothing for a
+/// scene without a grid ("Movie of compress ()" had an empty pair).
+fn grid_values(r: &RunRecord) -> String {
+    let values = r.spec.varied_in_words(|_| true);
+    if values.is_empty() { String::new() } else { format!(" ({values})") }
+}
+
 /// A packing's movie in words: discs to scale in their periodic box, coloured by their load,
 /// the contacts as lines as wide as their force.
 fn packing_movie_caption(scene: &str, r: &RunRecord) -> String {
     format!(
-        "Movie of {scene} ({}): the discs drawn to scale in their periodic box (red), each coloured by its load, \
+        "Movie of {scene}{}: the discs drawn to scale in their periodic box (red), each coloured by its load, \
          the sum of its contact forces Σ|f| (colour bar in N; discs that carry nothing, rattlers among them, dark), and every contact \
          as a black line from centre to centre whose width grows with its force: the force chains that carry the \
          pressure. The scales are those of the frames after the start; the random start's larger overlaps are drawn at full colour \
          and width.{}",
-        r.spec.varied_in_words(|_| true),
+        grid_values(r),
         compression_in_words(r.spec.packing()).unwrap_or_else(|| untimed_in_words(&r.spec).to_string()),
     )
 }

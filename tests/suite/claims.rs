@@ -1664,3 +1664,22 @@ fn a_mechanism_is_not_a_stalled_method() {
         "{report}"
     );
 }
+
+#[test]
+fn a_kicked_anisotropic_lattice_is_no_moduli_item_and_a_movie_without_a_grid_has_no_empty_brackets() {
+    // A lattice with one diagonal family, only kicked: the anisotropy item had said "MD =
+    // static within 0.0e0" (✓) over a table of dashes, with no load to measure a modulus by.
+    let kicked = "version: 1\nname: kick\nscenes:\n  - name: k\n    kind: lattice\n    lattice: {size: 8, diagonals: rising}\n    \
+                  supports: free\n    impulse: {node: top-centre, velocity: [0.0, -0.001]}\n    wave: {}\n";
+    let report = report_of("kick", kicked);
+    assert!(!report.contains("Anisotropic networks"), "{report}");
+    // A packing compressed as a movie, one run, no grid: its caption had read "Movie of
+    // compress (): ...". And Hertz packings of one seed had "inf standard errors".
+    let packings = "version: 1\nname: pk\nscenes:\n  - name: compress\n    kind: packing\n    \
+                    packing: {n: 32, fraction: 0.86, compress_from: 0.80, compress_steps: 4}\n    movie: {}\n  \
+                    - name: cg\n    kind: packing\n    packing: {n: 32}\n    relax: {method: cg}\n    grid:\n      \
+                    packing.fraction: [0.84, 0.88]\n      material.law: [linear, hertz]\n";
+    let report = report_of("pk", packings);
+    assert!(report.contains("Movie of compress: ") && !report.contains("Movie of compress ()"), "{report}");
+    assert!(!report.contains("inf standard errors"), "{report}");
+}

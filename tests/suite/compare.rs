@@ -289,3 +289,27 @@ fn the_physics_comes_first_and_a_missed_restitution_is_said() {
     assert!((numbers(missed)[0] / r_b - 1.0).abs() <= 5e-4 && missed.contains("0.5"), "{missed}");
     assert!(!report.contains("In A, pair's restitution"), "the linear pair meets its target: {report}");
 }
+
+#[test]
+fn a_static_solves_time_is_a_cost_not_a_difference() {
+    // `solve_s` (the static answer's share of `wall_s`) is a timing like `wall_s` and
+    // `loop_s`: two lattice campaigns had it among the "measured quantities that differ".
+    let dir = crate::common::scratch();
+    let reports = dir.path();
+    for (name, law) in [("lin", "linear"), ("hz", "hertz")] {
+        let yaml = format!(
+            "version: 1\nname: {name}\nscenes:\n  - name: tens\n    kind: lattice\n    material: {{law: {law}}}\n    \
+             lattice: {{size: 4, k_diag_ratio: 0.5}}\n    load: {{case: tensile, per_node: 0.001}}\n    relax: {{method: fire}}\n"
+        );
+        let file = reports.join(format!("{name}.yaml"));
+        std::fs::write(&file, yaml).unwrap();
+        succeed(reports, &["run", file.to_str().unwrap()]);
+    }
+    let (a, b) = (reports.join("lin"), reports.join("hz"));
+    succeed(reports, &["compare", a.to_str().unwrap(), b.to_str().unwrap()]);
+    let report = std::fs::read_to_string(reports.join("compare-lin-vs-hz").join("report.md")).unwrap();
+    let differ = report.split("### Measured quantities that differ beyond noise").nth(1).unwrap();
+    let differ = differ.split("### Inputs that differ").next().unwrap();
+    assert!(differ.contains("`youngs_modulus`"), "the moduli differ: {differ}");
+    assert!(!differ.contains("`solve_s`"), "{differ}");
+}

@@ -247,7 +247,19 @@ fn own_onset_sentences(runs: &[&RunRecord], linear: &Onset) -> Vec<String> {
         .filter_map(|beta| {
             let other = Onset::per_size(&onsets_of(runs, beta)).into_iter().find(|s| s.n == linear.n)?;
             let gap = other.mean - linear.mean;
-            let errors = gap.abs() / other.error.hypot(linear.error);
+            let spread = other.error.hypot(linear.error);
+            // With one seed a side there is no standard error, and no difference to judge by it.
+            if spread == 0.0 {
+                return Some(format!(
+                    "The {} packings, quenches of their own from the same random starts, jam at φ_J = {} at N = {} (one \
+                     seed): {} from the linear packings', with no standard error to judge it by.",
+                    law_words(beta),
+                    sig(other.mean),
+                    other.n,
+                    signed(gap),
+                ));
+            }
+            let errors = gap.abs() / spread;
             Some(format!(
                 "The {} packings, quenches of their own from the same random starts, jam at φ_J = {} at N = {} ({} \
                  seeds): {} from the linear packings', {} standard errors of the difference ({}; {CITATION} found \

@@ -444,12 +444,17 @@ pub(super) fn anisotropic(e: &Evidence) -> Option<Answer> {
 /// so the isotropic network a scene holds as its reference keeps its E_y and G beside its E_x.
 fn anisotropy_runs<'a>(e: &Evidence<'a>) -> Vec<&'a RunRecord> {
     let anisotropic = |r: &RunRecord| {
-        r.spec
-            .lattice()
-            .is_some_and(|l| l.k_x != l.k_y || !matches!(l.diagonals, Diagonals::Both | Diagonals::None) || l.rotated)
+        r.spec.lattice().is_some_and(|l| {
+            l.impulse.is_none()
+                && (l.k_x != l.k_y || !matches!(l.diagonals, Diagonals::Both | Diagonals::None) || l.rotated)
+        })
     };
     let scenes: Vec<&str> = e.ok(anisotropic).iter().map(|r| r.spec.scene.as_str()).collect();
-    e.ok(|r| scenes.contains(&r.spec.scene.as_str()) && r.spec.lattice().is_some_and(|l| !l.is_random()))
+    // Loaded runs only: a kicked anisotropic lattice has no moduli to measure in any direction.
+    e.ok(|r| {
+        scenes.contains(&r.spec.scene.as_str())
+            && r.spec.lattice().is_some_and(|l| !l.is_random() && l.impulse.is_none())
+    })
 }
 
 /// An anisotropic network in words, from its lattice whatever the grid varies: its diagonal
