@@ -88,8 +88,8 @@ fn speed_figure(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Option<Figur
         file: format!("plots/{scene}-speed-v0.svg"),
         caption: format!(
             "Sound speed by the recommended criterion against the impact speed v0, {scene}, with the fitted power \
-             law: linear springs give the same speed at every v0 (exponent 0); a Hertz chain without pre-load \
-             carries a solitary wave whose speed grows as v0^(1/5)."
+             law: linear springs give the same speed at every v0 (exponent 0); a chain of springs s ∝ δ^β without \
+             pre-load carries a solitary wave whose speed grows as v0^((β − 1)/(β + 1)), v0^(1/5) for Hertz."
         ),
         image: line_chart(&chart, &series)?,
     }))

@@ -13,6 +13,12 @@ pub fn minus_sign(text: String) -> String {
     }
 }
 
+/// `text` with its first letter upper case.
+pub fn capitalised(text: &str) -> String {
+    let mut chars = text.chars();
+    chars.next().map_or_else(String::new, |c| c.to_uppercase().collect::<String>() + chars.as_str())
+}
+
 /// A number with 6 significant digits, plain where that reads well, scientific otherwise.
 pub(super) fn number(x: f64) -> String {
     minus_sign(plain_or_scientific(x))

@@ -1683,3 +1683,28 @@ fn a_kicked_anisotropic_lattice_is_no_moduli_item_and_a_movie_without_a_grid_has
     assert!(report.contains("Movie of compress: ") && !report.contains("Movie of compress ()"), "{report}");
     assert!(!report.contains("inf standard errors"), "{report}");
 }
+
+#[test]
+fn springs_of_beta_two_are_not_called_hertz() {
+    // A β = 2 chain's solitary wave (c ∝ v0^(1/3)) beside a linear one: the abstract, item 25
+    // and the discussion had named the non-linear springs "Hertz", with Hertz's s′ ∝ δ^(1/2).
+    let chain = |name: &str, material: &str| {
+        format!(
+            "  - name: {name}\n    kind: chain\n    n: 60\n    node: first\n    material: {{{material}}}\n    wave: {{}}\n    \
+             time: {{duration_tc: 120}}\n    grid:\n      v0: [0.001, 0.01, 0.1]\n"
+        )
+    };
+    let yaml = format!(
+        "version: 1\nname: b2\nscenes:\n{}{}",
+        chain("beta2", "law: power, beta: 2.0, contact: true"),
+        chain("lin", "contact: true")
+    );
+    let report = report_of("b2", &yaml);
+    let abstract_line = line_with(&report, "springs make the answers depend on the amplitude");
+    assert!(abstract_line.starts_with("Power-law (β = 2) springs"), "{abstract_line}");
+    let item = line_with(&report, "is fitted to a power law,");
+    assert!(item.contains("power-law (β = 2) springs the exponent their stiffness s′(δ) ∝ δ^(β − 1)"), "{item}");
+    assert!(report.contains("| beta2 | β = 2 |"), "{report}");
+    // Only the coursework item's title keeps its name, "Linear against Hertz springs".
+    assert!(!report.contains("with Hertz springs") && !report.contains("A Hertz spring stiffens"), "{report}");
+}

@@ -59,11 +59,12 @@ fn linear_against_hertz(e: &Evidence) -> Option<Paragraph> {
         title: "Linear against non-linear springs",
         text: format!(
             "A linear spring's stiffness does not depend on how far it is stretched, so nothing a linear network \
-             does depends on the amplitude: here {}. A Hertz spring stiffens as it deforms and has no stiffness at \
+             does depends on the amplitude: here {}. A {} spring stiffens as it deforms and has no stiffness at \
              rest: its contact duration shortens with the impact speed, a chain between walls stiffens as the walls \
              move, the lattice's moduli grow with the load and its waves speed up with the kick: here {}. Superposition, \
              normal modes and one sound speed are linear ideas.",
             if linear.is_empty() { "no sweep over the amplitude".to_string() } else { linear.join(", ") },
+            nonlinear_name(e),
             hertz.join(", ")
         ) + &two_d_numbers(e).map_or_else(String::new, |s| format!(" {s}")),
     })
@@ -392,6 +393,39 @@ pub(super) fn symbol(column: &str) -> String {
 /// (the abstract, item 20 and this table say the same).
 pub(super) const EXPONENT_TOLERANCE: f64 = 0.05;
 
+/// The exponents β of the scenes of the non-linear fits, each once.
+fn nonlinear_exponents(e: &Evidence) -> Vec<f64> {
+    let mut betas: Vec<f64> = e
+        .fits
+        .iter()
+        .filter(|f| f.law != "linear")
+        .filter_map(|f| Some(e.all(|r| r.spec.scene == f.scene).first()?.spec.law.beta()))
+        .collect();
+    betas.sort_by(f64::total_cmp);
+    betas.dedup();
+    betas
+}
+
+/// The campaign's non-linear springs by name: "Hertz" where every one is β = 3/2, else
+/// "power-law" (with its β where there is one).
+fn nonlinear_name(e: &Evidence) -> String {
+    match nonlinear_exponents(e).as_slice() {
+        [] | [1.5] => "Hertz".into(),
+        [beta] => format!("power-law (β = {})", words::number(*beta)),
+        _ => "power-law".into(),
+    }
+}
+
+/// A fit's spring law in the table: linear, Hertz, or the power law's β.
+fn fit_law(e: &Evidence, fit: &ScalingFit) -> String {
+    let beta = e.all(|r| r.spec.scene == fit.scene).first().map_or(1.0, |r| r.spec.law.beta());
+    match beta {
+        1.0 => "linear".into(),
+        1.5 => "Hertz".into(),
+        _ => format!("β = {}", words::number(beta)),
+    }
+}
+
 /// Linear against Hertz springs: every fitted scaling law side by side with its prediction.
 pub(super) fn linear_and_hertz(e: &Evidence) -> Option<Answer> {
     let mut rows = Vec::new();
@@ -401,7 +435,7 @@ pub(super) fn linear_and_hertz(e: &Evidence) -> Option<Answer> {
         checks.push((fit.fit.exponent - predicted).abs() <= EXPONENT_TOLERANCE);
         rows.push(vec![
             fit.scene.clone(),
-            if fit.law == "linear" { "linear".into() } else { "Hertz".into() },
+            fit_law(e, fit),
             format!("{} against {}", symbol(fit.quantity), symbol(fit.against)),
             exponent(fit.fit.exponent),
             exponent(predicted),
@@ -411,17 +445,19 @@ pub(super) fn linear_and_hertz(e: &Evidence) -> Option<Answer> {
     }
     let linear = e.fits.iter().filter(|f| f.law == "linear").count();
     let hertz = e.fits.iter().filter(|f| f.law != "linear").count();
+    let name = nonlinear_name(e);
+    let stiffness = if name == "Hertz" { "δ^(1/2)" } else { "δ^(β − 1)" };
     (linear > 0 && hertz > 0).then(|| Answer {
         title: "Linear against Hertz springs",
         question: "Discuss the difference between the linear and the non-linear model (1D and 2D).",
-        short: format!("{linear} linear and {hertz} Hertz scaling laws against their predictions"),
+        short: format!("{linear} linear and {hertz} {name} scaling laws against their predictions"),
         sentences: vec![format!(
             "Every quantity this campaign sweeps over an amplitude (impact speed, load, wall displacement) is fitted \
-             to a power law, {linear} with linear and {hertz} with Hertz springs: linear springs give exponent 0, \
-             Hertz springs the exponent their stiffness s′(δ) ∝ δ^(1/2) predicts. The discussion below puts the \
-             difference in words."
+             to a power law, {linear} with linear and {hertz} with {name} springs: linear springs give exponent 0, \
+             {name} springs the exponent their stiffness s′(δ) ∝ {stiffness} predicts. The discussion below puts \
+             the difference in words."
         )],
-        reference: format!("Exponent 0 (linear) and the Hertz predictions; tolerance {EXPONENT_TOLERANCE}."),
+        reference: format!("Exponent 0 (linear) and the {name} predictions; tolerance {EXPONENT_TOLERANCE}."),
         see_also: None,
         verdict: Verdict::of(checks),
         figures: Vec::new(),
@@ -455,7 +491,8 @@ pub(super) fn hertz_headline(e: &Evidence) -> Option<String> {
     }
     (!laws.is_empty()).then(|| {
         format!(
-            "Hertz springs make the answers depend on the amplitude, where linear springs give exponent 0: {}.",
+            "{} springs make the answers depend on the amplitude, where linear springs give exponent 0: {}.",
+            words::capitalised(&nonlinear_name(e)),
             laws.join(", ")
         )
     })

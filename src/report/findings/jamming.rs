@@ -431,17 +431,11 @@ fn scalings_sentence(beta: f64, size: &Onset, fitted: &[Scaling], judged: bool) 
     };
     format!(
         "{} contacts, N = {}, over Δφ ≥ {} ({FIT_FLOOR} times the precision of each packing's own φ_J; {how}): {}.",
-        capitalised(&law_words(beta)),
+        words::capitalised(&law_words(beta)),
         size.n,
         sig(size.fit_floor()),
         parts.join(", ")
     )
-}
-
-/// `text` with its first letter upper case.
-fn capitalised(text: &str) -> String {
-    let mut chars = text.chars();
-    chars.next().map_or_else(String::new, |c| c.to_uppercase().collect::<String>() + chars.as_str())
 }
 
 /// Where do random packings of discs jam, and how do their pressure, contacts and moduli grow
@@ -620,7 +614,7 @@ fn correction_sentence(runs: &[&RunRecord], beta: f64, size: &Onset, whole: &[Sc
         .collect();
     Some(format!(
         "{} contacts, N = {}, refitted over the lower half of the decades of Δφ ({} ≤ Δφ ≤ {}): {}; {verdict}.",
-        capitalised(&law_words(beta)),
+        words::capitalised(&law_words(beta)),
         size.n,
         sig(size.fit_floor()),
         sig(ceiling),
@@ -645,7 +639,7 @@ fn ratio_sentence(beta: f64, n: usize, ratio: &Scaling, implied: Option<f64>) ->
     format!(
         "{} contacts, N = {n}: G/K ∝ (z − 4)^{} over {} packings, against the theory's 1 (G ∝ K Δz: shear costs what \
          the contacts beyond the isostatic 4 give), {} {EXPONENT_TOLERANCE}{implied}.",
-        capitalised(&law_words(beta)),
+        words::capitalised(&law_words(beta)),
         ratio.exponent_words(),
         ratio.points.len(),
         if ratio.within() { "within" } else { "outside" }
