@@ -1708,3 +1708,23 @@ fn springs_of_beta_two_are_not_called_hertz() {
     // Only the coursework item's title keeps its name, "Linear against Hertz springs".
     assert!(!report.contains("with Hertz springs") && !report.contains("A Hertz spring stiffens"), "{report}");
 }
+
+#[test]
+fn spread_networks_are_said_to_be_pulled_the_ways_they_were() {
+    // The sentence had said "(each network along y and along x)" of networks pulled along y
+    // only; with tensile-x beside tensile it is both.
+    let spread = |cases: &str| {
+        format!(
+            "version: 1\nname: sp\nscenes:\n  - name: spread\n    kind: lattice\n    lattice: {{size: 6, k_diag_ratio: 0.5, \
+             stiffness_spread: 0.4}}\n    load: {{per_node: 0.01}}\n    relax: {{method: fire}}\n    grid:\n      \
+             load.case: {cases}\n      seed: [1, 2]\n"
+        )
+    };
+    for (cases, words) in
+        [("[tensile]", "(pulled along y)"), ("[tensile, tensile-x]", "(each network along y and along x)")]
+    {
+        let report = report_of("sp", &spread(cases));
+        let line = line_with(&report, "spread runs in tension (");
+        assert!(line.contains(&format!("spread runs in tension {words}")), "{cases}: {line}");
+    }
+}

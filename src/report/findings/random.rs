@@ -299,14 +299,24 @@ fn spread_sentence(spread: &[&RunRecord], bounded: &[(&RunRecord, f64, (f64, f64
          the same load: its bond forces balance the load in the spread network too (Reuss: E ≥ E0/⟨1/(1 + w U)⟩) and \
          its deformation fits it (Voigt: E ≤ E0 ⟨1 + w U⟩), ⟨⟩ weighted by the uniform network's bond energies under \
          this load (so the Voigt bound too may lie below E0). \
-         {within} of the {} spread runs in tension (each network along y and along x) lie within their bounds{}, the \
-         nearest {} of E inside one.",
+         {within} of the {} spread runs in tension ({}) lie within their bounds{}, the nearest {} of E inside one.",
         first.spec.scene,
         moduli.join("; "),
         bounded.len(),
+        pulled_words(bounded),
         if within == bounded.len() { "" } else { " (outside: the network or its measurement is wrong)" },
         sig(nearest)
     ))
+}
+
+/// Which ways the bounded runs pulled their networks: along y, along x (turned), or both.
+fn pulled_words(bounded: &[(&RunRecord, f64, (f64, f64))]) -> &'static str {
+    let turned = |r: &RunRecord| r.spec.lattice().is_some_and(|l| l.rotated);
+    match (bounded.iter().any(|b| !turned(b.0)), bounded.iter().any(|b| turned(b.0))) {
+        (true, true) => "each network along y and along x",
+        (false, true) => "pulled along x",
+        _ => "pulled along y",
+    }
 }
 
 /// The spread networks' mean moduli at one spread w.
