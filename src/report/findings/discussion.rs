@@ -5,7 +5,8 @@
 use serde::Serialize;
 
 use super::finding::{
-    Answer, Evidence, Table, Verdict, cell, fastest_relaxation, noise, relative, sig, size_on_coursework_supports,
+    Answer, Evidence, Table, Verdict, cell, exponents, fastest_relaxation, noise, relative, sig,
+    size_on_coursework_supports,
 };
 use crate::model::LawSpec;
 use crate::report::figure::FigureKind;
@@ -361,7 +362,7 @@ fn deformation_words(kind: SceneKind, deformation: Deformation) -> String {
 /// ∝ F^((β−1)/β) and a chain's stiffness ∝ |ΔW|^(β−1), since s′ ∝ δ^(β−1) and F ∝ δ^β.
 /// Hertz (β = 3/2): 1/5, 1/3 and 1/2; linear (β = 1): 0.
 pub(super) fn predicted_exponent(e: &Evidence, fit: &ScalingFit) -> Option<f64> {
-    let beta = e.all(|r| r.spec.scene == fit.scene).first()?.spec.law.beta();
+    let beta = fit_scene_run(e, fit)?.spec.law.beta();
     match fit.quantity {
         "sound_speed" => Some((beta - 1.0) / (beta + 1.0)),
         q if q.contains("modulus") => Some((beta - 1.0) / beta),
@@ -395,15 +396,12 @@ pub(super) const EXPONENT_TOLERANCE: f64 = 0.05;
 
 /// The exponents β of the scenes of the non-linear fits, each once.
 fn nonlinear_exponents(e: &Evidence) -> Vec<f64> {
-    let mut betas: Vec<f64> = e
-        .fits
-        .iter()
-        .filter(|f| f.law != "linear")
-        .filter_map(|f| Some(e.all(|r| r.spec.scene == f.scene).first()?.spec.law.beta()))
-        .collect();
-    betas.sort_by(f64::total_cmp);
-    betas.dedup();
-    betas
+    exponents(e.fits.iter().filter(|f| f.law != "linear").filter_map(|f| fit_scene_run(e, f)))
+}
+
+/// The first run of a fit's scene: its spring law is the fit's.
+fn fit_scene_run<'a>(e: &Evidence<'a>, fit: &ScalingFit) -> Option<&'a RunRecord> {
+    e.all(|r| r.spec.scene == fit.scene).first().copied()
 }
 
 /// The campaign's non-linear springs by name: "Hertz" where every one is β = 3/2, else
@@ -418,7 +416,7 @@ fn nonlinear_name(e: &Evidence) -> String {
 
 /// A fit's spring law in the table: linear, Hertz, or the power law's β.
 fn fit_law(e: &Evidence, fit: &ScalingFit) -> String {
-    let beta = e.all(|r| r.spec.scene == fit.scene).first().map_or(1.0, |r| r.spec.law.beta());
+    let beta = fit_scene_run(e, fit).map_or(1.0, |r| r.spec.law.beta());
     match beta {
         1.0 => "linear".into(),
         1.5 => "Hertz".into(),

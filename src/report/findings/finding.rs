@@ -201,6 +201,14 @@ pub fn rel(e: f64) -> String {
     crate::report::words::minus_sign(format!("{e:+.1e}"))
 }
 
+/// The spring laws' exponents β among `runs` (1 for linear springs), rising, each once.
+pub(super) fn exponents<'a>(runs: impl IntoIterator<Item = &'a RunRecord>) -> Vec<f64> {
+    let mut betas: Vec<f64> = runs.into_iter().map(|r| r.spec.law.beta()).collect();
+    betas.sort_by(f64::total_cmp);
+    betas.dedup();
+    betas
+}
+
 /// A loaded (not kicked), regular, linear lattice: the coursework's moduli runs.
 pub(super) fn regular(r: &RunRecord) -> Option<&LatticeSpec> {
     r.spec.lattice().filter(|l| {

@@ -6,7 +6,7 @@
 
 use std::collections::BTreeMap;
 
-use super::finding::{Answer, Evidence, Table, Verdict, plus_minus, sig, signed};
+use super::finding::{Answer, Evidence, Table, Verdict, exponents, plus_minus, sig, signed};
 use crate::measure::line_fit;
 use crate::report::figure::{FigureKind, FigureRef};
 use crate::report::jamming::{
@@ -82,9 +82,7 @@ struct Compared {
 /// [`STRAINED_AGREEMENT`], and where they part, why ([`parted_words`]).
 fn strained_sentence(runs: &[&RunRecord]) -> Option<String> {
     let jammed: Vec<&RunRecord> = runs.iter().copied().filter(|r| jammed(r)).collect();
-    let mut betas: Vec<f64> = jammed.iter().map(|r| r.spec.law.beta()).collect();
-    betas.sort_by(f64::total_cmp);
-    betas.dedup();
+    let betas = exponents(jammed.iter().copied());
     let (mut laws, mut compared) = (Vec::new(), Vec::new());
     for beta in betas {
         let mut counts = Vec::new();
@@ -241,7 +239,7 @@ fn agrees(strained: f64, matrix: f64) -> bool {
 /// each with their φ_J at the largest N ([`onsets_of`]) against the linear packings', whose
 /// difference O'Hern et al. found none of (φ_J does not depend on the potential).
 fn own_onset_sentences(runs: &[&RunRecord], linear: &Onset) -> Vec<String> {
-    contact_laws(runs)
+    exponents(runs.iter().copied())
         .into_iter()
         .filter(|&beta| beta != 1.0)
         .filter_map(|beta| {
@@ -274,14 +272,6 @@ fn own_onset_sentences(runs: &[&RunRecord], linear: &Onset) -> Vec<String> {
             ))
         })
         .collect()
-}
-
-/// The contact laws' exponents β among `runs`, each once, rising.
-fn contact_laws(runs: &[&RunRecord]) -> Vec<f64> {
-    let mut laws: Vec<u64> = runs.iter().map(|r| r.spec.law.beta().to_bits()).collect();
-    laws.sort_unstable();
-    laws.dedup();
-    laws.into_iter().map(f64::from_bits).collect()
 }
 
 /// The contact law in words, from its exponent β.
@@ -525,7 +515,7 @@ fn isostatic_words(runs: &[&RunRecord], n: usize) -> Option<(String, Vec<String>
 /// ([`onsets_of`]), in sentences and table rows (the largest N of each law judged).
 fn all_scalings(runs: &[&RunRecord]) -> (Vec<String>, Vec<Vec<String>>) {
     let (mut sentences, mut rows) = (Vec::new(), Vec::new());
-    for beta in contact_laws(runs) {
+    for beta in exponents(runs.iter().copied()) {
         let onsets = &onsets_of(runs, beta);
         let sizes = Onset::per_size(onsets);
         let fitted: Vec<(&Onset, Vec<Scaling>)> = sizes

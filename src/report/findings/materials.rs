@@ -8,7 +8,9 @@ use std::collections::BTreeMap;
 
 use super::block::Block;
 use super::discussion::{EXPONENT_TOLERANCE, predicted_exponent, symbol};
-use super::finding::{Answer, Evidence, Table, Verdict, cell, noise, percent, rel, relative, shear_name, sig};
+use super::finding::{
+    Answer, Evidence, Table, Verdict, cell, exponents, noise, percent, rel, relative, shear_name, sig,
+};
 use crate::measure::{power_law_poisson_ratio, youngs_modulus_along};
 use crate::model::LawSpec;
 use crate::runner::RunRecord;
@@ -234,17 +236,9 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
     })
 }
 
-/// The exponents of the loaded power-law runs (sorted, each once).
-fn exponents_of(runs: &[&RunRecord]) -> Vec<f64> {
-    let mut betas: Vec<f64> = runs.iter().map(|r| r.spec.law.beta()).collect();
-    betas.sort_by(f64::total_cmp);
-    betas.dedup();
-    betas
-}
-
 /// Why a power-law lattice's moduli grow with the load, with this campaign's exponents.
 fn power_law_words(runs: &[&RunRecord]) -> String {
-    let betas = exponents_of(runs);
+    let betas = exponents(runs.iter().copied());
     let each = |f: &dyn Fn(f64) -> String| words::listed(&betas.iter().map(|&b| f(b)).collect::<Vec<_>>(), "and");
     format!(
         "A spring s = C δ^β with β > 1 (Hertz: 3/2) stiffens as it is stretched: under a load F its bonds stretch by \
@@ -257,7 +251,7 @@ fn power_law_words(runs: &[&RunRecord]) -> String {
 
 /// Tangent over secant Young's modulus of each run, by exponent: β for springs s ∝ δ^β.
 fn tangent_over_secant(runs: &[&RunRecord]) -> Option<String> {
-    let groups: Vec<String> = exponents_of(runs)
+    let groups: Vec<String> = exponents(runs.iter().copied())
         .into_iter()
         .filter_map(|beta| {
             let ratios: Vec<String> = runs

@@ -2,7 +2,7 @@
 //! restitution, the time step, the chain of 11 against its normal modes, Hertz springs, and the
 //! chain between moved walls.
 
-use super::finding::{Answer, Evidence, Table, Verdict, cell, rel, relative, sig};
+use super::finding::{Answer, Evidence, Table, Verdict, cell, exponents, rel, relative, sig};
 use crate::measure::convergence_order;
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, representative};
@@ -681,9 +681,7 @@ pub(super) fn walls(e: &Evidence) -> Option<Answer> {
     let relaxed =
         e.ok(|r| r.spec.chain().is_some_and(|c| c.relax.is_some()) && r.metrics.chain.secant_stiffness.is_some());
     let first = *relaxed.first()?;
-    let mut betas: Vec<f64> = relaxed.iter().map(|r| r.spec.law.beta()).collect();
-    betas.sort_by(f64::total_cmp);
-    betas.dedup();
+    let betas = exponents(relaxed.iter().copied());
     let (mut sentences, mut checks) = (Vec::new(), Vec::new());
     for &beta in &betas {
         let law: Vec<&RunRecord> = relaxed.iter().copied().filter(|r| r.spec.law.beta() == beta).collect();
