@@ -106,3 +106,8 @@ pub fn listed(items: &[String], last: &str) -> String {
         [init @ .., tail] => format!("{} {last} {tail}", init.join(", ")),
     }
 }
+
+/// `n` and its noun, plural unless `n` is 1: "1 run", "6 runs".
+pub fn counted(n: usize, noun: &str) -> String {
+    if n == 1 { format!("1 {noun}") } else { format!("{n} {noun}s") }
+}

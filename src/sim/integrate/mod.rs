@@ -73,6 +73,17 @@ impl IntegratorKind {
         }
     }
 
+    /// Order in dt of the energy balance's error: 1 for symplectic Euler, 2 for the Verlet
+    /// schemes and for Gear (its dissipated energy is booked by the trapezoidal rule), 4 for RK4
+    /// and Forest–Ruth (docs/physics.md, "Integrators, accuracy and stability").
+    pub fn energy_order(self) -> u32 {
+        match self {
+            IntegratorKind::SymplecticEuler => 1,
+            IntegratorKind::PositionVerlet | IntegratorKind::VelocityVerlet | IntegratorKind::Gear => 2,
+            IntegratorKind::Rk4 | IntegratorKind::ForestRuth => 4,
+        }
+    }
+
     /// Whether velocity-dependent forces (dashpots, background damping) are allowed.
     pub fn allows_damping(self) -> bool {
         self != IntegratorKind::ForestRuth
