@@ -37,9 +37,9 @@ pub(super) fn is_dotted(name: &str) -> bool {
 }
 
 /// The top-level fields of a scene a grid may vary (`RawScene` in `spec/raw.rs`). Their columns
-/// have no dot, and `v0`, `n` and `supports` share theirs with the resolved value every run has,
+/// have no dot, and `v0`, `n`, `supports` and `seed` share theirs with the resolved value every run has,
 /// so that such a field is varied shows only as more than one value within a scene.
-const TOP_LEVEL_PARAMETERS: [&str; 6] = ["v0", "gap", "n", "node", "wall_distance", "supports"];
+const TOP_LEVEL_PARAMETERS: [&str; 7] = ["v0", "gap", "n", "node", "wall_distance", "supports", "seed"];
 
 /// A column that may hold a grid parameter.
 fn may_be_parameter(name: &str) -> bool {

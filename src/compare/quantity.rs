@@ -82,7 +82,7 @@ pub fn class(name: &str) -> Class {
 /// first match counts, so longer names come first. k and its kin are C in N/m^β for power-law
 /// springs: written N/m^β for both. Pure numbers (ratios, counts, relative errors) are listed
 /// as "1" like any other unit: a column not listed has no unit shown, never a wrong one.
-const UNITS: [(&str, &str); 74] = [
+const UNITS: [(&str, &str); 91] = [
     // Costs and counts.
     ("wall_s", "s"),
     ("loop_s", "s"),
@@ -144,6 +144,24 @@ const UNITS: [(&str, &str); 74] = [
     ("arrival_time", "s"),
     ("contact_duration", "s"),
     ("sound_speed", "m/s"),
+    // A packing's moduli and pressure are 2D: force per length.
+    ("bulk_modulus_2d", "N/m"),
+    ("shear_modulus_2d", "N/m"),
+    ("pressure", "N/m"),
+    ("energy", "J"),
+    ("box_side", "m"),
+    ("discs", "1"),
+    ("radius_ratio", "1"),
+    ("packing_fraction", "1"),
+    ("own_jamming_fraction", "1"),
+    ("fraction", "1"),
+    ("contacts", "1"),
+    ("backbone_coordination", "1"),
+    ("rattler_fraction", "1"),
+    ("bulk_strain_contact_changes", "1"),
+    ("shear_strain_contact_changes", "1"),
+    ("packing_relax_steps", "1"),
+    ("decompressions", "1"),
     ("youngs_modulus", "Pa"),
     ("shear_modulus", "Pa"),
     ("poisson_ratio", "1"),

@@ -313,3 +313,36 @@ fn a_static_solves_time_is_a_cost_not_a_difference() {
     assert!(differ.contains("`youngs_modulus`"), "the moduli differ: {differ}");
     assert!(!differ.contains("`solve_s`"), "{differ}");
 }
+
+/// A small packing campaign of contact law `law` over two fractions and two seeds.
+fn packings(name: &str, law: &str) -> String {
+    format!(
+        "version: 1\nname: {name}\nscenes:\n  - name: pk\n    kind: packing\n    packing: {{n: 16}}\n    \
+         material: {{law: {law}}}\n    grid:\n      packing.fraction: [0.86, 0.9]\n      seed: [1, 2]\n"
+    )
+}
+
+/// Two packing campaigns that both vary the seed join seed with seed: each side's 4 runs meet
+/// their one twin (4 rows, not 8 of every seed against every other, different random states);
+/// and a packing's 2D moduli and pressure are written in N/m, not the lattices' Pa.
+#[test]
+fn packings_are_joined_seed_by_seed_and_their_moduli_are_per_length() {
+    let dir = crate::common::scratch();
+    let reports = dir.path();
+    for (name, law) in [("lin", "linear"), ("hz", "hertz")] {
+        let file = reports.join(format!("{name}.yaml"));
+        std::fs::write(&file, packings(name, law)).unwrap();
+        succeed(reports, &["run", file.to_str().unwrap()]);
+    }
+    let (a, b) = (reports.join("lin"), reports.join("hz"));
+    let stdout = succeed(reports, &["compare", a.to_str().unwrap(), b.to_str().unwrap()]);
+    assert!(stdout.contains("4 joined rows"), "{stdout}");
+    let out = reports.join("compare-lin-vs-hz");
+    let joined = read(&out.join("compare.parquet"));
+    assert_eq!(floats(&joined, "seed_a"), floats(&joined, "seed_b"));
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    for quantity in ["shear_modulus_2d", "bulk_modulus_2d", "pressure"] {
+        let line = report.lines().find(|l| l.contains(&format!("| `{quantity}` |"))).expect(&report);
+        assert!(line.contains("| N/m |"), "{line}");
+    }
+}
