@@ -1747,3 +1747,25 @@ fn a_first_order_integrator_is_held_to_its_own_energy_error() {
         }
     }
 }
+
+#[test]
+fn a_pair_and_a_chain_beside_a_lattice_type_study_keep_their_items() {
+    // One triangular lattice makes a campaign a study of lattice types; its pair and chain
+    // are no lattices, so their coursework items stay, before the study's own.
+    let scenes = "version: 1\nname: mx\ndefaults:\n  material: {mass: 1.0, k: 1.0}\nscenes:\n  - name: pair\n    \
+                  kind: pair\n    v0: 1.0\n    grid:\n      damping.restitution: [1.0, 0.5]\n  - name: chain\n    \
+                  kind: chain\n    n: 11\n    v0: 0.1\n    time: {duration_tc: 40}\n";
+    let triangular = "  - name: tri\n    kind: lattice\n    lattice: {type: triangular, size: 12}\n    supports: free\n    \
+                      impulse: {node: top-right, velocity: [0.0, -0.001]}\n    wave: {}\n    \
+                      time: {integrator: velocity-verlet}\n";
+    for study in [false, true] {
+        let yaml = if study { format!("{scenes}{triangular}") } else { scenes.to_string() };
+        let report = report_of("mx", &yaml);
+        let item = |title: &str| report.find(title);
+        let pair = item("[Two particles: contact duration and restitution]").expect(&report);
+        let chain = item("[The chain of 11").expect(&report);
+        let types = item("[Lattice types: waves]");
+        assert_eq!(types.is_some(), study, "{report}");
+        assert!(types.is_none_or(|types| pair < types && chain < types), "{report}");
+    }
+}

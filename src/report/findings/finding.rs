@@ -150,6 +150,16 @@ impl<'a> Evidence<'a> {
         Evidence { records: self.records.iter().copied().filter(|r| square_md(r)).collect(), ..self.clone() }
     }
 
+    /// The evidence a study's campaign answers coursework items from beside its own questions:
+    /// its runs that are no lattice (pairs, chains, packings), whose items no study question
+    /// asks; its lattices answer the study's.
+    pub(super) fn beside_study(&self) -> Evidence<'a> {
+        Evidence {
+            records: self.records.iter().copied().filter(|r| r.spec.lattice().is_none()).collect(),
+            ..self.clone()
+        }
+    }
+
     /// The movies of the runs `keep` selects: per scene, its side-by-side movie if drawn, and
     /// each run's own.
     pub(super) fn movies(&self, keep: impl Fn(&RunRecord) -> bool) -> Vec<FigureRef> {

@@ -34,11 +34,20 @@ pub use self::finding::{Evidence, Finding, Table, Verdict, rel};
 type Question = fn(&Evidence) -> Option<Answer>;
 
 /// The questions `evidence` answers, numbered: a study's own (time to a modulus, the lattice
-/// types), asked of every run, where the campaign is a study ([`study_answers`]); otherwise the
-/// coursework's items, in the coursework's order. A study campaign's square lattices would
-/// answer coursework items too, but that is the coursework report's text again, not the study's.
+/// types), asked of every run, where the campaign is a study ([`study_answers`]), after the
+/// coursework items its other runs answer (a pair or chain beside the study's lattices);
+/// otherwise the coursework's items, in the coursework's order. A study campaign's square
+/// lattices would answer coursework items too, but that is the coursework report's text again,
+/// not the study's.
 pub fn findings(evidence: &Evidence) -> Vec<Finding> {
-    let answers = study_answers(evidence).unwrap_or_else(|| coursework(&evidence.coursework()));
+    let answers = match study_answers(evidence) {
+        Some(study) => {
+            let mut answers = coursework(&evidence.coursework().beside_study());
+            answers.extend(study);
+            answers
+        }
+        None => coursework(&evidence.coursework()),
+    };
     answers.into_iter().enumerate().map(|(i, answer)| answer.numbered(i + 1)).collect()
 }
 
