@@ -158,3 +158,30 @@ fn gear_limit_is_a_bound_over_the_run_length() {
     let short = estimate(&runs(&gear_chain(20, 0.3, true))[0]).limit;
     assert!(short > limit, "short-run limit {short} against {limit}");
 }
+
+/// A Hertz chain of 40 pre-compressed between walls 30 m apart (each spring by 11/41 m) and
+/// hit at v0 = 0.01 m/s, at `dt_per_tc`.
+fn precompressed_hertz_chain(dt_per_tc: u32) -> String {
+    format!(
+        "version: 1\nname: t\nscenes:\n  - name: squeezed\n    kind: chain\n    n: 40\n    \
+         material: {{mass: 1.0, k: 1.0, law: hertz}}\n    node: first\n    v0: 0.01\n    wall_distance: 30.0\n    \
+         time: {{duration_tc: 5, dt_per_tc: {dt_per_tc}}}\n"
+    )
+}
+
+#[test]
+fn a_chain_squeezed_between_walls_is_planned_at_its_pre_stress() {
+    // Each spring is compressed by δ = 11/41 m, where a Hertz spring's tangent stiffness is
+    // k_t = 1.5 √δ = 0.777 N/m: ω_max = 2 √(k_t/m) sin(40π/82) = 1.762 rad/s, the chain's top
+    // mode. The plan took ω_max of the 0.01 m/s collision (0.93 rad/s) and let dt = t_c/5 run
+    // (dt ω_max = 2.16 > 2), which blew up; it is now refused, and t_c/50 runs with the
+    // Lanczos ω_max within 1e-6 of the top mode (Lanczos converges to round-off on 40 nodes).
+    let error = plan::parse("squeezed.yaml", &precompressed_hertz_chain(5)).unwrap_err().to_string();
+    assert!(error.contains("stability limit") && error.contains("time.dt_per_tc"), "{error}");
+    let record = execute_all(&precompressed_hertz_chain(50)).remove(0);
+    assert_eq!(record.status, RunStatus::Ok, "{}", record.message);
+    let k_t = 1.5 * (11.0f64 / 41.0).sqrt();
+    let top = 2.0 * k_t.sqrt() * (40.0 * std::f64::consts::PI / 82.0).sin();
+    let omega_max = record.metrics.omega_max.unwrap();
+    assert!((omega_max / top - 1.0).abs() < 1e-6, "ω_max {omega_max} against {top}");
+}

@@ -69,11 +69,13 @@ impl ChainRun {
         self.n + 1
     }
 
-    /// A relaxing chain between moved walls: its springs' equilibrium extension ΔW/(n + 1);
-    /// otherwise the kick at v0 (m/s).
+    /// A chain between moved walls: its springs' equilibrium extension ΔW/(n + 1), where a
+    /// non-linear spring's tangent stiffness, and so ω_max and the stability limit, are taken
+    /// (a hit chain starts there, evenly spaced; a relaxing one ends there); otherwise the kick
+    /// at v0 (m/s).
     pub(super) fn deformation(&self, spacing: f64, v0: f64) -> Deformation {
         let extension = self.wall_extension(spacing);
-        if self.relax.is_some() && extension != 0.0 {
+        if extension != 0.0 {
             Deformation::Extension(extension / (self.n + 1) as f64)
         } else {
             Deformation::Collision(v0)
