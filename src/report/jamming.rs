@@ -59,11 +59,6 @@ pub(crate) fn fitted(r: &RunRecord) -> bool {
     r.status == RunStatus::Ok && quenched && r.spec.movie.is_none()
 }
 
-/// φ_J of every (N, seed) of the linear packings ([`onsets_of`]).
-pub(super) fn onsets(runs: &[&RunRecord]) -> BTreeMap<(usize, u64), f64> {
-    onsets_of(runs, 1.0)
-}
-
 /// φ_J of every (N, seed) from its jammed packings of contact law β (forces ∝ δ^β): the mean of
 /// their own φ_J, each where its pressure vanishes as it is decompressed (`own_jamming_fraction`,
 /// O'Hern et al.'s jamming point of one state). The packings of a seed are quenches from one
@@ -105,6 +100,9 @@ impl Onset {
             .into_iter()
             .map(|(n, phis)| {
                 let (mean, spread) = mean_spread(phis.iter().map(|p| Some(*p)));
+                // Seeds that relaxed to one state (two discs in a box find the same) differ by
+                // round-off only: no spread to speak of.
+                let spread = spread.filter(|s| *s > ROUND_OFF_SPREAD * mean.unwrap_or(0.0).abs());
                 let error = spread.unwrap_or(0.0) / (phis.len() as f64).sqrt();
                 Onset { n, seeds: phis.len(), mean: mean.unwrap_or(f64::NAN), error }
             })
@@ -118,6 +116,10 @@ impl Onset {
         FIT_FLOOR * ONSET_PRECISION * self.mean
     }
 }
+
+/// A spread of the seeds' φ_J below this fraction of their mean is round-off: the seeds relaxed
+/// to one state (relaxed positions are known to ~1e-9 of a disc; φ_J to 5e-5).
+const ROUND_OFF_SPREAD: f64 = 1e-9;
 
 /// One fitted scaling: quantity, its fit against Δφ, the theory's exponent and the points
 /// (Δφ, value) fitted.

@@ -277,9 +277,11 @@ struct Jammed {
 
 impl Jammed {
     /// Newton's estimate of its own φ_J for contact forces ∝ δ^β ([`own_onset`]):
-    /// φ − β p φ/K, no lower than `below`, a fraction known to be unjammed.
-    fn onset_estimate(&self, beta: f64, below: f64) -> f64 {
-        (self.fraction - beta * self.pressure * self.fraction / self.bulk).max(below)
+    /// φ − β p φ/K, no lower than `below`, a fraction known to be unjammed. `None` where K ≤ 0
+    /// (a jammed state that softens under compression, seen in monodisperse packings): the
+    /// step would go up, past the state's own φ, where it is known to be jammed.
+    fn onset_estimate(&self, beta: f64, below: f64) -> Option<f64> {
+        (self.bulk > 0.0).then(|| (self.fraction - beta * self.pressure * self.fraction / self.bulk).max(below))
     }
 }
 
@@ -298,24 +300,26 @@ pub const ONSET_PRECISION: f64 = 5e-5;
 /// relaxed after each step). Newton's method on p^(1/β)(φ) = 0, p ∝ Δφ^β near φ_J: with
 /// K = −A dp/dA = φ dp/dφ (A ∝ 1/φ), d p^(1/β)/dφ = p^(1/β − 1) K/(βφ), so the step is
 /// Δφ = β p φ/K. A step that unjams the packing bounds φ_J below; the next stays above that
-/// bound (halfway to it at least). The answer is the last jammed state's Newton estimate, within
-/// the bracket [unjammed, jammed].
+/// bound (halfway to it at least). A state with K ≤ 0 has no Newton step: the bracket is halved.
+/// The answer is the last jammed state's Newton estimate (or the bracket's middle), within the
+/// bracket [unjammed, jammed].
 fn own_onset(spec: &RunSpec, mut rest: Scene, start: Jammed) -> (f64, u64) {
     let beta = spec.law.beta();
     let (mut at, mut below) = (start, 0.0f64);
+    let middle = |at: &Jammed, below: f64| 0.5 * (at.fraction + below);
     for step in 0..MAX_DECOMPRESSIONS {
         let estimate = at.onset_estimate(beta, below);
-        if at.fraction - estimate < ONSET_PRECISION * at.fraction {
+        if let Some(estimate) = estimate.filter(|e| at.fraction - e < ONSET_PRECISION * at.fraction) {
             return (estimate, step);
         }
-        let target = estimate.max(0.5 * (at.fraction + below));
+        let target = estimate.unwrap_or(below).max(middle(&at, below));
         let (next, relaxed) = decompressed(&rest, target / at.fraction);
         match relaxed.then(|| jammed_at(spec, &next)).flatten() {
             Some(state) => (rest, at) = (next, state),
             None => below = target,
         }
     }
-    (at.onset_estimate(beta, below), MAX_DECOMPRESSIONS)
+    (at.onset_estimate(beta, below).unwrap_or_else(|| middle(&at, below)), MAX_DECOMPRESSIONS)
 }
 
 /// `rest` with its box and positions grown to the fraction `ratio` times its own (L ∝ 1/√φ) and

@@ -286,7 +286,8 @@ pub(super) fn noise(x: Option<f64>, scale: f64) -> String {
 /// power of ten (`(2.6650 ± 0.0090)e11`, `0.3330 ± 0.0011`); `x` alone when there is no
 /// uncertainty to state.
 pub(super) fn plus_minus(x: f64, u: f64) -> String {
-    if !(u > 0.0 && u.is_finite() && x.is_finite() && x != 0.0) {
+    // An uncertainty below 1e-9 of the value is round-off (samples that are one state), no spread.
+    if !(u > 1e-9 * x.abs() && u.is_finite() && x.is_finite() && x != 0.0) {
         return sig(x);
     }
     let magnitude = x.abs().log10().floor() as i32;

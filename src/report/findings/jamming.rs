@@ -10,11 +10,12 @@ use super::finding::{Answer, Evidence, Table, Verdict, exponents, plus_minus, si
 use crate::measure::line_fit;
 use crate::report::figure::{FigureKind, FigureRef};
 use crate::report::jamming::{
-    FIT_FLOOR, ISOSTATIC, Onset, Scaling, excess, fitted, jammed, key, onsets, onsets_of, ratio_against_contacts,
-    scalings, scalings_over, seed, seed_jackknife_of,
+    FIT_FLOOR, ISOSTATIC, Onset, Scaling, excess, fitted, jammed, key, onsets_of, ratio_against_contacts, scalings,
+    scalings_over, seed, seed_jackknife_of,
 };
 use crate::report::words::{self, number};
 use crate::runner::RunRecord;
+use crate::sim::RunStatus;
 use crate::study::packing::{ONSET_PRECISION, ROUND_OFF_MARGIN, STRAIN, STRAINED_RESIDUAL};
 
 /// The reference of every number here.
@@ -206,13 +207,19 @@ fn finite_size_words(unstable: &[&RunRecord], with_g: &[&RunRecord]) -> String {
     let count = |packings: &[&RunRecord], i: usize| packings.iter().filter(|r| range(r) == i).count();
     let shares: Vec<(usize, usize)> = (0..=CROSSOVER.len()).map(|i| (count(unstable, i), count(with_g, i))).collect();
     let share = |(a, b): (usize, usize)| if b == 0 { f64::NAN } else { a as f64 / b as f64 };
-    let falls = shares.windows(2).all(|w| share(w[1]) < share(w[0]) || w[1].1 == 0 || w[0].1 == 0);
+    // A fall needs two ranges with packings in them; empty ranges between them are skipped.
+    let populated: Vec<f64> = shares.iter().filter(|(_, b)| *b > 0).map(|&s| share(s)).collect();
+    let falls = populated.len() > 1 && populated.windows(2).all(|w| w[1] < w[0]);
     let [below, between, above] = [shares[0], shares[1], shares[2]].map(|(a, b)| format!("{a} of {b}"));
     format!(
         "Here the share {} as Δφ N² grows (the finite-size scaling variable of jamming, ∝ p N² for linear contacts, \
          Goodrich, Liu & Nagel, Phys. Rev. Lett. 109, 095704 (2012)): {below} of the jammed packings with a G below \
          Δφ N² = 10², {between} from 10² to 10³, {above} above{}.",
-        if falls { "falls" } else { "does not fall steadily" },
+        match (falls, populated.len() > 1) {
+            (true, _) => "falls",
+            (false, true) => "does not fall steadily",
+            (false, false) => "cannot be followed (one range has all the packings)",
+        },
         if falls { ": a finite-size effect, of that kind" } else { "" }
     )
 }
@@ -235,13 +242,14 @@ fn agrees(strained: f64, matrix: f64) -> bool {
     (strained / matrix - 1.0).abs() <= STRAINED_AGREEMENT
 }
 
-/// The packings of every other contact law than linear are quenches of their own: a sentence
-/// each with their φ_J at the largest N ([`onsets_of`]) against the linear packings', whose
-/// difference O'Hern et al. found none of (φ_J does not depend on the potential).
-fn own_onset_sentences(runs: &[&RunRecord], linear: &Onset) -> Vec<String> {
+/// The packings of every other contact law than the `base` one φ_J is from are quenches of
+/// their own: a sentence each with their φ_J at the largest N ([`onsets_of`]) against the base
+/// packings', whose difference O'Hern et al. found none of (φ_J does not depend on the potential).
+fn own_onset_sentences(runs: &[&RunRecord], linear: &Onset, base: f64) -> Vec<String> {
+    let base_words = law_words(base);
     exponents(runs.iter().copied())
         .into_iter()
-        .filter(|&beta| beta != 1.0)
+        .filter(|&beta| beta != base)
         .filter_map(|beta| {
             let other = Onset::per_size(&onsets_of(runs, beta)).into_iter().find(|s| s.n == linear.n)?;
             let gap = other.mean - linear.mean;
@@ -250,7 +258,7 @@ fn own_onset_sentences(runs: &[&RunRecord], linear: &Onset) -> Vec<String> {
             if spread == 0.0 {
                 return Some(format!(
                     "The {} packings, quenches of their own from the same random starts, jam at φ_J = {} at N = {} (one \
-                     seed): {} from the linear packings', with no standard error to judge it by.",
+                     seed): {} from the {base_words} packings', with no standard error to judge it by.",
                     law_words(beta),
                     sig(other.mean),
                     other.n,
@@ -260,7 +268,7 @@ fn own_onset_sentences(runs: &[&RunRecord], linear: &Onset) -> Vec<String> {
             let errors = gap.abs() / spread;
             Some(format!(
                 "The {} packings, quenches of their own from the same random starts, jam at φ_J = {} at N = {} ({} \
-                 seeds): {} from the linear packings', {} standard errors of the difference ({}; {CITATION} found \
+                 seeds): {} from the {base_words} packings', {} standard errors of the difference ({}; {CITATION} found \
                  φ_J independent of the potential).",
                 law_words(beta),
                 plus_minus(other.mean, other.error),
@@ -289,18 +297,25 @@ impl Onset {
         (self.mean - PHI_J).abs() <= 2.0 * self.error + FINITE_SIZE
     }
 
-    /// Its sentence.
-    fn sentence(&self) -> String {
-        format!(
-            "N = {}: φ_J = {} (mean ± standard error over {} seeds), {} from {CITATION}'s {PHI_J}{}: {} (tolerance: \
-             2 standard errors + {FINITE_SIZE}, the latter for the finite size).",
-            self.n,
-            plus_minus(self.mean, self.error),
-            self.seeds,
-            signed(self.mean - PHI_J),
-            self.in_errors(),
-            if self.within() { "within" } else { "outside" },
-        )
+    /// Its sentence; held against O'Hern et al.'s φ_J where that is the mixture's (`literature`).
+    fn sentence(&self, literature: bool) -> String {
+        let over = match (self.seeds, self.error > 0.0) {
+            (1, _) => "one seed".to_string(),
+            (seeds, true) => format!("mean ± standard error over {seeds} seeds"),
+            (seeds, false) => format!("mean of {seeds} seeds that relaxed to one state: no standard error"),
+        };
+        let judged = if literature {
+            format!(
+                ", {} from {CITATION}'s {PHI_J}{}: {} (tolerance: 2 standard errors + {FINITE_SIZE}, the latter for the \
+                 finite size)",
+                signed(self.mean - PHI_J),
+                self.in_errors(),
+                if self.within() { "within" } else { "outside" },
+            )
+        } else {
+            String::new()
+        };
+        format!("N = {}: φ_J = {} ({over}){judged}.", self.n, plus_minus(self.mean, self.error))
     }
 
     /// The gap to the literature's φ_J in standard errors, where that is more than two: a gap
@@ -338,9 +353,9 @@ fn trend_sentence(sizes: &[Onset]) -> Option<String> {
 /// How a state's own φ_J depends on the fraction it was quenched at, at the largest N: the mean
 /// own φ_J of the linear packings quenched at the lowest and at the highest fraction that
 /// jammed. `None` with one fraction.
-fn preparation_sentence(runs: &[&RunRecord], n: usize) -> Option<String> {
+fn preparation_sentence(runs: &[&RunRecord], n: usize, base: f64) -> Option<String> {
     let mut by_fraction: BTreeMap<u64, Vec<f64>> = BTreeMap::new();
-    for r in runs.iter().filter(|r| r.spec.law.is_linear() && jammed(r) && key(r).is_some_and(|k| k.0 == n)) {
+    for r in runs.iter().filter(|r| r.spec.law.beta() == base && jammed(r) && key(r).is_some_and(|k| k.0 == n)) {
         if let (Some(p), Some(phi_j)) = (r.spec.packing(), r.metrics.packing.own_jamming_fraction) {
             by_fraction.entry(p.fraction.to_bits()).or_default().push(phi_j);
         }
@@ -349,11 +364,12 @@ fn preparation_sentence(runs: &[&RunRecord], n: usize) -> Option<String> {
     let ((low, at_low), (high, at_high)) = (by_fraction.first_key_value()?, by_fraction.last_key_value()?);
     (by_fraction.len() > 1).then(|| {
         format!(
-            "A state's own φ_J depends on where it was quenched: at N = {n}, {} for the linear packings quenched at \
+            "A state's own φ_J depends on where it was quenched: at N = {n}, {} for the {} packings quenched at \
              φ = {} ({} packings) and {} for those quenched at φ = {} ({}). Chaudhuri, Berthier & Sastry, Phys. Rev. \
              Lett. 104, 165701 (2010) found jamming spread over a range of φ with the preparation likewise; the φ_J \
              above is the mean over this campaign's quench fractions.",
             sig(mean(at_low)),
+            law_words(base),
             number(f64::from_bits(*low)),
             at_low.len(),
             sig(mean(at_high)),
@@ -365,10 +381,10 @@ fn preparation_sentence(runs: &[&RunRecord], n: usize) -> Option<String> {
 
 /// z at jamming of the linear packings of `n` discs: z = z_J + c √Δφ fitted over the jammed
 /// ones, its standard error over the seeds (the jackknife) and the number of packings.
-fn coordination_at_jamming(runs: &[&RunRecord], n: usize) -> Option<(f64, Option<f64>, usize)> {
+fn coordination_at_jamming(runs: &[&RunRecord], n: usize, base: f64) -> Option<(f64, Option<f64>, usize)> {
     let (points, seeds): (Vec<(f64, f64)>, Vec<u64>) = runs
         .iter()
-        .filter(|r| r.spec.law.is_linear() && jammed(r) && key(r).is_some_and(|k| k.0 == n))
+        .filter(|r| r.spec.law.beta() == base && jammed(r) && key(r).is_some_and(|k| k.0 == n))
         .filter_map(|r| Some(((excess(r)?.sqrt(), r.metrics.packing.coordination?), seed(r))))
         .unzip();
     let intercept = |kept: &[(f64, f64)]| line_fit(kept).map(|l| l.intercept);
@@ -428,6 +444,133 @@ fn scalings_sentence(beta: f64, size: &Onset, fitted: &[Scaling], judged: bool) 
     )
 }
 
+/// O'Hern et al.'s mixture: 50:50 discs of diameter ratio 1.4, the one [`PHI_J`] is for.
+const LITERATURE_RATIO: f64 = 1.4;
+
+/// The packings one φ_J and one set of scalings are measured over, and those left out.
+struct System<'a> {
+    /// Of one mixture and, per contact law, one spring constant and disc size, each state once.
+    runs: Vec<&'a RunRecord>,
+    /// The mixture's diameter ratio: O'Hern et al.'s 1.4 where the campaign has it, else the
+    /// first packing's.
+    ratio: f64,
+    /// Why each left-out packing is left out: another ratio, spring or disc size, or a state
+    /// another scene already has.
+    left_out: Vec<(String, &'a RunRecord)>,
+}
+
+impl<'a> System<'a> {
+    /// Chooses the system among quenched `packings`: pooling two mixtures would average two φ_J,
+    /// two spring constants would scatter p, K and G by their ratio, and a state met twice (the
+    /// same N, seed, fraction and law in two scenes) is one sample, not two.
+    fn of(packings: &[&'a RunRecord]) -> Self {
+        let ratio_of = |r: &RunRecord| r.spec.packing().map_or(0.0, |p| p.radius_ratio);
+        let ratio = packings.iter().map(|r| ratio_of(r)).find(|&x| x == LITERATURE_RATIO);
+        let ratio = ratio.or_else(|| packings.first().map(|r| ratio_of(r))).unwrap_or(LITERATURE_RATIO);
+        let (mut runs, mut left_out) = (Vec::new(), Vec::new());
+        let mut seen: Vec<(u64, usize, u64, u64)> = Vec::new();
+        for &r in packings {
+            let first = packings.iter().find(|o| ratio_of(o) == ratio && o.spec.law == r.spec.law);
+            let state = (r.spec.law.beta().to_bits(), key(r).map_or(0, |k| k.0), seed(r), fraction_bits(r));
+            let reason = if ratio_of(r) != ratio {
+                Some(format!("of diameter ratio {}", number(ratio_of(r))))
+            } else if let Some(first) = first.filter(|f| f.spec.k != r.spec.k) {
+                Some(format!("with k = {} (the kept ones' {})", number(r.spec.k), number(first.spec.k)))
+            } else if let Some(first) = first.filter(|f| f.spec.spacing != r.spec.spacing) {
+                Some(format!(
+                    "of spacing {} m (the kept ones' {} m)",
+                    number(r.spec.spacing),
+                    number(first.spec.spacing)
+                ))
+            } else if seen.contains(&state) {
+                Some("repeating another scene's states (counted once)".to_string())
+            } else {
+                None
+            };
+            match reason {
+                Some(reason) => left_out.push((reason, r)),
+                None => {
+                    seen.push(state);
+                    runs.push(r);
+                }
+            }
+        }
+        System { runs, ratio, left_out }
+    }
+
+    /// Whether O'Hern et al.'s φ_J is this mixture's.
+    fn is_literature(&self) -> bool {
+        self.ratio == LITERATURE_RATIO
+    }
+
+    /// The left-out packings in a sentence, by reason, another mixture with its own φ_J at its
+    /// largest N; `None` when none is.
+    fn left_out_sentence(&self) -> Option<String> {
+        let mut reasons: Vec<&str> = Vec::new();
+        for (reason, _) in &self.left_out {
+            if !reasons.contains(&reason.as_str()) {
+                reasons.push(reason);
+            }
+        }
+        let parts: Vec<String> = reasons
+            .iter()
+            .map(|&reason| {
+                let group: Vec<&RunRecord> =
+                    self.left_out.iter().filter(|(w, _)| w == reason).map(|(_, r)| *r).collect();
+                format!("{} {reason}{}", words::counted(group.len(), "packing"), own_mixture_words(&group))
+            })
+            .collect();
+        (!parts.is_empty()).then(|| {
+            format!(
+                "Left out of φ_J and the scalings, which hold one mixture of diameter ratio {} and one spring per law: {}.",
+                number(self.ratio),
+                words::listed(&parts, "and")
+            )
+        })
+    }
+}
+
+/// A packing's area fraction's bits, to tell states apart.
+fn fraction_bits(r: &RunRecord) -> u64 {
+    r.spec.packing().map_or(0, |p| p.fraction.to_bits())
+}
+
+/// Another mixture's own φ_J at its largest N, from its jammed packings of its lowest β.
+fn own_mixture_words(group: &[&RunRecord]) -> String {
+    let ok: Vec<&RunRecord> = group.iter().copied().filter(|r| r.status == RunStatus::Ok).collect();
+    let Some(&beta) = exponents(ok.iter().copied()).first() else { return String::new() };
+    Onset::per_size(&onsets_of(&ok, beta)).pop().map_or(String::new(), |size| {
+        format!(
+            " (their φ_J = {} at N = {}, {} packings, {})",
+            plus_minus(size.mean, size.error),
+            size.n,
+            law_words(beta),
+            words::counted(size.seeds, "seed")
+        )
+    })
+}
+
+/// The packings of `system` that did not relax within their budget, in a sentence; `None`
+/// when every one did.
+fn not_relaxed_sentence(system: &[&RunRecord]) -> Option<String> {
+    let failed: Vec<&RunRecord> = system.iter().copied().filter(|r| r.status != RunStatus::Ok).collect();
+    let mut statuses: Vec<&str> = failed.iter().map(|r| r.status.as_str()).collect();
+    statuses.sort_unstable();
+    statuses.dedup();
+    (!failed.is_empty()).then(|| {
+        format!(
+            "{} of the {} did not relax within {} budget (status {}) and {} left out: where {} would jam is not \
+             known (raise `relax.max_tc` or `budget.seconds_per_run`).",
+            failed.len(),
+            words::counted(system.len(), "packing"),
+            if failed.len() == 1 { "its" } else { "their" },
+            statuses.join(", "),
+            if failed.len() == 1 { "is" } else { "are" },
+            if failed.len() == 1 { "it" } else { "they" }
+        )
+    })
+}
+
 /// Where do random packings of discs jam, and how do their pressure, contacts and moduli grow
 /// above it? `None` without packings.
 pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
@@ -435,62 +578,102 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
     if any.is_empty() {
         return None;
     }
-    let runs = e.ok(fitted);
-    let onsets = onsets(&runs);
+    let system =
+        System::of(&e.all(|r| r.spec.packing().is_some_and(|p| p.compression.is_none()) && r.spec.movie.is_none()));
+    let runs: Vec<&RunRecord> = system.runs.iter().copied().filter(|r| fitted(r)).collect();
+    // φ_J from the softest law present (linear where there is one): O'Hern et al. found it the
+    // same for every potential, and z_J and the preparation are counted over the same packings.
+    let Some(&base) = exponents(runs.iter().copied()).first() else { return Some(unjammed(&any, &system)) };
+    let onsets = onsets_of(&runs, base);
     let sizes = Onset::per_size(&onsets);
-    let Some(largest) = sizes.last() else { return Some(unjammed(&any)) };
-    let mut sentences = vec![format!(
+    match sizes.last() {
+        Some(largest) => Some(jammed_answer(e, &system, &runs, (base, &onsets), (&sizes, largest))),
+        None => Some(unjammed(&any, &system)),
+    }
+}
+
+/// The opening sentence: how a packing's own φ_J and a seed's are found, over how many seeds.
+fn onset_method(base: f64, onsets: &BTreeMap<(usize, u64), f64>) -> String {
+    let mut seeds: Vec<u64> = onsets.keys().map(|k| k.1).collect();
+    seeds.sort_unstable();
+    seeds.dedup();
+    let mut sizes: Vec<usize> = onsets.keys().map(|k| k.0).collect();
+    sizes.dedup();
+    format!(
         "Each jammed packing (p above the relaxation's floor, carried by a rigid backbone) has its own φ_J, where \
          its pressure vanishes as it is decompressed, box and positions grown together and relaxed after each step \
          (O'Hern et al.'s protocol; the steps are Newton's on p^(1/β) = 0 with dp/dφ = K/φ, to {ONSET_PRECISION:e} of φ); a \
-         seed's φ_J is the mean over its jammed linear packings, {} seeds in all. p is the virial pressure \
+         seed's φ_J is the mean over its jammed {} packings, {} at {}. p is the virial pressure \
          Σ f_c l_c/2A; K = −A dp/dA and G = (1/A) d²U/dγ² come from the stiffness matrix of the backbone's \
          contacts, with the discs' non-affine relaxation and the pre-stress.",
-        onsets.len()
-    )];
-    sentences.extend(sizes.iter().map(Onset::sentence));
-    sentences.extend(own_onset_sentences(&runs, largest));
-    sentences.extend(trend_sentence(&sizes));
-    sentences.extend(preparation_sentence(&runs, largest.n));
+        law_words(base),
+        words::counted(seeds.len(), "seed"),
+        words::counted(sizes.len(), "size")
+    )
+}
+
+/// The item where some packings jammed: φ_J per N from the `base` law's `onsets`, z_J, the
+/// scalings of every law, the moduli by strain and the packings unstable to shear.
+fn jammed_answer(
+    e: &Evidence,
+    system: &System,
+    runs: &[&RunRecord],
+    (base, onsets): (f64, &BTreeMap<(usize, u64), f64>),
+    (sizes, largest): (&[Onset], &Onset),
+) -> Answer {
+    let literature = system.is_literature();
+    let mut sentences = vec![onset_method(base, onsets)];
+    sentences.extend(sizes.iter().map(|s| s.sentence(literature)));
+    sentences.extend(own_onset_sentences(runs, largest, base));
+    sentences.extend(trend_sentence(sizes).filter(|_| literature));
+    sentences.extend(preparation_sentence(runs, largest.n, base));
+    let law = law_words(base);
     let mut rows: Vec<Vec<String>> = sizes
         .iter()
-        .map(|s| row("linear", s.n, "φ_J", &plus_minus(s.mean, s.error), PHI_J, s.seeds, Some(s.within())))
+        .filter(|_| literature)
+        .map(|s| row(&law, s.n, "φ_J", &plus_minus(s.mean, s.error), PHI_J, s.seeds, Some(s.within())))
         .collect();
-    if let Some((sentence, z_row)) = isostatic_words(&runs, largest.n) {
+    if let Some((sentence, z_row)) = isostatic_words(runs, largest.n, base) {
         sentences.push(sentence);
         rows.push(z_row);
     }
-    let (scaling_sentences, scaling_rows) = all_scalings(&runs);
+    let (scaling_sentences, scaling_rows) = all_scalings(runs);
     sentences.extend(scaling_sentences);
-    sentences.extend(strained_sentence(&runs).into_iter().chain(unstable_sentence(&runs)));
+    sentences.extend(strained_sentence(runs).into_iter().chain(unstable_sentence(runs)));
+    sentences.extend(not_relaxed_sentence(&system.runs).into_iter().chain(system.left_out_sentence()));
     rows.extend(scaling_rows);
-    Some(Answer {
+    Answer {
         title: "Jamming",
         question: "Where do random packings of discs jam, and how do p, z, K and G grow above it?",
-        short: summary_line(largest, &rows),
+        short: summary_line(largest, &rows, system.ratio),
         sentences,
         reference: format!(
-            "{CITATION}: φ_J ≈ {PHI_J} for 1:1.4 bidisperse discs, z_J = 4, and p, z − 4, K, G ∝ Δφ^(1, ½, 0, ½) for \
+            "{CITATION}: φ_J ≈ {PHI_J} for 1:1.4 bidisperse discs{}, z_J = 4, and p, z − 4, K, G ∝ Δφ^(1, ½, 0, ½) for \
              linear and ^(3/2, ½, ½, 1) for Hertz contacts; exponents judged on the largest N within \
              {EXPONENT_TOLERANCE}, each ± its standard error over the seeds (the jackknife: refitted without each seed \
-             in turn, from three seeds)."
+             in turn, from three seeds).",
+            if literature {
+                String::new()
+            } else {
+                format!(" (not this mixture's, of ratio {}: not held against it)", number(system.ratio))
+            }
         ),
         see_also: None,
         verdict: Verdict::of(rows.iter().filter_map(|r| judged(r))),
-        figures: jamming_figures(e, &runs),
+        figures: jamming_figures(e, runs),
         table: Some(Table {
             header: ["law", "N", "quantity", "measured", "theory", "seeds or packings", "verdict"]
                 .map(String::from)
                 .to_vec(),
             rows,
         }),
-    })
+    }
 }
 
 /// z at jamming of the linear packings of `n` discs ([`coordination_at_jamming`]) against the
 /// isostatic 4, in a sentence and a table row; `None` where it cannot be fitted.
-fn isostatic_words(runs: &[&RunRecord], n: usize) -> Option<(String, Vec<String>)> {
-    let (z_j, error, points) = coordination_at_jamming(runs, n)?;
+fn isostatic_words(runs: &[&RunRecord], n: usize, base: f64) -> Option<(String, Vec<String>)> {
+    let (z_j, error, points) = coordination_at_jamming(runs, n, base)?;
     let (measured, apart) = match error.filter(|e| *e > 0.0) {
         Some(e) => (
             plus_minus(z_j, e),
@@ -501,14 +684,15 @@ fn isostatic_words(runs: &[&RunRecord], n: usize) -> Option<(String, Vec<String>
     let ok = (z_j - ISOSTATIC).abs() <= Z_TOLERANCE;
     let sentence = format!(
         "z at jamming (mean contacts per disc, rattlers removed), from z = z_J + c √Δφ fitted over the {points} \
-         jammed linear packings of N = {n}: z_J = {measured}, against the isostatic {ISOSTATIC}{apart}: {} \
+         jammed {} packings of N = {n}: z_J = {measured}, against the isostatic {ISOSTATIC}{apart}: {} \
          (tolerance {Z_TOLERANCE}, for the extrapolation in √Δφ from the smallest Δφ measured; a finite periodic \
          packing's own isostatic count 2N' − 1, z = 4 − 2/N' over its N' discs that are not rattlers, lies only \
          about 2/N = {} below 4, a little more with the rattlers out).",
+        law_words(base),
         if ok { "within" } else { "outside" },
         sig(2.0 / n as f64)
     );
-    Some((sentence, row("linear", n, "z_J", &measured, ISOSTATIC, points, Some(ok))))
+    Some((sentence, row(&law_words(base), n, "z_J", &measured, ISOSTATIC, points, Some(ok))))
 }
 
 /// The scalings of every contact law at every N, each against the φ_J of its own law's packings
@@ -677,51 +861,60 @@ fn judged(row: &[String]) -> Option<bool> {
 
 /// The summary's line: φ_J of the `largest` N, then every judged number of `rows` outside its
 /// tolerance (law, N), so that the item's ✗ names what it is for.
-fn summary_line(largest: &Onset, rows: &[Vec<String>]) -> String {
+fn summary_line(largest: &Onset, rows: &[Vec<String>], ratio: f64) -> String {
     let outside: Vec<String> = rows
         .iter()
         .filter(|r| judged(r) == Some(false))
         .map(|r| format!("{} ({}, N = {})", r[2], r[0], r[1]))
         .collect();
     let clause = if outside.is_empty() { String::new() } else { format!("; outside: {}", outside.join(", ")) };
-    format!("φ_J = {} (N = {}) against {PHI_J}{clause}", plus_minus(largest.mean, largest.error), largest.n)
+    let against = if ratio == LITERATURE_RATIO {
+        format!("against {PHI_J}")
+    } else {
+        format!("for diameter ratio {}, not 1.4's", number(ratio))
+    };
+    format!("φ_J = {} (N = {}) {against}{clause}", plus_minus(largest.mean, largest.error), largest.n)
 }
 
-/// The answer when no seed has two jammed linear packings: how many jammed, and, when none
-/// did, whether O'Hern et al.'s φ_J lies above the fractions reached (nothing should have
-/// jammed) or among them; with some jammed, an observation.
-fn unjammed(any: &[&RunRecord]) -> Answer {
-    let highest = any.iter().filter_map(|r| r.spec.packing().map(|p| p.fraction)).fold(0.0f64, f64::max);
+/// The answer when no quenched packing of the system has its own φ_J: how many jammed, and,
+/// when none did, whether they relaxed at all (a packing not relaxed within its budget tells
+/// nothing of jamming) and whether O'Hern et al.'s φ_J lies above the fractions reached (nothing
+/// should have jammed) or among them; with some jammed, an observation.
+fn unjammed(any: &[&RunRecord], system: &System) -> Answer {
+    let relaxed: Vec<&RunRecord> = any.iter().copied().filter(|r| r.status == RunStatus::Ok).collect();
+    let highest = relaxed.iter().filter_map(|r| r.spec.packing().map(|p| p.fraction)).fold(0.0f64, f64::max);
     let jammed_count = any.iter().filter(|r| jammed(r)).count();
     let below = highest < PHI_J;
     let counted = format!(
-        "{jammed_count} of the {} packings (fractions up to {}) jammed, and no seed has two jammed linear packings to \
-         extrapolate φ_J from",
+        "{jammed_count} of the {} packings (relaxed up to φ = {}) jammed, and none of them is a quench with its own φ_J \
+         to average (a slowly compressed packing follows another protocol)",
         any.len(),
         sig(highest)
     );
-    let sentence = if jammed_count > 0 {
-        format!("No φ_J could be found: {counted}.")
+    let (sentence, verdict, short) = if relaxed.is_empty() {
+        (String::new(), Verdict::Outside, "no packing relaxed within its budget".to_string())
+    } else if jammed_count > 0 {
+        (format!("No φ_J could be found: {counted}."), Verdict::Observed, "no φ_J: no quench jammed".into())
     } else {
-        format!(
-            "No jammed state was found: {counted}. {CITATION}'s φ_J ≈ {PHI_J} lies {}.",
-            if below {
-                "above every fraction here, so none should jam"
-            } else {
-                "within the fractions here, so the packings above it should have jammed"
-            }
+        let place = if below {
+            "above every fraction relaxed here, so none should jam"
+        } else {
+            "within the fractions relaxed here, so the packings above it should have jammed"
+        };
+        (
+            format!("No jammed state was found: {counted}. {CITATION}'s φ_J ≈ {PHI_J} lies {place}."),
+            Verdict::of([below]),
+            format!("no jammed state up to φ = {}", sig(highest)),
         )
     };
-    let verdict = if jammed_count > 0 { Verdict::Observed } else { Verdict::of([below]) };
     Answer {
         title: "Jamming",
         question: "Where do random packings of discs jam, and how do p, z, K and G grow above it?",
-        short: if jammed_count > 0 {
-            "no φ_J: no seed has two jammed linear packings".into()
-        } else {
-            format!("no jammed state up to φ = {}", sig(highest))
-        },
-        sentences: vec![sentence],
+        short,
+        sentences: std::iter::once(sentence)
+            .filter(|s| !s.is_empty())
+            .chain(not_relaxed_sentence(&system.runs))
+            .collect(),
         reference: format!("{CITATION}: φ_J ≈ {PHI_J} for 1:1.4 bidisperse discs."),
         see_also: None,
         verdict,
