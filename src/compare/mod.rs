@@ -12,6 +12,7 @@ mod join;
 mod overview;
 mod plots;
 pub mod quantity;
+mod restitution;
 mod section;
 mod table;
 mod words;

@@ -4,9 +4,9 @@
 //! and costs left out); and the few figures where the two campaigns part most.
 
 use serde::Serialize;
-use std::f64::consts::PI;
 
 use super::quantity::{Class, NOISE, unit};
+use super::restitution::Targets;
 use super::section::{SceneSection, Stats};
 use super::words::{fixed, short, value};
 
@@ -351,58 +351,76 @@ const PHYSICS: [(&str, &str); 7] = [
 const RESTITUTION_MISS: f64 = 0.01;
 
 /// What differs physically, quantity by quantity, scene by scene (medians over the rows ok on
-/// both sides), and each side's restitution that misses its target.
+/// both sides; the restitution's target by target), and each side's restitution that misses
+/// its target.
 fn physics(all: &[Entry]) -> Vec<String> {
     let mut said = Vec::new();
     for (metric, words) in PHYSICS {
         let scenes: Vec<String> = all
             .iter()
             .filter(|(_, st)| st.metric == metric && on_both_sides(st))
-            .map(|(scene, st)| {
-                let unit = unit(metric).filter(|u| *u != "1").map_or(String::new(), |u| format!(" {u}"));
-                let verdict = if st.differs { "differs beyond its noise" } else { "the same within its noise" };
-                format!(
-                    "{}: {}{unit} in A, {}{unit} in B, B/A = {} ({verdict})",
-                    scene.name,
-                    short(st.a.unwrap_or(f64::NAN)),
-                    short(st.b.unwrap_or(f64::NAN)),
-                    st.ratio.map_or_else(|| "–".into(), short)
-                )
+            .flat_map(|&(scene, st)| match metric {
+                "restitution" => by_target(scene, st),
+                _ => vec![side_by_side(&scene.name, st)],
             })
             .collect();
         if !scenes.is_empty() {
             said.push(format!("{words}, in {}.", scenes.join("; ")));
         }
     }
-    said.extend(missed_restitution(all));
+    let measured = all.iter().filter(|(_, st)| st.metric == "restitution");
+    said.extend(measured.flat_map(|(scene, _)| missed_restitution(scene)));
     said
 }
 
-/// Each side's scene whose measured restitution misses the target its dashpot was set for by
-/// more than [`RESTITUTION_MISS`]. The target is the linear two-body mode's restitution at the
-/// damping ratio ζ the run was given, r* = exp(−πζ/√(1 − ζ²)) (`mode_damping_ratio`): the
-/// formula that set γ from `damping.restitution`, whatever the force law.
-fn missed_restitution(all: &[Entry]) -> Vec<String> {
-    let stats = |scene: &str, metric: &str| {
-        all.iter().find(|(s, st)| s.name == scene && st.metric == metric).map(|(_, st)| (st.a, st.b))
-    };
-    let target = |zeta: Option<f64>| zeta.filter(|z| *z < 1.0).map(|z| (-PI * z / (1.0 - z * z).sqrt()).exp());
-    let mut said = Vec::new();
-    for (scene, _) in all.iter().filter(|(_, st)| st.metric == "restitution") {
-        let (Some(measured), Some(zeta)) =
-            (stats(&scene.name, "restitution"), stats(&scene.name, "mode_damping_ratio"))
-        else {
-            continue;
-        };
-        for (side, r, goal) in [("A", measured.0, target(zeta.0)), ("B", measured.1, target(zeta.1))] {
-            if let (Some(r), Some(goal)) = (r, goal)
-                && (r / goal - 1.0).abs() > RESTITUTION_MISS
-            {
-                said.push(missed_sentence(side, &scene.name, r, goal));
-            }
-        }
+/// The medians of `st` on both sides and their ratio, after `label` (a scene, or a scene at
+/// its target).
+fn side_by_side(label: &str, st: &Stats) -> String {
+    let unit = unit(&st.metric).filter(|u| *u != "1").map_or(String::new(), |u| format!(" {u}"));
+    let verdict = if st.differs { "differs beyond its noise" } else { "the same within its noise" };
+    format!(
+        "{label}: {}{unit} in A, {}{unit} in B, B/A = {} ({verdict})",
+        short(st.a.unwrap_or(f64::NAN)),
+        short(st.b.unwrap_or(f64::NAN)),
+        st.ratio.map_or_else(|| "–".into(), short)
+    )
+}
+
+/// A scene's restitution side by side: over all its rows (`st`) where they share one target on
+/// each side, otherwise target by target, since a median over runs set for different targets
+/// (r = 1 undamped with r = 0.5 damped) is the restitution of neither.
+fn by_target(scene: &SceneSection, st: &Stats) -> Vec<String> {
+    let groups = &scene.restitution.both;
+    if groups.len() <= 1 {
+        return vec![side_by_side(&scene.name, st)];
     }
-    said
+    let shared = groups.iter().filter(|g| on_both_sides(&g.stats));
+    shared.map(|g| side_by_side(&format!("{} {}", scene.name, at_target(g.target)), &g.stats)).collect()
+}
+
+/// The targets of a group of rows in words: one where both sides' read the same.
+fn at_target((a, b): Targets) -> String {
+    let write = |t: Option<f64>| t.map_or_else(|| "none".to_string(), short);
+    match (write(a), write(b)) {
+        _ if a.is_none() && b.is_none() => "with no target".to_string(),
+        (a, b) if a == b => format!("at the target {a}"),
+        (a, b) => format!("at the targets {a} in A and {b} in B"),
+    }
+}
+
+/// Each side's restitution in `scene` that misses the target its runs were set for by more
+/// than [`RESTITUTION_MISS`], target by target: a median over runs set for different targets
+/// would be said to miss them all. Rows with no target (an overdamped mode) are not judged.
+fn missed_restitution(scene: &SceneSection) -> Vec<String> {
+    let by = &scene.restitution;
+    let a = by.a.iter().map(|g| ("A", g.stats.a, g.target.0));
+    let b = by.b.iter().map(|g| ("B", g.stats.b, g.target.1));
+    a.chain(b)
+        .filter_map(|(side, r, goal)| {
+            let (r, goal) = (r?, goal?);
+            ((r / goal - 1.0).abs() > RESTITUTION_MISS).then(|| missed_sentence(side, &scene.name, r, goal))
+        })
+        .collect()
 }
 
 /// One side's restitution `r` that misses its target `goal`, in words.

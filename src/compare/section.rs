@@ -7,6 +7,7 @@ use serde::Serialize;
 use super::join::{Joined, SceneJoin, SceneRows};
 use super::plots::{PlotGroup, plot_groups};
 use super::quantity::{Class, NOISE, class};
+use super::restitution::{Restitution, restitution};
 use super::table::Side;
 use super::words::{fixed, value};
 use crate::measure::median;
@@ -28,6 +29,9 @@ pub(super) struct SceneSection {
     /// The numbers behind `metrics`, for the opening of the report.
     #[serde(skip)]
     pub(super) stats: Vec<Stats>,
+    /// The restitution by the target each run was set for, for the opening.
+    #[serde(skip)]
+    pub(super) restitution: Restitution,
 }
 
 #[derive(Serialize)]
@@ -109,6 +113,7 @@ pub(super) fn scene_section(a: &Side, b: &Side, joined: &Joined, scene: &SceneJo
         metrics: stats.iter().map(MetricRow::of).collect(),
         plots,
         stats,
+        restitution: restitution(&rows, &both),
     })
 }
 
@@ -127,7 +132,7 @@ fn status_counts(rows: &SceneRows) -> Vec<StatusCount> {
 
 /// The medians of metric `name` on each side and of their ratio over the rows `both` ended
 /// `ok` on, and whether the sides differ; `None` when neither side has a value there.
-fn stats(rows: &SceneRows, both: &[usize], name: &str) -> Option<Stats> {
+pub(super) fn stats(rows: &SceneRows, both: &[usize], name: &str) -> Option<Stats> {
     let with_ratio: Vec<usize> =
         both.iter().copied().filter(|&r| rows.metric(name, "ratio").number(r).is_some()).collect();
     // A and B over the rows behind the ratios, so that the three agree; where there is no
