@@ -6,7 +6,7 @@
 //! space–time Fourier transform of a probed column, against the branches of its springs. The
 //! findings (`findings/curves.rs`) state these numbers through the same functions.
 
-use super::figure::{Figure, FigureKind, Part, background_damping_only, groups, representative};
+use super::figure::{Figure, FigureKind, Part, background_damping_only, background_gamma, groups, representative};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::measure::{ModePeak, branch_stiffness, curve_deviation, decay_rate, free_line_modes};
 use crate::model::LawSpec;
@@ -377,7 +377,7 @@ pub fn envelope(r: &RunRecord) -> Option<Envelope> {
         .collect();
     Some(Envelope {
         measured: decay_rate(&ratio)?,
-        predicted: theory::background_decay_rate(r.spec.gamma_background, r.spec.mass, k_min),
+        predicted: theory::background_decay_rate(background_gamma(r), r.spec.mass, k_min),
         ratio,
     })
 }
@@ -407,7 +407,7 @@ fn envelope_figure(scene: &str, shown: &[&RunRecord]) -> anyhow::Result<Option<F
             .filter(|p| p.0 >= middle)
             .map(|&(t, y)| y.ln() + e.predicted * t)
             .fold(f64::NEG_INFINITY, f64::max);
-        let label = format!("γ_g = {} N s/m", crate::report::words::short(r.spec.gamma_background));
+        let label = format!("γ_g = {} N s/m", crate::report::words::short(background_gamma(r)));
         let line =
             (0..=30).map(|i| first + (last - first) * i as f64 / 30.0).map(|t| (t, (height - e.predicted * t).exp()));
         series.push(Series { label: format!("MD, {label}"), points: e.ratio.clone(), mark: Mark::Line });

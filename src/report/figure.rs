@@ -193,19 +193,26 @@ fn supports_in_words(spec: &RunSpec) -> &'static str {
     }
 }
 
+/// The background damping γ_g (N s/m) a run ran with: `damping.background: critical` leaves 0
+/// in the spec (γ_crit = 2√(k_min m) needs k_min, which only the static answer gives) and the
+/// run records the value it used in `gamma_background_critical`.
+pub fn background_gamma(r: &RunRecord) -> f64 {
+    r.metrics.lattice.gamma_background_critical.unwrap_or(r.spec.gamma_background)
+}
+
 /// A run relaxed by bond damping γ alone (no background damping).
 pub fn bond_damping_only(r: &RunRecord) -> bool {
-    r.spec.gamma > 0.0 && r.spec.gamma_background == 0.0
+    r.spec.gamma > 0.0 && background_gamma(r) == 0.0
 }
 
 /// A run relaxed by background damping γ_g alone (no bond damping).
 pub fn background_damping_only(r: &RunRecord) -> bool {
-    r.spec.gamma == 0.0 && r.spec.gamma_background > 0.0
+    r.spec.gamma == 0.0 && background_gamma(r) > 0.0
 }
 
 /// A run relaxed by background damping γ_g added to bond damping γ.
 pub fn both_dampings(r: &RunRecord) -> bool {
-    r.spec.gamma > 0.0 && r.spec.gamma_background > 0.0
+    r.spec.gamma > 0.0 && background_gamma(r) > 0.0
 }
 
 /// The label of a run's grid values other than the time step: runs with the same group label

@@ -4,7 +4,8 @@
 //! damping across scenes.
 
 use super::figure::{
-    Figure, FigureKind, background_damping_only, bond_damping_only, both_dampings, group_label, representative,
+    Figure, FigureKind, background_damping_only, background_gamma, bond_damping_only, both_dampings, group_label,
+    representative,
 };
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::measure::relative_error;
@@ -61,16 +62,20 @@ pub(super) fn dissipation_figure(records: &[RunRecord]) -> anyhow::Result<Option
     let force_criterion = |r: &RunRecord| r.spec.relax().is_some_and(|x| x.residual_force.is_some());
     let series: Vec<Series> = [
         curve("bond damping γ", &bond_damping_only, |r| r.spec.gamma),
-        curve("background γ_g, energy criterion", &|r| background_damping_only(r) && !force_criterion(r), |r| {
-            r.spec.gamma_background
-        }),
-        curve("background γ_g, force criterion", &|r| background_damping_only(r) && force_criterion(r), |r| {
-            r.spec.gamma_background
-        }),
+        curve(
+            "background γ_g, energy criterion",
+            &|r| background_damping_only(r) && !force_criterion(r),
+            background_gamma,
+        ),
+        curve(
+            "background γ_g, force criterion",
+            &|r| background_damping_only(r) && force_criterion(r),
+            background_gamma,
+        ),
         curve(
             "background γ_g added to bond γ, energy criterion",
             &|r| both_dampings(r) && !force_criterion(r),
-            |r| r.spec.gamma_background,
+            background_gamma,
         ),
     ]
     .into_iter()

@@ -450,8 +450,11 @@ fn the_summary_states_the_blocks_own_moduli_and_sound_speed() {
         assert!((number_after(line, "c_L = ") / sound - 1.0).abs() < 1e-3, "{line}");
         let (derived, _) = value_after(line, "√(E/(ρ(1 − ν²))) = ");
         assert!((derived / sound - 1.0).abs() < 0.02, "{line}");
-        // The 1 % threshold runs ahead of c_L over 9 rows, by less than a fifth.
+        // The threshold runs ahead of c_L over 9 rows, by less than a fifth.
         assert!(measured > sound && measured < 1.2 * sound, "{line}");
+        let abstract_sound = line_with(&report, "Sound crosses the block at");
+        assert!(abstract_sound.contains("by the 1 % speed threshold"), "{abstract_sound}");
+        assert!(abstract_sound.contains("catches the dispersive precursor"), "{abstract_sound}");
         assert!(
             report.contains("## Abstract")
                 && line_with(&report, "The 2D block (m = ")
@@ -464,6 +467,16 @@ fn the_summary_states_the_blocks_own_moduli_and_sound_speed() {
     let ((e1, v1, c1), (e4, v4, c4)) = (stated[0], stated[1]);
     assert!((e4 / e1 - 4.0).abs() < 4e-3, "{e1} {e4}");
     assert!((v4 / v1 - 2.0).abs() < 2e-3 && (c4 / c1 - 2.0).abs() < 2e-3, "{v1} {v4} {c1} {c4}");
+    // Timed at 5 % of the source's peak the front arrives after x = c_L t (−5.5 % measured):
+    // the abstract names that threshold and says it waits for the front's rise.
+    let report = report_of("blk", &steel_block(1.0e9).replace("wave: {}", "wave: {threshold: 0.05}"));
+    let speed = number_after(line_with(&report, "[The speed of sound]"), "V = ");
+    let abstract_sound = line_with(&report, "Sound crosses the block at");
+    assert!(
+        speed < a * (1.5e9 / m).sqrt() && abstract_sound.contains("by the 5 % speed threshold"),
+        "{abstract_sound}"
+    );
+    assert!(abstract_sound.contains("waits for the front's rise"), "{abstract_sound}");
 }
 
 /// A 4 × 4 steel-like block with both diagonals, loaded on `supports` in each of `cases` by a
@@ -1768,4 +1781,100 @@ fn a_pair_and_a_chain_beside_a_lattice_type_study_keep_their_items() {
         assert_eq!(types.is_some(), study, "{report}");
         assert!(types.is_none_or(|types| pair < types && chain < types), "{report}");
     }
+}
+
+/// A linear chain of `n` hit at `node` (first, centre or a number) and timed as `wave` (a
+/// YAML flow map: receiver, threshold).
+fn timed_chain(n: usize, node: &str, wave: &str) -> String {
+    format!(
+        "version: 1\nname: ch\nscenes:\n  - name: wave\n    kind: chain\n    n: {n}\n    node: {node}\n    \
+         v0: 0.01\n    wave: {wave}\n"
+    )
+}
+
+#[test]
+fn the_chains_front_is_told_where_it_was_hit_and_timed_and_at_which_threshold() {
+    // The distance is N_s a exactly (a = 1 m) and the report prints 4 digits: read back, it is
+    // good to 5e-4, so 1e-3.
+    let sentence = |yaml: String| line_with(&report_of("ch", &yaml), "A chain of 21 hit at ").to_string();
+    let end_to_end = sentence(timed_chain(21, "first", "{}"));
+    assert!(end_to_end.contains("hit at one end") && end_to_end.contains("reaches the far end, "), "{end_to_end}");
+    assert!((number_after(&end_to_end, "the far end, ") - 20.0).abs() < 1e-3 * 20.0, "{end_to_end}");
+    assert!(end_to_end.contains("first reaches 1 % of the source's peak"), "{end_to_end}");
+    // Hit at its centre, timed at the default receiver, the end at particle 1, 10 springs away.
+    let centre = sentence(timed_chain(21, "centre", "{}"));
+    assert!(centre.contains("hit at its centre") && centre.contains("reaches the end at particle 1, "), "{centre}");
+    assert!((number_after(&centre, "particle 1, ") - 10.0).abs() < 1e-3 * 10.0, "{centre}");
+    assert!(!centre.contains("one end") && !centre.contains("far end"), "the old, unconditional claim");
+    // Timed mid-chain at 1 % and at 5 %: the percent is the spec's, and the higher threshold
+    // fires later on the same route, so its speed is lower (the words follow the data).
+    let speed = |line: &str| number_after(line, " m away, at ");
+    let low = sentence(timed_chain(21, "first", "{receiver: 11}"));
+    let high = sentence(timed_chain(21, "first", "{receiver: 11, threshold: 0.05}"));
+    assert!(high.contains("reaches particle 11, ") && high.contains("first reaches 5 % of the source's"), "{high}");
+    assert!((number_after(&high, "particle 11, ") - 10.0).abs() < 1e-3 * 10.0, "{high}");
+    assert!(low.contains("first reaches 1 % of the source's"), "{low}");
+    assert!(speed(&high) < speed(&low), "{low}\n{high}");
+}
+
+#[test]
+fn a_critical_background_run_takes_part_in_the_sweep_at_its_critical_value() {
+    // The spec of `background: critical` holds γ_g = 0; the run used γ_crit = 2√(k_min m). On
+    // this block it relaxes faster than 1 and 3 N s/m (2.75 and 8.25 γ_crit): with it the
+    // fastest run and the sweep's low end are γ_crit, without it 1 N s/m. Numbers are printed
+    // to 4 digits, good to 5e-4 read back: 1e-3.
+    let critical = loaded_lattice_critical();
+    let close = |x: f64, y: f64| (x / y - 1.0).abs() < 1e-3;
+    let with = report_of("bg", &background_sweep("[critical, 1.0, 3.0]"));
+    let rows = dissipation_rows(&with, "bg");
+    let (gamma, time) = rows.iter().find(|r| r.0.ends_with(" (critical)")).expect(&with);
+    assert!(close(number_after(gamma, ""), critical), "{gamma}");
+    assert!(rows.iter().all(|r| r.1 >= *time), "{rows:?}");
+    let item = line_with(&with, "critical background damping is γ_crit");
+    assert!(close(number_after(item, "the sweep runs from γ_g = "), critical), "{item}");
+    assert!(close(number_after(item, "The fastest relaxation, "), *time) && item.ends_with("= 1.00 γ_crit."));
+    let abstract_line = line_with(&with, "fastest with background damping near its critical value");
+    let headline = &abstract_line[abstract_line.find("near its critical value").unwrap()..];
+    assert!(close(number_after(headline, " s at γ_g = "), critical), "{headline}");
+    assert!(close(number_after(headline, "N s/m: "), *time), "{headline}");
+    let listed = format!("γ_g = {}, 1.000, 3.000 N s/m give", gamma.trim_end_matches(" (critical)"));
+    assert!(line_with(&with, "Background damping f = −γ_g v alone: ").contains(&listed), "{with}");
+    // Without the critical run the same sentences start at 1 N s/m, which relaxes slower.
+    let without = report_of("bg", &background_sweep("[1.0, 3.0]"));
+    let item = line_with(&without, "critical background damping is γ_crit");
+    assert!(close(number_after(item, "the sweep runs from γ_g = "), 1.0), "{item}");
+    assert!(close(number_after(item, "is at γ_g = "), 1.0), "{item}");
+    let abstract_line = line_with(&without, "fastest with background damping near its critical value");
+    let headline = &abstract_line[abstract_line.find("near its critical value").unwrap()..];
+    assert!(close(number_after(headline, " s at γ_g = "), 1.0) && number_after(headline, "N s/m: ") > *time);
+}
+
+#[test]
+fn the_pair_is_quoted_at_the_step_it_ran() {
+    // A campaign whose pair runs at t_c/5 only: the abstract and the summary name that step
+    // (they had said t_c/50 whatever the step); at t_c/50 they say t_c/50.
+    for step in [5, 50] {
+        let report = report_of("pp", &bonded_pair(step));
+        let headline = line_with(&report, "stay in contact for t_c = π/ω");
+        assert!(headline.contains(&format!("at dt = t_c/{step};")), "{headline}");
+        let summary = line_with(&report, "[Two particles: contact duration and restitution]");
+        assert!(summary.contains(&format!("at t_c/{step}: t_c within")), "{summary}");
+    }
+}
+
+#[test]
+fn a_critical_background_run_is_enveloped_at_its_critical_value() {
+    // damping.background: critical leaves γ_g = 0 in the spec; the run used γ_crit = 2√(k_min m).
+    // Its energy envelope is predicted at that γ_g, where it falls at the slowest mode's rate:
+    // within the tolerance 0.05, as the 0.1 N s/m run beside it (an envelope at γ_g = 0 would
+    // predict no decay and miss by order 1).
+    let yaml = "version: 1\nname: env\nscenes:\n  - name: bg\n    kind: lattice\n    \
+                lattice: {size: 4, k_diag_ratio: 0.5}\n    load: {case: tensile, per_node: 0.01}\n    damping: {}\n    \
+                relax: {max_tc: 2000}\n    time: {samples: 8000}\n    grid:\n      damping.background: [critical, 0.1]\n";
+    let report = report_of("env", yaml);
+    let line = line_with(&report, "Relaxed by background damping alone");
+    // The swept range ends at γ_crit (four digits written: 5e-4).
+    let critical = number_after(line, "γ_crit = 2√(k_min m) = ");
+    assert!((number_after(line, "γ_g = 0.1000 to ") / critical - 1.0).abs() < 5e-4, "{line}");
+    assert!(number_after(line, "− 4k_min/m) to ") <= 0.05 && line.contains("within the tolerance"), "{line}");
 }

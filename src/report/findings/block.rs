@@ -263,17 +263,22 @@ impl<'a> Block<'a> {
         let derived =
             format!("its measured E, ν and density give c = √(E/(ρ(1 − ν²))) = {} m/s", plus_minus(c, spread));
         let measured = self.wave.and_then(|w| {
-            Some((w.metrics.recommended_sound_speed()?, w.metrics.sound_speed_theory?, w.metrics.wave_distance?))
+            Some((w, w.metrics.recommended_sound_speed()?, w.metrics.sound_speed_theory?, w.metrics.wave_distance?))
         });
         match measured {
-            Some((v, c_l, distance)) => format!(
-                "Sound crosses the block at {} m/s (the front timed over {} m by the 1 % speed threshold), {} on \
-                 c_L = a√((k + k_d)/m) = {} m/s, and {derived}: the threshold catches the dispersive precursor \
-                 ahead of the front.",
+            Some((w, v, c_l, distance)) => format!(
+                "Sound crosses the block at {} m/s (the front timed over {} m by the {} speed threshold), {} on \
+                 c_L = a√((k + k_d)/m) = {} m/s, and {derived}: the threshold {}.",
                 sig(v),
                 sig(distance),
+                super::dynamics::threshold_percent(w),
                 percent((v - c_l) / c_l),
-                sig(c_l)
+                sig(c_l),
+                if v > c_l {
+                    "catches the dispersive precursor ahead of the front"
+                } else {
+                    "waits for the front's rise, which the dispersion broadens behind x = c_L t"
+                }
             ),
             None => format!("No wave crossed the block here; {derived}."),
         }

@@ -3,6 +3,7 @@
 //! background damping alone (the same γ_g, the energy criterion), on the same lattice.
 
 use super::finding::{percent, sig};
+use crate::report::figure::background_gamma;
 use crate::report::words::number;
 use crate::runner::RunRecord;
 use crate::theory::critical_damping;
@@ -63,11 +64,11 @@ fn matched(both: &[&RunRecord], bond: &[&RunRecord], background: &[&RunRecord]) 
         .iter()
         .filter_map(|r| {
             Some(Added {
-                background: r.spec.gamma_background,
+                background: background_gamma(r),
                 both: r.metrics.dissipation_time?,
                 same: SAME_TIME.max(2.0 * r.spec.t_c / r.metrics.dissipation_time?),
                 background_alone: time_of(background, &|b| {
-                    same_block(r, b) && close(b.spec.gamma_background, r.spec.gamma_background)
+                    same_block(r, b) && close(background_gamma(b), background_gamma(r))
                 }),
                 bond_alone: time_of(bond, &|b| same_block(r, b) && close(b.spec.gamma, r.spec.gamma)),
             })

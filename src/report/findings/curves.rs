@@ -9,7 +9,7 @@ use crate::model::LawSpec;
 use crate::report::curves::{
     Dispersion, Envelope, dispersion, envelope, is_power_contact, overlap_deviation, restitution_reference,
 };
-use crate::report::figure::{FigureKind, FigureRef, representative};
+use crate::report::figure::{FigureKind, FigureRef, background_gamma, representative};
 use crate::report::words::exponent;
 use crate::runner::RunRecord;
 use crate::theory;
@@ -129,9 +129,9 @@ fn envelope_sentence(e: &Evidence) -> Option<(String, bool, String)> {
     let (first, _) = measured.first()?;
     let critical =
         |r: &RunRecord| theory::critical_damping(r.metrics.lattice.stiffness_min.unwrap_or(0.0), r.spec.mass);
-    let below = measured.iter().filter(|(r, _)| r.spec.gamma_background < critical(r)).count();
+    let below = measured.iter().filter(|(r, _)| background_gamma(r) < critical(r)).count();
     let worst = measured.iter().map(|(_, v)| (v.measured / v.predicted - 1.0).abs()).fold(0.0, f64::max);
-    let gammas: Vec<f64> = measured.iter().map(|(r, _)| r.spec.gamma_background).collect();
+    let gammas: Vec<f64> = measured.iter().map(|(r, _)| background_gamma(r)).collect();
     let (low, high) = super::finding::extremes(&gammas);
     let within = worst <= ENVELOPE_TOLERANCE;
     let regimes = [

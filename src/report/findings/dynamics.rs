@@ -8,7 +8,7 @@ use super::finding::{
     Answer, Evidence, Table, Verdict, cell, extremes, fastest_relaxation, lattice_size, percent, rel, relative, sig,
 };
 use crate::model::LawSpec;
-use crate::report::figure::{FigureKind, background_damping_only, bond_damping_only, both_dampings};
+use crate::report::figure::{FigureKind, background_damping_only, background_gamma, bond_damping_only, both_dampings};
 use crate::runner::RunRecord;
 use crate::spec::Diagonals;
 use crate::theory::critical_damping;
@@ -87,16 +87,16 @@ pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
 /// the distance, from the runs whose front runs along a line of springs: the chains (between
 /// fixed walls) and the kicked column of a lattice without diagonals (free ends). The discrete
 /// line is dispersive, ω = 2√(k/m) sin(qa/2): its front spreads out as t^(1/3) ahead of
-/// x = c t, so a threshold at 1 % of the source's peak fires early by a time that grows slower
-/// than the distance, and the relative lead shrinks with it. Its ends move the lead too, so the
-/// trend is stated only between two lines with the same ends.
+/// x = c t, so a threshold at a fraction θ of the source's peak fires early by a time that
+/// grows slower than the distance, and the relative lead shrinks with it. Its ends and θ move
+/// the lead too, so the trend is stated only between two lines with the same ends and θ.
 fn precursor_sentence(linear: &[&RunRecord]) -> Option<String> {
-    let mut leads: Vec<(f64, f64, &str, &str)> = linear
+    let mut leads: Vec<(f64, f64, &RunRecord, &str)> = linear
         .iter()
         .filter_map(|r| {
             let ends = line_of_springs_ends(r)?;
             let lead = relative(r.metrics.recommended_sound_speed(), r.metrics.sound_speed_theory)?;
-            Some((r.metrics.wave_distance? / r.spec.spacing, lead, r.spec.scene.as_str(), ends))
+            Some((r.metrics.wave_distance? / r.spec.spacing, lead, *r, ends))
         })
         .collect();
     leads.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -105,24 +105,34 @@ fn precursor_sentence(linear: &[&RunRecord]) -> Option<String> {
     if leads.len() < 2 {
         return None;
     }
-    let trend = match (near.3 == far.3, far.1.abs() < near.1.abs()) {
-        (true, true) => "the lead shrinks with the distance".to_string(),
-        (true, false) => "the lead does not shrink with the distance".to_string(),
-        (false, _) => {
+    let theta = (threshold_percent(near.2), threshold_percent(far.2));
+    let trend = match (near.3 == far.3, theta.0 == theta.1, far.1.abs() < near.1.abs()) {
+        (true, true, true) => "the lead shrinks with the distance".to_string(),
+        (true, true, false) => "the lead does not shrink with the distance".to_string(),
+        (false, _, _) => {
             format!("their ends differ ({} against {}) as well as their lengths, and move the lead too", near.3, far.3)
         }
+        (true, false, _) => format!(
+            "their thresholds differ ({} against {}) as well as their lengths, and move the lead too",
+            theta.0, theta.1
+        ),
     };
+    let peak = if theta.0 == theta.1 { theta.0 } else { format!("{} or {}", theta.0, theta.1) };
+    // A small θ catches the precursor ahead of x = c t; a larger one waits for the front's
+    // rise, which broadens behind it: the sign of the lead is measured, not assumed.
+    let (verb, when) =
+        if near.1 > 0.0 && far.1 > 0.0 { ("runs ahead of", "early") } else { ("differs from", "early or late") };
     Some(format!(
-        "The threshold runs ahead of the exact speed because a line of springs is dispersive (ω = 2√(k/m) \
-         sin(qa/2)): short waves lag, and the front spreads out ahead of x = c t as t^(1/3), so 1 % of the \
-         source's peak arrives early by a time that grows slower than the distance. Measured along lines of \
+        "The threshold {verb} the exact speed because a line of springs is dispersive (ω = 2√(k/m) \
+         sin(qa/2)): short waves lag, and the front spreads out about x = c t as t^(1/3), so {peak} of the \
+         source's peak arrives {when} by a time that grows slower than the distance. Measured along lines of \
          springs here: {} over {:.0} spacings ({}), {} over {:.0} ({}); {trend}.",
         percent(near.1),
         near.0,
-        near.2,
+        near.2.spec.scene,
         percent(far.1),
         far.0,
-        far.2
+        far.2.spec.scene
     ))
 }
 
@@ -147,15 +157,17 @@ fn chain_speed_sentences(chain: &RunRecord, error: Option<f64>) -> Vec<String> {
         .filter_map(|c| chain.metrics.sound_speed(c).map(|v| (c.replace('_', " "), v)))
         .collect();
     let estimate = super::block::coursework_estimate(chain);
+    let (hit, receiver) = chain_route(chain);
     vec![
         format!(
-            "A chain of {} hit at one end with v0 = {} m/s: the front reaches the far end, {} m away, at {} m/s by the \
-             speed threshold (the receiver's speed first reaches 1 % of the source's peak), against the exact front \
+            "A chain of {} hit at {hit} with v0 = {} m/s: the front reaches {receiver}, {} m away, at {} m/s by the \
+             speed threshold (the receiver's speed first reaches {} of the source's peak), against the exact front \
              speed a√(k/m) = {} m/s ({}).",
             chain.spec.chain().map_or(0, |c| c.n),
             sig(chain.spec.v0),
             cell(chain.metrics.wave_distance),
             cell(chain.metrics.recommended_sound_speed()),
+            threshold_percent(chain),
             cell(chain.metrics.sound_speed_theory),
             error.map(rel).unwrap_or_default()
         ),
@@ -171,6 +183,31 @@ fn chain_speed_sentences(chain: &RunRecord, error: Option<f64>) -> Vec<String> {
                 .unwrap_or_else(|| "–".into())
         ),
     ]
+}
+
+/// Where a timed chain was hit and where its front was timed, in words from its spec: hit at
+/// one end, at its centre (the middle particle, n odd) or at particle k; timed at the far end
+/// (hit at the other), at an end, or at particle k.
+fn chain_route(chain: &RunRecord) -> (String, String) {
+    let (Some(c), Some(wave)) = (chain.spec.chain(), chain.spec.wave()) else { return ("–".into(), "–".into()) };
+    let end = |p: usize| p == 1 || p == c.n;
+    let hit = match c.node {
+        node if end(node) => "one end".to_string(),
+        node if 2 * node == c.n + 1 => "its centre".to_string(),
+        node => format!("particle {node}"),
+    };
+    let receiver = match wave.receivers.first().copied().unwrap_or_default() {
+        p if end(p) && end(c.node) => "the far end".to_string(),
+        p if end(p) => format!("the end at particle {p}"),
+        p => format!("particle {p}"),
+    };
+    (hit, receiver)
+}
+
+/// A run's wave threshold θ, the fraction of the source's peak its threshold criteria wait
+/// for, in per cent (`wave.threshold`, 0.01 unless the scene sets it).
+pub(super) fn threshold_percent(r: &RunRecord) -> String {
+    r.spec.wave().map_or_else(|| "–".into(), |w| format!("{} %", crate::report::words::number(100.0 * w.threshold)))
 }
 
 /// The other arrival criteria's front speeds, each compared with the speed threshold's: a
@@ -381,7 +418,7 @@ pub(super) fn dissipation_headline(e: &Evidence) -> Option<String> {
     let sweep = BackgroundSweep::of(&study.energy)?;
     let (fastest, time) = sweep.fastest();
     let at = sweep.runs.iter().position(|(r, _)| std::ptr::eq(*r, fastest))?;
-    let neighbour = |i: Option<usize>| i.and_then(|i| sweep.runs.get(i)).map(|(r, _)| sig(r.spec.gamma_background));
+    let neighbour = |i: Option<usize>| i.and_then(|i| sweep.runs.get(i)).map(|(r, _)| sig(background_gamma(r)));
     let bracket = match (neighbour(at.checked_sub(1)), neighbour(Some(at + 1))) {
         (Some(low), Some(high)) => format!(", the optimum lying between the sweep's {low} and {high} N s/m"),
         _ => ", at the edge of the sweep".into(),
@@ -397,7 +434,7 @@ pub(super) fn dissipation_headline(e: &Evidence) -> Option<String> {
         fastest.metrics.dissipation_criterion.as_deref().unwrap_or("–"),
         sig(sweep.critical),
         sig(time),
-        sig(fastest.spec.gamma_background),
+        sig(background_gamma(fastest)),
         sweep.ratio(fastest),
         bond.unwrap_or_default()
     ))
@@ -408,12 +445,7 @@ pub(super) fn dissipation_headline(e: &Evidence) -> Option<String> {
 fn dissipation_short(bond: &[&RunRecord], background: &[&RunRecord], sweep: Option<&BackgroundSweep>) -> String {
     let optimum = sweep.map(|sweep| {
         let (r, time) = sweep.fastest();
-        format!(
-            "fastest, {} s, at γ_g = {} N s/m = {:.2} γ_crit",
-            sig(time),
-            sig(r.spec.gamma_background),
-            sweep.ratio(r)
-        )
+        format!("fastest, {} s, at γ_g = {} N s/m = {:.2} γ_crit", sig(time), sig(background_gamma(r)), sweep.ratio(r))
     });
     let against_bond = (!bond.is_empty() && !background.is_empty()).then(|| {
         format!(
@@ -464,8 +496,7 @@ fn damping_sentences(
     sentences.extend(trend("bond damping", "γ", bond, |r| r.spec.gamma));
     match sweep {
         Some(sweep) => sentences.extend(sweep.sentences()),
-        None => sentences
-            .extend(trend("background damping (energy criterion)", "γ_g", energy, |r| r.spec.gamma_background)),
+        None => sentences.extend(trend("background damping (energy criterion)", "γ_g", energy, background_gamma)),
     }
     sentences
 }
@@ -487,7 +518,7 @@ fn background_times(background: &[&RunRecord]) -> String {
             .collect();
         format!(
             "γ_g = {} N s/m give {} s ({criterion})",
-            runs.iter().map(|r| sig(r.spec.gamma_background)).collect::<Vec<_>>().join(", "),
+            runs.iter().map(|r| sig(background_gamma(r))).collect::<Vec<_>>().join(", "),
             runs.iter().map(|r| cell(r.metrics.dissipation_time)).collect::<Vec<_>>().join(", ")
         )
     };
@@ -515,7 +546,7 @@ impl<'a> BackgroundSweep<'a> {
         let mass = runs.first()?.spec.mass;
         let mut timed: Vec<(&RunRecord, f64)> =
             runs.iter().filter_map(|r| Some((*r, r.metrics.dissipation_time?))).collect();
-        timed.sort_by(|a, b| a.0.spec.gamma_background.total_cmp(&b.0.spec.gamma_background));
+        timed.sort_by(|a, b| background_gamma(a.0).total_cmp(&background_gamma(b.0)));
         (timed.len() >= 2).then(|| BackgroundSweep {
             critical: critical_damping(stiffness_min, mass),
             stiffness_min,
@@ -530,7 +561,7 @@ impl<'a> BackgroundSweep<'a> {
 
     /// γ_g of a run over γ_crit.
     fn ratio(&self, r: &RunRecord) -> f64 {
-        r.spec.gamma_background / self.critical
+        background_gamma(r) / self.critical
     }
 
     /// The critical value, where the sweep lies against it, and the fastest run.
@@ -543,17 +574,17 @@ impl<'a> BackgroundSweep<'a> {
              relaxation, {} s, is at γ_g = {} N s/m = {:.2} γ_crit.",
             sig(self.stiffness_min),
             sig(self.critical),
-            sig(low.0.spec.gamma_background),
-            sig(high.0.spec.gamma_background),
+            sig(background_gamma(low.0)),
+            sig(background_gamma(high.0)),
             self.ratio(low.0),
             self.ratio(high.0),
             sig(time),
-            sig(fastest.spec.gamma_background),
+            sig(background_gamma(fastest)),
             self.ratio(fastest)
         )];
         sentences.extend(self.underdamped_envelope());
         let above: Vec<&RunRecord> = self.runs.iter().filter(|(r, _)| self.ratio(r) > 1.0).map(|(r, _)| *r).collect();
-        sentences.extend(trend("background damping above γ_crit", "γ_g", &above, |r| r.spec.gamma_background));
+        sentences.extend(trend("background damping above γ_crit", "γ_g", &above, background_gamma));
         sentences
     }
 
@@ -562,7 +593,7 @@ impl<'a> BackgroundSweep<'a> {
     fn least_damped(&self) -> Option<(&'a RunRecord, f64, f64, f64)> {
         let (r, time) = self.runs.iter().copied().find(|(r, _)| self.ratio(r) < 1.0)?;
         let theta = r.spec.relax()?.kinetic_ratio;
-        Some((r, time, theta, (1.0 / theta).ln() * r.spec.mass / r.spec.gamma_background))
+        Some((r, time, theta, (1.0 / theta).ln() * r.spec.mass / background_gamma(r)))
     }
 
     /// The measured time's relative error against the envelope, when the sweep reaches below
@@ -577,7 +608,7 @@ impl<'a> BackgroundSweep<'a> {
         Some(format!(
             "Below γ_crit every mode rings down under the energy envelope exp(−γ_g t/m): at γ_g = {} N s/m, \
              E_kin/E_pot < θ = {} after about ln(1/θ) m/γ_g = {} s, measured {} s ({}).",
-            sig(r.spec.gamma_background),
+            sig(background_gamma(r)),
             sig(theta),
             sig(envelope),
             sig(time),
@@ -594,7 +625,7 @@ fn dissipation_table(relaxed: &[&RunRecord]) -> Table {
             vec![
                 r.spec.scene.clone(),
                 sig(r.spec.gamma),
-                sig(r.spec.gamma_background),
+                background_cell(r),
                 r.metrics.dissipation_criterion.clone().unwrap_or_default(),
                 cell(r.metrics.dissipation_time),
                 r.steps.to_string(),
@@ -607,6 +638,13 @@ fn dissipation_table(relaxed: &[&RunRecord]) -> Table {
             .to_vec(),
         rows,
     }
+}
+
+/// A run's γ_g (N s/m) in the table, marked where `damping.background: critical` chose it (the
+/// grid holds no number for it).
+fn background_cell(r: &RunRecord) -> String {
+    let critical = r.spec.relax().is_some_and(|x| x.critical_background);
+    format!("{}{}", sig(background_gamma(r)), if critical { " (critical)" } else { "" })
 }
 
 /// The dissipation time's trend against one damping coefficient, as a fitted power law.

@@ -30,6 +30,22 @@ fn at_50<'a>(runs: &[&'a RunRecord]) -> Option<&'a RunRecord> {
     (!pool.is_empty()).then(|| representative(pool))
 }
 
+/// The run's time step in units of t_c: "t_c/50".
+fn step_words(r: &RunRecord) -> String {
+    format!("t_c/{}", number(r.spec.dt_per_tc()))
+}
+
+/// The distinct steps of `runs` in words: "t_c/50", or "t_c/5 and t_c/50".
+fn steps_words(runs: &[&RunRecord]) -> String {
+    let mut steps: Vec<String> = Vec::new();
+    for step in runs.iter().map(|r| step_words(r)) {
+        if !steps.contains(&step) {
+            steps.push(step);
+        }
+    }
+    crate::report::words::listed(&steps, "and")
+}
+
 /// The pair's case in words.
 fn case(r: &RunRecord) -> String {
     let law = law_name(r.spec.law);
@@ -221,11 +237,12 @@ pub(super) fn pair_headline(e: &Evidence) -> Option<String> {
     });
     Some(format!(
         "Two particles of {} kg on a spring of {} N/m stay in contact for t_c = π/ω = {} s, MD within {} of it at \
-         dt = t_c/50{damped}.",
+         dt = {}{damped}.",
         sig(undamped.spec.mass),
         sig(undamped.spec.k),
         sig(undamped.spec.t_c),
-        t_err.map_or_else(|| "–".into(), |x| format!("{:.1e}", x.abs()))
+        t_err.map_or_else(|| "–".into(), |x| format!("{:.1e}", x.abs())),
+        step_words(undamped)
     ))
 }
 
@@ -266,7 +283,10 @@ pub(super) fn two_particles(e: &Evidence) -> Option<Answer> {
         title: "Two particles: contact duration and restitution",
         question: "Compare the pair's contact duration and restitution with the analytical solution, without and \
                    with dissipation; choose γ for r ≈ 0.5.",
-        short: format!("at t_c/50: t_c within {worst_t:.1e} of π/ω, r within {worst_r:.1e} of exp(−γt_c/m)"),
+        short: format!(
+            "at {}: t_c within {worst_t:.1e} of π/ω, r within {worst_r:.1e} of exp(−γt_c/m)",
+            steps_words(&cases)
+        ),
         sentences,
         reference: format!(
             "Analytical damped oscillator of the reduced mass; tolerance {PAIR_TOLERANCE:e} at t_c/50 (a second-order \
