@@ -828,6 +828,14 @@ fn the_n_by_1_row_is_the_chain_within_verlets_drift_and_flips_beyond_it() {
         assert!(line.contains(&format!("speed, {verdict} Verlet's phase drift")), "{integrator}: {line}");
         assert_eq!(line.contains("N × 1 gives back the chain"), verdict == "inside", "{line}");
     }
+    // At t_c/5 over 40 t_c the drift is 40/4 · 100 times the above, far past a radian, where it
+    // bounds no error: the item checks nothing and says so (it had read ✓ at a 91 % error).
+    let yaml = "version: 1\nname: row\nscenes:\n  - name: chain\n    kind: chain\n    n: 11\n    node: 6\n    \
+                v0: 0.1\n    time: {dt_per_tc: 5, duration_tc: 40}\n";
+    let report = report_of("row", yaml);
+    let line = line_with(&report, "its motion follows the chain's exact normal modes");
+    assert!(number_after(line, "ω_N³ dt² T/24 = ") > 1.0 && line.contains("this step cannot test the row"), "{line}");
+    assert!(line_with(&report, "[N × 1: the chain as a lattice]").contains("observed"), "{report}");
 }
 
 /// A packing scene of 16 discs with contact law `law`, and, when `pair` is set, a linear pair
@@ -1877,4 +1885,44 @@ fn a_critical_background_run_is_enveloped_at_its_critical_value() {
     let critical = number_after(line, "γ_crit = 2√(k_min m) = ");
     assert!((number_after(line, "γ_g = 0.1000 to ") / critical - 1.0).abs() < 5e-4, "{line}");
     assert!(number_after(line, "− 4k_min/m) to ") <= 0.05 && line.contains("within the tolerance"), "{line}");
+}
+
+#[test]
+fn runs_allowed_beyond_the_limit_still_count_at_the_coursework_step() {
+    // A kicked 6 × 6 lattice at t_c/3 and t_c/50, the campaign allowing unstable steps: the
+    // run at t_c/50 is an ordinary run, closest to its limit at dt·ω_max = ω_max t_c/50 (the
+    // item had counted 0 runs and said 0 of the limit). Without a t_c/50 run nothing is judged.
+    for (steps, at_50) in [("[3, 50]", true), ("[3, 4]", false)] {
+        let yaml = format!(
+            "version: 1\nname: st\ndefaults:\n  time: {{allow_unstable: true}}\nscenes:\n  - name: kick\n    \
+             kind: lattice\n    lattice: {{size: 6, k_diag_ratio: 0.5}}\n    supports: free\n    \
+             impulse: {{node: top-right, velocity: [0.0, -0.001]}}\n    time: {{duration_tc: 20}}\n    grid:\n      \
+             time.dt_per_tc: {steps}\n"
+        );
+        let records = execute_all(&yaml);
+        let report = report_of("st", &yaml);
+        let summary = line_with(&report, "[Masses, stiffnesses and the lattice's time step]");
+        if at_50 {
+            let run = records.iter().find(|r| (r.spec.dt_per_tc() - 50.0).abs() < 1e-9).unwrap();
+            let share = run.metrics.dt_omega_max.unwrap() / run.metrics.stability_limit.unwrap();
+            let line = line_with(&report, "over the 1 lattice run at dt = t_c/50");
+            // Four digits written: 5e-4.
+            assert!((number_after(line, "damping), ") / share - 1.0).abs() < 5e-4, "{line}");
+            assert!(summary.contains("✓"), "{summary}");
+        } else {
+            assert!(summary.contains("no lattice run at t_c/50") && summary.contains("observed"), "{summary}");
+        }
+    }
+}
+
+#[test]
+fn the_walls_reference_states_the_rule_its_chains_stopped_by() {
+    // With `relax.residual_force` the chains stop at that fraction of the wall force; without,
+    // when E_kin/E_pot stays below its ratio: the reference names the rule the runs had.
+    let by_force = report_of("lh", &walls(&["linear"]));
+    let line = line_with(&by_force, "Static equilibrium of n+1 equal springs");
+    assert!(line.contains("the relaxation stops at a residual force of 1e-9 of the equilibrium wall force"), "{line}");
+    let by_energy = report_of("lh", &walls(&["linear"]).replace("relax: {residual_force: 1.0e-9}", "relax: {}"));
+    let line = line_with(&by_energy, "Static equilibrium of n+1 equal springs");
+    assert!(line.contains("the relaxation stops at E_kin/E_pot below") && !line.contains("residual"), "{line}");
 }

@@ -14,6 +14,7 @@ use crate::measure::convergence_order;
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, representative};
 use crate::report::kinds::contact_time_words;
+use crate::report::words::counted;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::spec::{Control, Diagonals, LatticeSpec, LoadCase, RunSpec, Supports};
@@ -52,29 +53,39 @@ pub(super) fn units_and_time_step(e: &Evidence) -> Option<Answer> {
     let lattices = e.ok(|r| r.spec.lattice().is_some() && r.metrics.dt_omega_max.is_some());
     let (example, mut sentences) = node_sentences(e, &lattices)?;
     let s = &example.spec;
-    let (runs, worst_step, worst_limit) = closest_to_stability_limit(&lattices);
-    let worst = worst_step / worst_limit;
-    sentences.push(format!(
-        "The lattice's fastest mode is faster than the pair's (ω_max up to 2√((k + k_d)/m) with diagonals), so the \
-         step is checked against it before every run: over the {} lattice runs at dt = t_c/50 it comes closest to \
-         its integrator's stability limit at dt·ω_max = {} against a limit of {} (2 for Verlet, lower with \
-         damping), {} of it.",
-        runs,
-        sig(worst_step),
-        sig(worst_limit),
-        sig(worst)
-    ));
+    let closest = closest_to_stability_limit(&lattices);
+    sentences.push(match closest {
+        Some((runs, worst_step, worst_limit)) => format!(
+            "The lattice's fastest mode is faster than the pair's (ω_max up to 2√((k + k_d)/m) with diagonals), so \
+             the step is checked against it before every run: over the {} at dt = t_c/50 it comes closest to its \
+             integrator's stability limit at dt·ω_max = {} against a limit of {} (2 for Verlet, lower with \
+             damping), {} of it.",
+            counted(runs, "lattice run"),
+            sig(worst_step),
+            sig(worst_limit),
+            sig(worst_step / worst_limit)
+        ),
+        None => "No lattice run here steps at dt = t_c/50, so the coursework's step is not checked against the \
+                 stability limit here."
+            .into(),
+    });
+    let worst = closest.map(|(_, step, limit)| step / limit);
     Some(Answer {
         title: "Masses, stiffnesses and the lattice's time step",
         question: "Choose masses and stiffnesses so the lattice weighs what the solid weighs and dt is easy to \
                    estimate; what is a good time step?",
-        short: format!("dt = t_c/50 (e.g. {} s), at most {} of the stability limit", sig(s.t_c / 50.0), sig(worst)),
+        short: match worst {
+            Some(worst) => {
+                format!("dt = t_c/50 (e.g. {} s), at most {} of the stability limit", sig(s.t_c / 50.0), sig(worst))
+            }
+            None => "no lattice run at t_c/50".into(),
+        },
         sentences,
         reference: "The integrator's stability limit dt·ω_max ≤ 2 (Verlet), measured per run; verdict: every run \
                     below it."
             .into(),
         see_also: None,
-        verdict: Verdict::of([worst < 1.0]),
+        verdict: worst.map_or(Verdict::Observed, |worst| Verdict::of([worst < 1.0])),
         figures: Vec::new(),
         table: None,
     })
@@ -130,17 +141,17 @@ fn solid_mass_words(s: &RunSpec, l: &LatticeSpec, derived: Option<&RunRecord>) -
     )
 }
 
-/// Over the runs at the coursework's step dt = t_c/50: how many, and (dt·ω_max, its stability
-/// limit) of the one closest to its limit.
-fn closest_to_stability_limit(lattices: &[&RunRecord]) -> (usize, f64, f64) {
+/// Over the runs at the coursework's step dt = t_c/50 (those allowed beyond the limit too: at
+/// t_c/50 they are ordinary runs): how many, and (dt·ω_max, its stability limit) of the one
+/// closest to its limit; `None` without such a run.
+fn closest_to_stability_limit(lattices: &[&RunRecord]) -> Option<(usize, f64, f64)> {
     let margins: Vec<(f64, f64)> = lattices
         .iter()
-        .filter(|r| !r.spec.allow_unstable && (r.spec.dt_per_tc() - 50.0).abs() < 1.0)
+        .filter(|r| (r.spec.dt_per_tc() - 50.0).abs() < 1.0)
         .filter_map(|r| Some((r.metrics.dt_omega_max?, r.metrics.stability_limit?)))
         .collect();
-    let (step, limit) =
-        margins.iter().copied().max_by(|a, b| (a.0 / a.1).total_cmp(&(b.0 / b.1))).unwrap_or((0.0, 1.0));
-    (margins.len(), step, limit)
+    let (step, limit) = margins.iter().copied().max_by(|a, b| (a.0 / a.1).total_cmp(&(b.0 / b.1)))?;
+    Some((margins.len(), step, limit))
 }
 
 /// A lattice run's node in words: its mass and springs, the pair's t_c, dt = t_c/50 and the
