@@ -241,3 +241,195 @@ fn promised(c: &Cell, spec: &RunSpec, m: &Metrics, dense: &Reference) -> Result<
     let error = (tangent / secant - 1.0).abs();
     (error <= TOLERANCE).then_some(()).ok_or(format!("MD tangent {tangent} off the dense secant {secant} by {error:e}"))
 }
+
+// Findings that combine several axes of one campaign: each claim must be computed from the runs
+// that share the axes it speaks of (supports, network, load case, method), not from all of them.
+
+/// The cells of the report's table row that starts with `prefix` (the row's text up to its
+/// first cells), trimmed, without the empty cells outside the outer bars.
+fn table_row(report: &str, prefix: &str) -> Vec<String> {
+    let row = report.lines().find(|l| l.starts_with(prefix)).unwrap_or_else(|| panic!("no row {prefix:?}"));
+    row.trim_matches('|').split('|').map(|c| c.trim().to_string()).collect()
+}
+
+/// A small linear lattice scene (k = 1e6 N/m, m = 0.5 kg, a = 0.1 m, d = 0.01 m, 1 N per
+/// top-row node) named `name`, with `lattice` and `relax` as YAML flow maps and `grid` as the
+/// grid's lines.
+fn lattice_campaign(name: &str, lattice: &str, relax: &str, grid: &str) -> String {
+    format!(
+        "version: 1\nname: {name}\ndefaults:\n  material: {{mass: 0.5, k: 1.0e6}}\n  geometry: {{spacing: 0.1, \
+         depth: 0.01}}\nscenes:\n  - name: l\n    kind: lattice\n    lattice: {lattice}\n    load: {{per_node: 1.0}}\n    \
+         relax: {relax}\n    grid:\n{grid}"
+    )
+}
+
+/// The static E of the tensile (`rotated` false) or tensile-x run on `supports` among `records`.
+fn static_youngs(records: &[RunRecord], supports: &str, rotated: bool) -> f64 {
+    records
+        .iter()
+        .find(|r| {
+            r.spec.lattice().is_some_and(|l| {
+                l.supports.name() == supports && l.rotated == rotated && l.load_case == LoadCase::Tensile
+            })
+        })
+        .and_then(|r| r.metrics.lattice.youngs_modulus_fem)
+        .unwrap_or_else(|| panic!("no static E on {supports}, turned {rotated}"))
+}
+
+#[test]
+fn isotropy_pairs_e_x_and_e_y_of_the_same_supports() {
+    // A triangular block pulled along y and x and sheared, on two supports (static answers,
+    // 0.1 s): the shear runs had written "no E_y" over E_y, and the clamped block's E_x had
+    // replaced the free block's. Each row's E_x/E_y must be that of its own supports' two runs,
+    // recomputed here; the table writes 4 decimals, so within 5e-5 (rounding). The two supports'
+    // ratios differ by far more (1.189 against 1.186 at this size), so a mix-up shows.
+    let grid = "      load.case: [tensile, shear, tensile-x]\n      supports: [coursework, clamped-bottom]\n";
+    let yaml = lattice_campaign("iso", "{type: triangular, size: 6}", "{method: static}", grid);
+    let records = crate::common::execute_all(&yaml);
+    let report = crate::common::report_of("iso", &yaml);
+    let mut ratios = Vec::new();
+    for supports in ["coursework", "clamped-bottom"] {
+        let row = table_row(&report, &format!("| triangular | 6 | {supports} |"));
+        let (e_y, e_x) = (static_youngs(&records, supports, false), static_youngs(&records, supports, true));
+        let stated: f64 = row[5].parse().unwrap_or_else(|_| panic!("no E_x/E_y in {row:?}"));
+        assert!((stated - e_x / e_y).abs() < 5e-5, "{supports}: {stated} against {}", e_x / e_y);
+        // E_y and E_x to the 4 significant digits the table writes.
+        for (cell, e) in [(&row[3], e_y), (&row[4], e_x)] {
+            let cell: f64 = cell.parse().unwrap_or_else(|_| panic!("{supports}: no modulus in {row:?}"));
+            assert!((cell / e - 1.0).abs() < 5e-4, "{supports}: {cell} against {e}");
+        }
+        ratios.push(stated);
+    }
+    assert!((ratios[0] - ratios[1]).abs() > 1e-3, "the supports' ratios coincide: {ratios:?}");
+    let short = crate::common::line_with(&report, "[Lattice types: isotropy](#");
+    let said = crate::common::number_after(short, "triangular E_x/E_y = ");
+    assert!((said - ratios[0]).abs() < 5e-4 && short.contains("(coursework supports)"), "{short}");
+}
+
+/// The random networks' table row of the runs among `records` with `diagonals` under `case`,
+/// recomputed: its rigid seeds ("3/4") and the modulus mean over its relaxed seeds.
+fn cut_row_from_records(records: &[RunRecord], diagonals: &str, case: LoadCase) -> (String, Option<f64>) {
+    let mine: Vec<&RunRecord> = records
+        .iter()
+        .filter(|r| r.spec.lattice().is_some_and(|l| l.diagonals.name() == diagonals && l.load_case == case))
+        .collect();
+    let rigid = mine.iter().filter(|r| r.status != RunStatus::Mechanism).count();
+    let moduli: Vec<f64> = mine
+        .iter()
+        .filter(|r| r.status == RunStatus::Ok)
+        .filter_map(|r| r.metrics.lattice.youngs_modulus.or(r.metrics.lattice.shear_modulus))
+        .collect();
+    let mean = (!moduli.is_empty()).then(|| moduli.iter().sum::<f64>() / moduli.len() as f64);
+    (format!("{rigid}/{}", mine.len()), mean)
+}
+
+#[test]
+fn random_networks_with_and_without_diagonals_are_rows_of_their_own() {
+    // Cut square networks (6 × 6, 5 % cut, four seeds, CG, 0.1 s a campaign) with both diagonals,
+    // then with and without them: the table had averaged both lattices' seeds in one row. With
+    // one network its row's mean is its own; with two, each network has its row, whose rigid
+    // seeds and mean are recomputed here from its runs alone, and the row with diagonals keeps
+    // the one network's mean (whose table has no network column). Means within 5e-4 relative
+    // (the table's 4 significant digits).
+    let grid = |diagonals: &str| {
+        format!(
+            "      lattice.diagonals: [{diagonals}]\n      lattice.cut_fraction: [0.05]\n      load.case: [tensile, \
+             shear]\n      seed: [1, 2, 3, 4]\n"
+        )
+    };
+    let relax = "{method: cg, tolerance: 1.0e-6}";
+    let campaign = |diagonals: &str| lattice_campaign("rnd", "{size: 6, k_diag_ratio: 0.5}", relax, &grid(diagonals));
+    let (one, two) = (campaign("both"), campaign("both, none"));
+    let records = crate::common::execute_all(&two);
+    let (report_one, report_two) = (crate::common::report_of("rnd", &one), crate::common::report_of("rnd", &two));
+    // The mean is the row's last but one cell.
+    let mean_of = |row: &[String]| row[row.len() - 2].parse::<f64>().ok();
+    let close = |a: Option<f64>, b: Option<f64>| match (a, b) {
+        (Some(a), Some(b)) => (a / b - 1.0).abs() < 5e-4,
+        (a, b) => a.is_none() && b.is_none(),
+    };
+    for (load, case) in
+        [("tensile: E", LoadCase::Tensile), ("shear: apparent G (coursework supports)", LoadCase::Shear)]
+    {
+        // One network: no network column (the scene's own network), its cut fraction second.
+        let alone = table_row(&report_one, &format!("| {load} | 0.05 |"));
+        for (diagonals, words) in [("both", "both diagonals"), ("none", "no diagonals")] {
+            let row = table_row(&report_two, &format!("| {load} | {words} | 0.05 |"));
+            let (rigid, mean) = cut_row_from_records(&records, diagonals, case);
+            assert_eq!(row[3], rigid, "{row:?}");
+            assert!(close(mean_of(&row), mean), "{row:?} against {mean:?}");
+            if diagonals == "both" {
+                assert!(close(mean_of(&row), mean_of(&alone)), "{row:?} against {alone:?}");
+            }
+        }
+    }
+    // The mix would differ: one no-diagonal network in tension is rigid here, and softer.
+    let (_, without) = cut_row_from_records(&records, "none", LoadCase::Tensile);
+    let (_, with) = cut_row_from_records(&records, "both", LoadCase::Tensile);
+    assert!(without.unwrap() < 0.9 * with.unwrap(), "{without:?} {with:?}");
+}
+
+#[test]
+fn the_diagonals_paragraph_counts_only_sheared_mechanisms() {
+    // Square networks (6 × 6, CG) with and without diagonals, uncut and cut at 0.3 over two
+    // seeds, pulled and sheared: the paragraph had counted every mechanism without diagonals as
+    // a shear run (the cut networks pulled apart too). Its count must be the sheared ones among
+    // the runs without diagonals, recomputed here; exact (counts).
+    let grid = "      lattice.diagonals: [both, none]\n      lattice.cut_fraction: [0.0, 0.3]\n      load.case: \
+                [tensile, shear]\n      seed: [1, 2]\n";
+    let yaml = lattice_campaign("dg", "{size: 6, k_diag_ratio: 0.5}", "{method: cg, tolerance: 1.0e-6}", grid);
+    let records = crate::common::execute_all(&yaml);
+    let without = |r: &&RunRecord| r.spec.lattice().is_some_and(|l| l.diagonals.name() == "none");
+    let sheared = |r: &&RunRecord| r.spec.lattice().is_some_and(|l| l.load_case == LoadCase::Shear);
+    let floppy = |r: &&RunRecord| r.status == RunStatus::Mechanism;
+    let shear_runs = records.iter().filter(without).filter(sheared).count();
+    let shear_mechanisms = records.iter().filter(without).filter(sheared).filter(floppy).count();
+    let all_mechanisms = records.iter().filter(without).filter(floppy).count();
+    // The old count differs here, so the test tells them apart.
+    assert!(all_mechanisms > shear_mechanisms, "{all_mechanisms} {shear_mechanisms}");
+    let report = crate::common::report_of("dg", &yaml);
+    let paragraph = crate::common::line_with(&report, "**With and without diagonals.**");
+    let said = format!("no shear stiffness ({shear_mechanisms} of its {shear_runs} shear runs end as mechanism)");
+    assert!(paragraph.contains(&said), "{said}: {paragraph}");
+    // E without diagonals: the uncut block's own, to the 4 significant digits written.
+    let uncut = records
+        .iter()
+        .filter(without)
+        .find(|r| r.spec.lattice().is_some_and(|l| l.cut_fraction == 0.0 && l.load_case == LoadCase::Tensile))
+        .and_then(|r| r.metrics.lattice.youngs_modulus)
+        .unwrap();
+    let stated = crate::common::number_after(paragraph, "supports), E = ");
+    assert!((stated / uncut - 1.0).abs() < 5e-4, "{stated} against {uncut}");
+}
+
+/// Two packing scenes of 16 discs over two seeds, one relaxed by FIRE within `fire_budget`
+/// (a YAML map's entries after the method), one by CG.
+fn two_minimisers(fire_budget: &str) -> String {
+    format!(
+        "version: 1\nname: mn\ndefaults:\n  material: {{mass: 1.0, k: 1.0, law: linear}}\n  packing: {{n: 16, \
+         fraction: 0.88}}\ngrid:\n  seed: [1, 2]\nscenes:\n  - name: fire\n    kind: packing\n    relax: {{method: \
+         fire{fire_budget}}}\n  - name: cg\n    kind: packing\n    relax: {{method: cg}}\n"
+    )
+}
+
+#[test]
+fn the_time_step_paragraph_names_every_minimiser_and_which_runs_did_not_relax() {
+    // A FIRE scene whose budget (2 t_c) no run meets beside a CG scene that relaxes: the
+    // paragraph had named CG alone, from the relaxed runs. Both methods are named whether FIRE's
+    // runs relax or not; the unrelaxed ones are counted (recomputed here, exact) only when there
+    // are some.
+    for (budget, relaxed) in [(", max_tc: 2", false), ("", true)] {
+        let yaml = two_minimisers(budget);
+        let records = crate::common::execute_all(&yaml);
+        let failed = records.iter().filter(|r| r.spec.scene == "fire" && r.status != RunStatus::Ok).count();
+        assert_eq!(failed == 0, relaxed, "FIRE's runs: {failed} unrelaxed with budget {budget:?}");
+        assert!(records.iter().filter(|r| r.spec.scene == "cg").all(|r| r.status == RunStatus::Ok));
+        let report = crate::common::report_of("mn", &yaml);
+        let paragraph = crate::common::line_with(&report, "**The time step.**");
+        let named = "The packings of this campaign are relaxed by a minimiser (FIRE or conjugate gradients)";
+        assert!(paragraph.contains(named), "{paragraph}");
+        let count = format!("all {failed} runs by FIRE ended unrelaxed (status no_equilibrium)");
+        assert_eq!(paragraph.contains(&count), !relaxed, "{count}: {paragraph}");
+        assert_eq!(paragraph.contains("unrelaxed"), !relaxed, "{paragraph}");
+    }
+}

@@ -5,7 +5,7 @@
 use serde::Serialize;
 
 use super::finding::{
-    Answer, Evidence, Table, Verdict, cell, exponents, fastest_relaxation, noise, relative, sig,
+    Answer, Evidence, Table, Verdict, cell, exponents, fastest_relaxation, noise, regular, relative, sig,
     size_on_coursework_supports,
 };
 use crate::model::LawSpec;
@@ -122,14 +122,9 @@ fn load(r: &RunRecord) -> f64 {
 
 /// The square lattice with and without diagonal springs.
 fn diagonals(e: &Evidence) -> Option<Paragraph> {
-    let tensile = |d: Diagonals| {
-        e.ok(|r| {
-            r.spec.law == LawSpec::Linear
-                && r.spec.lattice().is_some_and(|l| {
-                    l.diagonals == d && l.load_case == LoadCase::Tensile && !l.is_random() && l.impulse.is_none()
-                })
-        })
-    };
+    // Pulled along y (not turned), k_x = k_y, linear, uncut: E is then k/d, ν 0, without diagonals.
+    let tensile =
+        |d: Diagonals| e.ok(|r| regular(r).is_some_and(|l| l.diagonals == d && l.load_case == LoadCase::Tensile));
     let (none, both) = (tensile(Diagonals::None), tensile(Diagonals::Both));
     // The two runs compared are the same block but for the diagonals: the largest without
     // them (the coursework's supports first), and with them on the same supports and size.
@@ -138,14 +133,22 @@ fn diagonals(e: &Evidence) -> Option<Paragraph> {
         |r: &&&RunRecord| r.spec.lattice().map(|l| (l.supports, l.nx)) == n.spec.lattice().map(|l| (l.supports, l.nx));
     let b = *both.iter().filter(alike).find(|r| r.spec.scene == n.spec.scene).or_else(|| both.iter().find(alike))?;
     let supports = n.spec.lattice().map_or("", |l| l.supports.name());
-    let floppy = e
-        .all(|r| r.status == RunStatus::Mechanism && r.spec.lattice().is_some_and(|l| l.diagonals == Diagonals::None))
-        .len();
+    // Every sheared square lattice without diagonals, cut or not: how many were mechanisms.
+    let sheared = e.all(|r| {
+        r.spec
+            .lattice()
+            .is_some_and(|l| l.diagonals == Diagonals::None && l.load_case == LoadCase::Shear && l.impulse.is_none())
+    });
+    let floppy = sheared.iter().filter(|r| r.status == RunStatus::Mechanism).count();
+    let shear = match sheared.len() {
+        0 => String::new(),
+        all => format!(" ({floppy} of its {all} shear runs end as mechanism)"),
+    };
     Some(Paragraph {
         title: "With and without diagonals",
         text: format!(
             "Without diagonals a square lattice is a set of independent chains: on {} × {} ({supports} supports), \
-             E = {} Pa (k/d up to the finite size), ν = {}, no shear stiffness ({floppy} shear runs end as mechanism), \
+             E = {} Pa (k/d up to the finite size), ν = {}, no shear stiffness{shear}, \
              and a kick stays in its column. The diagonals tie rows to columns: on the same block, E = {} Pa and \
              ν = {}, and on the periodic strip G = k_d/d: a solid that contracts sideways, carries shear and spreads a \
              kick.",
@@ -192,7 +195,8 @@ fn exponent(p: f64) -> String {
 /// has what it speaks of: pairs, the integrated networks' fastest modes, minimisers, power-law
 /// springs, a time-step sweep of a network by a Verlet scheme, work–precision figures.
 fn time_step(e: &Evidence) -> Option<Paragraph> {
-    let at_rule = |r: &RunRecord| r.metrics.dt_omega_max.is_some() && (r.spec.dt_per_tc() - 50.0).abs() < 1.0;
+    let rule_dt = |r: &RunRecord| (r.spec.dt_per_tc() - 50.0).abs() < 1.0;
+    let at_rule = |r: &RunRecord| r.metrics.dt_omega_max.is_some() && rule_dt(r);
     let linear = e.ok(|r| r.spec.law == LawSpec::Linear && at_rule(r));
     let power = e.ok(|r| r.spec.law != LawSpec::Linear && at_rule(r));
     if linear.is_empty() && power.is_empty() {
@@ -212,8 +216,9 @@ fn time_step(e: &Evidence) -> Option<Paragraph> {
     let text = [
         Some(rule_words(pair_error)),
         fastest_mode_words(&integrated, verlet_network_sweep(e)),
+        // Every minimised run, relaxed or not: a method whose runs all failed is still used.
         minimiser_words(
-            &e.ok(|r| at_rule(r) && minimised(r)),
+            &e.all(|r| rule_dt(r) && minimised(r)),
             &e.ok(|r| at_rule(r) && !minimised(r) && matches!(r.spec.kind(), SceneKind::Chain | SceneKind::Lattice)),
         ),
         power_law_words(&power),
@@ -270,17 +275,18 @@ fn fastest_mode_words(integrated: &[&RunRecord], swept: bool) -> Option<String> 
     ))
 }
 
-/// What the rule's dt is to the `runs` relaxed by a minimiser: FIRE in the masses' metric
-/// steps from dt up to 10 dt, so its largest step is held against the limit 2; FIRE in the
-/// stiffness's metric takes a step of its own and CG none, so dt bounds nothing there. Where
-/// networks of the same kind are `integrated` in time, the minimised ones are named by scene.
+/// What the rule's dt is to the `runs` relaxed by a minimiser (of any status): FIRE in the
+/// masses' metric steps from dt up to 10 dt, so its largest step is held against the limit 2;
+/// FIRE in the stiffness's metric takes a step of its own and CG none, so dt bounds nothing
+/// there. Where networks of the same kind are `integrated` in time, the minimised ones are named
+/// by scene; each method's runs that did not relax are counted.
 fn minimiser_words(runs: &[&RunRecord], integrated: &[&RunRecord]) -> Option<String> {
     let uses = |method: RelaxMethod| runs.iter().any(|r| r.spec.relax().is_some_and(|x| x.method == method));
-    let methods: Vec<String> = [(RelaxMethod::Fire, "FIRE"), (RelaxMethod::Cg, "conjugate gradients")]
+    let used: Vec<(RelaxMethod, &str)> = [(RelaxMethod::Fire, "FIRE"), (RelaxMethod::Cg, "conjugate gradients")]
         .into_iter()
         .filter(|&(method, _)| uses(method))
-        .map(|(_, name)| name.to_string())
         .collect();
+    let methods: Vec<String> = used.iter().map(|(_, name)| name.to_string()).collect();
     // FIRE in the masses' metric steps from dt up to 10 dt: its largest step meets ω_max there.
     let fire_largest = runs
         .iter()
@@ -308,11 +314,40 @@ fn minimiser_words(runs: &[&RunRecord], integrated: &[&RunRecord]) -> Option<Str
     } else {
         format!("{kinds} of this campaign")
     };
+    let unrelaxed = unrelaxed_words(runs, &used).map_or_else(String::new, |u| format!("; {u}"));
     (!methods.is_empty()).then(|| {
         format!(
-            "The {whose} are relaxed by a minimiser ({}), not followed in time{bound}.",
+            "The {whose} are relaxed by a minimiser ({}), not followed in time{bound}{unrelaxed}.",
             words::listed(&methods, "or")
         )
+    })
+}
+
+/// The minimised `runs` that ended unrelaxed, per method of `used`: "all 9 runs by FIRE and 9
+/// of the 18 runs by conjugate gradients ended unrelaxed (status no_equilibrium)"; `None` when
+/// every one relaxed.
+fn unrelaxed_words(runs: &[&RunRecord], used: &[(RelaxMethod, &str)]) -> Option<String> {
+    let mut statuses: Vec<String> = Vec::new();
+    let counts: Vec<String> = used
+        .iter()
+        .filter_map(|&(method, name)| {
+            let mine: Vec<&RunRecord> =
+                runs.iter().copied().filter(|r| r.spec.relax().is_some_and(|x| x.method == method)).collect();
+            let failed: Vec<&RunRecord> = mine.iter().copied().filter(|r| r.status != RunStatus::Ok).collect();
+            for r in &failed {
+                let status = r.status.as_str().to_string();
+                (!statuses.contains(&status)).then(|| statuses.push(status));
+            }
+            match (failed.len(), mine.len()) {
+                (0, _) => None,
+                (1, 1) => Some(format!("the one run by {name}")),
+                (f, all) if f == all => Some(format!("all {all} runs by {name}")),
+                (f, all) => Some(format!("{f} of the {all} runs by {name}")),
+            }
+        })
+        .collect();
+    (!counts.is_empty()).then(|| {
+        format!("{} ended unrelaxed (status {})", words::listed(&counts, "and"), words::listed(&statuses, "or"))
     })
 }
 

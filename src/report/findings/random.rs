@@ -4,7 +4,7 @@
 
 use crate::report::figure::FigureKind;
 use crate::report::solids::mean_spread;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use super::finding::{
     Answer, Evidence, SeeAlso, Table, Verdict, cell, extremes, modulus_name, percent, shear_name, sig,
@@ -47,19 +47,7 @@ pub(super) fn random(e: &Evidence) -> Option<Answer> {
         see_also: Some(jammed_packings()),
         verdict: if bounded.is_empty() { Verdict::Observed } else { Verdict::of([within == bounded.len()]) },
         figures: e.figure(&scene, FigureKind::Dilution).into_iter().collect(),
-        table: (!rows.is_empty()).then(|| Table {
-            header: [
-                "load",
-                "cut fraction",
-                "rigid seeds",
-                "kept of all bonds (rigid seeds)",
-                "modulus mean over relaxed seeds (Pa)",
-                "standard deviation (Pa)",
-            ]
-            .map(String::from)
-            .to_vec(),
-            rows,
-        }),
+        table: cut_table(rows),
     })
 }
 
@@ -458,16 +446,48 @@ fn jammed_packings() -> SeeAlso {
     }
 }
 
-/// One row per load case and cut fraction: how many seeds stayed rigid, their kept fraction and
-/// the moduli's mean and sample standard deviation over them only (a floppy seed has no modulus,
-/// and one seed no deviation: a dash).
+/// The cut networks' table of `rows` ([`random_rows`]); its network column only where the rows
+/// span more than one network (one network is the scene's own, named above).
+fn cut_table(mut rows: Vec<Vec<String>>) -> Option<Table> {
+    let first = rows.first()?.clone();
+    let mut header: Vec<String> = [
+        "load",
+        "network",
+        "cut fraction",
+        "rigid seeds",
+        "kept of all bonds (rigid seeds)",
+        "modulus mean over relaxed seeds (Pa)",
+        "standard deviation (Pa)",
+    ]
+    .map(String::from)
+    .to_vec();
+    if rows.iter().all(|row| row[1] == first[1]) {
+        header.remove(1);
+        for row in &mut rows {
+            row.remove(1);
+        }
+    }
+    Some(Table { header, rows })
+}
+
+/// One row per load case, network and cut fraction: how many seeds stayed rigid, their kept
+/// fraction and the moduli's mean and sample standard deviation over them only (a floppy seed has
+/// no modulus, and one seed no deviation: a dash).
 fn random_rows(runs: &[&RunRecord]) -> Option<Vec<Vec<String>>> {
-    // Keyed by what the runs measure too: a campaign's shear on two kinds of supports is two rows.
-    let mut by_cut: BTreeMap<(String, u64), Vec<&RunRecord>> = BTreeMap::new();
+    // Keyed by what the runs measure too: a campaign's shear on two kinds of supports is two rows
+    // (the shear modulus is named for its supports), and so is its tension; and by the network,
+    // so that seeds of one lattice (not of two) make each mean.
+    let mut by_cut: BTreeMap<(String, String, u64), Vec<&RunRecord>> = BTreeMap::new();
+    let scenes: BTreeSet<&str> = runs.iter().map(|r| r.spec.scene.as_str()).collect();
+    let supports: BTreeSet<&str> = runs.iter().filter_map(|r| r.spec.lattice()).map(|l| l.supports.name()).collect();
     for r in runs {
         let l = r.spec.lattice()?;
-        let measured = format!("{}: {}", l.load_name(), modulus_name(l));
-        by_cut.entry((measured, (l.cut_fraction * 1000.0).round() as u64)).or_default().push(r);
+        let mut measured = format!("{}: {}", l.load_name(), modulus_name(l));
+        if supports.len() > 1 && l.load_case != LoadCase::Shear {
+            measured += &format!(" ({} supports)", l.supports.name());
+        }
+        let network = network_words(r, scenes.len() > 1);
+        by_cut.entry((measured, network, (l.cut_fraction * 1000.0).round() as u64)).or_default().push(r);
     }
     let kept = |rs: &[&&RunRecord]| {
         let fractions: Vec<f64> = rs.iter().filter_map(|r| r.metrics.lattice.bond_fraction_kept).collect();
@@ -475,7 +495,7 @@ fn random_rows(runs: &[&RunRecord]) -> Option<Vec<Vec<String>>> {
     };
     let rows = by_cut
         .iter()
-        .map(|((case, cut), rs)| {
+        .map(|((case, network, cut), rs)| {
             // A mechanism stops before its bonds are counted: only rigid seeds know their kept fraction.
             let rigid: Vec<&&RunRecord> = rs.iter().filter(|r| r.status != RunStatus::Mechanism).collect();
             let (mean, spread) = mean_spread(
@@ -486,6 +506,7 @@ fn random_rows(runs: &[&RunRecord]) -> Option<Vec<Vec<String>>> {
             );
             vec![
                 case.clone(),
+                network.clone(),
                 format!("{:.2}", *cut as f64 / 1000.0),
                 format!("{}/{}", rigid.len(), rs.len()),
                 kept(&rigid).map_or_else(|| "–".into(), |k| format!("{k:.3}")),
@@ -495,6 +516,20 @@ fn random_rows(runs: &[&RunRecord]) -> Option<Vec<Vec<String>>> {
         })
         .collect();
     Some(rows)
+}
+
+/// The network of a cut run in words: its grid values but the seed, the cut fraction, the load
+/// case and the supports, which the load column names ("no diagonals", "k_d/k = 0.5, 16 × 16"),
+/// as the dilution figure labels its series; after its scene's name when `with_scene` (the cut
+/// runs span several scenes), and the scene's name alone where its grid varies nothing else.
+fn network_words(r: &RunRecord, with_scene: bool) -> String {
+    let network =
+        r.spec.varied_in_words(|path| !matches!(path, "seed" | "lattice.cut_fraction" | "load.case" | "supports"));
+    match (with_scene, network.is_empty()) {
+        (false, false) => network,
+        (true, false) => format!("{}: {network}", r.spec.scene),
+        (_, true) => r.spec.scene.clone(),
+    }
 }
 
 /// Where the cut networks lost rigidity against effective-medium theory's threshold: a

@@ -147,26 +147,30 @@ impl TypeModuli {
     }
 }
 
-/// The isotropy study: the static E and ν of free blocks pulled along y and along x, by size,
-/// against the continuum; the square lattice's in-plane anisotropy from its constants.
+/// The isotropy study: the static E and ν of blocks pulled along y and along x, by size and
+/// supports, against the continuum (a free block, on coursework supports); the square lattice's
+/// in-plane anisotropy from its constants.
 pub(super) fn isotropy(e: &Evidence) -> Option<Answer> {
     let runs = e.all(|r| r.spec.lattice().is_some_and(|l| l.rotated && l.supports == Supports::Coursework));
     let scene = runs.iter().find(|r| other_type(r))?.spec.scene.clone();
-    let runs = e.all(|r| r.spec.scene == scene && r.spec.lattice().is_some_and(|l| !l.is_random()));
+    let runs =
+        e.all(|r| r.spec.scene == scene && r.spec.lattice().is_some_and(|l| !l.is_random() && l.impulse.is_none()));
     let by_size = isotropy_by_size(&runs)?;
     let first = runs.first()?;
     let (k, depth) = (first.spec.k, first.spec.lattice()?.depth);
     let triangular_e = 2.0 * k / (3.0_f64.sqrt() * depth);
     let mut rows = Vec::new();
+    // Per type, its largest free block (coursework supports) pulled both ways: the continuum's.
     let mut last_ratio = BTreeMap::new();
-    for (&(name, n), v) in &by_size {
+    for ((name, n, supports, network), v) in &by_size {
         let ratio = v[2].zip(v[0]).map(|(x, y)| x / y);
-        if let Some(ratio) = ratio {
-            last_ratio.insert(name, (n, ratio, v));
+        if let Some(ratio) = ratio.filter(|_| *supports == Supports::Coursework.name()) {
+            last_ratio.insert(*name, (*n, ratio, v));
         }
         rows.push(vec![
-            name.into(),
+            if network.is_empty() { name.to_string() } else { format!("{name}, {network}") },
             n.to_string(),
+            supports.to_string(),
             cell(v[0]),
             cell(v[2]),
             ratio.map(|x| format!("{x:.4}")).unwrap_or_else(|| "–".into()),
@@ -181,31 +185,37 @@ pub(super) fn isotropy(e: &Evidence) -> Option<Answer> {
     Some(Answer {
         title: "Lattice types: isotropy",
         question: "Do E and ν measured along x and along y agree (triangular), and how does the square lattice differ?",
-        short: last_ratio
-            .get("triangular")
-            .map_or("–".into(), |&(n, r, _)| format!("triangular E_x/E_y = {} at N = {n}", sig(r))),
+        short: last_ratio.get("triangular").map_or("–".into(), |&(n, r, _)| {
+            format!("triangular E_x/E_y = {} at N = {n} (coursework supports)", sig(r))
+        }),
         sentences,
-        reference: "Isotropy: E_x/E_y = 1 within 5 % at the largest size (edges O(1/N)); E = 2k/(√3 d), ν = 1/3."
+        reference: "Isotropy: E_x/E_y = 1 within 5 % at the largest free block (coursework supports; edges \
+                    O(1/N)); E = 2k/(√3 d), ν = 1/3."
             .into(),
         see_also: None,
         verdict: if checks.is_empty() { Verdict::Observed } else { Verdict::of(checks) },
         figures: Vec::new(),
         table: Some(Table {
-            header: ["type", "N", "E_y (Pa)", "E_x (Pa)", "E_x/E_y", "ν_yx", "ν_xy"].map(String::from).to_vec(),
+            header: ["type", "N", "supports", "E_y (Pa)", "E_x (Pa)", "E_x/E_y", "ν_yx", "ν_xy"]
+                .map(String::from)
+                .to_vec(),
             rows,
         }),
     })
 }
 
-/// The largest triangular block's E_x/E_y (`v`: E_y, ν_yx, E_x, ν_xy at size `n`) against the
-/// continuum E = 2k/(√3 d) (`continuum`, Pa), and whether it is isotropic within 5 %.
+/// The largest triangular block's E_x/E_y on coursework supports (`v`: E_y, ν_yx, E_x, ν_xy at
+/// size `n`) against the continuum E = 2k/(√3 d) (`continuum`, Pa), and whether it is isotropic
+/// within 5 %.
 fn triangular_isotropy(n: usize, ratio: f64, v: &[Option<f64>; 4], continuum: f64) -> (String, bool) {
     let (ey, ex) = (v[0].unwrap_or(f64::NAN), v[2].unwrap_or(f64::NAN));
+    let isotropic = (ratio - 1.0).abs() < 0.05;
     let sentence = format!(
-        "The triangular block is isotropic: at N = {n} E_x/E_y = {}, and both approach the continuum \
-         E = 2k/(√3 d) = {} Pa ({} along y, {} along x) with ν → 1/3 ({}, {}); the remaining difference is \
-         the edges' O(1/N) (the zigzag sides stiffen a pull along x more than the straight rows one along y), \
-         and it halves as N doubles.",
+        "The free triangular block (coursework supports) {} isotropic within 5 %: at N = {n} E_x/E_y = {}, \
+         against the continuum E = 2k/(√3 d) = {} Pa ({} along y, {} along x) with ν = 1/3 ({}, {}); the \
+         difference is the edges' O(1/N) (the zigzag sides stiffen a pull along x more than the straight rows \
+         one along y), which halves as N doubles.",
+        if isotropic { "is" } else { "is not" },
         sig(ratio),
         sig(continuum),
         rel(ey / continuum - 1.0),
@@ -213,23 +223,31 @@ fn triangular_isotropy(n: usize, ratio: f64, v: &[Option<f64>; 4], continuum: f6
         cell(v[1]),
         cell(v[3]),
     );
-    (sentence, (ratio - 1.0).abs() < 0.05)
+    (sentence, isotropic)
 }
 
-/// (type, N) → (E_y, ν_yx, E_x, ν_xy) from the static answer.
-type IsotropyBySize = BTreeMap<(&'static str, usize), [Option<f64>; 4]>;
+/// (type, N, supports, the network's other grid values in words) → (E_y, ν_yx, E_x, ν_xy) from
+/// the static answer.
+type IsotropyBySize = BTreeMap<(&'static str, usize, &'static str, String), [Option<f64>; 4]>;
 
-/// Per (type, N): E_y, ν_yx, E_x and ν_xy of the static answer, the block pulled along y and,
-/// rotated, along x.
+/// Per type, N, supports and network: E_y, ν_yx of the static answer of the block pulled along y
+/// (`tensile`) and E_x, ν_xy of it pulled along x (`tensile-x`, turned). Only those two runs
+/// measure them: a shear run, or a second run of the same block, erases nothing.
 fn isotropy_by_size(runs: &[&RunRecord]) -> Option<IsotropyBySize> {
     let mut by_size = IsotropyBySize::new();
+    let network =
+        |path: &str| !matches!(path, "load.case" | "lattice.type" | "lattice.size" | "lattice.nx" | "supports");
     for r in runs {
         let l = r.spec.lattice()?;
+        if l.load_case != LoadCase::Tensile {
+            continue;
+        }
         let m = &r.metrics.lattice;
-        let n = if l.rotated { l.ny } else { l.nx };
-        let entry = by_size.entry((l.lattice_type.name(), n)).or_default();
+        let key = (l.lattice_type.name(), l.upright().nx, l.supports.name(), r.spec.varied_in_words(network));
+        let entry = by_size.entry(key).or_default();
         let at = if l.rotated { 2 } else { 0 };
-        (entry[at], entry[at + 1]) = (m.youngs_modulus_fem, m.poisson_ratio_fem);
+        entry[at] = entry[at].or(m.youngs_modulus_fem);
+        entry[at + 1] = entry[at + 1].or(m.poisson_ratio_fem);
     }
     Some(by_size)
 }
