@@ -510,7 +510,7 @@ fn print_budget_warnings(campaign: &Campaign) {
     let over: Vec<(String, String)> =
         campaign.runs.iter().filter_map(|spec| campaign.budget.warning(spec).map(|why| (spec.run_id(), why))).collect();
     for (run_id, why) in &over {
-        println!("warning: {run_id}: {why}; it will end with status = budget");
+        println!("warning: {run_id}: {why}; if it runs that long, it ends with status = budget");
     }
     if !over.is_empty() {
         println!(

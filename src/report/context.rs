@@ -79,10 +79,12 @@ struct Explains {
     exponents: bool,
     precision: bool,
     stability: bool,
+    /// Some run is allowed beyond its stability limit (`time.allow_unstable: true`).
+    allows_unstable: bool,
 }
 
 impl Explains {
-    fn of(scenes: &[SceneSection]) -> Explains {
+    fn of(scenes: &[SceneSection], records: &[RunRecord]) -> Explains {
         let any = |has: fn(&SceneTables) -> bool| scenes.iter().any(|s| has(&s.tables));
         Explains {
             walls: any(|t| t.kind.has_walls()),
@@ -91,6 +93,7 @@ impl Explains {
             exponents: any(|t| !t.exponent_rows.is_empty()),
             precision: any(|t| !t.precision_rows.is_empty()),
             stability: any(|t| !t.stability.stability_rows.is_empty()),
+            allows_unstable: records.iter().any(|r| r.spec.allow_unstable),
         }
     }
 }
@@ -169,7 +172,7 @@ pub fn build(
         overview: overview(&evidence),
         findings: findings(&evidence),
         discussion: discussion(&evidence),
-        explains: Explains::of(&scenes),
+        explains: Explains::of(&scenes, records),
         appendix: appendix_words(&evidence),
         scenes,
         failures: records

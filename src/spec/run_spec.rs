@@ -141,12 +141,19 @@ impl Budget {
             let seconds = spec.estimated_seconds();
             (seconds > self.seconds_per_run).then(|| {
                 format!(
-                    "estimated {seconds:.0} s, beyond the budget of {:.0} s per run (budget.seconds_per_run)",
-                    self.seconds_per_run
+                    "estimated {} s, beyond the budget of {} s per run (budget.seconds_per_run)",
+                    seconds_words(seconds),
+                    seconds_words(self.seconds_per_run)
                 )
             })
         })
     }
+}
+
+/// Seconds in a message: whole above 10 s, to the millisecond below (a budget of 0.05 s was
+/// written 0 s).
+fn seconds_words(seconds: f64) -> String {
+    if seconds >= 10.0 { format!("{seconds:.0}") } else { format!("{seconds:.3}") }
 }
 
 /// `seconds` (finite, ≥ 0) as a duration, capped at 1e9 s so that adding it to now never

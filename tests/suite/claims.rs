@@ -1926,3 +1926,16 @@ fn the_walls_reference_states_the_rule_its_chains_stopped_by() {
     let line = line_with(&by_energy, "Static equilibrium of n+1 equal springs");
     assert!(line.contains("the relaxation stops at E_kin/E_pot below") && !line.contains("residual"), "{line}");
 }
+
+#[test]
+fn the_stability_appendix_says_as_here_only_of_a_campaign_that_allows_unstable_steps() {
+    // A step set by dt·ω_max makes the scene a stability scene, whose appendix explains the limit.
+    for allowed in [false, true] {
+        let time = if allowed { "{dt_omega_max: 0.5, allow_unstable: true}" } else { "{dt_omega_max: 0.5}" };
+        let yaml =
+            format!("version: 1\nname: st\nscenes:\n  - name: p\n    kind: pair\n    v0: 1.0\n    time: {time}\n");
+        let report = report_of("st", &yaml);
+        let line = line_with(&report, "says `time.allow_unstable: true`");
+        assert_eq!(report.contains("`time.allow_unstable: true`, as here."), allowed, "{line}");
+    }
+}

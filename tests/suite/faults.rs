@@ -339,6 +339,8 @@ fn runs_beyond_their_budget_end_with_status_budget_and_plan_warns() {
     let out = mdsolids(dir.path(), &["plan", file.to_str().unwrap()]).output().unwrap();
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("warning") && text.contains("budget.seconds_per_run"), "{text}");
+    // A budget below 10 s is written to the millisecond (0.5 s had read "0 s").
+    assert!(text.contains("beyond the budget of 0.500 s per run"), "{text}");
     // A budget must be a positive number.
     let error = mdsolids::plan::parse(
         "b.yaml",

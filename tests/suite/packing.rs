@@ -974,7 +974,13 @@ fn packings_not_relaxed_within_their_budget_are_said_to_be_so() {
     // Three time units of relaxation leave 16 discs at φ = 0.86 and 0.9 unrelaxed: the item
     // says the budget stopped them, not that they should have jammed.
     let dir = crate::common::scratch();
-    let folder = run_jam(dir.path(), &sixteen_disc_scenes(&[("a", "", "law: linear")], "max_tc: 3")).1;
+    let (frame, folder) = run_jam(dir.path(), &sixteen_disc_scenes(&[("a", "", "law: linear")], "max_tc: 3"));
+    // Each run's message gives its budget, 3 t_c at t_c/50: 150 force evaluations.
+    let messages = frame.column("message").unwrap().str().unwrap().clone();
+    assert!(
+        (0..frame.height())
+            .all(|i| messages.get(i).is_some_and(|m| m.contains("within its budget of 150 force evaluations")))
+    );
     let report = std::fs::read_to_string(folder.join("report.md")).unwrap();
     let line = line_with(&report, "did not relax within their budget");
     assert!(line.contains("4 of the 4 packings") && line.contains("no_equilibrium"), "{line}");

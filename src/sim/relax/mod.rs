@@ -304,7 +304,12 @@ fn stop_before_move<M: Minimiser>(
         Some((false, _)) | None => {}
     }
     if evaluations >= sampling.steps {
-        let why = format!("the static criterion did not hold within {evaluations} force evaluations");
+        // A line search may finish its last move past the budget: both counts are said.
+        let why = format!(
+            "the static criterion did not hold within its budget of {} force evaluations (relax.max_tc t_c/dt; \
+             stopped after {evaluations})",
+            sampling.steps
+        );
         return Some(Stop::Failed(RunStatus::NoEquilibrium, why));
     }
     if sampling.deadline.is_some_and(|deadline| Instant::now() > deadline) {
