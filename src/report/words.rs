@@ -111,3 +111,11 @@ pub fn listed(items: &[String], last: &str) -> String {
 pub fn counted(n: usize, noun: &str) -> String {
     if n == 1 { format!("1 {noun}") } else { format!("{n} {noun}s") }
 }
+
+/// How many times more `ratio` is, in words: "12× faster" for 12, "1.2× faster" for 1.2 and,
+/// below 1, the other way round: "1.3× slower" for 0.77 (a ratio written to no decimals read
+/// "1× longer" for 1.16, and "0× faster" for a slower one).
+pub fn times(ratio: f64, more: &str, less: &str) -> String {
+    let (factor, word) = if ratio >= 1.0 { (ratio, more) } else { (ratio.recip(), less) };
+    if factor >= 10.0 { format!("{factor:.0}× {word}") } else { format!("{factor:.1}× {word}") }
+}

@@ -177,11 +177,11 @@ fn damping(e: &Evidence) -> Option<Paragraph> {
         text: format!(
             "Bond damping is physical (it sets each spring's restitution) but acts only on relative motion, which the \
              slow, nearly rigid modes of a block barely have: the fastest bond-damped relaxation here takes {} s; \
-             background damping, on every node's velocity, {} s, {:.0}× faster. Static answers (moduli) want \
+             background damping, on every node's velocity, {} s, {}. Static answers (moduli) want \
              background damping near the slowest mode's critical value, dynamics (restitution) the bond damping alone.",
             sig(bond),
             sig(background),
-            bond / background
+            crate::report::words::times(bond / background, "faster", "slower")
         ),
     })
 }

@@ -9,6 +9,7 @@ use super::finding::{
 };
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, background_damping_only, background_gamma, bond_damping_only, both_dampings};
+use crate::report::words;
 use crate::runner::RunRecord;
 use crate::spec::Diagonals;
 use crate::theory::critical_damping;
@@ -425,7 +426,11 @@ pub(super) fn dissipation_headline(e: &Evidence) -> Option<String> {
     };
     let bond = (!study.bond.is_empty()).then(|| {
         let bond_time = fastest_relaxation(&study.bond);
-        format!("; bond damping alone takes {} s at best, {:.0}× longer", sig(bond_time), bond_time / time)
+        format!(
+            "; bond damping alone takes {} s at best, {}",
+            sig(bond_time),
+            words::times(bond_time / time, "longer", "shorter")
+        )
     });
     Some(format!(
         "Loaded, the {} block counts as relaxed ({}) fastest with background damping near its critical value \
@@ -449,8 +454,8 @@ fn dissipation_short(bond: &[&RunRecord], background: &[&RunRecord], sweep: Opti
     });
     let against_bond = (!bond.is_empty() && !background.is_empty()).then(|| {
         format!(
-            "background damping relaxes {:.0}× faster than bond damping",
-            fastest_relaxation(bond) / fastest_relaxation(background)
+            "background damping relaxes {} than bond damping",
+            words::times(fastest_relaxation(bond) / fastest_relaxation(background), "faster", "slower")
         )
     });
     let parts: Vec<String> = optimum.into_iter().chain(against_bond).collect();
@@ -487,8 +492,8 @@ fn damping_sentences(
                 String::new()
             } else {
                 format!(
-                    ", and relaxes the block {:.0}× faster than the fastest bond damping here",
-                    fastest_relaxation(bond) / fastest_relaxation(background)
+                    ", and relaxes the block {} than the fastest bond damping here",
+                    words::times(fastest_relaxation(bond) / fastest_relaxation(background), "faster", "slower")
                 )
             }
         ));

@@ -362,7 +362,13 @@ fn pair_case(e: &Evidence, r: &RunRecord) -> (String, bool) {
         r.metrics.energy_error.map(rel).unwrap_or_default(),
     );
     if !within {
-        sentence += &format!(": outside {PAIR_TOLERANCE:e}");
+        // The tolerance is of t_c and r; the energy balance before it is said, not judged here.
+        let outside: Vec<String> = [("t_c", t_err), ("r", r_err)]
+            .iter()
+            .filter(|(_, x)| x.is_some_and(|x| x.abs() > PAIR_TOLERANCE))
+            .map(|(name, _)| name.to_string())
+            .collect();
+        sentence += &format!("; {} outside {PAIR_TOLERANCE:e}", crate::report::words::listed(&outside, "and"));
         if let Some(order) = order_of(e, r, |x| pair_errors(x).1) {
             sentence += &format!("; the error falls at order {order:.2} with dt");
         }

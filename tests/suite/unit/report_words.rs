@@ -1,6 +1,6 @@
 //! Unit tests of `src/report/words.rs`, moved out of the library (one test binary).
 
-use mdsolids::report::words::{exponent, short};
+use mdsolids::report::words::{exponent, short, times};
 
 /// Numbers in sentences keep 4 significant digits after rounding; an exponent's round-off is 0.
 #[test]
@@ -16,4 +16,11 @@ fn four_digits_in_sentences() {
     assert_eq!(exponent(-1.83e-14, 4), "0.0000");
     assert_eq!(exponent(-2e-4, 3), "0.000");
     assert_eq!(exponent(0.19976, 4), "0.1998");
+}
+
+#[test]
+fn times_says_which_way_and_keeps_a_decimal_below_ten() {
+    assert_eq!(times(1.16, "longer", "shorter"), "1.2× longer");
+    assert_eq!(times(0.5, "faster", "slower"), "2.0× slower");
+    assert_eq!(times(12.4, "faster", "slower"), "12× faster");
 }
