@@ -460,14 +460,23 @@ fn packing_words(s: &RunSpec, p: &PackingSpec, law: &str) -> String {
     let made = p.compression.map_or(String::new(), |c| {
         format!(", made by a slow compression from φ = {} in {} steps", number(c.from), c.steps)
     });
+    // The first ⌈n/2⌉ discs are small, the rest large (PackingSpec::n).
+    let (small, large) = (p.n.div_ceil(2), p.n / 2);
+    let discs = if ratio == 1.0 {
+        format!("{} equal discs of diameter d = {} m and mass m = {} kg", p.n, number(s.spacing), number(s.mass))
+    } else {
+        format!(
+            "{small} discs of diameter d = {} m and mass m = {} kg and {large} discs {} times as wide and {} times as \
+             heavy (mass ∝ area)",
+            number(s.spacing),
+            number(s.mass),
+            number(ratio),
+            number(ratio * ratio)
+        )
+    };
     format!(
-        "{law} between touching discs (contacts, compression only); half the discs of diameter d = {} m and mass \
-         m = {} kg, half {} times as wide and {} times as heavy (mass ∝ area), in a periodic square box, relaxed \
-         to an energy minimum by {method}{made}",
-        number(s.spacing),
-        number(s.mass),
-        number(ratio),
-        number(ratio * ratio)
+        "{law} between touching discs (contacts, compression only); {discs}, in a periodic square box, relaxed to \
+         an energy minimum by {method}{made}"
     )
 }
 

@@ -872,7 +872,17 @@ fn the_time_step_paragraph_speaks_only_of_what_the_campaign_has() {
     assert!(!paragraph.contains("dt²") && !paragraph.contains("work–precision"), "{paragraph}");
     // A packing scene is described by its discs and its minimiser, not by a chain's fields.
     let scene = line_with(&hertz, "between touching discs");
-    assert!(scene.contains("1.4 times as wide and 1.96 times as heavy") && scene.contains("by FIRE"), "{scene}");
+    assert!(
+        scene.contains("and 8 discs 1.4 times as wide and 1.96 times as heavy") && scene.contains("by FIRE"),
+        "{scene}"
+    );
+    // Discs of one size are said to be equal, and an odd count is split as the spec splits it.
+    let equal = report_of("ts", &packings_and("linear", false).replace("n: 16", "n: 16, radius_ratio: 1.0"));
+    assert!(line_with(&equal, "between touching discs").contains("16 equal discs of diameter"), "{equal}");
+    let odd = report_of("ts", &packings_and("linear", false).replace("n: 16", "n: 15"));
+    assert!(
+        line_with(&odd, "between touching discs").contains("8 discs of diameter d = 1 m and mass m = 1 kg and 7 discs")
+    );
     assert!(!scene.contains("x_e") && !scene.contains("v0") && !scene.contains("verlet"), "{scene}");
 }
 

@@ -213,3 +213,14 @@ fn a_network_past_rigidity_loss_is_a_mechanism() {
     );
     assert_eq!(records[0].status, RunStatus::Mechanism, "{}", records[0].message);
 }
+
+#[test]
+fn walls_too_close_for_a_relaxing_chain_are_refused_with_what_is_allowed() {
+    // 4 particles start at rest spacing 1 m from the left wall; walls 4 m apart would crush the
+    // last spring to 0: refused, the message saying what the value must be.
+    let yaml = "version: 1\nname: w\nscenes:\n  - name: walls\n    kind: chain\n    n: 4\n    \
+                relax: {residual_force: 1.0e-9}\n    wall_distance: 4.0\n";
+    let error = mdsolids::plan::parse("w.yaml", yaml).map(|_| ()).unwrap_err().to_string();
+    assert!(error.contains("w.yaml") && error.contains("wall_distance"), "{error}");
+    assert!(error.contains("= 4: must be more than (n + 0.1) · spacing = 4.1"), "{error}");
+}

@@ -96,7 +96,7 @@ impl ChainRun {
             "wall_distance",
             walls,
             &format!(
-                "more than (n + 0.1) · spacing = {}: a relaxing chain starts at rest spacing from the left \
+                "must be more than (n + 0.1) · spacing = {}: a relaxing chain starts at rest spacing from the left \
                  wall, so the last spring takes the whole wall displacement at first and must not collapse",
                 Num(least)
             ),
