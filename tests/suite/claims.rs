@@ -1949,3 +1949,18 @@ fn the_stability_appendix_says_as_here_only_of_a_campaign_that_allows_unstable_s
         assert_eq!(report.contains("`time.allow_unstable: true`, as here."), allowed, "{line}");
     }
 }
+
+#[test]
+fn the_time_step_names_the_steps_that_did_not_finish() {
+    // At t_c/1.5 and t_c/2 a pair hit at 1 m/s moves 1.5 and 1.1 m in its first step, through
+    // its partner (rest length 1 m): both end unstable, and the item says so instead of leaving
+    // them out silently; the sweep's coarsest finished step is t_c/5, written as such.
+    let yaml = "version: 1\nname: un\ndefaults:\n  time: {allow_unstable: true}\nscenes:\n  - name: pair-bonded\n    \
+                kind: pair\n    v0: 1.0\n    grid:\n      time.dt_per_tc: [1.5, 2, 5, 10, 50, 200]\n";
+    let report = report_of("un", yaml);
+    let line = line_with(&report, "did not finish");
+    assert!(line.contains("The runs at t_c/1.5 and t_c/2 did not finish (unstable: "), "{line}");
+    assert!(line_with(&report, "Over the sweep the error of t_c falls").contains(" at t_c/5, "), "{report}");
+    let stable = report_of("un", &yaml.replace("1.5, 2, ", ""));
+    assert!(!stable.contains("did not finish"), "{stable}");
+}

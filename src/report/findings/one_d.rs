@@ -448,6 +448,7 @@ pub(super) fn time_step(e: &Evidence) -> Option<Answer> {
                  time.dt_per_tc (say 10 to 500) to confirm the choice with larger and smaller steps."
             .into(),
     });
+    sentences.extend(failed_steps_sentence(e));
     let dt = format!("dt = t_c/50 = {} s", sig(s.t_c / 50.0));
     Some(Answer {
         title: "The time step",
@@ -470,6 +471,27 @@ pub(super) fn time_step(e: &Evidence) -> Option<Answer> {
     })
 }
 
+/// The bonded pairs' steps that did not finish (a step past the integrator's limit, or one so
+/// large the particles pass through each other), left out of the sweep: said with their status.
+fn failed_steps_sentence(e: &Evidence) -> Option<String> {
+    let failed = e.all(|r| {
+        r.spec.kind() == SceneKind::Pair
+            && r.spec.law == LawSpec::Linear
+            && !r.spec.contact
+            && r.spec.gamma == 0.0
+            && r.status != crate::sim::RunStatus::Ok
+    });
+    let first = failed.first()?;
+    Some(format!(
+        "The {} at {} did not finish ({}: {}) and {} left out of the sweep.",
+        if failed.len() == 1 { "run" } else { "runs" },
+        steps_words(&failed),
+        first.status.as_str(),
+        first.message,
+        if failed.len() == 1 { "is" } else { "are" }
+    ))
+}
+
 /// The time step's sweep in words: the fitted `order` of the error of t_c and its values at
 /// the coarsest, the `reference` (t_c/50) and the finest step of the `bonded` pairs swept with it.
 fn sweep_sentence(bonded: &[&RunRecord], reference: &RunRecord, order: f64) -> Option<String> {
@@ -485,15 +507,14 @@ fn sweep_sentence(bonded: &[&RunRecord], reference: &RunRecord, order: f64) -> O
     let coarsest = sweep.iter().max_by(|a, b| a.spec.dt.total_cmp(&b.spec.dt))?;
     let finest = sweep.iter().min_by(|a, b| a.spec.dt.total_cmp(&b.spec.dt))?;
     Some(format!(
-        "Over the sweep the error of t_c falls as dt^{order:.2} ({}): {} at t_c/{:.0}, {} at t_c/{:.0} and {} at \
-         t_c/{:.0}.{}",
+        "Over the sweep the error of t_c falls as dt^{order:.2} ({}): {} at {}, {} at {} and {} at {}.{}",
         reference.spec.integrator.name(),
         t_error(coarsest).map(rel).unwrap_or_default(),
-        coarsest.spec.dt_per_tc(),
+        step_words(coarsest),
         t_error(reference).map(rel).unwrap_or_default(),
-        reference.spec.dt_per_tc(),
+        step_words(reference),
         t_error(finest).map(rel).unwrap_or_default(),
-        finest.spec.dt_per_tc(),
+        step_words(finest),
         cost_words(coarsest, reference, finest, t_error)
     ))
 }
