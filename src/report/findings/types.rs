@@ -9,6 +9,7 @@ use super::finding::{Answer, Evidence, Table, Verdict, cell, extremes, rel, rela
 use crate::measure::lattice_constants;
 use crate::model::LatticeType;
 use crate::report::figure::FigureKind;
+use crate::report::words;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::spec::{LatticeSpec, LoadCase, Supports};
@@ -125,7 +126,7 @@ impl TypeModuli {
                 cell(md),
                 cell(fem),
                 cell(theory),
-                crate::report::words::error(relative(fem, theory)),
+                words::error(relative(fem, theory)),
             ]);
         }
         moduli.sentence = format!(
@@ -704,7 +705,7 @@ pub(super) fn waves(e: &Evidence) -> Option<Answer> {
     let criterion = runs.first().and_then(|r| r.metrics.arrival_criterion.clone()).unwrap_or_default();
     let longitudinal = ratios(&waves, |w| !w.transverse);
     let rigid = ratios(&waves, |w| w.transverse && judged(w));
-    let mut sentences = longitudinal_sentences(&longitudinal, &criterion);
+    let mut sentences = longitudinal_sentences(&waves, &criterion);
     sentences.extend(transverse_sentence(&waves, &rigid));
     sentences.extend(kagome_sentence(&waves));
     sentences.extend(honeycomb_sentence(&waves));
@@ -785,23 +786,51 @@ fn wave_rows(runs: &[&RunRecord]) -> Option<(Vec<Vec<String>>, Vec<Wave>)> {
     Some((rows, waves))
 }
 
-/// The longitudinal waves' speeds against each type's c_L, and what a like ratio says.
-fn longitudinal_sentences(longitudinal: &[f64], criterion: &str) -> Vec<String> {
+/// The longitudinal waves' speeds against each type's c_L, said of the impulses that sent them
+/// and the types they ran on, and, over two types or more, what a like ratio says.
+fn longitudinal_sentences(waves: &[Wave], criterion: &str) -> Vec<String> {
+    let longitudinal = ratios(waves, |w| !w.transverse);
     if longitudinal.is_empty() {
         return Vec::new();
     }
-    vec![
-        format!(
-            "A force step down on the top row sends a plane longitudinal wave down every type; timed at the bottom \
-             row by the {criterion} criterion, its speed is {} of that lattice's c_L = √((λ + 2μ) A/m) (A the \
-             area per node): a√((k + k_d)/m) square, a√(9k/(8m)) triangular, a√(3k/(4m)) kagome, a√(3k/(8m)) \
-             honeycomb.",
-            span(longitudinal)
-        ),
-        "A like ratio on every type says the criterion, not the network, sets the offset: a discrete \
-             lattice's front is dispersed over a few rows, and a threshold catches its leading edge."
-            .into(),
-    ]
+    let down: Vec<&Wave> = waves.iter().filter(|w| !w.transverse && w.ratio.is_some()).collect();
+    let mut types: Vec<&str> = down.iter().map(|w| w.kind.name()).collect();
+    types.sort_unstable();
+    types.dedup();
+    // Only a step on the whole top row makes a plane front; a kicked node sends a circular one.
+    let of_kind = |ending: &str| {
+        // "1000 N step" → "1000 N": the kind is said once, before the sizes.
+        let mut sizes: Vec<String> =
+            down.iter().filter_map(|w| w.impulse.strip_suffix(ending).map(String::from)).collect();
+        sizes.sort_unstable();
+        sizes.dedup();
+        sizes
+    };
+    let (steps, kicks) = (of_kind(" step"), of_kind(" kick"));
+    let mut sources = Vec::new();
+    if !steps.is_empty() {
+        sources.push(format!("a force step down on the top row ({})", words::listed(&steps, "or")));
+    }
+    if !kicks.is_empty() {
+        sources.push(format!("a kick of one node ({})", words::listed(&kicks, "or")));
+    }
+    let across = if types.len() > 1 { "every type".to_string() } else { format!("the {} lattice", types[0]) };
+    let mut sentences = vec![format!(
+        "{} sends a {}longitudinal wave down {across}; timed at the bottom row by the {criterion} criterion, its \
+         speed is {} of that lattice's c_L = √((λ + 2μ) A/m) (A the area per node): a√((k + k_d)/m) square, \
+         a√(9k/(8m)) triangular, a√(3k/(4m)) kagome, a√(3k/(8m)) honeycomb.",
+        words::capitalised(&words::listed(&sources, "or")),
+        if kicks.is_empty() { "plane " } else { "" },
+        span(&longitudinal)
+    )];
+    if types.len() > 1 {
+        sentences.push(
+            "A like ratio on every type says the criterion, not the network, sets the offset: a discrete lattice's \
+             front is dispersed over a few rows, and a threshold catches its leading edge."
+                .into(),
+        );
+    }
+    sentences
 }
 
 /// The transverse waves of the rigid types against their c_T.
