@@ -1801,7 +1801,9 @@ fn a_pair_and_a_chain_beside_a_lattice_type_study_keep_their_items() {
         if study {
             // One kicked node on one type: no plane front, and no "like ratio on every type".
             let line = line_with(&report, "longitudinal wave down");
-            assert!(line.starts_with("A kick of one node (0.001000 m/s) sends a longitudinal wave down the triangular"));
+            assert!(
+                line.starts_with("A kick of one node (0.001000 m/s) sends a longitudinal wave down the triangular")
+            );
             assert!(!report.contains("A like ratio on every type"), "{report}");
         }
     }

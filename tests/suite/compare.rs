@@ -256,6 +256,25 @@ fn damped_pair(name: &str, law: &str) -> String {
     )
 }
 
+/// Runs the campaigns `campaign(name, law)` makes for A = (`a`, linear springs) and B = (`b`,
+/// Hertz springs) under `reports` and compares A with B: the command's output and the
+/// comparison's report.md.
+fn linear_against_hertz(
+    reports: &Path,
+    (a, b): (&str, &str),
+    campaign: impl Fn(&str, &str) -> String,
+) -> (String, String) {
+    for (name, law) in [(a, "linear"), (b, "hertz")] {
+        let file = reports.join(format!("{name}.yaml"));
+        std::fs::write(&file, campaign(name, law)).unwrap();
+        succeed(reports, &["run", file.to_str().unwrap()]);
+    }
+    let (dir_a, dir_b) = (reports.join(a), reports.join(b));
+    let stdout = succeed(reports, &["compare", dir_a.to_str().unwrap(), dir_b.to_str().unwrap()]);
+    let report = std::fs::read_to_string(reports.join(format!("compare-{a}-vs-{b}")).join("report.md")).unwrap();
+    (stdout, report)
+}
+
 /// The page opens with what differs physically (issue 33): each physical quantity's medians on
 /// both sides in a sentence, before the diagnostics; and a restitution that misses the target
 /// its dashpot was set for is said, side by side. The claim flips between the sides: the linear
@@ -265,14 +284,8 @@ fn damped_pair(name: &str, law: &str) -> String {
 fn the_physics_comes_first_and_a_missed_restitution_is_said() {
     let dir = crate::common::scratch();
     let reports = dir.path();
-    for (name, law) in [("lin", "linear"), ("hertz", "hertz")] {
-        let file = reports.join(format!("{name}.yaml"));
-        std::fs::write(&file, damped_pair(name, law)).unwrap();
-        succeed(reports, &["run", file.to_str().unwrap()]);
-    }
+    let (_, report) = linear_against_hertz(reports, ("lin", "hertz"), damped_pair);
     let (a, b) = (reports.join("lin"), reports.join("hertz"));
-    succeed(reports, &["compare", a.to_str().unwrap(), b.to_str().unwrap()]);
-    let report = std::fs::read_to_string(reports.join("compare-lin-vs-hertz").join("report.md")).unwrap();
     let physics = report.find("## What differs physically").expect("a physics section");
     assert!(physics < report.find("## What differs\n").expect("the diagnostics"), "{report}");
     assert!(!report.contains("(dimensionless)"), "{report}");
@@ -296,18 +309,13 @@ fn a_static_solves_time_is_a_cost_not_a_difference() {
     // `loop_s`: two lattice campaigns had it among the "measured quantities that differ".
     let dir = crate::common::scratch();
     let reports = dir.path();
-    for (name, law) in [("lin", "linear"), ("hz", "hertz")] {
-        let yaml = format!(
+    let tensile = |name: &str, law: &str| {
+        format!(
             "version: 1\nname: {name}\nscenes:\n  - name: tens\n    kind: lattice\n    material: {{law: {law}}}\n    \
              lattice: {{size: 4, k_diag_ratio: 0.5}}\n    load: {{case: tensile, per_node: 0.001}}\n    relax: {{method: fire}}\n"
-        );
-        let file = reports.join(format!("{name}.yaml"));
-        std::fs::write(&file, yaml).unwrap();
-        succeed(reports, &["run", file.to_str().unwrap()]);
-    }
-    let (a, b) = (reports.join("lin"), reports.join("hz"));
-    succeed(reports, &["compare", a.to_str().unwrap(), b.to_str().unwrap()]);
-    let report = std::fs::read_to_string(reports.join("compare-lin-vs-hz").join("report.md")).unwrap();
+        )
+    };
+    let (_, report) = linear_against_hertz(reports, ("lin", "hz"), tensile);
     let differ = report.split("### Measured quantities that differ beyond noise").nth(1).unwrap();
     let differ = differ.split("### Inputs that differ").next().unwrap();
     assert!(differ.contains("`youngs_modulus`"), "the moduli differ: {differ}");
@@ -329,18 +337,11 @@ fn packings(name: &str, law: &str) -> String {
 fn packings_are_joined_seed_by_seed_and_their_moduli_are_per_length() {
     let dir = crate::common::scratch();
     let reports = dir.path();
-    for (name, law) in [("lin", "linear"), ("hz", "hertz")] {
-        let file = reports.join(format!("{name}.yaml"));
-        std::fs::write(&file, packings(name, law)).unwrap();
-        succeed(reports, &["run", file.to_str().unwrap()]);
-    }
-    let (a, b) = (reports.join("lin"), reports.join("hz"));
-    let stdout = succeed(reports, &["compare", a.to_str().unwrap(), b.to_str().unwrap()]);
+    let (stdout, report) = linear_against_hertz(reports, ("lin", "hz"), packings);
     assert!(stdout.contains("4 joined rows"), "{stdout}");
     let out = reports.join("compare-lin-vs-hz");
     let joined = read(&out.join("compare.parquet"));
     assert_eq!(floats(&joined, "seed_a"), floats(&joined, "seed_b"));
-    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
     for quantity in ["shear_modulus_2d", "bulk_modulus_2d", "pressure"] {
         let line = report.lines().find(|l| l.contains(&format!("| `{quantity}` |"))).expect(&report);
         assert!(line.contains("| N/m |"), "{line}");
@@ -365,14 +366,8 @@ fn two_target_pairs(name: &str, law: &str) -> String {
 fn a_restitution_is_judged_against_its_own_target() {
     let dir = crate::common::scratch();
     let reports = dir.path();
-    for (name, law) in [("lin", "linear"), ("hertz", "hertz")] {
-        let file = reports.join(format!("{name}.yaml"));
-        std::fs::write(&file, two_target_pairs(name, law)).unwrap();
-        succeed(reports, &["run", file.to_str().unwrap()]);
-    }
+    let (_, report) = linear_against_hertz(reports, ("lin", "hertz"), two_target_pairs);
     let (a, b) = (reports.join("lin"), reports.join("hertz"));
-    succeed(reports, &["compare", a.to_str().unwrap(), b.to_str().unwrap()]);
-    let report = std::fs::read_to_string(reports.join("compare-lin-vs-hertz").join("report.md")).unwrap();
     // Each side's restitution at target `goal`: the median of its runs set for it.
     let at = |dir: &Path, goal: f64| {
         let results = read(&dir.join("results.parquet"));
