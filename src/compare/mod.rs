@@ -14,6 +14,7 @@ mod plots;
 pub mod quantity;
 mod restitution;
 mod section;
+mod stats;
 mod table;
 mod words;
 

@@ -7,7 +7,8 @@ use serde::Serialize;
 
 use super::quantity::{Class, NOISE, unit};
 use super::restitution::Targets;
-use super::section::{SceneSection, Stats};
+use super::section::SceneSection;
+use super::stats::Stats;
 use super::words::{fixed, short, value};
 
 /// At most this many sentences name a differing quantity, and at most this many figures show

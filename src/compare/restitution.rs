@@ -6,7 +6,7 @@
 use std::f64::consts::PI;
 
 use super::join::SceneRows;
-use super::section::{Stats, stats};
+use super::stats::{Stats, stats};
 
 /// The restitution target of a row's run on each side (A's, B's); `None` where the run has
 /// none (overdamped, or no damping ratio recorded) and, in one side's grouping, for the other.

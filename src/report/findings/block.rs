@@ -271,7 +271,7 @@ impl<'a> Block<'a> {
                  c_L = a√((k + k_d)/m) = {} m/s, and {derived}: the threshold {}.",
                 sig(v),
                 sig(distance),
-                super::dynamics::threshold_percent(w),
+                super::finding::threshold_percent(w),
                 percent((v - c_l) / c_l),
                 sig(c_l),
                 if v > c_l {

@@ -6,6 +6,7 @@ use super::block::Block;
 use super::combined_damping;
 use super::finding::{
     Answer, Evidence, Table, Verdict, cell, extremes, fastest_relaxation, lattice_size, percent, rel, relative, sig,
+    threshold_percent,
 };
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, background_damping_only, background_gamma, bond_damping_only, both_dampings};
@@ -203,12 +204,6 @@ fn chain_route(chain: &RunRecord) -> (String, String) {
         p => format!("particle {p}"),
     };
     (hit, receiver)
-}
-
-/// A run's wave threshold θ, the fraction of the source's peak its threshold criteria wait
-/// for, in per cent (`wave.threshold`, 0.01 unless the scene sets it).
-pub(super) fn threshold_percent(r: &RunRecord) -> String {
-    r.spec.wave().map_or_else(|| "–".into(), |w| format!("{} %", crate::report::words::number(100.0 * w.threshold)))
 }
 
 /// The other arrival criteria's front speeds, each compared with the speed threshold's: a

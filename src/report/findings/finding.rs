@@ -300,3 +300,9 @@ pub(super) fn plus_minus(x: f64, u: f64) -> String {
 
 /// Signed numbers and per cents, as the whole report writes them.
 pub(super) use crate::report::words::{percent, signed};
+
+/// A run's wave threshold θ, the fraction of the source's peak its threshold criteria wait
+/// for, in per cent (`wave.threshold`, 0.01 unless the scene sets it).
+pub(super) fn threshold_percent(r: &RunRecord) -> String {
+    r.spec.wave().map_or_else(|| "–".into(), |w| format!("{} %", crate::report::words::number(100.0 * w.threshold)))
+}
