@@ -174,7 +174,8 @@ pub const LANCZOS_BONDS: usize = 250_000;
 /// t_c, the damping and the stability estimate: the deformation the run is expected to reach.
 /// A collision or kick at speed v: the two-body overlap −δ_max(v); a loaded lattice: the
 /// extension (F/C)^(1/β) of a spring carrying one node's load F (velocity control: strain · a);
-/// a relaxing chain: its springs' equilibrium extension ΔW/(n + 1). Linear springs: 0.
+/// a relaxing chain: its springs' equilibrium extension ΔW/(n + 1); a hit chain between moved
+/// walls: that extension plus the collision's overlap. Linear springs: 0.
 pub fn reference_extension(spec: &RunSpec) -> f64 {
     let LawSpec::Power { beta } = spec.law else {
         return 0.0;
@@ -183,6 +184,19 @@ pub fn reference_extension(spec: &RunSpec) -> f64 {
         Deformation::Collision(speed) => -crate::theory::power_law_max_overlap(spec.k, beta, spec.mass, speed),
         Deformation::Carrying(force) => (force.abs() / spec.k).powf(1.0 / beta),
         Deformation::Extension(extension) => extension,
+        Deformation::PreStressed { extension, speed } => {
+            let overlap = crate::theory::power_law_max_overlap(spec.k, beta, spec.mass, speed);
+            // Contacts held apart are slack: the particles fly free and then collide.
+            // Otherwise the kick adds its overlap to the pre-stress: the stiffest the springs
+            // get is at |δ| + δ_max (compressed when δ ≤ 0).
+            if spec.contact && extension > 0.0 {
+                -overlap
+            } else if extension > 0.0 {
+                extension + overlap
+            } else {
+                extension - overlap
+            }
+        }
     }
 }
 

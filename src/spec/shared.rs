@@ -250,4 +250,12 @@ pub enum Deformation {
     Carrying(f64),
     /// This extension itself (m).
     Extension(f64),
+    /// A kick on springs held stretched or squeezed by moved walls: the two-body overlap on top
+    /// of the pre-stress.
+    PreStressed {
+        /// The springs' extension between the walls, ΔW/(n + 1) (m).
+        extension: f64,
+        /// The kick (m/s).
+        speed: f64,
+    },
 }

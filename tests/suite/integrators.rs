@@ -171,17 +171,31 @@ fn precompressed_hertz_chain(dt_per_tc: u32) -> String {
 
 #[test]
 fn a_chain_squeezed_between_walls_is_planned_at_its_pre_stress() {
-    // Each spring is compressed by δ = 11/41 m, where a Hertz spring's tangent stiffness is
-    // k_t = 1.5 √δ = 0.777 N/m: ω_max = 2 √(k_t/m) sin(40π/82) = 1.762 rad/s, the chain's top
-    // mode. The plan took ω_max of the 0.01 m/s collision (0.93 rad/s) and let dt = t_c/5 run
-    // (dt ω_max = 2.16 > 2), which blew up; it is now refused, and t_c/50 runs with the
-    // Lanczos ω_max within 1e-6 of the top mode (Lanczos converges to round-off on 40 nodes).
+    // Each spring is compressed by 11/41 m, and the kick at 0.01 m/s squeezes one further by the
+    // two-body overlap δ_max = ((β + 1) (m/2) v0²/(2k))^(1/(β + 1)) = 0.0208 m: the plan takes
+    // a Hertz spring's tangent stiffness k_t = 1.5 √δ at δ = 11/41 + δ_max, ω_max = 2 √(k_t/m)
+    // sin(40π/82) ≈ 1.79 rad/s, the chain's top mode there. It took ω_max of the collision alone
+    // (0.93 rad/s) and let dt = t_c/5 run (dt ω_max > 2), which blew up; it is now refused, and
+    // t_c/50 runs with the Lanczos ω_max within 1e-6 of that top mode (Lanczos converges to
+    // round-off on 40 nodes).
     let error = plan::parse("squeezed.yaml", &precompressed_hertz_chain(5)).unwrap_err().to_string();
     assert!(error.contains("stability limit") && error.contains("time.dt_per_tc"), "{error}");
     let record = execute_all(&precompressed_hertz_chain(50)).remove(0);
     assert_eq!(record.status, RunStatus::Ok, "{}", record.message);
-    let k_t = 1.5 * (11.0f64 / 41.0).sqrt();
+    let overlap = (2.5 * 0.5 * 0.01f64.powi(2) / 2.0).powf(1.0 / 2.5);
+    let k_t = 1.5 * (11.0f64 / 41.0 + overlap).sqrt();
     let top = 2.0 * k_t.sqrt() * (40.0 * std::f64::consts::PI / 82.0).sin();
     let omega_max = record.metrics.omega_max.unwrap();
     assert!((omega_max / top - 1.0).abs() < 1e-6, "ω_max {omega_max} against {top}");
+    // Walls moved by 1e-6 m, springs nearly at rest: the kick at 1 m/s sets the stiffness, as
+    // between walls at rest, and t_c/2.5 is refused for both (it ran and collapsed at step 1
+    // while the plan took the stiffness at ΔW/(n + 1) = 9e-8 m alone).
+    for walls in ["", "    wall_distance: 11.000001\n"] {
+        let yaml = format!(
+            "version: 1\nname: t\nscenes:\n  - name: nudged\n    kind: chain\n    n: 10\n    \
+             material: {{mass: 1.0, k: 1.0, law: hertz}}\n    v0: 1.0\n{walls}    time: {{dt_per_tc: 2.5}}\n"
+        );
+        let error = plan::parse("nudged.yaml", &yaml).unwrap_err().to_string();
+        assert!(error.contains("stability limit"), "{walls}: {error}");
+    }
 }

@@ -384,6 +384,7 @@ fn deformation_words(kind: SceneKind, deformation: Deformation) -> String {
         (_, Deformation::Collision(_)) => "the impact speed".into(),
         (_, Deformation::Carrying(_)) => "the force a spring carries".into(),
         (SceneKind::Chain, Deformation::Extension(_)) => "the walls' displacement".into(),
+        (_, Deformation::PreStressed { .. }) => "the walls' displacement and the impact speed".into(),
         (SceneKind::Packing, Deformation::Extension(_)) => format!(
             "an overlap of {} % of a small diameter",
             words::number(crate::spec::PACKING_REFERENCE_OVERLAP * 100.0)
@@ -481,7 +482,7 @@ pub(super) fn linear_and_hertz(e: &Evidence) -> Option<Answer> {
     let name = nonlinear_name(e);
     let stiffness = if name == "Hertz" { "δ^(1/2)" } else { "δ^(β − 1)" };
     (linear > 0 && hertz > 0).then(|| Answer {
-        title: "Linear against Hertz springs",
+        title: if name == "Hertz" { "Linear against Hertz springs" } else { "Linear against power-law springs" },
         question: "Discuss the difference between the linear and the non-linear model (1D and 2D).",
         short: format!("{linear} linear and {hertz} {name} scaling laws against their predictions"),
         sentences: vec![format!(

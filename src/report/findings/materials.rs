@@ -215,7 +215,12 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
     scenes.dedup();
     let load_figures = scenes.iter().map(|scene| e.figure(scene, FigureKind::AgainstLoad));
     Some(Answer {
-        title: "Hertz lattices: moduli against the load",
+        // Hertz only where every spring is β = 3/2: other powers are the same question.
+        title: if exponents(runs.iter().copied()) == [1.5] {
+            "Hertz lattices: moduli against the load"
+        } else {
+            "Power-law lattices: moduli against the load"
+        },
         question: "Non-linear 2D: set the load to different values and analyse the moduli of the different \
                    equilibria.",
         short: format!(

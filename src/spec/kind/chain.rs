@@ -69,16 +69,15 @@ impl ChainRun {
         self.n + 1
     }
 
-    /// A chain between moved walls: its springs' equilibrium extension ΔW/(n + 1), where a
-    /// non-linear spring's tangent stiffness, and so ω_max and the stability limit, are taken
-    /// (a hit chain starts there, evenly spaced; a relaxing one ends there); otherwise the kick
-    /// at v0 (m/s).
+    /// A relaxing chain between moved walls: its springs' equilibrium extension ΔW/(n + 1),
+    /// where it ends; a hit chain between moved walls: the kick at v0 (m/s) on springs held at
+    /// ΔW/(n + 1), where it starts evenly spaced; otherwise the kick at v0.
     pub(super) fn deformation(&self, spacing: f64, v0: f64) -> Deformation {
-        let extension = self.wall_extension(spacing);
-        if extension != 0.0 {
-            Deformation::Extension(extension / (self.n + 1) as f64)
-        } else {
-            Deformation::Collision(v0)
+        let extension = self.wall_extension(spacing) / (self.n + 1) as f64;
+        match (extension != 0.0, self.relax.is_some()) {
+            (true, true) => Deformation::Extension(extension),
+            (true, false) => Deformation::PreStressed { extension, speed: v0 },
+            (false, _) => Deformation::Collision(v0),
         }
     }
 
