@@ -1001,3 +1001,36 @@ fn a_packing_that_softens_under_compression_jams_below_its_own_fraction() {
     assert!(bulk < 0.0, "the case needs K < 0: {bulk}");
     assert!(own.unwrap() < 0.86, "{own:?}");
 }
+
+#[test]
+fn phi_j_comes_from_packings_that_jammed_and_relaxed() {
+    // Linear packings far below jamming and Hertz ones above it: φ_J comes from the softest law
+    // that jammed (Hertz), not the softest present. And a state met twice, first in a scene
+    // stopped by its budget, is kept in its relaxed copy: φ_J is stated, not "no φ_J".
+    let dir = crate::common::scratch();
+    let scene = |name: &str, law: &str, fractions: &str, relax: &str| {
+        format!(
+            "  - name: {name}\n    kind: packing\n    packing: {{n: 16}}\n    material: {{{law}}}\n    relax: {{{relax}}}\n    \
+             grid:\n      packing.fraction: {fractions}\n      seed: [1, 2]\n"
+        )
+    };
+    let mixed = format!(
+        "version: 1\nname: jam\nscenes:\n{}{}",
+        scene("lin", "law: linear", "[0.7, 0.75]", ""),
+        scene("hz", "law: hertz", "[0.86, 0.9]", "")
+    );
+    let report = std::fs::read_to_string(run_jam(dir.path(), &mixed).1.join("report.md")).unwrap();
+    assert!(report.contains("a seed's φ_J is the mean over its jammed Hertz packings"), "{report}");
+    let twice = format!(
+        "version: 1\nname: jam\nscenes:\n{}{}",
+        scene("tight", "law: linear", "[0.86, 0.9]", "max_tc: 1"),
+        scene("p1", "law: power, beta: 1.0", "[0.86, 0.9]", "")
+    );
+    let (frame, folder) = run_jam(dir.path(), &twice);
+    let report = std::fs::read_to_string(folder.join("report.md")).unwrap();
+    let stated = number_after(line_with(&report, "N = 16: φ_J = "), "N = 16: φ_J = ");
+    let seeds = (seed_onset(&frame, "power", 1.0) + seed_onset(&frame, "power", 2.0)) / 2.0;
+    // Two seeds' standard error ~1e-2 is printed with three decimals: 5e-4.
+    assert!((stated - seeds).abs() <= 5e-4, "{stated} against {seeds}");
+    assert!(line_with(&report, "Left out of φ_J").contains("4 packings repeating another scene's states"));
+}

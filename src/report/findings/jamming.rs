@@ -464,12 +464,17 @@ impl<'a> System<'a> {
     /// two spring constants would scatter p, K and G by their ratio, and a state met twice (the
     /// same N, seed, fraction and law in two scenes) is one sample, not two.
     fn of(packings: &[&'a RunRecord]) -> Self {
+        // The relaxed packings first: a state is kept in its relaxed copy, and a mixture or a
+        // law's spring is chosen by packings that tell something.
+        let (relaxed, failed): (Vec<&RunRecord>, Vec<&RunRecord>) =
+            packings.iter().partition(|r| r.status == RunStatus::Ok);
+        let packings: Vec<&RunRecord> = relaxed.into_iter().chain(failed).collect();
         let ratio_of = |r: &RunRecord| r.spec.packing().map_or(0.0, |p| p.radius_ratio);
         let ratio = packings.iter().map(|r| ratio_of(r)).find(|&x| x == LITERATURE_RATIO);
         let ratio = ratio.or_else(|| packings.first().map(|r| ratio_of(r))).unwrap_or(LITERATURE_RATIO);
         let (mut runs, mut left_out) = (Vec::new(), Vec::new());
         let mut seen: Vec<(u64, usize, u64, u64)> = Vec::new();
-        for &r in packings {
+        for &r in &packings {
             let first = packings.iter().find(|o| ratio_of(o) == ratio && o.spec.law == r.spec.law);
             let state = (r.spec.law.beta().to_bits(), key(r).map_or(0, |k| k.0), seed(r), fraction_bits(r));
             let reason = if ratio_of(r) != ratio {
@@ -581,9 +586,12 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
     let system =
         System::of(&e.all(|r| r.spec.packing().is_some_and(|p| p.compression.is_none()) && r.spec.movie.is_none()));
     let runs: Vec<&RunRecord> = system.runs.iter().copied().filter(|r| fitted(r)).collect();
-    // φ_J from the softest law present (linear where there is one): O'Hern et al. found it the
+    // φ_J from the softest law that jammed (linear where it did): O'Hern et al. found it the
     // same for every potential, and z_J and the preparation are counted over the same packings.
-    let Some(&base) = exponents(runs.iter().copied()).first() else { return Some(unjammed(&any, &system)) };
+    let onset_known = |r: &&&RunRecord| jammed(r) && r.metrics.packing.own_jamming_fraction.is_some();
+    let Some(&base) = exponents(runs.iter().filter(onset_known).copied()).first() else {
+        return Some(unjammed(&any, &system));
+    };
     let onsets = onsets_of(&runs, base);
     let sizes = Onset::per_size(&onsets);
     match sizes.last() {
@@ -885,14 +893,21 @@ fn unjammed(any: &[&RunRecord], system: &System) -> Answer {
     let highest = relaxed.iter().filter_map(|r| r.spec.packing().map(|p| p.fraction)).fold(0.0f64, f64::max);
     let jammed_count = any.iter().filter(|r| jammed(r)).count();
     let below = highest < PHI_J;
+    let compressed =
+        any.iter().filter(|r| jammed(r) && r.spec.packing().is_some_and(|p| p.compression.is_some())).count();
+    let why = match compressed {
+        0 => String::new(),
+        k => format!(" ({k} of them slowly compressed, another protocol than O'Hern et al.'s quench)"),
+    };
     let counted = format!(
-        "{jammed_count} of the {} packings (relaxed up to φ = {}) jammed, and none of them is a quench with its own φ_J \
-         to average (a slowly compressed packing follows another protocol)",
+        "{jammed_count} of the {} packings (relaxed up to φ = {}) jammed, and none of them is a quench of the mixture \
+         held here with its own φ_J{why}",
         any.len(),
         sig(highest)
     );
+    // A packing stopped by its budget is no finding about jamming: nothing is judged.
     let (sentence, verdict, short) = if relaxed.is_empty() {
-        (String::new(), Verdict::Outside, "no packing relaxed within its budget".to_string())
+        (String::new(), Verdict::Observed, "no packing relaxed within its budget".to_string())
     } else if jammed_count > 0 {
         (format!("No φ_J could be found: {counted}."), Verdict::Observed, "no φ_J: no quench jammed".into())
     } else {
@@ -914,6 +929,7 @@ fn unjammed(any: &[&RunRecord], system: &System) -> Answer {
         sentences: std::iter::once(sentence)
             .filter(|s| !s.is_empty())
             .chain(not_relaxed_sentence(&system.runs))
+            .chain(system.left_out_sentence())
             .collect(),
         reference: format!("{CITATION}: φ_J ≈ {PHI_J} for 1:1.4 bidisperse discs."),
         see_also: None,
