@@ -1968,10 +1968,14 @@ fn the_time_step_names_the_steps_that_did_not_finish() {
     // its partner (rest length 1 m): both end unstable, and the item says so instead of leaving
     // them out silently; the sweep's coarsest finished step is t_c/5, written as such.
     let yaml = "version: 1\nname: un\ndefaults:\n  time: {allow_unstable: true}\nscenes:\n  - name: pair-bonded\n    \
-                kind: pair\n    v0: 1.0\n    grid:\n      time.dt_per_tc: [1.5, 2, 5, 10, 50, 200]\n";
+                kind: pair\n    v0: 1.0\n    grid:\n      time.dt_per_tc: [1.5, 2, 5, 10, 50, 200]\n  - name: other\n    \
+                kind: pair\n    v0: 1.0\n    time: {integrator: symplectic-euler, dt_per_tc: 1.4}\n";
     let report = report_of("un", yaml);
     let line = line_with(&report, "did not finish");
-    assert!(line.contains("The runs at t_c/1.5 and t_c/2 did not finish (unstable: "), "{line}");
+    // The other scene's failed step is not the sweep's.
+    assert!(!line.contains("t_c/1.4"), "{line}");
+    assert!(line.contains("Left out of the sweep, as they did not finish: t_c/1.5 (unstable: "), "{line}");
+    assert!(line.contains(") and t_c/2 (unstable: "), "{line}");
     assert!(line_with(&report, "Over the sweep the error of t_c falls").contains(" at t_c/5, "), "{report}");
     let stable = report_of("un", &yaml.replace("1.5, 2, ", ""));
     assert!(!stable.contains("did not finish"), "{stable}");

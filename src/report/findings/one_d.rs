@@ -116,11 +116,13 @@ fn first_order_balance(balances: &[(f64, &RunRecord)]) -> Option<(String, bool)>
     let first: Vec<(f64, &RunRecord)> = balances.iter().copied().filter(|(_, r)| first_order(r)).collect();
     let (worst, run) = worst_balance(&first)?;
     let sentence = format!(
-        "The first-order symplectic Euler ({} at t_c/50) is held to ten times its own energy error, \
-         ω dt/2 = π/100 ≈ 0.03 there, that is {FIRST_ORDER_BALANCE_TOLERANCE}: it holds to {} at worst ({}).",
+        "The first-order symplectic Euler ({} at t_c/50) is held to ten times its own energy error, about \
+         ω dt/2 = π/100 ≈ 0.03 there for a pair, that is {FIRST_ORDER_BALANCE_TOLERANCE}: it holds to {} at worst \
+         ({}), {} it.",
         counted(first.len(), "run"),
         sig(worst),
-        run.spec.scene
+        run.spec.scene,
+        if worst <= FIRST_ORDER_BALANCE_TOLERANCE { "within" } else { "outside" }
     );
     Some((sentence, worst <= FIRST_ORDER_BALANCE_TOLERANCE))
 }
@@ -448,7 +450,7 @@ pub(super) fn time_step(e: &Evidence) -> Option<Answer> {
                  time.dt_per_tc (say 10 to 500) to confirm the choice with larger and smaller steps."
             .into(),
     });
-    sentences.extend(failed_steps_sentence(e));
+    sentences.extend(failed_steps_sentence(e, reference));
     let dt = format!("dt = t_c/50 = {} s", sig(s.t_c / 50.0));
     Some(Answer {
         title: "The time step",
@@ -471,25 +473,26 @@ pub(super) fn time_step(e: &Evidence) -> Option<Answer> {
     })
 }
 
-/// The bonded pairs' steps that did not finish (a step past the integrator's limit, or one so
-/// large the particles pass through each other), left out of the sweep: said with their status.
-fn failed_steps_sentence(e: &Evidence) -> Option<String> {
+/// The steps of the `reference`'s sweep (its scene, integrator and group) that did not finish
+/// (a step past the integrator's limit, or one so large the particles pass through each
+/// other), left out of it: each with its status and why.
+fn failed_steps_sentence(e: &Evidence, reference: &RunRecord) -> Option<String> {
+    let label = crate::report::figure::group_label(reference);
     let failed = e.all(|r| {
-        r.spec.kind() == SceneKind::Pair
-            && r.spec.law == LawSpec::Linear
-            && !r.spec.contact
-            && r.spec.gamma == 0.0
+        r.spec.scene == reference.spec.scene
+            && r.spec.integrator == reference.spec.integrator
+            && crate::report::figure::group_label(r) == label
             && r.status != crate::sim::RunStatus::Ok
     });
-    let first = failed.first()?;
-    Some(format!(
-        "The {} at {} did not finish ({}: {}) and {} left out of the sweep.",
-        if failed.len() == 1 { "run" } else { "runs" },
-        steps_words(&failed),
-        first.status.as_str(),
-        first.message,
-        if failed.len() == 1 { "is" } else { "are" }
-    ))
+    let each: Vec<String> =
+        failed.iter().map(|r| format!("{} ({}: {})", step_words(r), r.status.as_str(), r.message)).collect();
+    (!each.is_empty()).then(|| {
+        format!(
+            "Left out of the sweep, as {} did not finish: {}.",
+            if failed.len() == 1 { "it" } else { "they" },
+            crate::report::words::listed(&each, "and")
+        )
+    })
 }
 
 /// The time step's sweep in words: the fitted `order` of the error of t_c and its values at
