@@ -210,6 +210,13 @@ impl SceneRows<'_> {
         self.table.column(name)
     }
 
+    /// Row `r`'s grid values (its dotted columns that hold one) as "name = value", but those
+    /// whose name starts with `except`.
+    pub(super) fn grid_values(&self, r: usize, except: &str) -> Vec<String> {
+        let names = self.table.names().filter(|n| is_dotted(n) && !n.starts_with(except));
+        names.filter_map(|name| Some(format!("{name} = {}", self.cell(name, r)?))).collect()
+    }
+
     /// Cell `r` of column `name`, as text.
     pub(super) fn cell(&self, name: &str, r: usize) -> Option<String> {
         self.column(name).and_then(|c| c.key(r))

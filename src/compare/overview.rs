@@ -396,7 +396,9 @@ fn by_target(scene: &SceneSection, st: &Stats) -> Vec<String> {
         return vec![side_by_side(&scene.name, st)];
     }
     let shared = groups.iter().filter(|g| on_both_sides(&g.stats));
-    shared.map(|g| side_by_side(&format!("{} {}", scene.name, at_target(g.target)), &g.stats)).collect()
+    shared
+        .map(|g| side_by_side(&format!("{} {}", place(&scene.name, &g.grid), at_target(g.target)), &g.stats))
+        .collect()
 }
 
 /// The targets of a group of rows in words: one where both sides' read the same.
@@ -414,21 +416,34 @@ fn at_target((a, b): Targets) -> String {
 /// would be said to miss them all. Rows with no target (an overdamped mode) are not judged.
 fn missed_restitution(scene: &SceneSection) -> Vec<String> {
     let by = &scene.restitution;
-    let a = by.a.iter().map(|g| ("A", g.stats.a, g.target.0));
-    let b = by.b.iter().map(|g| ("B", g.stats.b, g.target.1));
+    let a = by.a.iter().map(|g| ("A", g, g.stats.a, g.target.0, g.linear.0));
+    let b = by.b.iter().map(|g| ("B", g, g.stats.b, g.target.1, g.linear.1));
     a.chain(b)
-        .filter_map(|(side, r, goal)| {
+        .filter_map(|(side, g, r, goal, linear)| {
             let (r, goal) = (r?, goal?);
-            ((r / goal - 1.0).abs() > RESTITUTION_MISS).then(|| missed_sentence(side, &scene.name, r, goal))
+            let scene = place(&scene.name, &g.grid);
+            ((r / goal - 1.0).abs() > RESTITUTION_MISS).then(|| missed_sentence(side, &scene, r, goal, linear))
         })
         .collect()
 }
 
-/// One side's restitution `r` that misses its target `goal`, in words.
-fn missed_sentence(side: &str, scene: &str, r: f64, goal: f64) -> String {
+/// A scene with the grid values of a group of its rows: "pair (material.law = hertz)".
+fn place(scene: &str, grid: &[String]) -> String {
+    if grid.is_empty() { scene.to_string() } else { format!("{scene} ({})", grid.join(", ")) }
+}
+
+/// One side's restitution `r` that misses its target `goal`, in words, with why: a non-linear
+/// contact does not follow the formula γ came from; a linear one does, so its miss is the
+/// integration's at the run's time step.
+fn missed_sentence(side: &str, scene: &str, r: f64, goal: f64, linear: bool) -> String {
+    let why = if linear {
+        "its linear springs follow the two-body formula its damping γ comes from, so the miss is the integration's \
+         error at its time step"
+    } else {
+        "its damping γ comes from the linear two-body formula, which this contact does not follow"
+    };
     format!(
-        "In {side}, {scene}'s restitution r = {} misses the target it was set for, {} ({}): its damping γ \
-         comes from the linear two-body formula, which this contact does not follow.",
+        "In {side}, {scene}'s restitution r = {} misses the target it was set for, {} ({}): {why}.",
         short(r),
         short(goal),
         crate::report::words::percent(r / goal - 1.0)

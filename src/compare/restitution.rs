@@ -12,9 +12,15 @@ use super::stats::{Stats, stats};
 /// none (overdamped, or no damping ratio recorded) and, in one side's grouping, for the other.
 pub(super) type Targets = (Option<f64>, Option<f64>);
 
-/// The restitution over the rows that share their targets.
+/// The restitution over the rows that share their targets and their other grid values.
 pub(super) struct ByTarget {
     pub(super) target: Targets,
+    /// The rows' grid values besides the damping ("material.law = hertz"): a median over two
+    /// laws set for one target is neither law's restitution.
+    pub(super) grid: Vec<String>,
+    /// Every run of the group has linear springs (β = 1), on side A and on side B: the
+    /// formula that set γ is then exact, and a miss is the integration's.
+    pub(super) linear: (bool, bool),
     pub(super) stats: Stats,
 }
 
@@ -56,17 +62,23 @@ fn same(x: Option<f64>, y: Option<f64>) -> bool {
 /// The restitution's [`stats`] over each group of the rows `both` that share `key`, in order of
 /// first appearance.
 fn grouped(rows: &SceneRows, both: &[usize], key: impl Fn(usize) -> Targets) -> Vec<ByTarget> {
-    let mut groups: Vec<(Targets, Vec<usize>)> = Vec::new();
+    let mut groups: Vec<(Targets, Vec<String>, Vec<usize>)> = Vec::new();
     for &r in both {
-        let target = key(r);
-        match groups.iter_mut().find(|(t, _)| same(t.0, target.0) && same(t.1, target.1)) {
-            Some((_, members)) => members.push(r),
-            None => groups.push((target, vec![r])),
+        let (target, grid) = (key(r), rows.grid_values(r, "damping."));
+        match groups.iter_mut().find(|(t, g, _)| same(t.0, target.0) && same(t.1, target.1) && *g == grid) {
+            Some((_, _, members)) => members.push(r),
+            None => groups.push((target, grid, vec![r])),
         }
     }
+    let linear = |side: &str, members: &[usize]| {
+        members.iter().all(|&r| rows.column(&format!("beta_{side}")).and_then(|c| c.number(r)) == Some(1.0))
+    };
     groups
         .into_iter()
-        .filter_map(|(target, members)| Some(ByTarget { target, stats: stats(rows, &members, "restitution")? }))
+        .filter_map(|(target, grid, members)| {
+            let linear = (linear("a", &members), linear("b", &members));
+            Some(ByTarget { target, grid, linear, stats: stats(rows, &members, "restitution")? })
+        })
         .collect()
 }
 
