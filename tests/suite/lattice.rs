@@ -554,3 +554,16 @@ fn the_supports_column_tells_a_free_periodic_strip_from_a_clamped_one() {
     let pairs: Vec<(Option<&str>, Option<&str>)> = scene.iter().zip(column.iter()).collect();
     assert_eq!(pairs, vec![(Some("free"), Some("periodic-x-free")), (Some("clamped"), Some("periodic-x"))]);
 }
+
+#[test]
+fn a_lattice_too_small_is_refused_under_the_field_the_campaign_wrote() {
+    // `size: 1` was refused as "lattice.nx = 1", a field the campaign does not have.
+    for (field, expected) in [("size: 1", "lattice.size = 1"), ("nx: 1, ny: 4", "lattice.nx = 1")] {
+        let yaml = format!(
+            "version: 1\nname: s\nscenes:\n  - name: l\n    kind: lattice\n    lattice: {{{field}}}\n    \
+             load: {{case: tensile, per_node: 1.0}}\n    relax: {{}}\n"
+        );
+        let error = mdsolids::plan::parse("s.yaml", &yaml).map(|_| ()).unwrap_err().to_string();
+        assert!(error.contains(expected) && error.contains("must be in 2..=2000"), "{error}");
+    }
+}

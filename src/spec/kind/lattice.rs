@@ -632,7 +632,11 @@ fn lattice_size(lattice: &RawLattice) -> Result<(usize, usize), Issue> {
             allowed: "give either size (an N × N lattice) or nx and ny, not both".into(),
         });
     }
-    Ok((size(lattice.nx.or(lattice.size), "lattice.nx")?, size(lattice.ny.or(lattice.size), "lattice.ny")?))
+    // An error names the field the campaign wrote: `size`, or `nx` and `ny`.
+    match lattice.size {
+        Some(n) => size(Some(n), "lattice.size").map(|n| (n, n)),
+        None => Ok((size(lattice.nx, "lattice.nx")?, size(lattice.ny, "lattice.ny")?)),
+    }
 }
 
 /// The probed rows and columns of an `nx` × `ny` lattice, rows first, each once.
