@@ -161,7 +161,8 @@ pub(super) fn isotropy(e: &Evidence) -> Option<Answer> {
     let (k, depth) = (first.spec.k, first.spec.lattice()?.depth);
     let triangular_e = 2.0 * k / (3.0_f64.sqrt() * depth);
     let mut rows = Vec::new();
-    // Per type, its largest free block (coursework supports) pulled both ways: the continuum's.
+    // Per type, its largest block on coursework supports (free to contract sideways) pulled both
+    // ways: the continuum's.
     let mut last_ratio = BTreeMap::new();
     for ((name, n, supports, network), v) in &by_size {
         let ratio = v[2].zip(v[0]).map(|(x, y)| x / y);
@@ -190,8 +191,8 @@ pub(super) fn isotropy(e: &Evidence) -> Option<Answer> {
             format!("triangular E_x/E_y = {} at N = {n} (coursework supports)", sig(r))
         }),
         sentences,
-        reference: "Isotropy: E_x/E_y = 1 within 5 % at the largest free block (coursework supports; edges \
-                    O(1/N)); E = 2k/(√3 d), ν = 1/3."
+        reference: "Isotropy: E_x/E_y = 1 within 5 % at the largest block on coursework supports (free to \
+                    contract sideways; edges O(1/N)); E = 2k/(√3 d), ν = 1/3."
             .into(),
         see_also: None,
         verdict: if checks.is_empty() { Verdict::Observed } else { Verdict::of(checks) },
@@ -212,7 +213,8 @@ fn triangular_isotropy(n: usize, ratio: f64, v: &[Option<f64>; 4], continuum: f6
     let (ey, ex) = (v[0].unwrap_or(f64::NAN), v[2].unwrap_or(f64::NAN));
     let isotropic = (ratio - 1.0).abs() < 0.05;
     let sentence = format!(
-        "The free triangular block (coursework supports) {} isotropic within 5 %: at N = {n} E_x/E_y = {}, \
+        "The triangular block on coursework supports (free to contract sideways) {} isotropic within 5 %: at N = \
+         {n} E_x/E_y = {}, \
          against the continuum E = 2k/(√3 d) = {} Pa ({} along y, {} along x) with ν = 1/3 ({}, {}); the \
          difference is the edges' O(1/N) (the zigzag sides stiffen a pull along x more than the straight rows \
          one along y), which halves as N doubles.",
