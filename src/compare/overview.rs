@@ -9,7 +9,7 @@ use super::quantity::{Class, NOISE, unit};
 use super::restitution::Targets;
 use super::section::SceneSection;
 use super::stats::Stats;
-use super::words::{fixed, short, value};
+use super::words::{count, counted, fixed, short, value};
 
 /// At most this many sentences name a differing quantity, and at most this many figures show
 /// one; the table and the appendix hold the rest.
@@ -136,7 +136,7 @@ fn lead(scenes: &[SceneSection], all: &[Entry], differ: &[Entry]) -> String {
     let mut differing: Vec<&str> = differ.iter().map(|(s, _)| s.name.as_str()).collect();
     differing.sort_unstable();
     differing.dedup();
-    let shared = format!("The two campaigns share {} scene{} ({})", names.len(), plural(names.len()), names.join(", "));
+    let shared = format!("The two campaigns share {} ({})", counted(names.len(), "scene"), names.join(", "));
     if differ.is_empty() {
         return format!(
             "{shared}. No measured quantity differs beyond its noise there: the two campaigns agree in all {equal} \
@@ -152,15 +152,6 @@ fn lead(scenes: &[SceneSection], all: &[Entry], differ: &[Entry]) -> String {
         count(equal, "agrees", "agree"),
         count(one_side, "is measured", "are measured")
     )
-}
-
-fn plural(n: usize) -> &'static str {
-    if n == 1 { "" } else { "s" }
-}
-
-/// `n` with the words for one or for several.
-fn count(n: usize, one: &str, several: &str) -> String {
-    format!("{n} {}", if n == 1 { one } else { several })
 }
 
 /// A quantity with its unit in words, or alone when its unit is not known.

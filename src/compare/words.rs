@@ -18,4 +18,4 @@ pub(super) fn fixed(x: Option<f64>) -> String {
 }
 
 /// Numbers in sentences and fitted exponents are written as the campaign report writes them.
-pub(super) use crate::report::words::{exponent, short};
+pub(super) use crate::report::words::{count, counted, exponent, short};

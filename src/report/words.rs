@@ -107,9 +107,14 @@ pub fn listed(items: &[String], last: &str) -> String {
     }
 }
 
-/// `n` and its noun, plural unless `n` is 1: "1 run", "6 runs".
+/// `n` with the words for one or for several: "1 agrees", "6 agree".
+pub fn count(n: usize, one: &str, several: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { several })
+}
+
+/// `n` and its noun, plural with an s unless `n` is 1: "1 run", "6 runs".
 pub fn counted(n: usize, noun: &str) -> String {
-    if n == 1 { format!("1 {noun}") } else { format!("{n} {noun}s") }
+    count(n, noun, &format!("{noun}s"))
 }
 
 /// How many times more `ratio` is, in words: "12× faster" for 12, "1.2× faster" for 1.2 and,

@@ -4,6 +4,7 @@
 //! is. Scenes that sweep γ_g (the dissipation study) are left to the dissipation item.
 
 use super::finding::{Evidence, sig};
+use crate::report::words::counted;
 use crate::runner::RunRecord;
 use crate::sim::RelaxMethod;
 use crate::theory::critical_damping;
@@ -39,7 +40,7 @@ impl SceneDamping {
             }
             _ => String::new(),
         };
-        let runs = if self.ratios.len() == 1 { "run" } else { "runs" };
+        let runs = counted(self.ratios.len(), "run");
         let mut rest: Vec<String> = Vec::new();
         if self.floppy > 0 {
             rest.push(format!("{} floppy, k_min = 0", self.floppy));
@@ -49,8 +50,8 @@ impl SceneDamping {
         }
         let gammas = format!("{} γ_g = {} N s/m", self.scene, self.gammas.join(", "));
         match (range.is_empty(), rest.is_empty()) {
-            (false, true) => format!("{gammas}, {range} over {} {runs}", self.ratios.len()),
-            (false, false) => format!("{gammas}, {range} over {} {runs} (and {})", self.ratios.len(), rest.join(", ")),
+            (false, true) => format!("{gammas}, {range} over {runs}"),
+            (false, false) => format!("{gammas}, {range} over {runs} (and {})", rest.join(", ")),
             (true, _) => format!("{gammas} ({} runs: {})", self.floppy + self.unknown, rest.join(", ")),
         }
     }
