@@ -200,6 +200,15 @@ fn resolve_length(spec: &RunSpec, raw: &RawScene, t_c: f64, dt: f64) -> Result<(
         .default_duration_tc(spec.v0, t_c)
         .unwrap_or_else(|| raw.relax.as_ref().and_then(|r| r.max_tc).unwrap_or(DEFAULT_MAX_TC));
     let duration_path = if spec.relax().is_some() { "relax.max_tc" } else { "time.duration_tc" };
+    // A relaxing scene's length is its budget, relax.max_tc: a duration beside it would replace
+    // that budget unseen.
+    require(
+        spec.relax().is_none() || time.duration_tc.is_none(),
+        "time.duration_tc",
+        "(set)",
+        "not for relaxing scenes (loaded lattices, chains between moved walls, packings): they run until at rest, \
+         up to relax.max_tc (in t_c); set that instead",
+    )?;
     let duration = t_c * positive(time.duration_tc.unwrap_or(default_duration_tc), duration_path)?;
     let steps = (duration / dt).ceil() as u64;
     require(

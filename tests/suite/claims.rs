@@ -267,6 +267,68 @@ fn random_networks_average_the_rigid_seeds_and_say_where_rigidity_held() {
 }
 
 #[test]
+fn rigidity_is_judged_per_lattice_against_its_own_threshold() {
+    // Effective-medium theory's p_c = 4/z: 1/2 with both diagonals, 1 without. The same cuts
+    // on both: the networks without diagonals are at or beyond their threshold at any cut, so
+    // the sentence names each lattice's threshold instead of pooling them against 1/2.
+    let both = random_block("[0.2]").replace("      seed:", "      lattice.diagonals: [both, none]\n      seed:");
+    let sentence =
+        line_with(&report_of("rnd", &both), "Effective-medium theory for central-force networks").to_string();
+    assert!(sentence.contains("p = 1/2 with both diagonals (z = 8), p = 1 without diagonals (z = 4)"), "{sentence}");
+    assert!(
+        sentence.contains("The lattices with both diagonals (z = 8, threshold p = 1/2): Every network here"),
+        "{sentence}"
+    );
+    assert!(sentence.contains("The lattices without diagonals (z = 4, threshold p = 1):"), "{sentence}");
+    assert!(
+        !sentence.contains("a kept fraction p = 4/8 = 1/2 of the square lattice"),
+        "pooled against 1/2: {sentence}"
+    );
+}
+
+#[test]
+fn kicked_random_networks_are_not_counted_as_loaded_and_their_front_is_said() {
+    // A kicked network carries no load and is not relaxed: it cannot "lose its rigidity" nor
+    // take relaxation steps. Its front is what it measures: slower as more bonds are cut (a
+    // diluted network is softer and its paths longer), every seed below the uncut network's.
+    let yaml = "version: 1\nname: rk\nscenes:\n  - name: kicked\n    kind: lattice\n    \
+                lattice: {size: 12, k_diag_ratio: 0.5}\n    supports: free\n    \
+                impulse: {node: top-right, velocity: [0.0, -0.001]}\n    wave: {}\n    \
+                time: {integrator: velocity-verlet}\n    grid:\n      lattice.cut_fraction: [0.0, 0.4]\n      \
+                seed: [1, 2]\n";
+    let report = report_of("rk", yaml);
+    assert!(!report.contains("random runs lost their rigidity"), "kicked runs counted as loaded");
+    let sentence = line_with(&report, "Given an impulse instead of a load, the cut networks of scene kicked");
+    let ordered = number_after(sentence, "bottom row at ");
+    let slowest = number_after(sentence, "m/s ordered and ");
+    assert!(slowest < ordered, "{sentence}");
+    assert!(sentence.contains("the front slows as more is cut"), "{sentence}");
+}
+
+#[test]
+fn anisotropic_random_networks_lean_against_their_ordered_network_not_against_one() {
+    // k_y = 3 k: E_x/E_y ≈ 0.42 without any randomness, so "by symmetry ln(E_x/E_y) averages 0"
+    // is false. Spread by w = 0.3 the networks scatter about the ordered one's ratio; without the
+    // ordered network in the campaign nothing is tested.
+    let block = |spreads: &str| {
+        format!(
+            "version: 1\nname: an\nscenes:\n  - name: aniso\n    kind: lattice\n    \
+             lattice: {{size: 8, k_diag_ratio: 0.5, k_y_ratio: 3.0}}\n    load: {{per_node: 0.001}}\n    \
+             relax: {{method: fire}}\n    grid:\n      load.case: [tensile, tensile-x]\n      \
+             lattice.stiffness_spread: {spreads}\n      seed: [1, 2, 3]\n"
+        )
+    };
+    let with_ordered = report_of("an", &block("[0.0, 0.3]"));
+    let sentence = line_with(&with_ordered, "Every spread network was pulled along y and along x");
+    assert!(!sentence.contains("By symmetry ln(E_x/E_y) averages 0"), "{sentence}");
+    assert!(sentence.contains("the reference is the ordered network of the same springs"), "{sentence}");
+    let alone = report_of("an", &block("[0.3]"));
+    let sentence = line_with(&alone, "Every spread network was pulled along y and along x");
+    assert!(sentence.contains("Their springs differ by direction (k_y/k_x = 3)"), "{sentence}");
+    assert!(sentence.contains("is not tested"), "{sentence}");
+}
+
+#[test]
 fn a_sheared_network_is_named_apparent_g_unless_it_is_a_periodic_strip() {
     // Item 16: only the periodic strip shears homogeneously; on the coursework supports the
     // block bends and its G is apparent (0.40 of k_d/d at 40 × 40). The same cut networks

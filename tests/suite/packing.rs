@@ -366,6 +366,12 @@ fn bad_packings_are_refused_naming_the_field() {
     }
     for (extra, field) in [
         ("    damping: {restitution: 0.5}\n", "damping"),
+        // FIRE steps by semi-implicit Euler whatever the integrator: one would be ignored.
+        ("    time: {integrator: rk4}\n", "time.integrator"),
+        // Its budget is relax.max_tc: a duration would replace it unseen.
+        ("    time: {duration_tc: 10}\n    relax: {max_tc: 30}\n", "time.duration_tc"),
+        ("    time: {reference_refinement: 4}\n", "time.reference_refinement"),
+        ("    wave: {receiver: last}\n", "wave"),
         // A packing has contacts, not bonds with a rest length to strain: its movie draws forces.
         ("    movie: {frames: 2, bond_strain: true}\n", "movie.bond_strain"),
         // Its contacts come and go: there is no one stiffness matrix to move FIRE in.

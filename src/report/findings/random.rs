@@ -19,36 +19,121 @@ use crate::spec::LoadCase;
 /// they lost rigidity; spread ones' E against its bounds; both in each direction.
 pub(super) fn random(e: &Evidence) -> Option<Answer> {
     // Square lattices: the other types' dilution is `types::percolation`.
-    let runs = e.all(|r| r.spec.lattice().is_some_and(|l| l.cut_fraction > 0.0 && l.lattice_type.is_square()));
-    let spread = e.all(|r| r.spec.lattice().is_some_and(|l| l.cut_fraction == 0.0 && l.stiffness_spread > 0.0));
+    // Loaded networks only: a kicked one carries no load to lose and is not relaxed (its front
+    // speed is the waves' item's).
+    fn loaded(r: &RunRecord) -> Option<&crate::spec::LatticeSpec> {
+        r.spec.lattice().filter(|l| l.impulse.is_none())
+    }
+    let runs = e.all(|r| loaded(r).is_some_and(|l| l.cut_fraction > 0.0 && l.lattice_type.is_square()));
+    let spread = e.all(|r| loaded(r).is_some_and(|l| l.cut_fraction == 0.0 && l.stiffness_spread > 0.0));
+    let ordered = ordered_ratios(&e.all(|r| loaded(r).is_some_and(|l| !l.is_random())));
+    let kicked = e.all(|r| {
+        r.spec.lattice().is_some_and(|l| l.impulse.is_some() && l.lattice_type.is_square())
+            && r.metrics.recommended_sound_speed().is_some()
+    });
+    let fronts = kicked_sentences(&kicked);
     let bounded = bounded_runs(&spread);
     let within = within_bounds(&bounded);
-    let scene = runs.first().or(spread.first())?.spec.scene.clone();
+    let scene = match runs.first().or(spread.first()) {
+        Some(r) => r.spec.scene.clone(),
+        None => fronts.first()?.0.clone(),
+    };
     let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
     let cut = format!("{mechanisms} of {} cut runs lost rigidity", runs.len());
     let bounds = format!("E of {within} of {} spread runs within its Voigt and Reuss bounds", bounded.len());
     let sentences = cut_sentences(e, &runs)
         .into_iter()
-        .chain(directions_sentence(&runs, "cut"))
+        .chain(directions_sentence(&runs, "cut", &ordered))
         .chain(spread_sentence(&spread, &bounded))
-        .chain(directions_sentence(&spread, "spread"))
+        .chain(directions_sentence(&spread, "spread", &ordered))
+        .chain(fronts.into_iter().map(|(_, sentence)| sentence))
         .collect();
-    let rows = random_rows(&runs)?;
+    let rows = random_rows(&runs).unwrap_or_default();
     Some(Answer {
         title: "Random networks",
         question: "(b) Make the system random (cut springs at random, or vary their stiffness): what do you observe?",
         short: match (runs.is_empty(), bounded.is_empty()) {
-            (_, true) => cut,
+            (true, true) => "the front of a kicked network, ordered and random".into(),
+            (false, true) => cut,
             (true, false) => bounds,
             (false, false) => format!("{cut}; {bounds}"),
         },
         sentences,
-        reference: reference(!runs.is_empty(), !bounded.is_empty()),
+        reference: reference(&runs, !bounded.is_empty(), !kicked.is_empty()),
         see_also: Some(jammed_packings()),
         verdict: if bounded.is_empty() { Verdict::Observed } else { Verdict::of([within == bounded.len()]) },
         figures: e.figure(&scene, FigureKind::Dilution).into_iter().collect(),
         table: cut_table(rows),
     })
+}
+
+/// Kicked networks, per scene with random ones (cut or spread): the front's speed (m/s, by the
+/// scene's timing criterion) at each level of randomness over its seeds, from the ordered
+/// network's (level 0) up, against c_L; and which way it went. (scene, sentence) each.
+fn kicked_sentences(kicked: &[&RunRecord]) -> Vec<(String, String)> {
+    let mut scenes: BTreeMap<&str, BTreeMap<u64, Vec<f64>>> = BTreeMap::new();
+    let mut cut = BTreeSet::new();
+    for r in kicked {
+        let Some(l) = r.spec.lattice() else { continue };
+        let level = if l.cut_fraction > 0.0 { l.cut_fraction } else { l.stiffness_spread };
+        if l.cut_fraction > 0.0 {
+            cut.insert(r.spec.scene.as_str());
+        }
+        let speeds = scenes.entry(&r.spec.scene).or_default().entry(level.to_bits()).or_default();
+        speeds.extend(r.metrics.recommended_sound_speed());
+    }
+    scenes
+        .into_iter()
+        .filter(|(_, levels)| levels.keys().any(|&level| level != 0))
+        .map(|(scene, levels)| {
+            let kind = if cut.contains(scene) { "cut" } else { "spread" };
+            let theory = kicked.iter().find(|r| r.spec.scene == scene).and_then(|r| r.metrics.sound_speed_theory);
+            (scene.to_string(), front_words(scene, kind, &levels, theory))
+        })
+        .collect()
+}
+
+/// "… 1.291 m/s ordered, 0.8263 to 1.023 m/s at cut 0.20 …: slower as more is cut".
+fn front_words(scene: &str, kind: &str, levels: &BTreeMap<u64, Vec<f64>>, theory: Option<f64>) -> String {
+    let words: Vec<String> = levels
+        .iter()
+        .map(|(&level, speeds)| match f64::from_bits(level) {
+            0.0 => format!("{} m/s ordered", listed_range(speeds)),
+            level => range_at(level, speeds, kind).replacen(" at", " m/s at", 1),
+        })
+        .collect();
+    let median_at = |speeds: Option<&Vec<f64>>| speeds.and_then(|s| median(s.clone()));
+    let (first, last) = (median_at(levels.values().next()), median_at(levels.values().last()));
+    let trend = match (first, last) {
+        (Some(a), Some(b)) if b < 0.95 * a => {
+            format!(": the front slows as more is {kind}, its median {} of the {}'s", sig(b / a), least(kind, levels))
+        }
+        (Some(a), Some(b)) if b > 1.05 * a => format!(
+            ": the front speeds up as more is {kind}, its median {} times the least {kind} network's",
+            sig(b / a)
+        ),
+        (Some(_), Some(_)) => {
+            format!(": the {kind} networks carry the front as fast as the {}, within 5 %", least(kind, levels))
+        }
+        _ => String::new(),
+    };
+    let c_l = theory.map_or(String::new(), |c| format!(" (the continuum's c_L = {} m/s)", sig(c)));
+    format!(
+        "Given an impulse instead of a load, the {kind} networks of scene {scene} carry the front to the bottom row at \
+         {}{c_l}{trend}.",
+        crate::report::words::listed(&words, "and")
+    )
+}
+
+/// The network the others are measured against: the ordered one, or the least random.
+fn least(kind: &str, levels: &BTreeMap<u64, Vec<f64>>) -> String {
+    if levels.contains_key(&0.0_f64.to_bits()) { "ordered network".into() } else { format!("least {kind} network") }
+}
+
+/// "1.291" for one speed or equal ones, "0.83 to 1.02" for several.
+fn listed_range(speeds: &[f64]) -> String {
+    let (low, high) = extremes(speeds);
+    if low == high { sig(low) } else { format!("{} to {}", sig(low), sig(high)) }
 }
 
 /// How many cut networks lost rigidity or did not settle, and where rigidity held against
@@ -232,17 +317,33 @@ fn relaxation_sentence(e: &Evidence, runs: &[&RunRecord]) -> Option<String> {
 
 /// The item's reference: effective-medium theory's threshold for cut networks, an observation,
 /// and for spread networks measured in tension their rigorous bounds.
-fn reference(cut: bool, bounds: bool) -> String {
-    let threshold = "Effective-medium theory's rigidity threshold at half the interior bonds kept (p = 1/2); an \
-                     observation.";
+fn reference(cut: &[&RunRecord], bounds: bool, kicked: bool) -> String {
+    let mut zs: Vec<u32> = cut.iter().map(|r| full_coordination(r)).collect();
+    zs.sort_unstable();
+    zs.dedup();
+    let threshold = match zs[..] {
+        [] => None,
+        [8] => Some(
+            "Effective-medium theory's rigidity threshold at half the interior bonds kept (p = 1/2); an \
+                     observation."
+                .to_string(),
+        ),
+        _ => Some(format!(
+            "Effective-medium theory's rigidity threshold at a kept fraction 4/z of the interior bonds ({}); an \
+             observation.",
+            crate::report::words::listed(
+                &zs.iter().rev().map(|&z| format!("{} at z = {z}", threshold_words(z).0)).collect::<Vec<_>>(),
+                "and"
+            )
+        )),
+    };
     let spread = "Each spread network's own bounds on E (Voigt above, Reuss below), rigorous for linear springs at \
                   small strain; no tolerance: MD's E is within its relaxation's error (~1e-6) of the static answer, the \
                   bounds are percent apart.";
-    match (cut, bounds) {
-        (true, true) => format!("{threshold} {spread}"),
-        (_, true) => spread.into(),
-        _ => threshold.into(),
-    }
+    let fronts = "The ordered network's front and the continuum's c_L; an observation.";
+    let parts =
+        [threshold.as_deref(), bounds.then_some(spread), (kicked && threshold.is_none() && !bounds).then_some(fronts)];
+    parts.into_iter().flatten().collect::<Vec<_>>().join(" ")
 }
 
 /// The relaxed spread networks pulled in tension: each with its E (Pa) and its bounds
@@ -338,30 +439,27 @@ fn spread_means(spread: &[&RunRecord]) -> Vec<(f64, SpreadMeans)> {
 
 /// One network loaded along y (`tensile`) and along x (`tensile-x`, the same bonds cut or
 /// spread): E_x/E_y per level of randomness (`kind`: cut fraction or spread w), its range over
-/// the seeds, and the geometric mean of E_x/E_y against 1 with the standard error over the
-/// seeds, each seed's ln(E_x/E_y) averaged over its levels first (a seed's networks at every
-/// level share its random numbers, so they are not independent samples): random bonds prefer
-/// no direction, so the ensemble should not either.
-fn directions_sentence(runs: &[&RunRecord], kind: &str) -> Option<String> {
+/// the seeds, and the geometric mean of E_x/E_y against what the springs make it without
+/// randomness, with the standard error over the seeds, each seed's logarithm averaged over its
+/// levels first (a seed's networks at every level share its random numbers). Springs alike
+/// both ways (k_x = k_y) make it 1 by symmetry; springs that differ make it the ordered
+/// network's own ratio (`ordered`), and without that network the sentence tests nothing.
+fn directions_sentence(runs: &[&RunRecord], kind: &str, ordered: &BTreeMap<String, f64>) -> Option<String> {
     let ratios = direction_ratios(runs);
     let mut by_level: BTreeMap<u64, Vec<f64>> = BTreeMap::new();
     let mut by_seed: BTreeMap<u64, Vec<f64>> = BTreeMap::new();
-    for (level, seed, ratio) in &ratios {
-        by_level.entry(level.to_bits()).or_default().push(*ratio);
-        by_seed.entry(*seed).or_default().push(ratio.ln());
-    }
-    if by_seed.len() < 2 {
-        return None;
+    let mut unreferenced = BTreeSet::new();
+    for d in &ratios {
+        by_level.entry(d.level.to_bits()).or_default().push(d.ratio);
+        match d.expected(ordered) {
+            Some(expected) => by_seed.entry(d.seed).or_default().push((d.ratio / expected).ln()),
+            None => _ = unreferenced.insert(d.network.clone()),
+        }
     }
     let ranges: Vec<String> = by_level.iter().map(|(level, r)| range_at(f64::from_bits(*level), r, kind)).collect();
-    let seeds = by_seed.values().map(|logs| mean_spread(logs.iter().map(|x| Some(*x))).0);
-    let (mean, spread) = mean_spread(seeds);
-    let (mean, error) = (mean?, spread? / (by_seed.len() as f64).sqrt());
-    Some(format!(
+    let opening = format!(
         "Every {kind} network was pulled along y and along x (tensile-x, the block turned), as the coursework asks of \
-         random systems: {}; E_x/E_y is {} ({} pairs relaxed both ways){}. By symmetry ln(E_x/E_y) averages 0 over \
-         seeds; here the geometric mean of E_x/E_y is {}, its logarithm {} ± {} (mean ± standard error over {} \
-         seeds, each seed's levels averaged first: they share its random numbers), {}.",
+         random systems: {}; E_x/E_y is {} ({} pairs relaxed both ways){}.",
         if kind == "cut" {
             "the same interior bonds are cut, but each loading keeps its own loaded and held edges whole, so a seed's \
              two are one network only in the interior and their ratio mixes its anisotropy with their edges' \
@@ -372,16 +470,65 @@ fn directions_sentence(runs: &[&RunRecord], kind: &str) -> Option<String> {
         ranges.join(", "),
         ratios.len(),
         poisson_words(runs),
+    );
+    if !unreferenced.is_empty() {
+        return (ratios.len() > 1).then(|| format!("{opening}{}", unreferenced_words(&ratios, ordered)));
+    }
+    if by_seed.len() < 2 {
+        return None;
+    }
+    Some(format!("{opening} {}", lean_words(&ratios, &by_seed)?))
+}
+
+/// The springs' own direction, where no ordered network of the same springs ran to measure it.
+fn unreferenced_words(ratios: &[DirectionRatio], ordered: &BTreeMap<String, f64>) -> String {
+    let ratio = ratios.iter().find(|d| d.expected(ordered).is_none()).map_or(1.0, |d| d.springs);
+    format!(
+        " Their springs differ by direction (k_y/k_x = {}), so E_x/E_y ≠ 1 without any randomness; no network of the \
+         same springs uncut and unspread ran here to measure that ratio, so whether the randomness makes them lean \
+         one way is not tested.",
+        number(ratio)
+    )
+}
+
+/// Whether the networks lean one way on average: the geometric mean of E_x/E_y over the
+/// expected ratio, over the seeds (`by_seed`: each seed's logarithms), against 1.
+fn lean_words(ratios: &[DirectionRatio], by_seed: &BTreeMap<u64, Vec<f64>>) -> Option<String> {
+    let seeds = by_seed.values().map(|logs| mean_spread(logs.iter().map(|x| Some(*x))).0);
+    let (mean, spread) = mean_spread(seeds);
+    let (mean, error) = (mean?, spread? / (by_seed.len() as f64).sqrt());
+    let symmetric = ratios.iter().all(|d| d.springs == 1.0);
+    let expected = if symmetric {
+        "By symmetry ln(E_x/E_y) averages 0 over seeds; here the geometric mean of E_x/E_y is".to_string()
+    } else {
+        "Their springs differ by direction, so the reference is the ordered network of the same springs (no bond cut \
+         or spread), whose own E_x/E_y the random ones scatter about: ln of the ratio to it averages 0 over seeds; \
+         here the geometric mean of E_x/E_y over it is"
+            .to_string()
+    };
+    Some(format!(
+        "{expected} {}, its logarithm {} ± {} (mean ± standard error over {} seeds, each seed's levels averaged first: \
+         they share its random numbers), {}.",
         sig(mean.exp()),
         sig(mean),
         sig(error),
         by_seed.len(),
-        if mean.abs() <= 2.0 * error {
-            "within 2 standard errors of 0: one network differs by direction, and on average none is preferred"
-        } else {
-            "more than 2 standard errors from 0: these networks lean one way on average, by chance (one time in 20 \
-             for networks that prefer no direction) or by a preferred direction (the edge bands each loading keeps \
-             whole)"
+        match (mean.abs() <= 2.0 * error, symmetric) {
+            (true, true) =>
+                "within 2 standard errors of 0: one network differs by direction, and on average none is \
+                             preferred",
+            (true, false) =>
+                "within 2 standard errors of 0: one network differs from the ordered one, and on \
+                              average the randomness keeps the springs' own ratio",
+            (false, true) =>
+                "more than 2 standard errors from 0: these networks lean one way on average, by chance \
+                              (one time in 20 for networks that prefer no direction) or by a preferred direction \
+                              (the edge bands each loading keeps whole)",
+            (false, false) =>
+                "more than 2 standard errors from 0: the randomness moves E_x/E_y away from the \
+                               springs' own ratio on average, by chance (one time in 20) or because it softens one \
+                               direction more (the edge bands each loading keeps whole, or the stiffer springs' \
+                               share of the load)",
         }
     ))
 }
@@ -414,22 +561,59 @@ fn range_at(level: f64, r: &[f64], kind: &str) -> String {
     if r.len() == 1 { format!("{} at {at}", sig(low)) } else { format!("{} to {} at {at}", sig(low), sig(high)) }
 }
 
-/// One random network: its level of randomness, its seed, and E loaded along y and along x.
-type DirectionPair = (f64, u64, [Option<f64>; 2]);
+/// One network relaxed both ways: its level of randomness (cut fraction or spread w), its
+/// seed, E_x/E_y, the ordered network it is a random copy of ([`ordered_key`]) and its springs'
+/// k_y/k_x.
+struct DirectionRatio {
+    level: f64,
+    seed: u64,
+    ratio: f64,
+    network: String,
+    springs: f64,
+}
 
-/// (randomness level, seed, E_x/E_y) of each network relaxed in both directions: runs of one
-/// scene and the same grid values but the load case, one `tensile` and one `tensile-x`.
-fn direction_ratios(runs: &[&RunRecord]) -> Vec<(f64, u64, f64)> {
-    // (scene, grid values but the load case) → (level, seed, [E_y, E_x]).
-    let mut networks: BTreeMap<(String, String), DirectionPair> = BTreeMap::new();
+impl DirectionRatio {
+    /// The E_x/E_y its springs alone make: 1 where they are alike both ways, else the ordered
+    /// network's, if it ran.
+    fn expected(&self, ordered: &BTreeMap<String, f64>) -> Option<f64> {
+        if self.springs == 1.0 { Some(1.0) } else { ordered.get(&self.network).copied() }
+    }
+}
+
+/// Each network relaxed in both directions: runs of one scene and the same grid values but the
+/// load case, one `tensile` and one `tensile-x`.
+fn direction_ratios(runs: &[&RunRecord]) -> Vec<DirectionRatio> {
+    // (scene, grid values but the load case) → (the network, [E_y, E_x]).
+    let mut networks: BTreeMap<(String, String), (DirectionRatio, [Option<f64>; 2])> = BTreeMap::new();
     for r in runs.iter().filter(|r| r.status == RunStatus::Ok) {
         let Some(l) = r.spec.lattice().filter(|l| l.load_case == LoadCase::Tensile) else { continue };
         let key = (r.spec.scene.clone(), r.spec.varied_in_words(|path| path != "load.case"));
-        let level = if l.cut_fraction > 0.0 { l.cut_fraction } else { l.stiffness_spread };
-        networks.entry(key).or_insert((level, l.seed, [None; 2])).2[usize::from(l.rotated)] =
+        let upright = l.upright();
+        let network = DirectionRatio {
+            level: if l.cut_fraction > 0.0 { l.cut_fraction } else { l.stiffness_spread },
+            seed: l.seed,
+            ratio: f64::NAN,
+            network: ordered_key(r),
+            springs: upright.k_y / upright.k_x,
+        };
+        networks.entry(key).or_insert((network, [None; 2])).1[usize::from(l.rotated)] =
             r.metrics.lattice.youngs_modulus;
     }
-    networks.values().filter_map(|(level, seed, [y, x])| Some((*level, *seed, x.as_ref()? / y.as_ref()?))).collect()
+    networks.into_values().filter_map(|(network, [y, x])| Some(DirectionRatio { ratio: x? / y?, ..network })).collect()
+}
+
+/// The network of a loaded lattice run without its randomness (cut, spread, seed) or its
+/// direction, with its springs' law, stiffness and masses: runs of one key are random copies of
+/// one ordered network.
+fn ordered_key(r: &RunRecord) -> String {
+    let Some(mut l) = r.spec.lattice().map(|l| l.upright()) else { return String::new() };
+    (l.cut_fraction, l.stiffness_spread, l.seed) = (0.0, 0.0, 0);
+    format!("{l:?} {:?} {} {} {}", r.spec.law, r.spec.k, r.spec.mass, r.spec.spacing)
+}
+
+/// E_x/E_y of each ordered network (no bond cut or spread) relaxed both ways, by its key.
+fn ordered_ratios(runs: &[&RunRecord]) -> BTreeMap<String, f64> {
+    direction_ratios(runs).into_iter().map(|d| (d.network, d.ratio)).collect()
 }
 
 /// Where the random solid goes on: a granular material's random solid is a jammed packing of
@@ -533,40 +717,88 @@ fn network_words(r: &RunRecord, with_scene: bool) -> String {
 }
 
 /// Where the cut networks lost rigidity against effective-medium theory's threshold: a
-/// central-force network is rigid while its mean coordination is above 2d = 4, half the 8 bonds
-/// per node of the square lattice with both diagonals. Measured, as in the dilution figure, by
-/// the kept fraction p = 1 − cut fraction of the interior bonds (the edges' bonds are never cut,
-/// so a network's share of all its bonds is larger): the sparsest network still rigid and the
-/// densest that lost rigidity say on which side of p = 1/2 this campaign's networks held.
+/// central-force network is rigid while its mean coordination is above 2d = 4, so a square
+/// lattice of z bonds per node uncut (8 with both diagonals, 6 with one family, 4 with none)
+/// loses it at a kept fraction p_c = 4/z. Measured, as in the dilution figure, by the kept
+/// fraction p = 1 − cut fraction of the interior bonds (the edges' bonds are never cut, so a
+/// network's share of all its bonds is larger): per z, the sparsest network still rigid and the
+/// densest that lost rigidity say on which side of p_c this campaign's networks held.
 fn rigidity_sentence(runs: &[&RunRecord]) -> String {
+    let mut by_z: BTreeMap<u32, Vec<&RunRecord>> = BTreeMap::new();
+    for r in runs {
+        by_z.entry(full_coordination(r)).or_default().push(r);
+    }
+    let named = by_z.len() > 1;
+    let held: String = by_z.iter().rev().map(|(&z, group)| held_words(group, z, named)).collect();
+    format!("{}{held}", theory_words(&by_z.keys().copied().collect::<Vec<_>>()))
+}
+
+/// A square lattice's bonds per node uncut: 4 along its rows and columns and 2 per diagonal
+/// family present.
+fn full_coordination(r: &RunRecord) -> u32 {
+    let (rising, falling) = r.spec.lattice().map_or((0.0, 0.0), |l| l.diagonal_stiffness());
+    4 + 2 * u32::from(rising > 0.0) + 2 * u32::from(falling > 0.0)
+}
+
+/// The threshold p_c = 4/z as a fraction, and the lattice it belongs to.
+fn threshold_words(z: u32) -> (&'static str, &'static str) {
+    match z {
+        8 => ("1/2", "with both diagonals"),
+        6 => ("2/3", "with one diagonal family"),
+        _ => ("1", "without diagonals"),
+    }
+}
+
+/// Effective-medium theory's threshold for the lattices of coordinations `zs` (uncut).
+fn theory_words(zs: &[u32]) -> String {
+    let rule = "Effective-medium theory for central-force networks puts the loss of rigidity where the mean \
+                coordination reaches twice the dimension, 4";
+    let counted = "(p counts the interior bonds, which alone are cut, as in the figure; it is the probability that \
+                   each is kept, and a network's own share scatters about it).";
+    if zs == [8] {
+        return format!("{rule}, a kept fraction p = 4/8 = 1/2 of the square lattice with both diagonals {counted}");
+    }
+    let levels: Vec<String> = zs
+        .iter()
+        .rev()
+        .map(|&z| {
+            let (p, lattice) = threshold_words(z);
+            format!("p = {p} {lattice} (z = {z})")
+        })
+        .collect();
+    format!("{rule}: a kept fraction p = 4/z of a square lattice of z bonds per node, {} {counted}", levels.join(", "))
+}
+
+/// Where the networks of one coordination `z` held against its threshold 4/z, after the
+/// lattice's name when the campaign cuts lattices of several.
+fn held_words(runs: &[&RunRecord], z: u32, named: bool) -> String {
+    let threshold = 4.0 / f64::from(z);
+    let (words, lattice) = threshold_words(z);
     let kept = |r: &&RunRecord| r.spec.lattice().map_or(f64::NAN, |l| 1.0 - l.cut_fraction);
     // Rigid as the static solver finds it (the table's "rigid seeds"), relaxed or not.
     let lowest_rigid = runs.iter().filter(|r| r.status != RunStatus::Mechanism).map(kept).reduce(f64::min);
     let highest_lost = runs.iter().filter(|r| r.status == RunStatus::Mechanism).map(kept).reduce(f64::max);
-    let theory = "Effective-medium theory for central-force networks puts the loss of rigidity where the mean \
-                  coordination reaches twice the dimension, 4, a kept fraction p = 4/8 = 1/2 of the square lattice with both \
-                  diagonals (p counts the interior bonds, which alone are cut, as in the figure; it is the \
-                  probability that each is kept, and a network's own share scatters about it).";
+    let name = if named { format!(" The lattices {lattice} (z = {z}, threshold p = {words}):") } else { String::new() };
     let held = match (lowest_rigid, highest_lost) {
-        (Some(p), _) if p < 0.5 => format!(
-            " A network kept at p = {p:.2}, below 1/2, still stayed rigid: a finite network whose edges are not cut \
-             keeps some rigidity beyond the threshold."
+        (Some(p), _) if p < threshold - 1e-9 => format!(
+            " A network kept at p = {p:.2}, below {words}, still stayed rigid: a finite network whose edges are not \
+             cut keeps some rigidity beyond the threshold."
         ),
-        (Some(p), Some(lost)) => mixed_words(runs, p, lost),
+        (Some(p), Some(lost)) => mixed_words(runs, p, lost, threshold),
         (Some(p), None) => format!(
             " Every network here stayed rigid, down to p = {p:.2}: the campaign cuts no network as far as the \
              threshold."
         ),
         (None, _) => " No cut network stayed rigid here.".into(),
     };
-    format!("{theory}{held}")
+    format!("{name}{held}")
 }
 
 /// Where rigidity was lost, as a kept fraction p falls: the sparsest rigid network at p, the
 /// densest that lost rigidity at `lost`; where the two levels meet, how many of that level's
-/// networks went each way.
-fn mixed_words(runs: &[&RunRecord], p: f64, lost: f64) -> String {
-    let at_threshold = |x: f64| if (x - 0.5).abs() < 0.01 { " (the threshold itself)" } else { "" };
+/// networks went each way. `threshold` is effective-medium theory's p_c.
+fn mixed_words(runs: &[&RunRecord], p: f64, lost: f64, threshold: f64) -> String {
+    let at_threshold = |x: f64| if (x - threshold).abs() < 0.01 { " (the threshold itself)" } else { "" };
     if lost < p - 1e-9 {
         return format!(
             " Here rigidity held down to p = {p:.2} and was first lost at p = {lost:.2}{}.",

@@ -320,6 +320,19 @@ fn check_packing_fields(kind: SceneKind, raw: &RawScene) -> Result<(), Issue> {
     let untimed = "not for packing scenes: a packing starts at rest and relaxes by a minimiser, which has no time";
     only(raw.v0.is_some(), "v0", untimed)?;
     only(raw.damping.is_some(), "damping", untimed)?;
+    let time = raw.time.clone().unwrap_or_default();
+    only(
+        time.integrator.is_some(),
+        "time.integrator",
+        "not for packing scenes: FIRE and CG step by their own schemes (FIRE by semi-implicit Euler), whatever \
+         time.integrator says; remove it",
+    )?;
+    only(
+        time.reference_refinement.is_some(),
+        "time.reference_refinement",
+        "not for packing scenes: a minimiser's state has no trajectory to refine against",
+    )?;
+    only(raw.wave.is_some(), "wave", "not for packing scenes: a packing is relaxed, not hit")?;
     let strained = raw.movie.as_ref().and_then(|m| m.bond_strain) == Some(true);
     only(
         strained,
