@@ -90,34 +90,57 @@ pub fn render_with_left_out(
     remove_stale(&layout.root, "probes", ".parquet", &probes)?;
     // Probe tables of earlier versions were CSV.
     remove_stale(&layout.root, "probes", ".csv", &BTreeSet::new())?;
+    remember_written(&layout.root, "plots", drawn.iter().chain(&movies))?;
+    remember_written(&layout.root, "probes", probes.iter())?;
     let mut context = context::build(campaign, records, fits, left_out, scenes, &side_by_side);
     context.look_for_pointed_pages(&layout.root);
     let context = tera::Context::from_serialize(&context).context("cannot build the report context")?;
     write_pages(&layout.root, ("report.md", MARKDOWN_TEMPLATE), context)
 }
 
-/// Removes the files `<root>/<dir>/*<suffix>` not in `keep` (paths relative to `root`), of the
-/// names this program gives its outputs only: ASCII letters, digits, `-`, `_` and `.`, not
-/// starting with a dot (temporary files of a writer at work are hidden and never touched).
-/// Anything else in the folder, and sub-folders, stay.
+/// Removes the files `<root>/<dir>/*<suffix>` not in `keep` (paths relative to `root`) that this
+/// program wrote there: those its last report listed in `<dir>/.written` ([`remember_written`]),
+/// or, in a folder of an earlier version without that list, those named as it names its
+/// outputs (ASCII letters, digits, `-`, `_` and `.`, not starting with a dot: temporary files
+/// of a writer at work are hidden and never touched). A file of the user's own in the folder,
+/// and sub-folders, stay.
 pub(crate) fn remove_stale(root: &Path, dir: &str, suffix: &str, keep: &BTreeSet<String>) -> anyhow::Result<()> {
     let entries = match std::fs::read_dir(root.join(dir)) {
         Ok(entries) => entries,
         Err(error) if error.kind() == std::io::ErrorKind::NotFound => return Ok(()),
         Err(error) => return Err(error).with_context(|| format!("cannot list '{}'", root.join(dir).display())),
     };
+    let written = std::fs::read_to_string(root.join(dir).join(WRITTEN)).ok();
+    let listed: Option<BTreeSet<&str>> = written.as_deref().map(|w| w.lines().collect());
     for entry in entries {
         let entry = entry.with_context(|| format!("cannot list '{}'", root.join(dir).display()))?;
         let Some(name) = entry.file_name().to_str().map(str::to_string) else { continue };
-        let ours = !name.starts_with('.')
-            && name.ends_with(suffix)
-            && name.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c));
-        if ours && entry.file_type().is_ok_and(|t| t.is_file()) && !keep.contains(&format!("{dir}/{name}")) {
+        let ours = match &listed {
+            Some(listed) => listed.contains(name.as_str()),
+            None => !name.starts_with('.') && name.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c)),
+        };
+        let stale = ours && name.ends_with(suffix) && !keep.contains(&format!("{dir}/{name}"));
+        if stale && entry.file_type().is_ok_and(|t| t.is_file()) {
             std::fs::remove_file(entry.path())
                 .with_context(|| format!("cannot remove the stale '{}'", entry.path().display()))?;
         }
     }
     Ok(())
+}
+
+/// The list of the files a report wrote or kept in one of its folders, `<dir>/.written`.
+const WRITTEN: &str = ".written";
+
+/// Lists in `<root>/<dir>/.written` the files of `kept` (paths relative to `root`) that lie in
+/// `dir`, so that the next report removes only what this program wrote ([`remove_stale`]).
+fn remember_written<'a>(root: &Path, dir: &str, kept: impl Iterator<Item = &'a String>) -> anyhow::Result<()> {
+    if !root.join(dir).is_dir() {
+        return Ok(());
+    }
+    let prefix = format!("{dir}/");
+    let names: BTreeSet<&str> = kept.filter_map(|path| path.strip_prefix(&prefix)).collect();
+    let text: String = names.iter().map(|name| format!("{name}\n")).collect();
+    write_atomically(&root.join(dir).join(WRITTEN), text.as_bytes())
 }
 
 /// Renders the Markdown template `(name, text)` with `context` into `<dir>/report.md`, and the

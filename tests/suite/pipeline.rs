@@ -263,10 +263,15 @@ fn two_campaigns_with_one_name_do_not_share_a_folder() {
     let out = mdsolids(&reports, &["report", &format!("{}/./first.yaml", work.path().display())]);
     assert!(out.status.success(), "{}", text(&out.stderr));
 
+    // A figure of the user's own in the plots folder, named as this program names its own:
+    // not written by any report, so never removed (it had been, as stale).
+    let own = dir.join("plots/my-figure.svg");
+    std::fs::write(&own, "<svg/>").unwrap();
     let out = mdsolids(&reports, &["run", second, "--force"]);
     assert!(out.status.success(), "{}", text(&out.stderr));
     assert!(dir.join("plots/beta-energy-0.svg").is_file());
     assert!(!alpha.exists(), "the first campaign's figure is stale and removed");
+    assert!(own.is_file(), "the user's own figure was removed");
     // The folder is the second's now; the first's runs are still stored, and `report` of the
     // first is refused too.
     for command in ["run", "report"] {
