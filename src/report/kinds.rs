@@ -466,7 +466,16 @@ fn packing_words(s: &RunSpec, p: &PackingSpec, law: &str) -> String {
     });
     // The first ⌈n/2⌉ discs are small, the rest large (PackingSpec::n).
     let (small, large) = (p.n.div_ceil(2), p.n / 2);
-    let discs = if ratio == 1.0 {
+    // One spec speaks for its scene: a count or ratio its grid varies is not this run's alone.
+    let varies = |path: &str| s.varied.contains_key(path);
+    let discs = if varies("packing.n") || varies("packing.radius_ratio") {
+        format!(
+            "N discs (packing.n) in two halves, the first ⌈N/2⌉ of diameter d = {} m and mass m = {} kg and the rest \
+             packing.radius_ratio times as wide and its square times as heavy (mass ∝ area), as the grid sets them",
+            number(s.spacing),
+            number(s.mass)
+        )
+    } else if ratio == 1.0 {
         format!("{} equal discs of diameter d = {} m and mass m = {} kg", p.n, number(s.spacing), number(s.mass))
     } else {
         format!(

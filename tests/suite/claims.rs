@@ -267,6 +267,20 @@ fn random_networks_average_the_rigid_seeds_and_say_where_rigidity_held() {
 }
 
 #[test]
+fn a_packing_scene_whose_grid_varies_its_discs_counts_none_of_them() {
+    // One run's spec describes its scene: with packing.n on the grid "8 discs … and 8 discs" is
+    // the first run's count, false of the others. The scene names the field instead; and it is
+    // relaxed *towards* a minimum by its rule, which a run may not reach within its budget.
+    let yaml = "version: 1\nname: pk\nscenes:\n  - name: pk\n    kind: packing\n    packing: {fraction: 0.86}\n    \
+                grid:\n      packing.n: [16, 32]\n";
+    let report = report_of("pk", yaml);
+    let physics = line_with(&report, "between touching discs");
+    assert!(physics.contains("N discs (packing.n) in two halves"), "{physics}");
+    assert!(!physics.contains("8 discs of diameter"), "{physics}");
+    assert!(physics.contains("relaxed towards an energy minimum by FIRE until its largest force is below"), "{physics}");
+}
+
+#[test]
 fn rigidity_is_judged_per_lattice_against_its_own_threshold() {
     // Effective-medium theory's p_c = 4/z: 1/2 with both diagonals, 1 without. The same cuts
     // on both: the networks without diagonals are at or beyond their threshold at any cut, so
