@@ -5,6 +5,7 @@ use std::collections::BTreeSet;
 use std::ops::Range;
 use std::path::PathBuf;
 
+use super::quantity::{floor, measure_column};
 use super::table::{Table, Values};
 use crate::sim::RunStatus;
 
@@ -112,31 +113,70 @@ pub(super) fn join(a: &Table, b: &Table) -> anyhow::Result<Join> {
     Ok(Join { pairs, only_a: only(&scenes_a, &scenes_b), only_b: only(&scenes_b, &scenes_a), scenes })
 }
 
-/// The joined table, with the names of its metric columns.
-pub(super) struct Joined {
-    pub(super) table: Table,
-    /// Metrics: each has `<metric>_a`, `<metric>_b` and `<metric>_ratio` in the table.
-    pub(super) metrics: Vec<String>,
-}
-
-/// B/A where both runs ended `ok`, both values exist and A is not zero.
-fn ratio(ok: bool, a: Option<f64>, b: Option<f64>) -> Option<f64> {
-    match (a, b) {
-        (Some(a), Some(b)) if ok && a != 0.0 => Some(b / a).filter(|r| r.is_finite()),
-        _ => None,
-    }
+/// The text columns besides the scene, the run's identity and status, and the top-level grid
+/// parameters (`supports`): what a run is (`law`, `packing_state`, `error_measure`, ...).
+fn is_description(name: &str, values: &Values) -> bool {
+    matches!(values, Values::Text(_))
+        && !is_dotted(name)
+        && !["scene", "status", "run_id"].contains(&name)
+        && !TOP_LEVEL_PARAMETERS.contains(&name)
 }
 
 /// Builds the joined table: `scene`; every dotted grid parameter, holding the value both sides
-/// share where it is a key and otherwise the value of the one side that varies it; `status_a`,
-/// `status_b`, `run_id_a`, `run_id_b`; the text top-level parameters (`supports`) of each side;
-/// then for every numeric column both tables have (the metrics, with the wall times and the
-/// resolved inputs such as `t_c` and `dt`, which differ between campaigns of different laws, and
-/// `v0`, `n`) its two values and their ratio.
+/// share where it is a key and otherwise the value of the one side that varies it; each
+/// top-level parameter that is a key of some scene (`seed`) under its own name, holding the value
+/// both sides share in the scenes it is a key of; `status_a`, `status_b`, `run_id_a`,
+/// `run_id_b`; each side's text columns (`law_a`, `packing_state_b`, `error_measure_a`, and the
+/// top-level parameters that are text, `supports`); then for every numeric column both tables
+/// have (the metrics, with the wall times and the resolved inputs such as `t_c` and `dt`, which
+/// differ between campaigns of different laws, and `v0`, `n`) its two values and their ratio
+/// ([`SceneRows::ratio`]).
 pub(super) fn joined_table(a: &Table, b: &Table, join: &Join) -> anyhow::Result<Joined> {
     let rows_a = || join.pairs.iter().map(|p| p.0);
     let rows_b = || join.pairs.iter().map(|p| p.1);
     let mut columns = vec![("scene".to_string(), a.require("scene")?.gather(rows_a()))];
+    columns.extend(grid_columns(a, b, join));
+    for name in ["status", "run_id"] {
+        columns.push((format!("{name}_a"), a.require(name)?.gather(rows_a())));
+        columns.push((format!("{name}_b"), b.require(name)?.gather(rows_b())));
+    }
+    let is_metric = |name: &str| {
+        !is_dotted(name)
+            && matches!((a.column(name), b.column(name)), (Some(Values::Numbers(_)), Some(Values::Numbers(_))))
+    };
+    let texts = a
+        .columns
+        .iter()
+        .chain(&b.columns)
+        .filter(|(n, v)| is_description(n, v) || (TOP_LEVEL_PARAMETERS.contains(&n.as_str()) && !is_metric(n)));
+    let mut described: Vec<&str> = Vec::new();
+    for (name, _) in texts {
+        if described.contains(&name.as_str()) {
+            continue;
+        }
+        described.push(name);
+        let none = || Values::Text(vec![None; join.pairs.len()]);
+        columns.push((format!("{name}_a"), a.column(name).map_or_else(none, |v| v.gather(rows_a()))));
+        columns.push((format!("{name}_b"), b.column(name).map_or_else(none, |v| v.gather(rows_b()))));
+    }
+    let metrics: Vec<String> = a.names().filter(|n| is_metric(n)).map(str::to_string).collect();
+    for name in &metrics {
+        columns.push((format!("{name}_a"), a.require(name)?.gather(rows_a())));
+        columns.push((format!("{name}_b"), b.require(name)?.gather(rows_b())));
+    }
+    let mut table = Table { path: PathBuf::from("compare.parquet"), columns, height: join.pairs.len() };
+    with_ratios(&mut table, &metrics);
+    Ok(Joined { table, metrics })
+}
+
+/// The grid parameters of the joined table: every dotted one, holding the value both sides
+/// share where it is a key and otherwise the value of the one side that varies it; then each
+/// top-level one that is a key of some scene (`seed`, `v0`), under its own name, holding the
+/// value both sides share in the scenes it is a key of (null elsewhere), as the join met them.
+fn grid_columns(a: &Table, b: &Table, join: &Join) -> Vec<(String, Values)> {
+    let rows_a = || join.pairs.iter().map(|p| p.0);
+    let rows_b = || join.pairs.iter().map(|p| p.1);
+    let mut columns = Vec::new();
     for (name, va) in a.columns.iter().filter(|(n, _)| is_dotted(n)) {
         let merged = match (va, b.column(name)) {
             (Values::Numbers(va), Some(Values::Numbers(vb))) => {
@@ -150,50 +190,45 @@ pub(super) fn joined_table(a: &Table, b: &Table, join: &Join) -> anyhow::Result<
     for (name, vb) in b.columns.iter().filter(|(n, _)| is_dotted(n) && a.column(n).is_none()) {
         columns.push((name.clone(), vb.gather(rows_b())));
     }
-    for name in ["status", "run_id"] {
-        columns.push((format!("{name}_a"), a.require(name)?.gather(rows_a())));
-        columns.push((format!("{name}_b"), b.require(name)?.gather(rows_b())));
-    }
-    let is_metric = |name: &str| {
-        !is_dotted(name)
-            && matches!((a.column(name), b.column(name)), (Some(Values::Numbers(_)), Some(Values::Numbers(_))))
-    };
-    for name in TOP_LEVEL_PARAMETERS.into_iter().filter(|n| !is_metric(n)) {
-        if let Some(va) = a.column(name) {
-            columns.push((format!("{name}_a"), va.gather(rows_a())));
-        }
-        if let Some(vb) = b.column(name) {
-            columns.push((format!("{name}_b"), vb.gather(rows_b())));
+    for name in TOP_LEVEL_PARAMETERS {
+        let keyed: Vec<&SceneJoin> = join.scenes.iter().filter(|s| s.keys.iter().any(|k| k == name)).collect();
+        if let Some(va) = a.column(name).filter(|_| !keyed.is_empty()) {
+            let shared = va.gather(rows_a()).masked(|row| keyed.iter().any(|s| s.pairs.contains(&row)));
+            columns.push((name.to_string(), shared));
         }
     }
-    let ok: Vec<bool> = join
-        .pairs
+    columns
+}
+
+/// Puts each metric's ratio column `<metric>_ratio` after its `<metric>_b`.
+fn with_ratios(table: &mut Table, metrics: &[String]) {
+    let all = SceneRows { table, rows: (0..table.height).collect(), keys: Vec::new() };
+    let mut ratios: Vec<(String, Values)> = metrics
         .iter()
-        .map(|&(i, j)| {
-            let ok =
-                |t: &Table, r| t.column("status").and_then(|s| s.key(r)).is_some_and(|s| s == RunStatus::Ok.as_str());
-            ok(a, i) && ok(b, j)
-        })
+        .map(|name| (name.clone(), Values::Numbers(all.rows.iter().map(|&r| all.ratio(name, r)).collect())))
         .collect();
-    let mut metrics = Vec::new();
-    for (name, va) in a.columns.iter().filter(|(n, _)| is_metric(n)) {
-        let vb = b.require(name)?;
-        let value_a = va.gather(rows_a());
-        let value_b = vb.gather(rows_b());
-        let ratios = (0..join.pairs.len()).map(|r| ratio(ok[r], value_a.number(r), value_b.number(r))).collect();
-        columns.push((format!("{name}_a"), value_a));
-        columns.push((format!("{name}_b"), value_b));
-        columns.push((format!("{name}_ratio"), Values::Numbers(ratios)));
-        metrics.push(name.clone());
+    let columns = std::mem::take(&mut table.columns);
+    for (name, values) in columns {
+        let ratio = name.strip_suffix("_b").and_then(|m| ratios.iter().position(|(n, _)| n == m));
+        table.columns.push((name, values));
+        if let Some(i) = ratio {
+            let (metric, values) = ratios.swap_remove(i);
+            table.columns.push((format!("{metric}_ratio"), values));
+        }
     }
-    let table = Table { path: PathBuf::from("compare.parquet"), columns, height: join.pairs.len() };
-    Ok(Joined { table, metrics })
+}
+
+/// The joined table, with the names of its metric columns.
+pub(super) struct Joined {
+    pub(super) table: Table,
+    /// Metrics: each has `<metric>_a`, `<metric>_b` and `<metric>_ratio` in the table.
+    pub(super) metrics: Vec<String>,
 }
 
 impl Joined {
     /// The rows of `scene` in the joined table.
     pub(super) fn scene_rows(&self, scene: &SceneJoin) -> SceneRows<'_> {
-        SceneRows { table: &self.table, rows: scene.pairs.clone().collect() }
+        SceneRows { table: &self.table, rows: scene.pairs.clone().collect(), keys: scene.keys.clone() }
     }
 }
 
@@ -202,7 +237,14 @@ pub(super) struct SceneRows<'a> {
     table: &'a Table,
     /// The scene's rows of the joined table.
     pub(super) rows: Vec<usize>,
+    /// The scene's join keys besides the scene.
+    keys: Vec<String>,
 }
+
+/// The one state of a packing whose pressure, contacts, energy and moduli are the packing's:
+/// an unjammed one holds what its relaxation left below the pressure floor, and one not relaxed
+/// is no state at all.
+const JAMMED: &str = "jammed";
 
 impl SceneRows<'_> {
     /// A column of the joined table.
@@ -232,6 +274,60 @@ impl SceneRows<'_> {
     pub(super) fn once(&self, side: &str, rows: &[usize]) -> Vec<usize> {
         let mut seen = BTreeSet::new();
         rows.iter().copied().filter(|&r| seen.insert(self.cell(&format!("run_id_{side}"), r))).collect()
+    }
+
+    /// Row `r` compares like with like: both runs ended `ok` and, for packings, both jammed
+    /// ([`JAMMED`]): a jammed packing against an unjammed one is not the same kind of state.
+    pub(super) fn comparable(&self, r: usize) -> bool {
+        let jammed = |side: &str| self.cell(&format!("packing_state_{side}"), r).is_none_or(|s| s == JAMMED);
+        self.ok("a", r) && self.ok("b", r) && jammed("a") && jammed("b")
+    }
+
+    /// How A and B measured metric `name` in row `r` where they measured it differently (the
+    /// `error` against normal modes in one, against energy in the other): no ratio there.
+    pub(super) fn unlike(&self, name: &str, r: usize) -> Option<(String, String)> {
+        let column = measure_column(name)?;
+        let (a, b) = (self.cell(&format!("{column}_a"), r), self.cell(&format!("{column}_b"), r));
+        (a != b).then(|| (a.unwrap_or_else(|| "none".into()), b.unwrap_or_else(|| "none".into())))
+    }
+
+    /// Metric `name` of `side` in row `r`, 0 where it is at or below its floor ([`floor`]): a
+    /// value there is round-off or what a relaxation left, not a number to divide.
+    pub(super) fn value(&self, name: &str, side: &str, r: usize) -> Option<f64> {
+        let x = self.metric(name, side).number(r)?;
+        Some(if self.at_floor(name, side, r) { 0.0 } else { x })
+    }
+
+    /// Metric `name` of `side` in row `r` is at or below its floor: the run's own
+    /// (`<name>_floor`, a packing's `pressure_floor`) or the quantity's ([`floor`]).
+    pub(super) fn at_floor(&self, name: &str, side: &str, r: usize) -> bool {
+        let own = self.column(&format!("{name}_floor_{side}")).and_then(|c| c.number(r));
+        let floor = own.or_else(|| floor(name));
+        self.metric(name, side).number(r).zip(floor).is_some_and(|(x, floor)| x.abs() <= floor)
+    }
+
+    /// B/A of metric `name` in row `r`: where the row compares like with like
+    /// ([`SceneRows::comparable`]), both sides measured it alike ([`SceneRows::unlike`]), both
+    /// values exist and A's is not 0 (nor at its floor).
+    pub(super) fn ratio(&self, name: &str, r: usize) -> Option<f64> {
+        if !self.comparable(r) || self.unlike(name, r).is_some() {
+            return None;
+        }
+        match (self.value(name, "a", r), self.value(name, "b", r)) {
+            (Some(a), Some(b)) if a != 0.0 => Some(b / a).filter(|r| r.is_finite()),
+            _ => None,
+        }
+    }
+
+    /// The scene varies the seed on both sides: each row's runs are one sample of many.
+    pub(super) fn seeded(&self) -> bool {
+        self.keys.iter().any(|k| k == "seed")
+    }
+
+    /// Row `r`'s values of the join keys besides the seed: the rows that share them differ only
+    /// by their random start.
+    pub(super) fn replicate_key(&self, r: usize) -> Vec<Option<String>> {
+        self.keys.iter().filter(|k| *k != "seed").map(|k| self.cell(k, r)).collect()
     }
 
     /// The column `<name>_<suffix>` of a metric (`suffix`: `a`, `b` or `ratio`).

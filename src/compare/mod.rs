@@ -9,6 +9,7 @@
 
 pub mod exponents;
 mod join;
+mod out;
 mod overview;
 mod plots;
 pub mod quantity;
@@ -51,39 +52,30 @@ pub struct Comparison {
 /// `<reports>/compare-<name of a>-vs-<name of b>`.
 pub fn compare(a: &Path, b: &Path, out: Option<&Path>, reports: &Path) -> anyhow::Result<Comparison> {
     let (a, b) = (Side::open(a)?, Side::open(b)?);
-    let out = out.map_or_else(|| reports.join(format!("compare-{}-vs-{}", a.name, b.name)), Path::to_path_buf);
-    if let Some(owner) = crate::owner::campaign_of(&out) {
-        anyhow::bail!(
-            "'{}' is the report folder of {owner}: a comparison would overwrite its report; choose another --out",
-            out.display()
-        );
-    }
+    let dir = out.map_or_else(|| reports.join(format!("compare-{}-vs-{}", a.name, b.name)), Path::to_path_buf);
+    let out = self::out::claim(&dir, out.is_some())?;
     let join = join(&a.results, &b.results)?;
     let joined = joined_table(&a.results, &b.results, &join)?;
     let mut frame = joined.table.frame().context("cannot build the joined table")?;
     let mut csv = Vec::new();
     CsvWriter::new(&mut csv).include_header(true).finish(&mut frame)?;
-    write_atomically(&out.join("compare.csv"), &csv)?;
     let mut parquet = Vec::new();
     ParquetWriter::new(&mut parquet).finish(&mut frame)?;
-    write_atomically(&out.join("compare.parquet"), &parquet)?;
-
+    let mut written = BTreeSet::new();
+    for (file, bytes) in [("compare.csv", &csv), ("compare.parquet", &parquet)] {
+        write_atomically(&dir.join(file), bytes)?;
+        written.insert(file.to_string());
+    }
     let mut scenes = Vec::new();
-    let mut plots = BTreeSet::new();
     for scene in &join.scenes {
         let section = scene_section(&a, &b, &joined, scene)?;
-        for group in &section.plots {
-            for plot in &group.plots {
-                write_atomically(&out.join(&plot.file), plot.image.bytes())?;
-                plots.insert(plot.file.clone());
-            }
+        for plot in section.plots.iter().flat_map(|group| &group.plots) {
+            write_atomically(&dir.join(&plot.file), plot.image.bytes())?;
+            written.insert(plot.file.clone());
         }
         scenes.push(section);
     }
-    // Figures of an earlier comparison into this folder that this one did not draw.
-    crate::report::remove_stale(&out, "plots", ".svg", &plots)?;
-    crate::report::remove_stale(&out, "plots", ".png", &plots)?;
-    let plots = plots.len();
+    let plots = written.iter().filter(|f| f.starts_with("plots/")).count();
     let exponents = exponents(&a, &b)?;
     let fits = exponents.rows.len();
     let context = ReportContext {
@@ -98,8 +90,12 @@ pub fn compare(a: &Path, b: &Path, out: Option<&Path>, reports: &Path) -> anyhow
         scenes,
         exponents,
     };
-    render(&out, &context)?;
-    Ok(Comparison { out, rows: joined.table.height, plots, exponents: fits })
+    render(&dir, &context)?;
+    // The appendix has a page of its own only where the report has one.
+    let pages = ["report.md", "index.html", "appendix.html"];
+    written.extend(pages.iter().filter(|page| dir.join(page).is_file()).map(|page| page.to_string()));
+    out.finish(&written)?;
+    Ok(Comparison { out: dir, rows: joined.table.height, plots, exponents: fits })
 }
 
 /// Writes `report.md` and `index.html` (the same Markdown as HTML inside the page shell).

@@ -5,10 +5,10 @@
 
 use serde::Serialize;
 
-use super::quantity::{Class, NOISE, unit};
+use super::quantity::{Class, NOISE, ROUND_OFF, unit};
 use super::restitution::Targets;
 use super::section::SceneSection;
-use super::stats::Stats;
+use super::stats::{SEED_ERRORS, Stats};
 use super::words::{count, counted, fixed, short, value};
 
 /// At most this many sentences name a differing quantity, and at most this many figures show
@@ -34,6 +34,10 @@ pub(super) struct Overview {
     figures: Vec<Figure>,
     /// The noise floor, as the method paragraph states it.
     noise: String,
+    /// How many standard errors of the seeds' spread two sides may differ by.
+    seed_errors: String,
+    /// The relative difference below which two inputs are equal.
+    round_off: String,
 }
 
 /// A measured quantity of one scene whose two sides differ beyond its noise.
@@ -69,6 +73,9 @@ struct Figure {
 
 type Entry<'a> = (&'a SceneSection, &'a Stats);
 
+/// A sentence's opening words, the entries it lists and what it says after each.
+type Listed<'a> = (String, Vec<Entry<'a>>, &'a dyn Fn(&Stats) -> String);
+
 /// How far B parts from A: |ln B/A|, 0 without a ratio.
 fn parting(stats: &Stats) -> f64 {
     stats.ratio.filter(|r| *r > 0.0).map_or(0.0, |r| r.ln().abs())
@@ -80,6 +87,11 @@ fn measured(stats: &Stats) -> bool {
 
 fn on_both_sides(stats: &Stats) -> bool {
     stats.a.is_some() && stats.b.is_some()
+}
+
+/// Measured on both sides, alike, in some row, and not found to differ.
+fn agrees(stats: &Stats) -> bool {
+    measured(stats) && on_both_sides(stats) && stats.compared > 0 && !stats.differs
 }
 
 /// A result that may headline: measured by MD with a ratio, with medians that mean something
@@ -120,19 +132,26 @@ pub(super) fn overview(scenes: &[SceneSection]) -> Overview {
         physics: physics(&all),
         lead: lead(scenes, &all, &differ),
         headlines: top.iter().map(|(scene, st)| sentence(&scene.name, st)).collect(),
-        rest: rest(&all),
+        rest: rest(scenes, &all),
         differ: differ.iter().map(|(scene, st)| differ_row(&scene.name, st)).collect(),
         inputs: input_rows(&all),
         figures: figures(&differ),
         noise: format!("{NOISE:.0e}"),
+        seed_errors: format!("{SEED_ERRORS}"),
+        round_off: format!("{ROUND_OFF:.0e}"),
     }
 }
 
 /// How many measured quantities differ, agree and have one side only, in how many scenes.
 fn lead(scenes: &[SceneSection], all: &[Entry], differ: &[Entry]) -> String {
     let names: Vec<&str> = scenes.iter().map(|s| s.name.as_str()).collect();
-    let equal = all.iter().filter(|(_, st)| measured(st) && on_both_sides(st) && !st.differs).count();
+    let equal = all.iter().filter(|(_, st)| agrees(st)).count();
     let one_side = all.iter().filter(|(_, st)| measured(st) && !on_both_sides(st)).count();
+    let unlike = all.iter().filter(|(_, st)| measured(st) && on_both_sides(st) && st.compared == 0).count();
+    let unlike = match unlike {
+        0 => String::new(),
+        n => format!(" ({} differently on the two sides, not compared)", count(n, "is measured", "are measured")),
+    };
     let mut differing: Vec<&str> = differ.iter().map(|(s, _)| s.name.as_str()).collect();
     differing.sort_unstable();
     differing.dedup();
@@ -140,12 +159,12 @@ fn lead(scenes: &[SceneSection], all: &[Entry], differ: &[Entry]) -> String {
     if differ.is_empty() {
         return format!(
             "{shared}. No measured quantity differs beyond its noise there: the two campaigns agree in all {equal} \
-             quantities measured on both sides ({one_side} are measured on one side only)."
+             quantities measured alike on both sides ({one_side} are measured on one side only{unlike})."
         );
     }
     format!(
-        "{shared}. Over the runs ok on both sides, {} beyond {} noise in {} of them, {} within it and {} on \
-         one side only.",
+        "{shared}. Over the rows compared, {} beyond {} noise in {} of them, {} within it and {} on \
+         one side only{unlike}.",
         count(differ.len(), "measured quantity differs", "measured quantities differ"),
         if differ.len() == 1 { "its" } else { "their" },
         differing.len(),
@@ -193,7 +212,11 @@ fn differ_row(scene: &str, st: &Stats) -> DifferRow {
         b: value(st.b),
         ratio: fixed(st.ratio),
         range: st.range.map_or_else(String::new, |(lo, hi)| format!("{} … {}", fixed(Some(lo)), fixed(Some(hi)))),
-        noise: if st.class == Class::Deviation { format!("{NOISE:.0e} abs.") } else { format!("{:.1e}", st.noise) },
+        noise: match st.class {
+            Class::Deviation => format!("{NOISE:.0e} abs."),
+            _ if st.seeded => format!("{:.1e} (seeds)", st.noise),
+            _ => format!("{:.1e}", st.noise),
+        },
     }
 }
 
@@ -207,27 +230,84 @@ fn listing(entries: &[Entry], extra: impl Fn(&Stats) -> String) -> String {
     words.join(", ")
 }
 
-/// What agrees within noise, what one side alone measures, and which inputs differ or not.
-fn rest(all: &[Entry]) -> Vec<String> {
+/// What agrees within noise, what is at round-off on both sides, what is measured differently
+/// or by one side alone, which rows are not compared, and which inputs differ or not.
+fn rest(scenes: &[SceneSection], all: &[Entry]) -> Vec<String> {
     let pick =
         |keep: &dyn Fn(&Stats) -> bool| -> Vec<Entry> { all.iter().copied().filter(|(_, st)| keep(st)).collect() };
-    let mut rest = Vec::new();
-    let equal = pick(&|st| measured(st) && on_both_sides(st) && !st.differs);
-    if !equal.is_empty() {
-        rest.push(format!(
-            "Equal within noise: {}.",
-            listing(&equal, |st| st.ratio.map_or_else(String::new, |r| format!(" (B/A = {})", fixed(Some(r)))))
-        ));
-    }
-    for (side, only) in
-        [("A", pick(&|st| measured(st) && st.b.is_none())), ("B", pick(&|st| measured(st) && st.a.is_none()))]
-    {
-        if !only.is_empty() {
-            rest.push(format!("Measured in {side} only (nothing to compare): {}.", listing(&only, |_| String::new())));
-        }
-    }
+    let both = |st: &Stats| format!(" (A {}, B {})", short(st.a.unwrap_or(f64::NAN)), short(st.b.unwrap_or(f64::NAN)));
+    let groups: [Listed; 7] = [
+        (
+            "Equal within noise".into(),
+            pick(&|st| agrees(st) && !st.at_floor && st.class == Class::Result && !st.seeded),
+            &|st| st.ratio.map_or_else(String::new, |r| format!(" (B/A = {})", fixed(Some(r)))),
+        ),
+        (
+            format!(
+                "The same within the spread between seeds (the seed means of A and B, rows of equal other grid \
+                 values, less than {SEED_ERRORS} standard errors of their difference apart; B/A the rows' median, \
+                 noise relative to A's mean)"
+            ),
+            pick(&|st| agrees(st) && !st.at_floor && st.class == Class::Result && st.seeded),
+            &|st| format!(" (B/A = {}, noise {:.1e})", fixed(st.ratio), st.noise),
+        ),
+        (
+            format!(
+                "Errors and spreads within {NOISE:.0e} of each other (absolute: ideally 0, they are compared by \
+                 their difference, not their ratio)"
+            ),
+            pick(&|st| agrees(st) && !st.at_floor && st.class == Class::Deviation),
+            &both,
+        ),
+        (
+            "Both at round-off, at or below their floor on both sides (a static solve's residual below Newton's \
+             tolerance 1e-12 of the load, a value below the run's own floor column such as pressure_floor): zero on both, no \
+             ratio to take"
+                .into(),
+            pick(&|st| agrees(st) && st.at_floor),
+            &both,
+        ),
+        (
+            "Not compared, measured differently on the two sides (an error against one reference says nothing \
+             about an error against another)"
+                .into(),
+            pick(&|st| measured(st) && st.unlike.is_some()),
+            &|st| st.unlike.as_ref().map_or_else(String::new, |(a, b)| format!(" ({a} in A, {b} in B)")),
+        ),
+        ("Measured in A only (nothing to compare)".into(), pick(&|st| measured(st) && st.b.is_none()), &|_| String::new()),
+        ("Measured in B only (nothing to compare)".into(), pick(&|st| measured(st) && st.a.is_none()), &|_| String::new()),
+    ];
+    let mut rest: Vec<String> = groups
+        .iter()
+        .filter(|(_, entries, _)| !entries.is_empty())
+        .map(|(words, entries, extra)| format!("{words}: {}.", listing(entries, extra)))
+        .collect();
+    rest.extend(states_sentence(scenes));
     rest.push(inputs_sentence(all));
     rest
+}
+
+/// The rows of runs `ok` on both sides that are not compared because their packings are not
+/// both jammed, scene by scene; `None` where there are none.
+fn states_sentence(scenes: &[SceneSection]) -> Option<String> {
+    let ok = |status: &str| status.starts_with("ok, ");
+    let parts: Vec<String> = scenes
+        .iter()
+        .flat_map(|scene| scene.statuses.iter().map(move |c| (scene, c)))
+        .filter(|(_, c)| ok(&c.a) && ok(&c.b))
+        .map(|(scene, c)| {
+            format!("{}: {} {} in A and {} in B", scene.name, counted(c.rows, "row"), &c.a[4..], &c.b[4..])
+        })
+        .collect();
+    (!parts.is_empty()).then(|| {
+        format!(
+            "Packings not compared: {}. A packing's pressure, contacts, energy and moduli are its own only where \
+             it jammed (pressure above the run's pressure_floor, carried by a rigid backbone): below the floor \
+             they are zero, what the relaxation left, and a jammed packing against an unjammed one is not the same \
+             kind of state.",
+            parts.join("; ")
+        )
+    })
 }
 
 /// The metrics of `entries`, each once, in order of first appearance.

@@ -8,6 +8,28 @@
 /// run's steps) and well below any physical difference worth a sentence.
 pub(super) const NOISE: f64 = 1e-6;
 
+/// Two inputs count as equal when they differ by less than this, relative: the same input
+/// resolved along two paths (dt·ω_max of a linear and of a Hertz law) differs in its last bits,
+/// 1e-16 relative, and inputs chosen differently differ by far more.
+pub(super) const ROUND_OFF: f64 = 1e-12;
+
+/// The text column that says how a metric was measured, where a table says it: two values of
+/// `error` are comparable only where both are against the same reference (`normal_modes`,
+/// `energy`, ...).
+const MEASURED_BY: [(&str, &str); 1] = [("error", "error_measure")];
+
+/// The column that says how metric `name` was measured.
+pub(super) fn measure_column(name: &str) -> Option<&'static str> {
+    MEASURED_BY.iter().find(|(metric, _)| *metric == name).map(|(_, column)| *column)
+}
+
+/// The floor of a quantity whose floor is the same for every run: a static solve's residual
+/// stops at Newton's tolerance ‖R‖ ≤ 1e-12 ‖f‖, and below that it is round-off. (A run's own
+/// floor, such as a packing's `pressure_floor`, is a column of its own.)
+pub(super) fn floor(name: &str) -> Option<f64> {
+    (name == "static_residual").then_some(crate::fem::NEWTON_TOLERANCE)
+}
+
 /// What kind of quantity a column holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Class {

@@ -1,5 +1,5 @@
-//! The comparison's section of one scene: the statuses of rows not `ok` on both sides, the
-//! medians of every metric over the rows `ok` on both with whether the two sides differ beyond
+//! The comparison's section of one scene: the statuses of rows not compared, the medians of
+//! every metric over the rows compared (`ok` on both sides, packings jammed on both) with whether the two sides differ beyond
 //! the metric's noise, and the overlaid figures.
 
 use serde::Serialize;
@@ -22,8 +22,8 @@ pub(super) struct SceneSection {
     rows_a: usize,
     rows_b: usize,
     ok: usize,
-    /// Joined rows that are not `ok` on both sides, by (status A, status B).
-    statuses: Vec<StatusCount>,
+    /// Joined rows not compared, by (status A, status B), a packing's state with its status.
+    pub(super) statuses: Vec<StatusCount>,
     metrics: Vec<MetricRow>,
     pub(super) plots: Vec<PlotGroup>,
     /// The numbers behind `metrics`, for the opening of the report.
@@ -35,10 +35,10 @@ pub(super) struct SceneSection {
 }
 
 #[derive(Serialize)]
-struct StatusCount {
-    a: String,
-    b: String,
-    rows: usize,
+pub(super) struct StatusCount {
+    pub(super) a: String,
+    pub(super) b: String,
+    pub(super) rows: usize,
 }
 
 #[derive(Serialize)]
@@ -66,13 +66,13 @@ impl MetricRow {
     }
 }
 
-/// The report section of one scene: the statuses of rows not `ok` on both sides, the metrics
-/// table (medians over the rows `ok` on both sides, each run counted once) and the overlaid
+/// The report section of one scene: the statuses of rows not compared, the metrics table
+/// (medians over the rows compared, [`SceneRows::comparable`], each run counted once) and the overlaid
 /// figures (each side's `ok` runs) of the metrics that are neither costs nor inputs equal on
 /// both sides.
 pub(super) fn scene_section(a: &Side, b: &Side, joined: &Joined, scene: &SceneJoin) -> anyhow::Result<SceneSection> {
     let rows = joined.scene_rows(scene);
-    let both: Vec<usize> = rows.rows.iter().copied().filter(|&r| rows.ok("a", r) && rows.ok("b", r)).collect();
+    let both: Vec<usize> = rows.rows.iter().copied().filter(|&r| rows.comparable(r)).collect();
     let stats: Vec<Stats> = joined.metrics.iter().filter_map(|name| stats(&rows, &both, name)).collect();
     let shown = |s: &Stats| match s.class {
         Class::Cost => false,
@@ -98,11 +98,19 @@ pub(super) fn scene_section(a: &Side, b: &Side, joined: &Joined, scene: &SceneJo
     })
 }
 
-/// The rows not `ok` on both sides, counted by (status A, status B) in order of appearance.
+/// The rows not compared ([`SceneRows::comparable`]), counted by (state A, state B) in order
+/// of appearance: the run's status, with a packing's state where it ended `ok`.
 fn status_counts(rows: &SceneRows) -> Vec<StatusCount> {
+    let state = |side: &str, r: usize| {
+        let status = rows.cell(&format!("status_{side}"), r).unwrap_or_default();
+        match rows.cell(&format!("packing_state_{side}"), r) {
+            Some(packing) if rows.ok(side, r) => format!("{status}, {packing}"),
+            _ => status,
+        }
+    };
     let mut statuses: Vec<StatusCount> = Vec::new();
-    for &r in rows.rows.iter().filter(|&&r| !(rows.ok("a", r) && rows.ok("b", r))) {
-        let (sa, sb) = (rows.cell("status_a", r).unwrap_or_default(), rows.cell("status_b", r).unwrap_or_default());
+    for &r in rows.rows.iter().filter(|&&r| !rows.comparable(r)) {
+        let (sa, sb) = (state("a", r), state("b", r));
         match statuses.iter_mut().find(|c| c.a == sa && c.b == sb) {
             Some(count) => count.rows += 1,
             None => statuses.push(StatusCount { a: sa, b: sb, rows: 1 }),

@@ -49,6 +49,14 @@ impl Values {
         }
     }
 
+    /// The cells where `keep` holds, null elsewhere.
+    pub(super) fn masked(&self, keep: impl Fn(usize) -> bool) -> Values {
+        match self {
+            Values::Numbers(v) => Values::Numbers(v.iter().enumerate().map(|(r, x)| x.filter(|_| keep(r))).collect()),
+            Values::Text(v) => Values::Text(v.iter().enumerate().map(|(r, x)| x.clone().filter(|_| keep(r))).collect()),
+        }
+    }
+
     /// The cells at `rows`, in that order.
     pub(super) fn gather(&self, rows: impl Iterator<Item = usize>) -> Values {
         match self {

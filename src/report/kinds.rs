@@ -458,9 +458,10 @@ fn packing_words(s: &RunSpec, p: &PackingSpec, law: &str) -> String {
     // A packing relaxes by a minimiser (the spec refuses the others).
     let method = if s.relax().is_some_and(|r| r.method == RelaxMethod::Cg) { "conjugate gradients" } else { "FIRE" };
     // Whether each run got there within its budget is the run's own (its row's packing_state).
-    let until = s.relax().and_then(|r| r.residual_force).map_or(String::new(), |f| {
-        format!(" until its largest force is below {} k d^β", number(f))
-    });
+    let until = s
+        .relax()
+        .and_then(|r| r.residual_force)
+        .map_or(String::new(), |f| format!(" until its largest force is below {} k d^β", number(f)));
     let made = p.compression.map_or(String::new(), |c| {
         format!(", made by a slow compression from φ = {} in {} steps", number(c.from), c.steps)
     });

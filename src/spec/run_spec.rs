@@ -515,6 +515,8 @@ fn physics_words(path: &str, value: &Value) -> String {
     let text = value.as_str().map_or_else(|| value.to_string(), str::to_string);
     let symbol = match path {
         "damping.restitution" => "r",
+        // `critical` is a word (2 m ω_min, decided per run), not a number of N s/m.
+        "damping.background" if value.is_string() => return format!("γ_g = {text}"),
         "damping.background" => return format!("γ_g = {text} N s/m"),
         "time.dt_per_tc" => return format!("dt = t_c/{text}"),
         "time.integrator" | "material.law" | "load.case" => return text,

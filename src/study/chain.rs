@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::columns::{Block, Column, Slot};
 use super::common::{relaxation, scene, sound_speed};
-use crate::measure::normal_mode_error;
+use crate::measure::{decay_rate, normal_mode_error};
 use crate::model::{Axes, Particles, SquareLattice};
 use crate::sim::{Network, Outcome, Scene};
 use crate::spec::{ChainRun, RunSpec};
@@ -46,7 +46,23 @@ pub struct ChainMetrics {
     /// Relaxing chain: s′(δ)/(n + 1) (N/m).
     #[serde(default)]
     pub tangent_stiffness_theory: Option<f64>,
+    /// Damped hit chain: time (s) from which its energy E_kin + E_pot stays below
+    /// [`DISSIPATED`] of its energy at t = 0, the kick's ½ m v0²; none if it never does.
+    #[serde(default)]
+    pub energy_dissipation_time: Option<f64>,
+    /// Damped hit chain: the e-folding time (s) of its energy, 1/rate with the rate fitted
+    /// over the second half of the decay (`measure::decay_rate`), where the slowest mode remains.
+    #[serde(default)]
+    pub energy_decay_time: Option<f64>,
+    /// Damped linear bonded hit chain: the slowest excited mode's e-folding time (s) of the
+    /// energy ([`excited_mode_rates`]).
+    #[serde(default)]
+    pub energy_decay_time_theory: Option<f64>,
 }
+
+/// The fraction of the kick's energy below which a damped hit chain counts as dissipated:
+/// 1e-4, an amplitude of 1 % of the kick's (the energy goes as the amplitude squared).
+pub const DISSIPATED: f64 = 1e-4;
 
 /// n particles between two fixed walls `wall_distance` apart, bonded as an (n+2) × 1
 /// lattice (the walls are particles 0 and n+1); particle `node` starts at v0. They start
@@ -84,12 +100,74 @@ pub fn equilibrium(spec: &RunSpec, chain: &ChainRun) -> (f64, f64, f64, f64) {
 /// True when the chain has an exact normal-mode solution: linear bonded springs, no damping,
 /// walls at the rest spacing.
 pub fn has_normal_modes(spec: &RunSpec, chain: &ChainRun) -> bool {
+    is_modal(spec, chain) && !is_damped(spec)
+}
+
+/// Linear bonded springs between walls at the rest spacing: the chain's modes are the sines
+/// of [`excited_mode_rates`], damped or not.
+fn is_modal(spec: &RunSpec, chain: &ChainRun) -> bool {
+    spec.law.is_linear() && !spec.contact && at_rest_spacing(spec, chain)
+}
+
+/// Walls (n + 1) spacings apart: the chain at rest stores no energy.
+fn at_rest_spacing(spec: &RunSpec, chain: &ChainRun) -> bool {
     let walls = chain.wall_distance;
-    spec.law.is_linear()
-        && !spec.contact
-        && spec.gamma == 0.0
-        && spec.gamma_background == 0.0
-        && (walls - (chain.n + 1) as f64 * spec.spacing).abs() <= 1e-12 * walls
+    (walls - (chain.n + 1) as f64 * spec.spacing).abs() <= 1e-12 * walls
+}
+
+/// A bond dashpot or background damping.
+fn is_damped(spec: &RunSpec) -> bool {
+    spec.gamma > 0.0 || spec.gamma_background > 0.0
+}
+
+/// The energy decay rates (1/s) of the modes a linear bonded chain hit at its node has, slowest
+/// first. Mode j of n particles between walls: ω_j² = k_j/m, k_j = 4k sin²(jπ/(2(n + 1))),
+/// shape sin(jπ p/(n + 1)). The bond dashpots damp it as k does, c_j = γ_g + 4γ sin²(jπ/(2(n + 1)))
+/// (N s/m), so its energy falls at c_j/m − Re √((c_j/m)² − 4k_j/m) (1/s)
+/// (`theory::background_decay_rate`): c_j/m while underdamped. The hit excites the modes that
+/// do not vanish at the node; the slowest of them sets the late energy's rate.
+fn excited_mode_rates(spec: &RunSpec, chain: &ChainRun) -> Vec<f64> {
+    let half_angle = |j: usize| j as f64 * std::f64::consts::PI / (2 * (chain.n + 1)) as f64;
+    let mut rates: Vec<f64> = (1..=chain.n)
+        .filter(|&j| (2.0 * half_angle(j) * chain.node as f64).sin().abs() > 1e-9)
+        .map(|j| {
+            let s2 = half_angle(j).sin().powi(2);
+            let damping = spec.gamma_background + 4.0 * spec.gamma * s2;
+            crate::theory::background_decay_rate(damping, spec.mass, 4.0 * spec.k * s2)
+        })
+        .collect();
+    rates.sort_by(f64::total_cmp);
+    rates
+}
+
+/// Whether a damped linear bonded hit chain's run resolves its slowest mode's decay: the fit
+/// (`measure::decay_rate`) reads the second half of the run, where the next slower mode, rate
+/// r₂, must have fallen below 1 % of the slowest's, rate r₁: (r₂ − r₁) T/2 ≥ ln 100 over the
+/// run's duration T (s). Modes that share the slowest rate (background damping alone, every
+/// mode underdamped) do not disturb it.
+pub fn decay_resolved(spec: &RunSpec) -> bool {
+    let Some(chain) = spec.chain().filter(|c| is_modal(spec, c)) else { return false };
+    let rates = excited_mode_rates(spec, chain);
+    let Some(&slowest) = rates.first() else { return false };
+    let next = rates.iter().find(|r| **r > slowest * (1.0 + 1e-9));
+    next.is_none_or(|next| (next - slowest) * 0.5 * spec.duration >= 100f64.ln())
+}
+
+/// A damped hit chain's energy: when it fell below [`DISSIPATED`] of the kick's for good, and
+/// its late e-folding time, measured and (linear bonded springs) from its slowest mode.
+fn measure_dissipation(spec: &RunSpec, chain: &ChainRun, outcome: &Outcome, metrics: &mut ChainMetrics) {
+    let t = &outcome.trace;
+    let energy: Vec<(f64, f64)> = (0..t.time.len()).map(|s| (t.time[s], t.kinetic[s] + t.potential[s])).collect();
+    let Some(&(_, kick)) = energy.first().filter(|e| e.1 > 0.0) else { return };
+    // The last sample at or above the threshold; the next one starts the dissipated state.
+    let last_above = energy.iter().rposition(|e| e.1 >= DISSIPATED * kick);
+    metrics.energy_dissipation_time = match last_above {
+        None => energy.first().map(|e| e.0),
+        Some(s) => energy.get(s + 1).map(|e| e.0),
+    };
+    metrics.energy_decay_time = decay_rate(&energy).filter(|r| *r > 0.0).map(|r| 1.0 / r);
+    metrics.energy_decay_time_theory =
+        is_modal(spec, chain).then(|| excited_mode_rates(spec, chain).first().map(|r| 1.0 / r)).flatten();
 }
 
 /// Tension (N) of a chain's first spring, between the left wall and particle 1.
@@ -108,6 +186,8 @@ pub(super) fn measure(spec: &RunSpec, chain: &ChainRun, outcome: &Outcome, metri
         .flatten();
     if chain.relax.is_some() {
         measure_equilibrium(spec, chain, outcome, metrics);
+    } else if is_damped(spec) && at_rest_spacing(spec, chain) {
+        measure_dissipation(spec, chain, outcome, metrics);
     }
 }
 
@@ -159,8 +239,8 @@ pub(super) fn tangent_stiffness(
     }
 }
 
-/// The chain's result columns: its size, its normal-mode error, and a relaxing chain's
-/// equilibrium beside the exact one.
+/// The chain's result columns: its size, its normal-mode error, a relaxing chain's
+/// equilibrium beside the exact one, and a damped hit chain's dissipation.
 pub(super) fn columns() -> Vec<Block<ChainMetrics>> {
     use Column::{Count, Number};
     let relaxing: Vec<Column<ChainMetrics>> = vec![
@@ -175,6 +255,11 @@ pub(super) fn columns() -> Vec<Block<ChainMetrics>> {
         Number("tangent_stiffness", |r| r.group.tangent_stiffness),
         Number("tangent_stiffness_theory", |r| r.group.tangent_stiffness_theory),
     ];
+    let dissipating: Vec<Column<ChainMetrics>> = vec![
+        Number("energy_dissipation_time", |r| r.group.energy_dissipation_time),
+        Number("energy_decay_time", |r| r.group.energy_decay_time),
+        Number("energy_decay_time_theory", |r| r.group.energy_decay_time_theory),
+    ];
     vec![
         Block { slot: Slot::Size, shown: None, columns: vec![Count("n", |r| r.spec.chain().map(|c| c.n as u64))] },
         Block {
@@ -186,6 +271,11 @@ pub(super) fn columns() -> Vec<Block<ChainMetrics>> {
             slot: Slot::Tail,
             shown: Some(|spec| spec.chain().is_some_and(|c| c.relax.is_some())),
             columns: relaxing,
+        },
+        Block {
+            slot: Slot::Tail,
+            shown: Some(|spec| spec.chain().is_some_and(|c| c.relax.is_none()) && is_damped(spec)),
+            columns: dissipating,
         },
     ]
 }

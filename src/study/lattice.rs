@@ -1019,7 +1019,7 @@ fn type_columns() -> Vec<Column<LatticeMetrics>> {
     use Column::{Number, Word};
     vec![
         Word("lattice_type", |r| r.spec.lattice().map(|l| l.lattice_type.name().into())),
-        Number("coordination", |r| r.spec.lattice().map(|l| l.lattice_type.coordination())),
+        Number("coordination", |r| r.spec.lattice().map(|l| l.coordination())),
         Number("youngs_modulus_linear", |r| r.group.youngs_modulus_linear),
         Number("shear_modulus_linear", |r| r.group.shear_modulus_linear),
     ]

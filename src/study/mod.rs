@@ -250,7 +250,10 @@ pub fn caveat(spec: &RunSpec, metrics: &Metrics) -> Option<&'static str> {
 /// relaxation from the kind's facts (its linear sound speed, what its relaxation is judged
 /// by). `start` holds the positions (x, y) at t = 0.
 fn measure(spec: &RunSpec, outcome: &Outcome, start: &(Vec<f64>, Vec<f64>), metrics: &mut Metrics) {
-    metrics.energy_error = energy_error(&outcome.trace);
+    // A minimiser's steps (FIRE, CG) and the static solve follow no trajectory in time: they
+    // remove energy by design, so they have no energy balance to hold (a 0 would be invented).
+    let follows_time = spec.relax().is_none_or(|r| r.method == crate::sim::RelaxMethod::Damped);
+    metrics.energy_error = if follows_time { energy_error(&outcome.trace) } else { None };
     let (wave_speed, relaxing) = match &spec.scene_kind {
         KindSpec::Pair(_) => {
             pair::measure(spec, outcome, &mut metrics.pair);

@@ -277,7 +277,10 @@ fn a_packing_scene_whose_grid_varies_its_discs_counts_none_of_them() {
     let physics = line_with(&report, "between touching discs");
     assert!(physics.contains("N discs (packing.n) in two halves"), "{physics}");
     assert!(!physics.contains("8 discs of diameter"), "{physics}");
-    assert!(physics.contains("relaxed towards an energy minimum by FIRE until its largest force is below"), "{physics}");
+    assert!(
+        physics.contains("relaxed towards an energy minimum by FIRE until its largest force is below"),
+        "{physics}"
+    );
 }
 
 #[test]
@@ -706,12 +709,12 @@ fn the_relaxation_follows_its_slowest_envelope() {
     };
     let below = report_of("bg", &sampled(format!("[{}, {}]", g(0.25), g(0.5))));
     let line = line_with(&below, "Relaxed by background damping alone");
-    assert!(line.contains("2 below γ_crit fall at the energy's envelope") && !line.contains("above it"), "{line}");
-    assert!(number_after(line, "4k_min/m) to ") <= 0.05 && line.contains("within the tolerance"), "{line}");
+    assert!(line.contains("2 below γ_crit at the energy's envelope") && !line.contains("above it"), "{line}");
+    assert!(number_after(line, "off by ") <= 0.05 && line.contains("within the tolerance"), "{line}");
     let above = report_of("bg", &sampled(format!("[{}, {}]", g(3.0), g(8.0))));
     let line = line_with(&above, "Relaxed by background damping alone");
-    assert!(line.contains("2 above it at the slowest mode's 2λ") && !line.contains("below γ_crit fall"), "{line}");
-    assert!(number_after(line, "4k_min/m) to ") <= 0.05, "{line}");
+    assert!(line.contains("2 above it at the slowest mode's 2λ") && !line.contains("below γ_crit at"), "{line}");
+    assert!(number_after(line, "off by ") <= 0.05, "{line}");
 }
 
 /// Loaded blocks of side `size` (m = k = 1, clamped bottom) brought to rest by critical damping,
@@ -1133,8 +1136,9 @@ fn spread_block(k_y_ratio: f64) -> String {
 fn a_spread_networks_direction_and_bounds_are_judged_from_its_runs() {
     // Spread alike in x and y, E_x/E_y scatters about 1 over the seeds; with k_y = 2 k_x every
     // network is stiffer along y, E_x/E_y ≈ 0.6 (the continuum's (C11 − C12²/C22)/(C22 − C12²/C11)
-    // = 0.6 at k_d/k = 0.5), far more than 2 standard errors from 1. The standard error is
-    // computed here from the results table, independently of the report.
+    // = 0.6 at k_d/k = 0.5), far more than 2 standard errors from 1, by its springs: the report
+    // tests no lean there without the ordered network. The standard error is computed here from
+    // the results table, independently of the report.
     for (k_y_ratio, isotropic) in [(1.0, true), (2.0, false)] {
         let yaml = spread_block(k_y_ratio);
         let records = execute_all(&yaml);
@@ -1151,10 +1155,16 @@ fn a_spread_networks_direction_and_bounds_are_judged_from_its_runs() {
         assert_eq!(mean.abs() <= 2.0 * error, isotropic, "k_y/k_x = {k_y_ratio}: {mean} ± {error}");
         let report = report_of("spr", &yaml);
         let sentence = line_with(&report, "Every spread network was pulled along y and along x");
-        let said = if isotropic { "within 2 standard errors of 0" } else { "more than 2 standard errors from 0" };
-        assert!(sentence.contains(said), "k_y/k_x = {k_y_ratio}: {sentence}");
-        let stated = number_after(sentence, "geometric mean of E_x/E_y is ");
-        assert!((stated / mean.exp() - 1.0).abs() < 1e-3, "4 digits: {stated} against {}", mean.exp());
+        if isotropic {
+            assert!(sentence.contains("within 2 standard errors of 0"), "k_y/k_x = {k_y_ratio}: {sentence}");
+            let stated = number_after(sentence, "geometric mean of E_x/E_y is ");
+            assert!((stated / mean.exp() - 1.0).abs() < 1e-3, "4 digits: {stated} against {}", mean.exp());
+        } else {
+            // Far from 1, as computed above, but by the springs, not the spread: without the
+            // ordered network of these springs there is no reference to lean from (it had
+            // called this a lean "by chance or by a preferred direction").
+            assert!(sentence.contains("is not tested") && !sentence.contains("By symmetry"), "{sentence}");
+        }
         // ν by direction: both ranges stated.
         assert!(sentence.contains("Poisson's ratio ν_yx ") && sentence.contains(" against ν_xy "), "{sentence}");
         let bounds = line_with(&report, "Spreading the stiffnesses instead");
@@ -1982,7 +1992,7 @@ fn a_critical_background_run_is_enveloped_at_its_critical_value() {
     // The swept range ends at γ_crit (four digits written: 5e-4).
     let critical = number_after(line, "γ_crit = 2√(k_min m) = ");
     assert!((number_after(line, "γ_g = 0.1000 to ") / critical - 1.0).abs() < 5e-4, "{line}");
-    assert!(number_after(line, "− 4k_min/m) to ") <= 0.05 && line.contains("within the tolerance"), "{line}");
+    assert!(number_after(line, "off by ") <= 0.05 && line.contains("within the tolerance"), "{line}");
 }
 
 #[test]

@@ -342,9 +342,14 @@ fn packings_are_joined_seed_by_seed_and_their_moduli_are_per_length() {
     let out = reports.join("compare-lin-vs-hz");
     let joined = read(&out.join("compare.parquet"));
     assert_eq!(floats(&joined, "seed_a"), floats(&joined, "seed_b"));
+    // The quantities that differ beyond the seeds' spread are in the table with their unit:
+    // the pressure always (Hertz's is several times lower), the moduli where the seeds allow.
+    let differ = section(&report, "### Measured quantities that differ beyond noise");
+    assert!(differ.contains("| `pressure` |"), "{differ}");
     for quantity in ["shear_modulus_2d", "bulk_modulus_2d", "pressure"] {
-        let line = report.lines().find(|l| l.contains(&format!("| `{quantity}` |"))).expect(&report);
-        assert!(line.contains("| N/m |"), "{line}");
+        if let Some(line) = differ.lines().find(|l| l.contains(&format!("| `{quantity}` |"))) {
+            assert!(line.contains("| N/m |"), "{line}");
+        }
     }
 }
 
@@ -421,4 +426,166 @@ fn a_restitution_is_judged_per_spring_law_and_says_why_it_misses() {
     assert!(missed("A", "linear").is_none(), "{report}");
     assert!(missed("A", "hertz").expect(&report).contains("which this contact does not follow"));
     assert!(missed("B", "linear").expect(&report).contains("the integration's error at its time step"));
+}
+
+/// The text of `report` under `heading`, up to the next heading (empty where there is none).
+fn section<'a>(report: &'a str, heading: &str) -> &'a str {
+    let Some(start) = report.find(heading).map(|i| i + heading.len()) else { return "" };
+    let rest = &report[start..];
+    rest.find("\n#").map_or(rest, |end| &rest[..end])
+}
+
+/// A chain of 11 without contacts, whose `error` is measured against its normal modes where
+/// its springs are linear and against energy conservation where they are not.
+fn free_chain(name: &str, law: &str) -> String {
+    format!(
+        "version: 1\nname: {name}\nscenes:\n  - name: modes\n    kind: chain\n    n: 11\n    \
+         material: {{mass: 1.0, k: 1.0, law: {law}, contact: false}}\n    v0: 0.1\n"
+    )
+}
+
+/// An error is compared only where both sides measured it against the same reference: the
+/// linear chain's `error` is against its normal modes, the Hertz chain's against energy, and the
+/// two had been set side by side as "differing beyond noise". The claim flips: the row's two
+/// errors differ by far more than the 1e-6 a deviation may (premise asserted), yet the report
+/// says they are not compared, and why, and compare.csv has no ratio for them.
+#[test]
+fn an_error_is_compared_only_against_the_same_reference() {
+    let dir = crate::common::scratch();
+    let (_, report) = linear_against_hertz(dir.path(), ("lin", "hz"), free_chain);
+    let joined = read(&dir.path().join("compare-lin-vs-hz").join("compare.parquet"));
+    assert_eq!(texts(&joined, "error_measure_a"), ["normal_modes"]);
+    assert_eq!(texts(&joined, "error_measure_b"), ["energy"]);
+    let (a, b) = (floats(&joined, "error_a")[0].unwrap(), floats(&joined, "error_b")[0].unwrap());
+    assert!((a - b).abs() > 1e-6, "the premise: the two errors are far apart ({a}, {b})");
+    assert_eq!(floats(&joined, "error_ratio"), [None], "no ratio of errors against different references");
+    let differ = section(&report, "### Measured quantities that differ beyond noise");
+    assert!(!differ.contains("| modes | `error` |"), "{report}");
+    let line = report.lines().find(|l| l.starts_with("Not compared, measured differently")).expect(&report);
+    assert!(line.contains("modes: error (normal_modes in A, energy in B)"), "{line}");
+}
+
+/// Both campaigns' static solves stop at Newton's tolerance, 1e-12 of the load: their residuals
+/// (6e-16 and 4e-13) are round-off, and the report had called them "equal within noise" with a
+/// ratio of several hundred. The claim flips: they are said to be both at round-off, with no
+/// ratio, and not in the list of what is equal within noise.
+#[test]
+fn residuals_below_their_floor_are_both_at_round_off() {
+    let dir = crate::common::scratch();
+    let tensile = |name: &str, law: &str| {
+        format!(
+            "version: 1\nname: {name}\nscenes:\n  - name: tens\n    kind: lattice\n    material: {{law: {law}}}\n    \
+             lattice: {{size: 4, k_diag_ratio: 0.5}}\n    load: {{case: tensile, per_node: 0.001}}\n    relax: {{method: fire}}\n"
+        )
+    };
+    let (_, report) = linear_against_hertz(dir.path(), ("lin", "hz"), tensile);
+    let joined = read(&dir.path().join("compare-lin-vs-hz").join("compare.parquet"));
+    let (a, b) = (floats(&joined, "static_residual_a")[0].unwrap(), floats(&joined, "static_residual_b")[0].unwrap());
+    // The premise: both at or below the solver's tolerance 1e-12, and far from equal.
+    assert!(a <= 1e-12 && b <= 1e-12 && (b / a - 1.0).abs() > 0.5, "{a}, {b}");
+    assert_eq!(floats(&joined, "static_residual_ratio"), [None], "no ratio of two round-off residues");
+    let equal = report.lines().find(|l| l.starts_with("Equal within noise")).unwrap_or_default();
+    assert!(!equal.contains("static_residual"), "{equal}");
+    let line = report.lines().find(|l| l.starts_with("Both at round-off")).expect(&report);
+    assert!(line.contains("tens: static_residual (A "), "{line}");
+}
+
+/// Packings of contact law `law` over an unjammed fraction and a jammed one, three seeds each.
+fn seeded_packings(name: &str, law: &str) -> String {
+    format!(
+        "version: 1\nname: {name}\nscenes:\n  - name: pk\n    kind: packing\n    packing: {{n: 16}}\n    \
+         material: {{law: {law}}}\n    grid:\n      packing.fraction: [0.8, 0.9]\n      seed: [1, 2, 3]\n"
+    )
+}
+
+/// The mean of `values` and the variance of that mean.
+fn mean_and_variance(values: &[f64]) -> (f64, f64) {
+    let n = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    (mean, values.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0) / n)
+}
+
+/// Packings are compared seed against seed only where both are jammed, and their own φ_J within
+/// the spread between the seeds. Before, `own_jamming_fraction` "differed beyond noise" at a
+/// noise of 1e-6 though a packing's φ_J is found to 5e-5 and the seeds scatter it by percents,
+/// the unjammed packings' pressures (below the floor) were divided, and the inputs' last bits
+/// (dt·ω_max of a linear and a Hertz law) made them "differ". Each claim flips here.
+#[test]
+fn packings_compare_jammed_states_within_the_seeds_spread() {
+    let dir = crate::common::scratch();
+    let (_, report) = linear_against_hertz(dir.path(), ("lin", "hz"), seeded_packings);
+    let joined = read(&dir.path().join("compare-lin-vs-hz").join("compare.parquet"));
+    let (state_a, state_b) = (texts(&joined, "packing_state_a"), texts(&joined, "packing_state_b"));
+    assert!(
+        texts(&joined, "law_a").iter().all(|l| l == "linear") && texts(&joined, "law_b").iter().all(|l| l == "power")
+    );
+    assert_eq!(floats(&joined, "seed"), floats(&joined, "seed_a"), "the seed the rows were joined on");
+    let pressure = floats(&joined, "pressure_ratio");
+    for r in 0..joined.height() {
+        let jammed = state_a[r] == "jammed" && state_b[r] == "jammed";
+        assert_eq!(pressure[r].is_some(), jammed, "row {r}: {} against {}", state_a[r], state_b[r]);
+    }
+    assert!(state_a.iter().zip(&state_b).any(|(a, b)| a == "unjammed" && b == "unjammed"), "the premise");
+    assert!(report.contains("Packings not compared: pk: "), "{report}");
+
+    // φ_J: the rows differ by more than 1e-6 (premise), but the seed means lie within two
+    // standard errors of their difference (recomputed here from the table).
+    let rows: Vec<usize> = (0..joined.height()).filter(|&r| pressure[r].is_some()).collect();
+    let phi = |side: &str| -> Vec<f64> {
+        rows.iter().map(|&r| floats(&joined, &format!("own_jamming_fraction_{side}"))[r].unwrap()).collect()
+    };
+    let ((mean_a, var_a), (mean_b, var_b)) = (mean_and_variance(&phi("a")), mean_and_variance(&phi("b")));
+    assert!(phi("a").iter().zip(phi("b")).any(|(a, b)| (b / a - 1.0).abs() > 1e-6), "the premise");
+    assert!((mean_b - mean_a).abs() < 2.0 * (var_a + var_b).sqrt(), "{mean_a} against {mean_b}");
+    let differ = section(&report, "### Measured quantities that differ beyond noise");
+    assert!(!differ.contains("`own_jamming_fraction`"), "{differ}");
+    assert!(differ.contains("| pk | `pressure` |"), "the pressure does differ: {differ}");
+
+    // dt·ω_max: equal to the last bits, so equal.
+    let (da, db) = (floats(&joined, "dt_omega_max_a"), floats(&joined, "dt_omega_max_b"));
+    assert!(da.iter().zip(&db).any(|(a, b)| a != b), "the premise: the last bits differ");
+    assert!(da.iter().zip(&db).all(|(a, b)| (b.unwrap() / a.unwrap() - 1.0).abs() < 1e-12));
+    let inputs = section(&report, "### Inputs that differ");
+    assert!(inputs.contains("| `beta` |") && !inputs.contains("`dt_omega_max`"), "{inputs}");
+}
+
+/// `--out` never overwrites or deletes what the user made: a folder holding other files, the
+/// folder that holds the campaigns and a folder inside a campaign's report folder are refused,
+/// naming the flag; a comparison's own folder may be written again, and only the files it wrote
+/// there are replaced or removed. Before, the user's report.md was overwritten and their
+/// plots/keep.svg deleted without a word.
+#[test]
+fn out_never_overwrites_what_the_user_made() {
+    let dir = crate::common::scratch();
+    let reports = dir.path();
+    run_campaigns(reports);
+    let (a, b) = (reports.join("linear"), reports.join("power"));
+    let compare = |out: &Path| -> Vec<String> {
+        ["compare", a.to_str().unwrap(), b.to_str().unwrap(), "--out", out.to_str().unwrap()].map(String::from).to_vec()
+    };
+    fn args(v: &[String]) -> Vec<&str> {
+        v.iter().map(String::as_str).collect()
+    }
+    let mine = reports.join("mine");
+    std::fs::create_dir_all(mine.join("plots")).unwrap();
+    std::fs::write(mine.join("report.md"), "my notes").unwrap();
+    std::fs::write(mine.join("plots/keep.svg"), "<svg/>").unwrap();
+    for out in [mine.clone(), reports.to_path_buf(), a.join("sub")] {
+        let error = refuse(reports, &args(&compare(&out)));
+        assert!(error.contains(&format!("--out '{}'", out.display())), "{error}");
+        assert!(error.contains("a new folder, an empty one, or the folder of an earlier comparison"), "{error}");
+    }
+    assert_eq!(std::fs::read_to_string(mine.join("report.md")).unwrap(), "my notes");
+    assert!(mine.join("plots/keep.svg").is_file() && !a.join("sub").exists());
+
+    let own = reports.join("own");
+    succeed(reports, &args(&compare(&own)));
+    std::fs::write(own.join("plots/stale.svg"), "<svg/>").unwrap();
+    let marker = own.join(".mdsolids-compare");
+    let listed = std::fs::read_to_string(&marker).unwrap();
+    std::fs::write(&marker, format!("{listed}plots/old.svg\n")).unwrap();
+    std::fs::write(own.join("plots/old.svg"), "<svg/>").unwrap();
+    succeed(reports, &args(&compare(&own)));
+    assert!(own.join("report.md").is_file() && own.join("plots/stale.svg").is_file(), "not its own: kept");
+    assert!(!own.join("plots/old.svg").exists(), "its own figure, no longer drawn: removed");
 }

@@ -3,7 +3,7 @@
 //! static solver sees them (Maxwell: z = 3 floppy, z = 4 marginal); the rigidity of diluted
 //! triangular networks on both sides of Maxwell's count; waves on every type.
 
-use crate::common::{execute_all, runs};
+use crate::common::{execute_all, line_with, number_after, report_of, runs};
 use crate::shipped;
 use mdsolids::runner::RunRecord;
 use mdsolids::sim::RunStatus;
@@ -278,6 +278,11 @@ fn the_lattice_types_report_states_the_count_and_what_was_observed() {
         "sends a plane transverse wave: by the same criterion its speed is 1.039 of c_T",
         "The kagome's acoustic Bloch branch along y that moves sideways has the slope a√(k/(2m)) = √2 c_T",
         "The honeycomb's strip carried no transverse front under a 1 N step or a 1000 N step",
+        // The four types' ratios to c_L (1.065 … 1.099) are alike within 5 %: the criterion's offset.
+        "Over the 4 networks the ratios lie within 3.2 % of one another: the criterion, not the network",
+        // No MD run stopped short of the static answer.
+        "Where a network carried its load and MD counted it relaxed, MD and the static answer of the same network \
+         agree to",
     ] {
         assert!(report.contains(line), "missing: {line}");
     }
@@ -345,4 +350,124 @@ fn hertz_springs_work_on_every_rigid_type() {
         let m = &r.metrics.lattice;
         assert!(relative(m.youngs_modulus, m.youngs_modulus_fem) < 5e-3, "E {}", label(r));
     }
+}
+
+#[test]
+fn md_stopped_before_its_softest_mode_settles_is_said_to_part_from_the_static_answer() {
+    // A kagome block 12 × 11 pulled along x on coursework supports: its softest mode, k_min =
+    // 0.95 N/m, sways the free sides, which set ν and not E. Under γ_g = 200 N s/m (145 × that
+    // mode's critical damping) it creeps with a time constant of ~210 s, and E_kin/E_pot counts
+    // the run relaxed at ~7 s with ν = 0.23 against the static 0.333 (E within 1.2e-4, its
+    // error bound's quantity). Under critical background damping the same block comes to rest,
+    // ν within 1.5e-4. The item's bound is 5e-3 (E and G relative, ν absolute): the first run
+    // must be named as parting (by more than 0.05 in ν, and stopped before its time constant),
+    // the second among those that agree; the item had said "relaxed MD and the static answer
+    // agree to 1.2e-4" of both and left tensile-x out of what the kagome carried.
+    let yaml = campaign(
+        "{type: kagome, nx: 12, ny: 11}",
+        "    load: {per_node: 1.0, case: tensile-x}\n",
+        "      damping.background: [200.0, critical]\n",
+    );
+    let report = report_of("t", &yaml);
+    assert!(report.contains("It carried tensile-x on coursework;"), "{report}");
+    let count = line_with(&report, "MD and the static answer of the same network part beyond 5e-3");
+    assert!(count.contains("in 1 of the 2 runs MD counted relaxed; the other 1 agree to"), "{count}");
+    let parting = line_with(&report, "- Kagome, tensile-x on coursework, γ_g = 200 N s/m: ν = ");
+    let (md, fem) = (number_after(parting, ": ν = "), number_after(parting, "by MD against "));
+    assert!((md - fem).abs() > 0.05 && (fem - 1.0 / 3.0).abs() < 1e-3, "{parting}");
+    let (stopped, settles) = (number_after(parting, "stopped at "), number_after(parting, "time constant of "));
+    assert!(settles > 10.0 * stopped && parting.contains("MD stopped on its way to rest"), "{parting}");
+    assert!(!report.contains("γ_g = critical: ν ="), "the critically damped run parts too");
+    // `critical` is a word, not a number of N s/m.
+    assert!(!report.contains("critical N s/m"), "a unit after a word");
+    let summary = line_with(&report, "Lattice types: rigidity and moduli](");
+    assert!(summary.contains("| ✗"), "{summary}");
+    // The isotropy table is the static answer and says so; the MD that parts from it is named.
+    assert!(report.contains("| static E_y (Pa) | static E_x (Pa) | E_x/E_y | static ν_yx | static ν_xy |"));
+    let isotropy = line_with(&report, "The table is the static answer of each block");
+    assert!(isotropy.contains("parts from it on kagome, tensile-x on coursework, γ_g = 200 N s/m (ν = "), "{isotropy}");
+}
+
+/// The isotropy item's sentence on the triangular block, from a static campaign pulling it along
+/// y and x at `sizes`, and its table.
+fn isotropy_report(sizes: &str) -> String {
+    let yaml = campaign(
+        "{type: triangular}",
+        "    relax: {max_tc: 1}\n    load: {per_node: 1.0}\n",
+        &format!("      lattice.size: [{sizes}]\n      load.case: [tensile, tensile-x]\n"),
+    );
+    report_of("t", &yaml)
+}
+
+#[test]
+fn isotropy_says_how_the_difference_goes_with_n_only_from_sizes_that_ran() {
+    // One size cannot show E_x/E_y − 1 falling as N grows (the item had said "halves as N
+    // doubles" of N = 12 alone); two can, and the sentence lists each size's E_x/E_y − 1 as the
+    // table has it (its 4 decimals against the sentence's 4 digits: within 1e-4). Measured
+    // 0.1088 at N = 9 and 0.0505 at 17.
+    let one = isotropy_report("9");
+    let sentence = line_with(&one, "The triangular block on coursework supports");
+    assert!(sentence.contains("only N = 9 ran, so how the difference goes with N is not measured here"), "{sentence}");
+    let two = isotropy_report("9, 17");
+    let sentence = line_with(&two, "The triangular block on coursework supports");
+    assert!(sentence.contains("the difference falls as N grows"), "{sentence}");
+    // "E_x/E_y − 1 = 0.1088 at N = 9 and 0.05047 at N = 17."
+    let listed = sentence.split_once("E_x/E_y − 1 = ").unwrap().1.trim_end_matches('.');
+    for (item, n) in listed.split(" and ").zip([9, 17]) {
+        let row = line_with(&two, &format!("| triangular | {n} | coursework |"));
+        let ratio: f64 = row.split('|').nth(6).unwrap().trim().parse().unwrap();
+        let said: f64 = item.strip_suffix(&format!(" at N = {n}")).unwrap().parse().unwrap();
+        assert!((said - (ratio - 1.0)).abs() < 1e-4, "N = {n}: {said} against the table's {ratio}: {sentence}");
+    }
+}
+
+/// The ratio column of the waves table's row that starts with `label`.
+fn wave_ratio(report: &str, label: &str) -> Option<f64> {
+    let row = line_with(report, &format!("| {label} | longitudinal |"));
+    row.split('|').nth(9).unwrap().trim().parse().ok()
+}
+
+#[test]
+fn kicked_waves_keep_damped_lattices_and_a_missing_front_apart() {
+    // The square lattice kicked at a corner with and without diagonals, undamped and at r = 0.5,
+    // beside the triangular, kagome and honeycomb ones (the campaign of the review). Undamped
+    // the ratios to c_L run 0.866 (honeycomb) … 1.196 (square, no diagonals); damped fronts
+    // arrive earlier, 1.407 and 1.183 of the undamped c_L; no criterion sees the kagome's front.
+    // The item had pooled them ("1.054 … 1.407"), called the ratios alike, printed four rows
+    // "square", not said that the kagome's never came, and the Discussion had "square (z = 8)"
+    // of a lattice without diagonals. Numbers from the table's 3 decimals: within 1e-3.
+    let yaml = "version: 1\nname: w\nscenes:\n  - name: square\n    kind: lattice\n    lattice: {size: 20}\n    \
+                supports: free\n    impulse: {node: top-right, velocity: [0.0, -0.001]}\n    wave: {}\n    \
+                time: {integrator: velocity-verlet}\n    grid:\n      lattice.diagonals: [none, both]\n      \
+                damping.restitution: [1.0, 0.5]\n  - name: types\n    kind: lattice\n    lattice: {nx: 15, ny: 15}\n    \
+                supports: free\n    impulse: {node: top-right, velocity: [0.0, -0.001]}\n    wave: {}\n    \
+                time: {integrator: velocity-verlet}\n    grid:\n      lattice.type: [triangular, kagome, honeycomb]\n";
+    let report = report_of("w", yaml);
+    let undamped: Vec<f64> = ["square, no diagonals", "square, both diagonals", "triangular", "honeycomb"]
+        .iter()
+        .map(|label| wave_ratio(&report, label).unwrap())
+        .collect();
+    let (low, high) = undamped.iter().fold((f64::MAX, f64::MIN), |(l, h), x| (l.min(*x), h.max(*x)));
+    let first = line_with(&report, "A kick of one node");
+    assert!(first.contains("down the square, triangular and honeycomb lattices"), "{first}");
+    assert!((number_after(first, "on the undamped lattices is ") - low).abs() < 1e-3, "{first}");
+    assert!((number_after(first, " … ") - high).abs() < 1e-3, "{first}");
+    let apart = line_with(&report, "Over the 4 networks the ratios lie ");
+    assert!((number_after(apart, "ratios lie ") - 100.0 * (high / low - 1.0)).abs() < 0.2, "{apart}");
+    assert!(apart.contains("% apart") && apart.contains("it alone does not set the offset"), "{apart}");
+    assert!(wave_ratio(&report, "kagome").is_none());
+    assert!(report.contains("No criterion saw a longitudinal front reach the bottom row of the kagome lattice"));
+    let damped = line_with(&report, "A damped lattice's front is held against the undamped lattice's speed");
+    for diagonals in ["no diagonals", "both diagonals"] {
+        let (hot, cold) = (
+            wave_ratio(&report, &format!("square, {diagonals}, r = 0.5")).unwrap(),
+            wave_ratio(&report, &format!("square, {diagonals}")).unwrap(),
+        );
+        let said = format!("square, {diagonals}, r = 0.5 (0.001000 m/s kick), ");
+        assert!((number_after(damped, &said) - hot).abs() < 1e-3 && hot > cold, "{damped}");
+    }
+    let summary = line_with(&report, "Lattice types: waves](");
+    assert!(summary.contains("| ✓"), "damped runs are not judged: {summary}");
+    let discussion = line_with(&report, "**The networks against their continuum.**");
+    assert!(discussion.contains("square (z = 4 or 8): its longitudinal wave at 1.196 × c_L (no diagonals) and"));
 }

@@ -10,7 +10,7 @@ use crate::report::curves::{
     Dispersion, Envelope, dispersion, envelope, is_power_contact, overlap_deviation, restitution_reference,
 };
 use crate::report::figure::{FigureKind, FigureRef, background_gamma, representative};
-use crate::report::words::exponent;
+use crate::report::words::{counted, exponent, listed};
 use crate::runner::RunRecord;
 use crate::theory;
 
@@ -54,7 +54,9 @@ pub(super) fn motion(e: &Evidence) -> Option<Answer> {
         ));
         figures.extend(e.figure(&chain.spec.scene, FigureKind::NormalModes));
     }
-    if let Some((sentence, within, scene)) = envelope_sentence(e) {
+    let relaxation = envelope_sentence(e);
+    let relaxation_drawn = relaxation.is_some();
+    if let Some((sentence, within, scene)) = relaxation {
         sentences.push(sentence);
         checks.push(within);
         figures.extend(e.figure(&scene, FigureKind::Envelope));
@@ -68,7 +70,8 @@ pub(super) fn motion(e: &Evidence) -> Option<Answer> {
         sentences,
         reference: format!(
             "The damped oscillator of the reduced mass m/2; tolerance {OVERLAP_TOLERANCE:e} of the largest overlap (a \
-             second-order scheme drifts by (π/50)²/24 · 3π ≈ 1.5e-3 over a bonded pair's 3 t_c at t_c/50)."
+             second-order scheme drifts by (π/50)²/24 · 3π ≈ 1.5e-3 over a bonded pair's 3 t_c at t_c/50).{}",
+            if relaxation_drawn { ENVELOPE_REFERENCE } else { "" }
         ),
         see_also: None,
         verdict: if checks.is_empty() { Verdict::Observed } else { Verdict::of(checks) },
@@ -121,6 +124,11 @@ fn motion_short(worst: Option<f64>, agree: Option<bool>) -> String {
 /// to 3.5 % at worst, and 5 % leaves room for the few samples of a fast relaxation.
 const ENVELOPE_TOLERANCE: f64 = 0.05;
 
+/// What the relaxation's envelope is held against, for the item's reference.
+const ENVELOPE_REFERENCE: &str = " The relaxation: the slowest envelope γ_g/m − Re √((γ_g/m)² − 4k_min/m) of the \
+     network linearised about its loaded static answer; tolerance 0.05 of the rate, fitted over the second half of the \
+     decay.";
+
 /// The loaded lattices relaxed by background damping alone against their late envelope in a
 /// sentence, whether all are within [`ENVELOPE_TOLERANCE`], and the scene of the first.
 fn envelope_sentence(e: &Evidence) -> Option<(String, bool, String)> {
@@ -129,25 +137,43 @@ fn envelope_sentence(e: &Evidence) -> Option<(String, bool, String)> {
     let (first, _) = measured.first()?;
     let critical =
         |r: &RunRecord| theory::critical_damping(r.metrics.lattice.stiffness_min.unwrap_or(0.0), r.spec.mass);
-    let below = measured.iter().filter(|(r, _)| background_gamma(r) < critical(r)).count();
-    let worst = measured.iter().map(|(_, v)| (v.measured / v.predicted - 1.0).abs()).fold(0.0, f64::max);
+    let is_below = |r: &RunRecord| background_gamma(r) < critical(r);
+    let off = |v: &Envelope| (v.measured / v.predicted - 1.0).abs();
+    // Each regime's worst apart: below γ_crit the envelope γ_g/m holds no stiffness, above it
+    // the slowest mode's 2λ is k_min's alone.
+    let worst_of =
+        |below: bool| measured.iter().filter(|(r, _)| is_below(r) == below).map(|(_, v)| off(v)).reduce(f64::max);
+    let worst = measured.iter().map(|(_, v)| off(v)).fold(0.0, f64::max);
     let gammas: Vec<f64> = measured.iter().map(|(r, _)| background_gamma(r)).collect();
     let (low, high) = super::finding::extremes(&gammas);
     let within = worst <= ENVELOPE_TOLERANCE;
+    let count = |below: bool| measured.iter().filter(|(r, _)| is_below(r) == below).count();
     let regimes = [
-        (below > 0).then(|| format!("{below} below γ_crit fall at the energy's envelope γ_g/m")),
-        (below < measured.len()).then(|| format!("{} above it at the slowest mode's 2λ", measured.len() - below)),
+        worst_of(true).map(|w| {
+            format!(
+                "{} below γ_crit at the energy's envelope γ_g/m (no stiffness in it), off by {} at worst",
+                count(true),
+                rel(w).trim_start_matches('+')
+            )
+        }),
+        worst_of(false).map(|w| {
+            format!(
+                "{} above it at the slowest mode's 2λ (set by k_min), off by {} at worst",
+                count(false),
+                rel(w).trim_start_matches('+')
+            )
+        }),
     ];
     let sentence = format!(
-        "Relaxed by background damping alone (γ_g = {} to {} N s/m; γ_crit = 2√(k_min m) = {} N s/m, k_min the slowest mode's stiffness), E_kin/E_pot \
-         falls over the second half of its decay at the predicted rate γ_g/m − Re √((γ_g/m)² − 4k_min/m) to {} at \
-         worst, {} the tolerance {ENVELOPE_TOLERANCE}: {}.",
+        "Relaxed by background damping alone (γ_g = {} to {} N s/m; γ_crit = 2√(k_min m) = {} N s/m, k_min the \
+         smallest eigenvalue of the tangent stiffness at the loaded static answer), E_kin/E_pot falls over the second \
+         half of its decay at the predicted rate γ_g/m − Re √((γ_g/m)² − 4k_min/m), {} the tolerance \
+         {ENVELOPE_TOLERANCE}: {}.",
         sig(low),
         sig(high),
         sig(critical(first)),
-        rel(worst).trim_start_matches('+'),
         if within { "within" } else { "outside" },
-        regimes.into_iter().flatten().collect::<Vec<_>>().join(", ")
+        regimes.into_iter().flatten().collect::<Vec<_>>().join("; ")
     );
     Some((sentence, within, first.spec.scene.clone()))
 }
@@ -169,16 +195,20 @@ const TARGET_MISS: f64 = 0.02;
 /// Damped power-law contacts: restitution and contact duration against v0, and a restitution
 /// target the linear calibration misses.
 pub(super) fn power_contacts(e: &Evidence) -> Option<Answer> {
-    let runs = representatives(&e.ok(|r| is_power_contact(r) && r.metrics.pair.contact_duration.is_some()));
+    // Every run is kept to be counted: a contact that never opens again has no t_c nor r, and a
+    // sentence over the others says how many it leaves out.
+    let every = representatives(&e.ok(is_power_contact));
+    let runs: Vec<&RunRecord> = every.iter().copied().filter(|r| r.metrics.pair.contact_duration.is_some()).collect();
     let mut sentences = Vec::new();
     let mut checks = Vec::new();
     if let Some((sentence, within)) = duration_exponent(&runs) {
-        sentences.push(sentence);
+        let undamped: Vec<&RunRecord> = every.iter().copied().filter(|r| r.spec.gamma == 0.0).collect();
+        sentences.push(sentence + &left_out(&undamped, |r| r.metrics.pair.contact_duration));
         checks.push(within);
     }
-    if let Some((sentence, within)) = restitution_trend(&runs) {
+    if let Some((sentence, within)) = restitution_trend(&every) {
         sentences.push(sentence);
-        checks.push(within);
+        checks.extend(within);
     }
     if let Some(target) = runs.iter().find(|r| r.spec.restitution_target.is_some() && r.spec.gamma > 0.0) {
         sentences.extend(calibration(target));
@@ -265,13 +295,44 @@ fn duration_exponent(runs: &[&RunRecord]) -> Option<(String, bool)> {
     ))
 }
 
-/// The damped runs' restitution against v0 in a sentence: its trend, and the largest error
-/// against the own integration (whether within [`RESTITUTION_TOLERANCE`]).
-fn restitution_trend(runs: &[&RunRecord]) -> Option<(String, bool)> {
+/// The runs of `runs` whose `measured` quantity is missing, counted in a sentence of its own
+/// with their v0 and each distinct reason (the run's message), or nothing when there are none.
+fn left_out(runs: &[&RunRecord], measured: fn(&RunRecord) -> Option<f64>) -> String {
+    let left: Vec<&RunRecord> = runs.iter().copied().filter(|r| measured(r).is_none()).collect();
+    if left.is_empty() {
+        return String::new();
+    }
+    let speeds: Vec<String> = left.iter().map(|r| sig(r.spec.v0)).collect();
+    let mut reasons: Vec<String> = Vec::new();
+    for r in &left {
+        let reason = if r.message.is_empty() { "nothing was measured".to_string() } else { r.message.clone() };
+        if !reasons.contains(&reason) {
+            reasons.push(reason);
+        }
+    }
+    format!(
+        " Left out of it: {} (v0 = {} m/s), as {}.",
+        counted(left.len(), "run"),
+        listed(&speeds, "and"),
+        listed(&reasons, "and")
+    )
+}
+
+/// The damped runs' restitution against v0 in a sentence: its trend, the largest error against
+/// the own integration (whether within [`RESTITUTION_TOLERANCE`], none if no run has r), and
+/// the runs without a restitution, counted.
+fn restitution_trend(runs: &[&RunRecord]) -> Option<(String, Option<bool>)> {
     // The runs of one fixed dashpot (the campaign's γ, not one derived from a target per v0).
     let gamma = runs.iter().find(|r| r.spec.gamma > 0.0 && r.spec.restitution_target.is_none())?.spec.gamma;
-    let damped: Vec<&&RunRecord> =
-        runs.iter().filter(|r| r.spec.gamma == gamma && r.metrics.pair.restitution.is_some()).collect();
+    let dashpot: Vec<&RunRecord> = runs.iter().copied().filter(|r| r.spec.gamma == gamma).collect();
+    let left = left_out(&dashpot, |r| r.metrics.pair.restitution);
+    let damped: Vec<&&RunRecord> = dashpot.iter().filter(|r| r.metrics.pair.restitution.is_some()).collect();
+    if damped.is_empty() {
+        return Some((
+            format!("With a fixed dashpot γ = {} N s/m no restitution is measured.{left}", sig(gamma)),
+            None,
+        ));
+    }
     let slowest = damped.iter().min_by(|a, b| a.spec.v0.total_cmp(&b.spec.v0))?;
     let fastest = damped.iter().max_by(|a, b| a.spec.v0.total_cmp(&b.spec.v0))?;
     let worst = damped
@@ -306,12 +367,12 @@ fn restitution_trend(runs: &[&RunRecord]) -> Option<(String, bool)> {
     Some((
         format!(
             "With a fixed dashpot γ = {} N s/m {trend}; MD meets the contact's own integration to {} at worst, {} \
-             the tolerance {RESTITUTION_TOLERANCE:e}.",
+             the tolerance {RESTITUTION_TOLERANCE:e}.{left}",
             sig(slowest.spec.gamma),
             rel(worst).trim_start_matches('+'),
             if within { "within" } else { "outside" }
         ),
-        within,
+        Some(within),
     ))
 }
 

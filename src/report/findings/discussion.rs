@@ -384,7 +384,13 @@ fn deformation_words(kind: SceneKind, deformation: Deformation) -> String {
         (_, Deformation::Collision(_)) => "the impact speed".into(),
         (_, Deformation::Carrying(_)) => "the force a spring carries".into(),
         (SceneKind::Chain, Deformation::Extension(_)) => "the walls' displacement".into(),
-        (_, Deformation::PreStressed { .. }) => "the walls' displacement and the impact speed".into(),
+        // A hit chain's t_c is the free collision's at v0; the plan's fastest mode (and so its
+        // dt's stability) is taken at the walls' pre-stress plus the kick's overlap.
+        (_, Deformation::PreStressed { .. }) => {
+            "the impact speed for a hit chain's t_c, whose fastest mode the plan takes at the walls' displacement \
+             and the impact speed"
+                .into()
+        }
         (SceneKind::Packing, Deformation::Extension(_)) => format!(
             "an overlap of {} % of a small diameter",
             words::number(crate::spec::PACKING_REFERENCE_OVERLAP * 100.0)

@@ -318,7 +318,7 @@ fn relaxation_sentence(e: &Evidence, runs: &[&RunRecord]) -> Option<String> {
 /// The item's reference: effective-medium theory's threshold for cut networks, an observation,
 /// and for spread networks measured in tension their rigorous bounds.
 fn reference(cut: &[&RunRecord], bounds: bool, kicked: bool) -> String {
-    let mut zs: Vec<u32> = cut.iter().map(|r| full_coordination(r)).collect();
+    let mut zs: Vec<u32> = cut.iter().map(|r| coordination_of(r)).collect();
     zs.sort_unstable();
     zs.dedup();
     let threshold = match zs[..] {
@@ -580,11 +580,14 @@ impl DirectionRatio {
     }
 }
 
+/// A network and its E pulled along y and along x (Pa), as they are found.
+type Pulled = (DirectionRatio, [Option<f64>; 2]);
+
 /// Each network relaxed in both directions: runs of one scene and the same grid values but the
 /// load case, one `tensile` and one `tensile-x`.
 fn direction_ratios(runs: &[&RunRecord]) -> Vec<DirectionRatio> {
     // (scene, grid values but the load case) → (the network, [E_y, E_x]).
-    let mut networks: BTreeMap<(String, String), (DirectionRatio, [Option<f64>; 2])> = BTreeMap::new();
+    let mut networks: BTreeMap<(String, String), Pulled> = BTreeMap::new();
     for r in runs.iter().filter(|r| r.status == RunStatus::Ok) {
         let Some(l) = r.spec.lattice().filter(|l| l.load_case == LoadCase::Tensile) else { continue };
         let key = (r.spec.scene.clone(), r.spec.varied_in_words(|path| path != "load.case"));
@@ -726,18 +729,16 @@ fn network_words(r: &RunRecord, with_scene: bool) -> String {
 fn rigidity_sentence(runs: &[&RunRecord]) -> String {
     let mut by_z: BTreeMap<u32, Vec<&RunRecord>> = BTreeMap::new();
     for r in runs {
-        by_z.entry(full_coordination(r)).or_default().push(r);
+        by_z.entry(coordination_of(r)).or_default().push(r);
     }
     let named = by_z.len() > 1;
     let held: String = by_z.iter().rev().map(|(&z, group)| held_words(group, z, named)).collect();
     format!("{}{held}", theory_words(&by_z.keys().copied().collect::<Vec<_>>()))
 }
 
-/// A square lattice's bonds per node uncut: 4 along its rows and columns and 2 per diagonal
-/// family present.
-fn full_coordination(r: &RunRecord) -> u32 {
-    let (rising, falling) = r.spec.lattice().map_or((0.0, 0.0), |l| l.diagonal_stiffness());
-    4 + 2 * u32::from(rising > 0.0) + 2 * u32::from(falling > 0.0)
+/// The bonds per node of a run's lattice uncut (z, `LatticeSpec::coordination`).
+fn coordination_of(r: &RunRecord) -> u32 {
+    r.spec.lattice().map_or(4, |l| l.coordination() as u32)
 }
 
 /// The threshold p_c = 4/z as a fraction, and the lattice it belongs to.

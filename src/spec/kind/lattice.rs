@@ -192,6 +192,16 @@ impl LatticeSpec {
         }
     }
 
+    /// Bonds per node of the network uncut (z): a square lattice's 4 along its rows and columns
+    /// and 2 per diagonal family present (8 with both); another type's own.
+    pub fn coordination(&self) -> f64 {
+        if !self.lattice_type.is_square() {
+            return self.lattice_type.coordination();
+        }
+        let (rising, falling) = self.diagonal_stiffness();
+        4.0 + 2.0 * (f64::from(u8::from(rising > 0.0)) + f64::from(u8::from(falling > 0.0)))
+    }
+
     /// True when bonds are cut or their stiffness spread at random.
     pub fn is_random(&self) -> bool {
         self.cut_fraction > 0.0 || self.stiffness_spread > 0.0

@@ -16,7 +16,7 @@ fn runs_of_one_network_share_one_estimate() {
         "k.yaml",
         "version: 1\nname: k\nscenes:\n  - name: l\n    kind: lattice\n    lattice: {size: 4}\n    \
          load: {case: tensile}\n    grid:\n      time.dt_per_tc: [20, 50]\n      time.integrator: [velocity-verlet, rk4]\n      \
-         time.duration_tc: [10, 20]\n      material.k: [1.0, 2.0]\n      damping.restitution: [1.0, 0.5]\n",
+         relax.max_tc: [10, 20]\n      material.k: [1.0, 2.0]\n      damping.restitution: [1.0, 0.5]\n",
     )
     .unwrap();
     let keys: std::collections::HashSet<String> = campaign.runs.iter().map(network_key).collect();
