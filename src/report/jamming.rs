@@ -59,6 +59,69 @@ pub(crate) fn fitted(r: &RunRecord) -> bool {
     r.status == RunStatus::Ok && quenched && r.spec.movie.is_none()
 }
 
+/// The packings of one N and contact law quenched at one area fraction.
+pub(super) struct Quench {
+    pub(super) fraction: f64,
+    /// How many were quenched there, relaxed or not.
+    pub(super) packings: usize,
+    /// (seed, own φ_J) of those that relaxed and jammed.
+    pub(super) onsets: Vec<(u64, f64)>,
+}
+
+impl Quench {
+    /// Whether every packing quenched here jammed. A packing quenched at φ jams only where its
+    /// own φ_J lies below φ, so where some did not, the own φ_J of those that did are the
+    /// lower part of theirs, cut off from above at φ; where every one did, nothing is cut.
+    pub(super) fn complete(&self) -> bool {
+        self.onsets.len() == self.packings
+    }
+}
+
+/// The packings of `n` discs with contact exponent `beta` among `system` (every quenched
+/// packing, relaxed or not: one that did not relax is not known to jam), by quench fraction.
+pub(super) fn quenches(system: &[&RunRecord], n: usize, beta: f64) -> Vec<Quench> {
+    let mut by_fraction: BTreeMap<u64, Quench> = BTreeMap::new();
+    for r in system.iter().filter(|r| r.spec.law.beta() == beta && key(r).is_some_and(|k| k.0 == n)) {
+        let Some(fraction) = r.spec.packing().map(|p| p.fraction) else { continue };
+        let quench = by_fraction.entry(fraction.to_bits()).or_insert(Quench { fraction, packings: 0, onsets: vec![] });
+        quench.packings += 1;
+        if let Some(phi_j) = r.metrics.packing.own_jamming_fraction.filter(|_| fitted(r) && jammed(r)) {
+            quench.onsets.push((seed(r), phi_j));
+        }
+    }
+    by_fraction.into_values().collect()
+}
+
+/// The two-sided p-value of Fisher's exact test that `a` of `m` and `b` of `n` are shares of
+/// one rate: with the margins held, the hypergeometric probability of every split of the
+/// a + b that is no more likely than the one observed, summed.
+pub(super) fn fisher_exact((a, m): (usize, usize), (b, n): (usize, usize)) -> f64 {
+    let ln_factorial = |k: usize| (2..=k).map(|i| (i as f64).ln()).sum::<f64>();
+    let ln_choose = |n: usize, k: usize| ln_factorial(n) - ln_factorial(k) - ln_factorial(n - k);
+    let hits = a + b;
+    let probability = |x: usize| (ln_choose(m, x) + ln_choose(n, hits - x) - ln_choose(m + n, hits)).exp();
+    let observed = probability(a);
+    // Splits as likely as the observed one within round-off count as no more likely.
+    let splits = hits.saturating_sub(n)..=hits.min(m);
+    splits.map(probability).filter(|p| *p <= observed * (1.0 + 1e-7)).sum::<f64>().min(1.0)
+}
+
+/// Student's t that chance exceeds, of either sign, once in 20 at `dof` degrees of freedom:
+/// a mean over few seeds whose standard error is estimated from the same seeds needs more than
+/// 2 of it to differ from zero (12.7 from two seeds, 4.3 from three, 2.36 from eight).
+pub(super) fn student_t(dof: usize) -> f64 {
+    const TABLE: [f64; 30] = [
+        12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.160, 2.145, 2.131,
+        2.120, 2.110, 2.101, 2.093, 2.086, 2.080, 2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042,
+    ];
+    match dof {
+        0 => f64::INFINITY,
+        1..=30 => TABLE[dof - 1],
+        // Within 0.002 of the quantile above 30 (2.021 at 40, 2.000 at 60, 1.980 at 120).
+        _ => 1.96 + 2.5 / dof as f64,
+    }
+}
+
 /// φ_J of every (N, seed) from its jammed packings of contact law β (forces ∝ δ^β): the mean of
 /// their own φ_J, each where its pressure vanishes as it is decompressed (`own_jamming_fraction`,
 /// O'Hern et al.'s jamming point of one state). The packings of a seed are quenches from one
@@ -134,10 +197,25 @@ pub(super) struct Scaling {
     /// The exponent's standard error over the seeds ([`seed_jackknife`]); `None` with fewer
     /// than three seeds.
     pub(super) error: Option<f64>,
+    /// The seed of each point's packing, for a jackknife of another estimate over the same points.
+    pub(super) seeds: Vec<u64>,
+}
+
+impl Scaling {
+    /// The standard error over the seeds of how far the exponent moves when refitted over the
+    /// points with Δφ ≤ `ceiling` alone. Both fits hold the points below the ceiling, so their
+    /// errors are not independent and the shift's is not theirs added: the shift itself is
+    /// jackknifed ([`seed_jackknife_of`]). `None` with fewer than [`JACKKNIFE_SEEDS`] seeds.
+    pub(super) fn shift_error(&self, ceiling: f64) -> Option<f64> {
+        seed_jackknife_of(&self.points, &self.seeds, |kept| {
+            let lower: Vec<(f64, f64)> = kept.iter().copied().filter(|p| p.0 <= ceiling).collect();
+            Some(power_law_fit(&lower)?.exponent - power_law_fit(kept)?.exponent)
+        })
+    }
 }
 
 /// Fewest seeds a jackknife error is given for: with two, each leave-one-out fit is one seed's.
-const JACKKNIFE_SEEDS: usize = 3;
+pub(super) const JACKKNIFE_SEEDS: usize = 3;
 
 /// The standard error of the exponent fitted over `points` whose packings came from `seeds`
 /// (one per point), by the jackknife over seeds ([`seed_jackknife_of`]).
@@ -153,7 +231,7 @@ fn seed_jackknife(points: &[(f64, f64)], seeds: &[u64]) -> Option<f64> {
 pub(super) fn seed_jackknife_of(
     points: &[(f64, f64)],
     seeds: &[u64],
-    estimate: fn(&[(f64, f64)]) -> Option<f64>,
+    estimate: impl Fn(&[(f64, f64)]) -> Option<f64>,
 ) -> Option<f64> {
     let mut distinct = seeds.to_vec();
     distinct.sort_unstable();
@@ -203,7 +281,7 @@ pub(super) fn scalings_over(runs: &[&RunRecord], n: usize, beta: f64, window: (f
             let not_positive = mine.iter().filter(|(_, r)| pick(r).is_some_and(|y| y <= 0.0)).count();
             let fit = power_law_fit(&points)?;
             let error = seed_jackknife(&points, &seeds);
-            Some(Scaling { quantity, fit, theory: theory(beta), points, not_positive, error })
+            Some(Scaling { quantity, fit, theory: theory(beta), points, not_positive, error, seeds })
         })
         .collect()
 }
@@ -224,7 +302,7 @@ pub(super) fn ratio_against_contacts(runs: &[&RunRecord], n: usize, beta: f64, f
         .unzip();
     let fit = power_law_fit(&points)?;
     let error = seed_jackknife(&points, &seeds);
-    Some(Scaling { quantity: "G/K against z − 4", fit, theory: 1.0, points, not_positive: 0, error })
+    Some(Scaling { quantity: "G/K against z − 4", fit, theory: 1.0, points, not_positive: 0, error, seeds })
 }
 
 /// The packing scene's figure: p, z − 4, K and G of its largest N's jammed packings against

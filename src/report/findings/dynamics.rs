@@ -758,10 +758,12 @@ fn damping_sentences(
     energy: &[&RunRecord],
     sweep: Option<&BackgroundSweep>,
 ) -> Vec<String> {
+    let runs: Vec<&RunRecord> =
+        std::iter::once(first).chain(bond.iter().copied()).chain(background.iter().copied()).collect();
     let mut sentences = vec![format!(
-        "Dissipated means: {} (the stopping criterion of each run, in the table); the relaxation figures draw \
-         E_kin/E_pot against time with the threshold as a line.",
-        first.metrics.dissipation_criterion.as_deref().unwrap_or("–")
+        "Dissipated means: {} (the stopping criterion of each run, named in the table by its quantity); the \
+         relaxation figures draw E_kin/E_pot against time with the threshold as a line.",
+        crate::report::words::listed(&criteria(&runs), "or")
     )];
     if !bond.is_empty() {
         sentences.push(format!(
@@ -961,6 +963,23 @@ impl<'a> BackgroundSweep<'a> {
     }
 }
 
+/// The distinct stopping criteria of `runs`, in campaign order.
+fn criteria(runs: &[&RunRecord]) -> Vec<String> {
+    let mut criteria: Vec<String> = Vec::new();
+    for criterion in runs.iter().filter_map(|r| r.metrics.dissipation_criterion.clone()) {
+        if !criteria.contains(&criterion) {
+            criteria.push(criterion);
+        }
+    }
+    criteria
+}
+
+/// A stopping criterion by its quantity alone ("E_kin/E_pot", "largest static force"), for a
+/// table whose item states the criteria in full: the whole text in every row wrapped each row.
+fn criterion_quantity(criterion: &str) -> &str {
+    criterion.split(" <").next().unwrap_or(criterion)
+}
+
 /// Every run of the dissipation study in one table.
 fn dissipation_table(relaxed: &[&RunRecord]) -> Table {
     let rows = relaxed
@@ -970,7 +989,7 @@ fn dissipation_table(relaxed: &[&RunRecord]) -> Table {
                 r.spec.scene.clone(),
                 sig(r.spec.gamma),
                 background_cell(r),
-                r.metrics.dissipation_criterion.clone().unwrap_or_default(),
+                criterion_quantity(r.metrics.dissipation_criterion.as_deref().unwrap_or_default()).to_string(),
                 cell(r.metrics.dissipation_time),
                 r.steps.to_string(),
             ]

@@ -10,9 +10,10 @@ use super::finding::{Answer, Evidence, Table, Verdict, exponents, plus_minus, si
 use crate::measure::line_fit;
 use crate::report::figure::{FigureKind, FigureRef};
 use crate::report::jamming::{
-    FIT_FLOOR, ISOSTATIC, Onset, Scaling, excess, fitted, jammed, key, onsets_of, ratio_against_contacts, scalings,
-    scalings_over, seed, seed_jackknife_of,
+    FIT_FLOOR, ISOSTATIC, JACKKNIFE_SEEDS, Onset, Quench, Scaling, excess, fisher_exact, fitted, jammed, key,
+    onsets_of, quenches, ratio_against_contacts, scalings, scalings_over, seed, seed_jackknife_of, student_t,
 };
+use crate::report::solids::mean_spread;
 use crate::report::words::{self, number};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
@@ -195,32 +196,55 @@ fn unstable_sentence(runs: &[&RunRecord]) -> Option<String> {
 /// Where the finite-size crossover is counted from: Δφ N² in decades from 10² to 10³.
 const CROSSOVER: [f64; 2] = [1e2, 1e3];
 
+/// The ranges of Δφ N² that [`CROSSOVER`] parts, in words.
+const RANGES: [&str; 3] = ["at Δφ N² < 10²", "at 10² ≤ Δφ N² < 10³", "at Δφ N² ≥ 10³"];
+
+/// The p-value below which Fisher's exact test calls two shares different: a difference that
+/// chance alone makes less often than once in 20 such campaigns.
+const SIGNIFICANCE: f64 = 0.05;
+
 /// How the share of packings with G < 0 (`unstable` of `with_g`) goes with Δφ N², the
 /// finite-size scaling variable of jamming (∝ p N² for linear contacts; Goodrich, Liu & Nagel,
-/// Phys. Rev. Lett. 109, 095704 (2012)): the counts below 10², from 10² to 10³ and above, and
-/// whether the share falls from each range to the next.
+/// Phys. Rev. Lett. 109, 095704 (2012)): the counts in each range of [`CROSSOVER`] that has
+/// packings (an empty one has no share), whether the share falls from each to the next, and
+/// whether the lowest and the highest differ by more than chance (Fisher's exact test): a
+/// handful of packings falls by chance as often as not, and only a fall that chance rarely
+/// makes is called a finite-size effect.
 fn finite_size_words(unstable: &[&RunRecord], with_g: &[&RunRecord]) -> String {
     let range = |r: &&RunRecord| {
         let scaled = excess(r).map_or(0.0, |d| d * key(r).map_or(0.0, |(n, _)| (n * n) as f64));
         CROSSOVER.iter().filter(|&&edge| scaled >= edge).count()
     };
     let count = |packings: &[&RunRecord], i: usize| packings.iter().filter(|r| range(r) == i).count();
-    let shares: Vec<(usize, usize)> = (0..=CROSSOVER.len()).map(|i| (count(unstable, i), count(with_g, i))).collect();
-    let share = |(a, b): (usize, usize)| if b == 0 { f64::NAN } else { a as f64 / b as f64 };
-    // A fall needs two ranges with packings in them; empty ranges between them are skipped.
-    let populated: Vec<f64> = shares.iter().filter(|(_, b)| *b > 0).map(|&s| share(s)).collect();
-    let falls = populated.len() > 1 && populated.windows(2).all(|w| w[1] < w[0]);
-    let [below, between, above] = [shares[0], shares[1], shares[2]].map(|(a, b)| format!("{a} of {b}"));
+    let populated: Vec<(usize, usize, usize)> =
+        (0..RANGES.len()).map(|i| (i, count(unstable, i), count(with_g, i))).filter(|&(_, _, all)| all > 0).collect();
+    let shares: Vec<f64> = populated.iter().map(|&(_, a, b)| a as f64 / b as f64).collect();
+    let falls = shares.len() > 1 && shares.windows(2).all(|w| w[1] < w[0]);
+    let counts: Vec<String> = populated.iter().map(|&(i, a, b)| format!("{a} of {b} {}", RANGES[i])).collect();
+    let verdict = match (populated.first(), populated.last()) {
+        (Some(&(_, a, m)), Some(&(_, b, n))) if falls => {
+            let p = fisher_exact((a, m), (b, n));
+            let test = format!("Fisher's exact test of the lowest range against the highest: p = {}", sig(p));
+            if p < SIGNIFICANCE {
+                format!(" ({test} < {SIGNIFICANCE}): a finite-size effect, of that kind")
+            } else {
+                format!(
+                    "; but {test}, not below {SIGNIFICANCE}: chance alone makes such a fall more often than once in \
+                     20, and these counts cannot tell a finite-size effect"
+                )
+            }
+        }
+        _ => String::new(),
+    };
     format!(
         "Here the share {} as Δφ N² grows (the finite-size scaling variable of jamming, ∝ p N² for linear contacts, \
-         Goodrich, Liu & Nagel, Phys. Rev. Lett. 109, 095704 (2012)): {below} of the jammed packings with a G below \
-         Δφ N² = 10², {between} from 10² to 10³, {above} above{}.",
+         Goodrich, Liu & Nagel, Phys. Rev. Lett. 109, 095704 (2012)): of the jammed packings with a G, {}{verdict}.",
         match (falls, populated.len() > 1) {
             (true, _) => "falls",
             (false, true) => "does not fall steadily",
             (false, false) => "cannot be followed (one range has all the packings)",
         },
-        if falls { ": a finite-size effect, of that kind" } else { "" }
+        counts.join(", ")
     )
 }
 
@@ -267,13 +291,13 @@ fn own_onset_sentences(runs: &[&RunRecord], linear: &Onset, base: f64) -> Vec<St
             }
             let errors = gap.abs() / spread;
             Some(format!(
-                "The {} packings, quenches of their own from the same random starts, jam at φ_J = {} at N = {} ({} \
-                 seeds): {} from the {base_words} packings', {} standard errors of the difference ({}; {CITATION} found \
-                 φ_J independent of the potential).",
+                "The {} packings, quenches of their own from the same random starts, jam at φ_J = {} at N = {} ({}): \
+                 {} from the {base_words} packings', {} standard errors of the difference ({}; {CITATION} found φ_J \
+                 independent of the potential).",
                 law_words(beta),
                 plus_minus(other.mean, other.error),
                 other.n,
-                other.seeds,
+                words::counted(other.seeds, "seed"),
                 signed(gap),
                 sig(errors),
                 if errors <= 2.0 { "the same φ_J within 2" } else { "more than 2: a different φ_J" },
@@ -350,31 +374,146 @@ fn trend_sentence(sizes: &[Onset]) -> Option<String> {
     })
 }
 
-/// How a state's own φ_J depends on the fraction it was quenched at, at the largest N: the mean
-/// own φ_J of the linear packings quenched at the lowest and at the highest fraction that
-/// jammed. `None` with one fraction.
-fn preparation_sentence(runs: &[&RunRecord], n: usize, base: f64) -> Option<String> {
-    let mut by_fraction: BTreeMap<u64, Vec<f64>> = BTreeMap::new();
-    for r in runs.iter().filter(|r| r.spec.law.beta() == base && jammed(r) && key(r).is_some_and(|k| k.0 == n)) {
-        if let (Some(p), Some(phi_j)) = (r.spec.packing(), r.metrics.packing.own_jamming_fraction) {
-            by_fraction.entry(p.fraction.to_bits()).or_default().push(phi_j);
-        }
+/// How a state's own φ_J depends on the fraction it was quenched at, at the largest N: the
+/// `base` law's packings at the lowest and the highest fraction where every packing jammed
+/// ([`Quench::complete`]: elsewhere those that jammed are the ones whose own φ_J lies below the
+/// fraction, a selection that alone makes the own φ_J rise with it), their difference per seed
+/// against its standard error. `None` where fewer than two fractions have jammed packings.
+fn preparation_sentence(system: &[&RunRecord], n: usize, base: f64) -> Option<String> {
+    let quenches: Vec<Quench> = quenches(system, n, base).into_iter().filter(|q| !q.onsets.is_empty()).collect();
+    if quenches.len() < 2 {
+        return None;
     }
-    let mean = |v: &Vec<f64>| v.iter().sum::<f64>() / v.len() as f64;
-    let ((low, at_low), (high, at_high)) = (by_fraction.first_key_value()?, by_fraction.last_key_value()?);
-    (by_fraction.len() > 1).then(|| {
+    let cut: Vec<&Quench> = quenches.iter().filter(|q| !q.complete()).collect();
+    let complete: Vec<&Quench> = quenches.iter().filter(|q| q.complete()).collect();
+    let selection = match cut.is_empty() {
+        true => String::new(),
+        false => format!(
+            " a packing quenched at φ jams only where its own φ_J lies below φ, so where only some jammed ({}) the own \
+             φ_J of those that did are cut off from above and are left out;",
+            cut_words(&cut)
+        ),
+    };
+    let comparison = match complete.as_slice() {
+        [low, .., high] => quench_difference(low, high),
+        [only] => format!(
+            "every packing jammed at φ = {} alone, so the low end of the quench fractions is cut off by that \
+             selection and nothing is said of how the own φ_J depends on the preparation",
+            number(only.fraction)
+        ),
+        [] => "at no fraction did every packing jam, so nothing is said of how the own φ_J depends on the preparation"
+            .into(),
+    };
+    Some(format!(
+        "A state's own φ_J against the fraction it was quenched at ({} packings, N = {n}):{selection} {comparison}.",
+        law_words(base)
+    ))
+}
+
+/// Quench fractions where only some packings jammed, in words: "φ = 0.84: 3 of 8 jammed".
+fn cut_words(cut: &[&Quench]) -> String {
+    let each: Vec<String> = cut
+        .iter()
+        .map(|q| format!("φ = {}: {} of {} jammed", number(q.fraction), q.onsets.len(), q.packings))
+        .collect();
+    each.join("; ")
+}
+
+/// The own φ_J of the packings quenched at `low` and at `high` (every one jammed at both) and
+/// their difference per seed, whose random start both quenches share, against its standard
+/// error over the seeds: told as a dependence on the preparation only beyond Student's t of
+/// them ([`student_t`]: a paired t-test at 5 %).
+fn quench_difference(low: &Quench, high: &Quench) -> String {
+    let mean = |q: &Quench| q.onsets.iter().map(|o| o.1).sum::<f64>() / q.onsets.len() as f64;
+    let differences: Vec<Option<f64>> = high
+        .onsets
+        .iter()
+        .filter_map(|&(s, phi)| low.onsets.iter().find(|o| o.0 == s).map(|o| Some(phi - o.1)))
+        .collect();
+    let seeds = differences.len();
+    let (difference, spread) = mean_spread(differences.into_iter());
+    let error = spread.map(|s| s / (seeds as f64).sqrt()).filter(|e| *e > 0.0);
+    let both = format!(
+        "where every one jammed, those quenched at φ = {} jam at {} and those at φ = {} at {}",
+        number(low.fraction),
+        sig(mean(low)),
+        number(high.fraction),
+        sig(mean(high))
+    );
+    let (Some(difference), Some(error)) = (difference, error) else {
+        return format!(
+            "{both}; with {} quenched at both there is no standard error to judge the difference by, and nothing is \
+             said of how the own φ_J depends on the preparation",
+            words::counted(seeds, "seed")
+        );
+    };
+    let (errors, t) = (difference.abs() / error, student_t(seeds - 1));
+    let verdict = if errors > t {
         format!(
-            "A state's own φ_J depends on where it was quenched: at N = {n}, {} for the {} packings quenched at \
-             φ = {} ({} packings) and {} for those quenched at φ = {} ({}). Chaudhuri, Berthier & Sastry, Phys. Rev. \
-             Lett. 104, 165701 (2010) found jamming spread over a range of φ with the preparation likewise; the φ_J \
-             above is the mean over this campaign's quench fractions.",
-            sig(mean(at_low)),
-            law_words(base),
-            number(f64::from_bits(*low)),
-            at_low.len(),
-            sig(mean(at_high)),
-            number(f64::from_bits(*high)),
-            at_high.len()
+            "the own φ_J {} with the quench fraction (Chaudhuri, Berthier & Sastry, Phys. Rev. Lett. 104, 165701 \
+             (2010) found jamming spread over a range of φ with the preparation)",
+            if difference > 0.0 { "rises" } else { "falls" }
+        )
+    } else {
+        "these seeds cannot tell whether the own φ_J depends on the preparation".into()
+    };
+    format!(
+        "{both}, {} per seed over {} quenched at both from one random start, {} standard errors, {} {} (Student's t \
+         that chance exceeds once in 20 at {} of freedom): {verdict}",
+        plus_minus_signed(difference, error),
+        words::counted(seeds, "seed"),
+        sig(errors),
+        if errors > t { "more than" } else { "not more than" },
+        sig(t),
+        words::counted(seeds - 1, "degree")
+    )
+}
+
+/// A difference ± its standard error, with its sign.
+fn plus_minus_signed(x: f64, error: f64) -> String {
+    let words = plus_minus(x, error);
+    if x > 0.0 { format!("+{words}") } else { words }
+}
+
+/// The seeds' φ_J of every N where some quench fraction has only some packings jammed: each
+/// seed's φ_J averages its jammed packings at every fraction, those cut off from above at their
+/// fraction ([`Quench::complete`]) among them, so the mean is said again from the fractions
+/// where every packing jammed alone. `None` where no fraction is cut.
+fn selection_sentence(system: &[&RunRecord], runs: &[&RunRecord], base: f64, sizes: &[Onset]) -> Option<String> {
+    let mut parts = Vec::new();
+    for size in sizes {
+        let quenches = quenches(system, size.n, base);
+        let cut: Vec<&Quench> = quenches.iter().filter(|q| !q.complete() && !q.onsets.is_empty()).collect();
+        if cut.is_empty() {
+            continue;
+        }
+        let whole = |r: &&&RunRecord| {
+            let at = |q: &&Quench| r.spec.packing().is_some_and(|p| p.fraction == q.fraction);
+            r.spec.law.beta() != base
+                || key(r).is_none_or(|k| k.0 != size.n)
+                || quenches.iter().find(at).is_some_and(Quench::complete)
+        };
+        let kept: Vec<&RunRecord> = runs.iter().filter(whole).copied().collect();
+        let without = Onset::per_size(&onsets_of(&kept, base)).into_iter().find(|s| s.n == size.n);
+        let pull = |w: Onset| {
+            let by = w.mean - size.mean;
+            format!(
+                "φ_J = {} from the fractions where every packing jammed alone, so those {}",
+                plus_minus(w.mean, w.error),
+                match by > 0.0 {
+                    true => format!("pull it down by {}", sig(by)),
+                    false => format!("do not pull it down here (without them it is {} lower)", sig(-by)),
+                }
+            )
+        };
+        let without = without.map_or("no fraction has every packing jammed".into(), pull);
+        parts.push(format!("at N = {} ({}), {without}", size.n, cut_words(&cut)));
+    }
+    (!parts.is_empty()).then(|| {
+        format!(
+            "Each seed's φ_J above averages its jammed packings at every quench fraction, also where only some \
+             packings jammed, whose own φ_J are cut off from above at that fraction: {}.",
+            parts.join("; ")
         )
     })
 }
@@ -632,9 +771,10 @@ fn jammed_answer(
     let literature = system.is_literature();
     let mut sentences = vec![onset_method(base, onsets)];
     sentences.extend(sizes.iter().map(|s| s.sentence(literature)));
+    sentences.extend(selection_sentence(&system.runs, runs, base, sizes));
     sentences.extend(own_onset_sentences(runs, largest, base));
     sentences.extend(trend_sentence(sizes).filter(|_| literature));
-    sentences.extend(preparation_sentence(runs, largest.n, base));
+    sentences.extend(preparation_sentence(&system.runs, largest.n, base));
     let law = law_words(base);
     let mut rows: Vec<Vec<String>> = sizes
         .iter()
@@ -655,17 +795,7 @@ fn jammed_answer(
         question: "Where do random packings of discs jam, and how do p, z, K and G grow above it?",
         short: summary_line(largest, &rows, system.ratio),
         sentences,
-        reference: format!(
-            "{CITATION}: φ_J ≈ {PHI_J} for 1:1.4 bidisperse discs{}, z_J = 4, and p, z − 4, K, G ∝ Δφ^(1, ½, 0, ½) for \
-             linear and ^(3/2, ½, ½, 1) for Hertz contacts; exponents judged on the largest N within \
-             {EXPONENT_TOLERANCE}, each ± its standard error over the seeds (the jackknife: refitted without each seed \
-             in turn, from three seeds).",
-            if literature {
-                String::new()
-            } else {
-                format!(" (not this mixture's, of ratio {}: not held against it)", number(system.ratio))
-            }
-        ),
+        reference: reference(runs, system),
         see_also: None,
         verdict: Verdict::of(rows.iter().filter_map(|r| judged(r))),
         figures: jamming_figures(e, runs),
@@ -676,6 +806,35 @@ fn jammed_answer(
             rows,
         }),
     }
+}
+
+/// The item's reference, with how the exponents' standard errors are found: the jackknife over
+/// the seeds needs [`JACKKNIFE_SEEDS`] of them, and a campaign with fewer has none to give.
+fn reference(runs: &[&RunRecord], system: &System) -> String {
+    let mut seeds: Vec<u64> = runs.iter().filter(|r| jammed(r)).map(|r| seed(r)).collect();
+    seeds.sort_unstable();
+    seeds.dedup();
+    let errors = if seeds.len() >= JACKKNIFE_SEEDS {
+        format!(
+            "each ± its standard error over the seeds (the jackknife: refitted without each seed in turn, given where \
+             a fit has {JACKKNIFE_SEEDS} seeds or more)"
+        )
+    } else {
+        format!(
+            "without standard errors: the jackknife over the seeds (refitted without each seed in turn) needs \
+             {JACKKNIFE_SEEDS}, and the jammed packings here have {}",
+            words::counted(seeds.len(), "seed")
+        )
+    };
+    let mixture = match system.is_literature() {
+        true => String::new(),
+        false => format!(" (not this mixture's, of ratio {}: not held against it)", number(system.ratio)),
+    };
+    format!(
+        "{CITATION}: φ_J ≈ {PHI_J} for 1:1.4 bidisperse discs{mixture}, z_J = 4, and p, z − 4, K, G ∝ Δφ^(1, ½, 0, ½) \
+         for linear and ^(3/2, ½, ½, 1) for Hertz contacts; exponents judged on the largest N within \
+         {EXPONENT_TOLERANCE}, {errors}."
+    )
 }
 
 /// z at jamming of the linear packings of `n` discs ([`coordination_at_jamming`]) against the
@@ -754,54 +913,121 @@ fn all_scalings(runs: &[&RunRecord]) -> (Vec<String>, Vec<Vec<String>>) {
 /// Fewest packings a refit over the lower decades of Δφ is made from.
 const LOWER_DECADES_PACKINGS: usize = 6;
 
+/// How a refitted exponent moved from the whole range's, judged by the shift's own standard
+/// error over the seeds ([`Scaling::shift_error`]).
+#[derive(Clone, Copy, PartialEq)]
+enum Shift {
+    /// By more than Student's t standard errors ([`student_t`]), nearer the theory's.
+    Towards,
+    /// By more than Student's t standard errors, to further from the theory's (past it, or
+    /// away from it).
+    Away,
+    /// By no more than Student's t standard errors, or without one: the refit cannot tell.
+    Unclear,
+}
+
 /// Whether the judged exponents' distance from the theory's is a correction to scaling, which
 /// fades as Δφ → 0: refitted over the lower half of the decades of Δφ measured (up to the
 /// geometric mean √(Δφ_min Δφ_max) of the whole fit's), such an exponent moves towards the
-/// theory's. Said with the largest distance in standard errors over the whole range.
+/// theory's, by more than Student's t ([`student_t`], at 5 % for the seeds' degrees of freedom)
+/// standard errors of its shift (a shift inside its error explains nothing). Said with the largest distance in standard errors over the whole
+/// range.
 fn correction_sentence(runs: &[&RunRecord], beta: f64, size: &Onset, whole: &[Scaling]) -> Option<String> {
     let spans = whole.iter().flat_map(|s| s.points.iter().map(|p| p.0));
     let (low, high) = crate::measure::extremes(spans);
     let ceiling = (low * high).sqrt();
     let lower = scalings_over(runs, size.n, beta, (size.fit_floor(), ceiling));
-    let pairs: Vec<(&Scaling, &Scaling)> = lower
+    let gap = |s: &Scaling| (s.fit.exponent - s.theory).abs();
+    let mut seeds: Vec<u64> = whole.iter().flat_map(|w| w.seeds.iter().copied()).collect();
+    seeds.sort_unstable();
+    seeds.dedup();
+    let t = student_t(seeds.len().saturating_sub(1));
+    let moves: Vec<(&Scaling, &Scaling, Shift, Option<f64>)> = lower
         .iter()
         .filter(|s| s.points.len() >= LOWER_DECADES_PACKINGS)
-        .filter_map(|s| Some((s, whole.iter().find(|w| w.quantity == s.quantity)?)))
+        .filter_map(|l| {
+            let w = whole.iter().find(|w| w.quantity == l.quantity)?;
+            let error = w.shift_error(ceiling).filter(|e| *e > 0.0);
+            let shift = match error {
+                Some(e) if (l.fit.exponent - w.fit.exponent).abs() > t * e => {
+                    if gap(l) < gap(w) {
+                        Shift::Towards
+                    } else {
+                        Shift::Away
+                    }
+                }
+                _ => Shift::Unclear,
+            };
+            Some((l, w, shift, error))
+        })
         .collect();
-    if pairs.is_empty() {
+    if moves.is_empty() {
         return None;
     }
-    let gap = |s: &Scaling| (s.fit.exponent - s.theory).abs();
-    let names = |closer: bool| -> Vec<String> {
-        pairs.iter().filter(|(l, w)| (gap(l) < gap(w)) == closer).map(|(l, _)| l.quantity.to_string()).collect()
-    };
-    let (towards, away) = (names(true), names(false));
-    let widest = whole.iter().filter_map(|w| Some(gap(w) / w.error.filter(|e| *e > 0.0)?)).fold(0.0, f64::max);
-    let verdict = match (towards.is_empty(), away.is_empty()) {
-        (false, true) => format!(
-            "every one moves towards the theory's: the distance over the whole range (up to {widest:.0} standard \
-             errors) is a correction to scaling at larger Δφ, which the tolerance {EXPONENT_TOLERANCE} allows for"
-        ),
-        (true, _) => "none moves towards the theory's: the distance is not a correction at larger Δφ".into(),
-        (false, false) => format!(
-            "{} move towards the theory's, {} do not: a correction to scaling at larger Δφ explains the distance of \
-             the former only",
-            words::listed(&towards, "and"),
-            words::listed(&away, "and")
-        ),
-    };
-    let parts: Vec<String> = pairs
+    let parts: Vec<String> = moves
         .iter()
-        .map(|(l, w)| format!("{} {} (from {})", l.quantity, l.exponent_words(), sig(w.fit.exponent)))
+        .map(|&(l, w, _, error)| {
+            let shift = l.fit.exponent - w.fit.exponent;
+            let moved = error.map_or_else(|| format!("{} from it", signed(shift)), |e| plus_minus_signed(shift, e));
+            format!("{} {} (from {}, {moved})", l.quantity, l.exponent_words(), sig(w.fit.exponent))
+        })
         .collect();
+    let widest = whole.iter().filter_map(|w| Some(gap(w) / w.error.filter(|e| *e > 0.0)?)).fold(0.0, f64::max);
     Some(format!(
-        "{} contacts, N = {}, refitted over the lower half of the decades of Δφ ({} ≤ Δφ ≤ {}): {}; {verdict}.",
+        "{} contacts, N = {}, refitted over the lower half of the decades of Δφ ({} ≤ Δφ ≤ {}), each with its shift \
+         ± the shift's standard error over the seeds (the jackknife), a move only beyond {} of them (Student's t \
+         that chance exceeds once in 20 at {} of freedom): {}; {}.",
         words::capitalised(&law_words(beta)),
         size.n,
         sig(size.fit_floor()),
         sig(ceiling),
-        parts.join(", ")
+        sig(t),
+        words::counted(seeds.len().saturating_sub(1), "degree"),
+        parts.join(", "),
+        correction_verdict(&moves.iter().map(|m| (m.0.quantity, m.2)).collect::<Vec<_>>(), widest)
     ))
+}
+
+/// What the refit's shifts (quantity, how it moved) tell of a correction to scaling; `widest`
+/// the largest distance from the theory's over the whole range, in standard errors.
+fn correction_verdict(moves: &[(&str, Shift)], widest: f64) -> String {
+    let names =
+        |kind: Shift| -> Vec<String> { moves.iter().filter(|m| m.1 == kind).map(|m| m.0.to_string()).collect() };
+    let (towards, away, unclear) = (names(Shift::Towards), names(Shift::Away), names(Shift::Unclear));
+    if towards.len() == moves.len() {
+        return format!(
+            "every one moves towards the theory's by more than that: the distance over the whole range (up to {widest:.0} standard errors) is a correction to scaling at larger \
+             Δφ, which the tolerance {EXPONENT_TOLERANCE} allows for"
+        );
+    }
+    if unclear.len() == moves.len() {
+        return "no shift exceeds that: the refit cannot tell whether the distance is a correction to scaling at \
+                larger Δφ"
+            .into();
+    }
+    let verb = |names: &[String], one: &str, several: &str| {
+        format!("{} {}", words::listed(names, "and"), if names.len() == 1 { one } else { several })
+    };
+    let mut clauses = Vec::new();
+    if !towards.is_empty() {
+        clauses.push(format!(
+            "{} towards the theory's by more than that: a correction to scaling at larger Δφ explains {} distance",
+            verb(&towards, "moves", "move"),
+            if towards.len() == 1 { "its" } else { "their" }
+        ));
+    }
+    if !away.is_empty() {
+        clauses.push(format!(
+            "{} by more than that but {} further from the theory's: the refit does not bring {} nearer it",
+            verb(&away, "shifts", "shift"),
+            if away.len() == 1 { "ends" } else { "end" },
+            if away.len() == 1 { "it" } else { "them" }
+        ));
+    }
+    if !unclear.is_empty() {
+        clauses.push(format!("{} by no more than that: the refit cannot tell", verb(&unclear, "shifts", "shift")));
+    }
+    clauses.join("; ")
 }
 
 /// The exponent of G/K against z − 4 that the fits against Δφ imply: (g − k)/ζ for G ∝ Δφ^g,
@@ -900,9 +1126,9 @@ fn unjammed(any: &[&RunRecord], system: &System) -> Answer {
         k => format!(" ({k} of them slowly compressed, another protocol than O'Hern et al.'s quench)"),
     };
     let counted = format!(
-        "{jammed_count} of the {} packings (relaxed up to φ = {}) jammed, and none of them is a quench of the mixture \
-         held here with its own φ_J{why}",
-        any.len(),
+        "{jammed_count} of the {} (relaxed up to φ = {}) jammed, and none of them is a quench of the mixture held \
+         here with its own φ_J{why}",
+        words::counted(any.len(), "packing"),
         sig(highest)
     );
     // A packing stopped by its budget is no finding about jamming: nothing is judged.
