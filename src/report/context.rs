@@ -4,7 +4,7 @@ use serde::Serialize;
 
 use super::figure::{Figure, FigureRef, movie_refs};
 use super::findings::{AppendixWords, Evidence, Finding, Paragraph, appendix_words, discussion, findings, overview};
-use super::kinds::{KindsPresent, physics_words};
+use super::kinds::{KindsPresent, physics_words, time_step_words};
 use super::scene::{Scene, SceneTables, Scenes};
 use super::words::number;
 use crate::runner::{BUILD, RunRecord};
@@ -106,7 +106,8 @@ struct SceneSection {
     physics: String,
     /// The two-body contact time t_c the scene's dt is set from, with its formula.
     contact_time: String,
-    dt_50: String,
+    /// The step its runs took ([`time_step_words`]).
+    time_step: String,
     figures: Vec<FigureRef>,
     /// Every topic's rows, under the names the template reads.
     #[serde(flatten)]
@@ -205,7 +206,7 @@ fn section(scene: Scene, records: &[RunRecord], figures: &[Figure], side_by_side
         kind: scene.kind.name(),
         physics: physics_words(s),
         contact_time: super::kinds::contact_time_words(s),
-        dt_50: number(s.t_c / 50.0),
+        time_step: time_step_words(&mine),
         figures: figures.iter().filter(|f| f.scene == scene.name).map(Figure::reference).collect(),
         movies: movie_refs(&scene.name, &mine, side_by_side),
         tables: scene.tables,

@@ -494,6 +494,34 @@ fn packing_words(s: &RunSpec, p: &PackingSpec, law: &str) -> String {
     )
 }
 
+/// A scene's time step as its runs took it: "dt = t_c/50 = 0.04443 s", the range of a grid over
+/// it, or what a minimiser or the static solve takes instead (FIRE starts from dt and grows its
+/// step to at most 10 dt; CG and the static solve take none).
+pub(super) fn time_step_words(runs: &[&RunRecord]) -> String {
+    let method = |r: &RunRecord| r.spec.relax().map_or(RelaxMethod::Damped, |x| x.method);
+    let timed: Vec<&RunRecord> = runs.iter().filter(|r| method(r) == RelaxMethod::Damped).copied().collect();
+    let mut steps: Vec<f64> = timed.iter().map(|r| r.spec.dt_per_tc()).collect();
+    steps.sort_by(f64::total_cmp);
+    steps.dedup();
+    let dt = |per: f64| timed.iter().find(|r| r.spec.dt_per_tc() == per).map_or(f64::NAN, |r| r.spec.dt);
+    let mut parts: Vec<String> = match steps[..] {
+        [] => Vec::new(),
+        [one] => vec![format!("dt = t_c/{} = {} s", number(one), number(dt(one)))],
+        [.., fine] => vec![format!("dt from t_c/{} to t_c/{} (a grid axis)", number(steps[0]), number(fine))],
+    };
+    if let Some(r) = runs.iter().find(|r| method(r) == RelaxMethod::Fire) {
+        parts.push(format!(
+            "FIRE starts from Δt = t_c/{} = {} s and grows it to at most 10 Δt",
+            number(r.spec.dt_per_tc()),
+            number(r.spec.dt)
+        ));
+    }
+    if runs.iter().any(|r| matches!(method(r), RelaxMethod::Cg | RelaxMethod::Static)) {
+        parts.push("conjugate gradients and the static solve take no time step".into());
+    }
+    parts.join("; ")
+}
+
 /// A scene's springs in words, with their stiffness: "linear springs k = … N/m".
 fn spring_words(s: &RunSpec) -> String {
     match s.law {

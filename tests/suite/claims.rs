@@ -267,6 +267,21 @@ fn random_networks_average_the_rigid_seeds_and_say_where_rigidity_held() {
 }
 
 #[test]
+fn every_scene_states_the_time_step_its_runs_took() {
+    // The scene's line had said "the coursework's dt = t_c/50" of every scene: of a sweep over
+    // dt, and of a packing relaxed by FIRE from t_c/4. It says what the runs took.
+    let yaml = "version: 1\nname: ts\nscenes:\n  - name: pair\n    kind: pair\n    v0: 1.0\n    grid:\n      \
+                time.dt_per_tc: [10, 100]\n  - name: pk\n    kind: packing\n    packing: {n: 16, fraction: 0.86}\n    \
+                time: {dt_per_tc: 4}\n";
+    let report = report_of("ts", yaml);
+    let pair = line_with(&report, "Two-body contact time t_c = π√(m/(2k))");
+    assert!(pair.contains("; dt from t_c/10 to t_c/100 (a grid axis)."), "{pair}");
+    let packing = line_with(&report, "FIRE starts from");
+    assert!(packing.contains("FIRE starts from Δt = t_c/4 = "), "{packing}");
+    assert!(!report.contains("the time step is discussed once"), "the old line");
+}
+
+#[test]
 fn a_packing_scene_whose_grid_varies_its_discs_counts_none_of_them() {
     // One run's spec describes its scene: with packing.n on the grid "8 discs … and 8 discs" is
     // the first run's count, false of the others. The scene names the field instead; and it is
