@@ -93,7 +93,8 @@ fn previous_output(dir: &Path, flag: &str) -> anyhow::Result<BTreeSet<String>> {
     names.sort();
     anyhow::ensure!(
         names.is_empty(),
-        "{flag} already holds files that `mdsolids compare` did not write ({}): they would be overwritten or \
+        "{flag} already holds files not listed as written by `mdsolids compare` ({}; a comparison of an earlier \
+         version lists none: delete its folder): they would be overwritten or \
          removed. --out must be a new folder, an empty one, or the folder of an earlier comparison (marked by its \
          '{MARKER}')",
         escape_for_terminal(&listed(&names))

@@ -13,7 +13,7 @@ use super::words::{error, impulse_words, number, optional};
 use crate::measure::{convergence_order, relative_error};
 use crate::model::LawSpec;
 use crate::runner::RunRecord;
-use crate::sim::{RelaxMethod, RunStatus};
+use crate::sim::{PreconditionerKind, RelaxMethod, RunStatus};
 use crate::spec::{Campaign, PackingSpec, RunSpec, SceneKind};
 
 /// The rows of a scene's own tables, by its kind (the others empty).
@@ -507,9 +507,14 @@ pub(super) fn time_step_words(runs: &[&RunRecord]) -> String {
     let mut parts: Vec<String> = match steps[..] {
         [] => Vec::new(),
         [one] => vec![format!("dt = t_c/{} = {} s", number(one), number(dt(one)))],
-        [.., fine] => vec![format!("dt from t_c/{} to t_c/{} (a grid axis)", number(steps[0]), number(fine))],
+        [.., fine] => vec![format!("dt from t_c/{} to t_c/{} over its runs", number(steps[0]), number(fine))],
     };
-    if let Some(r) = runs.iter().find(|r| method(r) == RelaxMethod::Fire) {
+    let metric = |r: &RunRecord| r.spec.relax().is_some_and(|x| x.preconditioner != PreconditionerKind::None);
+    if runs.iter().any(|r| method(r) == RelaxMethod::Fire && metric(r)) {
+        // Its step is dimensionless: P⁻¹K's frequencies are near 1 (`sim::relax::fire`).
+        parts.push("FIRE in the stiffness metric steps from a dimensionless 0.5 up to 1".into());
+    }
+    if let Some(r) = runs.iter().find(|r| method(r) == RelaxMethod::Fire && !metric(r)) {
         parts.push(format!(
             "FIRE starts from Δt = t_c/{} = {} s and grows it to at most 10 Δt",
             number(r.spec.dt_per_tc()),

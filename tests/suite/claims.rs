@@ -272,10 +272,14 @@ fn every_scene_states_the_time_step_its_runs_took() {
     // dt, and of a packing relaxed by FIRE from t_c/4. It says what the runs took.
     let yaml = "version: 1\nname: ts\nscenes:\n  - name: pair\n    kind: pair\n    v0: 1.0\n    grid:\n      \
                 time.dt_per_tc: [10, 100]\n  - name: pk\n    kind: packing\n    packing: {n: 16, fraction: 0.86}\n    \
-                time: {dt_per_tc: 4}\n";
+                time: {dt_per_tc: 4}\n  - name: metric\n    kind: lattice\n    lattice: {size: 6}\n    \
+                load: {case: tensile}\n    relax: {method: fire, preconditioner: stiffness}\n";
     let report = report_of("ts", yaml);
+    // In the stiffness metric FIRE's step is dimensionless, not t_c/50.
+    let metric = line_with(&report, "FIRE in the stiffness metric steps");
+    assert!(metric.contains("from a dimensionless 0.5 up to 1") && !metric.contains("FIRE starts"), "{metric}");
     let pair = line_with(&report, "Two-body contact time t_c = π√(m/(2k))");
-    assert!(pair.contains("; dt from t_c/10 to t_c/100 (a grid axis)."), "{pair}");
+    assert!(pair.contains("; dt from t_c/10 to t_c/100 over its runs."), "{pair}");
     let packing = line_with(&report, "FIRE starts from");
     assert!(packing.contains("FIRE starts from Δt = t_c/4 = "), "{packing}");
     assert!(!report.contains("the time step is discussed once"), "the old line");

@@ -387,8 +387,7 @@ fn deformation_words(kind: SceneKind, deformation: Deformation) -> String {
         // A hit chain's t_c is the free collision's at v0; the plan's fastest mode (and so its
         // dt's stability) is taken at the walls' pre-stress plus the kick's overlap.
         (_, Deformation::PreStressed { .. }) => {
-            "the impact speed for a hit chain's t_c, whose fastest mode the plan takes at the walls' displacement \
-             and the impact speed"
+            "the walls' displacement plus the impact speed (a hit chain's fastest mode; its t_c is the collision's)"
                 .into()
         }
         (SceneKind::Packing, Deformation::Extension(_)) => format!(

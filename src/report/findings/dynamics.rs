@@ -545,7 +545,7 @@ fn chain_dissipation(e: &Evidence) -> Option<Part> {
     Some(Part {
         short: match worst {
             Some(w) => format!(
-                "chains: energy e-folding off the slowest mode's by {} at worst",
+                "chains at the step nearest t_c/50: energy e-folding off the slowest mode's by {} at worst",
                 rel(w).trim_start_matches('+')
             ),
             None => "chains: dissipation measured".into(),

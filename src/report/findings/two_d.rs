@@ -555,7 +555,16 @@ fn quoted_kick<'a>(kicked: &[&'a RunRecord], diagonals: Diagonals) -> Option<(&'
     let alike: Vec<&RunRecord> =
         kicked.iter().copied().filter(|r| r.spec.lattice().is_some_and(|l| l.diagonals == diagonals)).collect();
     let scene = &alike.first()?.spec.scene;
-    let candidates: Vec<&RunRecord> = alike.iter().copied().filter(|r| r.spec.scene == *scene).collect();
+    let of_scene: Vec<&RunRecord> = alike.iter().copied().filter(|r| r.spec.scene == *scene).collect();
+    // The ordered, undamped network's front is the one c_L speaks of: cut, spread or damped
+    // runs only where the scene has no other.
+    let plain = |r: &&RunRecord| {
+        r.spec.gamma == 0.0 && r.spec.gamma_background == 0.0 && r.spec.lattice().is_some_and(|l| !l.is_random())
+    };
+    let candidates: Vec<&RunRecord> = match of_scene.iter().copied().filter(plain).collect::<Vec<_>>() {
+        plain if plain.is_empty() => of_scene,
+        plain => plain,
+    };
     let order = |r: &RunRecord| r.spec.integrator.energy_order();
     // `max_by` keeps the last of equals: reversed, the first.
     let best = candidates
@@ -569,7 +578,8 @@ fn quoted_kick<'a>(kicked: &[&'a RunRecord], diagonals: Diagonals) -> Option<(&'
     }
     let with = if diagonals == Diagonals::None { "without" } else { "with" };
     let which = format!(
-        " ({label}: the smallest step at the highest order among the scene's {} {with} diagonals)",
+        " ({label}: the smallest step at the highest order among the scene's {} {with} diagonals, undamped and \
+         ordered where any is)",
         counted(candidates.len(), "run")
     );
     Some((best, which))
