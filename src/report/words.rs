@@ -1,6 +1,7 @@
 //! How the report writes numbers and specs in words: six significant digits, signed errors, a
 //! dash for a missing value, an impulse as a kick or a step force.
 
+use crate::sim::IntegratorKind;
 use crate::spec::ImpulseSpec;
 
 /// `text`, a formatted number, with a minus sign (−, U+2212) where Rust writes a hyphen before
@@ -123,4 +124,27 @@ pub fn counted(n: usize, noun: &str) -> String {
 pub fn times(ratio: f64, more: &str, less: &str) -> String {
     let (factor, word) = if ratio >= 1.0 { (ratio, more) } else { (ratio.recip(), less) };
     if factor >= 10.0 { format!("{factor:.0}× {word}") } else { format!("{factor:.1}× {word}") }
+}
+
+/// An integrator's name in prose, mid-sentence ("velocity Verlet", "RK4"); `verlet_as_one`
+/// names both Verlet forms "Verlet", where an item counts them as one scheme: the same
+/// trajectory in two forms (their errors agree to round-off), so one stands for both.
+pub fn scheme(kind: IntegratorKind, verlet_as_one: bool) -> &'static str {
+    match kind {
+        IntegratorKind::PositionVerlet | IntegratorKind::VelocityVerlet if verlet_as_one => "Verlet",
+        IntegratorKind::PositionVerlet => "position Verlet",
+        IntegratorKind::VelocityVerlet => "velocity Verlet",
+        IntegratorKind::SymplecticEuler => "symplectic Euler",
+        IntegratorKind::Rk4 => "RK4",
+        IntegratorKind::ForestRuth => "Forest–Ruth",
+        IntegratorKind::Gear => "Gear",
+    }
+}
+
+/// An order as an ordinal word: "second"; "7th" beyond the fifth.
+pub fn ordinal(order: u32) -> String {
+    match order {
+        0..=5 => ["zeroth", "first", "second", "third", "fourth", "fifth"][order as usize].into(),
+        n => format!("{n}th"),
+    }
 }

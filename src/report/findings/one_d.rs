@@ -7,7 +7,7 @@ use crate::measure::convergence_order;
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, representative};
 use crate::report::kinds::{contact_time_words, law_name};
-use crate::report::words::{counted, number};
+use crate::report::words::{counted, number, ordinal, scheme};
 use crate::runner::RunRecord;
 use crate::sim::IntegratorKind;
 use crate::spec::SceneKind;
@@ -46,31 +46,19 @@ fn at_50<'a>(runs: &[&'a RunRecord]) -> Option<&'a RunRecord> {
 fn at_50_each<'a>(runs: &[&'a RunRecord]) -> Vec<&'a RunRecord> {
     let mut schemes: Vec<&str> = vec!["Verlet"];
     for r in runs {
-        if !schemes.contains(&scheme(r.spec.integrator)) {
-            schemes.push(scheme(r.spec.integrator));
+        if !schemes.contains(&scheme(r.spec.integrator, true)) {
+            schemes.push(scheme(r.spec.integrator, true));
         }
     }
     let of = |name: &str| -> Vec<&'a RunRecord> {
-        runs.iter().copied().filter(|r| scheme(r.spec.integrator) == name).collect()
+        runs.iter().copied().filter(|r| scheme(r.spec.integrator, true) == name).collect()
     };
     schemes.into_iter().filter_map(|name| at_50(&of(name))).collect()
 }
 
 /// Whether `runs` use more than one scheme: their sentences and tables then name each run's.
 fn mixed(runs: &[&RunRecord]) -> bool {
-    runs.iter().any(|r| scheme(r.spec.integrator) != scheme(runs[0].spec.integrator))
-}
-
-/// A scheme in words. Position and velocity Verlet are one scheme, "Verlet": the same
-/// trajectory in two forms (their errors agree to round-off), so one stands for both.
-fn scheme(kind: IntegratorKind) -> &'static str {
-    match kind {
-        IntegratorKind::PositionVerlet | IntegratorKind::VelocityVerlet => "Verlet",
-        IntegratorKind::SymplecticEuler => "symplectic Euler",
-        IntegratorKind::Rk4 => "RK4",
-        IntegratorKind::ForestRuth => "Forest–Ruth",
-        IntegratorKind::Gear => "Gear",
-    }
+    runs.iter().any(|r| scheme(r.spec.integrator, true) != scheme(runs[0].spec.integrator, true))
 }
 
 /// The order in dt at which a scheme's error falls: `p`, or where two errors of different
@@ -132,8 +120,7 @@ fn meets(order: Order, fitted: f64, tolerance: f64) -> bool {
 /// A scheme's order and what a fitted order must do to meet it, in words: "Verlet's second
 /// order: the fitted order must lie within 0.1 of 2", or "… be at least 4.5" for Gear.
 fn order_reference(kind: IntegratorKind, order: Order, tolerance: f64) -> String {
-    let ordinal = |p: u32| ["zeroth", "first", "second", "third", "fourth", "fifth"][p.min(5) as usize];
-    let (name, p) = (scheme(kind), order.p as f64);
+    let (name, p) = (scheme(kind, true), order.p as f64);
     if order.at_least {
         format!("{name}'s {} order or more: the fitted order must be at least {}", ordinal(order.p), p - GEAR_SLACK)
     } else if order.up_to > order.p {
@@ -762,7 +749,7 @@ pub(super) fn chain_as_row(e: &Evidence) -> Option<Answer> {
         * (spec.k / spec.mass).sqrt()
         * (chain.n as f64 * std::f64::consts::PI / (2.0 * (chain.n + 1) as f64)).sin();
     let drift = top_mode_drift(spec.integrator);
-    let own = drift.map_or(scheme(spec.integrator), |(own, ..)| own);
+    let own = drift.map_or(scheme(spec.integrator, true), |(own, ..)| own);
     let bound = drift.map(|(_, formula, c, p)| (formula, c * (top * spec.dt).powi(p) * top * spec.duration));
     // A phase error φ moves a mode by 2 sin(φ/2) of its amplitude, ≈ φ while φ is small; past
     // a radian any error up to 2 fits under it, and it tells nothing.

@@ -14,7 +14,7 @@ use crate::measure::convergence_order;
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, group_label, representative};
 use crate::report::kinds::contact_time_words;
-use crate::report::words::{capitalised, counted, listed, number};
+use crate::report::words::{capitalised, counted, listed, number, ordinal, scheme};
 use crate::runner::RunRecord;
 use crate::sim::{IntegratorKind, RunStatus};
 use crate::spec::{Control, Diagonals, LatticeSpec, LoadCase, RunSpec, Supports};
@@ -295,29 +295,6 @@ fn distinct_steps(runs: &[&RunRecord]) -> usize {
     steps.len()
 }
 
-/// An integrator's name in prose, for the reference.
-fn scheme_name(kind: IntegratorKind) -> &'static str {
-    match kind {
-        IntegratorKind::PositionVerlet => "Position Verlet",
-        IntegratorKind::VelocityVerlet => "Velocity Verlet",
-        IntegratorKind::SymplecticEuler => "Symplectic Euler",
-        IntegratorKind::Rk4 => "RK4",
-        IntegratorKind::ForestRuth => "Forest–Ruth",
-        IntegratorKind::Gear => "Gear",
-    }
-}
-
-/// An order as an ordinal: "second".
-fn ordinal(order: u32) -> String {
-    match order {
-        1 => "first".into(),
-        2 => "second".into(),
-        3 => "third".into(),
-        4 => "fourth".into(),
-        n => format!("{n}th"),
-    }
-}
-
 /// How far below its integrator's energy order ([`IntegratorKind::energy_order`]) a sweep's
 /// fitted order may fall: the next order's term at the largest steps moves a least-squares
 /// slope by a few hundredths (symplectic Euler 1.02 and Forest–Ruth 4.05 over t_c/10 … t_c/100
@@ -452,7 +429,7 @@ fn order_reference(sweeps: &[Sweep]) -> String {
         }
     }
     let orders: Vec<String> =
-        kinds.iter().map(|&k| format!("{}'s {} order", scheme_name(k), ordinal(k.energy_order()))).collect();
+        kinds.iter().map(|&k| format!("{}'s {} order", scheme(k, false), ordinal(k.energy_order()))).collect();
     let bound = match kinds.as_slice() {
         [only] => {
             let order = only.energy_order();
