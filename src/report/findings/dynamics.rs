@@ -763,7 +763,7 @@ fn damping_sentences(
     let mut sentences = vec![format!(
         "Dissipated means: {} (the stopping criterion of each run, named in the table by its quantity); the \
          relaxation figures draw E_kin/E_pot against time with the threshold as a line.",
-        crate::report::words::listed(&criteria(&runs), "or")
+        crate::report::words::listed(&criteria(&runs).into_iter().map(String::from).collect::<Vec<_>>(), "or")
     )];
     if !bond.is_empty() {
         sentences.push(format!(
@@ -799,13 +799,7 @@ fn damping_sentences(
 /// The dissipation times of the background-damped runs, one list per stopping criterion (a
 /// sweep may stop its runs by either): "γ_g = … N s/m give … s (criterion)".
 fn background_times(background: &[&RunRecord]) -> String {
-    let mut criteria: Vec<&str> = Vec::new();
-    for r in background {
-        let criterion = r.metrics.dissipation_criterion.as_deref().unwrap_or("–");
-        if !criteria.contains(&criterion) {
-            criteria.push(criterion);
-        }
-    }
+    let criteria = criteria(background);
     let listed = |criterion: &str| {
         let runs: Vec<&&RunRecord> = background
             .iter()
@@ -963,10 +957,11 @@ impl<'a> BackgroundSweep<'a> {
     }
 }
 
-/// The distinct stopping criteria of `runs`, in campaign order.
-fn criteria(runs: &[&RunRecord]) -> Vec<String> {
-    let mut criteria: Vec<String> = Vec::new();
-    for criterion in runs.iter().filter_map(|r| r.metrics.dissipation_criterion.clone()) {
+/// The distinct stopping criteria of `runs`, in campaign order ("–" for a run without one).
+fn criteria<'a>(runs: &[&'a RunRecord]) -> Vec<&'a str> {
+    let mut criteria: Vec<&str> = Vec::new();
+    for r in runs {
+        let criterion = r.metrics.dissipation_criterion.as_deref().unwrap_or("–");
         if !criteria.contains(&criterion) {
             criteria.push(criterion);
         }
