@@ -679,7 +679,8 @@ fn publish(
     let mut frame = table::results_frame(records).context("cannot build the results table")?;
     table::write_tables(layout, &mut frame)?;
     let fits = crate::summary::scaling_fits(records);
-    table::write_summary(layout, &fits)?;
+    let packings = crate::summary::jamming::fits(records);
+    table::write_summary(layout, &[fits.as_slice(), &packings].concat())?;
     report::render_with_left_out(campaign, layout, records, &fits, left_out)
 }
 

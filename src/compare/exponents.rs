@@ -6,15 +6,23 @@ use serde::Serialize;
 
 use super::table::{Side, Table};
 use super::words::{exponent, fixed};
+use crate::summary::{jamming, predicted};
 
 /// The columns a `summary.csv` row is identified by. `law` is not among them: comparing a linear
 /// campaign with its Hertz twin means comparing fits of different laws.
 const SUMMARY_KEYS: [&str; 3] = ["scene", "group", "quantity"];
 
-/// How far a fitted exponent may lie from its law's and still agree: 0.01, 2 % of the largest
-/// predicted exponent (1/2), and above a fit's error over 2–3 decades of clean power law (the
-/// campaigns fit within 3e-4).
+/// How far a fitted exponent of an amplitude sweep may lie from its law's and still agree: 0.01,
+/// 2 % of the largest predicted exponent (1/2), and above a fit's error over 2–3 decades of
+/// clean power law (the campaigns fit within 3e-4).
 const TOLERANCE: f64 = 0.01;
+
+/// How far a fit against `against` may lie from its law's: [`TOLERANCE`], and for a packing's
+/// scaling near jamming the item Jamming's ([`jamming::EXPONENT_TOLERANCE`]: its Δφ is uncertain
+/// and the theory leaves out the corrections to scaling).
+fn tolerance(against: &str) -> f64 {
+    if jamming::is_fitted_against(against) { jamming::EXPONENT_TOLERANCE } else { TOLERANCE }
+}
 
 /// One side's fit.
 struct Fit {
@@ -35,24 +43,11 @@ struct Matched {
     b: Option<Fit>,
 }
 
-/// The exponent predicted for a quantity fitted against `against` with springs s ∝ δ^β: the
-/// stiffness ds/dδ ∝ δ^(β−1) makes a chain's stiffness ∝ |ΔW|^(β−1), a lattice's moduli under
-/// a load F ∝ δ^β scale as F^((β−1)/β), and the solitary wave of a chain without pre-load
-/// travels at V ∝ v0^((β−1)/(β+1)) (Nesterenko); all 0 for linear springs (β = 1).
-pub fn predicted(against: &str, beta: f64) -> Option<(f64, &'static str)> {
-    match against {
-        "v0" => Some(((beta - 1.0) / (beta + 1.0), "(β−1)/(β+1)")),
-        "load_per_node" => Some(((beta - 1.0) / beta, "(β−1)/β")),
-        "wall_displacement" => Some((beta - 1.0, "β−1")),
-        _ => None,
-    }
-}
-
 /// A fit's law in words (`linear`, `β = 1.5`) and its prediction (`0.2000 = (β−1)/(β+1)`).
-fn law_words(fit: &Fit, against: &str) -> (String, String) {
+fn law_words(fit: &Fit, (quantity, against): (&str, &str)) -> (String, String) {
     let Some(beta) = fit.beta else { return (fit.law.clone(), "–".into()) };
     let law = if beta == 1.0 { "linear".to_string() } else { format!("β = {beta}") };
-    let prediction = match predicted(against, beta) {
+    let prediction = match predicted(quantity, against, beta) {
         Some((p, _)) if beta == 1.0 => exponent(p, 4),
         Some((p, formula)) => format!("{} = {formula}", exponent(p, 4)),
         None => "–".into(),
@@ -62,8 +57,8 @@ fn law_words(fit: &Fit, against: &str) -> (String, String) {
 
 impl Fit {
     /// |fitted − predicted|, where the law predicts one.
-    fn miss(&self, against: &str) -> Option<f64> {
-        predicted(against, self.beta?).map(|(p, _)| (self.exponent - p).abs())
+    fn miss(&self, (quantity, against): (&str, &str)) -> Option<f64> {
+        predicted(quantity, against, self.beta?).map(|(p, _)| (self.exponent - p).abs())
     }
 }
 
@@ -105,6 +100,10 @@ pub(super) struct Exponents {
     pub(super) rows: Vec<ExponentRow>,
     /// The `summary.csv` files that do not exist (then no exponent is compared).
     pub(super) missing: Vec<String>,
+    /// Whether some fits are over an amplitude (speed, load, walls), and whether some are a
+    /// packing's near jamming: the laws the report explains.
+    pub(super) sweeps: bool,
+    pub(super) packings: bool,
 }
 
 /// The exponents of both `summary.csv` files, matched on [`SUMMARY_KEYS`] (a fit without a
@@ -126,11 +125,14 @@ pub(super) fn exponents(a: &Side, b: &Side) -> anyhow::Result<Exponents> {
         matched.push(Matched::new(keys, against, Some(fit), partner.map(|p| p.2)));
     }
     matched.extend(fb.into_iter().flatten().map(|(keys, against, fit)| Matched::new(keys, against, None, Some(fit))));
+    let near_jamming = |m: &Matched| jamming::is_fitted_against(&m.against);
     Ok(Exponents {
         sentences: sentences(&matched),
         laws: matched.iter().map(Matched::law_row).collect(),
         rows: matched.iter().map(Matched::row).collect(),
         missing: Vec::new(),
+        sweeps: !matched.iter().all(near_jamming),
+        packings: matched.iter().any(near_jamming),
     })
 }
 
@@ -179,7 +181,7 @@ impl Matched {
     fn law_row(&self) -> LawRow {
         let side = |fit: &Option<Fit>| match fit {
             Some(fit) => {
-                let (law, prediction) = law_words(fit, &self.against);
+                let (law, prediction) = law_words(fit, (&self.quantity, &self.against));
                 (law, exponent(fit.exponent, 4), prediction)
             }
             None => ("–".into(), "–".into(), "–".into()),
@@ -216,7 +218,7 @@ impl Matched {
 
     /// One side's fit in words: `p = 0.2000 (β = 1.5, predicted 0.2000 = (β−1)/(β+1))`.
     fn fit_words(&self, fit: &Fit) -> String {
-        let (law, prediction) = law_words(fit, &self.against);
+        let (law, prediction) = law_words(fit, (&self.quantity, &self.against));
         format!("p = {} ({law}, predicted {prediction})", exponent(fit.exponent, 4))
     }
 }
@@ -253,17 +255,18 @@ fn sentences(matched: &[Matched]) -> Vec<String> {
     sentences
 }
 
-/// Whether the fitted exponents follow their spring laws within [`TOLERANCE`], naming those
-/// that do not.
+/// Whether the fitted exponents follow their spring laws within their [`tolerance`], naming
+/// those that do not.
 fn verdict(matched: &[Matched]) -> String {
     let misses: Vec<(&Matched, &str, f64)> = matched
         .iter()
         .flat_map(|m| [("A", &m.a), ("B", &m.b)].map(|(side, fit)| (m, side, fit)))
-        .filter_map(|(m, side, fit)| Some((m, side, fit.as_ref()?.miss(&m.against)?)))
+        .filter_map(|(m, side, fit)| Some((m, side, fit.as_ref()?.miss((&m.quantity, &m.against))?)))
         .collect();
+    let within = tolerance_words(misses.iter().map(|(m, _, _)| m.against.as_str()));
     let outside: Vec<String> = misses
         .iter()
-        .filter(|(_, _, miss)| *miss > TOLERANCE)
+        .filter(|(m, _, miss)| *miss > tolerance(&m.against))
         .map(|(m, side, miss)| format!("{} {} in {side} (off by {})", m.scene_words(), m.quantity, exponent(*miss, 4)))
         .collect();
     let largest = misses.iter().map(|(_, _, miss)| *miss).fold(0.0, f64::max);
@@ -275,12 +278,27 @@ fn verdict(matched: &[Matched]) -> String {
                 2 => "Both fitted exponents agree with the exponents their spring laws predict".to_string(),
                 _ => format!("All {n} fitted exponents agree with the exponents their spring laws predict"),
             };
-            format!("{all} within {TOLERANCE} (largest difference {largest:.1e}).")
+            format!("{all} within {within} (largest difference {largest:.1e}).")
         }
         (n, k) => format!(
-            "{} of {n} fitted exponents agree with their spring laws within {TOLERANCE}; these do not: {}.",
+            "{} of {n} fitted exponents agree with their spring laws within {within}; these do not: {}.",
             n - k,
             outside.join("; ")
         ),
+    }
+}
+
+/// The tolerances of fits against `against` in words: `0.01`, `0.15` near jamming, or both.
+fn tolerance_words<'a>(against: impl Iterator<Item = &'a str>) -> String {
+    let (mut sweeps, mut packings) = (false, false);
+    for a in against {
+        if jamming::is_fitted_against(a) { packings = true } else { sweeps = true }
+    }
+    match (sweeps, packings) {
+        (true, true) => {
+            format!("{TOLERANCE} ({} for the packings' scalings near jamming)", jamming::EXPONENT_TOLERANCE)
+        }
+        (false, true) => jamming::EXPONENT_TOLERANCE.to_string(),
+        _ => TOLERANCE.to_string(),
     }
 }

@@ -174,3 +174,15 @@ pub enum Recommendation {
     /// No step meets it; extrapolated with the measured order.
     Extrapolated,
 }
+
+/// Mean and sample standard deviation of the values present (no deviation of a single value).
+pub fn mean_spread(values: impl Iterator<Item = Option<f64>>) -> (Option<f64>, Option<f64>) {
+    let v: Vec<f64> = values.flatten().collect();
+    if v.is_empty() {
+        return (None, None);
+    }
+    let mean = v.iter().sum::<f64>() / v.len() as f64;
+    let spread =
+        (v.len() > 1).then(|| (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (v.len() - 1) as f64).sqrt());
+    (Some(mean), spread)
+}

@@ -7,6 +7,7 @@ use serde::Serialize;
 use super::figure::{Figure, FigureKind, Part};
 use super::words::{number, optional};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
+use crate::measure::mean_spread;
 use crate::model::LatticeType;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
@@ -103,18 +104,6 @@ fn ensembles<'a>(records: &'a [RunRecord], scene: &str) -> Vec<Ensemble<'a>> {
         }
     }
     out
-}
-
-/// Mean and sample standard deviation of the values present (no deviation of a single value).
-pub(crate) fn mean_spread(values: impl Iterator<Item = Option<f64>>) -> (Option<f64>, Option<f64>) {
-    let v: Vec<f64> = values.flatten().collect();
-    if v.is_empty() {
-        return (None, None);
-    }
-    let mean = v.iter().sum::<f64>() / v.len() as f64;
-    let spread =
-        (v.len() > 1).then(|| (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (v.len() - 1) as f64).sqrt());
-    (Some(mean), spread)
 }
 
 /// The table of a scene's `ensembles` (empty unless it is random or sweeps seeds).

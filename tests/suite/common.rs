@@ -146,3 +146,12 @@ pub fn cut_steel_block(law: &str, seeds: &str) -> String {
          grid:\n      seed: {seeds}\n"
     )
 }
+
+/// The least-squares slope of ln y against ln x over `points`.
+pub fn log_slope(points: &[(f64, f64)]) -> f64 {
+    let logs: Vec<(f64, f64)> = points.iter().map(|(x, y)| (x.ln(), y.ln())).collect();
+    let n = logs.len() as f64;
+    let (sx, sy) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x, b + y));
+    let (sxx, sxy) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x * x, b + x * y));
+    (n * sxy - sx * sy) / (n * sxx - sx * sx)
+}

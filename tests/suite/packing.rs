@@ -12,7 +12,7 @@ use mdsolids::study::packing::{own_jamming_fraction, stiffness_moduli};
 use mdsolids::theory::{gamma_for_restitution, linear_contact_duration, linear_restitution};
 use polars::prelude::*;
 
-use crate::common::{line_with, mdsolids_ok, number_after, runs};
+use crate::common::{line_with, log_slope, mdsolids_ok, number_after, runs};
 
 /// The pairs within r_i + r_j + skin by comparing every pair (the reference the cell list must
 /// reproduce), each as (i, j, shift x bits, shift y bits), sorted.
@@ -508,15 +508,6 @@ fn hertz_packings_are_measured_from_their_own_jamming_point() {
     assert!((fitted - log_slope(&points)).abs() < 1e-3, "p's exponent against {}", log_slope(&points));
 }
 
-/// The least-squares slope of ln y against ln x over `points`.
-fn log_slope(points: &[(f64, f64)]) -> f64 {
-    let logs: Vec<(f64, f64)> = points.iter().map(|(x, y)| (x.ln(), y.ln())).collect();
-    let n = logs.len() as f64;
-    let (sx, sy) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x, b + y));
-    let (sxx, sxy) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x * x, b + x * y));
-    (n * sxy - sx * sy) / (n * sxx - sx * sx)
-}
-
 /// Each exponent carries its standard error over the seeds, recomputed here from the results
 /// table by its definition: the packings with Δφ (from each one's own φ_J) at or above the
 /// stated floor, p's log–log slope refitted without each seed in turn,
@@ -548,6 +539,7 @@ fn the_scalings_carry_their_standard_error_over_the_seeds() {
     assert!((stated / error - 1.0).abs() < 0.05, "{line}: independent {error} from {without:?}");
     let all: Vec<(f64, f64)> = fitted.iter().map(|f| (f.1, f.2)).collect();
     assert!((number_after(line, "p ∝ Δφ^") - log_slope(&all)).abs() < 1e-3 + 0.01 * error, "{line}");
+    summary_holds_the_fit(&folder, &all);
     lower_decades_refit_is_the_tables(&report, &fitted);
     // z_J, the intercept of z = z_J + c √Δφ over every jammed packing (Δφ > 0), and its
     // jackknife over the seeds in the same way.
@@ -572,6 +564,46 @@ fn the_scalings_carry_their_standard_error_over_the_seeds() {
     // The floor is 5 times the precision of each packing's own φ_J, 5e-5 of it.
     let mean_own = own.iter().flatten().sum::<f64>() / own.iter().flatten().count() as f64;
     assert!((floor / (5.0 * 5e-5 * 0.84) - 1.0).abs() < 0.02, "{line}: mean own φ_J {mean_own}");
+}
+
+/// `summary.csv` holds the scalings the item states, one row each, p's over exactly the packings
+/// `all` (Δφ, p) recomputed from the results table: its exponent to round-off (1e-9: the same
+/// least squares in another order), its count and its range of Δφ.
+fn summary_holds_the_fit(folder: &std::path::Path, all: &[(f64, f64)]) {
+    let summary = CsvReadOptions::default()
+        .try_into_reader_with_file_path(Some(folder.join("summary.csv")))
+        .unwrap()
+        .finish()
+        .unwrap();
+    let column = |name: &str| -> Vec<String> {
+        summary
+            .column(name)
+            .unwrap()
+            .cast(&DataType::String)
+            .unwrap()
+            .str()
+            .unwrap()
+            .iter()
+            .map(|v| v.unwrap_or("").to_string())
+            .collect()
+    };
+    let (quantity, against) = (column("quantity"), column("against"));
+    let pairs: Vec<(&str, &str)> = quantity.iter().zip(&against).map(|(q, a)| (q.as_str(), a.as_str())).collect();
+    for expected in [
+        ("pressure", "fraction_excess"),
+        ("coordination_excess", "fraction_excess"),
+        ("bulk_modulus_2d", "fraction_excess"),
+        ("shear_modulus_2d", "fraction_excess"),
+        ("shear_over_bulk", "coordination_excess"),
+    ] {
+        assert_eq!(pairs.iter().filter(|p| **p == expected).count(), 1, "{expected:?} in {pairs:?}");
+    }
+    let row = pairs.iter().position(|p| p.0 == "pressure").unwrap();
+    let number = |name: &str| numbers(&summary, name)[row].unwrap();
+    assert!((number("exponent") - log_slope(all)).abs() < 1e-9, "{} against {}", number("exponent"), log_slope(all));
+    assert_eq!(number("points") as usize, all.len());
+    let (low, high) = all.iter().fold((f64::INFINITY, 0.0f64), |(l, h), p| (l.min(p.0), h.max(p.0)));
+    assert_eq!((number("x_min"), number("x_max")), (low, high));
 }
 
 /// p refitted over the lower half of the decades of Δφ, recomputed from `fitted` (seed, Δφ, p)

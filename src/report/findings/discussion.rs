@@ -404,12 +404,7 @@ fn deformation_words(kind: SceneKind, deformation: Deformation) -> String {
 /// Hertz (β = 3/2): 1/5, 1/3 and 1/2; linear (β = 1): 0.
 pub(super) fn predicted_exponent(e: &Evidence, fit: &ScalingFit) -> Option<f64> {
     let beta = fit_scene_run(e, fit)?.spec.law.beta();
-    match fit.quantity {
-        "sound_speed" => Some((beta - 1.0) / (beta + 1.0)),
-        q if q.contains("modulus") => Some((beta - 1.0) / beta),
-        q if q.ends_with("stiffness") => Some(beta - 1.0),
-        _ => None,
-    }
+    crate::summary::predicted(fit.quantity, fit.against, beta).map(|(exponent, _)| exponent)
 }
 
 /// A fitted quantity's symbol as the report writes it (E, G, c, F, v0, the walls' Δ, the

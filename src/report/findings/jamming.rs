@@ -8,16 +8,17 @@ use std::collections::BTreeMap;
 
 use super::finding::{Answer, Evidence, Table, Verdict, exponents, plus_minus, sig, signed};
 use crate::measure::line_fit;
+use crate::measure::mean_spread;
 use crate::report::figure::{FigureKind, FigureRef};
-use crate::report::jamming::{
-    FIT_FLOOR, ISOSTATIC, JACKKNIFE_SEEDS, Onset, Quench, Scaling, excess, fisher_exact, fitted, jammed, key,
-    onsets_of, quenches, ratio_against_contacts, scalings, scalings_over, seed, seed_jackknife_of, student_t,
-};
-use crate::report::solids::mean_spread;
+use crate::report::jamming::{Quench, fisher_exact, quenches, student_t};
 use crate::report::words::{self, number};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::study::packing::{ONSET_PRECISION, ROUND_OFF_MARGIN, STRAIN, STRAINED_RESIDUAL};
+use crate::summary::jamming::{
+    EXPONENT_TOLERANCE, FIT_FLOOR, ISOSTATIC, JACKKNIFE_SEEDS, Onset, Scaling, excess, fitted, jammed, key, onsets_of,
+    ratio_against_contacts, scalings, scalings_over, seed, seed_jackknife_of,
+};
 
 /// The reference of every number here.
 const CITATION: &str = "O'Hern, Silbert, Liu & Nagel, Phys. Rev. E 68, 011306 (2003)";
@@ -30,12 +31,6 @@ const FINITE_SIZE: f64 = 0.01;
 /// measured (z − 4 ≈ 0.3 at Δφ ≈ 0.005 in `campaigns/jamming.yaml`); a finite periodic
 /// packing of N' discs jams at its isostatic count 2N' − 1 (z = 4 − 2/N'), a smaller shift.
 const Z_TOLERANCE: f64 = 0.15;
-/// The tolerance of a fitted exponent against the theory's (judged on the largest N only):
-/// Δφ of the smallest fitted point is uncertain by up to 1/`FIT_FLOOR` of itself (ln 1.2 ≈
-/// 0.18), which over a fitted range of ln(0.08/0.004) ≈ 3 moves a slope by up to ≈ 0.06; the
-/// tolerance allows as much again for the corrections to scaling away from Δφ → 0, which the
-/// theory's exponents leave out.
-const EXPONENT_TOLERANCE: f64 = 0.15;
 
 /// Packings quenched in a fixed box that are unstable to shear (G < 0) though jammed.
 const SHEAR_UNSTABLE: &str = "Dagois-Bohy, Tighe, Simon, Henkes & van Hecke, Phys. Rev. Lett. 109, 095703 (2012)";

@@ -2,8 +2,8 @@
 //! theory) or their stiffnesses spread (E against its Voigt and Reuss bounds), each network
 //! measured in both directions.
 
+use crate::measure::mean_spread;
 use crate::report::figure::FigureKind;
-use crate::report::solids::mean_spread;
 use std::collections::{BTreeMap, BTreeSet};
 
 use super::finding::{

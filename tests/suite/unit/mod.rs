@@ -3,7 +3,6 @@
 //! (`src/spec/grid.rs` → `spec_grid`, `src/report/findings/mod.rs` → `report_findings`).
 
 mod alloc;
-mod compare_exponents;
 mod compare_quantity;
 mod draw_chart;
 mod draw_movie;
@@ -34,6 +33,7 @@ mod spec_flat;
 mod spec_grid;
 mod spec_run_spec;
 mod study;
+mod summary;
 mod theory_chain;
 mod theory_collision;
 mod theory_special;

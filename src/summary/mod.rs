@@ -1,9 +1,26 @@
 //! The campaign summary: power-law fits y ∝ x^p of every quantity a scene sweeps, computed once
 //! from the records and handed to both `summary.csv` (`table`) and the report.
 
+pub mod jamming;
+
 use crate::measure::{PowerLawFit, power_law_fit};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
+
+/// The exponent predicted for a quantity fitted against `against` with springs s ∝ δ^β: the
+/// stiffness ds/dδ ∝ δ^(β−1) makes a chain's stiffness ∝ |ΔW|^(β−1), a lattice's moduli under
+/// a load F ∝ δ^β scale as F^((β−1)/β), and the solitary wave of a chain without pre-load
+/// travels at V ∝ v0^((β−1)/(β+1)) (Nesterenko); all 0 for linear springs (β = 1). A packing's
+/// scalings near jamming depend on the quantity too ([`jamming::predicted`]). With the formula
+/// in β.
+pub fn predicted(quantity: &str, against: &str, beta: f64) -> Option<(f64, &'static str)> {
+    match against {
+        "v0" => Some(((beta - 1.0) / (beta + 1.0), "(β−1)/(β+1)")),
+        "load_per_node" => Some(((beta - 1.0) / beta, "(β−1)/β")),
+        "wall_displacement" => Some((beta - 1.0, "β−1")),
+        _ => jamming::predicted(quantity, against, beta),
+    }
+}
 
 /// A scaling law the summary fits, y ∝ x^p, over the runs of one scene that differ only in
 /// the grid paths `paths`.
@@ -104,7 +121,8 @@ pub struct ScalingFit {
     pub law: &'static str,
     /// The measured quantity (a results column).
     pub quantity: &'static str,
-    /// What it is plotted against (`v0`, `load_per_node`, `wall_displacement`).
+    /// What it is plotted against (`v0`, `load_per_node`, `wall_displacement`; a packing's
+    /// `fraction_excess` Δφ or `coordination_excess` z − 4, [`jamming::fits`]).
     pub against: &'static str,
     /// (x, y) of its ok runs, sorted by x.
     pub points: Vec<(f64, f64)>,
