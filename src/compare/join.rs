@@ -319,6 +319,18 @@ impl SceneRows<'_> {
         }
     }
 
+    /// Every seed of row `r`'s group (the rows that differ from it only by their seed) compares
+    /// like with like ([`SceneRows::comparable`]), or the scene has no packings. Where some
+    /// packings of a group did not jam, those that did are a selected share, not a sample of
+    /// the seeds: a packing quenched at φ jams only where its own φ_J lies below φ, so their
+    /// φ_J, pressure and moduli are biased by the cut, on each side by its own (the item
+    /// "Jamming" leaves such fractions out for the same reason).
+    pub(super) fn every_seed_comparable(&self, r: usize) -> bool {
+        let key = self.replicate_key(r);
+        self.column("packing_state_a").is_none()
+            || self.rows.iter().filter(|&&o| self.replicate_key(o) == key).all(|&o| self.comparable(o))
+    }
+
     /// The scene varies the seed on both sides: each row's runs are one sample of many.
     pub(super) fn seeded(&self) -> bool {
         self.keys.iter().any(|k| k == "seed")

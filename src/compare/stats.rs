@@ -92,12 +92,16 @@ struct Verdict {
 impl Verdict {
     /// A result of a scene that varies the seed on both sides is judged group by group (rows
     /// that differ only by their seed) on the seeds' means, against their spread
-    /// ([`seed_verdict`]); every other row on its own ([`differs`]).
+    /// ([`seed_verdict`]), where every seed of the group compares like with like
+    /// ([`SceneRows::every_seed_comparable`]); every other row on its own ([`differs`]).
     fn of(rows: &SceneRows, alike: &[usize], name: &str, class: Class) -> Verdict {
         let mut verdict = Verdict { differs: false, noise: NOISE, seeded: false };
         let mut single = Vec::new();
         for group in replicates(rows, alike) {
             let seeded = class == Class::Result && rows.seeded();
+            if seeded && !rows.every_seed_comparable(group[0]) {
+                continue;
+            }
             match seeded.then(|| seed_verdict(rows, &group, name)).flatten() {
                 Some((differs, noise)) => {
                     verdict.differs |= differs;

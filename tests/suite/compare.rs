@@ -585,6 +585,49 @@ fn pressures_are_held_to_the_jamming_theory(reports: &Path, report: &str) {
     assert!(verdict.contains("within 0.15"), "{verdict}");
 }
 
+/// Packings of 32 discs of contact law `law` at three fractions across jamming, six seeds each:
+/// at the lowest only some seeds jam.
+fn straddling_packings(name: &str, law: &str) -> String {
+    format!(
+        "version: 1\nname: {name}\nscenes:\n  - name: pk\n    kind: packing\n    packing: {{n: 32}}\n    \
+         material: {{law: {law}}}\n    grid:\n      packing.fraction: [0.835, 0.845, 0.86]\n      seed: [1, 2, 3, 4, 5, 6]\n"
+    )
+}
+
+/// A group of seeds is judged only where every seed jammed on both sides: where some did not,
+/// the jammed ones are those whose own φ_J lies below the fraction, a share selected on each
+/// side by its own law. Recomputed from compare.parquet: `own_jamming_fraction` is said to
+/// differ exactly where a complete group's seed means part by more than 2 standard errors of
+/// their difference. The claim flips here: a group where only some seeds jammed parts by more
+/// than that (premise), and it had made φ_J "differ beyond noise".
+#[test]
+fn groups_of_packings_where_some_seeds_did_not_jam_are_not_judged() {
+    let dir = crate::common::scratch();
+    let (_, report) = linear_against_hertz(dir.path(), ("lin", "hz"), straddling_packings);
+    let joined = read(&dir.path().join("compare-lin-vs-hz").join("compare.parquet"));
+    let (state_a, state_b) = (texts(&joined, "packing_state_a"), texts(&joined, "packing_state_b"));
+    let fraction = floats(&joined, "packing.fraction");
+    let (own_a, own_b) = (floats(&joined, "own_jamming_fraction_a"), floats(&joined, "own_jamming_fraction_b"));
+    // Per fraction: whether every seed jammed on both sides, and whether the jammed seeds'
+    // means part by more than 2 standard errors of their difference.
+    let parts = |phi: f64| -> (bool, bool) {
+        let rows: Vec<usize> = (0..joined.height()).filter(|&r| fraction[r] == Some(phi)).collect();
+        let jammed: Vec<usize> =
+            rows.iter().copied().filter(|&r| state_a[r] == "jammed" && state_b[r] == "jammed").collect();
+        let side = |own: &[Option<f64>]| mean_and_variance(&jammed.iter().map(|&r| own[r].unwrap()).collect::<Vec<_>>());
+        let parted = jammed.len() >= 2 && {
+            let ((ma, va), (mb, vb)) = (side(&own_a), side(&own_b));
+            (mb - ma).abs() > 2.0 * (va + vb).sqrt()
+        };
+        (jammed.len() == rows.len(), parted)
+    };
+    let groups: Vec<(bool, bool)> = [0.835, 0.845, 0.86].map(parts).to_vec();
+    assert!(groups.iter().any(|&(complete, parted)| !complete && parted), "the premise: {groups:?}");
+    let differs = groups.iter().any(|&(complete, parted)| complete && parted);
+    let differ = section(&report, "### Measured quantities that differ beyond noise");
+    assert_eq!(differ.contains("| pk | `own_jamming_fraction` |"), differs, "{groups:?}: {differ}");
+}
+
 /// `--out` never overwrites or deletes what the user made: a folder holding other files, the
 /// folder that holds the campaigns and a folder inside a campaign's report folder are refused,
 /// naming the flag; a comparison's own folder may be written again, and only the files it wrote
