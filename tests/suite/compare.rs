@@ -614,7 +614,8 @@ fn groups_of_packings_where_some_seeds_did_not_jam_are_not_judged() {
         let rows: Vec<usize> = (0..joined.height()).filter(|&r| fraction[r] == Some(phi)).collect();
         let jammed: Vec<usize> =
             rows.iter().copied().filter(|&r| state_a[r] == "jammed" && state_b[r] == "jammed").collect();
-        let side = |own: &[Option<f64>]| mean_and_variance(&jammed.iter().map(|&r| own[r].unwrap()).collect::<Vec<_>>());
+        let side =
+            |own: &[Option<f64>]| mean_and_variance(&jammed.iter().map(|&r| own[r].unwrap()).collect::<Vec<_>>());
         let parted = jammed.len() >= 2 && {
             let ((ma, va), (mb, vb)) = (side(&own_a), side(&own_b));
             (mb - ma).abs() > 2.0 * (va + vb).sqrt()
