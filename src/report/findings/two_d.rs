@@ -10,7 +10,7 @@ use super::finding::{
     Answer, Evidence, Table, Verdict, cell, noise, regular, rel, relative, sig, size_on_coursework_supports,
 };
 use super::types::square_diagonal_stiffening;
-use crate::measure::convergence_order;
+use crate::measure::{anisotropic_moduli, convergence_order};
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, group_label, representative};
 use crate::report::kinds::contact_time_words;
@@ -175,34 +175,25 @@ pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
             .to_string(),
     ];
     for r in ratios.values() {
-        let l = r.spec.lattice()?;
-        sentences.push(format!(
-            "With k = {} N/m and k_d/k = {} the continuum has E = (C11 − C12²/C11)/d = {} Pa, ν = k_d/(k + k_d) \
-             = {} and E(45°)/E(0°) = {}; MD measures ν = {} on {} × {} ({} supports, scene {}).",
-            sig(r.spec.k),
-            sig(l.k_diag / r.spec.k),
-            cell(r.metrics.lattice.youngs_modulus_theory),
-            cell(r.metrics.lattice.poisson_ratio_theory),
-            cell(square_diagonal_stiffening(l)),
-            cell(r.metrics.lattice.poisson_ratio),
-            l.nx,
-            l.ny,
-            l.supports.name(),
-            r.spec.scene
-        ));
+        sentences.push(ratio_words(r)?);
     }
     let chosen = first.spec.lattice()?.k_diag / first.spec.k;
     let isotropic = (2.0 * chosen - 1.0).abs() < 1e-9;
-    sentences.push(choice_words(chosen, isotropic));
+    let several: Vec<String> =
+        ratios.values().filter_map(|r| Some(number(r.spec.lattice()?.k_diag / r.spec.k))).collect();
+    sentences.push(if several.len() > 1 { several_ratios_words(&several) } else { choice_words(chosen, isotropic) });
     Some(Answer {
         title: "The diagonal springs",
         question: "Choose k_diag so the diagonal chain has the same Young's modulus as the axial one: what is \
                    k_diag/k? Choose one and argue for it.",
-        short: format!(
-            "k_d/k = 1/√2 ≈ 0.7071 for equal E; {} chosen{}",
-            number(chosen),
-            if isotropic { " (isotropic, ν = 1/3)" } else { " (anisotropic)" }
-        ),
+        short: match several.len() {
+            1 => format!(
+                "k_d/k = 1/√2 ≈ 0.7071 for equal E; {} chosen{}",
+                number(chosen),
+                if isotropic { " (isotropic, ν = 1/3)" } else { " (anisotropic)" }
+            ),
+            _ => format!("k_d/k = 1/√2 ≈ 0.7071 for equal E; {} run", listed(&several, "and")),
+        },
         sentences,
         reference: "The continuum constants C11 = k + k_d, C12 = C44 = k_d (per unit depth).".into(),
         see_also: None,
@@ -210,6 +201,48 @@ pub(super) fn diagonal_stiffness(e: &Evidence) -> Option<Answer> {
         figures: Vec::new(),
         table: None,
     })
+}
+
+/// One ratio k_d/k in words: the continuum's E and ν free to contract, whatever supports the
+/// MD block has (C11 = k + k_d, C12 = k_d per unit depth: E = (C11 − C12²/C11)/d and ν = C12/C11),
+/// and the ν its block measures; a periodic strip cannot contract sideways, so its ν is 0 by
+/// construction and measures nothing.
+fn ratio_words(r: &RunRecord) -> Option<String> {
+    let l = r.spec.lattice()?;
+    let (k_rising, k_falling) = l.diagonal_stiffness();
+    let free = anisotropic_moduli(l.k_x, l.k_y, k_rising, k_falling, l.depth);
+    let measured = if l.supports == Supports::PeriodicX {
+        format!("MD's block here is a periodic strip (scene {}), which cannot contract sideways: no ν", r.spec.scene)
+    } else {
+        format!(
+            "MD measures ν = {} on {} × {} ({} supports, scene {})",
+            cell(r.metrics.lattice.poisson_ratio),
+            l.nx,
+            l.ny,
+            l.supports.name(),
+            r.spec.scene
+        )
+    };
+    Some(format!(
+        "With k = {} N/m and k_d/k = {} the continuum has E = (C11 − C12²/C11)/d = {} Pa, ν = k_d/(k + k_d) = {} \
+         and E(45°)/E(0°) = {}; {measured}.",
+        sig(r.spec.k),
+        sig(l.k_diag / r.spec.k),
+        sig(free.youngs_modulus_y),
+        sig(free.poisson_ratio_yx),
+        cell(square_diagonal_stiffening(l)),
+    ))
+}
+
+/// The moduli runs' several ratios k_d/k (`ratios`, in words): only k_d/k = 1/2 is isotropic.
+fn several_ratios_words(ratios: &[String]) -> String {
+    let which =
+        if ratios.iter().any(|r| r == "0.5") { "of these only 1/2" } else { "none of them is 1/2, the one that" };
+    format!(
+        "This campaign's moduli runs use k_d/k = {}; {which} makes the square lattice with both diagonals \
+         isotropic (Zener ratio 2C44/(C11 − C12) = 2k_d/k = 1, ν = 1/3): at the others E depends on the direction.",
+        listed(ratios, "and")
+    )
 }
 
 /// Why the moduli runs' k_d/k: with both diagonals C11 = k + k_d and C12 = C44 = k_d, so the
@@ -700,7 +733,7 @@ fn moduli(e: &Evidence, case: LoadCase) -> Option<Moduli> {
 
 /// (a) and (b): Young's modulus and Poisson's ratio, and the velocity boundary condition under tension.
 pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
-    let Moduli { mut sentences, table, checks, scenes } = moduli(e, LoadCase::Tensile)?;
+    let Moduli { mut sentences, table, mut checks, scenes } = moduli(e, LoadCase::Tensile)?;
     let both = e.ok(|r| regular(r).is_some_and(|l| l.load_case == LoadCase::Tensile && l.diagonals == Diagonals::Both));
     // The largest block, a free one before a periodic strip, on the coursework's supports first.
     let largest = both.iter().max_by_key(|r| {
@@ -731,6 +764,7 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
     }
     let block = Block::of(e);
     sentences.extend(block.as_ref().and_then(Block::extrapolation_sentence));
+    checks.extend(block.as_ref().and_then(Block::continuum_check));
     sentences.extend(control_sentences(e, LoadCase::Tensile));
     Some(Answer {
         title: "Young's modulus and Poisson's ratio",
@@ -741,7 +775,9 @@ pub(super) fn youngs_and_poisson(e: &Evidence) -> Option<Answer> {
         sentences,
         reference: format!(
             "The static truss answer of the same network (tolerance {STATIC_TOLERANCE:e}: the relaxation's stopping \
-             rule) and the continuum constants (finite size explains the rest)."
+             rule) and the continuum constants (finite size explains the rest: E and ν extrapolated over blocks of \
+             one shape, where two sizes or more give them, within {} of their uncertainties).",
+            super::block::CONTINUUM_UNCERTAINTIES
         ),
         see_also: None,
         verdict: Verdict::of(checks),
