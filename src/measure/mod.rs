@@ -6,9 +6,9 @@ pub use self::dispersion::{ModePeak, branch_stiffness, free_line_modes};
 pub use self::energy::{decay_rate, energy_error};
 pub use self::moduli::{
     ContinuumModuli, ElasticConstants, IsotropicConstants, LatticeShape, TensileModuli, anisotropic_moduli,
-    constrained_modulus_y, extension_error_allowed, homogeneity, lattice_constants, modulus_error_bound,
-    network_constants, plane_wave_speeds, power_law_poisson_ratio, row_extension, row_extension_weights, shear_modulus,
-    tensile_moduli, youngs_modulus_along,
+    constrained_modulus_y, constrained_shear_modulus, extension_error_allowed, homogeneity, lattice_constants,
+    modulus_error_bound, network_constants, plane_wave_speeds, power_law_poisson_ratio, row_extension,
+    row_extension_weights, shear_modulus, tensile_moduli, youngs_modulus_along,
 };
 pub use self::packing::{ContactForces, DiscFrame, Discs};
 pub use self::wave::{ARRIVAL_CRITERIA, arrival_time};

@@ -171,6 +171,22 @@ pub fn constrained_modulus_y(k_x: f64, k_y: f64, k_rising: f64, k_falling: f64, 
     (c.c22 - coupling) / depth
 }
 
+/// The constrained shear modulus (Pa) that a periodic strip (`periodic-x`, bottom clamped) measures
+/// under a shear load on its top row: its period holds ε_xx = 0 and its free top σ_yy = 0, so
+/// ε_yy = −C26 γ/C22 and τ = (C66 − C26²/C22) γ, over the depth d (C66 = (k_r + k_f)/2; one
+/// diagonal family couples shear and stretch through C26 = (k_r − k_f)/2, where 1/S66 would
+/// let the strip stretch along x too). `None` without diagonals: no shear stiffness.
+///
+/// ```
+/// use mdsolids::measure::constrained_shear_modulus;
+/// // One family (k_r = 1, k_f = 0) on k = 2: C66 = 0.5, C26 = 0.5, C22 = 2.5: 0.5 − 0.1.
+/// assert!((constrained_shear_modulus(2.0, 2.0, 1.0, 0.0, 1.0).unwrap() - 0.4).abs() < 1e-12);
+/// ```
+pub fn constrained_shear_modulus(k_x: f64, k_y: f64, k_rising: f64, k_falling: f64, depth: f64) -> Option<f64> {
+    let c = lattice_constants(k_x, k_y, k_rising, k_falling);
+    Some((c.c66 - c.c16 * c.c16 / c.c22) / depth).filter(|g| *g > 0.0)
+}
+
 /// Moduli under uniaxial stress (the lattice free to shear, as on coursework supports) from
 /// the compliance S = C⁻¹ of [`lattice_constants`], divided by the depth d (m). Without
 /// diagonals C is diagonal in the normal block and singular in shear: E_x = k_x/d,

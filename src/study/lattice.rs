@@ -12,9 +12,9 @@ use super::columns::{Block, Column, Row, Slot};
 use super::common::{Stopped, relaxation, scene, sound_speed};
 use crate::fem::{Answers, Shared, Solver, StaticAnswer, StaticSolution, Truss};
 use crate::measure::{
-    LatticeShape, anisotropic_moduli, constrained_modulus_y, extension_error_allowed, homogeneity, lattice_constants,
-    modulus_error_bound, network_constants, plane_wave_speeds, power_law_poisson_ratio, row_extension,
-    row_extension_weights, shear_modulus, tensile_moduli,
+    LatticeShape, anisotropic_moduli, constrained_modulus_y, constrained_shear_modulus, extension_error_allowed,
+    homogeneity, lattice_constants, modulus_error_bound, network_constants, plane_wave_speeds, power_law_poisson_ratio,
+    row_extension, row_extension_weights, shear_modulus, tensile_moduli,
 };
 use crate::model::{Axes, Bonds, Edges, ForceLaw, LatticeType, LawSpec, LawVisitor, Layout, Particles, SquareLattice};
 use crate::sim::{Drive, Load, Network, Outcome, ProbeTrace, Relaxation, Scene, SharedPreconditioner, Trace};
@@ -857,14 +857,16 @@ fn continuum(spec: &RunSpec, l: &LatticeSpec, metrics: &mut LatticeMetrics) {
     let continuum = anisotropic_moduli(l.k_x, l.k_y, k_rising, k_falling, l.depth);
     // A periodic strip cannot contract sideways: in tension it measures the constrained
     // modulus (C22 = (k + k_d)/d with both diagonals), with ν = 0.
+    // In shear it cannot stretch along x either: C66 − C26²/C22, not the free 1/S66.
     if l.supports == Supports::PeriodicX {
         metrics.youngs_modulus_theory = Some(constrained_modulus_y(l.k_x, l.k_y, k_rising, k_falling, l.depth));
         metrics.poisson_ratio_theory = Some(0.0);
+        metrics.shear_modulus_theory = constrained_shear_modulus(l.k_x, l.k_y, k_rising, k_falling, l.depth);
     } else {
         metrics.youngs_modulus_theory = Some(continuum.youngs_modulus_y);
         metrics.poisson_ratio_theory = Some(continuum.poisson_ratio_yx);
+        metrics.shear_modulus_theory = continuum.shear_modulus;
     }
-    metrics.shear_modulus_theory = continuum.shear_modulus;
 }
 
 /// The linear sound speed along an impulse lattice's wave (m/s): kicked or stepped mostly
