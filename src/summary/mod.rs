@@ -53,7 +53,8 @@ fn wall_displacement(r: &RunRecord) -> Option<f64> {
 }
 
 const SPEED: &[&str] = &["v0", "impulse.velocity"];
-const LOAD: &[&str] = &["load.per_node"];
+/// The grid path of the load per node: a load sweep's runs differ in it alone.
+pub const LOAD: &[&str] = &["load.per_node"];
 const WALLS: &[&str] = &["wall_distance"];
 
 /// Every scaling law the summary looks for.

@@ -1,7 +1,9 @@
 //! The report's sentences are claims computed from the data: each test builds small campaigns
 //! on both sides of a claim and sees the sentence flip with the data.
 
-use crate::common::{cut_steel_block, execute_all, line_with, mdsolids_ok, number_after, pair_campaign, report_of};
+use crate::common::{
+    cut_steel_block, execute_all, line_with, mdsolids_ok, number_after, pair_campaign, report_of, value_after,
+};
 
 /// A 4 × 4 loaded lattice, m = k = 1, with `damping` (a YAML flow map) and a `grid` line.
 fn loaded_lattice(damping: &str, grid: &str) -> String {
@@ -483,23 +485,6 @@ fn the_kicked_column_keeps_its_front_only_while_the_strain_is_small() {
     let large = report_of("kick", &kicked_block(0.1));
     let without = share(&large, "Without diagonals the kicked column");
     assert!(without < 99.0, "{without}");
-}
-
-/// The value and uncertainty the report writes after `marker`, as `(a ± b)eP` or `a ± b`.
-fn value_after(text: &str, marker: &str) -> (f64, f64) {
-    let rest = &text[text.find(marker).unwrap_or_else(|| panic!("no {marker:?} in {text}")) + marker.len()..];
-    let (inner, power) = match rest.strip_prefix('(') {
-        Some(open) => {
-            let (inner, tail) = open.split_once(")e").unwrap_or_else(|| panic!("no power after {marker:?}: {rest}"));
-            let digits: String = tail.chars().take_while(|c| c.is_ascii_digit() || *c == '-').collect();
-            (inner, digits.parse::<i32>().unwrap())
-        }
-        None => (rest, 0),
-    };
-    let (value, uncertainty) = inner.split_once(" ± ").unwrap_or_else(|| panic!("no ± after {marker:?}: {rest}"));
-    let uncertainty: String = uncertainty.chars().take_while(|c| c.is_ascii_digit() || *c == '.').collect();
-    let scale = 10f64.powi(power);
-    (value.parse::<f64>().unwrap() * scale, uncertainty.parse::<f64>().unwrap() * scale)
 }
 
 /// A steel-like block of springs `k` (N/m), k_d = k/2, m = 0.785 kg, a = 0.1 m, d = 0.01 m:

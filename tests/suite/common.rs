@@ -3,6 +3,7 @@
 use mdsolids::plan::{self, Estimates};
 use mdsolids::runner::{RunRecord, execute_within};
 use mdsolids::spec::{Budget, RunSpec};
+use polars::prelude::{DataFrame, DataType};
 
 /// The estimates this process's tests plan and run with (each network's modes, each
 /// integrator's stability limits, the static solve's symbolic analyses), as the runs of one
@@ -154,4 +155,26 @@ pub fn log_slope(points: &[(f64, f64)]) -> f64 {
     let (sx, sy) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x, b + y));
     let (sxx, sxy) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x * x, b + x * y));
     (n * sxy - sx * sy) / (n * sxx - sx * sx)
+}
+
+/// The value and uncertainty the report writes after `marker`, as `(a ± b)eP` or `a ± b`.
+pub fn value_after(text: &str, marker: &str) -> (f64, f64) {
+    let rest = &text[text.find(marker).unwrap_or_else(|| panic!("no {marker:?} in {text}")) + marker.len()..];
+    let (inner, power) = match rest.strip_prefix('(') {
+        Some(open) => {
+            let (inner, tail) = open.split_once(")e").unwrap_or_else(|| panic!("no power after {marker:?}: {rest}"));
+            let digits: String = tail.chars().take_while(|c| c.is_ascii_digit() || *c == '-').collect();
+            (inner, digits.parse::<i32>().unwrap())
+        }
+        None => (rest, 0),
+    };
+    let (value, uncertainty) = inner.split_once(" ± ").unwrap_or_else(|| panic!("no ± after {marker:?}: {rest}"));
+    let uncertainty: String = uncertainty.chars().take_while(|c| c.is_ascii_digit() || *c == '.').collect();
+    let scale = 10f64.powi(power);
+    (value.parse::<f64>().unwrap() * scale, uncertainty.parse::<f64>().unwrap() * scale)
+}
+
+/// Column `name` of `frame` as numbers.
+pub fn numbers(frame: &DataFrame, name: &str) -> Vec<Option<f64>> {
+    frame.column(name).unwrap().cast(&DataType::Float64).unwrap().f64().unwrap().iter().collect()
 }

@@ -12,7 +12,7 @@ use mdsolids::study::packing::{own_jamming_fraction, stiffness_moduli};
 use mdsolids::theory::{gamma_for_restitution, linear_contact_duration, linear_restitution};
 use polars::prelude::*;
 
-use crate::common::{line_with, log_slope, mdsolids_ok, number_after, runs};
+use crate::common::{line_with, log_slope, mdsolids_ok, number_after, numbers, runs};
 
 /// The pairs within r_i + r_j + skin by comparing every pair (the reference the cell list must
 /// reproduce), each as (i, j, shift x bits, shift y bits), sorted.
@@ -277,11 +277,6 @@ fn a_cell_whose_contacts_all_open_at_once_unjams_at_its_closed_form_fraction() {
     }
 }
 
-/// Column `name` of `frame` as numbers.
-fn numbers(frame: &DataFrame, name: &str) -> Vec<Option<f64>> {
-    frame.column(name).unwrap().cast(&DataType::Float64).unwrap().f64().unwrap().iter().collect()
-}
-
 #[test]
 fn relaxed_packings_agree_on_their_moduli_and_are_recomputed_from_their_files() {
     let dir = crate::common::scratch();
@@ -447,7 +442,7 @@ fn campaign_of(law: &str, more: &str, fractions: &str) -> (DataFrame, String) {
 }
 
 /// Runs the campaign `yaml` (named `jam`) under `dir`: its results table and its folder.
-fn run_jam(dir: &std::path::Path, yaml: &str) -> (DataFrame, std::path::PathBuf) {
+pub(crate) fn run_jam(dir: &std::path::Path, yaml: &str) -> (DataFrame, std::path::PathBuf) {
     let file = dir.join("jam.yaml");
     std::fs::write(&file, yaml).unwrap();
     mdsolids_ok(dir, &["run", file.to_str().unwrap()]);

@@ -19,6 +19,23 @@ fn material(r: &RunRecord) -> Option<Material> {
     Some([r.spec.mass, r.spec.k, l.k_diag, r.spec.spacing, l.depth].map(f64::to_bits))
 }
 
+/// A set-up whose tensile blocks are extrapolated together: on other supports than the
+/// coursework's, the material, and the block's shape.
+type Setup = (bool, Material, (usize, usize));
+
+/// A block's shape N_x : N_y in lowest terms. The finite-size share b/N of a modulus depends on
+/// the shape (a 20 × 6 block has the boundary layer of a 6-row block under its loads), so
+/// v(N) = v∞ + b/N holds, with one b, only over blocks of one shape.
+fn shape(nx: usize, ny: usize) -> (usize, usize) {
+    let gcd = (1..=nx.min(ny)).rev().find(|&g| nx.is_multiple_of(g) && ny.is_multiple_of(g)).unwrap_or(1);
+    (nx / gcd, ny / gcd)
+}
+
+/// The extrapolated E and ν agree with the continuum when each lies within this many of its own
+/// uncertainties of the continuum's value: the uncertainty estimates the neglected next order of
+/// the finite-size share, not a standard deviation, so a few of it are allowed, not tens.
+pub(super) const CONTINUUM_UNCERTAINTIES: f64 = 3.0;
+
 /// A modulus measured on blocks of several sizes N, extrapolated to N → ∞.
 pub(super) struct Extrapolated {
     /// The extrapolated value.
@@ -73,13 +90,23 @@ impl Extrapolated {
     pub(super) fn words(&self) -> String {
         plus_minus(self.value, self.uncertainty)
     }
+
+    /// |v∞ − continuum| in units of the uncertainty (infinite when the uncertainty is 0 and the
+    /// values differ), if the continuum is known.
+    fn distance(&self) -> Option<f64> {
+        let off = (self.value - self.continuum?).abs();
+        Some(if off == 0.0 { 0.0 } else { off / self.uncertainty })
+    }
 }
 
 /// The block's E and ν from the tensile runs of one set-up (supports and material), G from its
 /// periodic strip, and its sound speed.
 pub(super) struct Block<'a> {
-    /// The tensile runs extrapolated, one per size, by rising size.
+    /// The tensile runs extrapolated, one per size, by rising size, all of one shape.
     pub(super) tensile: Vec<&'a RunRecord>,
+    /// The tensile blocks of the same supports and material but other shapes, left out of the
+    /// extrapolation.
+    left_out: Vec<&'a RunRecord>,
     pub(super) youngs: Extrapolated,
     pub(super) poisson: Extrapolated,
     /// The periodic strip (the largest one), whose G MD and the static answer both measure.
@@ -101,15 +128,22 @@ impl<'a> Block<'a> {
                 })
             })
         };
-        let mut setups: BTreeMap<(bool, Material), BTreeMap<usize, &RunRecord>> = BTreeMap::new();
+        let mut setups: BTreeMap<Setup, BTreeMap<usize, &RunRecord>> = BTreeMap::new();
         for r in loaded(LoadCase::Tensile) {
             let Some(l) = r.spec.lattice().filter(|l| l.supports != Supports::PeriodicX) else { continue };
-            let key = (l.supports != Supports::Coursework, material(r)?);
+            let key = (l.supports != Supports::Coursework, material(r)?, shape(l.nx, l.ny));
             setups.entry(key).or_default().entry(l.nx).or_insert(r);
         }
-        let ((_, chosen), sizes) =
-            setups.into_iter().min_by_key(|((other, _), sizes)| (*other, usize::MAX - sizes.len()))?;
-        let tensile: Vec<&RunRecord> = sizes.into_values().collect();
+        // The coursework's supports first, then the shape with the most sizes, squares on a tie.
+        let (&(other, chosen, family), _) = setups
+            .iter()
+            .min_by_key(|((other, _, family), sizes)| (*other, usize::MAX - sizes.len(), *family != (1, 1)))?;
+        let left_out: Vec<&RunRecord> = setups
+            .iter()
+            .filter(|((o, m, f), _)| (*o, *m) == (other, chosen) && *f != family)
+            .flat_map(|(_, sizes)| sizes.values().copied())
+            .collect();
+        let tensile: Vec<&RunRecord> = setups.remove(&(other, chosen, family))?.into_values().collect();
         let youngs = Extrapolated::of(
             &tensile,
             |r| r.metrics.lattice.youngs_modulus,
@@ -139,7 +173,7 @@ impl<'a> Block<'a> {
             .into_iter()
             .filter(|r| same_medium(r))
             .max_by(|a, b| a.metrics.wave_distance.unwrap_or(0.0).total_cmp(&b.metrics.wave_distance.unwrap_or(0.0)));
-        Some(Block { tensile, youngs, poisson, shear, wave })
+        Some(Block { tensile, left_out, youngs, poisson, shear, wave })
     }
 
     /// The run that fixes the block's material (its largest tensile block).
@@ -163,23 +197,44 @@ impl<'a> Block<'a> {
         (c, c * share)
     }
 
-    /// The sizes extrapolated from, in words (`5 × 5 … 40 × 40`).
-    pub(super) fn sizes(&self) -> String {
+    /// The sizes extrapolated from, in words (`6 × 6 and 20 × 20`, `5 × 5 … 40 × 40`).
+    fn family(&self) -> String {
         let size = super::finding::lattice_size;
         match self.tensile.as_slice() {
-            [one] => size(one),
-            [first, .., last] => format!("{} … {}", size(first), size(last)),
-            [] => String::new(),
+            [first, _, _, ..] => format!("{} … {}", size(first), size(self.first())),
+            all => crate::report::words::listed(&all.iter().map(|r| size(r)).collect::<Vec<_>>(), "and"),
         }
+    }
+
+    /// The blocks of other shapes left out, in words, where the campaign has them.
+    fn left_out(&self) -> String {
+        if self.left_out.is_empty() {
+            return String::new();
+        }
+        let others: Vec<String> = self.left_out.iter().map(|r| super::finding::lattice_size(r)).collect();
+        let (nx, ny) = self.first().spec.lattice().map_or((0, 0), |l| shape(l.nx, l.ny));
+        format!(
+            " (blocks of shape N_x : N_y = {nx} : {ny} only; {} left out: another shape has another finite-size \
+             share)",
+            crate::report::words::listed(&others, "and")
+        )
     }
 
     /// How the values were found: extrapolated over two sizes or more, else measured on one
     /// block, whose finite-size share is then not estimated.
     fn basis(&self) -> String {
         if self.tensile.len() < 2 {
-            format!("measured on {} alone (one size: its finite-size share, ∝ 1/N, is not estimated)", self.sizes())
+            format!(
+                "measured on {} alone (one size: its finite-size share, ∝ 1/N, is not estimated){}",
+                self.family(),
+                self.left_out()
+            )
         } else {
-            format!("extrapolated to an infinite block (the finite-size share falls as 1/N) from {}", self.sizes())
+            format!(
+                "extrapolated to an infinite block (the finite-size share falls as 1/N) from {}{}",
+                self.family(),
+                self.left_out()
+            )
         }
     }
 
@@ -191,7 +246,7 @@ impl<'a> Block<'a> {
             self.poisson.words(),
             self.supports(),
             if self.tensile.len() < 2 { "one size:" } else { "N → ∞ from" },
-            self.sizes(),
+            self.family(),
             self.youngs.continuum.map_or_else(|| "–".into(), sig),
             self.poisson.continuum.map_or_else(|| "–".into(), sig),
         )
@@ -238,8 +293,8 @@ impl<'a> Block<'a> {
         let shear = self.shear_short().map_or_else(String::new, |g| format!("; {g}"));
         format!(
             "The 2D block (m = {} kg per node, k = {} N/m, k_d/k = {}, a = {} m, d = {} m: ρ = {} kg/m³) has \
-             E = {} Pa and ν = {}, {} on the {} ({} Pa and {} on the largest), against the continuum's {} Pa and \
-             {}{shear}.",
+             E = {} Pa and ν = {}, {} on the {} ({} Pa and {} on {}), against the continuum's {} Pa and \
+             {}{}{shear}.",
             sig(s.mass),
             sig(s.k),
             sig(s.lattice().map_or(f64::NAN, |l| l.k_diag) / s.k),
@@ -252,9 +307,34 @@ impl<'a> Block<'a> {
             self.supports(),
             sig(self.youngs.largest),
             sig(self.poisson.largest),
+            super::finding::lattice_size(self.first()),
             self.youngs.continuum.map_or_else(|| "–".into(), sig),
             self.poisson.continuum.map_or_else(|| "–".into(), sig),
+            self.disagreement().unwrap_or_default(),
         )
+    }
+
+    /// Whether the extrapolated E and ν each lie within [`CONTINUUM_UNCERTAINTIES`] of their
+    /// own uncertainties of the continuum's: only with two sizes or more (one size leaves its
+    /// finite-size share unestimated) and where the continuum is known.
+    pub(super) fn continuum_check(&self) -> Option<bool> {
+        let distances = [self.youngs.distance()?, self.poisson.distance()?];
+        (self.tensile.len() >= 2).then(|| distances.iter().all(|&x| x <= CONTINUUM_UNCERTAINTIES))
+    }
+
+    /// How far the extrapolated E and ν lie from the continuum, in their own uncertainties, when
+    /// more than [`CONTINUUM_UNCERTAINTIES`]: the finite-size share is then not what is left.
+    fn disagreement(&self) -> Option<String> {
+        if self.continuum_check()? {
+            return None;
+        }
+        let (e, nu) = (self.youngs.distance()?, self.poisson.distance()?);
+        Some(format!(
+            ": E lies {} and ν {} of their uncertainties from them, more than {CONTINUUM_UNCERTAINTIES}, so the \
+             blocks do not converge to the continuum as 1/N",
+            sig(e),
+            sig(nu)
+        ))
     }
 
     /// The abstract's sentence on the block's sound speed.
@@ -317,15 +397,17 @@ impl Block<'_> {
                 "A finite block departs from the continuum by a share ∝ 1/N (to first order): its N columns carry the \
              load over a width of only (N − 1) a (without diagonals E = N/(N − 1) k/d exactly), and the loads and \
              supports disturb a boundary layer; Richardson's v∞ = (N₂ v₂ − N₁ v₁)/(N₂ − N₁) over \
-             the two largest of {} on the {} gives E = {} Pa and ν = {} (the uncertainty: the change when the next \
+             the two largest of {}{} on the {} gives E = {} Pa and ν = {} (the uncertainty: the change when the next \
              smaller pair of blocks is used, or the whole correction with two sizes), against the continuum's {} Pa \
-             and {}.",
-                self.sizes(),
+             and {}{}.",
+                self.family(),
+                self.left_out(),
                 self.supports(),
                 self.youngs.words(),
                 self.poisson.words(),
                 self.youngs.continuum.map_or_else(|| "–".into(), sig),
                 self.poisson.continuum.map_or_else(|| "–".into(), sig),
+                self.disagreement().unwrap_or_default(),
             )
         })
     }

@@ -5,7 +5,7 @@
 use serde::Serialize;
 
 use super::finding::{
-    Answer, Evidence, Table, Verdict, cell, exponents, fastest_relaxation, noise, regular, relative, sig,
+    Answer, Evidence, Table, Verdict, cell, exponents, fastest_relaxation, noise, regular, sig,
     size_on_coursework_supports,
 };
 use crate::model::LawSpec;
@@ -202,12 +202,8 @@ fn time_step(e: &Evidence) -> Option<Paragraph> {
     if linear.is_empty() && power.is_empty() {
         return None;
     }
-    let pair_error = linear
-        .iter()
-        .filter(|r| r.spec.kind() == SceneKind::Pair && r.spec.contact)
-        .filter_map(|r| relative(r.metrics.pair.contact_duration, r.metrics.pair.contact_duration_theory))
-        .map(f64::abs)
-        .reduce(f64::max);
+    // Item 2's worst at the rule, every damping target and scheme counted: the summary's number.
+    let pair_error = super::one_d::pair_error_at_rule(e);
     let integrated: Vec<&RunRecord> = linear
         .iter()
         .copied()

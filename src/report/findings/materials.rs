@@ -15,6 +15,7 @@ use crate::measure::{power_law_poisson_ratio, youngs_modulus_along};
 use crate::model::LawSpec;
 use crate::runner::RunRecord;
 use crate::spec::{Diagonals, LoadCase};
+use crate::summary::LOAD;
 
 /// Homogeneity by block size (N_x, N_y).
 type BySize = BTreeMap<(usize, usize), f64>;
@@ -194,11 +195,13 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
     let mut checks = Vec::new();
     for f in &fits {
         let predicted = predicted_exponent(e, f)?;
+        let group = runs.iter().find(|r| r.spec.scene == f.scene && load_group(r) == f.group);
         sentences.push(format!(
-            "{} of scene {}: from {} to {} Pa over loads of {} to {} N per node, ∝ F^{:.3} (R² = {:.4}; predicted \
+            "{} of scene {}{}: from {} to {} Pa over loads of {} to {} N per node, ∝ F^{:.3} (R² = {:.4}; predicted \
              {predicted:.3}).",
             symbol(f.quantity),
             f.scene,
+            group.map_or_else(String::new, |r| load_group_words(r)),
             sig(f.points.first().map_or(0.0, |p| p.1)),
             sig(f.points.last().map_or(0.0, |p| p.1)),
             sig(f.points.first().map_or(0.0, |p| p.0)),
@@ -271,22 +274,41 @@ fn tangent_over_secant(runs: &[&RunRecord]) -> Option<String> {
     (!groups.is_empty()).then(|| format!("Tangent over secant Young's modulus: {}.", groups.join("; ")))
 }
 
-/// ν of each loaded power-law scene over its loads, against the continuum of its springs and
-/// the linear springs' ν on the same block.
+/// The group of runs that differ from `r` only in the load: its scene's other grid values, as
+/// the scaling fits label them (`ScalingFit::group`).
+fn load_group(r: &RunRecord) -> String {
+    r.spec.varied_label(|path| !LOAD.contains(&path))
+}
+
+/// `r`'s load group in words, where its scene varies more than the load: its other grid values
+/// and, pulled, the direction (a tensile-x run is the block turned by 90°, pulled along x).
+fn load_group_words(r: &RunRecord) -> String {
+    let others = r.spec.varied_in_words(|path| !LOAD.contains(&path));
+    let along = r.spec.lattice().filter(|l| l.load_case == LoadCase::Tensile).map(|l| l.rotated);
+    match (others.is_empty(), along) {
+        (true, _) => String::new(),
+        (false, Some(rotated)) => format!(", {others} (pulled along {})", if rotated { "x" } else { "y" }),
+        (false, None) => format!(", {others}"),
+    }
+}
+
+/// ν of each loaded power-law scene over its loads, one load group at a time (a pull along y
+/// and one along x are different ν, not a change with the load), against the continuum of its
+/// springs and the linear springs' ν on the same block.
 fn power_law_poisson(e: &Evidence, runs: &[&RunRecord]) -> Vec<String> {
-    let tensile: Vec<&RunRecord> = runs
-        .iter()
-        .copied()
-        .filter(|r| r.spec.lattice().is_some_and(|l| l.load_case == LoadCase::Tensile))
-        .filter(|r| r.metrics.lattice.poisson_ratio.is_some())
-        .collect();
-    let mut scenes: Vec<&str> = tensile.iter().map(|r| r.spec.scene.as_str()).collect();
-    scenes.dedup();
+    let mut groups: Vec<((&str, String), Vec<&RunRecord>)> = Vec::new();
+    let tensile = runs.iter().copied().filter(|r| r.spec.lattice().is_some_and(|l| l.load_case == LoadCase::Tensile));
+    for r in tensile.filter(|r| r.metrics.lattice.poisson_ratio.is_some()) {
+        let key = (r.spec.scene.as_str(), load_group(r));
+        match groups.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, own)) => own.push(r),
+            None => groups.push((key, vec![r])),
+        }
+    }
     let load = |r: &RunRecord| r.spec.lattice().map_or(0.0, |l| l.load_per_node);
-    scenes
-        .iter()
-        .filter_map(|scene| {
-            let mut own: Vec<&RunRecord> = tensile.iter().copied().filter(|r| r.spec.scene == *scene).collect();
+    groups
+        .into_iter()
+        .filter_map(|(_, mut own)| {
             own.sort_by(|a, b| load(a).total_cmp(&load(b)));
             Some(format!("{}{}", load_independence(&own)?, continuum_poisson(e, own[0]).unwrap_or_default()))
         })
@@ -320,8 +342,9 @@ fn load_independence(own: &[&RunRecord]) -> Option<String> {
         format!("a change of {}, more than the largest strain ({}) explains", sig(high - low), sig(strain))
     };
     Some(format!(
-        "ν of scene {}: {} at {} N and {} at {} N per node, {change}.",
+        "ν of scene {}{}: {} at {} N and {} at {} N per node, {change}.",
         first.spec.scene,
+        load_group_words(first),
         cell(first.metrics.lattice.poisson_ratio),
         sig(first.spec.lattice()?.load_per_node),
         cell(last.metrics.lattice.poisson_ratio),
@@ -539,13 +562,20 @@ fn direction_words(rs: &[&RunRecord], e_ratio: f64) -> String {
     let (Some(&(e_low, low)), Some(&(e_high, high))) = (along.iter().min_by(by_e), along.iter().max_by(by_e)) else {
         return String::new();
     };
+    // Springs s = C δ^β (β ≠ 1) have no stiffness at rest and a load-dependent one under load:
+    // their network has no continuum E to quote, only the linear springs' of the same constants.
+    let (whose, caveat) = if rs.iter().all(|r| r.spec.law.is_linear()) {
+        ("the continuum's E", "")
+    } else {
+        ("the continuum E of linear springs of the same k", "; a power-law network has none independent of the load")
+    };
     if e_high / e_low - 1.0 <= SAME_E {
-        format!(": isotropic (the continuum's E = {} Pa in every direction)", cell(Some(e_low)))
+        format!(": isotropic ({whose} = {} Pa in every direction{caveat})", cell(Some(e_low)))
     } else if (e_ratio - 1.0).abs() <= SAME_E {
-        format!(": E_y = E_x, yet anisotropic: the continuum's E falls to {} Pa at {low:.0}° from x", cell(Some(e_low)))
+        format!(": E_y = E_x, yet anisotropic: {whose} falls to {} Pa at {low:.0}° from x{caveat}", cell(Some(e_low)))
     } else {
         format!(
-            ": the directions differ (the continuum's E from {} Pa at {low:.0}° to {} Pa at {high:.0}° from x)",
+            ": the directions differ ({whose} from {} Pa at {low:.0}° to {} Pa at {high:.0}° from x{caveat})",
             cell(Some(e_low)),
             cell(Some(e_high))
         )
