@@ -5,8 +5,8 @@
 use serde::Serialize;
 
 use super::finding::{
-    Answer, Evidence, Table, Verdict, cell, exponents, fastest_relaxation, noise, regular, sig,
-    size_on_coursework_supports,
+    Answer, EXPONENT_TOLERANCE, Evidence, Table, Verdict, cell, exponents, fastest_relaxation, fit_scene_run, noise,
+    predicted_exponent, regular, sig, size_on_coursework_supports,
 };
 use crate::model::LawSpec;
 use crate::report::figure::FigureKind;
@@ -394,15 +394,6 @@ fn deformation_words(kind: SceneKind, deformation: Deformation) -> String {
     }
 }
 
-/// The exponent springs s ∝ δ^β predict for a fitted quantity against its variable (β from
-/// the fit's scene): the solitary wave's speed ∝ v0^((β−1)/(β+1)) (Nesterenko), moduli
-/// ∝ F^((β−1)/β) and a chain's stiffness ∝ |ΔW|^(β−1), since s′ ∝ δ^(β−1) and F ∝ δ^β.
-/// Hertz (β = 3/2): 1/5, 1/3 and 1/2; linear (β = 1): 0.
-pub(super) fn predicted_exponent(e: &Evidence, fit: &ScalingFit) -> Option<f64> {
-    let beta = fit_scene_run(e, fit)?.spec.law.beta();
-    crate::summary::predicted(fit.quantity, fit.against, beta).map(|(exponent, _)| exponent)
-}
-
 /// A fitted quantity's symbol as the report writes it (E, G, c, F, v0, the walls' Δ, the
 /// chain's stiffness, each tangent one), its column name in words where it has none.
 pub(super) fn symbol(column: &str) -> String {
@@ -421,19 +412,9 @@ pub(super) fn symbol(column: &str) -> String {
     }
 }
 
-/// How close a fitted exponent must come to its prediction: three to four points over two or
-/// three decades fix it to a few hundredths. One tolerance for every scaling law of the report
-/// (the abstract, item 20 and this table say the same).
-pub(super) const EXPONENT_TOLERANCE: f64 = 0.05;
-
 /// The exponents β of the scenes of the non-linear fits, each once.
 fn nonlinear_exponents(e: &Evidence) -> Vec<f64> {
     exponents(e.fits.iter().filter(|f| f.law != "linear").filter_map(|f| fit_scene_run(e, f)))
-}
-
-/// The first run of a fit's scene: its spring law is the fit's.
-fn fit_scene_run<'a>(e: &Evidence<'a>, fit: &ScalingFit) -> Option<&'a RunRecord> {
-    e.all(|r| r.spec.scene == fit.scene).first().copied()
 }
 
 /// The campaign's non-linear springs by name: "Hertz" where every one is β = 3/2, else

@@ -4,7 +4,7 @@
 
 use super::block::Block;
 use super::combined_damping;
-use super::discussion::EXPONENT_TOLERANCE;
+use super::finding::EXPONENT_TOLERANCE;
 use super::finding::{
     Answer, Evidence, Table, Verdict, cell, extremes, fastest_relaxation, lattice_size, percent, rel, relative, sig,
     threshold_percent,
@@ -1098,7 +1098,7 @@ struct KickedFront<'a> {
 impl<'a> KickedFront<'a> {
     fn of(e: &Evidence, fit: &'a ScalingFit) -> Option<KickedFront<'a>> {
         let law = e.records.iter().find(|r| r.spec.scene == fit.scene)?.spec.law;
-        Some(KickedFront { fit, law, predicted: super::discussion::predicted_exponent(e, fit)? })
+        Some(KickedFront { fit, law, predicted: super::finding::predicted_exponent(e, fit)? })
     }
 
     fn within(&self) -> bool {

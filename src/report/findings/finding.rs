@@ -306,3 +306,22 @@ pub(super) use crate::report::words::{percent, signed};
 pub(super) fn threshold_percent(r: &RunRecord) -> String {
     r.spec.wave().map_or_else(|| "–".into(), |w| format!("{} %", crate::report::words::number(100.0 * w.threshold)))
 }
+
+/// The exponent springs s ∝ δ^β predict for a fitted quantity against its variable (β from
+/// the fit's scene): the solitary wave's speed ∝ v0^((β−1)/(β+1)) (Nesterenko), moduli
+/// ∝ F^((β−1)/β) and a chain's stiffness ∝ |ΔW|^(β−1), since s′ ∝ δ^(β−1) and F ∝ δ^β.
+/// Hertz (β = 3/2): 1/5, 1/3 and 1/2; linear (β = 1): 0.
+pub(super) fn predicted_exponent(e: &Evidence, fit: &ScalingFit) -> Option<f64> {
+    let beta = fit_scene_run(e, fit)?.spec.law.beta();
+    crate::summary::predicted(fit.quantity, fit.against, beta).map(|(exponent, _)| exponent)
+}
+
+/// How close a fitted exponent must come to its prediction: three to four points over two or
+/// three decades fix it to a few hundredths. One tolerance for every scaling law of the report
+/// (the abstract, item 20 and this table say the same).
+pub(super) const EXPONENT_TOLERANCE: f64 = 0.05;
+
+/// The first run of a fit's scene: its spring law is the fit's.
+pub(super) fn fit_scene_run<'a>(e: &Evidence<'a>, fit: &ScalingFit) -> Option<&'a RunRecord> {
+    e.all(|r| r.spec.scene == fit.scene).first().copied()
+}

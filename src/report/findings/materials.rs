@@ -7,10 +7,11 @@ use crate::report::words::{self, number};
 use std::collections::BTreeMap;
 
 use super::block::Block;
-use super::discussion::{EXPONENT_TOLERANCE, predicted_exponent, symbol};
+use super::discussion::symbol;
 use super::finding::{
     Answer, Evidence, Table, Verdict, cell, exponents, noise, percent, rel, relative, shear_name, sig,
 };
+use super::finding::{EXPONENT_TOLERANCE, predicted_exponent};
 use crate::measure::{power_law_poisson_ratio, youngs_modulus_along};
 use crate::model::LawSpec;
 use crate::runner::RunRecord;

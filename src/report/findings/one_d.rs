@@ -1076,7 +1076,7 @@ pub(super) fn walls(e: &Evidence) -> Option<Answer> {
     let mut scenes: Vec<String> = relaxed.iter().map(|r| r.spec.scene.clone()).collect();
     scenes.dedup();
     for fit in scenes.iter().filter_map(|s| e.fit(s, "secant_stiffness").filter(|f| f.law != "linear")) {
-        let Some(predicted) = super::discussion::predicted_exponent(e, fit) else { continue };
+        let Some(predicted) = super::finding::predicted_exponent(e, fit) else { continue };
         sentences.push(format!(
             "Fitted over |ΔW| from {} to {} m: {}'s secant stiffness ∝ |ΔW|^{:.3} (R² = {:.4}) against the predicted \
              β − 1 = {predicted:.3}.",
@@ -1086,7 +1086,7 @@ pub(super) fn walls(e: &Evidence) -> Option<Answer> {
             fit.fit.exponent,
             fit.fit.r_squared
         ));
-        checks.push((fit.fit.exponent - predicted).abs() <= super::discussion::EXPONENT_TOLERANCE);
+        checks.push((fit.fit.exponent - predicted).abs() <= super::finding::EXPONENT_TOLERANCE);
     }
     let figures = scenes.iter().filter_map(|s| e.figure(s, FigureKind::AgainstWallDisplacement)).collect();
     Some(Answer {
@@ -1099,7 +1099,7 @@ pub(super) fn walls(e: &Evidence) -> Option<Answer> {
             "Static equilibrium of n+1 equal springs; tolerance {WALL_TOLERANCE:e} ({}); power-law springs s ∝ δ^β: \
              the exponent within {} of β − 1 (Hertz: 1/2).",
             stopping_words(&relaxed),
-            super::discussion::EXPONENT_TOLERANCE
+            super::finding::EXPONENT_TOLERANCE
         ),
         see_also: None,
         verdict: Verdict::of(checks),
