@@ -89,9 +89,14 @@ fn on_both_sides(stats: &Stats) -> bool {
     stats.a.is_some() && stats.b.is_some()
 }
 
-/// Measured on both sides, alike, in some row, and not found to differ.
+/// Measured on both sides, alike, in some row, judged there, and not found to differ.
 fn agrees(stats: &Stats) -> bool {
-    measured(stats) && on_both_sides(stats) && stats.compared > 0 && !stats.differs
+    measured(stats) && on_both_sides(stats) && stats.compared > 0 && !stats.differs && !stats.unjudged
+}
+
+/// Measured on both sides, alike, in some row, but judged in none ([`Stats::unjudged`]).
+fn unjudged(stats: &Stats) -> bool {
+    measured(stats) && on_both_sides(stats) && stats.compared > 0 && stats.unjudged
 }
 
 /// A result that may headline: measured by MD with a ratio, with medians that mean something
@@ -151,11 +156,22 @@ fn lead(scenes: &[SceneSection], all: &[Entry], differ: &[Entry]) -> String {
     let unlike = match unlike {
         0 => String::new(),
         n => format!(" ({} differently on the two sides, not compared)", count(n, "is measured", "are measured")),
+    } + &match all.iter().filter(|(_, st)| unjudged(st)).count() {
+        0 => String::new(),
+        n => format!(
+            "; {} only where some seeds' packings did not jam, not judged",
+            count(n, "is measured", "are measured")
+        ),
     };
     let mut differing: Vec<&str> = differ.iter().map(|(s, _)| s.name.as_str()).collect();
     differing.sort_unstable();
     differing.dedup();
     let shared = format!("The two campaigns share {} ({})", counted(names.len(), "scene"), names.join(", "));
+    if differ.is_empty() && equal == 0 {
+        return format!(
+            "{shared}. No measured quantity is judged to differ or to agree there ({one_side} are measured on one side only{unlike})."
+        );
+    }
     if differ.is_empty() {
         return format!(
             "{shared}. No measured quantity differs beyond its noise there: the two campaigns agree in all {equal} \
@@ -236,7 +252,7 @@ fn rest(scenes: &[SceneSection], all: &[Entry]) -> Vec<String> {
     let pick =
         |keep: &dyn Fn(&Stats) -> bool| -> Vec<Entry> { all.iter().copied().filter(|(_, st)| keep(st)).collect() };
     let both = |st: &Stats| format!(" (A {}, B {})", short(st.a.unwrap_or(f64::NAN)), short(st.b.unwrap_or(f64::NAN)));
-    let groups: [Listed; 7] = [
+    let groups: [Listed; 8] = [
         (
             "Equal within noise".into(),
             pick(&|st| agrees(st) && !st.at_floor && st.class == Class::Result && !st.seeded),
@@ -273,6 +289,13 @@ fn rest(scenes: &[SceneSection], all: &[Entry]) -> Vec<String> {
                 .into(),
             pick(&|st| measured(st) && st.unlike.is_some()),
             &|st| st.unlike.as_ref().map_or_else(String::new, |(a, b)| format!(" ({a} in A, {b} in B)")),
+        ),
+        (
+            "Not judged, measured only where some seeds of the packings did not jam (those that did are the \
+             share whose own φ_J lies below the fraction: a selected sample, not the seeds')"
+                .into(),
+            pick(&unjudged),
+            &|st| st.ratio.map_or_else(String::new, |r| format!(" (B/A = {})", fixed(Some(r)))),
         ),
         ("Measured in A only (nothing to compare)".into(), pick(&|st| measured(st) && st.b.is_none()), &|_| String::new()),
         ("Measured in B only (nothing to compare)".into(), pick(&|st| measured(st) && st.a.is_none()), &|_| String::new()),
@@ -449,7 +472,11 @@ fn physics(all: &[Entry]) -> Vec<String> {
 /// its target).
 fn side_by_side(label: &str, st: &Stats) -> String {
     let unit = unit(&st.metric).filter(|u| *u != "1").map_or(String::new(), |u| format!(" {u}"));
-    let verdict = if st.differs { "differs beyond its noise" } else { "the same within its noise" };
+    let verdict = match (st.differs, st.unjudged) {
+        (true, _) => "differs beyond its noise",
+        (false, true) => "not judged: only some seeds of its packings jammed",
+        (false, false) => "the same within its noise",
+    };
     format!(
         "{label}: {}{unit} in A, {}{unit} in B, B/A = {} ({verdict})",
         short(st.a.unwrap_or(f64::NAN)),

@@ -28,6 +28,9 @@ pub(super) struct Stats {
     pub(super) noise: f64,
     /// The noise is the spread between the seeds.
     pub(super) seeded: bool,
+    /// Compared in some row, but judged in none: every group of its packings' seeds had some
+    /// that did not jam ([`SceneRows::every_seed_comparable`]), so it neither differs nor agrees.
+    pub(super) unjudged: bool,
     /// One side's values take both signs (a wall force through ΔW = 0): their medians say little.
     pub(super) signed: bool,
     /// Rows compared: on both sides, measured alike.
@@ -75,6 +78,7 @@ pub(super) fn stats(rows: &SceneRows, both: &[usize], name: &str) -> Option<Stat
         differs: verdict.differs,
         noise: verdict.noise,
         seeded: verdict.seeded,
+        unjudged: !verdict.judged,
         at_floor: !compared.is_empty()
             && compared.iter().all(|&r| rows.at_floor(name, "a", r) && rows.at_floor(name, "b", r)),
         compared: compared.len(),
@@ -87,6 +91,8 @@ struct Verdict {
     differs: bool,
     noise: f64,
     seeded: bool,
+    /// Some row or group of seeds was judged: not so where every group was left out.
+    judged: bool,
 }
 
 impl Verdict {
@@ -95,7 +101,7 @@ impl Verdict {
     /// ([`seed_verdict`]), where every seed of the group compares like with like
     /// ([`SceneRows::every_seed_comparable`]); every other row on its own ([`differs`]).
     fn of(rows: &SceneRows, alike: &[usize], name: &str, class: Class) -> Verdict {
-        let mut verdict = Verdict { differs: false, noise: NOISE, seeded: false };
+        let mut verdict = Verdict { differs: false, noise: NOISE, seeded: false, judged: false };
         let mut single = Vec::new();
         for group in replicates(rows, alike) {
             let seeded = class == Class::Result && rows.seeded();
@@ -106,12 +112,13 @@ impl Verdict {
                 Some((differs, noise)) => {
                     verdict.differs |= differs;
                     verdict.noise = verdict.noise.max(noise);
-                    verdict.seeded = true;
+                    (verdict.seeded, verdict.judged) = (true, true);
                 }
                 None => single.extend(group),
             }
         }
         for r in single {
+            verdict.judged = true;
             let noise = row_noise(rows, name, r);
             let pair = (rows.value(name, "a", r), rows.value(name, "b", r));
             verdict.differs |= differs(class, pair, rows.ratio(name, r), noise);

@@ -629,6 +629,40 @@ fn groups_of_packings_where_some_seeds_did_not_jam_are_not_judged() {
     assert_eq!(differ.contains("| pk | `own_jamming_fraction` |"), differs, "{groups:?}: {differ}");
 }
 
+/// Linear packings of 64 discs at φ = 0.835, four seeds, contact spring `k`: only some seeds jam.
+fn partly_jammed(name: &str, k: &str) -> String {
+    format!(
+        "version: 1\nname: {name}\nscenes:\n  - name: pk\n    kind: packing\n    packing: {{n: 64, fraction: 0.835}}\n    \
+         material: {{law: linear, k: {k}}}\n    grid:\n      seed: [1, 2, 3, 4]\n"
+    )
+}
+
+/// A quantity measured only in groups of seeds where some packings did not jam is judged
+/// nowhere, so it neither differs nor agrees: it is said to be not judged. The pressure of
+/// springs twice as stiff is twice as high (B/A = 2 at every jammed seed, the premise), and it
+/// had been listed as "Equal within noise" with the two campaigns said to "agree in all".
+#[test]
+fn a_quantity_judged_in_no_group_is_said_not_judged_not_equal() {
+    let dir = crate::common::scratch();
+    for (name, k) in [("soft", "1.0"), ("stiff", "2.0")] {
+        let file = dir.path().join(format!("{name}.yaml"));
+        std::fs::write(&file, partly_jammed(name, k)).unwrap();
+        succeed(dir.path(), &["run", file.to_str().unwrap()]);
+    }
+    let (a, b) = (dir.path().join("soft"), dir.path().join("stiff"));
+    succeed(dir.path(), &["compare", a.to_str().unwrap(), b.to_str().unwrap()]);
+    let report = std::fs::read_to_string(dir.path().join("compare-soft-vs-stiff").join("report.md")).unwrap();
+    let joined = read(&dir.path().join("compare-soft-vs-stiff").join("compare.parquet"));
+    let states = [texts(&joined, "packing_state_a"), texts(&joined, "packing_state_b")];
+    assert!(states.iter().all(|s| s.iter().any(|x| x == "jammed") && s.iter().any(|x| x != "jammed")), "the premise");
+    let ratios: Vec<f64> = floats(&joined, "pressure_ratio").into_iter().flatten().collect();
+    assert!(!ratios.is_empty() && ratios.iter().all(|r| (r - 2.0).abs() < 1e-6), "the premise: {ratios:?}");
+    let not_judged = report.lines().find(|l| l.starts_with("Not judged, measured only where")).expect("{report}");
+    assert!(not_judged.contains("pk: pressure (B/A = 2.0000)"), "{not_judged}");
+    assert!(!report.lines().any(|l| l.starts_with("Equal within noise") && l.contains("pk: pressure ")), "{report}");
+    assert!(report.contains("No measured quantity is judged to differ or to agree there"), "{report}");
+}
+
 /// `--out` never overwrites or deletes what the user made: a folder holding other files, the
 /// folder that holds the campaigns and a folder inside a campaign's report folder are refused,
 /// naming the flag; a comparison's own folder may be written again, and only the files it wrote
