@@ -86,11 +86,12 @@ fn the_block_is_extrapolated_over_blocks_of_one_shape_and_names_them() {
 fn the_extrapolated_moduli_are_held_against_the_continuum_in_their_own_uncertainties() {
     // Squares 4, 8 and 10 a side: v∞ from the two largest, its uncertainty the change from the
     // next smaller pair. On the coursework's supports the blocks converge to the continuum (E∞
-    // and ν∞ within 1.5 of their uncertainties here); a clamped bottom keeps the block from
-    // contracting over a share of its height that does not shrink with N, so ν∞ lands ~0.29,
-    // ~15 of its uncertainties from 1/3: the verdict flips from ✓ to ✗ (held within 3).
+    // and ν∞ within 1.5 of their uncertainties here) and are held to it (within 3). A clamped
+    // bottom keeps the block from contracting over a share of its height that does not shrink
+    // with N, so ν∞ lands ~0.29, ~15 of its uncertainties from 1/3 (the premise): such a block is
+    // not held to the free continuum, and its verdict rests on MD against the static answer.
     let grid = "      lattice.size: [4, 8, 10]\n";
-    for (supports, within) in [("coursework", true), ("clamped-bottom", false)] {
+    for (supports, held) in [("coursework", true), ("clamped-bottom", false)] {
         let (report, frame) = run("conv", &steel("conv", supports, "", grid));
         let runs = moduli_by_size(&frame);
         let mut distances = Vec::new();
@@ -100,19 +101,14 @@ fn the_extrapolated_moduli_are_held_against_the_continuum_in_their_own_uncertain
             let uncertainty = (value - richardson(v(4), v(8))).abs();
             distances.push((value - runs[&(10, 10)][k + 2]).abs() / uncertainty);
         }
-        let agrees = distances.iter().all(|&x| x <= 3.0);
-        assert_eq!(agrees, within, "{supports}: {distances:?}");
+        assert_eq!(distances.iter().all(|&x| x <= 3.0), held, "the premise, {supports}: {distances:?}");
         let line = line_with(&report, "[Young's modulus and Poisson's ratio]");
-        assert_eq!(line.contains("| ✓\u{a0}within |"), within, "{supports}: {line}");
-        // The only other check, MD against the static answer, holds on both.
+        assert!(line.contains("| ✓\u{a0}within |"), "{supports}: {line}");
+        // The other check, MD against the static answer, holds on both.
         let md = line_with(&report, "the MD modulus agrees with the static truss answer");
         assert!(number_after(md, "network to ") < 2e-3, "{md}");
         let sentence = line_with(&report, "Richardson's v∞");
-        assert_eq!(sentence.contains("of their uncertainties from them"), !within, "{sentence}");
-        if !within {
-            let stated = number_after(&sentence[sentence.find(": E lies ").unwrap()..], " and ν ");
-            assert!((stated / distances[1] - 1.0).abs() < 0.02, "ν {stated} against {}: {sentence}", distances[1]);
-        }
+        assert!(!sentence.contains("of their uncertainties from them"), "{sentence}");
     }
 }
 
