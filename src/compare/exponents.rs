@@ -155,11 +155,18 @@ fn fits(side: &Side, summary: &Table) -> anyhow::Result<Vec<([String; 3], String
         .collect())
 }
 
-/// The springs' β of a fit's runs: from its group's label where the grid varies β, else the one
-/// value of the scene's runs; `None` where neither settles it.
+/// The springs' β of a fit's runs: from its group's label where the grid varies β or the law,
+/// else the one value of the scene's runs; `None` where neither settles it.
 fn beta(side: &Side, scene: &str, group: &str) -> Option<f64> {
     if let Some(beta) = group.split(", ").find_map(|part| part.strip_prefix("beta=")) {
         return beta.parse().ok();
+    }
+    // A grid over the law names it: linear springs β = 1, Hertz β = 3/2 (a power law's β is
+    // its own grid value, above, or the scene's).
+    match group.split(", ").find_map(|part| part.strip_prefix("law=")) {
+        Some("linear") => return Some(1.0),
+        Some("hertz") => return Some(1.5),
+        _ => {}
     }
     let (scenes, betas) = (side.results.column("scene")?, side.results.column("beta")?);
     let mut values =

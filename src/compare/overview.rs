@@ -246,17 +246,23 @@ fn listing(entries: &[Entry], extra: impl Fn(&Stats) -> String) -> String {
     words.join(", ")
 }
 
+/// The quantities measured only in groups of seeds where some packings did not jam
+/// ([`Stats::unjudged`]), in the words of [`rest`].
+const NOT_JUDGED: &str = "Not judged, measured only where some seeds of the packings did not jam (those that did are the \
+             share whose own φ_J lies below the fraction: a selected sample, not the seeds')";
+
 /// What agrees within noise, what is at round-off on both sides, what is measured differently
 /// or by one side alone, which rows are not compared, and which inputs differ or not.
 fn rest(scenes: &[SceneSection], all: &[Entry]) -> Vec<String> {
     let pick =
         |keep: &dyn Fn(&Stats) -> bool| -> Vec<Entry> { all.iter().copied().filter(|(_, st)| keep(st)).collect() };
     let both = |st: &Stats| format!(" (A {}, B {})", short(st.a.unwrap_or(f64::NAN)), short(st.b.unwrap_or(f64::NAN)));
+    let ratio = |st: &Stats| st.ratio.map_or_else(String::new, |r| format!(" (B/A = {})", fixed(Some(r))));
     let groups: [Listed; 8] = [
         (
             "Equal within noise".into(),
             pick(&|st| agrees(st) && !st.at_floor && st.class == Class::Result && !st.seeded),
-            &|st| st.ratio.map_or_else(String::new, |r| format!(" (B/A = {})", fixed(Some(r)))),
+            &ratio,
         ),
         (
             format!(
@@ -291,11 +297,9 @@ fn rest(scenes: &[SceneSection], all: &[Entry]) -> Vec<String> {
             &|st| st.unlike.as_ref().map_or_else(String::new, |(a, b)| format!(" ({a} in A, {b} in B)")),
         ),
         (
-            "Not judged, measured only where some seeds of the packings did not jam (those that did are the \
-             share whose own φ_J lies below the fraction: a selected sample, not the seeds')"
-                .into(),
+            NOT_JUDGED.into(),
             pick(&unjudged),
-            &|st| st.ratio.map_or_else(String::new, |r| format!(" (B/A = {})", fixed(Some(r)))),
+            &ratio,
         ),
         ("Measured in A only (nothing to compare)".into(), pick(&|st| measured(st) && st.b.is_none()), &|_| String::new()),
         ("Measured in B only (nothing to compare)".into(), pick(&|st| measured(st) && st.a.is_none()), &|_| String::new()),

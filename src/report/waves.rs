@@ -10,6 +10,7 @@ use crate::measure::ARRIVAL_CRITERIA;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::spec::SceneKind;
+use crate::study::lattice::sideways_kick_speeds;
 use crate::summary::ScalingFit;
 
 /// One chain-wave run: the sound speed by each criterion beside the estimates.
@@ -51,11 +52,26 @@ fn wave_rows(records: &[RunRecord], scene: &str) -> Vec<WaveRow> {
                 arrival_time: optional(m.arrival_time()),
                 speeds: ARRIVAL_CRITERIA.iter().map(|c| optional(m.sound_speed(c))).collect(),
                 estimate: optional(m.wave_distance.zip(m.arrival_time_tc_estimate).map(|(l, t)| l / t)),
-                theory: optional(m.sound_speed_theory),
+                theory: reference_speed(r, number),
                 status: r.status,
             }
         })
         .collect()
+}
+
+/// The reference speed of a wave run in words, its numbers written by `write`: the kind's one
+/// linear speed, or for a node kicked sideways the two that bracket its first arrival
+/// ([`sideways_kick_speeds`]'s argument), so that no single speed shows as a miss.
+pub(crate) fn reference_speed(r: &RunRecord, write: fn(f64) -> String) -> String {
+    match sideways_kick(r) {
+        Some((c_t, c_l)) => format!("{} (c_T) … {} (c_L)", write(c_t), write(c_l)),
+        None => r.metrics.sound_speed_theory.map_or_else(|| "–".into(), write),
+    }
+}
+
+/// The speeds (c_T, c_L) (m/s) bracketing the front of a node kicked sideways, if `r` is one.
+pub(crate) fn sideways_kick(r: &RunRecord) -> Option<(f64, f64)> {
+    r.spec.lattice().and_then(|l| sideways_kick_speeds(&r.spec, l))
 }
 
 /// V_s against v0 of `scene`, measured and with its fitted power law; `None` without a fit.

@@ -870,23 +870,48 @@ fn continuum(spec: &RunSpec, l: &LatticeSpec, metrics: &mut LatticeMetrics) {
 }
 
 /// The linear sound speed along an impulse lattice's wave (m/s): kicked or stepped mostly
-/// along y (the bottom row is below) the longitudinal c_L = a√(C22/m), kicked mostly along x
-/// the transverse c_T = a√(C66/m) (C per unit depth; C22 = k + k_d, C66 = k_d with both
-/// diagonals); on the other types the speeds of their plane waves along y
-/// ([`plane_wave_speeds`]).
+/// along y (the bottom row is below) the longitudinal c_L, stepped mostly along x on the whole
+/// top row (a plane shear front) the transverse c_T ([`speeds_along_y`]). A single node kicked
+/// mostly along x has none: its first arrival at the bottom row lies between c_T and c_L
+/// ([`sideways_kick_speeds`]), so no one speed is its reference.
 pub(super) fn wave_speed(spec: &RunSpec, l: &LatticeSpec) -> Option<f64> {
     let impulse = l.impulse?;
-    let [x, y] = impulse.direction();
+    let (c_l, c_t) = speeds_along_y(spec, l)?;
+    match (impulse.is_sideways(), impulse.top_row_force) {
+        (false, _) => Some(c_l),
+        (true, Some(_)) => c_t,
+        (true, None) => None,
+    }
+}
+
+/// The speeds (c_T, c_L) (m/s) that bracket the first arrival of a single node kicked mostly
+/// along x, `None` for any other impulse or without both speeds. Why a bracket: a point force
+/// on the free surface radiates P along its line and S across it; straight below a sideways
+/// kick the P wave's motion (along the ray, u_y) vanishes by symmetry (u_y is odd in x), so the
+/// receivers (the whole bottom row, a distance L below) meet P first where it arrives obliquely,
+/// over √(L² + x²) > L, and S (full amplitude below) by L/c_T at the latest. Hence
+/// c_T ≲ L/t_s ≲ c_L, where along the row the threshold fires is set by the radiation pattern
+/// and the block's width, not by one speed: kicked at its top centre, a free block 30 nodes high
+/// (k_d/k = 0.5: c_T = 0.707, c_L = 1.225 m/s) gives L/t_s = 0.81 … 0.91 c_L over widths 6 … 90
+/// nodes, arriving before L/c_T = 41 s: the P wave's.
+pub fn sideways_kick_speeds(spec: &RunSpec, l: &LatticeSpec) -> Option<(f64, f64)> {
+    l.impulse.filter(|i| i.top_row_force.is_none() && i.is_sideways())?;
+    let (c_l, c_t) = speeds_along_y(spec, l)?;
+    Some((c_t?, c_l))
+}
+
+/// The linear speeds (c_L, c_T) (m/s) of the lattice's plane waves along y: on the square
+/// lattice a√(C22/m) and a√(C66/m) (C per unit depth; C22 = k + k_d, C66 = k_d with both
+/// diagonals), on the other types the slopes of their acoustic Bloch branches
+/// ([`plane_wave_speeds`]: the continuum's but for the kagome's transverse; the honeycomb has
+/// no c_T). `None` for a non-linear law.
+fn speeds_along_y(spec: &RunSpec, l: &LatticeSpec) -> Option<(f64, Option<f64>)> {
     if !l.lattice_type.is_square() {
-        // The slopes of the acoustic Bloch branches along y (`plane_wave_speeds`): the
-        // continuum's c_L and c_T but for the kagome's transverse; the honeycomb has none.
-        let (c_l, c_t) =
-            plane_wave_speeds(l.lattice_type, l.k_x, spec.spacing, spec.mass).filter(|_| spec.law.is_linear())?;
-        return if y.abs() >= x.abs() { Some(c_l) } else { c_t };
+        return plane_wave_speeds(l.lattice_type, l.k_x, spec.spacing, spec.mass).filter(|_| spec.law.is_linear());
     }
     let (k_rising, k_falling) = l.diagonal_stiffness();
     let c = lattice_constants(l.k_x, l.k_y, k_rising, k_falling);
-    sound_speed(spec, if y.abs() >= x.abs() { c.c22 } else { c.c66 })
+    Some((sound_speed(spec, c.c22)?, sound_speed(spec, c.c66)))
 }
 
 /// The tangent moduli of the tangent step: the increments from the relaxed particles `start`

@@ -1581,19 +1581,24 @@ fn the_chosen_diagonal_stiffness_is_called_isotropic_only_at_half_the_axial() {
     // Both diagonals: C11 = k + k_d, C12 = C66 = k_d (per unit depth). Turned by 45° the
     // constants are C'11 = (C11 + C12 + 2C66)/2 and C'12 = (C11 + C12 − 2C66)/2, so
     // E(45°)/E(0°) = (C'11 − C'12²/C'11)/(C11 − C12²/C11): 1 at k_d = k/2, 1.2612 at 1/√2.
-    // Stated to 4 digits: tolerance 5e-4. A campaign of one ratio has chosen it; one of several
-    // names them all, and only 1/2 among them as isotropic (it had called the first run's
-    // ratio the campaign's choice).
+    // Stated to 4 digits: tolerance 5e-4. A campaign chooses the ratio of the block its moduli
+    // are measured on (one ratio: that one); one of several ratios also names them all, and
+    // only 1/2 among them as isotropic.
     let turned = |r: f64| {
         let (c11, c12, c66) = (1.0 + r, r, r);
         let (t11, t12) = ((c11 + c12 + 2.0 * c66) / 2.0, (c11 + c12 - 2.0 * c66) / 2.0);
         (t11 - t12 * t12 / t11) / (c11 - c12 * c12 / c11)
     };
     let several = report_of("dr", &diagonal_ratios("[0.7071, 0.5]"));
-    let item = line_with(&several, "The diagonal springs](#");
-    assert!(item.contains("0.5 and 0.7071 run"), "{item}");
-    let choice = line_with(&several, "This campaign's moduli runs use k_d/k = 0.5 and 0.7071;");
+    let choice = line_with(&several, "Its tensile runs use k_d/k = 0.5000 and 0.7071;");
     assert!(choice.contains("of these only 1/2 makes"), "{choice}");
+    // The one chosen is the abstract's block's, whose E and ν item 4 states.
+    let block = number_after(line_with(&several, "The 2D block (m = "), "k_d/k = ");
+    let item = line_with(&several, "The diagonal springs](#");
+    assert!(
+        (number_after(item, "for equal E; ") - block).abs() < 5e-4 && item.contains(" chosen ("),
+        "{item}: {block}"
+    );
     // The campaign's 0.7071, as written (1/√2 to 4 digits).
     for (r, written) in [(0.5, "0.5000"), (std::f64::consts::FRAC_1_SQRT_2, "0.7071")] {
         let line = line_with(&several, &format!("and k_d/k = {written} the continuum"));
@@ -2102,6 +2107,6 @@ fn each_diagonal_ratio_states_its_free_continuum_whatever_its_supports() {
         assert_eq!(line.contains("cannot contract sideways: no ν"), periodic, "{line}");
         assert_eq!(line.contains("MD measures ν = "), !periodic, "{line}");
     }
-    let several = line_with(&report, "This campaign's moduli runs use k_d/k = 0.25 and 1;");
+    let several = line_with(&report, "Its tensile runs use k_d/k = 0.2500 and 1.000;");
     assert!(several.contains("none of them is 1/2"), "{several}");
 }

@@ -264,9 +264,19 @@ fn linear_against_hertz(
     (a, b): (&str, &str),
     campaign: impl Fn(&str, &str) -> String,
 ) -> (String, String) {
-    for (name, law) in [(a, "linear"), (b, "hertz")] {
+    compare_two(reports, [(a, "linear"), (b, "hertz")], campaign)
+}
+
+/// Runs the campaigns `campaign(name, value)` makes for A and B, each a (name, value), under
+/// `reports` and compares A with B: the command's output and the comparison's report.md.
+fn compare_two(
+    reports: &Path,
+    [(a, value_a), (b, value_b)]: [(&str, &str); 2],
+    campaign: impl Fn(&str, &str) -> String,
+) -> (String, String) {
+    for (name, value) in [(a, value_a), (b, value_b)] {
         let file = reports.join(format!("{name}.yaml"));
-        std::fs::write(&file, campaign(name, law)).unwrap();
+        std::fs::write(&file, campaign(name, value)).unwrap();
         succeed(reports, &["run", file.to_str().unwrap()]);
     }
     let (dir_a, dir_b) = (reports.join(a), reports.join(b));
@@ -644,14 +654,7 @@ fn partly_jammed(name: &str, k: &str) -> String {
 #[test]
 fn a_quantity_judged_in_no_group_is_said_not_judged_not_equal() {
     let dir = crate::common::scratch();
-    for (name, k) in [("soft", "1.0"), ("stiff", "2.0")] {
-        let file = dir.path().join(format!("{name}.yaml"));
-        std::fs::write(&file, partly_jammed(name, k)).unwrap();
-        succeed(dir.path(), &["run", file.to_str().unwrap()]);
-    }
-    let (a, b) = (dir.path().join("soft"), dir.path().join("stiff"));
-    succeed(dir.path(), &["compare", a.to_str().unwrap(), b.to_str().unwrap()]);
-    let report = std::fs::read_to_string(dir.path().join("compare-soft-vs-stiff").join("report.md")).unwrap();
+    let (_, report) = compare_two(dir.path(), [("soft", "1.0"), ("stiff", "2.0")], partly_jammed);
     let joined = read(&dir.path().join("compare-soft-vs-stiff").join("compare.parquet"));
     let states = [texts(&joined, "packing_state_a"), texts(&joined, "packing_state_b")];
     assert!(states.iter().all(|s| s.iter().any(|x| x == "jammed") && s.iter().any(|x| x != "jammed")), "the premise");
@@ -661,6 +664,31 @@ fn a_quantity_judged_in_no_group_is_said_not_judged_not_equal() {
     assert!(not_judged.contains("pk: pressure (B/A = 2.0000)"), "{not_judged}");
     assert!(!report.lines().any(|l| l.starts_with("Equal within noise") && l.contains("pk: pressure ")), "{report}");
     assert!(report.contains("No measured quantity is judged to differ or to agree there"), "{report}");
+}
+
+/// Packings of both laws on one scene's grid, contact spring `k`.
+fn both_laws(name: &str, k: &str) -> String {
+    format!(
+        "version: 1\nname: {name}\nscenes:\n  - name: pk\n    kind: packing\n    packing: {{n: 32}}\n    \
+         material: {{k: {k}}}\n    grid:\n      material.law: [linear, hertz]\n      packing.fraction: [0.86, 0.9]\n      \
+         seed: [1, 2]\n"
+    )
+}
+
+/// A grid over the law inside one scene names each group's law (`law=hertz`): its fits are held
+/// to that law's exponents near jamming, p ∝ Δφ^β with β = 1 and 3/2 (O'Hern et al. 2003).
+/// Before, the scene's two β left every fit without a prediction ("predicted –").
+#[test]
+fn a_grid_over_the_law_holds_each_group_to_its_own_exponents() {
+    let dir = crate::common::scratch();
+    let (_, report) = compare_two(dir.path(), [("one", "1.0"), ("two", "2.0")], both_laws);
+    for (law, predicted) in [("linear", "(linear, predicted 1.0000)"), ("hertz", "(β = 1.5, predicted 1.5000 = β)")] {
+        let line = report
+            .lines()
+            .find(|l| l.starts_with(&format!("- pk (law={law}): pressure ∝ fraction_excess^p")))
+            .unwrap_or_else(|| panic!("{law}: {report}"));
+        assert!(line.contains(predicted), "{line}");
+    }
 }
 
 /// `--out` never overwrites or deletes what the user made: a folder holding other files, the

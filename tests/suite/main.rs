@@ -29,6 +29,7 @@ mod relax;
 mod review_block;
 mod review_jamming;
 mod review_pairs;
+mod review_waves;
 mod series;
 mod shipped;
 mod steps;

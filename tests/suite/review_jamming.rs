@@ -2,7 +2,7 @@
 
 use polars::prelude::*;
 
-use crate::common::{line_with, number_after, numbers, scratch};
+use crate::common::{line_with, number_after, numbers, scratch, value_after};
 use crate::packing::run_jam;
 
 /// One packing scene: its name, its `packing` fields and its `relax` fields (YAML flow maps'
@@ -253,4 +253,133 @@ fn z_at_jamming_is_judged_on_the_packings_nearest_it_not_on_an_extrapolation() {
     let line = line_with(&report, "z at jamming (mean contacts per disc");
     assert!(line.contains("too far from φ_J to judge z there") && !line.contains("within"), "{line}");
     assert_eq!(table_verdict(&report, "z nearest φ_J"), "not judged");
+}
+
+/// The own φ_J of each seed's jammed packing quenched at `fraction` (seed, own φ_J).
+fn own_at(frame: &DataFrame, fraction: f64) -> Vec<(f64, f64)> {
+    let states = texts(frame, "packing_state");
+    let [quench, own, seed] = ["packing.fraction", "own_jamming_fraction", "seed"].map(|c| numbers(frame, c));
+    (0..frame.height())
+        .filter(|&i| quench[i] == Some(fraction) && states[i].as_deref() == Some("jammed"))
+        .map(|i| (seed[i].unwrap(), own[i].unwrap()))
+        .collect()
+}
+
+#[test]
+fn phi_j_says_its_error_is_the_seeds_scatter_at_its_quench_fractions_alone() {
+    // 64 linear discs, seeds 1 to 8, quenched at φ = 0.84 and 0.92: every packing jams at both,
+    // and each seed's own φ_J rises from the one to the other by about 0.01, far beyond the
+    // seeds' standard error of φ_J (≈ 0.001). The item had stated φ_J ± that error alone, so
+    // the same seeds quenched at 0.84 only and at 0.92 only gave two φ_J many of their errors
+    // apart, each "within". Now φ_J's sentence, the summary and the table row say at which
+    // fractions its error is the seeds' scatter, and the sentence how the own φ_J moves between
+    // them per seed (to its error's second digit: a tenth of it), which the summary and the row
+    // repeat where the seeds resolve it (a paired t-test at 5 %, 7 degrees of freedom: 2.365).
+    let dir = scratch();
+    let both = Scene {
+        name: "quench",
+        packing: "n: 64",
+        relax: "",
+        fractions: "[0.84, 0.92]",
+        seeds: "[1, 2, 3, 4, 5, 6, 7, 8]",
+    };
+    let (frame, report) = run(dir.path(), &[both]);
+    let (low, high) = (own_at(&frame, 0.84), own_at(&frame, 0.92));
+    assert!(low.len() == 8 && high.len() == 8, "the case: every packing jammed at both fractions");
+    let differences: Vec<f64> = high.iter().map(|&(s, phi)| phi - low.iter().find(|o| o.0 == s).unwrap().1).collect();
+    let mean = differences.iter().sum::<f64>() / 8.0;
+    let error = (differences.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / 7.0 / 8.0).sqrt();
+    let line = line_with(&report, "N = 64: φ_J = ");
+    assert!(line.contains("mean ± standard error over 8 seeds: their scatter at φ = 0.84 … 0.92 alone;"), "{line}");
+    let resolved = mean.abs() / error > 2.365;
+    let (stated, stated_error) = value_after(line, if resolved { "the own φ_J rises by +" } else { "moves by " });
+    assert!(
+        (stated - mean).abs() <= error / 10.0 && (stated_error / error - 1.0).abs() < 0.05,
+        "{line}: {mean} ± {error}"
+    );
+    let leaves_out = line.contains("a dependence on the preparation that this standard error leaves out");
+    assert_eq!(leaves_out, resolved, "{line}: {mean} ± {error}");
+    let summary = line_with(&report, "[Jamming](#");
+    let row = line_with(&report, "| φ_J |");
+    for words in [summary, row] {
+        assert!(words.contains("± the seeds' scatter quenched at φ = 0.84 … 0.92 alone"), "{words}");
+        assert_eq!(words.contains("; it depends on the preparation: the own φ_J rises by +"), resolved, "{words}");
+    }
+    // The same seeds quenched at one fraction each: φ_J moves by the difference per seed (each
+    // printed to its error's second digit), and each says the preparation is not measured.
+    let single = |fractions: &str| {
+        let (_, report) = run(dir.path(), &[Scene { fractions, ..both }]);
+        let line = line_with(&report, "N = 64: φ_J = ").to_string();
+        assert!(line.contains("how it moves with the quench fraction is not measured here"), "{line}");
+        let summary = line_with(&report, "[Jamming](#").to_string();
+        assert!(summary.contains("alone) against 0.842") && !summary.contains("preparation"), "{summary}");
+        (number_after(&line, "φ_J = "), number_after(&line, " ± "))
+    };
+    let ((at_low, low_error), (at_high, high_error)) = (single("[0.84]"), single("[0.92]"));
+    let apart = at_high - at_low;
+    assert!((apart - mean).abs() <= (low_error + high_error) / 10.0 + 1e-5, "{at_low}, {at_high}: {mean}");
+    assert!(apart > 2.0 * low_error.hypot(high_error), "the case: {at_low} ± {low_error}, {at_high} ± {high_error}");
+}
+
+/// The two-sided sign test of `a` against `b`: twice the chance that a fair coin tossed a + b
+/// times gives max(a, b) heads or more, at most 1.
+fn sign_test(a: usize, b: usize) -> f64 {
+    let n = a + b;
+    let choose = |k: usize| (0..k).fold(1.0, |c, i| c * (n - i) as f64 / (i + 1) as f64);
+    let tail: f64 = (a.max(b)..=n).map(choose).sum::<f64>() / 2f64.powi(n as i32);
+    (2.0 * tail).min(1.0)
+}
+
+#[test]
+fn a_fall_of_the_unstable_share_is_tested_one_sample_per_seed() {
+    // 32 and 64 discs, linear and Hertz, quenched at φ = 0.845 … 0.94, seeds 1 to 3: 108 jammed
+    // packings, 19 of 73 with G < 0 at Δφ N² < 10² and 2 of 35 from 10² to 10³, which Fisher's
+    // exact test over the packings finds below p = 0.05, and the item had called "a finite-size
+    // effect". But the packings of a seed share its random start at every fraction, N and law:
+    // one sample per seed, the seeds' own shares from the lowest range to the highest, and the
+    // sign test of their falls against their rises can never go below 0.05 with three seeds
+    // (2/2³ = 0.25 at best). These states are FIRE's, which move with the forces' last bits: a
+    // change to the force loop may need the case re-found (checked below).
+    let dir = scratch();
+    let yaml = "version: 1\nname: jam\ngrid:\n  packing.n: [32, 64]\n  packing.fraction: [0.845, 0.85, 0.855, 0.86, \
+                0.87, 0.88, 0.9, 0.92, 0.94]\n  seed: [1, 2, 3]\nscenes:\n  - name: linear\n    kind: packing\n    \
+                packing: {n: 64}\n    material: {law: linear}\n  - name: hertz\n    kind: packing\n    packing: {n: 64}\n    \
+                material: {law: hertz}\n";
+    let (frame, folder) = run_jam(dir.path(), yaml);
+    let report = std::fs::read_to_string(folder.join("report.md")).unwrap();
+    let line = line_with(&report, "Unstable to shear: ");
+    assert!(line.contains("Here the share falls") && number_after(line, "against the highest: p = ") < 0.05, "{line}");
+    // Each seed's share of G < 0 in the lowest range of Δφ N² and in the highest, from the table.
+    let states = texts(&frame, "packing_state");
+    let [phi, own, g, discs, seed] =
+        ["packing_fraction", "own_jamming_fraction", "shear_modulus_2d", "discs", "seed"].map(|c| numbers(&frame, c));
+    let with_g: Vec<usize> =
+        (0..frame.height()).filter(|&i| states[i].as_deref() == Some("jammed") && g[i].is_some()).collect();
+    let range = |i: usize| {
+        let scaled = (phi[i].unwrap() - own[i].unwrap()).max(0.0) * discs[i].unwrap().powi(2);
+        usize::from(scaled >= 1e2) + usize::from(scaled >= 1e3)
+    };
+    let (lowest, highest) =
+        (with_g.iter().map(|&i| range(i)).min().unwrap(), with_g.iter().map(|&i| range(i)).max().unwrap());
+    let share = |s: f64, k: usize| {
+        let of: Vec<usize> = with_g.iter().copied().filter(|&i| seed[i] == Some(s) && range(i) == k).collect();
+        (!of.is_empty()).then(|| of.iter().filter(|&&i| g[i].unwrap() < 0.0).count() as f64 / of.len() as f64)
+    };
+    let changes: Vec<f64> =
+        [1.0, 2.0, 3.0].iter().filter_map(|&s| Some(share(s, highest)? - share(s, lowest)?)).collect();
+    let falls = changes.iter().filter(|c| **c < 0.0).count();
+    let rises = changes.iter().filter(|c| **c > 0.0).count();
+    let counted = format!(
+        "falls from the lowest range to the highest in {falls} of the {} seeds with packings in both, rises in {rises} \
+         and stays in {}",
+        changes.len(),
+        changes.len() - falls - rises
+    );
+    assert!(line.contains(&counted), "{line}: {counted}");
+    let p = sign_test(falls, rises);
+    assert!((number_after(line, "the sign test gives p = ") / p - 1.0).abs() < 1e-3, "{line}: {p}");
+    assert!(p >= 0.05 && line.contains("these seeds cannot tell a finite-size effect"), "{line}");
+    assert!(!line.contains("a finite-size effect, of that kind"), "{line}");
+    // Both laws pooled, and Δφ N² is p N² for the linear ones alone.
+    assert!(line.contains("∝ p N² for linear contacts alone") && line.contains("linear and Hertz packings are pooled"));
 }

@@ -14,6 +14,7 @@ use crate::report::curves::envelope;
 use crate::report::figure::{
     FigureKind, FigureRef, background_damping_only, background_gamma, bond_damping_only, both_dampings,
 };
+use crate::report::waves::{reference_speed, sideways_kick};
 use crate::report::words;
 use crate::runner::RunRecord;
 use crate::spec::Diagonals;
@@ -42,8 +43,9 @@ const SPEED_TOLERANCE: f64 = 0.02;
 /// (d): the sound speed, its criteria, and the N_s t_c estimate; the chains whose speed
 /// threshold did not fire say which criteria did.
 pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
+    // A node kicked sideways has no one reference speed, only a bracket: its row shows it.
     let linear = e.ok(|r| {
-        r.metrics.sound_speed_theory.is_some()
+        (r.metrics.sound_speed_theory.is_some() || sideways_kick(r).is_some())
             && r.spec.law == LawSpec::Linear
             && r.metrics.recommended_sound_speed().is_some()
     });
@@ -60,11 +62,15 @@ pub(super) fn sound_speed(e: &Evidence) -> Option<Answer> {
     let mut sentences = chain.map(|c| chain_speed_sentences(c, error)).unwrap_or_default();
     let rows = lattice_speed_rows(&linear);
     if !rows.is_empty() {
-        sentences.push(
+        let sideways = if linear.iter().any(|r| sideways_kick(r).is_some()) {
+            " (a node kicked sideways between c_T and c_L, unjudged: straight below it the P wave has no amplitude)"
+        } else {
+            ""
+        };
+        sentences.push(format!(
             "In the lattices the front is timed at the bottom row from the kicked node and compared with \
-             c_L = a√((k + k_d)/m) of the square lattice (a√(k/m) without diagonals), in the table."
-                .into(),
-        );
+             c_L = a√((k + k_d)/m) of the square lattice (a√(k/m) without diagonals){sideways}, in the table."
+        ));
     }
     sentences.extend(block.as_ref().map(Block::sound_sentence));
     sentences.extend(block.as_ref().and_then(|b| b.wave).and_then(super::block::estimate_words));
@@ -413,7 +419,8 @@ fn power_law_crests(e: &Evidence) -> Option<String> {
     ))
 }
 
-/// The linear lattices' front speeds at t_c/50 against c_L, one row each.
+/// The linear lattices' front speeds at t_c/50 against c_L (a node kicked sideways against
+/// c_T … c_L, with no error), one row each.
 fn lattice_speed_rows(linear: &[&RunRecord]) -> Vec<Vec<String>> {
     linear
         .iter()
@@ -426,7 +433,7 @@ fn lattice_speed_rows(linear: &[&RunRecord]) -> Vec<Vec<String>> {
                 r.spec.scene.clone(),
                 if varied.is_empty() { size } else { format!("{size}, {varied}") },
                 cell(r.metrics.recommended_sound_speed()),
-                cell(r.metrics.sound_speed_theory),
+                reference_speed(r, sig),
                 relative(r.metrics.recommended_sound_speed(), r.metrics.sound_speed_theory)
                     .map(rel)
                     .unwrap_or_else(|| "–".into()),

@@ -1,9 +1,11 @@
 //! Issue 34's item "Jamming": where the campaign's packings jam and how they scale above it,
 //! against O'Hern, Silbert, Liu & Nagel, Phys. Rev. E 68, 011306 (2003). Each packing's own φ_J
 //! (where its pressure vanishes as it is decompressed), their mean per seed and the seeds' mean
-//! and standard error per N; z at jamming from each seed's packing nearest its own φ_J (the
-//! extrapolation z = z_J + c √Δφ told beside it, not judged); and log–log fits of p, z − 4, K
-//! and G against each packing's Δφ = φ − φ_J per contact law and N.
+//! and standard error per N (the seeds' scatter at the campaign's quench fractions alone, told
+//! beside how the own φ_J moves between them); z at jamming from each seed's packing nearest its
+//! own φ_J (the extrapolation z = z_J + c √Δφ told beside it, not judged); log–log fits of p,
+//! z − 4, K and G against each packing's Δφ = φ − φ_J per contact law and N; and the packings
+//! unstable to shear, their fall with Δφ N² tested one sample per seed.
 
 use std::collections::BTreeMap;
 
@@ -25,9 +27,13 @@ use crate::summary::jamming::{
 const CITATION: &str = "O'Hern, Silbert, Liu & Nagel, Phys. Rev. E 68, 011306 (2003)";
 /// Their φ_J of 50:50 discs of diameter ratio 1.4, N → ∞.
 const PHI_J: f64 = 0.842;
-/// The allowance for finite size beside 2 standard errors: the mean φ_J of small periodic
-/// packings moves with N (by +0.007 from N = 64 to 1024 in `campaigns/jamming.yaml`).
-const FINITE_SIZE: f64 = 0.01;
+/// The allowance beside 2 standard errors for what the seeds' scatter leaves out: finite size
+/// (small periodic packings jam below φ* on average, O'Hern et al.'s φ_J rising towards it with
+/// N: −0.0036 at N = 64 in `campaigns/jamming.yaml`) and the preparation (the own φ_J of one
+/// random start rises with the fraction it is quenched at, there by +0.0100 ± 0.0023 from
+/// φ = 0.84 to 0.92 at N = 64 and +0.0037 ± 0.0003 from 0.845 to 0.92 at N = 1024, so a mean
+/// over other quench fractions moves by up to that), of either sign.
+const UNSAMPLED: f64 = 0.01;
 /// The tolerance of z at jamming against 4, judged on each seed's packing nearest its own φ_J
 /// where their mean Δφ is at most [`NEAR_JAMMING`]: z − 4 grows as c √Δφ above φ_J, c = 3.1 …
 /// 3.3 over the 9 linear packings of N = 1024 at Δφ ≤ 0.005 in `campaigns/jamming.yaml`, so
@@ -204,42 +210,41 @@ const RANGES: [&str; 3] = ["at Δφ N² < 10²", "at 10² ≤ Δφ N² < 10³", 
 /// chance alone makes less often than once in 20 such campaigns.
 const SIGNIFICANCE: f64 = 0.05;
 
+/// A packing's range of Δφ N² among [`CROSSOVER`]'s (0 below the first edge).
+fn crossover_range(r: &RunRecord) -> usize {
+    let scaled = excess(r).map_or(0.0, |d| d * key(r).map_or(0.0, |(n, _)| (n * n) as f64));
+    CROSSOVER.iter().filter(|&&edge| scaled >= edge).count()
+}
+
 /// How the share of packings with G < 0 (`unstable` of `with_g`) goes with Δφ N², the
-/// finite-size scaling variable of jamming (∝ p N² for linear contacts; Goodrich, Liu & Nagel,
-/// Phys. Rev. Lett. 109, 095704 (2012)): the counts in each range of [`CROSSOVER`] that has
-/// packings (an empty one has no share), whether the share falls from each to the next, and
-/// whether the lowest and the highest differ by more than chance (Fisher's exact test): a
-/// handful of packings falls by chance as often as not, and only a fall that chance rarely
-/// makes is called a finite-size effect.
+/// finite-size scaling variable of jamming for either contact law: z − 4 ∝ Δφ^½ for both, so a
+/// packing is one contact from isostatic where (z − 4) N ~ 1, i.e. Δφ N² ~ 1 (Goodrich, Liu &
+/// Nagel, Phys. Rev. Lett. 109, 095704 (2012)); it is ∝ p N², Dagois-Bohy et al.'s variable, for
+/// linear contacts alone (Hertz p ∝ Δφ^(3/2)), which the sentence says where laws are pooled.
+/// The counts in each range of [`CROSSOVER`] that has packings (an empty one has no share),
+/// whether the share falls from each to the next, and whether the lowest and the highest
+/// differ by more than chance ([`fall_verdict`]).
 fn finite_size_words(unstable: &[&RunRecord], with_g: &[&RunRecord]) -> String {
-    let range = |r: &&RunRecord| {
-        let scaled = excess(r).map_or(0.0, |d| d * key(r).map_or(0.0, |(n, _)| (n * n) as f64));
-        CROSSOVER.iter().filter(|&&edge| scaled >= edge).count()
-    };
-    let count = |packings: &[&RunRecord], i: usize| packings.iter().filter(|r| range(r) == i).count();
+    let count = |packings: &[&RunRecord], i: usize| packings.iter().filter(|r| crossover_range(r) == i).count();
     let populated: Vec<(usize, usize, usize)> =
         (0..RANGES.len()).map(|i| (i, count(unstable, i), count(with_g, i))).filter(|&(_, _, all)| all > 0).collect();
     let shares: Vec<f64> = populated.iter().map(|&(_, a, b)| a as f64 / b as f64).collect();
     let falls = shares.len() > 1 && shares.windows(2).all(|w| w[1] < w[0]);
     let counts: Vec<String> = populated.iter().map(|&(i, a, b)| format!("{a} of {b} {}", RANGES[i])).collect();
     let verdict = match (populated.first(), populated.last()) {
-        (Some(&(_, a, m)), Some(&(_, b, n))) if falls => {
-            let p = fisher_exact((a, m), (b, n));
-            let test = format!("Fisher's exact test of the lowest range against the highest: p = {}", sig(p));
-            if p < SIGNIFICANCE {
-                format!(" ({test} < {SIGNIFICANCE}): a finite-size effect, of that kind")
-            } else {
-                format!(
-                    "; but {test}, not below {SIGNIFICANCE}: chance alone makes such a fall more often than once in \
-                     20, and these counts cannot tell a finite-size effect"
-                )
-            }
-        }
+        (Some(&low), Some(&high)) if falls => fall_verdict(unstable, with_g, low, high),
         _ => String::new(),
     };
+    let laws: Vec<String> = exponents(with_g.iter().copied()).into_iter().map(law_words).collect();
+    let pooled = match laws.len() {
+        0 | 1 => String::new(),
+        _ => format!(", and the {} packings are pooled here", words::listed(&laws, "and")),
+    };
     format!(
-        "Here the share {} as Δφ N² grows (the finite-size scaling variable of jamming, ∝ p N² for linear contacts, \
-         Goodrich, Liu & Nagel, Phys. Rev. Lett. 109, 095704 (2012)): of the jammed packings with a G, {}{verdict}.",
+        "Here the share {} as Δφ N² grows (the finite-size scaling variable of jamming for either contact law: z − 4 \
+         ∝ Δφ^½ for both, so a packing is one contact from isostatic where (z − 4) N ~ 1, i.e. Δφ N² ~ 1, Goodrich, \
+         Liu & Nagel, Phys. Rev. Lett. 109, 095704 (2012); ∝ p N² for linear contacts alone, as Hertz p ∝ \
+         Δφ^(3/2){pooled}): of the jammed packings with a G, {}{verdict}.",
         match (falls, populated.len() > 1) {
             (true, _) => "falls",
             (false, true) => "does not fall steadily",
@@ -247,6 +252,86 @@ fn finite_size_words(unstable: &[&RunRecord], with_g: &[&RunRecord]) -> String {
         },
         counts.join(", ")
     )
+}
+
+/// Whether the share of G < 0 falls from the `low`est range of Δφ N² to the `high`est (range,
+/// unstable, all) by more than chance. Fisher's exact test over the packings takes each for an
+/// independent sample; a seed's packings at every fraction, N and contact law are not (disc k
+/// of seed s starts at one place in units of the box whatever the fraction and N), so where it
+/// finds a fall the verdict is the seeds' ([`seed_shares`]): only a fall that chance rarely
+/// makes, seed by seed, is called a finite-size effect.
+fn fall_verdict(
+    unstable: &[&RunRecord],
+    with_g: &[&RunRecord],
+    (i, a, m): (usize, usize, usize),
+    (j, b, n): (usize, usize, usize),
+) -> String {
+    let p = fisher_exact((a, m), (b, n));
+    let pooled = format!("Fisher's exact test of the lowest range against the highest: p = {}", sig(p));
+    if p >= SIGNIFICANCE {
+        return format!(
+            "; but {pooled}, not below {SIGNIFICANCE} even with each packing taken for an independent sample: chance \
+             alone makes such a fall more often than once in 20, and these counts cannot tell a finite-size effect"
+        );
+    }
+    let s = seed_shares(unstable, with_g, (i, j));
+    let seeds = format!(
+        "{pooled}, but it takes the {} packings of those two ranges for independent samples, and those of one seed \
+         share its random start, disc k placed alike in units of the box at every fraction, N and contact law, so it \
+         overstates; one sample per seed, the seed's own share falls from the lowest range to the highest in {} of the {} seeds with packings \
+         in both, rises in {} and stays in {}: the sign test gives p = {}",
+        m + n,
+        s.falls,
+        s.falls + s.rises + s.stays,
+        s.rises,
+        s.stays,
+        sig(s.p)
+    );
+    if s.p < SIGNIFICANCE {
+        format!(" ({seeds} < {SIGNIFICANCE}): a finite-size effect, of that kind")
+    } else {
+        format!(" ({seeds}, not below {SIGNIFICANCE}): these seeds cannot tell a finite-size effect")
+    }
+}
+
+/// The seeds whose own share of G < 0 falls, rises or stays from range `low` of Δφ N² to range
+/// `high` (those with packings in both), and the two-sided sign test of the falls against the
+/// rises ([`sign_test`]): one independent sample per seed.
+struct SeedShares {
+    falls: usize,
+    rises: usize,
+    stays: usize,
+    p: f64,
+}
+
+/// Each seed's share of `unstable` among its `with_g` in range `low` against range `high`.
+fn seed_shares(unstable: &[&RunRecord], with_g: &[&RunRecord], (low, high): (usize, usize)) -> SeedShares {
+    let mut seeds: Vec<u64> = with_g.iter().map(|r| seed(r)).collect();
+    seeds.sort_unstable();
+    seeds.dedup();
+    let share = |s: u64, i: usize| {
+        let count =
+            |packings: &[&RunRecord]| packings.iter().filter(|r| seed(r) == s && crossover_range(r) == i).count();
+        let all = count(with_g);
+        (all > 0).then(|| count(unstable) as f64 / all as f64)
+    };
+    let changes: Vec<f64> = seeds.iter().filter_map(|&s| Some(share(s, high)? - share(s, low)?)).collect();
+    let falls = changes.iter().filter(|c| **c < 0.0).count();
+    let rises = changes.iter().filter(|c| **c > 0.0).count();
+    SeedShares { falls, rises, stays: changes.len() - falls - rises, p: sign_test(falls, rises) }
+}
+
+/// The two-sided sign test of `a` against `b`: the chance that a fair coin tossed n = a + b
+/// times parts at least as unevenly, 2 Σ_{k ≥ max(a, b)} C(n, k) / 2^n, at most 1 (1 at n = 0).
+fn sign_test(a: usize, b: usize) -> f64 {
+    let n = a + b;
+    // C(n, k)/2^n from k = 0 up: 2^−n, then each × (n − k)/(k + 1).
+    let terms = (0..=n).scan(0.5f64.powi(n as i32), |term, k| {
+        let this = *term;
+        *term *= (n - k) as f64 / (k + 1) as f64;
+        Some(this)
+    });
+    (2.0 * terms.skip(a.max(b)).sum::<f64>()).min(1.0)
 }
 
 /// "a of b at N = n" for each N of `whole`: how many of its packings are in `part`.
@@ -317,22 +402,26 @@ fn law_words(beta: f64) -> String {
 }
 
 impl Onset {
-    /// Within 2 standard errors and the finite-size allowance of O'Hern et al.'s φ_J.
+    /// Within 2 standard errors and [`UNSAMPLED`] of O'Hern et al.'s φ_J.
     fn within(&self) -> bool {
-        (self.mean - PHI_J).abs() <= 2.0 * self.error + FINITE_SIZE
+        (self.mean - PHI_J).abs() <= 2.0 * self.error + UNSAMPLED
     }
 
-    /// Its sentence; held against O'Hern et al.'s φ_J where that is the mixture's (`literature`).
-    fn sentence(&self, literature: bool) -> String {
+    /// Its sentence, with the quench fractions its standard error is the seeds' scatter at and
+    /// how the own φ_J moves between them (`protocol`); held against O'Hern et al.'s φ_J where
+    /// that is the mixture's (`literature`).
+    fn sentence(&self, literature: bool, protocol: &Protocol) -> String {
         let over = match (self.seeds, self.error > 0.0) {
             (1, _) => "one seed".to_string(),
-            (seeds, true) => format!("mean ± standard error over {seeds} seeds"),
+            (seeds, true) => {
+                format!("mean ± standard error over {seeds} seeds: their scatter {} alone", protocol.span_words())
+            }
             (seeds, false) => format!("mean of {seeds} seeds that relaxed to one state: no standard error"),
         };
         let judged = if literature {
             format!(
-                ", {} from {CITATION}'s {PHI_J}{}: {} (tolerance: 2 standard errors + {FINITE_SIZE}, the latter for the \
-                 finite size)",
+                ", {} from {CITATION}'s {PHI_J}{}: {} (tolerance: 2 standard errors + {UNSAMPLED}, the latter for finite \
+                 size and preparation, which the seeds' scatter leaves out)",
                 signed(self.mean - PHI_J),
                 self.in_errors(),
                 if self.within() { "within" } else { "outside" },
@@ -340,16 +429,27 @@ impl Onset {
         } else {
             String::new()
         };
-        format!("N = {}: φ_J = {} ({over}){judged}.", self.n, plus_minus(self.mean, self.error))
+        format!(
+            "N = {}: φ_J = {} ({over}; {}){judged}.",
+            self.n,
+            plus_minus(self.mean, self.error),
+            protocol.dependence()
+        )
     }
 
     /// The gap to the literature's φ_J in standard errors, where that is more than two: a gap
-    /// that only the finite-size allowance covers says so.
+    /// that only [`UNSAMPLED`] covers says so, and by which of its parts. Small periodic
+    /// packings jam below φ* on average, O'Hern et al.'s φ_J rising towards it with N, so finite
+    /// size explains no φ_J above 0.842: there only the preparation can.
     fn in_errors(&self) -> String {
         let errors = (self.mean - PHI_J).abs() / self.error;
+        let parts = match self.mean > PHI_J {
+            true => "the preparation, not finite size: small periodic packings jam below 0.842 on average, not above",
+            false => "finite size and preparation",
+        };
         match (self.error > 0.0 && errors > 2.0, self.within()) {
             (false, _) => String::new(),
-            (true, true) => format!(" ({} standard errors: within only by the allowance for finite size)", sig(errors)),
+            (true, true) => format!(" ({} standard errors: within only by the allowance, for {parts})", sig(errors)),
             (true, false) => format!(" ({} standard errors)", sig(errors)),
         }
     }
@@ -375,13 +475,18 @@ fn trend_sentence(sizes: &[Onset]) -> Option<String> {
     })
 }
 
+/// The `base` law's packings of `n` discs by quench fraction, those fractions where some jammed.
+fn jammed_quenches(system: &[&RunRecord], n: usize, base: f64) -> Vec<Quench> {
+    quenches(system, n, base).into_iter().filter(|q| !q.onsets.is_empty()).collect()
+}
+
 /// How a state's own φ_J depends on the fraction it was quenched at, at the largest N: the
 /// `base` law's packings at the lowest and the highest fraction where every packing jammed
 /// ([`Quench::complete`]: elsewhere those that jammed are the ones whose own φ_J lies below the
 /// fraction, a selection that alone makes the own φ_J rise with it), their difference per seed
 /// against its standard error. `None` where fewer than two fractions have jammed packings.
 fn preparation_sentence(system: &[&RunRecord], n: usize, base: f64) -> Option<String> {
-    let quenches: Vec<Quench> = quenches(system, n, base).into_iter().filter(|q| !q.onsets.is_empty()).collect();
+    let quenches = jammed_quenches(system, n, base);
     if quenches.len() < 2 {
         return None;
     }
@@ -396,7 +501,7 @@ fn preparation_sentence(system: &[&RunRecord], n: usize, base: f64) -> Option<St
         ),
     };
     let comparison = match complete.as_slice() {
-        [low, .., high] => quench_difference(low, high),
+        [low, .., high] => quench_difference(&Paired::of(low, high)),
         [only] => format!(
             "every packing jammed at φ = {} alone, so the low end of the quench fractions is cut off by that \
              selection and nothing is said of how the own φ_J depends on the preparation",
@@ -420,40 +525,68 @@ fn cut_words(cut: &[&Quench]) -> String {
     each.join("; ")
 }
 
-/// The own φ_J of the packings quenched at `low` and at `high` (every one jammed at both) and
-/// their difference per seed, whose random start both quenches share, against its standard
-/// error over the seeds: told as a dependence on the preparation only beyond Student's t of
-/// them ([`student_t`]: a paired t-test at 5 %).
-fn quench_difference(low: &Quench, high: &Quench) -> String {
-    let mean = |q: &Quench| q.onsets.iter().map(|o| o.1).sum::<f64>() / q.onsets.len() as f64;
-    let differences: Vec<Option<f64>> = high
-        .onsets
-        .iter()
-        .filter_map(|&(s, phi)| low.onsets.iter().find(|o| o.0 == s).map(|o| Some(phi - o.1)))
-        .collect();
-    let seeds = differences.len();
-    let (difference, spread) = mean_spread(differences.into_iter());
-    let error = spread.map(|s| s / (seeds as f64).sqrt()).filter(|e| *e > 0.0);
+/// The own φ_J of one N's packings quenched at a low and a high fraction where every one
+/// jammed: their means, and their difference per seed (whose random start both quenches
+/// share) with its standard error over the seeds.
+struct Paired {
+    fractions: (f64, f64),
+    means: (f64, f64),
+    /// The mean of high − low over the seeds quenched at both (`None` without one).
+    difference: Option<f64>,
+    /// Its standard error (`None` with one seed, or where every seed moved alike).
+    error: Option<f64>,
+    seeds: usize,
+}
+
+impl Paired {
+    fn of(low: &Quench, high: &Quench) -> Self {
+        let mean = |q: &Quench| q.onsets.iter().map(|o| o.1).sum::<f64>() / q.onsets.len() as f64;
+        let differences: Vec<Option<f64>> = high
+            .onsets
+            .iter()
+            .filter_map(|&(s, phi)| low.onsets.iter().find(|o| o.0 == s).map(|o| Some(phi - o.1)))
+            .collect();
+        let seeds = differences.len();
+        let (difference, spread) = mean_spread(differences.into_iter());
+        let error = spread.map(|s| s / (seeds as f64).sqrt()).filter(|e| *e > 0.0);
+        Paired { fractions: (low.fraction, high.fraction), means: (mean(low), mean(high)), difference, error, seeds }
+    }
+
+    /// The difference in its standard errors, and Student's t that chance exceeds once in 20 at
+    /// the seeds' degrees of freedom ([`student_t`]: a paired t-test); `None` without an error.
+    fn errors(&self) -> Option<(f64, f64)> {
+        Some((self.difference?.abs() / self.error?, student_t(self.seeds - 1)))
+    }
+
+    /// Whether the seeds resolve a dependence on the preparation: the difference beyond t.
+    fn resolved(&self) -> bool {
+        self.errors().is_some_and(|(errors, t)| errors > t)
+    }
+}
+
+/// The own φ_J of the packings quenched at the `paired` fractions (every one jammed at both)
+/// and their difference per seed against its standard error over the seeds: told as a
+/// dependence on the preparation only where the seeds resolve it ([`Paired::resolved`]).
+fn quench_difference(paired: &Paired) -> String {
     let both = format!(
         "where every one jammed, those quenched at φ = {} jam at {} and those at φ = {} at {}",
-        number(low.fraction),
-        sig(mean(low)),
-        number(high.fraction),
-        sig(mean(high))
+        number(paired.fractions.0),
+        sig(paired.means.0),
+        number(paired.fractions.1),
+        sig(paired.means.1)
     );
-    let (Some(difference), Some(error)) = (difference, error) else {
+    let (Some(difference), Some(error), Some((errors, t))) = (paired.difference, paired.error, paired.errors()) else {
         return format!(
             "{both}; with {} quenched at both there is no standard error to judge the difference by, and nothing is \
              said of how the own φ_J depends on the preparation",
-            words::counted(seeds, "seed")
+            words::counted(paired.seeds, "seed")
         );
     };
-    let (errors, t) = (difference.abs() / error, student_t(seeds - 1));
-    let verdict = if errors > t {
+    let verdict = if paired.resolved() {
         format!(
             "the own φ_J {} with the quench fraction (Chaudhuri, Berthier & Sastry, Phys. Rev. Lett. 104, 165701 \
              (2010) found jamming spread over a range of φ with the preparation)",
-            if difference > 0.0 { "rises" } else { "falls" }
+            direction(difference)
         )
     } else {
         "these seeds cannot tell whether the own φ_J depends on the preparation".into()
@@ -462,12 +595,95 @@ fn quench_difference(low: &Quench, high: &Quench) -> String {
         "{both}, {} per seed over {} quenched at both from one random start, {} standard errors, {} {} (Student's t \
          that chance exceeds once in 20 at {} of freedom): {verdict}",
         plus_minus_signed(difference, error),
-        words::counted(seeds, "seed"),
+        words::counted(paired.seeds, "seed"),
         sig(errors),
-        if errors > t { "more than" } else { "not more than" },
+        if paired.resolved() { "more than" } else { "not more than" },
         sig(t),
-        words::counted(seeds - 1, "degree")
+        words::counted(paired.seeds - 1, "degree")
     )
+}
+
+/// The quench fractions one N's φ_J is measured at, and how its packings' own φ_J moves
+/// between them. The seeds' standard error of φ_J is their scatter at these fractions alone:
+/// the own φ_J of one random start rises with the fraction it is quenched at (jamming.yaml,
+/// N = 1024: +0.00374 ± 0.00030 from φ = 0.845 to 0.92), so the same seeds quenched elsewhere
+/// give another φ_J beyond that error (N = 256, seeds 1 … 8: 0.84051 ± 0.00064 quenched at φ =
+/// 0.845 and 0.85, 0.84364 ± 0.00038 at 0.90 … 0.94, 5.6 standard errors of the paired
+/// difference apart).
+struct Protocol {
+    /// The lowest and the highest fraction with a jammed packing.
+    span: (f64, f64),
+    /// The lowest and the highest fraction where every packing jammed, compared per seed; `None`
+    /// without two such.
+    paired: Option<Paired>,
+}
+
+impl Protocol {
+    /// The protocol of the `base` law's packings of `n` discs among `system`.
+    fn of(system: &[&RunRecord], n: usize, base: f64) -> Self {
+        let quenches = jammed_quenches(system, n, base);
+        let complete: Vec<&Quench> = quenches.iter().filter(|q| q.complete()).collect();
+        let paired = match complete.as_slice() {
+            [low, .., high] => Some(Paired::of(low, high)),
+            _ => None,
+        };
+        Protocol { span: crate::measure::extremes(quenches.iter().map(|q| q.fraction)), paired }
+    }
+
+    /// "at φ = 0.82 … 0.92", or "at φ = 0.86" for one fraction.
+    fn span_words(&self) -> String {
+        match self.span.0 < self.span.1 {
+            true => format!("at φ = {} … {}", number(self.span.0), number(self.span.1)),
+            false => format!("at φ = {}", number(self.span.0)),
+        }
+    }
+
+    /// How the own φ_J moves from the lowest fraction where every packing jammed to the
+    /// highest, per seed, and what that is to the seeds' standard error.
+    fn dependence(&self) -> String {
+        let between = |p: &Paired| format!("from φ = {} to {}", number(p.fractions.0), number(p.fractions.1));
+        match &self.paired {
+            Some(p @ Paired { difference: Some(d), error: Some(e), .. }) if p.resolved() => format!(
+                "the own φ_J {} by {} {} per seed, a dependence on the preparation that this standard error leaves out",
+                direction(*d),
+                plus_minus_signed(*d, *e),
+                between(p)
+            ),
+            Some(p @ Paired { difference: Some(d), error: Some(e), .. }) => format!(
+                "the own φ_J moves by {} {} per seed, a dependence on the preparation these seeds do not resolve",
+                plus_minus_signed(*d, *e),
+                between(p)
+            ),
+            Some(p @ Paired { difference: Some(d), .. }) => {
+                format!("the own φ_J moves by {} {}, with no standard error to judge it by", signed(*d), between(p))
+            }
+            _ => "how it moves with the quench fraction is not measured here: that needs two fractions where every \
+                  packing jammed, with seeds quenched at both"
+                .into(),
+        }
+    }
+
+    /// The headline's and the table's words for `onset`: the fractions its seeds' scatter is
+    /// from, and the dependence on the preparation where the seeds resolve it.
+    fn headline(&self, onset: &Onset) -> String {
+        let moves = match &self.paired {
+            Some(p @ Paired { difference: Some(d), error: Some(e), .. }) if p.resolved() => format!(
+                "; it depends on the preparation: the own φ_J {} by {} per seed from φ = {} to {}",
+                direction(*d),
+                plus_minus_signed(*d, *e),
+                number(p.fractions.0),
+                number(p.fractions.1)
+            ),
+            _ => String::new(),
+        };
+        let scatter = if onset.error > 0.0 { "± the seeds' scatter " } else { "" };
+        format!("{scatter}quenched {}{}{moves}", self.span_words(), if scatter.is_empty() { "" } else { " alone" })
+    }
+}
+
+/// How the own φ_J goes with the quench fraction, from their difference per seed.
+fn direction(difference: f64) -> &'static str {
+    if difference > 0.0 { "rises" } else { "falls" }
 }
 
 /// A difference ± its standard error, with its sign.
@@ -835,17 +1051,20 @@ fn jammed_answer(
     (sizes, largest): (&[Onset], &Onset),
 ) -> Answer {
     let literature = system.is_literature();
+    let protocols: Vec<Protocol> = sizes.iter().map(|s| Protocol::of(&system.runs, s.n, base)).collect();
     let mut sentences = vec![onset_method(base, onsets)];
-    sentences.extend(sizes.iter().map(|s| s.sentence(literature)));
+    sentences.extend(sizes.iter().zip(&protocols).map(|(s, p)| s.sentence(literature, p)));
     sentences.extend(selection_sentence(&system.runs, runs, base, sizes));
     sentences.extend(own_onset_sentences(runs, largest, base));
     sentences.extend(trend_sentence(sizes).filter(|_| literature));
     sentences.extend(preparation_sentence(&system.runs, largest.n, base));
     let law = law_words(base);
+    let measured = |s: &Onset, p: &Protocol| format!("{} ({})", plus_minus(s.mean, s.error), p.headline(s));
     let mut rows: Vec<Vec<String>> = sizes
         .iter()
+        .zip(&protocols)
         .filter(|_| literature)
-        .map(|s| row(&law, s.n, "φ_J", &plus_minus(s.mean, s.error), PHI_J, s.seeds, Some(s.within())))
+        .map(|(s, p)| row(&law, s.n, "φ_J", &measured(s, p), PHI_J, s.seeds, Some(s.within())))
         .collect();
     if let Some((sentence, z_row)) = isostatic_words(runs, largest, base) {
         sentences.push(sentence);
@@ -859,7 +1078,7 @@ fn jammed_answer(
     Answer {
         title: "Jamming",
         question: "Where do random packings of discs jam, and how do p, z, K and G grow above it?",
-        short: summary_line(largest, &rows, system.ratio),
+        short: summary_line(largest, protocols.last(), &rows, system.ratio),
         sentences,
         reference: reference(runs, system),
         see_also: None,
@@ -932,19 +1151,18 @@ fn isostatic_words(runs: &[&RunRecord], size: &Onset, base: f64) -> Option<(Stri
     let (mean, error_near) = (mean.0?, mean.1.map(|s| s / (near.len() as f64).sqrt()).filter(|e| *e > 0.0));
     let measured = error_near.map_or(sig(mean), |e| plus_minus(mean, e));
     let (low, high) = crate::measure::extremes(near.iter().map(|p| p.excess));
+    let span = if low == high { sig(low) } else { format!("{} … {}", sig(low), sig(high)) };
     let (verdict, ok) = nearest_verdict(&packings, &near, mean);
     let sentence = format!(
         "z at jamming (mean contacts per disc, rattlers removed), {} packings of N = {}: z = z_J + c √Δφ over the {} \
          jammed ones extrapolates to z_J = {}, {extrapolated} 4 − 2/N′ = {}, the least z of a jammed packing (2N′ − 1 \
          contacts on its N′ discs that are not rattlers; N′ ≥ {fewest}){bends}. Each seed's packing nearest its \
-         own φ_J (Δφ = {} … {}) has z = {measured} ({}){verdict}.",
+         own φ_J (Δφ = {span}) has z = {measured} ({}){verdict}.",
         law_words(base),
         size.n,
         packings.len(),
         error.filter(|e| *e > 0.0).map_or(sig(z_j), |e| plus_minus(z_j, e)),
         sig(bound),
-        sig(low),
-        sig(high),
         words::counted(near.len(), "seed"),
     );
     Some((sentence, row(&law_words(base), size.n, "z nearest φ_J", &measured, ISOSTATIC, near.len(), ok)))
@@ -1220,9 +1438,11 @@ fn table_verdict(rows: &[Vec<String>]) -> Verdict {
     if checks.is_empty() { Verdict::Observed } else { Verdict::of(checks) }
 }
 
-/// The summary's line: φ_J of the `largest` N, then every judged number of `rows` outside its
-/// tolerance (law, N), so that the item's ✗ names what it is for.
-fn summary_line(largest: &Onset, rows: &[Vec<String>], ratio: f64) -> String {
+/// The summary's line: φ_J of the `largest` N with the fractions its seeds were quenched at
+/// and the dependence on them its standard error leaves out ([`Protocol::headline`]), then
+/// every judged number of `rows` outside its tolerance (law, N), so that the item's ✗ names
+/// what it is for.
+fn summary_line(largest: &Onset, protocol: Option<&Protocol>, rows: &[Vec<String>], ratio: f64) -> String {
     let outside: Vec<String> = rows
         .iter()
         .filter(|r| judged(r) == Some(false))
@@ -1234,7 +1454,8 @@ fn summary_line(largest: &Onset, rows: &[Vec<String>], ratio: f64) -> String {
     } else {
         format!("for diameter ratio {}, not 1.4's", number(ratio))
     };
-    format!("φ_J = {} (N = {}) {against}{clause}", plus_minus(largest.mean, largest.error), largest.n)
+    let quenched = protocol.map_or(String::new(), |p| format!("; {}", p.headline(largest)));
+    format!("φ_J = {} (N = {}{quenched}) {against}{clause}", plus_minus(largest.mean, largest.error), largest.n)
 }
 
 /// The answer when no quenched packing of the system has its own φ_J: when none jammed,
