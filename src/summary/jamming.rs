@@ -310,15 +310,8 @@ pub(crate) fn ratio_against_contacts(runs: &[&RunRecord], n: usize, beta: f64, f
 /// the campaign's packings of that law ([`onsets_of`]) over Δφ ≥ the floor of its N.
 pub fn fits(records: &[RunRecord]) -> Vec<ScalingFit> {
     let runs: Vec<&RunRecord> = records.iter().filter(|r| fitted(r)).collect();
-    let mut groups: Vec<(String, Vec<&RunRecord>)> = Vec::new();
-    for &r in &runs {
-        let label = r.spec.varied_label(|path| path != "packing.fraction" && path != "seed");
-        match groups.iter_mut().find(|(l, members)| *l == label && members[0].spec.scene == r.spec.scene) {
-            Some((_, members)) => members.push(r),
-            None => groups.push((label, vec![r])),
-        }
-    }
-    groups.iter().flat_map(|(label, members)| group_fits(&runs, label, members)).collect()
+    let groups = super::scene_groups(runs.iter().map(|&r| (r, r)), &["packing.fraction", "seed"]);
+    groups.iter().flat_map(|(_, label, members)| group_fits(&runs, label, members)).collect()
 }
 
 /// The scalings of one group of packings (`members`, of one scene, N and law) as `summary.csv`

@@ -131,23 +131,33 @@ pub struct ScalingFit {
     pub fit: PowerLawFit,
 }
 
+/// `items` of runs in groups of one scene whose runs differ only in the grid paths `swept`: each
+/// group's first run, its label (its other grid values) and its items, in campaign order.
+fn scene_groups<'a, T>(
+    items: impl IntoIterator<Item = (&'a RunRecord, T)>,
+    swept: &[&str],
+) -> Vec<(&'a RunRecord, String, Vec<T>)> {
+    let mut groups: Vec<(&RunRecord, String, Vec<T>)> = Vec::new();
+    for (r, item) in items {
+        let label = r.spec.varied_label(|path| !swept.contains(&path));
+        match groups.iter_mut().find(|(first, l, _)| first.spec.scene == r.spec.scene && *l == label) {
+            Some((_, _, members)) => members.push(item),
+            None => groups.push((r, label, vec![item])),
+        }
+    }
+    groups
+}
+
 /// The power-law fits of every quantity that a scene sweeps over at least two values: the
 /// sound speed against v0, moduli against the load, a chain's stiffness against |ΔW|.
 pub fn scaling_fits(records: &[RunRecord]) -> Vec<ScalingFit> {
-    /// A group's first run, its label and its (x, y) points.
-    type Group<'a> = (&'a RunRecord, String, Vec<(f64, f64)>);
     let mut fits = Vec::new();
     for scaling in &SCALINGS {
-        let mut groups: Vec<Group> = Vec::new();
-        for r in records.iter().filter(|r| r.status == RunStatus::Ok) {
-            let Some(point) = (scaling.x)(r).zip((scaling.y)(r)) else { continue };
-            let group = r.spec.varied_label(|path| !scaling.paths.contains(&path));
-            match groups.iter_mut().find(|(first, label, _)| first.spec.scene == r.spec.scene && *label == group) {
-                Some((_, _, points)) => points.push(point),
-                None => groups.push((r, group, vec![point])),
-            }
-        }
-        fits.extend(groups.into_iter().filter_map(|(first, group, mut points)| {
+        let points = records
+            .iter()
+            .filter(|r| r.status == RunStatus::Ok)
+            .filter_map(|r| Some((r, (scaling.x)(r).zip((scaling.y)(r))?)));
+        fits.extend(scene_groups(points, scaling.paths).into_iter().filter_map(|(first, group, mut points)| {
             points.sort_by(|a, b| a.0.total_cmp(&b.0));
             let fit = power_law_fit(&points)?;
             Some(ScalingFit {
