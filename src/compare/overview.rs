@@ -10,6 +10,7 @@ use super::restitution::Targets;
 use super::section::SceneSection;
 use super::stats::{SEED_ERRORS, Stats};
 use super::words::{count, counted, fixed, short, value};
+use crate::measure::sorted_distinct;
 
 /// At most this many sentences name a differing quantity, and at most this many figures show
 /// one; the table and the appendix hold the rest.
@@ -163,9 +164,7 @@ fn lead(scenes: &[SceneSection], all: &[Entry], differ: &[Entry]) -> String {
             count(n, "is measured", "are measured")
         ),
     };
-    let mut differing: Vec<&str> = differ.iter().map(|(s, _)| s.name.as_str()).collect();
-    differing.sort_unstable();
-    differing.dedup();
+    let differing: Vec<&str> = sorted_distinct(differ.iter().map(|(s, _)| s.name.as_str()));
     let shared = format!("The two campaigns share {} ({})", counted(names.len(), "scene"), names.join(", "));
     if differ.is_empty() && equal == 0 {
         return format!(

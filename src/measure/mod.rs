@@ -186,3 +186,11 @@ pub fn mean_spread(values: impl Iterator<Item = Option<f64>>) -> (Option<f64>, O
         (v.len() > 1).then(|| (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (v.len() - 1) as f64).sqrt());
     (Some(mean), spread)
 }
+
+/// The distinct values of `values`, in increasing order.
+pub fn sorted_distinct<T: Ord>(values: impl IntoIterator<Item = T>) -> Vec<T> {
+    let mut distinct: Vec<T> = values.into_iter().collect();
+    distinct.sort_unstable();
+    distinct.dedup();
+    distinct
+}

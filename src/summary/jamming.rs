@@ -7,7 +7,7 @@
 use std::collections::BTreeMap;
 
 use super::ScalingFit;
-use crate::measure::{PowerLawFit, mean_spread, power_law_fit};
+use crate::measure::{PowerLawFit, mean_spread, power_law_fit, sorted_distinct};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::study::packing::ONSET_PRECISION;
@@ -230,9 +230,7 @@ pub(crate) fn seed_jackknife_of(
     seeds: &[u64],
     estimate: impl Fn(&[(f64, f64)]) -> Option<f64>,
 ) -> Option<f64> {
-    let mut distinct = seeds.to_vec();
-    distinct.sort_unstable();
-    distinct.dedup();
+    let distinct = sorted_distinct(seeds.iter().copied());
     if distinct.len() < JACKKNIFE_SEEDS {
         return None;
     }

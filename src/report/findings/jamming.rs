@@ -10,8 +10,8 @@
 use std::collections::BTreeMap;
 
 use super::finding::{Answer, Evidence, Table, Verdict, exponents, plus_minus, sig, signed};
-use crate::measure::line_fit;
 use crate::measure::mean_spread;
+use crate::measure::{line_fit, sorted_distinct};
 use crate::report::figure::{FigureKind, FigureRef};
 use crate::report::jamming::{Quench, fisher_exact, quenches, student_t};
 use crate::report::words::{self, number};
@@ -306,9 +306,7 @@ struct SeedShares {
 
 /// Each seed's share of `unstable` among its `with_g` in range `low` against range `high`.
 fn seed_shares(unstable: &[&RunRecord], with_g: &[&RunRecord], (low, high): (usize, usize)) -> SeedShares {
-    let mut seeds: Vec<u64> = with_g.iter().map(|r| seed(r)).collect();
-    seeds.sort_unstable();
-    seeds.dedup();
+    let seeds: Vec<u64> = sorted_distinct(with_g.iter().map(|r| seed(r)));
     let share = |s: u64, i: usize| {
         let count =
             |packings: &[&RunRecord]| packings.iter().filter(|r| seed(r) == s && crossover_range(r) == i).count();
@@ -337,9 +335,7 @@ fn sign_test(a: usize, b: usize) -> f64 {
 /// "a of b at N = n" for each N of `whole`: how many of its packings are in `part`.
 fn per_size(part: &[&RunRecord], whole: &[&RunRecord]) -> String {
     let size = |r: &&RunRecord| key(r).map(|(n, _)| n);
-    let mut sizes: Vec<usize> = whole.iter().filter_map(size).collect();
-    sizes.sort_unstable();
-    sizes.dedup();
+    let sizes: Vec<usize> = sorted_distinct(whole.iter().filter_map(size));
     let of_size = |packings: &[&RunRecord], n: usize| packings.iter().filter(|r| size(r) == Some(n)).count();
     let counts: Vec<String> =
         sizes.iter().map(|&n| format!("{} of {} at N = {n}", of_size(part, n), of_size(whole, n))).collect();
@@ -777,9 +773,7 @@ fn coordination_at_jamming(packings: &[Contacted]) -> Option<(f64, Option<f64>)>
 
 /// Each seed's packing nearest its own φ_J (its smallest Δφ): z there needs no extrapolation.
 fn nearest(packings: &[Contacted]) -> Vec<&Contacted> {
-    let mut seeds: Vec<u64> = packings.iter().map(|p| p.seed).collect();
-    seeds.sort_unstable();
-    seeds.dedup();
+    let seeds: Vec<u64> = sorted_distinct(packings.iter().map(|p| p.seed));
     let of_seed = |s: u64| packings.iter().filter(|p| p.seed == s).min_by(|a, b| a.excess.total_cmp(&b.excess));
     seeds.into_iter().filter_map(of_seed).collect()
 }
@@ -980,9 +974,7 @@ fn own_mixture_words(group: &[&RunRecord]) -> String {
 /// when every one did.
 fn not_relaxed_sentence(system: &[&RunRecord]) -> Option<String> {
     let failed: Vec<&RunRecord> = system.iter().copied().filter(|r| r.status != RunStatus::Ok).collect();
-    let mut statuses: Vec<&str> = failed.iter().map(|r| r.status.as_str()).collect();
-    statuses.sort_unstable();
-    statuses.dedup();
+    let statuses: Vec<&str> = sorted_distinct(failed.iter().map(|r| r.status.as_str()));
     (!failed.is_empty()).then(|| {
         format!(
             "{} of the {} did not relax within {} budget (status {}) and {} left out: where {} would jam is not \
@@ -1023,9 +1015,7 @@ pub(super) fn jamming(e: &Evidence) -> Option<Answer> {
 
 /// The opening sentence: how a packing's own φ_J and a seed's are found, over how many seeds.
 fn onset_method(base: f64, onsets: &BTreeMap<(usize, u64), f64>) -> String {
-    let mut seeds: Vec<u64> = onsets.keys().map(|k| k.1).collect();
-    seeds.sort_unstable();
-    seeds.dedup();
+    let seeds: Vec<u64> = sorted_distinct(onsets.keys().map(|k| k.1));
     let mut sizes: Vec<usize> = onsets.keys().map(|k| k.0).collect();
     sizes.dedup();
     format!(
@@ -1096,9 +1086,7 @@ fn jammed_answer(
 /// The item's reference, with how the exponents' standard errors are found: the jackknife over
 /// the seeds needs [`JACKKNIFE_SEEDS`] of them, and a campaign with fewer has none to give.
 fn reference(runs: &[&RunRecord], system: &System) -> String {
-    let mut seeds: Vec<u64> = runs.iter().filter(|r| jammed(r)).map(|r| seed(r)).collect();
-    seeds.sort_unstable();
-    seeds.dedup();
+    let seeds: Vec<u64> = sorted_distinct(runs.iter().filter(|r| jammed(r)).map(|r| seed(r)));
     let errors = if seeds.len() >= JACKKNIFE_SEEDS {
         format!(
             "each ± its standard error over the seeds (the jackknife: refitted without each seed in turn, given where \
@@ -1276,9 +1264,7 @@ fn correction_sentence(runs: &[&RunRecord], beta: f64, size: &Onset, whole: &[Sc
     let ceiling = (low * high).sqrt();
     let lower = scalings_over(runs, size.n, beta, (size.fit_floor(), ceiling));
     let gap = |s: &Scaling| (s.fit.exponent - s.theory).abs();
-    let mut seeds: Vec<u64> = whole.iter().flat_map(|w| w.seeds.iter().copied()).collect();
-    seeds.sort_unstable();
-    seeds.dedup();
+    let seeds: Vec<u64> = sorted_distinct(whole.iter().flat_map(|w| w.seeds.iter().copied()));
     let t = student_t(seeds.len().saturating_sub(1));
     let moves: Vec<(&Scaling, &Scaling, Shift, Option<f64>)> = lower
         .iter()

@@ -3,7 +3,7 @@
 //! chain between moved walls.
 
 use super::finding::{Answer, Evidence, Table, Verdict, cell, exponents, rel, relative, sig};
-use crate::measure::convergence_order;
+use crate::measure::{convergence_order, sorted_distinct};
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, FigureRef, representative};
 use crate::report::kinds::{contact_time_words, law_name};
@@ -346,9 +346,7 @@ pub(super) fn force_function(e: &Evidence) -> Option<Answer> {
 /// The balance of the runs of second or higher order in a sentence: the kinds of scene, how
 /// many non-linear and damped, the worst and its scene.
 fn second_order_balance(balances: &[(f64, &RunRecord)], worst: f64, worst_run: &RunRecord) -> String {
-    let mut kinds: Vec<&str> = balances.iter().map(|(_, r)| r.spec.kind().name()).collect();
-    kinds.sort_unstable();
-    kinds.dedup();
+    let kinds: Vec<&str> = sorted_distinct(balances.iter().map(|(_, r)| r.spec.kind().name()));
     let count = |keep: fn(&RunRecord) -> bool| balances.iter().filter(|(_, r)| keep(r)).count();
     format!(
         "A wrong sign would break the energy balance E_kin + E_pot + E_dissipated = W: over the {} runs at \

@@ -9,7 +9,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use super::finding::{
     Answer, Evidence, SeeAlso, Table, Verdict, cell, extremes, modulus_name, percent, shear_name, sig,
 };
-use crate::measure::median;
+use crate::measure::{median, sorted_distinct};
 use crate::report::words::number;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
@@ -318,9 +318,7 @@ fn relaxation_sentence(e: &Evidence, runs: &[&RunRecord]) -> Option<String> {
 /// The item's reference: effective-medium theory's threshold for cut networks, an observation,
 /// and for spread networks measured in tension their rigorous bounds.
 fn reference(cut: &[&RunRecord], bounds: bool, kicked: bool) -> String {
-    let mut zs: Vec<u32> = cut.iter().map(|r| coordination_of(r)).collect();
-    zs.sort_unstable();
-    zs.dedup();
+    let zs: Vec<u32> = sorted_distinct(cut.iter().map(|r| coordination_of(r)));
     let threshold = match zs[..] {
         [] => None,
         [8] => Some(

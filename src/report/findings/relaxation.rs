@@ -5,7 +5,7 @@
 
 use super::discussion::Paragraph;
 use super::finding::{Answer, Evidence, Table, Verdict, cell, extremes, relative, sig};
-use crate::measure::power_law_fit;
+use crate::measure::{power_law_fit, sorted_distinct};
 use crate::runner::RunRecord;
 use crate::sim::{PreconditionerKind, RelaxMethod, RunStatus};
 use crate::study::lattice::critical_bound_steps;
@@ -282,9 +282,7 @@ fn block(r: &RunRecord) -> String {
 
 /// The block sizes N of `runs`, in order, without repeats: "20, 40, 80".
 fn sizes(runs: &[&RunRecord]) -> String {
-    let mut sizes: Vec<usize> = runs.iter().filter_map(|r| r.spec.lattice()).map(|l| l.nx).collect();
-    sizes.sort_unstable();
-    sizes.dedup();
+    let sizes: Vec<usize> = sorted_distinct(runs.iter().filter_map(|r| r.spec.lattice()).map(|l| l.nx));
     sizes.iter().map(usize::to_string).collect::<Vec<_>>().join(", ")
 }
 
