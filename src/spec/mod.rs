@@ -111,7 +111,7 @@ fn read_bounded(path: &Path) -> std::io::Result<String> {
 /// Validates and expands campaign text; `file` names it in errors.
 pub fn parse(file: &str, text: &str) -> Result<Campaign, SpecError> {
     let invalid = |detail: String| SpecError::Invalid { file: file.to_string(), detail };
-    let raw = read_raw(text).map_err(invalid)?;
+    let raw = read_raw(file, text).map_err(invalid)?;
     if let Some(issue) = name::read_as_boolean(text, &raw) {
         return Err(invalid(issue));
     }
@@ -192,9 +192,10 @@ fn to_value(scene: &RawScene) -> Value {
     serde_json::to_value(scene).expect("raw scenes always serialise")
 }
 
-/// The campaign as written, or why not. serde_path_to_error wraps serde-saphyr's own reader,
-/// so the field path named is the one saphyr failed at.
-fn read_raw(text: &str) -> Result<RawCampaign, String> {
+/// The campaign as written, or why not; `file` names it in the error's source snippet.
+/// serde_path_to_error wraps serde-saphyr's own reader, so the field path named is the one
+/// saphyr failed at.
+fn read_raw(file: &str, text: &str) -> Result<RawCampaign, String> {
     let mut path = None;
     serde_saphyr::with_deserializer_from_str(text, |deserializer| {
         serde_path_to_error::deserialize(deserializer).map_err(|error| {
@@ -202,8 +203,12 @@ fn read_raw(text: &str) -> Result<RawCampaign, String> {
             error.into_inner()
         })
     })
-    .map_err(|error| describe_yaml_error(text, path, &error))
+    .map_err(|error| describe_yaml_error(text, path, &error).replace(SNIPPET_SOURCE, &format!(" --> {file}:")))
 }
+
+/// How saphyr names the text in its snippets (` --> <input>:7:16`): it cannot be told the
+/// file's name through the reader serde_path_to_error needs, so the name is put in afterwards.
+const SNIPPET_SOURCE: &str = " --> <input>:";
 
 /// Names the field path of a YAML error, followed by saphyr's message with its source snippet.
 fn describe_yaml_error(text: &str, path: Option<String>, error: &serde_saphyr::Error) -> String {
@@ -384,8 +389,11 @@ fn check_grid_paths(base: &Value, grid: &Grid, origins: &Origins) -> Result<(), 
             let mut probe = base.clone();
             set_path(&mut probe, path, value.clone());
             if let Err(e) = serde_json::from_value::<RawScene>(probe) {
+                // An unknown field is the path's fault, not the value's: the value is not shown.
+                let shown =
+                    if e.to_string().starts_with("unknown field") { String::new() } else { format!(" = {value}") };
                 return Err(format!(
-                    "{} = {value}: {e} (grid keys are dotted field paths such as time.dt_per_tc)",
+                    "{}{shown}: {e} (grid keys are dotted field paths such as time.dt_per_tc)",
                     origins.locate(path)
                 ));
             }
