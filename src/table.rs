@@ -153,6 +153,7 @@ pub fn summary_frame(fits: &[ScalingFit]) -> PolarsResult<DataFrame> {
         Column::new("scene".into(), fits.iter().map(|f| f.scene.clone()).collect::<Vec<String>>()),
         Column::new("group".into(), fits.iter().map(|f| f.group.clone()).collect::<Vec<String>>()),
         Column::new("law".into(), fits.iter().map(|f| f.law).collect::<Vec<&str>>()),
+        Column::new("beta".into(), fits.iter().map(|f| f.beta).collect::<Vec<f64>>()),
         Column::new("quantity".into(), fits.iter().map(|f| f.quantity).collect::<Vec<&str>>()),
         Column::new("against".into(), fits.iter().map(|f| f.against).collect::<Vec<&str>>()),
         Column::new("exponent".into(), fits.iter().map(|f| f.fit.exponent).collect::<Vec<f64>>()),

@@ -27,7 +27,7 @@ fn tolerance(against: &str) -> f64 {
 /// One side's fit.
 struct Fit {
     law: String,
-    /// The springs' exponent β (1 for linear), from the results table.
+    /// The springs' exponent β of the fit's runs (1 for linear), [`beta`].
     beta: Option<f64>,
     exponent: f64,
     r_squared: f64,
@@ -146,7 +146,7 @@ fn fits(side: &Side, summary: &Table) -> anyhow::Result<Vec<([String; 3], String
             let keys = SUMMARY_KEYS.map(|k| text(k, row));
             let fit = Fit {
                 law: text("law", row),
-                beta: beta(side, &keys[0], &keys[1]),
+                beta: beta(side, summary, row, &keys[0]),
                 exponent: exponent.number(row)?,
                 r_squared: r_squared.number(row).unwrap_or(f64::NAN),
             };
@@ -155,18 +155,13 @@ fn fits(side: &Side, summary: &Table) -> anyhow::Result<Vec<([String; 3], String
         .collect())
 }
 
-/// The springs' β of a fit's runs: from its group's label where the grid varies β or the law,
-/// else the one value of the scene's runs; `None` where neither settles it.
-fn beta(side: &Side, scene: &str, group: &str) -> Option<f64> {
-    if let Some(beta) = group.split(", ").find_map(|part| part.strip_prefix("beta=")) {
-        return beta.parse().ok();
-    }
-    // A grid over the law names it: linear springs β = 1, Hertz β = 3/2 (a power law's β is
-    // its own grid value, above, or the scene's).
-    match group.split(", ").find_map(|part| part.strip_prefix("law=")) {
-        Some("linear") => return Some(1.0),
-        Some("hertz") => return Some(1.5),
-        _ => {}
+/// The springs' β of the fit in row `row` of `summary`: its `beta` column. A `summary.csv`
+/// written by an older mdsolids has none, and its `law` (`power` for every β) does not give
+/// β: there it is the one β of the scene's runs in the results table, `None` where they have
+/// several.
+fn beta(side: &Side, summary: &Table, row: usize, scene: &str) -> Option<f64> {
+    if let Some(betas) = summary.column("beta") {
+        return betas.number(row);
     }
     let (scenes, betas) = (side.results.column("scene")?, side.results.column("beta")?);
     let mut values =

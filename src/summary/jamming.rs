@@ -328,15 +328,7 @@ fn group_fits(runs: &[&RunRecord], group: &str, members: &[&RunRecord]) -> Vec<S
         .map(|s| {
             let mut points = s.points;
             points.sort_by(|a, b| a.0.total_cmp(&b.0));
-            ScalingFit {
-                scene: first.spec.scene.clone(),
-                group: group.to_string(),
-                law: first.spec.law.name(),
-                quantity: s.column.0,
-                against: s.column.1,
-                points,
-                fit: s.fit,
-            }
+            ScalingFit::of(first, group.to_string(), s.column, points, s.fit)
         })
         .collect()
 }

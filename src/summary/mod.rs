@@ -120,6 +120,9 @@ pub struct ScalingFit {
     pub group: String,
     /// Elastic law of the group.
     pub law: &'static str,
+    /// The springs' exponent β of the group's runs (force ∝ δ^β; 1 for linear springs): the
+    /// law its exponent is predicted from ([`predicted`]).
+    pub beta: f64,
     /// The measured quantity (a results column).
     pub quantity: &'static str,
     /// What it is plotted against (`v0`, `load_per_node`, `wall_displacement`; a packing's
@@ -131,8 +134,36 @@ pub struct ScalingFit {
     pub fit: PowerLawFit,
 }
 
+impl ScalingFit {
+    /// The fit `fit` of `quantity` against `against` over the `points` of one group of runs,
+    /// labelled `group`, whose first run is `first`: the scene and law are the first run's, one
+    /// for the whole group ([`scene_groups`]).
+    fn of(
+        first: &RunRecord,
+        group: String,
+        (quantity, against): (&'static str, &'static str),
+        points: Vec<(f64, f64)>,
+        fit: PowerLawFit,
+    ) -> ScalingFit {
+        let law = first.spec.law;
+        ScalingFit {
+            scene: first.spec.scene.clone(),
+            group,
+            law: law.name(),
+            beta: law.beta(),
+            quantity,
+            against,
+            points,
+            fit,
+        }
+    }
+}
+
 /// `items` of runs in groups of one scene whose runs differ only in the grid paths `swept`: each
-/// group's first run, its label (its other grid values) and its items, in campaign order.
+/// group's first run, its label (its other grid values) and its items, in campaign order. A
+/// group has one spring law, so that its fit has one β to be held against: a law the grid
+/// varies is in the label, and runs whose laws differ under one label (a law no grid value
+/// sets) are kept apart all the same.
 fn scene_groups<'a, T>(
     items: impl IntoIterator<Item = (&'a RunRecord, T)>,
     swept: &[&str],
@@ -140,7 +171,8 @@ fn scene_groups<'a, T>(
     let mut groups: Vec<(&RunRecord, String, Vec<T>)> = Vec::new();
     for (r, item) in items {
         let label = r.spec.varied_label(|path| !swept.contains(&path));
-        match groups.iter_mut().find(|(first, l, _)| first.spec.scene == r.spec.scene && *l == label) {
+        let same = |first: &RunRecord| first.spec.scene == r.spec.scene && first.spec.law == r.spec.law;
+        match groups.iter_mut().find(|(first, l, _)| same(first) && *l == label) {
             Some((_, _, members)) => members.push(item),
             None => groups.push((r, label, vec![item])),
         }
@@ -160,15 +192,7 @@ pub fn scaling_fits(records: &[RunRecord]) -> Vec<ScalingFit> {
         fits.extend(scene_groups(points, scaling.paths).into_iter().filter_map(|(first, group, mut points)| {
             points.sort_by(|a, b| a.0.total_cmp(&b.0));
             let fit = power_law_fit(&points)?;
-            Some(ScalingFit {
-                scene: first.spec.scene.clone(),
-                group,
-                law: first.spec.law.name(),
-                quantity: scaling.quantity,
-                against: scaling.against,
-                points,
-                fit,
-            })
+            Some(ScalingFit::of(first, group, (scaling.quantity, scaling.against), points, fit))
         }));
     }
     fits

@@ -2,7 +2,7 @@
 //! with power-law springs, are run and compared; then the refusals of directories that are not
 //! campaign reports.
 
-use polars::prelude::{DataFrame, ParquetReader, SerReader};
+use polars::prelude::{CsvReadOptions, DataFrame, ParquetReader, SerReader};
 use std::path::Path;
 
 use crate::common::{mdsolids, mdsolids_ok, text};
@@ -675,9 +675,10 @@ fn both_laws(name: &str, k: &str) -> String {
     )
 }
 
-/// A grid over the law inside one scene names each group's law (`law=hertz`): its fits are held
-/// to that law's exponents near jamming, p ∝ Δφ^β with β = 1 and 3/2 (O'Hern et al. 2003).
-/// Before, the scene's two β left every fit without a prediction ("predicted –").
+/// A grid over the law inside one scene gives each group its own law, and `summary.csv` its
+/// β: its fits are held to that law's exponents near jamming, p ∝ Δφ^β with β = 1 and 3/2
+/// (O'Hern et al. 2003). Before, the scene's two β left every fit without a prediction
+/// ("predicted –").
 #[test]
 fn a_grid_over_the_law_holds_each_group_to_its_own_exponents() {
     let dir = crate::common::scratch();
@@ -689,6 +690,133 @@ fn a_grid_over_the_law_holds_each_group_to_its_own_exponents() {
             .unwrap_or_else(|| panic!("{law}: {report}"));
         assert!(line.contains(predicted), "{line}");
     }
+}
+
+/// Two chains whose grids run over the spring law, the non-linear springs' β = `beta`: a wave
+/// chain over two impact speeds (`material.law: [linear, power]`) and a chain between walls
+/// over two wall distances (`[linear, hertz]`: `hertz` takes the campaign's β too).
+fn law_gridded_chains(name: &str, beta: &str) -> String {
+    format!(
+        "version: 1\nname: {name}\ndefaults:\n  material: {{mass: 1.0, k: 1.0, beta: {beta}}}\nscenes:\n  \
+         - name: wave\n    kind: chain\n    n: 30\n    node: first\n    wave: {{}}\n    material: {{contact: true}}\n    \
+         time: {{duration_tc: 60}}\n    grid:\n      material.law: [linear, power]\n      v0: [0.01, 0.1]\n  \
+         - name: walls\n    kind: chain\n    n: 9\n    damping: {{restitution: 0.5}}\n    \
+         time: {{integrator: velocity-verlet}}\n    relax: {{residual_force: 1.0e-9, tangent_step: 0.001}}\n    \
+         grid:\n      material.law: [linear, hertz]\n      wall_distance: [9.5, 9.9]\n"
+    )
+}
+
+/// The exponent springs s ∝ δ^β predict for `scene` of [`law_gridded_chains`], written out
+/// here rather than asked of the library: the wave's speed ∝ v0^((β−1)/(β+1)) (Nesterenko),
+/// the walled chain's stiffness ∝ |ΔW|^(β−1); 0 for linear springs.
+fn chain_exponent(scene: &str, beta: f64) -> f64 {
+    if scene == "wave" { (beta - 1.0) / (beta + 1.0) } else { beta - 1.0 }
+}
+
+/// Each fit of `summary.csv` in `dir` states the β of its group's runs (results.parquet's
+/// `beta` of the scene's runs of its law): 1 for linear springs, the campaign's `beta` else.
+fn summary_states_each_groups_beta(dir: &Path, beta: f64) {
+    let summary = CsvReadOptions::default()
+        .try_into_reader_with_file_path(Some(dir.join("summary.csv")))
+        .unwrap()
+        .finish()
+        .unwrap();
+    let results = read(&dir.join("results.parquet"));
+    let (run_scenes, run_laws, run_betas) =
+        (texts(&results, "scene"), texts(&results, "material.law"), floats(&results, "beta"));
+    let (scenes, groups, betas) = (texts(&summary, "scene"), texts(&summary, "group"), floats(&summary, "beta"));
+    assert_eq!(summary.height(), 6, "two laws of each of three fits");
+    for ((scene, group), fitted) in scenes.iter().zip(&groups).zip(betas) {
+        let law = group.strip_prefix("law=").expect(group);
+        let runs: Vec<Option<f64>> = (0..results.height())
+            .filter(|&r| run_scenes[r] == *scene && run_laws[r] == law)
+            .map(|r| run_betas[r])
+            .collect();
+        assert!(runs.len() == 2 && runs.iter().all(|b| *b == fitted), "{scene} {group}: {fitted:?} against {runs:?}");
+        assert_eq!(fitted, Some(if law == "linear" { 1.0 } else { beta }), "{scene} {group}");
+    }
+}
+
+/// The discussion's table of `dir`'s report.md holds every fit against its own group's
+/// exponent ([`chain_exponent`] of 1 or the campaign's `beta`), and the item is within.
+fn discussion_holds_each_group_to_its_own_beta(dir: &Path, beta: f64) {
+    let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    let name = if beta == 1.5 { "Hertz" } else { "power-law" };
+    let item = section(&report, &format!(". Linear against {name} springs\n"));
+    let rows: Vec<Vec<&str>> = item
+        .lines()
+        .filter(|l| l.starts_with("| wave |") || l.starts_with("| walls |"))
+        .map(|l| l.split(" | ").map(|c| c.trim_matches(|c| c == '|' || c == ' ')).collect())
+        .collect();
+    assert_eq!(rows.len(), 6, "{item}");
+    for row in rows {
+        let row_beta = if row[1] == "linear" { 1.0 } else { beta };
+        let expected = format!("{:.3}", chain_exponent(row[0], row_beta));
+        assert_eq!((row[3], row[4]), (expected.as_str(), expected.as_str()), "{row:?}");
+    }
+    assert!(item.contains("**Verdict: ✓ within.**"), "{item}");
+}
+
+/// A grid over the spring law holds each group's fit to its own β, which `summary.csv` states
+/// (`beta`): compare predicts the `law=power` wave's v0^((β−1)/(β+1)) and the `law=hertz`
+/// walls' |ΔW|^(β−1) from each side's β, 2 and 3/2, and each report's discussion holds them to
+/// the same. Before, compare read β off the label: none for `law=power` ("predicted –"), 3/2
+/// for `law=hertz` whatever β the campaign set (A's exponent 1 "off by 0.5000"); and the
+/// discussion took every fit's β from its scene's first run, linear springs, and judged both
+/// non-linear groups against 0 ("✗ outside").
+#[test]
+fn a_grid_over_the_law_holds_each_fit_to_its_own_groups_beta() {
+    let dir = crate::common::scratch();
+    let sides = [("steep", "2.0"), ("hertzian", "1.5")];
+    let (_, report) = compare_two(dir.path(), sides, law_gridded_chains);
+    let betas = sides.map(|(_, beta)| beta.parse::<f64>().unwrap());
+    for ((name, _), beta) in sides.into_iter().zip(betas) {
+        summary_states_each_groups_beta(&dir.path().join(name), beta);
+        discussion_holds_each_group_to_its_own_beta(&dir.path().join(name), beta);
+    }
+    for (scene, quantity, law) in [
+        ("wave", "sound_speed ∝ v0^p", "power"),
+        ("walls", "secant_stiffness ∝ wall_displacement^p", "hertz"),
+        ("walls", "tangent_stiffness ∝ wall_displacement^p", "hertz"),
+    ] {
+        let line =
+            report.lines().find(|l| l.starts_with(&format!("- {scene} (law={law}): {quantity}"))).expect(&report);
+        let (a, b) = line.split_once(" in A and ").expect(line);
+        for (words, beta) in [a, b].into_iter().zip(betas) {
+            let predicted = format!("predicted {:.4} = ", chain_exponent(scene, beta));
+            assert!(words.contains(&predicted), "{line}: {predicted}");
+        }
+    }
+    assert!(
+        report.contains("- All 12 fitted exponents agree with the exponents their spring laws predict"),
+        "{report}"
+    );
+    an_older_summary_guesses_no_beta(dir.path());
+}
+
+/// A `summary.csv` of an older mdsolids, without `beta` (A's here, the column cut out): its
+/// fits take the one β of their scene's runs, and a scene gridded over the law has two, so A's
+/// fits are predicted by none ("predicted –") rather than guessed from their label; B's keep
+/// their own.
+fn an_older_summary_guesses_no_beta(reports: &Path) {
+    let (a, b) = (reports.join("steep"), reports.join("hertzian"));
+    let summary = a.join("summary.csv");
+    let text = std::fs::read_to_string(&summary).unwrap();
+    assert!(text.starts_with("scene,group,law,beta,"), "{text}");
+    let without_beta: String = text
+        .lines()
+        .map(|line| {
+            let mut cells: Vec<&str> = line.split(',').collect();
+            cells.remove(3);
+            cells.join(",") + "\n"
+        })
+        .collect();
+    std::fs::write(&summary, without_beta).unwrap();
+    let out = reports.join("older");
+    succeed(reports, &["compare", a.to_str().unwrap(), b.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let report = std::fs::read_to_string(out.join("report.md")).unwrap();
+    let line = report.lines().find(|l| l.starts_with("- walls (law=hertz): secant_stiffness")).expect(&report);
+    assert!(line.contains("(power, predicted –) in A") && line.contains("predicted 0.5000 = β−1) in B"), "{line}");
 }
 
 /// `--out` never overwrites or deletes what the user made: a folder holding other files, the

@@ -42,8 +42,11 @@ pub(super) struct Extrapolated {
     pub(super) value: f64,
     /// Its uncertainty: the change of the extrapolation when the smallest block is left out
     /// (three or more sizes), or the whole finite-size correction (two sizes); with one size
-    /// the relaxation's MD − static difference alone.
+    /// the relaxation's MD − static difference alone, which says nothing of the finite-size
+    /// share, so it is not written as ± ([`Extrapolated::words`]).
     pub(super) uncertainty: f64,
+    /// The block sizes it comes from.
+    sizes: usize,
     /// The measured value on the largest block.
     pub(super) largest: f64,
     /// The continuum value the network discretises.
@@ -83,12 +86,24 @@ impl Extrapolated {
                 (value, (value - richardson(series[n - 3], series[n - 2])).abs())
             }
         };
-        Some(Extrapolated { value, uncertainty: finite_size.max(relaxation), largest, continuum: theory(last) })
+        Some(Extrapolated {
+            value,
+            uncertainty: finite_size.max(relaxation),
+            largest,
+            continuum: theory(last),
+            sizes: n,
+        })
     }
 
-    /// The value with its uncertainty.
+    /// The value with its uncertainty where two sizes or more give one; one block's value alone
+    /// (its ± would be MD against its static answer, read as the distance to the continuum).
     pub(super) fn words(&self) -> String {
-        plus_minus(self.value, self.uncertainty)
+        if self.sizes < 2 { sig(self.value) } else { plus_minus(self.value, self.uncertainty) }
+    }
+
+    /// How far one block's value lies from the continuum's, relative (`+9.029 %`).
+    fn continuum_offset(&self) -> String {
+        self.continuum.map_or_else(|| "–".into(), |c| percent((self.value - c) / c))
     }
 
     /// |v∞ − continuum| in units of the uncertainty (infinite when the uncertainty is 0 and the
@@ -197,6 +212,17 @@ impl<'a> Block<'a> {
         (c, c * share)
     }
 
+    /// [`Block::sound_from_moduli`] in words, with its unit: with its uncertainty where two sizes
+    /// or more give E and ν one, else one block's value (its finite-size share included).
+    fn sound_words(&self) -> String {
+        let (c, spread) = self.sound_from_moduli();
+        if self.tensile.len() < 2 {
+            format!("{} m/s (one block's E and ν)", sig(c))
+        } else {
+            format!("{} m/s", plus_minus(c, spread))
+        }
+    }
+
     /// The sizes extrapolated from, in words (`6 × 6 and 20 × 20`, `5 × 5 … 40 × 40`).
     fn family(&self) -> String {
         let size = super::finding::lattice_size;
@@ -225,8 +251,11 @@ impl<'a> Block<'a> {
     fn basis(&self) -> String {
         if self.tensile.len() < 2 {
             format!(
-                "measured on {} alone (one size: its finite-size share, ∝ 1/N, is not estimated){}",
+                "measured on {} alone (one size: its finite-size share, ∝ 1/N, is not estimated; E {} and ν {} from \
+                 the continuum){}",
                 self.family(),
+                self.youngs.continuum_offset(),
+                self.poisson.continuum_offset(),
                 self.left_out()
             )
         } else {
@@ -238,15 +267,24 @@ impl<'a> Block<'a> {
         }
     }
 
-    /// The summary's line of E and ν: the extrapolated values with their uncertainty.
+    /// The summary's line of E and ν: the extrapolated values with their uncertainty, or one
+    /// block's values with their distance from the continuum, which its finite size keeps.
     pub(super) fn youngs_short(&self) -> String {
+        let basis = if self.tensile.len() < 2 {
+            format!(
+                "one size: {}, {} and {} from the continuum, its finite-size share not separated",
+                self.family(),
+                self.youngs.continuum_offset(),
+                self.poisson.continuum_offset()
+            )
+        } else {
+            format!("N → ∞ from {}", self.family())
+        };
         format!(
-            "E = {} Pa, ν = {} ({}, {} {}); continuum {} Pa, {}",
+            "E = {} Pa, ν = {} ({}, {basis}); continuum {} Pa, {}",
             self.youngs.words(),
             self.poisson.words(),
             self.supports(),
-            if self.tensile.len() < 2 { "one size:" } else { "N → ∞ from" },
-            self.family(),
             self.youngs.continuum.map_or_else(|| "–".into(), sig),
             self.poisson.continuum.map_or_else(|| "–".into(), sig),
         )
@@ -274,8 +312,7 @@ impl<'a> Block<'a> {
     /// The summary's line of the sound speed in m/s: measured if a wave crossed the block,
     /// else from the moduli.
     pub(super) fn sound_short(&self) -> String {
-        let (c, spread) = self.sound_from_moduli();
-        let derived = format!("√(E/(ρ(1 − ν²))) = {} m/s", plus_minus(c, spread));
+        let derived = format!("√(E/(ρ(1 − ν²))) = {}", self.sound_words());
         match self.wave.and_then(|w| Some((w.metrics.recommended_sound_speed()?, w.metrics.sound_speed_theory?))) {
             Some((v, c_l)) => format!(
                 "V = {} m/s in the block, {} on c_L = {} m/s; {derived}",
@@ -291,10 +328,18 @@ impl<'a> Block<'a> {
     pub(super) fn moduli_sentence(&self) -> String {
         let s = &self.first().spec;
         let shear = self.shear_short().map_or_else(String::new, |g| format!("; {g}"));
+        // One block's values are the largest block's: not said twice.
+        let largest = (self.tensile.len() >= 2).then(|| {
+            format!(
+                " ({} Pa and {} on {})",
+                sig(self.youngs.largest),
+                sig(self.poisson.largest),
+                super::finding::lattice_size(self.first())
+            )
+        });
         format!(
             "The 2D block (m = {} kg per node, k = {} N/m, k_d/k = {}, a = {} m, d = {} m: ρ = {} kg/m³) has \
-             E = {} Pa and ν = {}, {} on the {} ({} Pa and {} on {}), against the continuum's {} Pa and \
-             {}{}{shear}.",
+             E = {} Pa and ν = {}, {} on the {}{}, against the continuum's {} Pa and {}{}{shear}.",
             sig(s.mass),
             sig(s.k),
             sig(s.lattice().map_or(f64::NAN, |l| l.k_diag) / s.k),
@@ -305,9 +350,7 @@ impl<'a> Block<'a> {
             self.poisson.words(),
             self.basis(),
             self.supports(),
-            sig(self.youngs.largest),
-            sig(self.poisson.largest),
-            super::finding::lattice_size(self.first()),
+            largest.unwrap_or_default(),
             self.youngs.continuum.map_or_else(|| "–".into(), sig),
             self.poisson.continuum.map_or_else(|| "–".into(), sig),
             self.disagreement().unwrap_or_default(),
@@ -341,9 +384,7 @@ impl<'a> Block<'a> {
 
     /// The abstract's sentence on the block's sound speed.
     pub(super) fn sound_sentence(&self) -> String {
-        let (c, spread) = self.sound_from_moduli();
-        let derived =
-            format!("its measured E, ν and density give c = √(E/(ρ(1 − ν²))) = {} m/s", plus_minus(c, spread));
+        let derived = format!("its measured E, ν and density give c = √(E/(ρ(1 − ν²))) = {}", self.sound_words());
         let measured = self.wave.and_then(|w| {
             Some((w, w.metrics.recommended_sound_speed()?, w.metrics.sound_speed_theory?, w.metrics.wave_distance?))
         });

@@ -5,7 +5,7 @@
 use serde::Serialize;
 
 use super::finding::{
-    Answer, EXPONENT_TOLERANCE, Evidence, Table, Verdict, cell, exponents, fastest_relaxation, fit_scene_run, noise,
+    Answer, EXPONENT_TOLERANCE, Evidence, Table, Verdict, cell, distinct_exponents, fastest_relaxation, noise,
     predicted_exponent, regular, sig, size_on_coursework_supports,
 };
 use crate::model::LawSpec;
@@ -412,9 +412,9 @@ pub(super) fn symbol(column: &str) -> String {
     }
 }
 
-/// The exponents β of the scenes of the non-linear fits, each once.
+/// The exponents β of the non-linear fits, each once.
 fn nonlinear_exponents(e: &Evidence) -> Vec<f64> {
-    exponents(e.fits.iter().filter(|f| f.law != "linear").filter_map(|f| fit_scene_run(e, f)))
+    distinct_exponents(e.fits.iter().filter(|f| f.law != "linear").map(|f| f.beta))
 }
 
 /// The campaign's non-linear springs by name: "Hertz" where every one is β = 3/2, else
@@ -428,12 +428,11 @@ fn nonlinear_name(e: &Evidence) -> String {
 }
 
 /// A fit's spring law in the table: linear, Hertz, or the power law's β.
-fn fit_law(e: &Evidence, fit: &ScalingFit) -> String {
-    let beta = fit_scene_run(e, fit).map_or(1.0, |r| r.spec.law.beta());
-    match beta {
+fn fit_law(fit: &ScalingFit) -> String {
+    match fit.beta {
         1.0 => "linear".into(),
         1.5 => "Hertz".into(),
-        _ => format!("β = {}", words::number(beta)),
+        _ => format!("β = {}", words::number(fit.beta)),
     }
 }
 
@@ -446,7 +445,7 @@ pub(super) fn linear_and_hertz(e: &Evidence) -> Option<Answer> {
         checks.push((fit.fit.exponent - predicted).abs() <= EXPONENT_TOLERANCE);
         rows.push(vec![
             fit.scene.clone(),
-            fit_law(e, fit),
+            fit_law(fit),
             format!("{} against {}", symbol(fit.quantity), symbol(fit.against)),
             exponent(fit.fit.exponent),
             exponent(predicted),

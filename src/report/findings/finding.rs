@@ -213,7 +213,12 @@ pub fn rel(e: f64) -> String {
 
 /// The spring laws' exponents β among `runs` (1 for linear springs), rising, each once.
 pub(super) fn exponents<'a>(runs: impl IntoIterator<Item = &'a RunRecord>) -> Vec<f64> {
-    let mut betas: Vec<f64> = runs.into_iter().map(|r| r.spec.law.beta()).collect();
+    distinct_exponents(runs.into_iter().map(|r| r.spec.law.beta()))
+}
+
+/// The exponents β among `betas`, rising, each once.
+pub(super) fn distinct_exponents(betas: impl IntoIterator<Item = f64>) -> Vec<f64> {
+    let mut betas: Vec<f64> = betas.into_iter().collect();
     betas.sort_by(f64::total_cmp);
     betas.dedup();
     betas
@@ -307,21 +312,16 @@ pub(super) fn threshold_percent(r: &RunRecord) -> String {
     r.spec.wave().map_or_else(|| "–".into(), |w| format!("{} %", crate::report::words::number(100.0 * w.threshold)))
 }
 
-/// The exponent springs s ∝ δ^β predict for a fitted quantity against its variable (β from
-/// the fit's scene): the solitary wave's speed ∝ v0^((β−1)/(β+1)) (Nesterenko), moduli
-/// ∝ F^((β−1)/β) and a chain's stiffness ∝ |ΔW|^(β−1), since s′ ∝ δ^(β−1) and F ∝ δ^β.
-/// Hertz (β = 3/2): 1/5, 1/3 and 1/2; linear (β = 1): 0.
-pub(super) fn predicted_exponent(e: &Evidence, fit: &ScalingFit) -> Option<f64> {
-    let beta = fit_scene_run(e, fit)?.spec.law.beta();
-    crate::summary::predicted(fit.quantity, fit.against, beta).map(|(exponent, _)| exponent)
+/// The exponent springs s ∝ δ^β predict for a fitted quantity against its variable (β its
+/// group's, [`ScalingFit::beta`]): the solitary wave's speed ∝ v0^((β−1)/(β+1)) (Nesterenko),
+/// moduli ∝ F^((β−1)/β) and a chain's stiffness ∝ |ΔW|^(β−1), since s′ ∝ δ^(β−1) and F ∝ δ^β.
+/// Hertz (β = 3/2): 1/5, 1/3 and 1/2; linear (β = 1): 0. The evidence is not read (β was once
+/// taken from its scene's first run); the callers still pass it.
+pub(super) fn predicted_exponent(_: &Evidence, fit: &ScalingFit) -> Option<f64> {
+    crate::summary::predicted(fit.quantity, fit.against, fit.beta).map(|(exponent, _)| exponent)
 }
 
 /// How close a fitted exponent must come to its prediction: three to four points over two or
 /// three decades fix it to a few hundredths. One tolerance for every scaling law of the report
 /// (the abstract, item 20 and this table say the same).
 pub(super) const EXPONENT_TOLERANCE: f64 = 0.05;
-
-/// The first run of a fit's scene: its spring law is the fit's.
-pub(super) fn fit_scene_run<'a>(e: &Evidence<'a>, fit: &ScalingFit) -> Option<&'a RunRecord> {
-    e.all(|r| r.spec.scene == fit.scene).first().copied()
-}
