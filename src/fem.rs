@@ -7,7 +7,8 @@
 //! without diagonals under shear, a diluted network that lost rigidity) has a singular K; a
 //! factorisation may then return garbage instead of failing, so the answer is accepted only if
 //! it satisfies the unregularised equations: ‖K u − f‖ ≤ 1e-6 ‖f‖. Otherwise the load drives a
-//! mechanism.
+//! mechanism. Imposed displacements (a velocity drive) always leave the equations a solution;
+//! they drive a mechanism when that solution stores no energy ([`Floppy::Drive`]).
 
 mod answers;
 mod kept;
@@ -22,7 +23,7 @@ pub use self::sparse::Analyses;
 pub use self::triplets::{Entry, factor_and_solve};
 
 use self::sparse::Analysis;
-use crate::model::{Bonds, ForceLaw};
+use crate::model::{Bonds, ForceLaw, Linear};
 use crate::sim::{Load, euclidean_norm};
 
 /// What the static solver found.
@@ -35,14 +36,34 @@ pub enum StaticSolution {
         /// y displacement of every node.
         uy: Vec<f64>,
     },
-    /// The load drives a zero-stiffness motion; the relative residual ‖K u − f‖/‖f‖ of the best
-    /// attempt says by how much the equations fail.
-    Mechanism {
+    /// The load or the drive meets no stiffness: a zero-energy motion takes it.
+    Mechanism(Floppy),
+    /// The deadline passed before the iteration converged.
+    PastDeadline,
+}
+
+/// What shows a network floppy under what moves it ([`StaticSolution::Mechanism`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Floppy {
+    /// The load has a part along a zero-energy motion, so K u = f has no solution: the
+    /// relative residual ‖K u − f‖/‖f‖ of the best attempt says by how much the equations fail.
+    Load {
         /// ‖K u − f‖ / ‖f‖.
         residual: f64,
     },
-    /// The deadline passed before the iteration converged.
-    PastDeadline,
+    /// The imposed displacements u_p (a velocity drive, held where it stops) are taken by a
+    /// zero-energy motion of the free nodes: K u = f always has a solution then (f = −K_fp u_p
+    /// has no part along a zero mode of K_ff, which is one of the whole K and so meets no
+    /// K_pf), but it stores no energy. `stiffness` is what the drive meets at first order,
+    /// k_drive = 2E₁/‖u_p‖² (N/m), E₁ the energy at the rest geometry; it lies within
+    /// `resolution` = εs (N/m), the shift of the factor ([`Solver`]), below which the factor
+    /// tells no stiffness from none.
+    Drive {
+        /// k_drive (N/m).
+        stiffness: f64,
+        /// εs (N/m).
+        resolution: f64,
+    },
 }
 
 /// A spring network at rest: node positions, springs (linear, stiffness per bond), held axes
@@ -182,6 +203,18 @@ impl<'a> Truss<'a> {
         (ux, uy)
     }
 
+    /// The displacements (m, x and y of every node) of the free values `free`, the imposed ones
+    /// on the held axes.
+    fn displaced(&self, dofs: &Dofs, free: &[f64]) -> (Vec<f64>, Vec<f64>) {
+        let (mut ux, mut uy) = self.imposed();
+        let (dx, dy) = dofs.expand(free);
+        for i in 0..ux.len() {
+            ux[i] += dx[i];
+            uy[i] += dy[i];
+        }
+        (ux, uy)
+    }
+
     /// The force (N, x and y) the supports apply to `nodes` to hold them at displacements
     /// `(ux, uy)`: minus the sum of the spring forces on them.
     pub fn reaction<L: ForceLaw>(&self, law: &L, ux: &[f64], uy: &[f64], nodes: &[usize]) -> (f64, f64) {
@@ -198,6 +231,61 @@ impl<'a> Truss<'a> {
             }
         }
         total
+    }
+
+    /// Bond `b`'s tangent block at `(ux, uy)`, A = s′ n̂ n̂ᵀ + (s/r)(I − n̂ n̂ᵀ) (N/m: the force on
+    /// i is −A (uᵢ − uⱼ) to first order, on j +A (uᵢ − uⱼ)), and the n̂ and tension s (N) there.
+    fn tangent_block<L: ForceLaw>(&self, law: &L, b: usize, ux: &[f64], uy: &[f64]) -> ([[f64; 2]; 2], [f64; 2], f64) {
+        let (n, r, tension, tangent) = self.bond_state(law, b, ux, uy);
+        let entry = |p: usize, q: usize| {
+            let identity = if p == q { 1.0 } else { 0.0 };
+            tangent * n[p] * n[q] + tension / r * (identity - n[p] * n[q])
+        };
+        ([[entry(0, 0), entry(0, 1)], [entry(1, 0), entry(1, 1)]], n, tension)
+    }
+
+    /// The force (N) the imposed displacements u_p put on the free degrees of freedom at first
+    /// order about the rest geometry, −K_fp u_p: −A_b Δu_b on node i, +A_b Δu_b on j for the
+    /// relative displacement Δu_b = uᵢ − uⱼ of bond b, A_b its block at rest of linear springs of
+    /// the bonds' k (pre-stretched ones with their tension).
+    fn imposed_force(&self, dofs: &Dofs) -> Vec<f64> {
+        let (ux, uy) = self.imposed();
+        let rest = vec![0.0; self.x.len()];
+        let mut force = vec![0.0; dofs.free];
+        for b in 0..self.bonds.len() {
+            let (i, j) = (self.bonds.i[b], self.bonds.j[b]);
+            let moved = [ux[i] - ux[j], uy[i] - uy[j]];
+            if moved == [0.0, 0.0] {
+                continue;
+            }
+            let (block, _, _) = self.tangent_block(&Linear, b, &rest, &rest);
+            for (node, sign) in [(i, 1.0), (j, -1.0)] {
+                for (axis, row) in block.iter().enumerate() {
+                    if let Some(&free) = dofs.index.get(2 * node + axis).filter(|free| **free != usize::MAX) {
+                        force[free] -= sign * (row[0] * moved[0] + row[1] * moved[1]);
+                    }
+                }
+            }
+        }
+        force
+    }
+
+    /// The energy (J) of displacements `(ux, uy)` at first order about the rest geometry,
+    /// E₁ = ½ uᵀK u over every degree of freedom, held ones included: ½ Σ_b (s′ e_b² + (s/r) t_b²)
+    /// with e_b = n̂·Δu_b the bond's extension and t_b = n̂ × Δu_b its sideways move. Summed so,
+    /// not as Δuᵀ A Δu, a zero-energy motion's E₁ is ~ε² of its scale, not ε: a rotating bond's
+    /// e_b carries the round-off ε|Δu_b|, and the expanded form cancels to ε k |Δu_b|².
+    fn first_order_energy(&self, ux: &[f64], uy: &[f64]) -> f64 {
+        let rest = vec![0.0; self.x.len()];
+        (0..self.bonds.len())
+            .map(|b| {
+                let (i, j) = (self.bonds.i[b], self.bonds.j[b]);
+                let moved = [ux[i] - ux[j], uy[i] - uy[j]];
+                let (n, r, tension, tangent) = self.bond_state(&Linear, b, &rest, &rest);
+                let (extension, sideways) = (n[0] * moved[0] + n[1] * moved[1], n[0] * moved[1] - n[1] * moved[0]);
+                0.5 * (tangent * extension * extension + tension / r * sideways * sideways)
+            })
+            .sum()
     }
 
     /// Unit vector n̂ from j to i, length r, tension s and tangent s′ of bond `b` at `(ux, uy)`.
@@ -284,12 +372,8 @@ impl<'a> Truss<'a> {
         let mut residual = self.load_vector(dofs);
         for b in 0..self.bonds.len() {
             let (i, j) = (self.bonds.i[b], self.bonds.j[b]);
-            let (n, r, tension, tangent) = self.bond_state(law, b, ux, uy);
-            // Block A = s′ n̂ n̂ᵀ + (s/r)(I − n̂ n̂ᵀ); the force on i is −s n̂, on j +s n̂.
-            let block = |p: usize, q: usize| {
-                let identity = if p == q { 1.0 } else { 0.0 };
-                tangent * n[p] * n[q] + tension / r * (identity - n[p] * n[q])
-            };
+            // The force on i is −s n̂, on j +s n̂.
+            let (block, n, tension) = self.tangent_block(law, b, ux, uy);
             for (a, sign_a) in [(i, 1.0), (j, -1.0)] {
                 for (p, n_p) in n.iter().enumerate() {
                     let row = dofs.index[2 * a + p];
@@ -298,10 +382,10 @@ impl<'a> Truss<'a> {
                     }
                     residual[row] -= sign_a * tension * n_p;
                     for (c, sign_c) in [(i, 1.0), (j, -1.0)] {
-                        for q in 0..2 {
+                        for (q, entry) in block[p].iter().enumerate() {
                             let column = dofs.index[2 * c + q];
                             if column != usize::MAX && row >= column {
-                                stiffness[analysis.slot(row, column)] += sign_a * sign_c * block(p, q);
+                                stiffness[analysis.slot(row, column)] += sign_a * sign_c * entry;
                             }
                         }
                     }

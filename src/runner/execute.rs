@@ -8,6 +8,7 @@ use std::time::Instant;
 use super::record::{BUILD, Metrics, RunRecord};
 use super::series;
 use crate::draw::Movie;
+use crate::fem::Floppy;
 use crate::plan::Estimates;
 use crate::sim::{RelaxMethod, RunStatus, Trace};
 use crate::spec::{Budget, RunSpec};
@@ -38,12 +39,9 @@ pub fn execute_within(spec: &RunSpec, budget: &Budget, estimates: &Estimates) ->
             reference_s = run.reference_s;
             fill(&mut record, *run, deadline);
         }
-        Ok(Err(Some(Stopped::Mechanism { residual }))) => {
+        Ok(Err(Some(Stopped::Mechanism(floppy)))) => {
             record.status = RunStatus::Mechanism;
-            record.message = format!(
-                "the load drives a zero-stiffness motion: the static equations K u = f have no solution \
-                 (relative residual {residual:.1e}); nothing to relax towards"
-            );
+            record.message = mechanism_message(floppy);
         }
         Ok(Err(None)) => {
             record.status = RunStatus::Budget;
@@ -173,6 +171,22 @@ fn compression_captions(stages: &[f64], frames: usize, end: &str) -> Vec<String>
         captions[frames - 1] = format!("φ = {last:.4}, {end}");
     }
     captions
+}
+
+/// Why a mechanism has no MD run, in words: the load's equations that have no solution, or the
+/// velocity drive that a zero-energy motion takes ([`Floppy`]).
+fn mechanism_message(floppy: Floppy) -> String {
+    match floppy {
+        Floppy::Load { residual } => format!(
+            "the load drives a zero-stiffness motion: the static equations K u = f have no solution \
+             (relative residual {residual:.1e}); nothing to relax towards"
+        ),
+        Floppy::Drive { stiffness, resolution } => format!(
+            "the velocity drive is taken by a zero-stiffness motion: held where it stops, the driven row \
+             meets {stiffness:.1e} N/m at first order, within the static factor's resolution {resolution:.1e} N/m, \
+             and the network carries no stress; no modulus to measure"
+        ),
+    }
 }
 
 fn panic_message(panic: &(dyn std::any::Any + Send)) -> String {

@@ -1,6 +1,7 @@
 //! What every kind's study builds from: the scene's common parts, the relaxation criterion,
 //! the linear sound speed, and why a run stopped before its time loop.
 
+use crate::fem::Floppy;
 use crate::model::Particles;
 use crate::sim::{Network, Relaxation, Sampling, Scene};
 use crate::spec::RunSpec;
@@ -8,11 +9,8 @@ use crate::spec::RunSpec;
 /// Why a run ended before its time loop.
 #[derive(Debug)]
 pub enum Stopped {
-    /// The static problem is singular for this load: no MD run.
-    Mechanism {
-        /// Relative residual of the unregularised equations.
-        residual: f64,
-    },
+    /// The load or the drive meets no stiffness (the static problem's [`Floppy`]): no MD run.
+    Mechanism(Floppy),
     /// The deadline passed in this stage.
     PastDeadline {
         /// The stage, in words.

@@ -643,7 +643,7 @@ impl StaticSolve<'_> {
     /// and its top row's force and displacements.
     fn linear<L: ForceLaw>(&mut self, law: &L, solution: StaticSolution) -> Result<(Moduli, Solved), Stopped> {
         let (linear, answer) = match solution {
-            StaticSolution::Mechanism { residual } => return Err(Stopped::Mechanism { residual }),
+            StaticSolution::Mechanism(floppy) => return Err(Stopped::Mechanism(floppy)),
             StaticSolution::PastDeadline => return Err(past_deadline()),
             StaticSolution::Displacements { ux, uy } => {
                 let top = self.top_row_force(law, &ux, &uy);

@@ -12,7 +12,7 @@ use crate::report::figure::FigureKind;
 use crate::report::words;
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
-use crate::spec::{LatticeSpec, LoadCase, Supports};
+use crate::spec::{Control, LatticeSpec, LoadCase, Supports};
 use crate::study::lattice::LatticeMetrics;
 use crate::theory::{background_decay_rate, critical_damping};
 
@@ -259,7 +259,10 @@ impl TypeModuli {
         for r in mine {
             let l = r.spec.lattice()?;
             let m = &r.metrics.lattice;
-            let what = format!("{} on {}", l.load_name(), l.supports.name());
+            // A velocity drive (the top row held where it stops) can meet stiffness that the same
+            // load under force control does not (a kagome block pulled), so it is named apart.
+            let driven = if l.control == Control::Velocity { " driven" } else { "" };
+            let what = format!("{}{driven} on {}", l.load_name(), l.supports.name());
             // Each set-up once, however many runs (methods, seeds) it had.
             let said = if r.status == RunStatus::Mechanism { &mut mechanisms } else { &mut carried };
             if !said.contains(&what) {
