@@ -131,6 +131,9 @@ fn fill(record: &mut RunRecord, mut run: Run, deadline: Instant) {
     let trace = run.outcome.trace;
     record.status = trace.status;
     record.message = trace.message.clone();
+    if record.status == RunStatus::NoEquilibrium && spec.relax().is_some() {
+        record.message = longer_relaxation(spec, &record.message);
+    }
     record.steps = trace.steps;
     if let Some(caveat) = study::caveat(spec, &run.metrics).filter(|_| record.message.is_empty()) {
         record.message = caveat.into();
@@ -171,6 +174,16 @@ fn compression_captions(stages: &[f64], frames: usize, end: &str) -> Vec<String>
         captions[frames - 1] = format!("φ = {last:.4}, {end}");
     }
     captions
+}
+
+/// A relaxing run that did not relax: its `message` with the field that lengthens it. Its
+/// length is its budget `relax.max_tc` (t_c), which a lightly damped or soft network outlasts:
+/// the slowest mode decays over ~1/(ζ ω_min), many t_c where the bond dashpot's ζ is small.
+fn longer_relaxation(spec: &RunSpec, message: &str) -> String {
+    format!(
+        "{message} (relax.max_tc = {:.0} t_c: raise it, or the damping, for a network that relaxes more slowly)",
+        spec.duration / spec.t_c
+    )
 }
 
 /// Why a mechanism has no MD run, in words: the load's equations that have no solution, or the

@@ -304,3 +304,20 @@ fn the_plan_counts_a_minimisers_force_evaluations_within_3x() {
         }
     }
 }
+
+#[test]
+fn a_run_that_does_not_relax_names_the_field_that_lengthens_it() {
+    // A student's lightly damped block (r = 0.8) ended `no_equilibrium` at the default budget
+    // with a message that named no field; relaxing takes it ~11 000 t_c. Here 30 t_c, far
+    // shorter than the slowest mode's decay, must stop it, and the message must say which
+    // field to raise and what it was. The same block given 20 000 t_c relaxes (the flip).
+    for (max_tc, relaxed) in [(30.0, false), (20_000.0, true)] {
+        let extra = format!("    damping: {{restitution: 0.8}}\n    relax: {{max_tc: {max_tc}}}\n");
+        let run = &execute_all(&steel(4, &extra))[0];
+        assert_eq!(run.status == RunStatus::Ok, relaxed, "{}", label(run));
+        if !relaxed {
+            assert_eq!(run.status, RunStatus::NoEquilibrium, "{}", label(run));
+            assert!(run.message.contains(&format!("relax.max_tc = {max_tc:.0} t_c: raise it")), "{}", run.message);
+        }
+    }
+}
