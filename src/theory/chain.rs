@@ -11,7 +11,8 @@ pub fn chain_mode_frequency(n_particles: usize, k: f64, m: f64, mode: usize) -> 
 /// at rest positions with initial velocities `v0` (m/s):
 /// u_j(t) = Σ_n B_n sin(ω_n t) sin(n j π/(N+1)), B_n = (2/(N+1)) Σ_j v0_j sin(n j π/(N+1)) / ω_n,
 /// u̇_j(t) = Σ_n B_n ω_n cos(ω_n t) sin(n j π/(N+1)). The amplitudes and mode shapes are
-/// computed once; each time then costs N² multiply-adds and 2N sines and cosines.
+/// computed once; each time then costs N sines and cosines and 2N multiply-adds per particle
+/// asked for ([`ChainModes::motion_of`]).
 pub struct ChainModes {
     omega: Vec<f64>,
     amplitudes: Vec<f64>,
@@ -38,16 +39,23 @@ impl ChainModes {
 
     /// Displacements u_j(t) (m) and velocities u̇_j(t) (m/s), j = 1..N, at time `t` (s).
     pub fn at(&self, t: f64) -> (Vec<f64>, Vec<f64>) {
-        let n = self.omega.len();
-        let (mut u, mut v) = (vec![0.0; n], vec![0.0; n]);
-        for mode in 0..n {
+        let everyone: Vec<usize> = (1..=self.omega.len()).collect();
+        self.motion_of(&everyone, t).into_iter().unzip()
+    }
+
+    /// The displacement u_j(t) (m) and velocity u̇_j(t) (m/s) of each particle j (1..N) of
+    /// `particles` at time `t` (s): N sines and cosines shared by all of them, then N
+    /// multiply-adds per particle, so one particle costs O(N), not the O(N²) of all of them.
+    pub fn motion_of(&self, particles: &[usize], t: f64) -> Vec<(f64, f64)> {
+        let mut motion = vec![(0.0, 0.0); particles.len()];
+        for (mode, shape) in self.shape.iter().enumerate() {
             let (sin, cos) = (self.omega[mode] * t).sin_cos();
             let (a, b) = (self.amplitudes[mode] * sin, self.amplitudes[mode] * self.omega[mode] * cos);
-            for (j, s) in self.shape[mode].iter().enumerate() {
-                u[j] += a * s;
-                v[j] += b * s;
+            for ((u, v), &j) in motion.iter_mut().zip(particles) {
+                *u += a * shape[j - 1];
+                *v += b * shape[j - 1];
             }
         }
-        (u, v)
+        motion
     }
 }

@@ -6,6 +6,7 @@
 //! (once more as its own test binary); one file's: `cargo test --release --test suite unit::fem`.
 
 mod claims;
+mod chain_front;
 mod cluster;
 mod combinations;
 mod common;
@@ -15,6 +16,7 @@ mod dissipation;
 mod docs;
 mod fast_paths;
 mod faults;
+mod floppy_drive;
 mod hostile;
 mod integrators;
 mod lattice;
