@@ -218,15 +218,42 @@ impl<'a> Truss<'a> {
     /// The force (N, x and y) the supports apply to `nodes` to hold them at displacements
     /// `(ux, uy)`: minus the sum of the spring forces on them.
     pub fn reaction<L: ForceLaw>(&self, law: &L, ux: &[f64], uy: &[f64], nodes: &[usize]) -> (f64, f64) {
-        let mut total = (0.0, 0.0);
-        for b in 0..self.bonds.len() {
-            let (i, j) = (self.bonds.i[b], self.bonds.j[b]);
+        self.support_force(nodes, |b| {
             let (n, _, tension, _) = self.bond_state(law, b, ux, uy);
-            // Spring force on i is −s n̂, on j +s n̂; the support supplies the opposite.
-            for (node, sign) in [(i, -1.0), (j, 1.0)] {
-                if nodes.contains(&node) {
-                    total.0 -= sign * tension * n[0];
-                    total.1 -= sign * tension * n[1];
+            [tension * n[0], tension * n[1]]
+        })
+    }
+
+    /// The force (N, x and y) the supports apply to `nodes` in the linear problem, at first
+    /// order about the rest geometry, at displacements `(ux, uy)`: (K u)_p = K_pp u_p + K_pf u_f
+    /// plus any pre-stress's force at rest, each bond pulling i by s₀ n̂ + A_b Δu_b (A_b its
+    /// block at rest of linear springs of the bonds' k, s₀ its tension there, Δu_b = uᵢ − uⱼ).
+    /// It is the reaction of [`Solver::solve_linear`]'s answer; [`Truss::reaction`] at the same
+    /// displacements adds the second-order part of the springs' forces (their stretch |t|²/2r
+    /// from a sideways move t, and their rotation t/r times the tension).
+    pub fn linear_reaction(&self, ux: &[f64], uy: &[f64], nodes: &[usize]) -> (f64, f64) {
+        let rest = vec![0.0; self.x.len()];
+        self.support_force(nodes, |b| {
+            let (i, j) = (self.bonds.i[b], self.bonds.j[b]);
+            let moved = [ux[i] - ux[j], uy[i] - uy[j]];
+            let (block, n, tension) = self.tangent_block(&Linear, b, &rest, &rest);
+            [0, 1].map(|p| tension * n[p] + block[p][0] * moved[0] + block[p][1] * moved[1])
+        })
+    }
+
+    /// The force (N, x and y) the supports apply to `nodes` against the springs: `pull(b)` (N)
+    /// at bond b's node i and −`pull(b)` at its node j, s n̂ for a spring in tension s along n̂
+    /// (from j to i), which pulls i by −s n̂ and j by +s n̂.
+    fn support_force(&self, nodes: &[usize], pull: impl Fn(usize) -> [f64; 2]) -> (f64, f64) {
+        let mut held = vec![false; self.x.len()];
+        nodes.iter().for_each(|&node| held[node] = true);
+        let mut total = (0.0, 0.0);
+        for b in (0..self.bonds.len()).filter(|&b| held[self.bonds.i[b]] || held[self.bonds.j[b]]) {
+            let force = pull(b);
+            for (node, sign) in [(self.bonds.i[b], 1.0), (self.bonds.j[b], -1.0)] {
+                if held[node] {
+                    total.0 += sign * force[0];
+                    total.1 += sign * force[1];
                 }
             }
         }

@@ -77,6 +77,10 @@ pub struct Convergence {
     pub descents: usize,
 }
 
+/// A drive's part of the linear answer over the free degrees of freedom ([`Solver::solve_drive`]):
+/// its force −K_fp u_p (N) and the displacements u_f = −K_ff⁻¹K_fp u_p it causes (m).
+type DriveAnswer = (Vec<f64>, Vec<f64>);
+
 /// The static problems of one [`Truss`] ([`Truss::solver`]).
 pub struct Solver<'a> {
     truss: &'a Truss<'a>,
@@ -124,16 +128,38 @@ impl<'a> Solver<'a> {
         StaticAnswer { linear, nonlinear, residual: self.convergence.residual, descents: self.convergence.descents }
     }
 
-    /// Solves the linear problem K u = f (springs at their rest geometry) with a fresh factor
-    /// of K and checks the answer against the equations; imposed displacements are first tested
-    /// for a drive that a zero-energy motion takes ([`Solver::floppy_drive`]).
+    /// Solves the linear problem about the rest geometry (every spring at its rest length and
+    /// direction, first order in the displacements): K_ff u_f = f − K_fp u_p, f the loads and any
+    /// pre-stress's forces at rest (N), u_p the imposed displacements (m), on one fresh factor of
+    /// K, refined, and checks the answer against the equations. By superposition the drive's
+    /// part, −K_ff⁻¹K_fp u_p, is solved on its own, since it tells a drive that a zero-energy
+    /// motion takes ([`Solver::solve_drive`]), and the loads' part is added where f ≠ 0: a
+    /// velocity drive alone (f = 0) costs one factorisation and one refined solve. Assembled
+    /// about the driven state instead, K would carry the driven bonds' tension as geometric
+    /// stiffness s/r and f a second-order part: E of a 12 × 11 periodic square strip with
+    /// diagonals pulled to a strain of 1e-4 came out 1.8e-3 high (3.0055e11 Pa against the
+    /// 3e11 Pa of its first-order answer, which the same strip under force control gives), and
+    /// a 300 × 300 one pulled to 1e-3 56 % high: the driven state stretches the top row's bonds
+    /// by the whole travel, strain · L_y, there 30 % of a spacing.
     pub fn solve_linear(&mut self) -> StaticSolution {
-        if let Some(floppy) = self.floppy_drive() {
-            return StaticSolution::Mechanism(floppy);
-        }
-        let (ux, uy) = self.truss.imposed();
-        let force = self.assemble(&Linear, &ux, &uy);
-        let solution = if self.dofs.free == 0 { Some(Vec::new()) } else { self.solve_fresh(&force) };
+        let rest = vec![0.0; self.truss.x.len()];
+        let loads = self.assemble(&Linear, &rest, &rest);
+        let (drive, driven) = match self.solve_drive() {
+            Ok(Some((drive, u))) => (drive, Some(u)),
+            Ok(None) => (vec![0.0; self.dofs.free], None),
+            Err(floppy) => return StaticSolution::Mechanism(floppy),
+        };
+        let loaded = match &driven {
+            Some(_) if loads.iter().all(|f| *f == 0.0) => Some(vec![0.0; self.dofs.free]),
+            _ => self.solve_free(&loads),
+        };
+        let solution = loaded.map(|mut u| {
+            if let Some(d) = &driven {
+                u.iter_mut().zip(d).for_each(|(u, d)| *u += d);
+            }
+            u
+        });
+        let force: Vec<f64> = loads.iter().zip(&drive).map(|(f, d)| f + d).collect();
         let residual = solution.as_ref().map_or(f64::INFINITY, |u| self.relative_residual(u, &force));
         match solution {
             Some(u) if residual <= MECHANISM_RESIDUAL => {
@@ -144,35 +170,37 @@ impl<'a> Solver<'a> {
         }
     }
 
-    /// Whether the imposed displacements u_p (a velocity drive) meet no stiffness, which the
-    /// residual cannot show (K u = f has a solution for every drive, [`Floppy::Drive`]): the
-    /// first-order problem about the rest geometry, K u_f = −K_fp u_p, on a fresh factor of K,
-    /// and the stiffness its answer shows the drive, k_drive = 2E₁/‖u_p‖² (N/m). The answer
-    /// minimises ½uᵀK u with u_p held, so k_drive is the Rayleigh quotient along u_p of the
-    /// stiffness the held nodes feel (S = K_pp − K_pf K_ff⁻¹ K_fp): 0 exactly when a zero-energy
-    /// motion takes the drive. It is judged against εs (N/m), the shift of the factor of K + εI
-    /// (ε = 1e-12, s the largest diagonal entry): no stiffness below it is resolved. A floppy
-    /// drive's round-off lies far below: the refined residual r ≈ 0.5 ε_mach s ‖u‖ leaves at most
-    /// ‖r‖²/(4εs) of energy in the modes the shift blurs, k_drive ≤ ‖r‖²/(2εs‖u_p‖²) ≈ 6e-9 εs
-    /// ‖u‖²/‖u_p‖² (ε_mach²/ε² = 5e-8; ‖u‖²/‖u_p‖² ~ the rows the drive moves, 1 to 82 measured).
-    /// Measured (12 × 11 of every type, diluted triangular 16² to 64² near p_c and square 16²,
-    /// 32² near 1/2): floppy drives at most 1e-9 εs, each below its own bound; rigid ones 1.3e4 εs
-    /// and more (5e9 εs undiluted). `None` where nothing is imposed, where the drive meets a
-    /// stiffness, or where K cannot be factored (the linear solve then says why).
-    fn floppy_drive(&mut self) -> Option<Floppy> {
+    /// The drive's part of the linear answer, with K as assembled at the rest geometry: the
+    /// free displacements u_f = −K_ff⁻¹K_fp u_p (m) and their force −K_fp u_p (N); `Ok(None)`
+    /// where nothing is imposed. `Err` where the drive meets no stiffness, which the residual
+    /// cannot show (K u = f has a solution for every drive, [`Floppy::Drive`]), or where K cannot
+    /// be factored ([`Floppy::Load`] with an infinite residual). The stiffness the answer shows
+    /// the drive is k_drive = 2E₁/‖u_p‖² (N/m): the answer minimises ½uᵀK u with u_p held, so
+    /// k_drive is the Rayleigh quotient along u_p of the stiffness the held nodes feel
+    /// (S = K_pp − K_pf K_ff⁻¹ K_fp), 0 exactly when a zero-energy motion takes the drive. It is
+    /// judged against εs (N/m), the shift of the factor of K + εI (ε = 1e-12, s the largest
+    /// diagonal entry): no stiffness below it is resolved. A floppy drive's round-off lies far
+    /// below: the refined residual r ≈ 0.5 ε_mach s ‖u‖ leaves at most ‖r‖²/(4εs) of energy in
+    /// the modes the shift blurs, k_drive ≤ ‖r‖²/(2εs‖u_p‖²) ≈ 6e-9 εs ‖u‖²/‖u_p‖²
+    /// (ε_mach²/ε² = 5e-8; ‖u‖²/‖u_p‖² ~ the rows the drive moves, 1 to 82 measured). Measured
+    /// (12 × 11 of every type, diluted triangular 16² to 64² near p_c and square 16², 32² near
+    /// 1/2): floppy drives at most 1e-9 εs, each below its own bound; rigid ones 1.3e4 εs and
+    /// more (5e9 εs undiluted).
+    fn solve_drive(&mut self) -> Result<Option<DriveAnswer>, Floppy> {
         let imposed = euclidean_norm(self.truss.prescribed.iter().flat_map(|(_, ux, uy)| [ux, uy]));
         if imposed == 0.0 {
-            return None;
+            return Ok(None);
         }
-        let rest = vec![0.0; self.truss.x.len()];
-        self.assemble(&Linear, &rest, &rest);
         let drive = self.truss.imposed_force(&self.dofs);
-        let free = if self.dofs.free == 0 { Vec::new() } else { self.solve_fresh(&drive)? };
+        let free = self.solve_free(&drive).ok_or(Floppy::Load { residual: f64::INFINITY })?;
         let (ux, uy) = self.truss.displaced(&self.dofs, &free);
         let stiffness = 2.0 * self.truss.first_order_energy(&ux, &uy) / (imposed * imposed);
         let largest = self.analysis.as_ref().map_or(0.0, |a| a.diagonal(&self.stiffness).fold(0.0, f64::max));
         let resolution = REGULARISATION * largest;
-        (stiffness <= resolution).then_some(Floppy::Drive { stiffness, resolution })
+        if stiffness <= resolution {
+            return Err(Floppy::Drive { stiffness, resolution });
+        }
+        Ok(Some((drive, free)))
     }
 
     /// Solves the full non-linear problem (large rotations, any force law) by Newton–Raphson
@@ -404,6 +432,12 @@ impl<'a> Solver<'a> {
             }
         }
         self.solve_fresh(force)
+    }
+
+    /// K u = `force` over the free degrees of freedom with a fresh factor ([`Solver::solve_fresh`]);
+    /// nothing to solve where none is free.
+    fn solve_free(&mut self, force: &[f64]) -> Option<Vec<f64>> {
+        if self.dofs.free == 0 { Some(Vec::new()) } else { self.solve_fresh(force) }
     }
 
     /// K u = `force` with a fresh factor of K + εI (ε = 1e-12 of the largest diagonal entry),

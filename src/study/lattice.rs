@@ -601,7 +601,7 @@ impl StaticSolve<'_> {
     fn solve<L: ForceLaw>(&mut self, law: &L) -> Result<Solved, Stopped> {
         self.check_deadline()?;
         let answer = self.answer(law);
-        let (linear, linear_answer) = self.linear(law, answer.linear)?;
+        let (linear, linear_answer) = self.linear(answer.linear)?;
         let (ux, uy) = match answer.nonlinear {
             Some(StaticSolution::Displacements { ux, uy }) => (ux, uy),
             Some(StaticSolution::PastDeadline) => return Err(past_deadline()),
@@ -610,7 +610,7 @@ impl StaticSolve<'_> {
         };
         self.metrics.static_residual = Some(answer.residual).filter(|r| r.is_finite());
         self.metrics.static_descent_steps = Some(answer.descents as u64);
-        let top_row_force = self.top_row_force(law, &ux, &uy);
+        let top_row_force = self.top_row_force(|top| self.truss.reaction(law, &ux, &uy, top));
         let fem = moduli(self.spec, self.l, top_row_force, &ux, &uy);
         if self.spec.law.is_linear() {
             self.metrics.static_nonlinearity = nonlinearity(&fem, &linear);
@@ -640,13 +640,16 @@ impl StaticSolve<'_> {
 
     /// The linear answer `solution`, which decides whether the network carries the load at
     /// all (a power law's linear answer means nothing else): its moduli, kept as `*_linear`,
-    /// and its top row's force and displacements.
-    fn linear<L: ForceLaw>(&mut self, law: &L, solution: StaticSolution) -> Result<(Moduli, Solved), Stopped> {
+    /// and its top row's force and displacements. A drive's force is the linear problem's own
+    /// reaction, first order about the rest geometry like the answer ([`Truss::linear_reaction`]):
+    /// the springs' forces at the displaced state ([`Truss::reaction`], the non-linear answer's)
+    /// would add a second-order part, of the order of the strain relative.
+    fn linear(&mut self, solution: StaticSolution) -> Result<(Moduli, Solved), Stopped> {
         let (linear, answer) = match solution {
             StaticSolution::Mechanism(floppy) => return Err(Stopped::Mechanism(floppy)),
             StaticSolution::PastDeadline => return Err(past_deadline()),
             StaticSolution::Displacements { ux, uy } => {
-                let top = self.top_row_force(law, &ux, &uy);
+                let top = self.top_row_force(|top| self.truss.linear_reaction(&ux, &uy, top));
                 (moduli(self.spec, self.l, top, &ux, &uy), (top, Some((ux, uy))))
             }
         };
@@ -655,13 +658,13 @@ impl StaticSolve<'_> {
         Ok((linear, answer))
     }
 
-    /// The force on the top row (N) at the displacements `ux`, `uy`: the load, or what the
-    /// supports must apply to hold the driven row where it is.
-    fn top_row_force<L: ForceLaw>(&self, law: &L, ux: &[f64], uy: &[f64]) -> f64 {
+    /// The force on the top row (N): the load, or what the supports must apply to hold the
+    /// driven row where it is, along the drive, of `reaction` (N, x and y) of the top row's nodes.
+    fn top_row_force(&self, reaction: impl FnOnce(&[usize]) -> (f64, f64)) -> f64 {
         match self.l.control {
             Control::Force => self.l.total_load(),
             Control::Velocity => {
-                let (fx, fy) = self.truss.reaction(law, ux, uy, &top_row(self.spec, self.l));
+                let (fx, fy) = reaction(&top_row(self.spec, self.l));
                 if self.l.load_case == LoadCase::Tensile { fy } else { fx }
             }
         }
