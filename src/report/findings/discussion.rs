@@ -441,7 +441,7 @@ pub(super) fn linear_and_hertz(e: &Evidence) -> Option<Answer> {
     let mut rows = Vec::new();
     let mut checks = Vec::new();
     for fit in e.fits {
-        let Some(predicted) = predicted_exponent(e, fit) else { continue };
+        let Some(predicted) = predicted_exponent(fit) else { continue };
         checks.push((fit.fit.exponent - predicted).abs() <= EXPONENT_TOLERANCE);
         rows.push(vec![
             fit.scene.clone(),
@@ -487,7 +487,7 @@ pub(super) fn hertz_headline(e: &Evidence) -> Option<String> {
         .iter()
         .filter(|f| f.law != "linear" && !f.quantity.starts_with("tangent") && !f.quantity.ends_with("tangent"))
     {
-        let Some(predicted) = predicted_exponent(e, fit) else { continue };
+        let Some(predicted) = predicted_exponent(fit) else { continue };
         let verdict = if (fit.fit.exponent - predicted).abs() <= EXPONENT_TOLERANCE { "within" } else { "outside" };
         let law = format!(
             "{} ∝ {}^{} (predicted {predicted:.3}, {verdict} {EXPONENT_TOLERANCE})",

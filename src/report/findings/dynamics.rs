@@ -4,11 +4,11 @@
 
 use super::block::Block;
 use super::combined_damping;
-use super::finding::EXPONENT_TOLERANCE;
 use super::finding::{
     Answer, Evidence, Table, Verdict, cell, extremes, fastest_relaxation, lattice_size, percent, rel, relative, sig,
     threshold_percent,
 };
+use super::finding::{EXPONENT_TOLERANCE, SolitaryFront};
 use crate::model::LawSpec;
 use crate::report::curves::envelope;
 use crate::report::figure::{
@@ -19,7 +19,6 @@ use crate::report::words;
 use crate::runner::RunRecord;
 use crate::spec::Diagonals;
 use crate::study::chain;
-use crate::summary::ScalingFit;
 use crate::theory::critical_damping;
 
 /// Relative tolerance of the least background-damped run's dissipation time against the
@@ -1102,15 +1101,8 @@ fn trend(name: &str, symbol: &str, runs: &[&RunRecord], damping: fn(&RunRecord) 
 /// Non-linear 2D: a Hertz (or other power-law) lattice kicked over decades of v0, its front's
 /// exponent against Nesterenko's (β − 1)/(β + 1) for its own springs, beside the chain's.
 pub(super) fn hertz_kick(e: &Evidence) -> Option<Answer> {
-    let nonlinear = |f: &&ScalingFit| f.quantity == "sound_speed" && f.law != "linear";
-    let lattice = e
-        .fits
-        .iter()
-        .filter(nonlinear)
-        .find(|f| e.records.iter().any(|r| r.spec.scene == f.scene && r.spec.lattice().is_some()))
-        .and_then(|f| KickedFront::of(e, f))?;
+    let (lattice, chain) = SolitaryFront::kicked_lattice(e)?;
     let fit = lattice.fit;
-    let chain = e.fits.iter().filter(nonlinear).find(|f| f.scene != fit.scene).and_then(|f| KickedFront::of(e, f));
     let (low, high) = (fit.points.first()?, fit.points.last()?);
     let mut sentences = vec![format!(
         "A {} lattice has no linear sound speed: its unstretched springs have no stiffness. Kicked at v0 from {} to \
@@ -1125,7 +1117,7 @@ pub(super) fn hertz_kick(e: &Evidence) -> Option<Answer> {
         lattice.against_prediction()
     )];
     sentences.extend(chain.map(|c| {
-        let same = match (c.law == lattice.law, c.within() && lattice.within()) {
+        let same = match (c.fit.beta == lattice.fit.beta, c.within() && lattice.within()) {
             (true, true) => "; the lattice follows the same strongly non-linear law",
             (false, true) => "; each follows the law of its own springs",
             (_, false) => "",
@@ -1141,7 +1133,7 @@ pub(super) fn hertz_kick(e: &Evidence) -> Option<Answer> {
     }));
     Some(Answer {
         // Hertz only where the lattice's springs are β = 3/2: other powers are the same question.
-        title: if lattice.law.beta() == 1.5 {
+        title: if lattice.fit.beta == 1.5 {
             "A Hertz lattice kicked at several speeds"
         } else {
             "A power-law lattice kicked at several speeds"
@@ -1159,39 +1151,4 @@ pub(super) fn hertz_kick(e: &Evidence) -> Option<Answer> {
         figures: e.figures(&[(&fit.scene, FigureKind::SpeedAgainstV0), (&fit.scene, FigureKind::SpaceTime)]),
         table: None,
     })
-}
-
-/// A non-linear front's speed fitted against v0, with its scene's spring law and the exponent
-/// (β − 1)/(β + 1) Nesterenko's solitary wave has for springs s ∝ δ^β: its overlap
-/// δ_max ∝ v0^(2/(β+1)) sets the stiffness s′ ∝ δ^(β−1), and c ∝ √(s′/m).
-struct KickedFront<'a> {
-    fit: &'a ScalingFit,
-    law: LawSpec,
-    predicted: f64,
-}
-
-impl<'a> KickedFront<'a> {
-    fn of(e: &Evidence, fit: &'a ScalingFit) -> Option<KickedFront<'a>> {
-        let law = e.records.iter().find(|r| r.spec.scene == fit.scene)?.spec.law;
-        Some(KickedFront { fit, law, predicted: super::finding::predicted_exponent(e, fit)? })
-    }
-
-    fn within(&self) -> bool {
-        (self.fit.fit.exponent - self.predicted).abs() <= EXPONENT_TOLERANCE
-    }
-
-    /// "Hertz" or "power-law (β = 2)", mid-sentence.
-    fn name(&self) -> String {
-        crate::report::kinds::law_name(self.law).replacen("Power", "power", 1)
-    }
-
-    /// "against Nesterenko's (β − 1)/(β + 1) = 0.333 for β = 2, within 0.05".
-    fn against_prediction(&self) -> String {
-        format!(
-            "against Nesterenko's (β − 1)/(β + 1) = {:.3} for β = {}, {} {EXPONENT_TOLERANCE}",
-            self.predicted,
-            words::number(self.law.beta()),
-            if self.within() { "within" } else { "outside" }
-        )
-    }
 }

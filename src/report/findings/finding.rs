@@ -315,10 +315,61 @@ pub(super) fn threshold_percent(r: &RunRecord) -> String {
 /// The exponent springs s ∝ δ^β predict for a fitted quantity against its variable (β its
 /// group's, [`ScalingFit::beta`]): the solitary wave's speed ∝ v0^((β−1)/(β+1)) (Nesterenko),
 /// moduli ∝ F^((β−1)/β) and a chain's stiffness ∝ |ΔW|^(β−1), since s′ ∝ δ^(β−1) and F ∝ δ^β.
-/// Hertz (β = 3/2): 1/5, 1/3 and 1/2; linear (β = 1): 0. The evidence is not read (β was once
-/// taken from its scene's first run); the callers still pass it.
-pub(super) fn predicted_exponent(_: &Evidence, fit: &ScalingFit) -> Option<f64> {
+/// Hertz (β = 3/2): 1/5, 1/3 and 1/2; linear (β = 1): 0.
+pub(super) fn predicted_exponent(fit: &ScalingFit) -> Option<f64> {
     crate::summary::predicted(fit.quantity, fit.against, fit.beta).map(|(exponent, _)| exponent)
+}
+
+/// A non-linear front's speed fitted against the kick v0 (a chain's or a kicked lattice's),
+/// with the exponent (β − 1)/(β + 1) Nesterenko's solitary wave has for its group's springs
+/// s ∝ δ^β: its overlap δ_max ∝ v0^(2/(β+1)) sets the stiffness s′ ∝ δ^(β−1), and c ∝ √(s′/m).
+pub(super) struct SolitaryFront<'a> {
+    pub(super) fit: &'a ScalingFit,
+    pub(super) predicted: f64,
+}
+
+impl<'a> SolitaryFront<'a> {
+    /// The front of `fit`, a speed against v0; `None` for another fit.
+    pub(super) fn of(fit: &'a ScalingFit) -> Option<SolitaryFront<'a>> {
+        (fit.quantity == "sound_speed" && fit.against == "v0")
+            .then(|| Some(SolitaryFront { fit, predicted: predicted_exponent(fit)? }))
+            .flatten()
+    }
+
+    /// The non-linear fronts of `e`'s fits, in campaign order.
+    pub(super) fn all<'e>(e: &Evidence<'e>) -> impl Iterator<Item = SolitaryFront<'e>> {
+        e.fits.iter().filter(|f| f.law != "linear").filter_map(SolitaryFront::of)
+    }
+
+    /// The first kicked power-law lattice's front and the chain's front told beside it (the
+    /// first of another scene), for the item "A Hertz lattice kicked at several speeds".
+    pub(super) fn kicked_lattice<'e>(e: &Evidence<'e>) -> Option<(SolitaryFront<'e>, Option<SolitaryFront<'e>>)> {
+        let lattice =
+            |f: &SolitaryFront| e.records.iter().any(|r| r.spec.scene == f.fit.scene && r.spec.lattice().is_some());
+        let kicked = Self::all(e).find(|f| lattice(f))?;
+        let beside = Self::all(e).find(|f| f.fit.scene != kicked.fit.scene);
+        Some((kicked, beside))
+    }
+
+    /// Whether its exponent lies within [`EXPONENT_TOLERANCE`] of the prediction.
+    pub(super) fn within(&self) -> bool {
+        (self.fit.fit.exponent - self.predicted).abs() <= EXPONENT_TOLERANCE
+    }
+
+    /// "Hertz" or "power-law (β = 2)", mid-sentence.
+    pub(super) fn name(&self) -> String {
+        crate::report::kinds::law_name(LawSpec::Power { beta: self.fit.beta }).replacen("Power", "power", 1)
+    }
+
+    /// "against Nesterenko's (β − 1)/(β + 1) = 0.333 for β = 2, within 0.05".
+    pub(super) fn against_prediction(&self) -> String {
+        format!(
+            "against Nesterenko's (β − 1)/(β + 1) = {:.3} for β = {}, {} {EXPONENT_TOLERANCE}",
+            self.predicted,
+            crate::report::words::number(self.fit.beta),
+            if self.within() { "within" } else { "outside" }
+        )
+    }
 }
 
 /// How close a fitted exponent must come to its prediction: three to four points over two or

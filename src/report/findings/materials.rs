@@ -195,7 +195,7 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
     let mut sentences = vec![power_law_words(&runs)];
     let mut checks = Vec::new();
     for f in &fits {
-        let predicted = predicted_exponent(e, f)?;
+        let predicted = predicted_exponent(f)?;
         let group = runs.iter().find(|r| r.spec.scene == f.scene && load_group(r) == f.group);
         sentences.push(format!(
             "{} of scene {}{}: from {} to {} Pa over loads of {} to {} N per node, ∝ F^{:.3} (R² = {:.4}; predicted \
@@ -231,7 +231,7 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
             "{} ∝ F^{:.3} (predicted {:.3})",
             symbol(first.quantity),
             first.fit.exponent,
-            predicted_exponent(e, first)?
+            predicted_exponent(first)?
         ),
         sentences,
         reference: format!(

@@ -2,7 +2,9 @@
 //! restitution, the time step, the chain of 11 against its normal modes, Hertz springs, and the
 //! chain between moved walls.
 
-use super::finding::{Answer, Evidence, Table, Verdict, cell, exponents, rel, relative, sig};
+use super::finding::{
+    Answer, EXPONENT_TOLERANCE, Evidence, SolitaryFront, Table, Verdict, cell, exponents, rel, relative, sig,
+};
 use crate::measure::{convergence_order, sorted_distinct};
 use crate::model::LawSpec;
 use crate::report::figure::{FigureKind, FigureRef, representative};
@@ -938,55 +940,125 @@ pub(super) fn chain(e: &Evidence) -> Option<Answer> {
     })
 }
 
-/// Hertz springs in 1D: each power law's pair contact duration, and the chain's energy balance.
+/// Hertz springs in 1D: each power law's pair contact duration, the kicked chain's energy
+/// balance, and each hit chain's solitary wave against Nesterenko's exponent: whichever of the
+/// three the campaign ran.
 pub(super) fn hertz_pair_and_chain(e: &Evidence) -> Option<Answer> {
     let pairs = e.ok(|r| is_pair(r) && r.spec.law != LawSpec::Linear);
     // Every exponent the pairs ran, each told and judged: one would hide the others' runs.
     let laws: Vec<PowerPairs> =
         exponents(pairs.iter().copied()).into_iter().filter_map(|b| power_pairs(&pairs, b)).collect();
-    if laws.is_empty() {
+    let chain = at_50(&kicked_power_chains(e));
+    let waves = solitary_chain_waves(e);
+    if laws.is_empty() && chain.is_none() && waves.is_empty() {
         return None;
     }
     let mut sentences: Vec<String> = laws.iter().map(|law| power_contact_words(law.told)).collect();
-    let chains = e.ok(|r| {
+    let mut checks: Vec<bool> = laws.iter().map(|law| law.within).collect();
+    if let Some(c) = chain {
+        sentences.push(chain_energy_words(e, c));
+        checks.push(c.metrics.energy_error.is_some_and(|x| x.abs() <= 1e-3));
+    }
+    sentences.extend(waves.iter().map(solitary_words));
+    checks.extend(waves.iter().map(SolitaryFront::within));
+    let short = laws.iter().map(power_pairs_short).chain(waves.iter().map(solitary_short)).collect::<Vec<_>>();
+    Some(Answer {
+        title: "Hertz springs in 1D",
+        question: "Repeat the steps with a non-linear contact f ∝ C δ^β (Hertz, β = 3/2).",
+        short: short.join("; "),
+        sentences,
+        reference: hertz_reference(!laws.is_empty(), chain.is_some(), !waves.is_empty()),
+        see_also: None,
+        verdict: Verdict::of(checks),
+        figures: hertz_figures(e, &laws, &waves),
+        table: None,
+    })
+}
+
+/// The references of what the item told: the pairs' exact contact duration, the kicked
+/// chain's energy balance, the solitary wave's exponent.
+fn hertz_reference(pairs: bool, chain: bool, waves: bool) -> String {
+    let parts = [
+        pairs.then(|| format!("the exact Hertz contact duration (tolerance {PAIR_TOLERANCE:e} at t_c/50)")),
+        chain.then(|| "the chain's energy balance to 1e-3 at t_c/50".to_string()),
+        waves.then(|| format!("Nesterenko's solitary wave, V ∝ v0^((β − 1)/(β + 1)), within {EXPONENT_TOLERANCE}")),
+    ];
+    let told: Vec<String> = parts.into_iter().flatten().collect();
+    let mut words = told.join("; ");
+    words[..1].make_ascii_uppercase();
+    format!("{words}.")
+}
+
+/// The undamped power-law chains kicked without a wave to time: their energy balance is told.
+fn kicked_power_chains<'a>(e: &Evidence<'a>) -> Vec<&'a RunRecord> {
+    e.ok(|r| {
         r.spec.chain().is_some_and(|c| c.relax.is_none() && c.wave.is_none())
             && r.spec.movie.is_none()
             && r.spec.law != LawSpec::Linear
             && r.spec.gamma == 0.0
-    });
-    let chain = at_50(&chains);
-    let mut checks: Vec<bool> = laws.iter().map(|law| law.within).collect();
-    if let Some(c) = chain {
-        let order = order_of(e, c, |r| r.metrics.energy_error);
-        sentences.push(format!(
-            "The Hertz chain of {} kicked at its centre has no normal modes to compare with; its energy balance holds \
-             to {} at t_c/{:.0}{}.",
-            c.spec.chain().map_or(0, |x| x.n),
-            cell(c.metrics.energy_error),
-            c.spec.dt_per_tc(),
-            order.map_or(String::new(), |p| format!(" and improves as dt^{p:.2}"))
-        ));
-        checks.push(c.metrics.energy_error.is_some_and(|x| x.abs() <= 1e-3));
-    }
+    })
+}
+
+/// The power-law chain `c`'s energy balance at t_c/50 and its order in dt.
+fn chain_energy_words(e: &Evidence, c: &RunRecord) -> String {
+    let order = order_of(e, c, |r| r.metrics.energy_error);
+    format!(
+        "The Hertz chain of {} kicked at its centre has no normal modes to compare with; its energy balance holds to \
+         {} at t_c/{:.0}{}.",
+        c.spec.chain().map_or(0, |x| x.n),
+        cell(c.metrics.energy_error),
+        c.spec.dt_per_tc(),
+        order.map_or(String::new(), |p| format!(" and improves as dt^{p:.2}"))
+    )
+}
+
+/// The fits of a non-linear hit chain's front speed against v0, its solitary wave: each told
+/// here but the one a kicked power-law lattice's item tells beside the lattice's own front
+/// ([`SolitaryFront::kicked_lattice`]), so that each is said once.
+fn solitary_chain_waves<'a>(e: &Evidence<'a>) -> Vec<SolitaryFront<'a>> {
+    let beside = SolitaryFront::kicked_lattice(e).and_then(|(_, chain)| chain).map(|c| c.fit);
+    let chain = |f: &SolitaryFront| e.records.iter().any(|r| r.spec.scene == f.fit.scene && r.spec.chain().is_some());
+    SolitaryFront::all(e).filter(|f| chain(f) && beside.is_none_or(|b| !std::ptr::eq(b, f.fit))).collect()
+}
+
+/// A chain's solitary wave in words: its speeds over the kicks, the fitted exponent against
+/// Nesterenko's. Two runs give an exponent (their ratio's) but no spread to test the power
+/// law's form, and say so.
+fn solitary_words(front: &SolitaryFront) -> String {
+    let fit = front.fit;
+    let (low, high) = (fit.points[0], fit.points[fit.points.len() - 1]);
+    let group = if fit.group.is_empty() { String::new() } else { format!(", {}", fit.group) };
+    let two = if fit.points.len() == 2 { " (two runs: their ratio, no spread to test the law's form)" } else { "" };
+    format!(
+        "Hit at v0 = {} to {} m/s ({}{group}), a {} chain carries a solitary wave, {} to {} m/s: V ∝ v0^{:.3} over \
+         {}{two}, {}.",
+        sig(low.0),
+        sig(high.0),
+        fit.scene,
+        front.name(),
+        sig(low.1),
+        sig(high.1),
+        fit.fit.exponent,
+        counted(fit.points.len(), "run"),
+        front.against_prediction()
+    )
+}
+
+/// The summary's part of a chain's solitary wave.
+fn solitary_short(front: &SolitaryFront) -> String {
+    format!("chain V ∝ v0^{:.3} ({:.3})", front.fit.fit.exponent, front.predicted)
+}
+
+/// The item's figures: each exponent's pair convergence, each solitary wave's speeds against
+/// v0, one movie of a non-linear chain.
+fn hertz_figures(e: &Evidence, laws: &[PowerPairs], waves: &[SolitaryFront]) -> Vec<FigureRef> {
     let mut figures: Vec<FigureRef> =
         laws.iter().flat_map(|law| e.figures(&[(&law.told.spec.scene, FigureKind::Convergence)])).collect();
+    figures.extend(waves.iter().flat_map(|w| e.figures(&[(&w.fit.scene, FigureKind::SpeedAgainstV0)])));
     // Two exponents of one scene (a grid over β) share its figure.
     figures.dedup_by(|a, b| a.file == b.file);
     figures.extend(e.movies(|r| r.spec.chain().is_some() && r.spec.law != LawSpec::Linear).into_iter().take(1));
-    Some(Answer {
-        title: "Hertz springs in 1D",
-        question: "Repeat the steps with a non-linear contact f ∝ C δ^β (Hertz, β = 3/2).",
-        short: laws.iter().map(power_pairs_short).collect::<Vec<_>>().join("; "),
-        sentences,
-        reference: format!(
-            "The exact Hertz contact duration (tolerance {PAIR_TOLERANCE:e} at t_c/50); the chain's energy balance \
-             to 1e-3 at t_c/50."
-        ),
-        see_also: None,
-        verdict: Verdict::of(checks),
-        figures,
-        table: None,
-    })
+    figures
 }
 
 /// One power law's undamped pairs at the step told: the run told (nearest t_c/50, Verlet's
@@ -1074,7 +1146,7 @@ pub(super) fn walls(e: &Evidence) -> Option<Answer> {
     let mut scenes: Vec<String> = relaxed.iter().map(|r| r.spec.scene.clone()).collect();
     scenes.dedup();
     for fit in scenes.iter().filter_map(|s| e.fit(s, "secant_stiffness").filter(|f| f.law != "linear")) {
-        let Some(predicted) = super::finding::predicted_exponent(e, fit) else { continue };
+        let Some(predicted) = super::finding::predicted_exponent(fit) else { continue };
         sentences.push(format!(
             "Fitted over |ΔW| from {} to {} m: {}'s secant stiffness ∝ |ΔW|^{:.3} (R² = {:.4}) against the predicted \
              β − 1 = {predicted:.3}.",
