@@ -5,8 +5,8 @@
 //! the tests of single functions, moved out of the library so that it is not compiled twice
 //! (once more as its own test binary); one file's: `cargo test --release --test suite unit::fem`.
 
-mod claims;
 mod chain_front;
+mod claims;
 mod cluster;
 mod combinations;
 mod common;
