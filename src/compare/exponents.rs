@@ -163,6 +163,14 @@ fn beta(side: &Side, summary: &Table, row: usize, scene: &str) -> Option<f64> {
     if let Some(betas) = summary.column("beta") {
         return betas.number(row);
     }
+    // An older file's group label holds a β the grid varies (`beta=2`), and linear springs are
+    // β = 1; `law=hertz` does not say β (a power law takes the campaign's).
+    let text = |name: &str| summary.column(name).and_then(|c| c.key(row)).unwrap_or_default();
+    let group = text("group");
+    let labelled = group.split(", ").find_map(|part| part.strip_prefix("beta=")).and_then(|b| b.parse().ok());
+    if let Some(beta) = labelled.or((text("law") == "linear").then_some(1.0)) {
+        return Some(beta);
+    }
     let (scenes, betas) = (side.results.column("scene")?, side.results.column("beta")?);
     let mut values =
         (0..side.results.height).filter(|&r| scenes.key(r).as_deref() == Some(scene)).filter_map(|r| betas.number(r));

@@ -131,7 +131,7 @@ fn fill(record: &mut RunRecord, mut run: Run, deadline: Instant) {
     let trace = run.outcome.trace;
     record.status = trace.status;
     record.message = trace.message.clone();
-    if record.status == RunStatus::NoEquilibrium && spec.relax().is_some() {
+    if record.status == RunStatus::NoEquilibrium && ran_out_of_damped_time(spec, trace.steps) {
         record.message = longer_relaxation(spec, &record.message);
     }
     record.steps = trace.steps;
@@ -176,14 +176,23 @@ fn compression_captions(stages: &[f64], frames: usize, end: &str) -> Vec<String>
     captions
 }
 
-/// A relaxing run that did not relax: its `message` with the field that lengthens it. Its
+/// Whether a run that did not relax was damped MD that stepped through its whole budget
+/// (`steps` of them): not a minimiser (whose message names its own budget, and which takes no
+/// damping), and not a run stopped before its first step (a tolerance below round-off, a floppy
+/// network), which no longer budget helps.
+fn ran_out_of_damped_time(spec: &RunSpec, steps: u64) -> bool {
+    spec.relax().is_some_and(|r| r.method == RelaxMethod::Damped) && steps > 0
+}
+
+/// A damped relaxation that did not relax: its `message` with the field that lengthens it. Its
 /// length is its budget `relax.max_tc` (t_c), which a lightly damped or soft network outlasts:
 /// the slowest mode decays over ~1/(ζ ω_min), many t_c where the bond dashpot's ζ is small.
 fn longer_relaxation(spec: &RunSpec, message: &str) -> String {
-    format!(
-        "{message} (relax.max_tc = {:.0} t_c: raise it, or the damping, for a network that relaxes more slowly)",
-        spec.duration / spec.t_c
-    )
+    // duration = max_tc t_c: the quotient has round-off in its last digits, which 6
+    // significant digits drop (0.4 stays 0.4, 5000 stays 5000).
+    let max_tc = spec.duration / spec.t_c;
+    let max_tc: f64 = format!("{max_tc:.5e}").parse().unwrap_or(max_tc);
+    format!("{message} (relax.max_tc = {max_tc} t_c: raise it, or the damping, for a network that relaxes more slowly)")
 }
 
 /// Why a mechanism has no MD run, in words: the load's equations that have no solution, or the

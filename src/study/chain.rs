@@ -120,6 +120,14 @@ fn at_rest_spacing(spec: &RunSpec, chain: &ChainRun) -> bool {
     (walls - (chain.n + 1) as f64 * spec.spacing).abs() <= 1e-12 * walls
 }
 
+/// Whether the walls pre-load the chain's springs: pushed in, or pulled apart for bonded springs
+/// (a contact spring opens a gap instead). A pre-loaded chain has a linear sound speed
+/// a√(s′(δ₀)/m) even with power-law springs, so it carries no Nesterenko solitary wave.
+pub fn is_preloaded(spec: &RunSpec, chain: &ChainRun) -> bool {
+    let rest = (chain.n + 1) as f64 * spec.spacing;
+    !at_rest_spacing(spec, chain) && (chain.wall_distance < rest || !spec.contact)
+}
+
 /// A bond dashpot or background damping.
 fn is_damped(spec: &RunSpec) -> bool {
     spec.gamma > 0.0 || spec.gamma_background > 0.0

@@ -113,3 +113,24 @@ fn a_time_step_that_misses_the_exact_front_is_outside() {
     assert!(error.abs() > number_after(reference, "tolerance "), "{summary}\n{reference}");
     assert!(reference.contains("**Verdict: ✗ outside"), "{reference}");
 }
+
+#[test]
+fn the_item_judges_the_run_nearest_its_tolerances_time_step() {
+    // The same mid-chain front by symplectic Euler at t_c/5 (outside, above) and by position
+    // Verlet at t_c/50 (inside) in one campaign, the coarse run first: the reviewer's campaign
+    // had its first chain judged, at t_c/10, against a tolerance derived at t_c/50. The item
+    // now judges the run nearest t_c/50 by Verlet, whatever the order.
+    let coarse = chain(N / 2, "symplectic-euler", 5);
+    let fine = chain(N / 2, "position-verlet", 50);
+    let scene = |yaml: &str, name: &str| yaml.split_once("scenes:\n").unwrap().1.replacen("name: wave", name, 1);
+    let yaml =
+        format!("version: 1\nname: front\nscenes:\n{}{}", scene(&coarse, "name: coarse"), scene(&fine, "name: fine"));
+    let report = report_of("front", &yaml);
+    let reference = line_with(&report, "**Reference:** The exact discrete chain's front speed");
+    assert!(reference.contains("**Verdict: ✓ within.**"), "{reference}");
+    let summary = line_with(&report, "[The speed of sound]");
+    assert!(
+        number_after(summary, "by the speed threshold, ").abs() < number_after(reference, "tolerance "),
+        "{summary}"
+    );
+}

@@ -794,10 +794,11 @@ fn a_grid_over_the_law_holds_each_fit_to_its_own_groups_beta() {
     an_older_summary_guesses_no_beta(dir.path());
 }
 
-/// A `summary.csv` of an older mdsolids, without `beta` (A's here, the column cut out): its
-/// fits take the one β of their scene's runs, and a scene gridded over the law has two, so A's
-/// fits are predicted by none ("predicted –") rather than guessed from their label; B's keep
-/// their own.
+/// A `summary.csv` of an older mdsolids, without `beta` (A's here, the column cut out): a fit's
+/// β is its label's `beta=`, 1 for linear springs, else the one β of its scene's runs; a scene
+/// gridded over the law has two, so A's Hertz walls are predicted by none ("predicted –")
+/// rather than guessed from `law=hertz` (a power law takes the campaign's β), while its linear
+/// group keeps 0; B's keep their own.
 fn an_older_summary_guesses_no_beta(reports: &Path) {
     let (a, b) = (reports.join("steep"), reports.join("hertzian"));
     let summary = a.join("summary.csv");
@@ -817,6 +818,8 @@ fn an_older_summary_guesses_no_beta(reports: &Path) {
     let report = std::fs::read_to_string(out.join("report.md")).unwrap();
     let line = report.lines().find(|l| l.starts_with("- walls (law=hertz): secant_stiffness")).expect(&report);
     assert!(line.contains("(power, predicted –) in A") && line.contains("predicted 0.5000 = β−1) in B"), "{line}");
+    let linear = report.lines().find(|l| l.starts_with("- walls (law=linear): secant_stiffness")).expect(&report);
+    assert!(linear.split_once(" in A").expect(linear).0.contains("predicted 0.0000"), "{linear}");
 }
 
 /// `--out` never overwrites or deletes what the user made: a folder holding other files, the

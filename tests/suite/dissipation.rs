@@ -121,3 +121,20 @@ fn a_chain_whose_speed_threshold_never_fires_says_which_criteria_did() {
     assert!(!undamped.contains("never fired"));
     assert!(line_with(&undamped, "[The speed of sound]").contains("by the speed threshold"));
 }
+
+#[test]
+fn dissipation_times_are_compared_within_one_set_up() {
+    // A student's block pulled and sheared at two bond dampings: the item listed four times
+    // for two γ ("γ = 12073, 12073, 3970, 3970 N s/m relax … in 0.159, 0.222, 0.485, 0.675 s")
+    // and fitted one power law through both load cases. It now reads the first set-up (pulled)
+    // alone and names the sheared runs as left out; γ^p over the pulled pair alone.
+    let yaml = "version: 1\nname: two\nscenes:\n  - name: lat\n    kind: lattice\n    material: {mass: 0.785, k: 2.0e9}\n    \
+                geometry: {spacing: 0.1, depth: 0.01}\n    lattice: {size: 4, k_diag_ratio: 0.5}\n    \
+                load: {per_node: 1000.0}\n    relax: {max_tc: 20000}\n    grid:\n      load.case: [tensile, shear]\n      \
+                damping.restitution: [0.5, 0.8]\n";
+    let report = crate::common::report_of("two", yaml);
+    let bond = crate::common::line_with(&report, "Bond damping alone: γ = ");
+    assert!(bond.contains("γ = 12073, 3970 N s/m relax the 4 × 4 lattice in "), "two γ: {bond}");
+    let left = crate::common::line_with(&report, "These times are of one set-up");
+    assert!(left.contains("lattice tensile on coursework supports; 2 damped runs of other set-ups (lat)"), "{left}");
+}

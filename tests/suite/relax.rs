@@ -317,7 +317,14 @@ fn a_run_that_does_not_relax_names_the_field_that_lengthens_it() {
         assert_eq!(run.status == RunStatus::Ok, relaxed, "{}", label(run));
         if !relaxed {
             assert_eq!(run.status, RunStatus::NoEquilibrium, "{}", label(run));
-            assert!(run.message.contains(&format!("relax.max_tc = {max_tc:.0} t_c: raise it")), "{}", run.message);
+            assert!(run.message.contains(&format!("relax.max_tc = {max_tc} t_c: raise it")), "{}", run.message);
         }
     }
+    // No such advice where a longer budget cannot help: a tolerance below the round-off floor
+    // stops the run before its first step, and a minimiser names its own budget.
+    let floor = &execute_all(&steel(4, "    relax: {tolerance: 1.0e-12}\n"))[0];
+    assert_eq!(floor.status, RunStatus::NoEquilibrium, "{}", label(floor));
+    assert!(!floor.message.contains("raise it"), "{}", floor.message);
+    let fire = &execute_all(&steel(4, "    relax: {method: fire, max_tc: 0.5}\n"))[0];
+    assert!(fire.status != RunStatus::NoEquilibrium || !fire.message.contains("or the damping"), "{}", label(fire));
 }

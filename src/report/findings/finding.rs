@@ -11,6 +11,7 @@ use crate::report::figure::{Figure, FigureKind, FigureRef, movie_refs};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::spec::{LatticeSpec, LoadCase, Supports};
+use crate::study::chain;
 use crate::summary::ScalingFit;
 
 // Numbers in sentences: 4 significant digits, plain or scientific as reads best.
@@ -336,9 +337,15 @@ impl<'a> SolitaryFront<'a> {
             .flatten()
     }
 
-    /// The non-linear fronts of `e`'s fits, in campaign order.
+    /// The non-linear fronts of `e`'s fits without pre-load, in campaign order: a chain whose
+    /// walls pre-load its springs has a linear sound speed instead ([`chain::is_preloaded`]).
     pub(super) fn all<'e>(e: &Evidence<'e>) -> impl Iterator<Item = SolitaryFront<'e>> {
-        e.fits.iter().filter(|f| f.law != "linear").filter_map(SolitaryFront::of)
+        let preloaded = |scene: &str| {
+            e.records
+                .iter()
+                .any(|r| r.spec.scene == scene && r.spec.chain().is_some_and(|c| chain::is_preloaded(&r.spec, c)))
+        };
+        e.fits.iter().filter(move |f| f.law != "linear" && !preloaded(&f.scene)).filter_map(SolitaryFront::of)
     }
 
     /// The first kicked power-law lattice's front and the chain's front told beside it (the
@@ -370,6 +377,14 @@ impl<'a> SolitaryFront<'a> {
             if self.within() { "within" } else { "outside" }
         )
     }
+}
+
+/// The run nearest dt = t_c/50 among `runs`, preferring the coursework's position Verlet.
+pub(super) fn at_50<'a>(runs: &[&'a RunRecord]) -> Option<&'a RunRecord> {
+    let verlet: Vec<&RunRecord> =
+        runs.iter().copied().filter(|r| r.spec.integrator == crate::sim::IntegratorKind::PositionVerlet).collect();
+    let pool = if verlet.is_empty() { runs } else { &verlet[..] };
+    (!pool.is_empty()).then(|| crate::report::figure::representative(pool))
 }
 
 /// How close a fitted exponent must come to its prediction: three to four points over two or

@@ -3,11 +3,11 @@
 //! chain between moved walls.
 
 use super::finding::{
-    Answer, EXPONENT_TOLERANCE, Evidence, SolitaryFront, Table, Verdict, cell, exponents, rel, relative, sig,
+    Answer, EXPONENT_TOLERANCE, Evidence, SolitaryFront, Table, Verdict, at_50, cell, exponents, rel, relative, sig,
 };
 use crate::measure::{convergence_order, sorted_distinct};
 use crate::model::LawSpec;
-use crate::report::figure::{FigureKind, FigureRef, representative};
+use crate::report::figure::{FigureKind, FigureRef};
 use crate::report::kinds::{contact_time_words, law_name};
 use crate::report::words::{counted, number, ordinal, scheme};
 use crate::runner::RunRecord;
@@ -33,14 +33,6 @@ fn pair_tolerance(r: &RunRecord) -> f64 {
 /// A pair run with an analytical contact duration.
 fn is_pair(r: &RunRecord) -> bool {
     r.spec.kind() == SceneKind::Pair && r.metrics.pair.contact_duration_theory.is_some()
-}
-
-/// The run nearest dt = t_c/50 among `runs`, preferring the coursework's position Verlet.
-fn at_50<'a>(runs: &[&'a RunRecord]) -> Option<&'a RunRecord> {
-    let verlet: Vec<&RunRecord> =
-        runs.iter().copied().filter(|r| r.spec.integrator == IntegratorKind::PositionVerlet).collect();
-    let pool = if verlet.is_empty() { runs } else { &verlet[..] };
-    (!pool.is_empty()).then(|| representative(pool))
 }
 
 /// The runs of `runs` nearest dt = t_c/50, one per scheme ([`scheme`]), Verlet's first and the

@@ -226,7 +226,7 @@ fn stalled_sentence(runs: &[&RunRecord]) -> Option<String> {
     let mechanism_words = match mechanisms {
         0 => String::new(),
         n => format!(
-            " {n} run{} {} a mechanism: the load drives a zero-stiffness motion, and no method ran.",
+            " {n} run{} {} a mechanism: the load or drive meets a zero-stiffness motion, and no method ran.",
             if n == 1 { "" } else { "s" },
             if n == 1 { "is" } else { "are" }
         ),

@@ -795,8 +795,8 @@ fn moduli(e: &Evidence, case: LoadCase) -> Option<Moduli> {
         rel(worst).trim_start_matches('+'),
         if mechanisms > 0 {
             format!(
-                " {mechanisms} runs end as mechanism: the load drives a zero-stiffness motion (a lattice without \
-                 diagonals has no shear stiffness), and no modulus exists."
+                " {mechanisms} runs end as mechanism: the load or drive meets a zero-stiffness motion (a lattice \
+                 without diagonals has no shear stiffness), and no modulus exists."
             )
         } else {
             String::new()
