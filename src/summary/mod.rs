@@ -35,6 +35,11 @@ struct Scaling {
 /// The impact speed of a chain wave or the kick speed of an impulse lattice (m/s).
 fn excitation_speed(r: &RunRecord) -> Option<f64> {
     r.spec.wave()?;
+    // A chain whose walls pre-load its springs has a linear sound speed √(s′(δ₀)/m) a: its front
+    // is no solitary wave, and no exponent against v0 is predicted for it (nor fitted).
+    if r.spec.chain().is_some_and(|c| crate::study::chain::is_preloaded(&r.spec, c)) {
+        return None;
+    }
     match r.spec.lattice().and_then(|l| l.impulse) {
         Some(i) if i.top_row_force.is_none() => Some(i.vx.hypot(i.vy)),
         Some(_) => None,

@@ -11,7 +11,6 @@ use crate::report::figure::{Figure, FigureKind, FigureRef, movie_refs};
 use crate::runner::RunRecord;
 use crate::sim::RunStatus;
 use crate::spec::{LatticeSpec, LoadCase, Supports};
-use crate::study::chain;
 use crate::summary::ScalingFit;
 
 // Numbers in sentences: 4 significant digits, plain or scientific as reads best.
@@ -337,15 +336,10 @@ impl<'a> SolitaryFront<'a> {
             .flatten()
     }
 
-    /// The non-linear fronts of `e`'s fits without pre-load, in campaign order: a chain whose
-    /// walls pre-load its springs has a linear sound speed instead ([`chain::is_preloaded`]).
+    /// The non-linear fronts of `e`'s fits, in campaign order (a chain whose walls pre-load its
+    /// springs has none: the summary fits no speed against v0 for it).
     pub(super) fn all<'e>(e: &Evidence<'e>) -> impl Iterator<Item = SolitaryFront<'e>> {
-        let preloaded = |scene: &str| {
-            e.records
-                .iter()
-                .any(|r| r.spec.scene == scene && r.spec.chain().is_some_and(|c| chain::is_preloaded(&r.spec, c)))
-        };
-        e.fits.iter().filter(move |f| f.law != "linear" && !preloaded(&f.scene)).filter_map(SolitaryFront::of)
+        e.fits.iter().filter(|f| f.law != "linear").filter_map(SolitaryFront::of)
     }
 
     /// The first kicked power-law lattice's front and the chain's front told beside it (the
