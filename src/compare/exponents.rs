@@ -27,7 +27,8 @@ fn tolerance(against: &str) -> f64 {
 /// One side's fit.
 struct Fit {
     law: String,
-    /// The springs' exponent β of the fit's runs (1 for linear), [`beta`].
+    /// The springs' exponent β of the fit's runs (1 for linear): `summary.csv`'s `beta`, or
+    /// [`older_beta`].
     beta: Option<f64>,
     exponent: f64,
     r_squared: f64,
@@ -144,9 +145,13 @@ fn fits(side: &Side, summary: &Table) -> anyhow::Result<Vec<([String; 3], String
     Ok((0..summary.height)
         .filter_map(|row| {
             let keys = SUMMARY_KEYS.map(|k| text(k, row));
+            let law = text("law", row);
             let fit = Fit {
-                law: text("law", row),
-                beta: beta(side, summary, row, &keys[0]),
+                beta: match summary.column("beta") {
+                    Some(betas) => betas.number(row),
+                    None => older_beta(side, &keys, &law),
+                },
+                law,
                 exponent: exponent.number(row)?,
                 r_squared: r_squared.number(row).unwrap_or(f64::NAN),
             };
@@ -155,25 +160,19 @@ fn fits(side: &Side, summary: &Table) -> anyhow::Result<Vec<([String; 3], String
         .collect())
 }
 
-/// The springs' β of the fit in row `row` of `summary`: its `beta` column. A `summary.csv`
-/// written by an older mdsolids has none, and its `law` (`power` for every β) does not give
-/// β: there it is the one β of the scene's runs in the results table, `None` where they have
-/// several.
-fn beta(side: &Side, summary: &Table, row: usize, scene: &str) -> Option<f64> {
-    if let Some(betas) = summary.column("beta") {
-        return betas.number(row);
-    }
-    // An older file's group label holds a β the grid varies (`beta=2`), and linear springs are
-    // β = 1; `law=hertz` does not say β (a power law takes the campaign's).
-    let text = |name: &str| summary.column(name).and_then(|c| c.key(row)).unwrap_or_default();
-    let group = text("group");
+/// The springs' β of a fit of a `summary.csv` written by an older mdsolids, without the `beta`
+/// column: its group label's `beta=` where the grid varies β, 1 for linear springs (`law`),
+/// else the one β of its scene's runs in the results table, `None` where they have several
+/// (`law=hertz` or `power` does not say β: a power law takes the campaign's).
+fn older_beta(side: &Side, [scene, group, _]: &[String; 3], law: &str) -> Option<f64> {
     let labelled = group.split(", ").find_map(|part| part.strip_prefix("beta=")).and_then(|b| b.parse().ok());
-    if let Some(beta) = labelled.or((text("law") == "linear").then_some(1.0)) {
+    if let Some(beta) = labelled.or((law == "linear").then_some(1.0)) {
         return Some(beta);
     }
     let (scenes, betas) = (side.results.column("scene")?, side.results.column("beta")?);
-    let mut values =
-        (0..side.results.height).filter(|&r| scenes.key(r).as_deref() == Some(scene)).filter_map(|r| betas.number(r));
+    let mut values = (0..side.results.height)
+        .filter(|&r| scenes.key(r).as_deref() == Some(scene.as_str()))
+        .filter_map(|r| betas.number(r));
     let first = values.next()?;
     values.all(|beta| beta == first).then_some(first)
 }

@@ -345,11 +345,15 @@ impl<'a> SolitaryFront<'a> {
     /// The first kicked power-law lattice's front and the chain's front told beside it (the
     /// first of another scene), for the item "A Hertz lattice kicked at several speeds".
     pub(super) fn kicked_lattice<'e>(e: &Evidence<'e>) -> Option<(SolitaryFront<'e>, Option<SolitaryFront<'e>>)> {
-        let lattice =
-            |f: &SolitaryFront| e.records.iter().any(|r| r.spec.scene == f.fit.scene && r.spec.lattice().is_some());
-        let kicked = Self::all(e).find(|f| lattice(f))?;
+        let kicked = Self::all(e).find(|f| f.of_lattice(e))?;
         let beside = Self::all(e).find(|f| f.fit.scene != kicked.fit.scene);
         Some((kicked, beside))
+    }
+
+    /// Whether its scene is a kicked lattice's (else a hit chain's: the two kinds whose speed is
+    /// fitted against v0).
+    pub(super) fn of_lattice(&self, e: &Evidence) -> bool {
+        e.records.iter().any(|r| r.spec.scene == self.fit.scene && r.spec.lattice().is_some())
     }
 
     /// Whether its exponent lies within [`EXPONENT_TOLERANCE`] of the prediction.

@@ -976,9 +976,7 @@ fn hertz_reference(pairs: bool, chain: bool, waves: bool) -> String {
         waves.then(|| format!("Nesterenko's solitary wave, V ∝ v0^((β − 1)/(β + 1)), within {EXPONENT_TOLERANCE}")),
     ];
     let told: Vec<String> = parts.into_iter().flatten().collect();
-    let mut words = told.join("; ");
-    words[..1].make_ascii_uppercase();
-    format!("{words}.")
+    format!("{}.", crate::report::words::capitalised(&told.join("; ")))
 }
 
 /// The undamped power-law chains kicked without a wave to time: their energy balance is told.
@@ -1009,8 +1007,7 @@ fn chain_energy_words(e: &Evidence, c: &RunRecord) -> String {
 /// ([`SolitaryFront::kicked_lattice`]), so that each is said once.
 fn solitary_chain_waves<'a>(e: &Evidence<'a>) -> Vec<SolitaryFront<'a>> {
     let beside = SolitaryFront::kicked_lattice(e).and_then(|(_, chain)| chain).map(|c| c.fit);
-    let chain = |f: &SolitaryFront| e.records.iter().any(|r| r.spec.scene == f.fit.scene && r.spec.chain().is_some());
-    SolitaryFront::all(e).filter(|f| chain(f) && beside.is_none_or(|b| !std::ptr::eq(b, f.fit))).collect()
+    SolitaryFront::all(e).filter(|f| !f.of_lattice(e) && beside.is_none_or(|b| !std::ptr::eq(b, f.fit))).collect()
 }
 
 /// A chain's solitary wave in words: its speeds over the kicks, the fitted exponent against
