@@ -140,6 +140,26 @@ pub struct WaveRecord {
     pub receiver_kinetic: Vec<f64>,
 }
 
+impl WaveRecord {
+    /// Appends the sample at `time` (s) of the source's and each receiver's motion, each as
+    /// (|u| m, |v| m/s, ½ m v² J): the source's as it is, the receivers' largest |u| and |v| and
+    /// their summed kinetic energy.
+    pub fn push(
+        &mut self,
+        time: f64,
+        (u, v, kinetic): (f64, f64, f64),
+        receivers: impl Iterator<Item = (f64, f64, f64)> + Clone,
+    ) {
+        self.time.push(time);
+        self.source_displacement.push(u);
+        self.source_speed.push(v);
+        self.source_kinetic.push(kinetic);
+        self.receiver_displacement.push(receivers.clone().map(|m| m.0).fold(0.0, f64::max));
+        self.receiver_speed.push(receivers.clone().map(|m| m.1).fold(0.0, f64::max));
+        self.receiver_kinetic.push(receivers.map(|m| m.2).sum());
+    }
+}
+
 impl WaveProbe {
     /// A probe from particle `source` to the particles `receivers`, recording every `every`-th
     /// step (arrival times are then known to `every` steps).
@@ -158,16 +178,12 @@ impl StepProbe for WaveProbe {
         if self.start.is_empty() {
             self.start = p.x.iter().zip(&p.y).map(|(&x, &y)| (x, y)).collect();
         }
-        let displacement = |i: usize| (p.x[i] - self.start[i].0).hypot(p.y[i] - self.start[i].1);
-        let speed = |i: usize| p.vx[i].hypot(p.vy[i]);
-        let r = &mut self.record;
-        r.time.push(state.time);
-        r.source_displacement.push(displacement(self.source));
-        r.source_speed.push(speed(self.source));
-        r.source_kinetic.push(0.5 * speed(self.source).powi(2) / p.inv_mass[self.source]);
-        r.receiver_displacement.push(self.receivers.iter().map(|&i| displacement(i)).fold(0.0, f64::max));
-        r.receiver_speed.push(self.receivers.iter().map(|&i| speed(i)).fold(0.0, f64::max));
-        r.receiver_kinetic.push(self.receivers.iter().map(|&i| 0.5 * speed(i).powi(2) / p.inv_mass[i]).sum());
+        let start = &self.start;
+        let motion = |i: usize| {
+            let speed = p.vx[i].hypot(p.vy[i]);
+            ((p.x[i] - start[i].0).hypot(p.y[i] - start[i].1), speed, 0.5 * speed.powi(2) / p.inv_mass[i])
+        };
+        self.record.push(state.time, motion(self.source), self.receivers.iter().map(|&i| motion(i)));
     }
 }
 

@@ -234,18 +234,11 @@ fn exact_front_speed(spec: &RunSpec, chain: &ChainRun, record: &WaveRecord) -> O
 fn exact_wave_record(spec: &RunSpec, chain: &ChainRun, wave: &WaveSpec, times: &[f64]) -> WaveRecord {
     let modes = ChainModes::new(spec.k, spec.mass, &initial_velocities(spec, chain));
     let particles: Vec<usize> = std::iter::once(wave.source).chain(wave.receivers.iter().copied()).collect();
-    let kinetic = |v: f64| 0.5 * spec.mass * v * v;
+    let sample = |&(u, v): &(f64, f64)| (u.abs(), v.abs(), 0.5 * spec.mass * v * v);
     let mut record = WaveRecord::default();
     for &t in times {
         let motion = modes.motion_of(&particles, t);
-        let ((u, v), receivers) = (motion[0], &motion[1..]);
-        record.time.push(t);
-        record.source_displacement.push(u.abs());
-        record.source_speed.push(v.abs());
-        record.source_kinetic.push(kinetic(v));
-        record.receiver_displacement.push(receivers.iter().map(|m| m.0.abs()).fold(0.0, f64::max));
-        record.receiver_speed.push(receivers.iter().map(|m| m.1.abs()).fold(0.0, f64::max));
-        record.receiver_kinetic.push(receivers.iter().map(|m| kinetic(m.1)).sum());
+        record.push(t, sample(&motion[0]), motion[1..].iter().map(sample));
     }
     record
 }
