@@ -471,3 +471,24 @@ fn kicked_waves_keep_damped_lattices_and_a_missing_front_apart() {
     let discussion = line_with(&report, "**The networks against their continuum.**");
     assert!(discussion.contains("square (z = 4 or 8): its longitudinal wave at 1.196 × c_L (no diagonals) and"));
 }
+
+#[test]
+fn a_diluted_network_run_twice_counts_as_one_seed() {
+    // Two loads on the same diluted networks (two runs of each network, seed and cut): each
+    // seed's threshold counts once. Grouped by type, N and seed alone, the two runs of each cut
+    // had made every seed two, so the table showed 4 seeds for 2 and a standard error √2 too small.
+    let yaml = "version: 1\nname: twice\nscenes:\n  - name: twice\n    kind: lattice\n    lattice: {type: triangular, size: 12}\n    \
+                relax: {method: static}\n    grid:\n      load.per_node: [1.0, 2.0]\n      \
+                lattice.cut_fraction: [0.0, 0.2, 0.3, 0.35, 0.4, 0.5]\n      seed: [1, 2]\n";
+    let report = report_of("twice", yaml);
+    let row = report.lines().find(|l| l.starts_with("| triangular | 12 | ")).unwrap_or_else(|| panic!("{report}"));
+    assert_eq!(row.split('|').nth(3).unwrap().trim(), "2", "seeds: {row}");
+    // Nor do two runs of one cut count as two cut fractions: two cuts run twice each locate no
+    // threshold (it takes three).
+    let two_cuts = yaml.replace("[0.0, 0.2, 0.3, 0.35, 0.4, 0.5]", "[0.0, 0.5]");
+    let report = report_of("twice", &two_cuts);
+    assert!(
+        line_with(&report, "Lattice types: rigidity percolation](#").contains("| no threshold located |"),
+        "{report}"
+    );
+}

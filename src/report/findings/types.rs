@@ -677,12 +677,12 @@ pub(super) fn percolation(e: &Evidence) -> Option<Answer> {
         .map(|r| r.spec.scene.as_str())
         .collect();
     diluted_scenes.dedup();
-    let (thresholds, stiffness) = dilution(&runs)?;
+    let (thresholds, brackets, stiffness) = dilution(&runs)?;
     if thresholds.is_empty() {
         return Some(no_threshold(e, &runs, &diluted_scenes));
     }
     let (rows, mut sentences) = threshold_rows(&thresholds);
-    sentences.extend(largest_triangular_sentence(&thresholds));
+    sentences.extend(largest_triangular_sentence(&thresholds, &brackets));
     sentences.extend(unstable_sentence(&runs));
     sentences.extend(effective_medium_sentence(&stiffness));
     sentences.push(THRESHOLD_METHOD.into());
@@ -746,35 +746,55 @@ fn percolation_runs<'a>(e: &Evidence<'a>) -> Vec<&'a RunRecord> {
 /// Per (type, N), the rigidity thresholds p_c of its seeds.
 type Thresholds<'a> = BTreeMap<(&'a str, usize), Vec<f64>>;
 
+/// Per (type, N), the widest gap between a seed's last rigid and first floppy cut fraction:
+/// how finely the campaign's grid locates each threshold.
+type Brackets<'a> = BTreeMap<(&'a str, usize), f64>;
+
 /// Per (type, cut fraction in thousandths), the seeds' E/E(p = 1), mechanisms counted as 0.
 type StiffnessByCut<'a> = BTreeMap<(&'a str, u64), Vec<f64>>;
 
-/// The thresholds (per seed midway between the largest cut still rigid and the smallest that
-/// is a mechanism: the cut sets of a seed are nested) and the stiffness by cut.
-fn dilution<'a>(runs: &[&'a RunRecord]) -> Option<(Thresholds<'a>, StiffnessByCut<'a>)> {
-    let mut series: BTreeMap<(&str, usize, u64), Vec<Diluted>> = BTreeMap::new();
+/// One diluted network family: its type, N, ny, seed, diagonals, supports and the bits of
+/// k_x, k_y and k_d. Runs of one family differ only in their cut fraction and in what does not
+/// change the network (load, control, relaxation), so each cut fraction is one network.
+type Family<'a> = (&'a str, usize, usize, u64, &'static str, &'static str, [u64; 3]);
+
+/// The diluted networks of each family, one point per cut fraction in increasing order: a cut
+/// that several runs share (two controls, two relaxation methods of one network) counts once,
+/// rigid only if every run of it is, so a seed is not counted twice.
+fn families<'a>(runs: &[&'a RunRecord]) -> Option<BTreeMap<Family<'a>, Vec<Diluted>>> {
+    let mut series: BTreeMap<Family, Vec<Diluted>> = BTreeMap::new();
     for r in runs {
         let l = r.spec.lattice()?;
         if l.rotated || l.impulse.is_some() {
             continue;
         }
+        let stiffness = [l.k_x, l.k_y, l.k_diag].map(f64::to_bits);
+        let family = (l.lattice_type.name(), l.nx, l.ny, l.seed, l.diagonals.name(), l.supports.name(), stiffness);
+        let points = series.entry(family).or_default();
         let rigid = r.status != RunStatus::Mechanism;
-        series.entry((l.lattice_type.name(), l.nx, l.seed)).or_default().push((
-            l.cut_fraction,
-            rigid,
-            r.metrics.lattice.youngs_modulus_linear,
-        ));
+        match points.iter_mut().find(|p| p.0 == l.cut_fraction) {
+            Some(point) => point.1 &= rigid,
+            None => points.push((l.cut_fraction, rigid, r.metrics.lattice.youngs_modulus_linear)),
+        }
     }
     series.retain(|_, points| points.len() > 2 && points.iter().any(|p| p.0 > 0.0));
-    let mut thresholds = Thresholds::new();
+    series.values_mut().for_each(|points| points.sort_by(|a, b| a.0.total_cmp(&b.0)));
+    Some(series)
+}
+
+/// The thresholds (per seed midway between the largest cut still rigid and the smallest that
+/// is a mechanism: the cut sets of a seed are nested) and the stiffness by cut. Families that
+/// differ only in their stiffness constants share a seed's threshold, which is counted once.
+fn dilution<'a>(runs: &[&'a RunRecord]) -> Option<(Thresholds<'a>, Brackets<'a>, StiffnessByCut<'a>)> {
+    let mut per_seed: BTreeMap<(&str, usize, u64, &str, &str), (f64, f64)> = BTreeMap::new();
     let mut stiffness = StiffnessByCut::new();
-    for (&(name, n, _), points) in &mut series {
-        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for (&(name, n, _, seed, diagonals, supports, _), points) in &families(runs)? {
         let full = points.iter().find(|p| p.0 == 0.0).and_then(|p| p.2);
         let last_rigid = points.iter().filter(|p| p.1).map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
         let first_floppy = points.iter().filter(|p| !p.1).map(|p| p.0).fold(f64::INFINITY, f64::min);
         if last_rigid.is_finite() && first_floppy.is_finite() {
-            thresholds.entry((name, n)).or_default().push(1.0 - 0.5 * (last_rigid + first_floppy));
+            let threshold = (1.0 - 0.5 * (last_rigid + first_floppy), first_floppy - last_rigid);
+            per_seed.insert((name, n, seed, diagonals, supports), threshold);
         }
         if let Some(full) = full {
             for p in points.iter().filter(|p| p.0 > 0.0) {
@@ -783,7 +803,13 @@ fn dilution<'a>(runs: &[&'a RunRecord]) -> Option<(Thresholds<'a>, StiffnessByCu
             }
         }
     }
-    Some((thresholds, stiffness))
+    let (mut thresholds, mut brackets) = (Thresholds::new(), Brackets::new());
+    for ((name, n, ..), (p_c, bracket)) in per_seed {
+        thresholds.entry((name, n)).or_default().push(p_c);
+        let widest = brackets.entry((name, n)).or_insert(bracket);
+        *widest = widest.max(bracket);
+    }
+    Some((thresholds, brackets, stiffness))
 }
 
 /// A table row and a sentence per (type, N): the seeds' mean threshold against theory.
@@ -813,21 +839,29 @@ fn threshold_rows(thresholds: &Thresholds) -> (Vec<Vec<String>>, Vec<String>) {
     (rows, sentences)
 }
 
-/// The largest triangular network's threshold against Jacobs and Thorpe's bulk value.
-fn largest_triangular_sentence(thresholds: &Thresholds) -> Option<String> {
-    let ((_, n), p) = thresholds.iter().rev().find(|((name, _), _)| *name == "triangular")?;
+/// The largest triangular network's threshold against Jacobs and Thorpe's bulk value, in
+/// standard errors over the seeds (or the seeds' agreement, where they all found one value)
+/// and beside the grid step `brackets` that located it.
+fn largest_triangular_sentence(thresholds: &Thresholds, brackets: &Brackets) -> Option<String> {
+    let (&(name, n), p) = thresholds.iter().rev().find(|((name, _), _)| *name == "triangular")?;
     let (mean, _, error) = over_seeds(p);
-    let error = error.max(f64::MIN_POSITIVE);
-    let off = mean - 0.660;
+    let (off, emt_off) = (mean - 0.660, mean - 2.0 / 3.0);
+    let side = |x: f64| if x < 0.0 { "below" } else { "above" };
+    let scatter = match p.len() {
+        1 => "one seed".to_string(),
+        _ if error == 0.0 => format!("every one of {} seeds found it", p.len()),
+        _ => format!("{:.1} standard errors over the seeds", off.abs() / error),
+    };
     Some(format!(
         "At the largest size, N = {n}, the triangular threshold {mean:.3} lies {:.3} {} Jacobs and Thorpe's \
-         bulk 0.660 ({:.1} standard errors over the seeds, on a grid of cut fractions 0.005 apart there: a \
-         finite network between rigid edge bands need not share the bulk's value) and {:.3} below \
+         bulk 0.660 ({scatter}, on a grid that brackets each seed's threshold within {:.3} in cut fraction: a \
+         finite network between rigid edge bands need not share the bulk's value) and {:.3} {} \
          effective-medium theory's 2/3, which counts constraints on average.",
         off.abs(),
-        if off < 0.0 { "below" } else { "above" },
-        off.abs() / error,
-        2.0 / 3.0 - mean
+        side(off),
+        brackets[&(name, n)],
+        emt_off.abs(),
+        side(emt_off),
     ))
 }
 
