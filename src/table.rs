@@ -161,6 +161,7 @@ pub fn summary_frame(fits: &[ScalingFit]) -> PolarsResult<DataFrame> {
         Column::new("points".into(), fits.iter().map(|f| f.points.len() as u64).collect::<Vec<u64>>()),
         Column::new("x_min".into(), fits.iter().map(|f| f.points[0].0).collect::<Vec<f64>>()),
         Column::new("x_max".into(), fits.iter().map(|f| f.points[f.points.len() - 1].0).collect::<Vec<f64>>()),
+        Column::new("particles".into(), fits.iter().map(|f| f.particles as u64).collect::<Vec<u64>>()),
     ])
 }
 

@@ -32,6 +32,11 @@ struct Fit {
     beta: Option<f64>,
     exponent: f64,
     r_squared: f64,
+    /// Particles of the fit's runs (`summary.csv`'s `particles`; none in an older one).
+    particles: Option<f64>,
+    /// Whether the verdict holds it against its law: every fit but a packing's scaling at a
+    /// smaller N than its scene's largest of that law ([`judge_largest_packings`]).
+    judged: bool,
 }
 
 /// A fitted quantity with the fits of A and B (either may be missing).
@@ -119,9 +124,12 @@ pub(super) fn exponents(a: &Side, b: &Side) -> anyhow::Result<Exponents> {
             .collect();
         return Ok(Exponents { missing, ..Exponents::default() });
     };
-    let mut fb: Vec<Option<([String; 3], String, Fit)>> = fits(b, sb)?.into_iter().map(Some).collect();
+    let (mut fa, mut fb) = (fits(a, sa)?, fits(b, sb)?);
+    judge_largest_packings(&mut fa);
+    judge_largest_packings(&mut fb);
+    let mut fb: Vec<Option<([String; 3], String, Fit)>> = fb.into_iter().map(Some).collect();
     let mut matched = Vec::new();
-    for (keys, against, fit) in fits(a, sa)? {
+    for (keys, against, fit) in fa {
         let partner = fb.iter_mut().find(|f| f.as_ref().is_some_and(|(k, _, _)| *k == keys)).and_then(Option::take);
         matched.push(Matched::new(keys, against, Some(fit), partner.map(|p| p.2)));
     }
@@ -154,10 +162,30 @@ fn fits(side: &Side, summary: &Table) -> anyhow::Result<Vec<([String; 3], String
                 law,
                 exponent: exponent.number(row)?,
                 r_squared: r_squared.number(row).unwrap_or(f64::NAN),
+                particles: summary.column("particles").and_then(|c| c.number(row)),
+                judged: true,
             };
             Some((keys, text("against", row), fit))
         })
         .collect())
+}
+
+/// Leaves a packing's scalings at every N but its scene's largest (per β) out of the verdict,
+/// as the report's item Jamming judges them: at small N the finite size bends them beyond the
+/// tolerance ([`jamming::EXPONENT_TOLERANCE`]). Fits without a particle count stay judged.
+fn judge_largest_packings(fits: &mut [([String; 3], String, Fit)]) {
+    let largest = |fits: &[([String; 3], String, Fit)], scene: &str, beta: Option<f64>| {
+        fits.iter()
+            .filter(|(keys, against, fit)| keys[0] == scene && jamming::is_fitted_against(against) && fit.beta == beta)
+            .filter_map(|(_, _, fit)| fit.particles)
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    for k in 0..fits.len() {
+        let (keys, against, fit) = &fits[k];
+        if let (true, Some(n)) = (jamming::is_fitted_against(against), fit.particles) {
+            fits[k].2.judged = n == largest(fits, &keys[0], fit.beta);
+        }
+    }
 }
 
 /// The springs' β of a fit of a `summary.csv` written by an older mdsolids, without the `beta`
@@ -265,13 +293,27 @@ fn sentences(matched: &[Matched]) -> Vec<String> {
 }
 
 /// Whether the fitted exponents follow their spring laws within their [`tolerance`], naming
-/// those that do not.
+/// those that do not, and how many packing fits at smaller N are not judged.
 fn verdict(matched: &[Matched]) -> String {
-    let misses: Vec<(&Matched, &str, f64)> = matched
-        .iter()
-        .flat_map(|m| [("A", &m.a), ("B", &m.b)].map(|(side, fit)| (m, side, fit)))
-        .filter_map(|(m, side, fit)| Some((m, side, fit.as_ref()?.miss((&m.quantity, &m.against))?)))
+    let fits = || matched.iter().flat_map(|m| [("A", &m.a), ("B", &m.b)].map(|(side, fit)| (m, side, fit)));
+    let unjudged = fits().filter(|(_, _, fit)| fit.as_ref().is_some_and(|f| !f.judged)).count();
+    let misses: Vec<(&Matched, &str, f64)> = fits()
+        .filter_map(|(m, side, fit)| {
+            Some((m, side, fit.as_ref().filter(|f| f.judged)?.miss((&m.quantity, &m.against))?))
+        })
         .collect();
+    let agreement = agreement(&misses);
+    match unjudged {
+        0 => agreement,
+        n => format!(
+            "{agreement} The packings' scalings at a scene's smaller N ({n} fits) are not judged: the finite size \
+             bends them, and the report's item Jamming judges the largest N only."
+        ),
+    }
+}
+
+/// The verdict over the judged fits' `misses` (scene, side and |fitted − predicted|).
+fn agreement(misses: &[(&Matched, &str, f64)]) -> String {
     let within = tolerance_words(misses.iter().map(|(m, _, _)| m.against.as_str()));
     let outside: Vec<String> = misses
         .iter()

@@ -137,6 +137,9 @@ pub struct ScalingFit {
     pub points: Vec<(f64, f64)>,
     /// The fit.
     pub fit: PowerLawFit,
+    /// Particles of each of the group's runs (a packing's discs, a lattice's nodes): a
+    /// packing's scalings are judged on a scene's largest N only ([`jamming::EXPONENT_TOLERANCE`]).
+    pub particles: usize,
 }
 
 impl ScalingFit {
@@ -160,6 +163,7 @@ impl ScalingFit {
             against,
             points,
             fit,
+            particles: first.spec.particles(),
         }
     }
 }
