@@ -782,11 +782,15 @@ fn families<'a>(runs: &[&'a RunRecord]) -> Option<BTreeMap<Family<'a>, Vec<Dilut
     Some(series)
 }
 
+/// The thresholds per (type, N), how finely the grid brackets them, and the stiffness by cut.
+type Dilution<'a> = (Thresholds<'a>, Brackets<'a>, StiffnessByCut<'a>);
+
 /// The thresholds (per seed midway between the largest cut still rigid and the smallest that
 /// is a mechanism: the cut sets of a seed are nested) and the stiffness by cut. Families that
 /// differ only in their stiffness constants share a seed's threshold, which is counted once.
-fn dilution<'a>(runs: &[&'a RunRecord]) -> Option<(Thresholds<'a>, Brackets<'a>, StiffnessByCut<'a>)> {
-    let mut per_seed: BTreeMap<(&str, usize, u64, &str, &str), (f64, f64)> = BTreeMap::new();
+fn dilution<'a>(runs: &[&'a RunRecord]) -> Option<Dilution<'a>> {
+    // Per network (type, N, seed, diagonals, supports): its threshold and bracket.
+    let mut per_seed: BTreeMap<_, (f64, f64)> = BTreeMap::new();
     let mut stiffness = StiffnessByCut::new();
     for (&(name, n, _, seed, diagonals, supports, _), points) in &families(runs)? {
         let full = points.iter().find(|p| p.0 == 0.0).and_then(|p| p.2);
