@@ -401,7 +401,18 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
     let tally = print_plan_rows(&plan, &layout);
     print_plan_summary(&plan.campaign, &layout, &tally);
     print_budget_warnings(&plan.campaign);
+    print_collision_warnings(&plan.campaign);
     Ok(())
+}
+
+/// The collisions the plan lets run but warns of ([`crate::plan::collision_warning`]): a bonded
+/// chain's kicked particle that may pass through its neighbour, a contact resolved by a few steps.
+fn print_collision_warnings(campaign: &Campaign) {
+    for spec in &campaign.runs {
+        if let Some(why) = crate::plan::collision_warning(spec) {
+            println!("warning: {}: {why}", spec.run_id());
+        }
+    }
 }
 
 /// What `plan` found in the store, run by run.

@@ -1,12 +1,15 @@
 //! The plan stage, between the campaign file and the first run: the campaign loaded and
 //! expanded ([`crate::spec`]), every run's time step and step count decided (once, here),
-//! its stability checked against its integrator's limit, and the estimates kept for the runs'
+//! its stability checked against its integrator's limit and its collisions against particles
+//! passing through each other ([`overlap`]), and the estimates kept for the runs'
 //! records. Every command that reads a campaign file starts from [`load`]; the runner takes
 //! the [`Plan`] it returns. The cost estimate is [`RunSpec::estimated_seconds`] of a planned run.
 
 mod lanczos;
+mod overlap;
 pub mod stability;
 
+pub use self::overlap::collision_warning;
 pub use self::stability::{Estimates, RUN_GROWTH, Stability, estimate};
 
 use rayon::prelude::*;
@@ -65,17 +68,30 @@ pub fn plan_sharing(file: &str, mut campaign: Campaign, estimates: &Estimates) -
     Ok(campaign)
 }
 
-/// Decides the time step of `spec` where the campaign gave `time.dt_omega_max` (dt = value /
-/// ω_max; `time.dt` and `time.dt_per_tc` set it in the spec layer) and refuses, before
-/// anything runs, a run whose dt · ω_max exceeds its integrator's limit unless it says
-/// `time.allow_unstable: true`. A run its memory budget `refused` is not started anyway (its
-/// memory does not depend on dt), and a static-only run takes no step: neither is worth an
-/// estimate ([`Estimates::stepped_stability`]). The error is the field and why.
+/// Plans `spec` ([`plan_step`]) and refuses, before anything runs, a collision whose
+/// particles may pass through each other at that step ([`overlap::check`]) unless it says
+/// `time.allow_unstable: true`. A run its memory budget `refused` is not started anyway. The
+/// error is the field and why.
 fn plan_run(spec: &mut RunSpec, refused: bool, estimates: &Estimates) -> Result<(), String> {
     check_round_off(spec)?;
+    plan_step(spec, refused, estimates)?;
+    if refused { Ok(()) } else { overlap::check(spec, dt_field(spec)) }
+}
+
+/// The campaign field that set the time step of `spec`, as its errors name it.
+fn dt_field(spec: &RunSpec) -> &'static str {
+    if spec.dt_omega_max.is_some() { "time.dt_omega_max" } else { "time.dt_per_tc (or time.dt)" }
+}
+
+/// Decides the time step of `spec` where the campaign gave `time.dt_omega_max` (dt = value /
+/// ω_max; `time.dt` and `time.dt_per_tc` set it in the spec layer) and refuses a run whose
+/// dt · ω_max exceeds its integrator's limit unless it says `time.allow_unstable: true`. A run
+/// its memory budget `refused` (its memory does not depend on dt) and a static-only run, which
+/// takes no step, are not worth an estimate ([`Estimates::stepped_stability`]).
+fn plan_step(spec: &mut RunSpec, refused: bool, estimates: &Estimates) -> Result<(), String> {
     let Some(target) = spec.dt_omega_max else {
         return match (!refused).then(|| estimates.stepped_stability(spec)).flatten() {
-            Some(stability) => check_limit(spec, &stability, "time.dt_per_tc (or time.dt)"),
+            Some(stability) => check_limit(spec, &stability, dt_field(spec)),
             None => Ok(()),
         };
     };
@@ -97,7 +113,7 @@ fn plan_run(spec: &mut RunSpec, refused: bool, estimates: &Estimates) -> Result<
     }
     // Exactly the value asked for (ω_max · dt may differ in the last digit).
     let stability = Stability { dt_omega_max: target, ..estimates.stability(spec) };
-    check_limit(spec, &stability, "time.dt_omega_max")
+    check_limit(spec, &stability, dt_field(spec))
 }
 
 /// A load per node below this many times the round-off of the static force ([`force_resolution`])

@@ -27,6 +27,7 @@ mod orders;
 mod packing;
 mod physics;
 mod pipeline;
+mod plan_warnings;
 mod relax;
 mod review_block;
 mod review_jamming;
