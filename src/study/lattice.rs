@@ -712,8 +712,12 @@ impl StaticSolve<'_> {
     }
 }
 
-/// The largest difference between the non-linear (`fem`) and the linear static answers:
-/// relative for E and G; absolute for ν, which can be 0 (no diagonals).
+/// How far the non-linear static answer (`fem`) lies from the linear one over the moduli the
+/// load case measures ([`moduli`] leaves the others `None`, so a shear's E and ν never enter):
+/// the largest of |E/E_lin − 1| and |ν − ν_lin| in tension (ν absolute: it is 0 without
+/// diagonals and on `periodic-x`), |G/G_lin − 1| in shear. O(ε) at strain ε, but O(γ²) in a
+/// shear that the mirror x → −x maps onto itself sheared back, whose G is even in γ: γ²/4 for
+/// the periodic square strip at k_d/k = 1/2 (`tests/suite/shear_nonlinearity.rs`).
 fn nonlinearity(fem: &Moduli, linear: &Moduli) -> Option<f64> {
     let relative = |a: Option<f64>, b: Option<f64>| crate::measure::relative_error(a, b).map(f64::abs);
     let absolute = fem.poisson_ratio.zip(linear.poisson_ratio).map(|(a, b)| (a - b).abs());

@@ -34,6 +34,7 @@ mod review_jamming;
 mod review_pairs;
 mod review_waves;
 mod series;
+mod shear_nonlinearity;
 mod shipped;
 mod steps;
 mod unit;
