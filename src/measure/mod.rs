@@ -76,6 +76,23 @@ pub struct PowerLawFit {
     pub r_squared: f64,
     /// The prefactor c.
     pub prefactor: f64,
+    /// How many points the line was fitted through (the positive, finite ones): through two, a
+    /// line meets both and R² = 1 by construction ([`PowerLawFit::r_squared_measured`]).
+    pub points: usize,
+}
+
+impl PowerLawFit {
+    /// R² where it measures the fit: `None` through two points, which any straight line meets
+    /// (R² = 1 whatever the data).
+    ///
+    /// ```
+    /// use mdsolids::measure::power_law_fit;
+    /// assert_eq!(power_law_fit(&[(1.0, 1.0), (4.0, 3.0)]).unwrap().r_squared_measured(), None);
+    /// assert!(power_law_fit(&[(1.0, 1.0), (2.0, 3.0), (4.0, 3.0)]).unwrap().r_squared_measured().unwrap() < 1.0);
+    /// ```
+    pub fn r_squared_measured(&self) -> Option<f64> {
+        (self.points > 2).then_some(self.r_squared)
+    }
 }
 
 /// Fits y = c x^p to the positive, finite `points` (x, y); `None` with fewer than two of them
@@ -102,6 +119,7 @@ pub fn power_law_fit(points: &[(f64, f64)]) -> Option<PowerLawFit> {
         exponent: line.slope,
         r_squared: line.r_squared,
         prefactor: line.intercept.exp(),
+        points: logs.len(),
     })
 }
 

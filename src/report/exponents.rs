@@ -4,7 +4,7 @@
 use serde::Serialize;
 
 use super::figure::Part;
-use super::words::number;
+use super::words::{fit_quality_cell, number};
 use crate::summary::ScalingFit;
 
 /// A fitted y ∝ x^p of one group.
@@ -35,7 +35,7 @@ fn exponent_rows(fits: &[ScalingFit], scene: &str) -> Vec<ExponentRow> {
             quantity: f.quantity,
             against: f.against,
             exponent: format!("{:.4}", f.fit.exponent),
-            r_squared: format!("{:.6}", f.fit.r_squared),
+            r_squared: fit_quality_cell(&f.fit, 6),
             points: f.points.len(),
             range: format!("{} … {}", number(f.points[0].0), number(f.points[f.points.len() - 1].0)),
         })

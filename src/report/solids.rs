@@ -5,7 +5,7 @@
 use serde::Serialize;
 
 use super::figure::{Figure, FigureKind, Part};
-use super::words::{number, optional};
+use super::words::{fit_quality, number, optional};
 use crate::draw::chart::{Chart, Mark, Scale, Series, line_chart};
 use crate::measure::mean_spread;
 use crate::model::LatticeType;
@@ -42,7 +42,7 @@ fn scaling_figures(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Vec<Figur
             let (x0, y0) = f.points[0];
             series.push(Series { label: format!("{label}: MD"), points: f.points.clone(), mark: Mark::Markers });
             series.push(Series {
-                label: format!("{label}: fit x^{:.3} (R² = {:.5})", f.fit.exponent, f.fit.r_squared),
+                label: format!("{label}: fit x^{:.3} ({})", f.fit.exponent, fit_quality(&f.fit, 5)),
                 points: f.points.iter().map(|&(x, _)| (x, y0 * (x / x0).powf(f.fit.exponent))).collect(),
                 mark: Mark::Line,
             });

@@ -4,7 +4,7 @@
 use serde::Serialize;
 
 use super::figure::{Figure, FigureKind, Part};
-use super::words::{impulse_words, number, optional};
+use super::words::{fit_quality, impulse_words, number, optional};
 use crate::draw::chart::{Chart, Mark, Scale, Series, heatmap, line_chart};
 use crate::measure::ARRIVAL_CRITERIA;
 use crate::runner::RunRecord;
@@ -87,7 +87,7 @@ fn speed_figure(fits: &[ScalingFit], scene: &str) -> anyhow::Result<Option<Figur
         let line = f.points.iter().map(|&(x, _)| (x, y0 * (x / x0).powf(f.fit.exponent))).collect();
         series.push(Series { label: format!("{label}: measured"), points: f.points.clone(), mark: Mark::Markers });
         series.push(Series {
-            label: format!("{label}: fit v0^{:.3} (R² = {:.5})", f.fit.exponent, f.fit.r_squared),
+            label: format!("{label}: fit v0^{:.3} ({})", f.fit.exponent, fit_quality(&f.fit, 5)),
             points: line,
             mark: Mark::Line,
         });

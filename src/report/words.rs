@@ -1,6 +1,7 @@
 //! How the report writes numbers and specs in words: six significant digits, signed errors, a
 //! dash for a missing value, an impulse as a kick or a step force.
 
+use crate::measure::PowerLawFit;
 use crate::sim::IntegratorKind;
 use crate::spec::ImpulseSpec;
 
@@ -69,6 +70,18 @@ pub fn exponent(x: f64, decimals: usize) -> String {
     } else {
         minus_sign(format!("{x:.decimals$}"))
     }
+}
+
+/// How well a power law fits, in a sentence: its R² with `decimals` decimals (`R² = 0.9998`),
+/// or `through 2 points`, which any line meets (R² = 1 by construction, no measure of the fit).
+pub fn fit_quality(fit: &PowerLawFit, decimals: usize) -> String {
+    fit.r_squared_measured()
+        .map_or_else(|| format!("through {} points", fit.points), |r| format!("R² = {r:.decimals$}"))
+}
+
+/// [`fit_quality`] in a table's R² column: the R², or a dash and the point count through two.
+pub fn fit_quality_cell(fit: &PowerLawFit, decimals: usize) -> String {
+    fit.r_squared_measured().map_or_else(|| format!("– ({} points)", fit.points), |r| format!("{r:.decimals$}"))
 }
 
 /// A relative difference in per cent with its sign (`+4.577 %`).

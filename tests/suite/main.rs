@@ -29,6 +29,7 @@ mod physics;
 mod pipeline;
 mod plan_warnings;
 mod relax;
+mod report_fits;
 mod review_block;
 mod review_jamming;
 mod review_pairs;

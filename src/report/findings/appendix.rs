@@ -14,7 +14,7 @@ pub struct AppendixWords {
     clamped: Option<String>,
     /// The damped pair's restitution with the full mass in place of the reduced mass.
     full_mass: Option<String>,
-    /// The linear chain's first maximum against the exact front speed.
+    /// The linear chain's first maximum against its long-wavelength speed a√(k/m).
     first_maximum: Option<String>,
     /// The moduli scenes' background damping against their critical values.
     moduli_damping: Option<String>,

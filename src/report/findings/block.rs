@@ -5,7 +5,7 @@
 
 use std::collections::BTreeMap;
 
-use super::finding::{Evidence, percent, plus_minus, regular, relative, sig};
+use super::finding::{Evidence, lattice_size, percent, plus_minus, regular, relative, sig};
 use crate::runner::RunRecord;
 use crate::spec::{Control, Diagonals, LoadCase, Supports};
 
@@ -114,8 +114,26 @@ impl Extrapolated {
     }
 }
 
+/// The largest force-loaded, regular, linear block with both diagonals sheared on `supports` whose
+/// G MD measured, among the runs `keep` selects.
+pub(super) fn largest_sheared<'a>(
+    e: &Evidence<'a>,
+    supports: Supports,
+    keep: impl Fn(&RunRecord) -> bool,
+) -> Option<&'a RunRecord> {
+    e.ok(|r| {
+        regular(r).is_some_and(|l| {
+            (l.load_case, l.supports, l.control, l.diagonals)
+                == (LoadCase::Shear, supports, Control::Force, Diagonals::Both)
+        }) && r.metrics.lattice.shear_modulus.is_some()
+            && keep(r)
+    })
+    .into_iter()
+    .max_by_key(|r| r.spec.lattice().map_or(0, |l| l.nx))
+}
+
 /// The block's E and ν from the tensile runs of one set-up (supports and material), G from its
-/// periodic strip, and its sound speed.
+/// periodic strip and its coursework supports, and its sound speed.
 pub(super) struct Block<'a> {
     /// The tensile runs extrapolated, one per size, by rising size, all of one shape.
     pub(super) tensile: Vec<&'a RunRecord>,
@@ -126,6 +144,9 @@ pub(super) struct Block<'a> {
     pub(super) poisson: Extrapolated,
     /// The periodic strip (the largest one), whose G MD and the static answer both measure.
     pub(super) shear: Option<&'a RunRecord>,
+    /// The largest block sheared on the coursework's supports, whose apparent G they bend below
+    /// k_d/d (0.40 of it on 40 × 40).
+    supported_shear: Option<&'a RunRecord>,
     /// The wave run of the same material that timed its front over the longest distance.
     pub(super) wave: Option<&'a RunRecord>,
 }
@@ -171,13 +192,11 @@ impl<'a> Block<'a> {
             |r| r.metrics.lattice.poisson_ratio_fem,
             |r| r.metrics.lattice.poisson_ratio_theory,
         )?;
-        let shear = loaded(LoadCase::Shear)
-            .into_iter()
-            .filter(|r| material(r) == Some(chosen))
-            .filter(|r| r.spec.lattice().is_some_and(|l| l.supports == Supports::PeriodicX))
-            .filter(|r| r.metrics.lattice.shear_modulus.is_some() && r.metrics.lattice.shear_modulus_fem.is_some())
-            .max_by_key(|r| r.spec.lattice().map_or(0, |l| l.nx));
         let same_medium = |r: &RunRecord| material(r).is_some_and(|m| m == chosen);
+        let shear = largest_sheared(e, Supports::PeriodicX, |r| {
+            same_medium(r) && r.metrics.lattice.shear_modulus_fem.is_some()
+        });
+        let supported_shear = largest_sheared(e, Supports::Coursework, same_medium);
         let wave = e
             .ok(|r| {
                 r.spec.law.is_linear()
@@ -188,7 +207,7 @@ impl<'a> Block<'a> {
             .into_iter()
             .filter(|r| same_medium(r))
             .max_by(|a, b| a.metrics.wave_distance.unwrap_or(0.0).total_cmp(&b.metrics.wave_distance.unwrap_or(0.0)));
-        Some(Block { tensile, left_out, youngs, poisson, shear, wave })
+        Some(Block { tensile, left_out, youngs, poisson, shear, supported_shear, wave })
     }
 
     /// The run that fixes the block's material (its largest tensile block).
@@ -295,18 +314,33 @@ impl<'a> Block<'a> {
         format!("{} supports", self.first().spec.lattice().map_or("", |l| l.supports.name()))
     }
 
-    /// The summary's line of G, when the campaign has a periodic strip of the block: MD's, with
-    /// its difference from the static answer of the same network (the relaxation's residual: a
-    /// bias, not a scatter, so not written as ±).
+    /// The summary's line of G, on each boundary condition the campaign shears the block on: on
+    /// the periodic strip MD's, with its difference from the static answer of the same network
+    /// (the relaxation's residual: a bias, not a scatter, so not written as ±); on the
+    /// coursework's supports the apparent G as a share of k_d/d.
     pub(super) fn shear_short(&self) -> Option<String> {
-        let m = &self.shear?.metrics.lattice;
-        let (md, exact) = (m.shear_modulus?, m.shear_modulus_fem?);
-        Some(format!(
-            "G = {} Pa on the periodic strip (MD, {} on the static answer) against k_d/d = {} Pa",
-            crate::report::words::number(md),
-            super::finding::rel((md - exact) / exact),
-            sig(m.shear_modulus_theory?)
-        ))
+        let strip = self.shear.and_then(|r| {
+            let m = &r.metrics.lattice;
+            let (md, exact) = (m.shear_modulus?, m.shear_modulus_fem?);
+            Some(format!(
+                "G = {} Pa on the periodic strip (MD, {} on the static answer) against k_d/d = {} Pa",
+                crate::report::words::number(md),
+                super::finding::rel((md - exact) / exact),
+                sig(m.shear_modulus_theory?)
+            ))
+        });
+        let supported = self.supported_shear.and_then(|r| {
+            let (g, theory) = (r.metrics.lattice.shear_modulus?, r.metrics.lattice.shear_modulus_theory?);
+            let words =
+                format!("{} Pa ({:.2} of k_d/d) on {} coursework supports", sig(g), g / theory, lattice_size(r));
+            Some((words, theory))
+        });
+        match (strip, supported) {
+            (Some(strip), Some((supported, _))) => Some(format!("{strip}, and {supported}")),
+            (Some(strip), None) => Some(strip),
+            (None, Some((supported, theory))) => Some(format!("G = {supported}, k_d/d = {} Pa", sig(theory))),
+            (None, None) => None,
+        }
     }
 
     /// The summary's line of the sound speed in m/s: measured if a wave crossed the block,

@@ -450,7 +450,7 @@ pub(super) fn linear_and_hertz(e: &Evidence) -> Option<Answer> {
             exponent(fit.fit.exponent),
             exponent(predicted),
             // About a constant, R² compares the scatter with itself: no measure of the fit.
-            if predicted == 0.0 { "– (flat)".into() } else { format!("{:.4}", fit.fit.r_squared) },
+            if predicted == 0.0 { "– (flat)".into() } else { words::fit_quality_cell(&fit.fit, 4) },
         ]);
     }
     let linear = e.fits.iter().filter(|f| f.law == "linear").count();

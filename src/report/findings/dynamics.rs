@@ -179,10 +179,10 @@ fn unfired_chains<'a>(e: &Evidence<'a>) -> Vec<Vec<&'a RunRecord>> {
 
 /// A chain scene whose speed threshold never fired: why that criterion is silent (the
 /// receiver's speed never reached θ of the source's peak within the run) and which criteria
-/// fired instead, at what speed against the exact front speed a√(k/m).
+/// fired instead, at what speed against the long-wavelength speed a√(k/m).
 fn unfired_sentence(runs: &[&RunRecord]) -> String {
     let first = runs[0];
-    let exact = first.metrics.sound_speed_theory.unwrap_or(f64::NAN);
+    let long_wave = first.metrics.sound_speed_theory.unwrap_or(f64::NAN);
     let (mut fired, mut silent) = (Vec::new(), Vec::new());
     for criterion in crate::measure::ARRIVAL_CRITERIA.iter().skip(1) {
         let speeds: Vec<f64> = runs.iter().filter_map(|r| r.metrics.sound_speed(criterion)).collect();
@@ -199,8 +199,8 @@ fn unfired_sentence(runs: &[&RunRecord]) -> String {
             speeds.len(),
             runs.len(),
             range(&|v| sig(v)),
-            range(&|v| rel(v / exact - 1.0)),
-            sig(exact)
+            range(&|v| rel(v / long_wave - 1.0)),
+            sig(long_wave)
         ));
     }
     let damped = (first.spec.gamma > 0.0 || first.spec.gamma_background > 0.0).then(|| {
@@ -225,11 +225,11 @@ fn unfired_sentence(runs: &[&RunRecord]) -> String {
     )
 }
 
-/// Why the speed threshold runs ahead of the exact front speed, and how the lead changes with
-/// the distance, from the runs whose front runs along a line of springs: the chains (between
-/// fixed walls) and the kicked column of a lattice without diagonals (free ends). The discrete
-/// line is dispersive, ω = 2√(k/m) sin(qa/2): its front spreads out as t^(1/3) ahead of
-/// x = c t, so a threshold at a fraction θ of the source's peak fires early by a time that
+/// Why the speed threshold runs ahead of the long-wavelength speed a√(k/m), and how the lead
+/// changes with the distance, from the runs whose front runs along a line of springs: the chains
+/// (between fixed walls) and the kicked column of a lattice without diagonals (free ends). The
+/// discrete line is dispersive, ω = 2√(k/m) sin(qa/2): its front spreads out as t^(1/3) ahead
+/// of x = c t, so a threshold at a fraction θ of the source's peak fires early by a time that
 /// grows slower than the distance, and the relative lead shrinks with it. Its ends and θ move
 /// the lead too, so the trend is stated only between two lines with the same ends and θ.
 fn precursor_sentence(linear: &[&RunRecord]) -> Option<String> {
@@ -390,8 +390,8 @@ fn chain_route(chain: &RunRecord) -> (String, String) {
 /// criterion that gives the higher speed saw the front first. Each threshold is relative to
 /// its own source peak (θ × the source's largest speed, displacement or kinetic energy), so
 /// which one fires first is measured, not assumed; the first maximum is held against the
-/// `exact` front speed a√(k/m) too.
-fn criteria_sentence(criteria: &[(String, f64)], exact: Option<f64>) -> String {
+/// chain's `long_wave` speed a√(k/m) too.
+fn criteria_sentence(criteria: &[(String, f64)], long_wave: Option<f64>) -> String {
     let by_speed = criteria.iter().find(|(c, _)| c == "speed threshold").map(|(_, v)| *v);
     let compared: Vec<String> = criteria
         .iter()
@@ -409,8 +409,8 @@ fn criteria_sentence(criteria: &[(String, f64)], exact: Option<f64>) -> String {
         return "No other arrival criterion fired.".into();
     }
     let first_maximum = criteria.iter().find(|(c, _)| c == "first maximum").map(|(_, v)| *v);
-    let crest = match first_maximum.zip(exact) {
-        Some((v, c)) => format!("the first maximum, the receiver's first crest, {}", against_front(v, c)),
+    let crest = match first_maximum.zip(long_wave) {
+        Some((v, c)) => format!("the first maximum, the receiver's first crest, {}", against_long_waves(v, c)),
         None => "the first maximum is the receiver's first crest".into(),
     };
     format!(
@@ -420,9 +420,11 @@ fn criteria_sentence(criteria: &[(String, f64)], exact: Option<f64>) -> String {
     )
 }
 
-/// A first maximum's speed `v` against the exact front speed `c` = a√(k/m), in words: whether
-/// the crest leads or trails the front that travels at c, as measured.
-fn against_front(v: f64, c: f64) -> String {
+/// A first maximum's speed `v` against the chain's long-wavelength speed `c` = a√(k/m), in words:
+/// whether the crest leads or trails x = c t, as measured. c is the continuum's speed, not the
+/// exact discrete chain's front, which the record times by the speed threshold only
+/// (`sound_speed_exact`), so there is no exact crest to hold it against.
+fn against_long_waves(v: f64, c: f64) -> String {
     let side = if v > c {
         "leads"
     } else if v < c {
@@ -431,7 +433,7 @@ fn against_front(v: f64, c: f64) -> String {
         "keeps pace with"
     };
     format!(
-        "travels at {} m/s and so {side} the exact front x = c t, c = a√(k/m) = {} m/s ({})",
+        "travels at {} m/s and so {side} x = c t at the long-wavelength speed c = a√(k/m) = {} m/s ({})",
         sig(v),
         sig(c),
         rel(v / c - 1.0)
@@ -439,7 +441,7 @@ fn against_front(v: f64, c: f64) -> String {
 }
 
 /// The appendix's words on the first maximum: where the campaign has a linear chain's front
-/// timed by it, its speed against the exact front speed a√(k/m) (the chain item 17 shows).
+/// timed by it, its speed against the long-wavelength speed a√(k/m) (the chain item 17 shows).
 pub(super) fn first_maximum_words(e: &Evidence) -> Option<String> {
     let chain = e.ok(|r| {
         r.spec.chain().is_some()
@@ -449,15 +451,15 @@ pub(super) fn first_maximum_words(e: &Evidence) -> Option<String> {
     });
     let linear = chain.first().and_then(|chain| {
         let v = chain.metrics.sound_speed("first_maximum")?;
-        let words = against_front(v, chain.metrics.sound_speed_theory?);
+        let words = against_long_waves(v, chain.metrics.sound_speed_theory?);
         Some(format!("in this campaign's linear chain ({}) the crest {words}", chain.spec.scene))
     });
     let words: Vec<String> = linear.into_iter().chain(power_law_crests(e)).collect();
     (!words.is_empty()).then(|| words.join("; "))
 }
 
-/// The power-law chains' first maxima against their speed threshold's front (no exact front
-/// speed there): which side of it the crest arrives, and by how much, over the chains' runs.
+/// The power-law chains' first maxima against their speed threshold's front (no linear speed
+/// there): which side of it the crest arrives, and by how much, over the chains' runs.
 fn power_law_crests(e: &Evidence) -> Option<String> {
     let timed: Vec<(&str, f64)> = e
         .ok(|r| r.spec.chain().is_some() && r.spec.law != LawSpec::Linear)
@@ -1145,14 +1147,14 @@ pub(super) fn hertz_kick(e: &Evidence) -> Option<Answer> {
     let (low, high) = (fit.points.first()?, fit.points.last()?);
     let mut sentences = vec![format!(
         "A {} lattice has no linear sound speed: its unstretched springs have no stiffness. Kicked at v0 from {} to \
-         {} m/s, its front speeds up from {} to {} m/s, as v0^{:.3} (R² = {:.4}), {}.",
+         {} m/s, its front speeds up from {} to {} m/s, as v0^{:.3} ({}), {}.",
         lattice.name(),
         sig(low.0),
         sig(high.0),
         sig(low.1),
         sig(high.1),
         fit.fit.exponent,
-        fit.fit.r_squared,
+        crate::report::words::fit_quality(&fit.fit, 4),
         lattice.against_prediction()
     )];
     sentences.extend(chain.map(|c| {

@@ -198,7 +198,7 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
         let predicted = predicted_exponent(f)?;
         let group = runs.iter().find(|r| r.spec.scene == f.scene && load_group(r) == f.group);
         sentences.push(format!(
-            "{} of scene {}{}: from {} to {} Pa over loads of {} to {} N per node, ∝ F^{:.3} (R² = {:.4}; predicted \
+            "{} of scene {}{}: from {} to {} Pa over loads of {} to {} N per node, ∝ F^{:.3} ({}; predicted \
              {predicted:.3}).",
             symbol(f.quantity),
             f.scene,
@@ -208,7 +208,7 @@ pub(super) fn hertz_moduli(e: &Evidence) -> Option<Answer> {
             sig(f.points.first().map_or(0.0, |p| p.0)),
             sig(f.points.last().map_or(0.0, |p| p.0)),
             f.fit.exponent,
-            f.fit.r_squared
+            crate::report::words::fit_quality(&f.fit, 4)
         ));
         checks.push((f.fit.exponent - predicted).abs() <= EXPONENT_TOLERANCE);
     }

@@ -1137,13 +1137,13 @@ pub(super) fn walls(e: &Evidence) -> Option<Answer> {
     for fit in scenes.iter().filter_map(|s| e.fit(s, "secant_stiffness").filter(|f| f.law != "linear")) {
         let Some(predicted) = super::finding::predicted_exponent(fit) else { continue };
         sentences.push(format!(
-            "Fitted over |ΔW| from {} to {} m: {}'s secant stiffness ∝ |ΔW|^{:.3} (R² = {:.4}) against the predicted \
+            "Fitted over |ΔW| from {} to {} m: {}'s secant stiffness ∝ |ΔW|^{:.3} ({}) against the predicted \
              β − 1 = {predicted:.3}.",
             sig(fit.points.first().map_or(0.0, |p| p.0)),
             sig(fit.points.last().map_or(0.0, |p| p.0)),
             fit.scene,
             fit.fit.exponent,
-            fit.fit.r_squared
+            crate::report::words::fit_quality(&fit.fit, 4)
         ));
         checks.push((fit.fit.exponent - predicted).abs() <= super::finding::EXPONENT_TOLERANCE);
     }

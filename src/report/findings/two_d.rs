@@ -895,10 +895,7 @@ pub(super) fn shear(e: &Evidence) -> Option<Answer> {
     Some(Answer {
         title: "The shear modulus",
         question: "(c) Measure G under a horizontal load on every top-row node.",
-        short: Block::of(e).and_then(|b| b.shear_short()).map_or_else(
-            || "G measured; no shear stiffness without diagonals".into(),
-            |g| format!("{g}; none without diagonals"),
-        ),
+        short: shear_short(e),
         sentences,
         reference: format!("The static truss answer (tolerance {STATIC_TOLERANCE:e}) and G = k_d/d."),
         see_also: None,
@@ -908,22 +905,29 @@ pub(super) fn shear(e: &Evidence) -> Option<Answer> {
     })
 }
 
+/// Item 16's line in the summary: the block's G on each of its boundary conditions, and that a
+/// lattice without diagonals has none where the campaign shears one: every such run a mechanism.
+fn shear_short(e: &Evidence) -> String {
+    let unbraced = e.all(|r| {
+        r.spec
+            .lattice()
+            .is_some_and(|l| l.impulse.is_none() && l.load_case == LoadCase::Shear && l.diagonals == Diagonals::None)
+    });
+    let none = !unbraced.is_empty() && unbraced.iter().all(|r| r.status == RunStatus::Mechanism);
+    match (Block::of(e).and_then(|b| b.shear_short()), none) {
+        (Some(g), true) => format!("{g}; none without diagonals"),
+        (Some(g), false) => g,
+        (None, true) => "G measured; no shear stiffness without diagonals".into(),
+        (None, false) => "G measured".into(),
+    }
+}
+
 /// The apparent G of the largest sheared block with diagonals on the coursework's supports and
 /// on a clamped bottom, each as a share of k_d/d, and whether both fall short of it.
 fn supported_shear_words(e: &Evidence) -> String {
-    let largest = |supports: Supports| {
-        e.ok(|r| {
-            regular(r).is_some_and(|l| {
-                (l.load_case, l.supports, l.control, l.diagonals)
-                    == (LoadCase::Shear, supports, Control::Force, Diagonals::Both)
-            })
-        })
-        .into_iter()
-        .max_by_key(|r| r.spec.lattice().map_or(0, |l| l.nx))
-    };
     let shares: Vec<(String, f64)> = [Supports::Coursework, Supports::ClampedBottom]
         .into_iter()
-        .filter_map(largest)
+        .filter_map(|supports| super::block::largest_sheared(e, supports, |_| true))
         .filter_map(|r| {
             let (m, l) = (&r.metrics.lattice, r.spec.lattice()?);
             let share = m.shear_modulus? / m.shear_modulus_theory?;
