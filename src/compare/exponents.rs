@@ -32,6 +32,9 @@ struct Fit {
     beta: Option<f64>,
     exponent: f64,
     r_squared: f64,
+    /// Points the line went through (`summary.csv`'s `points`): through two, R² = 1 by
+    /// construction and says nothing of the fit.
+    points: Option<f64>,
     /// Particles of the fit's runs (`summary.csv`'s `particles`; none in an older one).
     particles: Option<f64>,
     /// Whether the verdict holds it against its law: every fit but a packing's scaling at a
@@ -62,6 +65,14 @@ fn law_words(fit: &Fit, (quantity, against): (&str, &str)) -> (String, String) {
 }
 
 impl Fit {
+    /// The fit's R² for the table, or a dash and the point count through two points.
+    fn r_squared_words(&self) -> String {
+        match self.points {
+            Some(points) if points <= 2.0 => format!("– ({points} points)"),
+            _ => fixed(Some(self.r_squared)),
+        }
+    }
+
     /// |fitted − predicted|, where the law predicts one.
     fn miss(&self, (quantity, against): (&str, &str)) -> Option<f64> {
         predicted(quantity, against, self.beta?).map(|(p, _)| (self.exponent - p).abs())
@@ -162,6 +173,7 @@ fn fits(side: &Side, summary: &Table) -> anyhow::Result<Vec<([String; 3], String
                 law,
                 exponent: exponent.number(row)?,
                 r_squared: r_squared.number(row).unwrap_or(f64::NAN),
+                points: summary.column("points").and_then(|c| c.number(row)),
                 particles: summary.column("particles").and_then(|c| c.number(row)),
                 judged: true,
             };
@@ -248,8 +260,8 @@ impl Matched {
             exponent_a: fixed(a.map(|f| f.exponent)),
             exponent_b: fixed(b.map(|f| f.exponent)),
             difference: fixed(a.zip(b).map(|(a, b)| b.exponent - a.exponent)),
-            r_squared_a: fixed(a.map(|f| f.r_squared)),
-            r_squared_b: fixed(b.map(|f| f.r_squared)),
+            r_squared_a: a.map_or_else(|| fixed(None), Fit::r_squared_words),
+            r_squared_b: b.map_or_else(|| fixed(None), Fit::r_squared_words),
         }
     }
 

@@ -397,6 +397,29 @@ fn packing_scalings_are_judged_at_the_largest_size_only() {
     assert!(!verdict.contains("(n=16)"), "{verdict}");
 }
 
+/// A contact chain of 30 hit at its first particle at two speeds: a fit through two points.
+fn chain_hit_twice(name: &str, law: &str) -> String {
+    format!(
+        "version: 1\nname: {name}\nscenes:\n  - name: wave\n    kind: chain\n    n: 30\n    node: first\n    \
+         material: {{law: {law}, contact: true}}\n    wave: {{}}\n    grid:\n      v0: [0.01, 0.1]\n"
+    )
+}
+
+/// The appendix's exponent table gives no R² for a fit through two points (R² = 1 by
+/// construction: it had shown 1.000000), but the point count; three speeds give an R² again.
+#[test]
+fn a_fit_through_two_points_shows_no_r_squared_in_the_comparison() {
+    let dir = crate::common::scratch();
+    let reports = dir.path();
+    let (_, report) = linear_against_hertz(reports, ("two-a", "two-b"), chain_hit_twice);
+    let row = report.lines().find(|l| l.starts_with("| wave |  | sound_speed |")).unwrap_or_else(|| panic!("{report}"));
+    assert!(row.ends_with("| – (2 points) | – (2 points) |"), "{row}");
+    let three = |name: &str, law: &str| chain_hit_twice(name, law).replace("[0.01, 0.1]", "[0.01, 0.03, 0.1]");
+    let (_, report) = linear_against_hertz(reports, ("three-a", "three-b"), three);
+    let row = report.lines().find(|l| l.starts_with("| wave |  | sound_speed |")).unwrap_or_else(|| panic!("{report}"));
+    assert!(!row.contains("points"), "{row}");
+}
+
 /// A contact pair of force law `law` over two impact speeds and two restitution targets: r = 1
 /// (undamped) and r = 0.5 (γ from the linear two-body formula).
 fn two_target_pairs(name: &str, law: &str) -> String {
