@@ -492,3 +492,23 @@ fn a_diluted_network_run_twice_counts_as_one_seed() {
         "{report}"
     );
 }
+
+#[test]
+fn diluted_networks_that_differ_in_supports_are_not_pooled_as_seeds() {
+    // One seed of a square lattice with both diagonals on two supports: two networks of one
+    // seed each, each against its own effective-medium 2d/z (z = 8: 0.500). Pooled by type and
+    // N they had been "over 2 seeds" from one seed run.
+    let yaml = "version: 1\nname: pool\ndefaults:\n  material: {k: 1.0e7}\nscenes:\n  - name: sq\n    kind: lattice\n    \
+                lattice: {type: square, size: 10}\n    relax: {method: static}\n    grid:\n      supports: [coursework, clamped-bottom]\n      \
+                lattice.cut_fraction: [0.0, 0.05, 0.1, 0.2, 0.3, 0.4, 0.5]\n      seed: [1]\n  - name: tri\n    kind: lattice\n    \
+                lattice: {type: triangular, size: 10}\n    relax: {method: static}\n    grid:\n      \
+                lattice.cut_fraction: [0.0, 0.2, 0.3, 0.4, 0.5]\n";
+    // (The item asks for a type other than square among the diluted ones.)
+    let report = report_of("pool", yaml);
+    for supports in ["coursework", "clamped-bottom"] {
+        let row = format!("| square (10 rows, diagonals both, {supports} supports) | 10 | 1 | ");
+        let line = report.lines().find(|l| l.starts_with(&row)).unwrap_or_else(|| panic!("no row {row}: {report}"));
+        assert!(line.ends_with("| – | 0.500 | – |"), "{line}");
+    }
+    assert!(line_with(&report, "diagonals both, coursework supports) N = 10: the rigidity").contains("(one seed: no"));
+}

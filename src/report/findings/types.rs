@@ -691,7 +691,9 @@ pub(super) fn percolation(e: &Evidence) -> Option<Answer> {
         question: "Where does a randomly diluted network lose its rigidity, against effective-medium theory?",
         short: thresholds
             .iter()
-            .map(|((name, n), p)| format!("{name} N = {n}: p_c = {:.3}", p.iter().sum::<f64>() / p.len() as f64))
+            .map(|(network, p)| {
+                format!("{}: p_c = {:.3}", network.words(&thresholds), p.iter().sum::<f64>() / p.len() as f64)
+            })
             .collect::<Vec<_>>()
             .join(", "),
         sentences,
@@ -743,20 +745,53 @@ fn percolation_runs<'a>(e: &Evidence<'a>) -> Vec<&'a RunRecord> {
     })
 }
 
-/// Per (type, N), the rigidity thresholds p_c of its seeds.
-type Thresholds<'a> = BTreeMap<(&'a str, usize), Vec<f64>>;
+/// A diluted network up to its seed and cut fraction: what its threshold depends on. Its
+/// coordination z (in thousandths) sets effective-medium theory's p_c = 2d/z.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct DilutedNetwork<'a> {
+    name: &'a str,
+    n: usize,
+    ny: usize,
+    diagonals: &'static str,
+    supports: &'static str,
+    z_thousandths: u64,
+}
 
-/// Per (type, N), the widest gap between a seed's last rigid and first floppy cut fraction:
-/// how finely the campaign's grid locates each threshold.
-type Brackets<'a> = BTreeMap<(&'a str, usize), f64>;
+impl DilutedNetwork<'_> {
+    /// Effective-medium theory's threshold p_c = 2d/z, d = 2.
+    fn effective_medium(&self) -> f64 {
+        4000.0 / self.z_thousandths as f64
+    }
+
+    /// Its type, with its height, diagonals and supports where another network of that type
+    /// and N in `thresholds` differs in them.
+    fn type_words(&self, thresholds: &Thresholds) -> String {
+        match thresholds.keys().filter(|k| k.name == self.name && k.n == self.n).count() {
+            1 => self.name.to_string(),
+            _ => format!("{} ({} rows, diagonals {}, {} supports)", self.name, self.ny, self.diagonals, self.supports),
+        }
+    }
+
+    /// The network in words: [`DilutedNetwork::type_words`] and N.
+    fn words(&self, thresholds: &Thresholds) -> String {
+        format!("{} N = {}", self.type_words(thresholds), self.n)
+    }
+}
+
+/// Per network, the rigidity thresholds p_c of its seeds.
+type Thresholds<'a> = BTreeMap<DilutedNetwork<'a>, Vec<f64>>;
+
+/// Per network, the widest gap between a seed's last rigid and first floppy cut fraction: how
+/// finely the campaign's grid locates each threshold.
+type Brackets<'a> = BTreeMap<DilutedNetwork<'a>, f64>;
 
 /// Per (type, cut fraction in thousandths), the seeds' E/E(p = 1), mechanisms counted as 0.
 type StiffnessByCut<'a> = BTreeMap<(&'a str, u64), Vec<f64>>;
 
-/// One diluted network family: its type, N, ny, seed, diagonals, supports and the bits of
-/// k_x, k_y and k_d. Runs of one family differ only in their cut fraction and in what does not
-/// change the network (load, control, relaxation), so each cut fraction is one network.
-type Family<'a> = (&'a str, usize, usize, u64, &'static str, &'static str, [u64; 3]);
+/// One diluted network family: the network, the seed and the bits of k_x, k_y and k_d. Runs of
+/// one family differ only in their cut fraction and in what does not change the network (load,
+/// control, relaxation), so each cut fraction is one network.
+type Family<'a> = (DilutedNetwork<'a>, u64, [u64; 3]);
 
 /// The diluted networks of each family, one point per cut fraction in increasing order: a cut
 /// that several runs share (two controls, two relaxation methods of one network) counts once,
@@ -768,9 +803,15 @@ fn families<'a>(runs: &[&'a RunRecord]) -> Option<BTreeMap<Family<'a>, Vec<Dilut
         if l.rotated || l.impulse.is_some() {
             continue;
         }
-        let stiffness = [l.k_x, l.k_y, l.k_diag].map(f64::to_bits);
-        let family = (l.lattice_type.name(), l.nx, l.ny, l.seed, l.diagonals.name(), l.supports.name(), stiffness);
-        let points = series.entry(family).or_default();
+        let network = DilutedNetwork {
+            name: l.lattice_type.name(),
+            n: l.nx,
+            ny: l.ny,
+            diagonals: l.diagonals.name(),
+            supports: l.supports.name(),
+            z_thousandths: (1000.0 * l.coordination()).round() as u64,
+        };
+        let points = series.entry((network, l.seed, [l.k_x, l.k_y, l.k_diag].map(f64::to_bits))).or_default();
         let rigid = r.status != RunStatus::Mechanism;
         match points.iter_mut().find(|p| p.0 == l.cut_fraction) {
             Some(point) => point.1 &= rigid,
@@ -782,60 +823,68 @@ fn families<'a>(runs: &[&'a RunRecord]) -> Option<BTreeMap<Family<'a>, Vec<Dilut
     Some(series)
 }
 
-/// The thresholds per (type, N), how finely the grid brackets them, and the stiffness by cut.
+/// The thresholds per network, how finely the grid brackets them, and the stiffness by cut.
 type Dilution<'a> = (Thresholds<'a>, Brackets<'a>, StiffnessByCut<'a>);
 
 /// The thresholds (per seed midway between the largest cut still rigid and the smallest that
 /// is a mechanism: the cut sets of a seed are nested) and the stiffness by cut. Families that
 /// differ only in their stiffness constants share a seed's threshold, which is counted once.
 fn dilution<'a>(runs: &[&'a RunRecord]) -> Option<Dilution<'a>> {
-    // Per network (type, N, seed, diagonals, supports): its threshold and bracket.
-    let mut per_seed: BTreeMap<_, (f64, f64)> = BTreeMap::new();
+    let mut per_seed: BTreeMap<(DilutedNetwork, u64), (f64, f64)> = BTreeMap::new();
     let mut stiffness = StiffnessByCut::new();
-    for (&(name, n, _, seed, diagonals, supports, _), points) in &families(runs)? {
+    for (&(network, seed, _), points) in &families(runs)? {
         let full = points.iter().find(|p| p.0 == 0.0).and_then(|p| p.2);
         let last_rigid = points.iter().filter(|p| p.1).map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
         let first_floppy = points.iter().filter(|p| !p.1).map(|p| p.0).fold(f64::INFINITY, f64::min);
         if last_rigid.is_finite() && first_floppy.is_finite() {
             let threshold = (1.0 - 0.5 * (last_rigid + first_floppy), first_floppy - last_rigid);
-            per_seed.insert((name, n, seed, diagonals, supports), threshold);
+            per_seed.insert((network, seed), threshold);
         }
         if let Some(full) = full {
             for p in points.iter().filter(|p| p.0 > 0.0) {
                 let ratio = if p.1 { p.2.map_or(0.0, |e| e / full) } else { 0.0 };
-                stiffness.entry((name, (p.0 * 1000.0).round() as u64)).or_default().push(ratio);
+                stiffness.entry((network.name, (p.0 * 1000.0).round() as u64)).or_default().push(ratio);
             }
         }
     }
     let (mut thresholds, mut brackets) = (Thresholds::new(), Brackets::new());
-    for ((name, n, ..), (p_c, bracket)) in per_seed {
-        thresholds.entry((name, n)).or_default().push(p_c);
-        let widest = brackets.entry((name, n)).or_insert(bracket);
+    for ((network, _), (p_c, bracket)) in per_seed {
+        thresholds.entry(network).or_default().push(p_c);
+        let widest = brackets.entry(network).or_insert(bracket);
         *widest = widest.max(bracket);
     }
     Some((thresholds, brackets, stiffness))
 }
 
-/// A table row and a sentence per (type, N): the seeds' mean threshold against theory.
+/// A table row and a sentence per network: the seeds' mean threshold against theory.
 fn threshold_rows(thresholds: &Thresholds) -> (Vec<Vec<String>>, Vec<String>) {
     let mut rows = Vec::new();
     let mut sentences = Vec::new();
-    for ((name, n), p) in thresholds {
+    for (network, p) in thresholds {
         let (mean, sd, error) = over_seeds(p);
-        let (emt, literature) = if *name == "triangular" { (2.0 / 3.0, Some(0.660)) } else { (0.5, None) };
+        let emt = network.effective_medium();
+        let literature = (network.name == "triangular").then_some(0.660);
+        let words = network.words(thresholds);
+        // One seed has no scatter to give an error: its threshold alone.
+        let (value, spread, over) = match p.len() {
+            1 => (format!("{mean:.3}"), "–".to_string(), format!("{mean:.3} (one seed: no standard error)")),
+            n => (
+                format!("{mean:.3} ± {error:.3}"),
+                format!("{sd:.3}"),
+                format!("{mean:.3} ± {error:.3} over {n} seeds (standard error; seed-to-seed spread {sd:.3})"),
+            ),
+        };
         rows.push(vec![
-            name.to_string(),
-            n.to_string(),
+            network.type_words(thresholds),
+            network.n.to_string(),
             p.len().to_string(),
-            format!("{mean:.3} ± {error:.3}"),
-            format!("{sd:.3}"),
+            value,
+            spread,
             format!("{emt:.3}"),
             literature.map_or("–".into(), |x| format!("{x:.3}")),
         ]);
         sentences.push(format!(
-            "{name} N = {n}: the rigidity threshold over {} seeds is p_c = {mean:.3} ± {error:.3} (standard error; \
-             seed-to-seed spread {sd:.3}), against effective-medium theory's {emt:.3}{}.",
-            p.len(),
+            "{words}: the rigidity threshold is p_c = {over}, against effective-medium theory's {emt:.3}{}.",
             literature
                 .map_or(String::new(), |x| format!(" and Jacobs and Thorpe's {x:.3} (central forces, large networks)"))
         ));
@@ -847,7 +896,8 @@ fn threshold_rows(thresholds: &Thresholds) -> (Vec<Vec<String>>, Vec<String>) {
 /// standard errors over the seeds (or the seeds' agreement, where they all found one value)
 /// and beside the grid step `brackets` that located it.
 fn largest_triangular_sentence(thresholds: &Thresholds, brackets: &Brackets) -> Option<String> {
-    let (&(name, n), p) = thresholds.iter().rev().find(|((name, _), _)| *name == "triangular")?;
+    let (network, p) = thresholds.iter().rev().find(|(network, _)| network.name == "triangular")?;
+    let n = network.n;
     let (mean, _, error) = over_seeds(p);
     let (off, emt_off) = (mean - 0.660, mean - 2.0 / 3.0);
     let side = |x: f64| if x < 0.0 { "below" } else { "above" };
@@ -863,7 +913,7 @@ fn largest_triangular_sentence(thresholds: &Thresholds, brackets: &Brackets) -> 
          effective-medium theory's 2/3, which counts constraints on average.",
         off.abs(),
         side(off),
-        brackets[&(name, n)],
+        brackets[network],
         emt_off.abs(),
         side(emt_off),
     ))
