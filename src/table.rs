@@ -158,7 +158,8 @@ pub fn summary_frame(fits: &[ScalingFit]) -> PolarsResult<DataFrame> {
         Column::new("against".into(), fits.iter().map(|f| f.against).collect::<Vec<&str>>()),
         Column::new("exponent".into(), fits.iter().map(|f| f.fit.exponent).collect::<Vec<f64>>()),
         Column::new("r_squared".into(), fits.iter().map(|f| f.fit.r_squared).collect::<Vec<f64>>()),
-        Column::new("points".into(), fits.iter().map(|f| f.points.len() as u64).collect::<Vec<u64>>()),
+        // The points the line went through (the positive, finite ones), as the report counts them.
+        Column::new("points".into(), fits.iter().map(|f| f.fit.points as u64).collect::<Vec<u64>>()),
         Column::new("x_min".into(), fits.iter().map(|f| f.points[0].0).collect::<Vec<f64>>()),
         Column::new("x_max".into(), fits.iter().map(|f| f.points[f.points.len() - 1].0).collect::<Vec<f64>>()),
         Column::new("particles".into(), fits.iter().map(|f| f.particles as u64).collect::<Vec<u64>>()),
