@@ -786,21 +786,13 @@ fn moduli(e: &Evidence, case: LoadCase) -> Option<Moduli> {
             noise(r.metrics.lattice.poisson_ratio, 1.0),
         ]);
     }
-    let mechanisms = runs.iter().filter(|r| r.status == RunStatus::Mechanism).count();
     let sentences = vec![format!(
         "Over the {} relaxed runs the MD modulus agrees with the static truss answer of the same network to {} at \
          worst; the table shows the lattices {largest} nodes wide, where the static answer still differs from the \
          continuum by the finite size and the supports.{}",
         ok.len(),
         rel(worst).trim_start_matches('+'),
-        if mechanisms > 0 {
-            format!(
-                " {mechanisms} runs end as mechanism: the load or drive meets a zero-stiffness motion (a lattice \
-                 without diagonals has no shear stiffness), and no modulus exists."
-            )
-        } else {
-            String::new()
-        }
+        mechanism_words(&runs)
     )];
     let header = ["lattice", "modulus", "MD", "static", "continuum", "MD − static", "static − continuum", "ν MD"]
         .map(String::from)
@@ -811,6 +803,31 @@ fn moduli(e: &Evidence, case: LoadCase) -> Option<Moduli> {
         checks: vec![worst <= STATIC_TOLERANCE],
         scenes: scenes(&ok),
     })
+}
+
+/// The runs among `runs` that end as mechanism, in words, and why where the campaign shows it:
+/// a lattice sheared without diagonals (none, or k_d = 0) has no shear stiffness (C44 = k_d);
+/// any other mechanism (diagonals too soft for the static solver, say) is counted, not explained.
+fn mechanism_words(runs: &[&RunRecord]) -> String {
+    let mechanisms: Vec<&RunRecord> = runs.iter().copied().filter(|r| r.status == RunStatus::Mechanism).collect();
+    let unbraced = mechanisms
+        .iter()
+        .filter(|r| {
+            r.spec.lattice().is_some_and(|l| l.load_case == LoadCase::Shear && l.diagonal_stiffness() == (0.0, 0.0))
+        })
+        .count();
+    let why = match unbraced {
+        0 => String::new(),
+        n if n == mechanisms.len() => " (a lattice without diagonals has no shear stiffness)".into(),
+        n => format!(" ({n} of them sheared without diagonals, which have no shear stiffness)"),
+    };
+    match mechanisms.len() {
+        0 => String::new(),
+        n => format!(
+            " {} ended as mechanism: the load meets a zero-stiffness motion{why}, and no modulus exists.",
+            counted(n, "run")
+        ),
+    }
 }
 
 /// (a) and (b): Young's modulus and Poisson's ratio, and the velocity boundary condition under tension.
@@ -883,9 +900,7 @@ pub(super) fn shear(e: &Evidence) -> Option<Answer> {
     if let Some(r) = periodic.first() {
         sentences.push(format!(
             "Only the periodic strip (bonds wrapped from the right edge to the left, the bottom row held: a strip \
-             of an infinite block) shears homogeneously: there G = {} Pa against k_d/d = {} Pa; with the \
-             coursework supports the whole shear force passes through the single pinned corner, and a clamped \
-             bottom bends the block{}.",
+             of an infinite block) shears homogeneously: there G = {} Pa against k_d/d = {} Pa{}.",
             cell(r.metrics.lattice.shear_modulus),
             cell(r.metrics.lattice.shear_modulus_theory),
             supported_shear_words(e)
@@ -923,7 +938,8 @@ fn shear_short(e: &Evidence) -> String {
 }
 
 /// The apparent G of the largest sheared block with diagonals on the coursework's supports and
-/// on a clamped bottom, each as a share of k_d/d, and whether both fall short of it.
+/// on a clamped bottom, each as a share of k_d/d with why its supports bend it, and whether both
+/// fall short of it: only the supports the campaign shears a block on.
 fn supported_shear_words(e: &Evidence) -> String {
     let shares: Vec<(String, f64)> = [Supports::Coursework, Supports::ClampedBottom]
         .into_iter()
@@ -931,8 +947,12 @@ fn supported_shear_words(e: &Evidence) -> String {
         .filter_map(|r| {
             let (m, l) = (&r.metrics.lattice, r.spec.lattice()?);
             let share = m.shear_modulus? / m.shear_modulus_theory?;
+            let why = match l.supports {
+                Supports::Coursework => "the whole shear force passes through the single pinned corner",
+                _ => "the clamped bottom bends the block",
+            };
             let words = format!(
-                "{} Pa on {} × {} {} supports ({share:.2} of k_d/d)",
+                "{} Pa on {} × {} {} supports ({share:.2} of k_d/d: {why})",
                 cell(m.shear_modulus),
                 l.nx,
                 l.ny,
@@ -946,7 +966,7 @@ fn supported_shear_words(e: &Evidence) -> String {
     }
     let verdict = if shares.iter().all(|s| s.1 < 1.0) { ", short of k_d/d" } else { "" };
     let list: Vec<String> = shares.into_iter().map(|s| s.0).collect();
-    format!(": the apparent G is {}{verdict}", list.join(" and "))
+    format!("; elsewhere the apparent G is {}{verdict}", list.join(" and "))
 }
 
 /// Two static answers closer than this are the same modulus: the static solver's precision is
