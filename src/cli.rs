@@ -301,6 +301,7 @@ fn run_command(reports: &Path, file: &Path, options: &RunOptions) -> anyhow::Res
     let started = std::time::Instant::now();
     let (plan, layout) = open_to_write(reports, file, options.force)?;
     let campaign = &plan.campaign;
+    collision_warnings(campaign).for_each(|line| eprintln!("{line}"));
     let done = run_stored(&plan, &layout, options)?;
     warn_about_store(&layout, &done, options.other_builds);
     let failed = done.records.iter().filter(|r| r.status != RunStatus::Ok).count();
@@ -326,6 +327,7 @@ fn run_shard_command(reports: &Path, file: &Path, shard: Shard, options: &RunOpt
     let (mut plan, layout) = open_to_write(reports, file, options.force)?;
     let total = plan.campaign.runs.len();
     plan.campaign = shard_campaign(&plan.campaign, shard);
+    collision_warnings(&plan.campaign).for_each(|line| eprintln!("{line}"));
     let done = run_stored(&plan, &layout, options)?;
     warn_about_store(&layout, &done, options.other_builds);
     let failed = done.records.iter().filter(|r| r.status != RunStatus::Ok).count();
@@ -401,18 +403,18 @@ fn plan_command(reports: &Path, file: &Path, shard: Option<Shard>) -> anyhow::Re
     let tally = print_plan_rows(&plan, &layout);
     print_plan_summary(&plan.campaign, &layout, &tally);
     print_budget_warnings(&plan.campaign);
-    print_collision_warnings(&plan.campaign);
+    collision_warnings(&plan.campaign).for_each(|line| println!("{line}"));
     Ok(())
 }
 
-/// The collisions the plan lets run but warns of ([`crate::plan::collision_warning`]): a bonded
-/// chain's kicked particle that may pass through its neighbour, a contact resolved by a few steps.
-fn print_collision_warnings(campaign: &Campaign) {
-    for spec in &campaign.runs {
-        if let Some(why) = crate::plan::collision_warning(spec) {
-            println!("warning: {}: {why}", spec.run_id());
-        }
-    }
+/// The collisions the plan lets run but warns of ([`crate::plan::collision_warning`]), one line
+/// each: a collision that may pass through its neighbour by an estimate only, a contact resolved
+/// by a few steps. `plan` prints them with its table, `run` before it starts, with its notices.
+fn collision_warnings(campaign: &Campaign) -> impl Iterator<Item = String> + '_ {
+    campaign
+        .runs
+        .iter()
+        .filter_map(|spec| crate::plan::collision_warning(spec).map(|why| format!("warning: {}: {why}", spec.run_id())))
 }
 
 /// What `plan` found in the store, run by run.
