@@ -5,11 +5,11 @@
 //! Verlet's limit 2, yet its first step of free flight, v0 dt = 1.11 m, is longer than its rest
 //! length; the Hertz contact chain of 11 hit at v0 = 1 m/s has dt · ω_max = 0.11 and still
 //! drives its last particle into the wall. The limit is the run's own: a bond counts as
-//! collapsed once its length falls below [`Trace::COLLAPSE_RATIO`] of its start length. Pure
+//! collapsed once its length falls below [`COLLAPSE_RATIO`] of its start length. Pure
 //! computation on the resolved run.
 
 use crate::model::LawSpec;
-use crate::sim::Trace;
+use crate::sim::COLLAPSE_RATIO;
 use crate::spec::{Deformation, KindSpec, Num, RunSpec, SceneKind};
 
 /// A collision is resolved when one step's free flight v0 dt stays below this fraction of the
@@ -148,7 +148,7 @@ impl Overlap {
             kick: balance.reach(v0, 0.0),
             step,
             reach: balance.reach(v0, step),
-            limit: spec.spacing - Trace::COLLAPSE_RATIO * (spec.spacing + extension + gap),
+            limit: spec.spacing - COLLAPSE_RATIO * (spec.spacing + extension + gap),
             refusable: (pair || chain_contact) && (dashpot == 0.0 || closed),
         })
     }
@@ -189,7 +189,7 @@ impl Overlap {
             self.step,
             self.reach,
             self.limit,
-            Trace::COLLAPSE_RATIO
+            COLLAPSE_RATIO
         )
     }
 }

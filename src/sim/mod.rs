@@ -9,7 +9,8 @@ pub use self::integrate::{
 pub use self::probe::{ContactClock, Crossing, Frame, FrameProbe, StepProbe, WaveProbe, WaveRecord};
 pub use self::relax::{Preconditioner, PreconditionerKind, RelaxMethod, SharedPreconditioner, euclidean_norm};
 pub use self::run::{
-    ProbeTrace, Relaxation, RunStatus, STORED_NUMBERS, STORED_SAMPLES, Sampling, Trace, simulate, stored_samples,
+    COLLAPSE_RATIO, ProbeTrace, Relaxation, RunStatus, STORED_NUMBERS, STORED_SAMPLES, Sampling, Trace, simulate,
+    stored_samples,
 };
 pub use self::scene::{Network, Outcome, Scene, simulate_with};
 pub use self::state::{Drive, Load, State};

@@ -242,6 +242,11 @@ impl ProbeTrace {
 /// at ω dt = 1.9: 10×), while a run beyond the limit grows exponentially and passes any factor.
 pub const ENERGY_GROWTH_LIMIT: f64 = 1e3;
 
+/// A bond whose length along its start direction falls below this fraction of its start
+/// length has collapsed (or, below zero, inverted): the particles passed through each other.
+/// Shared with the plan, which refuses a collision that may reach it (`plan::overlap`).
+pub const COLLAPSE_RATIO: f64 = 0.05;
+
 /// Positions at t = 0, for displacements and for the collapse check.
 pub(super) struct Start {
     x: Vec<f64>,
@@ -256,11 +261,6 @@ impl Start {
 }
 
 impl Trace {
-    /// A bond whose length along its start direction falls below this fraction of its start
-    /// length has collapsed (or, below zero, inverted): the particles passed through each other.
-    /// Shared with the plan, which refuses a collision that may reach it (`plan::overlap`).
-    pub(crate) const COLLAPSE_RATIO: f64 = 0.05;
-
     /// Appends one sample of `state`; refuses, recording nothing, when the state has blown up
     /// (so nothing non-finite reaches a table) and says why.
     pub(super) fn sample<F: ForceField>(
@@ -290,8 +290,7 @@ impl Trace {
         if let Some((i, j, ratio)) = collapsed_bond(field, &p.x, &p.y, start) {
             return Err(format!(
                 "the bond {i}–{j} collapsed: its length along its start direction is {ratio:.3} of its start length \
-                 (below {}; negative means the particles passed through each other)",
-                Trace::COLLAPSE_RATIO
+                 (below {COLLAPSE_RATIO}; negative means the particles passed through each other)"
             ));
         }
         self.time.push(state.time);
@@ -309,7 +308,7 @@ impl Trace {
     }
 }
 
-/// The bond most compressed along its start direction, when that is below [`Trace::COLLAPSE_RATIO`]:
+/// The bond most compressed along its start direction, when that is below [`COLLAPSE_RATIO`]:
 /// `(i, j, ratio)` with ratio = (d · d₀)/|d₀|² for separations d now and d₀ at t = 0.
 fn collapsed_bond<F: ForceField>(field: &F, x: &[f64], y: &[f64], start: &Start) -> Option<(usize, usize, f64)> {
     let mut worst: Option<(usize, usize, f64)> = None;
@@ -317,7 +316,7 @@ fn collapsed_bond<F: ForceField>(field: &F, x: &[f64], y: &[f64], start: &Start)
         let (dx, dy) = (x[i] - x[j] + shift, y[i] - y[j]);
         let (dx0, dy0) = (start.x[i] - start.x[j] + shift, start.y[i] - start.y[j]);
         let ratio = (dx * dx0 + dy * dy0) / (dx0 * dx0 + dy0 * dy0);
-        if ratio < Trace::COLLAPSE_RATIO && worst.is_none_or(|(_, _, r)| ratio < r) {
+        if ratio < COLLAPSE_RATIO && worst.is_none_or(|(_, _, r)| ratio < r) {
             worst = Some((i, j, ratio));
         }
     });
