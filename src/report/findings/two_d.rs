@@ -805,17 +805,18 @@ fn moduli(e: &Evidence, case: LoadCase) -> Option<Moduli> {
     })
 }
 
+/// A lattice sheared without diagonal stiffness (`diagonals: none`, or k_d = 0): it has no
+/// shear stiffness (C44 = k_d), so its shear is a mechanism.
+fn sheared_unbraced(l: &LatticeSpec) -> bool {
+    l.load_case == LoadCase::Shear && l.diagonal_stiffness() == (0.0, 0.0)
+}
+
 /// The runs among `runs` that end as mechanism, in words, and why where the campaign shows it:
 /// a lattice sheared without diagonals (none, or k_d = 0) has no shear stiffness (C44 = k_d);
 /// any other mechanism (diagonals too soft for the static solver, say) is counted, not explained.
 fn mechanism_words(runs: &[&RunRecord]) -> String {
     let mechanisms: Vec<&RunRecord> = runs.iter().copied().filter(|r| r.status == RunStatus::Mechanism).collect();
-    let unbraced = mechanisms
-        .iter()
-        .filter(|r| {
-            r.spec.lattice().is_some_and(|l| l.load_case == LoadCase::Shear && l.diagonal_stiffness() == (0.0, 0.0))
-        })
-        .count();
+    let unbraced = mechanisms.iter().filter(|r| r.spec.lattice().is_some_and(sheared_unbraced)).count();
     let why = match unbraced {
         0 => String::new(),
         n if n == mechanisms.len() => " (a lattice without diagonals has no shear stiffness)".into(),
@@ -923,11 +924,7 @@ pub(super) fn shear(e: &Evidence) -> Option<Answer> {
 /// Item 16's line in the summary: the block's G on each of its boundary conditions, and that a
 /// lattice without diagonals has none where the campaign shears one: every such run a mechanism.
 fn shear_short(e: &Evidence) -> String {
-    let unbraced = e.all(|r| {
-        r.spec
-            .lattice()
-            .is_some_and(|l| l.impulse.is_none() && l.load_case == LoadCase::Shear && l.diagonals == Diagonals::None)
-    });
+    let unbraced = e.all(|r| r.spec.lattice().is_some_and(|l| l.impulse.is_none() && sheared_unbraced(l)));
     let none = !unbraced.is_empty() && unbraced.iter().all(|r| r.status == RunStatus::Mechanism);
     match (Block::of(e).and_then(|b| b.shear_short()), none) {
         (Some(g), true) => format!("{g}; none without diagonals"),
